@@ -1,0 +1,11 @@
+# ibs_set_warnings(target): the project's warning set, errors when IBS_WERROR is on.
+function(ibs_set_warnings target)
+  target_compile_options(${target} PRIVATE
+    -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion
+    -Wnon-virtual-dtor -Wold-style-cast -Woverloaded-virtual -Wnull-dereference
+    -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough -Wmisleading-indentation
+    -Wduplicated-cond -Wlogical-op -Wuseless-cast)
+  if(IBS_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# ibs developer entry point: the README's two quick-start commands.
+#
+#   ./dev.sh run [ARGS...]   build (release) and run the main job: `ibs run ARGS...`
+#   ./dev.sh test [PRESET]   build and run the whole test suite with CTest (PRESET: debug | asan)
+#
+# Both first check for the Debian packages the build needs and install the missing ones through
+# apt-get (saying so); nothing is downloaded at build time.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libcli11-dev
+          nlohmann-json3-dev libtomlplusplus-dev)
+
+ensure_packages() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  done
+  ((${#missing[@]} == 0)) && return 0
+  echo "dev.sh: installing missing Debian packages with apt-get: ${missing[*]}" >&2
+  local sudo=()
+  [[ $(id -u) -ne 0 ]] && sudo=(sudo)
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq "${missing[@]}" >&2
+}
+
+jobs=$(nproc 2>/dev/null || echo 2)
+werror=()
+[[ "${CI:-}" == "true" ]] && werror=(-DIBS_WERROR=ON)
+
+build() {
+  local preset=$1; shift
+  cmake --preset "$preset" "${werror[@]}" >/dev/null
+  cmake --build --preset "$preset" -j "$jobs" "$@"
+}
+
+cmd=${1:-}
+case "$cmd" in
+  run)
+    shift
+    ensure_packages
+    build release --target ibs >/dev/null
+    exec ./build/release/tools/ibs/ibs run "$@"
+    ;;
+  test)
+    preset=${2:-debug}
+    ensure_packages
+    build "$preset"
+    ctest --preset "$preset" -j "$jobs"
+    ;;
+  *)
+    echo "usage: ./dev.sh run [ARGS...] | ./dev.sh test [debug|asan]" >&2
+    exit 2
+    ;;
+esac

@@ -1,0 +1,68 @@
+// Replay of an `ibs-trace 1` file against one emulated side (../shared/specs/trace-format.md,
+// "Timing convention", "Gaps", "Replay"). The engine is generic: each protocol supplies a
+// DeviceSide or MasterSide adapter and an Explainer for its words; the engine owns the timing
+// convention, the gaps, the comparisons and the messages, once for all of them.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "ibs/interbus/trace.hpp"
+
+namespace ibs::trace {
+
+// Explains words in a row for `decode` and for mismatch messages.
+class Explainer {
+ public:
+  virtual ~Explainer() = default;
+  [[nodiscard]] virtual std::string explain_m2s(std::span<const Word> m2s) const = 0;
+  [[nodiscard]] virtual std::string explain_s2m(std::span<const Word> s2m) const = 0;
+};
+
+// The device side of a trace: s2m[0] = initial(); s2m[k] = step(m2s[k-1]).
+class DeviceSide {
+ public:
+  virtual ~DeviceSide() = default;
+  [[nodiscard]] virtual std::size_t m2s_words() const = 0;
+  [[nodiscard]] virtual std::size_t s2m_words() const = 0;
+  virtual void initial(std::span<Word> s2m) = 0;
+  virtual void step(std::span<const Word> m2s, std::span<Word> s2m) = 0;
+};
+
+// The master side of a trace: m2s[0] = initial(); m2s[k] = step(s2m[k-1]).
+class MasterSide {
+ public:
+  virtual ~MasterSide() = default;
+  [[nodiscard]] virtual std::size_t m2s_words() const = 0;
+  [[nodiscard]] virtual std::size_t s2m_words() const = 0;
+  virtual void initial(std::span<Word> m2s) = 0;
+  // The trace's `request`, handed over at the start of step `request-at`.
+  virtual void submit(const Request& request) = 0;
+  // `row_m2s` is this step's m2s column of the file: words that are application data rather than
+  // master logic (setpoints) are taken from it; protocol words must be computed, not copied.
+  virtual void step(std::span<const Word> s2m, std::span<const WordPattern> row_m2s,
+                    std::span<Word> m2s) = 0;
+  // The master's report on the request so far; nullopt while it is still running.
+  [[nodiscard]] virtual std::optional<Outcome> outcome() const = 0;
+};
+
+struct ReplayResult {
+  bool matched = false;
+  std::size_t steps_matched = 0;  // rows compared and matched
+  std::string message;            // the mismatch report, or `replay: N steps matched`
+};
+
+// Replays the trace against the device side; the trace's m2s column drives it.
+// Throws TraceError when the trace does not fit the adapter (word counts, '?' in driving words).
+ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& explain);
+// Replays the trace against the master side; the trace's s2m column drives it.
+ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& explain);
+
+// The trace with every row's remark replaced by the explainer's reading of its words
+// (the original remark kept after ` | `), ready for write().
+Trace decode(const Trace& t, const Explainer& explain);
+
+}  // namespace ibs::trace

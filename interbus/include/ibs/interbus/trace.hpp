@@ -1,0 +1,125 @@
+// The cycle trace format `ibs-trace 1` (../shared/specs/trace-format.md): reader, writer and the
+// word patterns that expectations use. Reading and writing are configuration-time work (they
+// allocate and throw TraceError); nothing here is on the cycle path.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibs/interbus/words.hpp"
+
+namespace ibs::trace {
+
+enum class DeviceType { vf1000, mc6000 };
+enum class WordsKind { comm, pd, pcp };
+enum class InitState { operational, power_on, fault };
+// DRIVECOM targets a `request: state TARGET` may name.
+enum class StateTarget { start_up_inhibit, ready, on, enabled };
+
+std::string_view to_string(DeviceType d);
+std::string_view to_string(WordsKind w);
+std::string_view to_string(InitState s);
+std::string_view to_string(StateTarget t);
+
+struct Request {
+  enum class Kind { read, write, describe, state };
+  Kind kind = Kind::read;
+  std::uint16_t parameter = 0;  // read, write, describe
+  std::int64_t value = 0;       // write: the raw value
+  StateTarget target = StateTarget::enabled;  // state
+
+  friend bool operator==(const Request&, const Request&) = default;
+};
+std::string to_string(const Request& r);
+
+struct Outcome {
+  enum class Kind { ok, nak, timeout };
+  Kind kind = Kind::ok;
+  std::optional<std::int64_t> value;  // `ok VALUE`: the raw value read
+
+  friend bool operator==(const Outcome&, const Outcome&) = default;
+};
+std::string to_string(const Outcome& o);
+
+// An expected word: compared only in the bits of `mask` (`?` digits and `VALUE/MASK` clear bits).
+struct WordPattern {
+  Word value = 0;
+  Word mask = 0xFFFF;
+
+  static WordPattern exact(Word w) { return {w, 0xFFFF}; }
+  [[nodiscard]] bool matches(Word w) const { return ((w ^ value) & mask) == 0; }
+  [[nodiscard]] bool is_exact() const { return mask == 0xFFFF; }
+  // Written back as the file would hold it: `0A3F`, `0?37` or `0437/FDFF`.
+  [[nodiscard]] std::string to_string() const;
+  friend bool operator==(const WordPattern&, const WordPattern&) = default;
+};
+
+std::string format_words(std::span<const Word> words);
+std::string format_patterns(std::span<const WordPattern> words);
+
+struct Row {
+  std::size_t line = 0;  // 1-based line in the file it came from (0 when built in memory)
+  bool gap = false;      // a `...` row: no words, stands for 0..max-gap steps
+  std::uint64_t step = 0;
+  std::vector<WordPattern> m2s;
+  std::vector<WordPattern> s2m;
+  std::string remark;
+  std::vector<std::string> comments_before;  // `#` comment lines that preceded the row
+};
+
+struct Header {
+  DeviceType device = DeviceType::vf1000;
+  WordsKind words = WordsKind::pd;
+  int supi = 11;
+  int ibcnf = 2;
+  bool supi_given = false;
+  bool ibcnf_given = false;
+  InitState init = InitState::operational;
+  bool init_given = false;
+  std::optional<Request> request;
+  std::uint64_t request_at = 1;
+  bool request_at_given = false;
+  std::optional<Outcome> outcome;
+  std::uint64_t max_gap = 100000;
+  bool max_gap_given = false;
+};
+
+struct Trace {
+  std::string file;  // where it was read from, for messages
+  Header header;
+  std::vector<Row> rows;
+  std::vector<std::string> trailing_comments;
+};
+
+// Every malformed input: what() is `FILE:LINE: what is wrong`.
+class TraceError : public std::runtime_error {
+ public:
+  TraceError(const std::string& file, std::size_t line, const std::string& what);
+  [[nodiscard]] const std::string& file() const { return file_; }
+  [[nodiscard]] std::size_t line() const { return line_; }
+
+ private:
+  std::string file_;
+  std::size_t line_;
+};
+
+// Parses a whole trace; `file` names it in errors.
+Trace parse(std::string_view text, const std::string& file);
+// Reads and parses a file; a file that cannot be read is a TraceError at line 0.
+Trace load(const std::string& path);
+// Writes a trace in the format `parse` reads (round trip: parse(write(t)) == t, less line numbers).
+std::string write(const Trace& t);
+
+// Parses one field of words (`0006 09C4 4000`), for tools and tests; throws TraceError.
+std::vector<WordPattern> parse_words(std::string_view field, const std::string& file,
+                                     std::size_t line);
+// Parses `read 22`, `write 0x15 500`, `describe 45`, `state enabled`.
+Request parse_request(std::string_view text, const std::string& file, std::size_t line);
+Outcome parse_outcome(std::string_view text, const std::string& file, std::size_t line);
+
+}  // namespace ibs::trace
