@@ -87,6 +87,11 @@ struct Header {
   std::optional<Outcome> outcome;
   std::uint64_t max_gap = 100000;
   bool max_gap_given = false;
+  // The line each header was read from (0 = not given), for errors found after parsing.
+  struct Lines {
+    std::size_t device = 0, words = 0, supi = 0, ibcnf = 0, init = 0, request = 0, request_at = 0,
+                outcome = 0, max_gap = 0;
+  } lines;
 };
 
 struct Trace {

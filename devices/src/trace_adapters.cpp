@@ -1,0 +1,281 @@
+#include "ibs/devices/trace_adapters.hpp"
+
+#include <cstdio>
+#include <string>
+
+#include "ibs/devices/drive_pd.hpp"
+
+namespace ibs::devices {
+
+namespace {
+
+using trace::DeviceType;
+using trace::Header;
+using trace::Outcome;
+using trace::Request;
+using trace::TraceError;
+using trace::WordPattern;
+using trace::WordsKind;
+
+InitState init_of(const Header& h) {
+  switch (h.init) {
+    case trace::InitState::operational: return InitState::operational;
+    case trace::InitState::power_on: return InitState::power_on;
+    case trace::InitState::fault: return InitState::fault;
+  }
+  return InitState::operational;
+}
+
+drivecom::Target target_of(trace::StateTarget t) {
+  switch (t) {
+    case trace::StateTarget::start_up_inhibit: return drivecom::Target::start_up_inhibit;
+    case trace::StateTarget::ready: return drivecom::Target::ready;
+    case trace::StateTarget::on: return drivecom::Target::on;
+    case trace::StateTarget::enabled: return drivecom::Target::enabled;
+  }
+  return drivecom::Target::start_up_inhibit;
+}
+
+std::optional<Outcome> outcome_of(const drivecom::Report& r) {
+  switch (r.phase) {
+    case drivecom::Phase::idle:
+    case drivecom::Phase::moving: return std::nullopt;
+    case drivecom::Phase::reached: return Outcome{Outcome::Kind::ok, std::nullopt};
+    case drivecom::Phase::failed:
+      return Outcome{r.failure == drivecom::Failure::timeout ? Outcome::Kind::timeout
+                                                             : Outcome::Kind::nak,
+                     std::nullopt};
+  }
+  return std::nullopt;
+}
+
+interbus::mc6000::Layout layout_of(const trace::Trace& t) {
+  const Header& h = t.header;
+  try {
+    return interbus::mc6000::make_layout(h.supi, h.ibcnf);
+  } catch (const interbus::mc6000::LayoutError& e) {
+    const std::size_t line = h.lines.supi != 0 ? h.lines.supi : (h.lines.ibcnf != 0 ? h.lines.ibcnf : h.lines.device);
+    throw TraceError(t.file, line, e.what());
+  }
+}
+
+void require_state_request(const trace::Trace& t) {
+  const Header& h = t.header;
+  if (h.request && h.request->kind != Request::Kind::state) {
+    throw TraceError(t.file, h.lines.request,
+                     "request: '" + to_string(*h.request) +
+                         "' is a parameter request; a words: pd trace takes 'state TARGET' "
+                         "(parameter requests go in words: comm or words: pcp traces)");
+  }
+}
+
+// Up to `digits` significant digits, as %g would.
+std::string num(double v, int digits = 7) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+std::string hz(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+// --- MC6000 pd --------------------------------------------------------------------------------
+
+class Mc6000Device final : public trace::DeviceSide {
+ public:
+  Mc6000Device(const interbus::mc6000::Layout& l, InitState init) : device_(config(l)) {
+    device_.start(init);
+  }
+  std::size_t m2s_words() const override { return static_cast<std::size_t>(device_.layout().pd_words); }
+  std::size_t s2m_words() const override { return m2s_words(); }
+  void initial(std::span<Word> s2m) override { device_.output(s2m); }
+  void step(std::span<const Word> m2s, std::span<Word> s2m) override {
+    device_.sample(m2s, s2m, kMc6000SamplePeriod);
+  }
+
+ private:
+  static Mc6000PdConfig config(const interbus::mc6000::Layout& l) {
+    Mc6000PdConfig c;
+    c.layout = l;
+    return c;
+  }
+  Mc6000PdDevice device_;
+};
+
+class Mc6000Master final : public trace::MasterSide {
+ public:
+  explicit Mc6000Master(const interbus::mc6000::Layout& l) : master_(l) {}
+  std::size_t m2s_words() const override { return static_cast<std::size_t>(master_.layout().pd_words); }
+  std::size_t s2m_words() const override { return m2s_words(); }
+  void initial(std::span<Word> m2s) override { master_.initial(m2s); }
+  void submit(const Request& r) override { master_.sequencer().request(target_of(r.target), now_); }
+  void step(std::span<const Word> s2m, std::span<const WordPattern> row_m2s,
+            std::span<Word> m2s) override {
+    now_ += kMc6000SamplePeriod;
+    // The reference and the device bits of the control word are the application's: taken from
+    // the file. The DRIVECOM bits 0-3 and 7 are the sequencer's and are computed.
+    const auto& l = master_.layout();
+    if (!row_m2s.empty() && row_m2s[0].is_exact()) master_.sequencer().set_application_bits(row_m2s[0].value);
+    const auto n = static_cast<std::size_t>(l.reference_words);
+    if (row_m2s.size() > n) {
+      Word ref[2] = {0, 0};
+      bool exact = true;
+      for (std::size_t i = 0; i < n; ++i) {
+        exact = exact && row_m2s[1 + i].is_exact();
+        ref[i] = row_m2s[1 + i].value;
+      }
+      if (exact) master_.set_reference_rpm(interbus::mc6000::decode_reference(l, std::span<const Word>(ref, n)));
+    }
+    master_.cycle(s2m, m2s, now_);
+  }
+  std::optional<Outcome> outcome() const override { return outcome_of(master_.sequencer().report()); }
+
+ private:
+  Mc6000PdMaster master_;
+  Time now_{0};
+};
+
+class Mc6000Explainer final : public trace::Explainer {
+ public:
+  explicit Mc6000Explainer(const interbus::mc6000::Layout& l) : layout_(l) {}
+  std::string explain_m2s(std::span<const Word> w) const override {
+    if (w.empty()) return "no process data";
+    std::string s = "control " + drivecom::explain_control_word(drivecom::DeviceType::mc6000, w[0], prev_control_);
+    prev_control_ = w[0];
+    const auto n = static_cast<std::size_t>(layout_.reference_words);
+    if (n > 0 && w.size() > n) {
+      s += "; reference " + num(interbus::mc6000::decode_reference(layout_, w.subspan(1, n))) +
+           " rpm";
+    }
+    return s;
+  }
+  std::string explain_s2m(std::span<const Word> w) const override {
+    if (w.empty()) return "no process data";
+    std::string s = "status " + drivecom::explain_status_word(drivecom::DeviceType::mc6000, w[0]);
+    const auto n = static_cast<std::size_t>(layout_.actual_words);
+    if (n > 0 && w.size() > n) {
+      const auto a = interbus::mc6000::decode_actual(layout_, w.subspan(1, n));
+      s += "; actual " + num(a.value) + " rpm";
+      if (layout_.ibcnf == interbus::mc6000::Ibcnf::speed_torque) s += ", torque " + num(a.torque);
+    }
+    return s;
+  }
+
+ private:
+  interbus::mc6000::Layout layout_;
+  mutable Word prev_control_ = 0;  // explains the reset-fault edge row by row
+};
+
+// --- VF1000 pd --------------------------------------------------------------------------------
+
+class Vf1000Device final : public trace::DeviceSide {
+ public:
+  explicit Vf1000Device(InitState init) { device_.start(init); }
+  std::size_t m2s_words() const override { return Vf1000PdDevice::kWords; }
+  std::size_t s2m_words() const override { return Vf1000PdDevice::kWords; }
+  void initial(std::span<Word> s2m) override { device_.output(s2m); }
+  void step(std::span<const Word> m2s, std::span<Word> s2m) override {
+    device_.sample(m2s, s2m, kVf1000SamplePeriod);
+  }
+
+ private:
+  Vf1000PdDevice device_;
+};
+
+class Vf1000Master final : public trace::MasterSide {
+ public:
+  std::size_t m2s_words() const override { return Vf1000PdDevice::kWords; }
+  std::size_t s2m_words() const override { return Vf1000PdDevice::kWords; }
+  void initial(std::span<Word> m2s) override { master_.initial(m2s); }
+  void submit(const Request& r) override { master_.sequencer().request(target_of(r.target), now_); }
+  void step(std::span<const Word> s2m, std::span<const WordPattern> row_m2s,
+            std::span<Word> m2s) override {
+    now_ += kVf1000SamplePeriod;
+    // Application data from the file: the ramp and direction bits of the control word and the
+    // reference word; the DRIVECOM bits are computed by the sequencer.
+    if (row_m2s[1].is_exact()) {
+      const auto b = row_m2s[0].is_exact() ? drivecom::decode_vf1000_bits(row_m2s[0].value)
+                                            : drivecom::Vf1000ControlBits{};
+      const double hz = vf1000_reference_hz(row_m2s[1].value);
+      master_.set_frequency_hz(b.stl && !b.str ? -hz : hz);
+    }
+    if (row_m2s[0].is_exact()) master_.sequencer().set_application_bits(row_m2s[0].value);
+    master_.cycle(s2m, m2s, now_, 0);
+  }
+  std::optional<Outcome> outcome() const override { return outcome_of(master_.sequencer().report()); }
+
+ private:
+  Vf1000PdMaster master_;
+  Time now_{0};
+};
+
+class Vf1000Explainer final : public trace::Explainer {
+ public:
+  std::string explain_m2s(std::span<const Word> w) const override {
+    std::string s = "control " + drivecom::explain_control_word(drivecom::DeviceType::vf1000, w[0], prev_control_);
+    prev_control_ = w[0];
+    s += "; reference " + hz(vf1000_reference_hz(w[1])) + " Hz";
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%04X", static_cast<unsigned>(w[2]));
+    s += "; comm " + std::string(buf);
+    return s;
+  }
+  std::string explain_s2m(std::span<const Word> w) const override {
+    std::string s = "status " + drivecom::explain_status_word(drivecom::DeviceType::vf1000, w[0]);
+    s += "; actual " + hz(vf1000_actual_hz(w[1])) + " Hz";
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%04X", static_cast<unsigned>(w[2]));
+    s += "; comm " + std::string(buf);
+    return s;
+  }
+
+ private:
+  mutable Word prev_control_ = 0;
+};
+
+[[noreturn]] void unsupported(const trace::Trace& t) {
+  throw TraceError(t.file, t.header.lines.words,
+                   "words: " + std::string(to_string(t.header.words)) + " is not served for device " +
+                       std::string(to_string(t.header.device)) +
+                       (t.header.words == WordsKind::comm ? " (the communication word is the VF1000's)"
+                        : t.header.words == WordsKind::pcp ? " (PCP is the MC6000's)"
+                                                           : ""));
+}
+
+}  // namespace
+
+Duration pd_step_period(DeviceType d) {
+  return d == DeviceType::vf1000 ? kVf1000SamplePeriod : kMc6000SamplePeriod;
+}
+
+std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
+  const Header& h = t.header;
+  if (h.words == WordsKind::pd) {
+    if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Device>(layout_of(t), init_of(h));
+    return std::make_unique<Vf1000Device>(init_of(h));
+  }
+  unsupported(t);
+}
+
+std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t) {
+  const Header& h = t.header;
+  if (h.words == WordsKind::pd) {
+    require_state_request(t);
+    if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Master>(layout_of(t));
+    return std::make_unique<Vf1000Master>();
+  }
+  unsupported(t);
+}
+
+std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t) {
+  const Header& h = t.header;
+  if (h.words == WordsKind::pd) {
+    if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Explainer>(layout_of(t));
+    return std::make_unique<Vf1000Explainer>();
+  }
+  unsupported(t);
+}
+
+}  // namespace ibs::devices

@@ -1,0 +1,126 @@
+// DRIVECOM Profile 20 control word (seed 001, 5.1.2) and the device-specific bits of the VF1000
+// (5.2.1) and the MC6000 (5.3.1).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "ibs/interbus/words.hpp"
+
+namespace ibs::drivecom {
+
+// The device control commands of 5.1.2 as decoded from bits 0-3. POWER-ON (X X 1 1 1) is carried
+// by both `disable` (bit 3 = 0) and `enable` (bit 3 = 1): those words perform transition 3 in
+// READY before DISABLE (5) or ENABLE (4) applies.
+enum class Command : std::uint8_t {
+  block_power,     // X X X 0 X   transitions 7, 9, 10, 12
+  emergency_stop,  // X X 0 1 X   transitions 7, 10, 11
+  shutdown,        // X X 1 1 0   transitions 2, 6, 8
+  disable,         // X 0 1 1 1   POWER-ON (3) and DISABLE (5)
+  enable,          // X 1 1 1 1   POWER-ON (3) and ENABLE (4)
+};
+
+// Bits of the control word (5.1.2).
+namespace cw {
+inline constexpr unsigned kPowerOn = 0;
+inline constexpr unsigned kBlockPower = 1;  // 0 = block power requested
+inline constexpr unsigned kEmergencyStop = 2;  // 0 = emergency stop requested
+inline constexpr unsigned kEnableOperation = 3;
+inline constexpr unsigned kResetFault = 7;  // acts on its 0 -> 1 edge
+inline constexpr Word kReservedMask = 0x0700;  // bits 8-10, must be 0
+// Bits the state machine owns; all others are mode-dependent or manufacturer-specific.
+inline constexpr Word kDrivecomMask = 0x008F;
+}  // namespace cw
+
+// One row of the command table of 5.1.2: a command is `(word & mask) == value`, rows in priority
+// order. The rows are disjoint and cover all of bits 0-3, so every word is exactly one command.
+struct CommandRow {
+  Command command;
+  Word mask;
+  Word value;
+  std::array<std::uint8_t, 4> transitions;  // 0 = unused slot
+  std::string_view name;
+};
+
+inline constexpr std::array<CommandRow, 5> kCommandTable{{
+    {Command::block_power, 0x0002, 0x0000, {7, 9, 10, 12}, "BLOCK POWER"},
+    {Command::emergency_stop, 0x0006, 0x0002, {7, 10, 11, 0}, "EMERGENCY STOP"},
+    {Command::shutdown, 0x0007, 0x0006, {2, 6, 8, 0}, "SHUTDOWN"},
+    {Command::disable, 0x000F, 0x0007, {3, 5, 0, 0}, "POWER-ON/DISABLE"},
+    {Command::enable, 0x000F, 0x000F, {3, 4, 0, 0}, "POWER-ON/ENABLE"},
+}};
+
+constexpr Command decode_command(Word control) {
+  for (const auto& row : kCommandTable) {
+    if ((control & row.mask) == row.value) return row.command;
+  }
+  return Command::block_power;  // unreachable: the table covers every word
+}
+
+constexpr const CommandRow& command_row(Command c) {
+  return kCommandTable[static_cast<std::size_t>(c)];
+}
+
+constexpr std::string_view to_string(Command c) { return command_row(c).name; }
+
+// The canonical control word of a command (bits 0-3 only), as the master sends it.
+constexpr Word command_word(Command c) {
+  switch (c) {
+    case Command::block_power: return 0x0000;
+    case Command::emergency_stop: return 0x0002;
+    case Command::shutdown: return 0x0006;
+    case Command::disable: return 0x0007;
+    case Command::enable: return 0x000F;
+  }
+  return 0x0000;
+}
+
+constexpr bool reset_fault_edge(Word previous, Word current) {
+  return !bit(previous, cw::kResetFault) && bit(current, cw::kResetFault);
+}
+
+// Which drive a word is meant for: the bits above 3 (other than 7) differ.
+enum class DeviceType : std::uint8_t { vf1000, mc6000 };
+std::string_view to_string(DeviceType d);
+
+// VF1000 control-word bits 4-6 and 11-15 (5.2.1).
+struct Vf1000ControlBits {
+  bool ramp_enable = false;  // bit 4: 0 = stop function of 36-RSTOP
+  bool ramp_run = false;     // bit 5: 0 = ramp held at its current value
+  bool ramp_follow = false;  // bit 6: 0 = ramp to 0 Hz
+  bool s2ind = false;        // bit 12
+  bool s1ind = false;        // bit 13
+  bool stl = false;          // bit 14: start counter-clockwise
+  bool str = false;          // bit 15: start clockwise
+};
+constexpr Vf1000ControlBits decode_vf1000_bits(Word w) {
+  return {bit(w, 4), bit(w, 5), bit(w, 6), bit(w, 12), bit(w, 13), bit(w, 14), bit(w, 15)};
+}
+constexpr Word encode_vf1000_bits(const Vf1000ControlBits& b) {
+  Word w = 0;
+  w = with_bit(w, 4, b.ramp_enable);
+  w = with_bit(w, 5, b.ramp_run);
+  w = with_bit(w, 6, b.ramp_follow);
+  w = with_bit(w, 12, b.s2ind);
+  w = with_bit(w, 13, b.s1ind);
+  w = with_bit(w, 14, b.stl);
+  w = with_bit(w, 15, b.str);
+  return w;
+}
+// Ramp generator running freely (bits 4, 5, 6 set): what a master sends to let the drive run.
+inline constexpr Word kVf1000RampRun = 0x0070;
+
+// MC6000 control-word bits 14 and 15 (5.3.1); bits 4-6 and 11-13 have no function.
+struct Mc6000ControlBits {
+  bool os00 = false;  // bit 14: reference state of output OS00 (445-FOS00 = ROPT1)
+  bool os01 = false;  // bit 15: reference state of output OS01 (446-FOS01 = ROPT1)
+};
+constexpr Mc6000ControlBits decode_mc6000_bits(Word w) { return {bit(w, 14), bit(w, 15)}; }
+
+// A control word in words: the command, the reset-fault bit and the device bits, e.g.
+// "000F POWER-ON/ENABLE" or "80F7 POWER-ON/DISABLE, ramp run, STR". `previous` tells the edge.
+std::string explain_control_word(DeviceType d, Word control, Word previous);
+
+}  // namespace ibs::drivecom

@@ -1,0 +1,108 @@
+// The DRIVECOM Profile 20 state machine as the drive executes it (seed 001, 5.1.1-5.1.3), with
+// the transition numbers of the profile. One call of sample() is one processing step of the
+// drive; the drive's sampling period (1 ms MC6000, 8.2 ms VF1000) belongs to the device model.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "ibs/drivecom/control_word.hpp"
+#include "ibs/drivecom/status_word.hpp"
+
+namespace ibs::drivecom {
+
+// How EMERGENCY STOP ACTIVE ends (transition 12).
+enum class EmergencyStopExit : std::uint8_t {
+  // VF1000 (5.2.1): falls to START-UP INHIBIT by itself once the stop ramp has been worked through
+  // (or at once without a stop ramp); BLOCK POWER also ends it.
+  automatic_when_stopped,
+  // MC6000: stays until BLOCK POWER.
+  on_block_power_only,
+};
+
+// What the drive knows besides the control word, sampled together with it.
+struct DeviceInputs {
+  Word control = 0;
+  bool initialised = true;          // self-test done: NOT READY -> START-UP INHIBIT (1)
+  bool fault_present = false;       // a fault condition: any state -> FAULT RESPONSE ACTIVE (13)
+  bool fault_reaction_done = true;  // the fault reaction has finished (14)
+  bool stopped = true;              // the motor has come to rest (VF1000 transition 12)
+};
+
+// One row of the transition table: `from` + `command` -> `to` with its profile number.
+struct TransitionRow {
+  State from;
+  Command command;
+  State to;
+  std::uint8_t number;
+};
+
+// Transitions triggered by control commands (5.1.2, "Device Control Commands"). The automatic
+// ones (0, 1, 12 on VF1000, 13, 14) and RESET FAULT (15) are handled beside the table.
+inline constexpr std::array<TransitionRow, 14> kCommandTransitions{{
+    {State::start_up_inhibit, Command::shutdown, State::ready, 2},
+    {State::ready, Command::disable, State::on, 3},
+    {State::ready, Command::enable, State::on, 3},
+    {State::on, Command::enable, State::enabled, 4},
+    {State::enabled, Command::disable, State::on, 5},
+    {State::on, Command::shutdown, State::ready, 6},
+    {State::ready, Command::block_power, State::start_up_inhibit, 7},
+    {State::ready, Command::emergency_stop, State::start_up_inhibit, 7},
+    {State::enabled, Command::shutdown, State::ready, 8},
+    {State::enabled, Command::block_power, State::start_up_inhibit, 9},
+    {State::on, Command::block_power, State::start_up_inhibit, 10},
+    {State::on, Command::emergency_stop, State::start_up_inhibit, 10},
+    {State::enabled, Command::emergency_stop, State::emergency_stop_active, 11},
+    {State::emergency_stop_active, Command::block_power, State::start_up_inhibit, 12},
+}};
+
+// The transitions one sample performed, in order (at most a handful: the longest chain is
+// 15, 2, 3, 4 or 1, 2, 3, 4).
+struct SampleResult {
+  static constexpr std::size_t kMax = 8;
+  std::array<std::uint8_t, kMax> transitions{};
+  std::uint8_t count = 0;
+  State state = State::not_ready;
+};
+
+// True where the power stage drives the motor.
+constexpr bool power_stage_enabled(State s) {
+  return s == State::enabled || s == State::emergency_stop_active ||
+         s == State::fault_response_active;
+}
+
+class DeviceStateMachine {
+ public:
+  explicit DeviceStateMachine(EmergencyStopExit estop_exit, State initial = State::not_ready)
+      : estop_exit_(estop_exit), state_(initial) {}
+
+  // Processes one sample: transitions are taken until the state is stable, so READY + ENABLE
+  // reaches ENABLED in one sample (5.3.4). Never allocates, never throws.
+  SampleResult sample(const DeviceInputs& in);
+
+  [[nodiscard]] State state() const { return state_; }
+  [[nodiscard]] Word last_control() const { return last_control_; }
+  // Bits 0-6 of the status word (state + bits 4/5 from the last control word).
+  [[nodiscard]] Word state_bits() const { return drivecom::state_bits(state_, last_control_); }
+
+  // Power-on (transition 0): NOT READY, no control word seen, bit 7 history cleared.
+  void power_on() {
+    state_ = State::not_ready;
+    last_control_ = 0;
+  }
+  // Puts the machine in a state directly (trace `init`, tests).
+  void force(State s, Word last_control = 0) {
+    state_ = s;
+    last_control_ = last_control;
+  }
+
+ private:
+  std::optional<TransitionRow> next(const DeviceInputs& in, bool reset_edge) const;
+
+  EmergencyStopExit estop_exit_;
+  State state_;
+  Word last_control_ = 0;
+};
+
+}  // namespace ibs::drivecom

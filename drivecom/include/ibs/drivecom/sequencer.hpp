@@ -1,0 +1,124 @@
+// The master side of DRIVECOM Profile 20: given a target state, reads the status word every
+// cycle and writes the control word that moves the drive along the shortest documented path
+// (seed 001, 5.1.2 command table; 5.3.4 start-up sequence 0000H, 0006H, 000FH).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "ibs/drivecom/control_word.hpp"
+#include "ibs/drivecom/status_word.hpp"
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::drivecom {
+
+enum class Target : std::uint8_t { start_up_inhibit, ready, on, enabled };
+std::string_view to_string(Target t);
+constexpr State target_state(Target t) {
+  switch (t) {
+    case Target::start_up_inhibit: return State::start_up_inhibit;
+    case Target::ready: return State::ready;
+    case Target::on: return State::on;
+    case Target::enabled: return State::enabled;
+  }
+  return State::start_up_inhibit;
+}
+
+// What the sequencer is doing.
+enum class Goal : std::uint8_t {
+  idle,            // no request yet: sends BLOCK POWER
+  target,          // moving to / holding a target state
+  emergency_stop,  // EMERGENCY STOP requested: sent at once, until a new target
+  block_power,     // BLOCK POWER requested: sent at once, until a new target
+};
+
+enum class Phase : std::uint8_t { idle, moving, reached, failed };
+
+enum class Failure : std::uint8_t {
+  none,
+  timeout,        // the expected transition did not happen in its time
+  fault,          // the drive went to FAULT / FAULT RESPONSE ACTIVE on its own
+  left_target,    // the drive left the reached target state without being told
+  invalid_status, // the status word matches no DRIVECOM state (counts against the timeout)
+};
+std::string_view to_string(Failure f);
+
+struct SequencerConfig {
+  // Timeout of each transition, indexed by its profile number 0-15 (0 and 13 are never waited
+  // for). Defaults suit both drives on a healthy bus; device drivers may tighten them.
+  std::array<Duration, 16> transition_timeout{};
+  // Bits the application owns (device bits 4-6, 11-15), ORed into every control word. Bits 0-3,
+  // 7 (state machine) and 8-10 (reserved, 5.1.2) are masked off.
+  Word application_bits = 0;
+  // RESET FAULT is a pulse on bit 7: high this long, then low this long, repeated while the drive
+  // stays in FAULT. Longer than two VF1000 samples (8.2 ms) so that a sampling drive sees the edge.
+  Duration reset_pulse = 50ms;
+
+  static SequencerConfig defaults();
+};
+
+// Why the sequencer is where it is; also the answer to "why did the transition not happen".
+struct Report {
+  Goal goal = Goal::idle;
+  Target target = Target::start_up_inhibit;
+  Phase phase = Phase::idle;
+  Failure failure = Failure::none;
+  std::optional<State> state_seen;  // nullopt: the status word matched no state
+  Word status_seen = 0;
+  Word command_sent = 0;
+  std::uint8_t transition = 0;      // the transition waited for (0: none)
+  Duration waited{0};               // how long it has been waited for
+  Duration timeout{0};
+  Time since{0};                    // when the current wait started
+};
+
+// "transition 2 (START-UP INHIBIT -> READY) did not happen: ..." (not for the cycle path).
+std::string describe(const Report& r);
+
+class Sequencer {
+ public:
+  explicit Sequencer(const SequencerConfig& config = SequencerConfig::defaults());
+
+  // Requests a target state; clears an emergency-stop or block-power request.
+  void request(Target t, Time now);
+  // Sends EMERGENCY STOP from the next step on, whatever the state, until the next request().
+  void request_emergency_stop(Time now);
+  // Sends BLOCK POWER from the next step on, whatever the state, until the next request().
+  void request_block_power(Time now);
+
+  // One master cycle: reads the status word, returns the control word to send. Never allocates,
+  // never throws.
+  Word step(Word status, Time now);
+
+  [[nodiscard]] const Report& report() const { return report_; }
+  [[nodiscard]] Word last_control() const { return last_control_; }
+  void set_application_bits(Word bits) { app_bits_ = static_cast<Word>(bits & ~kOwnedBits); }
+  // After a master restart: forget everything, send BLOCK POWER with bit 7 low.
+  void restart();
+
+ private:
+  static constexpr Word kOwnedBits = static_cast<Word>(cw::kDrivecomMask | cw::kReservedMask);
+  struct Move {
+    Word word;               // bits 0-3 and 7
+    std::uint8_t transition; // waited for; 0 = nothing to wait for (holding)
+  };
+  Move plan(State s, Time now);
+  Move reset_pulse(Time now);
+  void begin(Goal g, Time now);
+  void wait_for(std::uint8_t transition, Time now);
+  void fail(Failure f);
+  Word emit(Word drivecom_bits);
+
+  SequencerConfig config_;
+  Word app_bits_;
+  Report report_;
+  Word last_control_ = 0;
+  std::optional<State> prev_state_;
+  Time pulse_edge_{0};
+  bool pulse_started_ = false;
+};
+
+}  // namespace ibs::drivecom

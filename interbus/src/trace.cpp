@@ -1,0 +1,497 @@
+#include "ibs/interbus/trace.hpp"
+
+#include <array>
+#include <charconv>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace ibs::trace {
+
+namespace {
+
+constexpr std::string_view kFormat = "ibs-trace 1";
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+[[noreturn]] void fail(const std::string& file, std::size_t line, const std::string& what) {
+  throw TraceError(file, line, what);
+}
+
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+// Four hex digits, `?` allowed where `allow_any`; returns value and mask.
+WordPattern parse_hex4(std::string_view s, bool allow_any, const std::string& file,
+                       std::size_t line) {
+  if (s.size() != 4) {
+    fail(file, line, "word '" + std::string(s) + "' must be exactly four hex digits");
+  }
+  unsigned value = 0;
+  unsigned mask = 0;
+  for (char c : s) {
+    value <<= 4U;
+    mask <<= 4U;
+    if (c == '?') {
+      if (!allow_any) fail(file, line, "'?' is not allowed in the mask of '" + std::string(s) + "'");
+      continue;
+    }
+    const int d = hex_digit(c);
+    if (d < 0) fail(file, line, "word '" + std::string(s) + "' has a non-hex digit '" + c + "'");
+    value |= static_cast<unsigned>(d);
+    mask |= 0xFU;
+  }
+  return {static_cast<Word>(value & mask), static_cast<Word>(mask)};
+}
+
+// A decimal or 0x-prefixed hex number.
+std::optional<std::int64_t> parse_number(std::string_view s) {
+  s = trim(s);
+  if (s.empty()) return std::nullopt;
+  bool negative = false;
+  if (s.front() == '-') {
+    negative = true;
+    s.remove_prefix(1);
+  }
+  int base = 10;
+  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
+    base = 16;
+    s.remove_prefix(2);
+  }
+  std::int64_t v = 0;
+  const auto* end = s.data() + s.size();
+  const auto [ptr, ec] = std::from_chars(s.data(), end, v, base);
+  if (ec != std::errc{} || ptr != end) return std::nullopt;
+  return negative ? -v : v;
+}
+
+std::vector<std::string_view> split_spaces(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && s[i] != ' ' && s[i] != '\t') ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+template <typename E, std::size_t N>
+std::optional<E> lookup(std::string_view s, const std::array<std::pair<std::string_view, E>, N>& t) {
+  for (const auto& [name, e] : t) {
+    if (name == s) return e;
+  }
+  return std::nullopt;
+}
+
+constexpr std::array<std::pair<std::string_view, DeviceType>, 2> kDevices{
+    {{"vf1000", DeviceType::vf1000}, {"mc6000", DeviceType::mc6000}}};
+constexpr std::array<std::pair<std::string_view, WordsKind>, 3> kWords{
+    {{"comm", WordsKind::comm}, {"pd", WordsKind::pd}, {"pcp", WordsKind::pcp}}};
+constexpr std::array<std::pair<std::string_view, InitState>, 3> kInits{
+    {{"operational", InitState::operational},
+     {"power-on", InitState::power_on},
+     {"fault", InitState::fault}}};
+constexpr std::array<std::pair<std::string_view, StateTarget>, 4> kTargets{
+    {{"start-up-inhibit", StateTarget::start_up_inhibit},
+     {"ready", StateTarget::ready},
+     {"on", StateTarget::on},
+     {"enabled", StateTarget::enabled}}};
+
+template <typename E, std::size_t N>
+std::string_view name_of(E e, const std::array<std::pair<std::string_view, E>, N>& t) {
+  for (const auto& [name, v] : t) {
+    if (v == e) return name;
+  }
+  return "?";
+}
+
+template <typename E, std::size_t N>
+std::string choices(const std::array<std::pair<std::string_view, E>, N>& t) {
+  std::string s;
+  for (const auto& [name, v] : t) {
+    if (!s.empty()) s += ", ";
+    s += name;
+  }
+  return s;
+}
+
+std::uint64_t parse_count(std::string_view value, std::string_view key, const std::string& file,
+                          std::size_t line) {
+  const auto n = parse_number(value);
+  if (!n || *n < 0) {
+    fail(file, line, std::string(key) + ": '" + std::string(value) +
+                         "' is not a non-negative integer");
+  }
+  return static_cast<std::uint64_t>(*n);
+}
+
+std::string hex4(unsigned v) {
+  static constexpr std::string_view kDigits = "0123456789ABCDEF";
+  std::string s(4, '0');
+  for (int i = 3; i >= 0; --i) {
+    s[static_cast<std::size_t>(i)] = kDigits[v & 0xFU];
+    v >>= 4U;
+  }
+  return s;
+}
+
+void parse_header(Header& h, std::string_view key, std::string_view value, const std::string& file,
+                  std::size_t line) {
+  if (key == "device") {
+    h.lines.device = line;
+    const auto d = lookup(value, kDevices);
+    if (!d) fail(file, line, "device: '" + std::string(value) + "' is not one of " + choices(kDevices));
+    h.device = *d;
+  } else if (key == "words") {
+    h.lines.words = line;
+    const auto w = lookup(value, kWords);
+    if (!w) fail(file, line, "words: '" + std::string(value) + "' is not one of " + choices(kWords));
+    h.words = *w;
+  } else if (key == "supi" || key == "ibcnf") {
+    const auto n = parse_number(value);
+    if (!n || *n < 0 || *n > 255) {
+      fail(file, line, std::string(key) + ": '" + std::string(value) + "' is not an integer 0..255");
+    }
+    if (key == "supi") {
+      h.lines.supi = line;
+      h.supi = static_cast<int>(*n);
+      h.supi_given = true;
+    } else {
+      h.lines.ibcnf = line;
+      h.ibcnf = static_cast<int>(*n);
+      h.ibcnf_given = true;
+    }
+  } else if (key == "init") {
+    h.lines.init = line;
+    const auto i = lookup(value, kInits);
+    if (!i) fail(file, line, "init: '" + std::string(value) + "' is not one of " + choices(kInits));
+    h.init = *i;
+    h.init_given = true;
+  } else if (key == "request") {
+    h.lines.request = line;
+    h.request = parse_request(value, file, line);
+  } else if (key == "request-at") {
+    h.lines.request_at = line;
+    h.request_at = parse_count(value, key, file, line);
+    h.request_at_given = true;
+  } else if (key == "outcome") {
+    h.lines.outcome = line;
+    h.outcome = parse_outcome(value, file, line);
+  } else if (key == "max-gap") {
+    h.lines.max_gap = line;
+    h.max_gap = parse_count(value, key, file, line);
+    h.max_gap_given = true;
+  } else {
+    fail(file, line, "unknown header '" + std::string(key) + "'");
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(DeviceType d) { return name_of(d, kDevices); }
+std::string_view to_string(WordsKind w) { return name_of(w, kWords); }
+std::string_view to_string(InitState s) { return name_of(s, kInits); }
+std::string_view to_string(StateTarget t) { return name_of(t, kTargets); }
+
+std::string to_string(const Request& r) {
+  switch (r.kind) {
+    case Request::Kind::read: return "read " + std::to_string(r.parameter);
+    case Request::Kind::write:
+      return "write " + std::to_string(r.parameter) + " " + std::to_string(r.value);
+    case Request::Kind::describe: return "describe " + std::to_string(r.parameter);
+    case Request::Kind::state: return "state " + std::string(to_string(r.target));
+  }
+  return "?";
+}
+
+std::string to_string(const Outcome& o) {
+  switch (o.kind) {
+    case Outcome::Kind::ok: return o.value ? "ok " + std::to_string(*o.value) : "ok";
+    case Outcome::Kind::nak: return "nak";
+    case Outcome::Kind::timeout: return "timeout";
+  }
+  return "?";
+}
+
+std::string WordPattern::to_string() const {
+  if (mask == 0xFFFF) return hex4(value);
+  // Whole-nibble masks are written with '?', anything else as VALUE/MASK.
+  bool nibbles = true;
+  for (unsigned i = 0; i < 4; ++i) {
+    const unsigned m = (mask >> (4 * i)) & 0xFU;
+    if (m != 0 && m != 0xF) nibbles = false;
+  }
+  if (!nibbles) return hex4(value) + "/" + hex4(mask);
+  std::string s = hex4(value);
+  for (unsigned i = 0; i < 4; ++i) {
+    if (((mask >> (4 * (3 - i))) & 0xFU) == 0) s[i] = '?';
+  }
+  return s;
+}
+
+std::string format_words(std::span<const Word> words) {
+  std::string s;
+  for (const Word w : words) {
+    if (!s.empty()) s += ' ';
+    s += hex4(w);
+  }
+  return s;
+}
+
+std::string format_patterns(std::span<const WordPattern> words) {
+  std::string s;
+  for (const auto& w : words) {
+    if (!s.empty()) s += ' ';
+    s += w.to_string();
+  }
+  return s;
+}
+
+TraceError::TraceError(const std::string& file, std::size_t line, const std::string& what)
+    : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), file_(file), line_(line) {}
+
+std::vector<WordPattern> parse_words(std::string_view field, const std::string& file,
+                                     std::size_t line) {
+  std::vector<WordPattern> out;
+  for (const auto token : split_spaces(field)) {
+    const auto slash = token.find('/');
+    if (slash == std::string_view::npos) {
+      out.push_back(parse_hex4(token, true, file, line));
+      continue;
+    }
+    const WordPattern v = parse_hex4(token.substr(0, slash), false, file, line);
+    const WordPattern m = parse_hex4(token.substr(slash + 1), false, file, line);
+    out.push_back({static_cast<Word>(v.value & m.value), m.value});
+  }
+  if (out.empty()) fail(file, line, "a data row needs at least one word in each of m2s and s2m");
+  return out;
+}
+
+Request parse_request(std::string_view text, const std::string& file, std::size_t line) {
+  const auto parts = split_spaces(text);
+  if (parts.empty()) fail(file, line, "request: empty");
+  Request r;
+  const std::string_view verb = parts[0];
+  auto pnr = [&](std::string_view s) {
+    const auto n = parse_number(s);
+    if (!n || *n < 0 || *n > 0xFFFF) {
+      fail(file, line, "request: parameter number '" + std::string(s) + "' is not 0..65535");
+    }
+    return static_cast<std::uint16_t>(*n);
+  };
+  if (verb == "read" || verb == "describe") {
+    if (parts.size() != 2) fail(file, line, "request: '" + std::string(verb) + "' takes one parameter number");
+    r.kind = verb == "read" ? Request::Kind::read : Request::Kind::describe;
+    r.parameter = pnr(parts[1]);
+  } else if (verb == "write") {
+    if (parts.size() != 3) fail(file, line, "request: 'write' takes a parameter number and a value");
+    r.kind = Request::Kind::write;
+    r.parameter = pnr(parts[1]);
+    const auto v = parse_number(parts[2]);
+    if (!v) fail(file, line, "request: write value '" + std::string(parts[2]) + "' is not a number");
+    r.value = *v;
+  } else if (verb == "state") {
+    if (parts.size() != 2) fail(file, line, "request: 'state' takes one target");
+    const auto t = lookup(parts[1], kTargets);
+    if (!t) {
+      fail(file, line, "request: state target '" + std::string(parts[1]) + "' is not one of " +
+                           choices(kTargets));
+    }
+    r.kind = Request::Kind::state;
+    r.target = *t;
+  } else {
+    fail(file, line, "request: '" + std::string(verb) + "' is not one of read, write, describe, state");
+  }
+  return r;
+}
+
+Outcome parse_outcome(std::string_view text, const std::string& file, std::size_t line) {
+  const auto parts = split_spaces(text);
+  if (parts.empty()) fail(file, line, "outcome: empty");
+  Outcome o;
+  if (parts[0] == "ok") {
+    o.kind = Outcome::Kind::ok;
+    if (parts.size() == 2) {
+      const auto v = parse_number(parts[1]);
+      if (!v) fail(file, line, "outcome: value '" + std::string(parts[1]) + "' is not a number");
+      o.value = *v;
+    } else if (parts.size() > 2) {
+      fail(file, line, "outcome: 'ok' takes at most one value");
+    }
+  } else if (parts[0] == "nak" || parts[0] == "timeout") {
+    if (parts.size() != 1) fail(file, line, "outcome: '" + std::string(parts[0]) + "' takes no value");
+    o.kind = parts[0] == "nak" ? Outcome::Kind::nak : Outcome::Kind::timeout;
+  } else {
+    fail(file, line, "outcome: '" + std::string(parts[0]) + "' is not one of ok, nak, timeout");
+  }
+  return o;
+}
+
+Trace parse(std::string_view text, const std::string& file) {
+  Trace t;
+  t.file = file;
+  bool format_seen = false;
+  bool device_seen = false;
+  bool words_seen = false;
+  bool in_body = false;
+  bool after_gap = false;
+  std::size_t m2s_words = 0;
+  std::size_t s2m_words = 0;
+  std::vector<std::string> pending_comments;
+  std::size_t line_no = 0;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const auto nl = text.find('\n', pos);
+    const std::string_view raw =
+        text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+    pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+    ++line_no;
+    const std::string_view line = trim(raw);
+    if (line.empty()) continue;
+    if (line.front() == '#') {
+      const std::string_view body = trim(line.substr(1));
+      const auto colon = body.find(':');
+      const bool header_shape =
+          colon != std::string_view::npos && colon > 0 &&
+          body.substr(0, colon).find_first_of(" \t") == std::string_view::npos;
+      if (!in_body && header_shape) {
+        const std::string_view key = body.substr(0, colon);
+        const std::string_view value = trim(body.substr(colon + 1));
+        if (!format_seen) {
+          if (key != "format") fail(file, line_no, "the first header must be 'format: ibs-trace 1'");
+          if (value != kFormat) {
+            fail(file, line_no, "format: '" + std::string(value) + "' is not '" +
+                                    std::string(kFormat) + "'");
+          }
+          format_seen = true;
+          continue;
+        }
+        if (key == "format") fail(file, line_no, "format: given twice");
+        if (key == "device") device_seen = true;
+        if (key == "words") words_seen = true;
+        parse_header(t.header, key, value, file, line_no);
+        continue;
+      }
+      if (!format_seen) fail(file, line_no, "the first header must be 'format: ibs-trace 1'");
+      pending_comments.emplace_back(raw.substr(raw.find('#')));
+      continue;
+    }
+    // A data row.
+    if (!format_seen) fail(file, line_no, "the first header must be 'format: ibs-trace 1'");
+    if (!in_body) {
+      if (!device_seen) fail(file, line_no, "header 'device' is missing before the first row");
+      if (!words_seen) fail(file, line_no, "header 'words' is missing before the first row");
+      in_body = true;
+    }
+    Row row;
+    row.line = line_no;
+    row.comments_before = std::move(pending_comments);
+    pending_comments.clear();
+    if (line == "...") {
+      if (t.rows.empty()) fail(file, line_no, "a gap '...' cannot be the first row");
+      if (t.rows.back().gap) fail(file, line_no, "two gaps '...' in a row");
+      row.gap = true;
+      t.rows.push_back(std::move(row));
+      after_gap = true;
+      continue;
+    }
+    std::array<std::string_view, 3> fields{};
+    std::string_view rest = line;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto comma = rest.find(',');
+      if (comma == std::string_view::npos) {
+        if (i < 2) {
+          fail(file, line_no, "a data row needs 'step, m2s, s2m[, remark]'; found " +
+                                  std::to_string(i + 1) + " field(s)");
+        }
+        fields[i] = trim(rest);
+        rest = {};
+        break;
+      }
+      fields[i] = trim(rest.substr(0, comma));
+      rest = rest.substr(comma + 1);
+    }
+    row.remark = std::string(trim(rest));
+    if (fields[0] == "...") fail(file, line_no, "a gap '...' row carries no words");
+    const auto step = parse_number(fields[0]);
+    if (!step || *step < 0 || fields[0].find_first_not_of("0123456789") != std::string_view::npos) {
+      fail(file, line_no, "step '" + std::string(fields[0]) + "' is not a decimal step number");
+    }
+    row.step = static_cast<std::uint64_t>(*step);
+    if (t.rows.empty()) {
+      if (row.step != 0) fail(file, line_no, "the first row must be step 0, not " + std::to_string(row.step));
+    } else if (!after_gap) {
+      const std::uint64_t want = t.rows.back().step + 1;
+      if (row.step != want) {
+        fail(file, line_no, "step " + std::to_string(row.step) + " should be " + std::to_string(want) +
+                                " (steps increase by one; use '...' for a gap)");
+      }
+    }
+    after_gap = false;
+    row.m2s = parse_words(fields[1], file, line_no);
+    row.s2m = parse_words(fields[2], file, line_no);
+    if (m2s_words == 0) {
+      m2s_words = row.m2s.size();
+      s2m_words = row.s2m.size();
+    } else if (row.m2s.size() != m2s_words || row.s2m.size() != s2m_words) {
+      fail(file, line_no, "row has " + std::to_string(row.m2s.size()) + " m2s and " +
+                              std::to_string(row.s2m.size()) + " s2m words; earlier rows have " +
+                              std::to_string(m2s_words) + " and " + std::to_string(s2m_words));
+    }
+    t.rows.push_back(std::move(row));
+  }
+  if (!format_seen) fail(file, line_no, "empty trace: the first header must be 'format: ibs-trace 1'");
+  if (t.rows.empty()) fail(file, line_no, "the trace has no data rows");
+  if (t.rows.back().gap) fail(file, t.rows.back().line, "a gap '...' cannot be the last row");
+  t.trailing_comments = std::move(pending_comments);
+  return t;
+}
+
+Trace load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw TraceError(path, 0, "cannot open the file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw TraceError(path, 0, "read error");
+  return parse(ss.str(), path);
+}
+
+std::string write(const Trace& t) {
+  std::string out;
+  const Header& h = t.header;
+  out += "# format: ibs-trace 1\n";
+  out += "# device: " + std::string(to_string(h.device)) + "\n";
+  out += "# words: " + std::string(to_string(h.words)) + "\n";
+  if (h.supi_given) out += "# supi: " + std::to_string(h.supi) + "\n";
+  if (h.ibcnf_given) out += "# ibcnf: " + std::to_string(h.ibcnf) + "\n";
+  if (h.init_given) out += "# init: " + std::string(to_string(h.init)) + "\n";
+  if (h.request) out += "# request: " + to_string(*h.request) + "\n";
+  if (h.request_at_given) out += "# request-at: " + std::to_string(h.request_at) + "\n";
+  if (h.outcome) out += "# outcome: " + to_string(*h.outcome) + "\n";
+  if (h.max_gap_given) out += "# max-gap: " + std::to_string(h.max_gap) + "\n";
+  for (const Row& r : t.rows) {
+    for (const auto& c : r.comments_before) out += c + "\n";
+    if (r.gap) {
+      out += "...\n";
+      continue;
+    }
+    out += std::to_string(r.step) + ", " + format_patterns(r.m2s) + ", " + format_patterns(r.s2m);
+    if (!r.remark.empty()) out += ", " + r.remark;
+    out += "\n";
+  }
+  for (const auto& c : t.trailing_comments) out += c + "\n";
+  return out;
+}
+
+}  // namespace ibs::trace

@@ -1,0 +1,17 @@
+// The `ibs` subcommands. Each returns the process exit code.
+#pragma once
+
+#include <string>
+
+namespace ibs::cli {
+
+// Exit codes shared by all subcommands.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitMismatch = 1;  // replay: a row did not match
+inline constexpr int kExitBadInput = 2;  // malformed file, bad option, refused configuration
+
+int replay(const std::string& emulate, const std::string& file);
+int decode(const std::string& file);
+int run_demo();
+
+}  // namespace ibs::cli
