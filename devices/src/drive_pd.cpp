@@ -98,9 +98,7 @@ void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   if (machine_.state() == State::fault_response_active && actual_ == 0.0) {
     in.fault_reaction_done = true;
     const auto more = machine_.sample(in);
-    for (std::uint8_t i = 0; i < more.count && last_.count < drivecom::SampleResult::kMax; ++i) {
-      last_.transitions[last_.count++] = more.transitions[i];
-    }
+    for (std::uint8_t i = 0; i < more.count; ++i) last_.add(more.transition(i));
     last_.state = more.state;
   }
 
@@ -232,9 +230,7 @@ void Vf1000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   if (machine_.state() == State::emergency_stop_active && frequency_ == 0.0) {
     in.stopped = true;
     const auto more = machine_.sample(in);
-    for (std::uint8_t i = 0; i < more.count && last_.count < drivecom::SampleResult::kMax; ++i) {
-      last_.transitions[last_.count++] = more.transitions[i];
-    }
+    for (std::uint8_t i = 0; i < more.count; ++i) last_.add(more.transition(i));
     last_.state = more.state;
   }
 

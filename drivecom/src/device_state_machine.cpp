@@ -2,29 +2,25 @@
 
 namespace ibs::drivecom {
 
-std::optional<TransitionRow> DeviceStateMachine::next(const DeviceInputs& in,
-                                                      bool reset_edge) const {
-  const Command cmd = decode_command(in.control);
+detail::Cell DeviceStateMachine::next(const DeviceInputs& in, Command cmd, bool reset_edge) const {
   // 13: a fault takes every state except the two fault states to FAULT RESPONSE ACTIVE.
   if (in.fault_present && state_ != State::fault && state_ != State::fault_response_active) {
-    return TransitionRow{state_, cmd, State::fault_response_active, 13};
+    return {State::fault_response_active, 13};
   }
   switch (state_) {
     case State::not_ready:
-      if (in.initialised) return TransitionRow{state_, cmd, State::start_up_inhibit, 1};
-      return std::nullopt;
+      if (in.initialised) return {State::start_up_inhibit, 1};
+      return {state_, 0};
     case State::fault_response_active:
-      if (in.fault_reaction_done) return TransitionRow{state_, cmd, State::fault, 14};
-      return std::nullopt;
+      if (in.fault_reaction_done) return {State::fault, 14};
+      return {state_, 0};
     case State::fault:
       // 15: RESET FAULT on the 0 -> 1 edge of bit 7, once the cause has gone.
-      if (reset_edge && !in.fault_present) {
-        return TransitionRow{state_, cmd, State::start_up_inhibit, 15};
-      }
-      return std::nullopt;
+      if (reset_edge && !in.fault_present) return {State::start_up_inhibit, 15};
+      return {state_, 0};
     case State::emergency_stop_active:
       if (estop_exit_ == EmergencyStopExit::automatic_when_stopped && in.stopped) {
-        return TransitionRow{state_, cmd, State::start_up_inhibit, 12};
+        return {State::start_up_inhibit, 12};
       }
       break;
     case State::start_up_inhibit:
@@ -32,23 +28,32 @@ std::optional<TransitionRow> DeviceStateMachine::next(const DeviceInputs& in,
     case State::on:
     case State::enabled: break;
   }
-  for (const auto& row : kCommandTransitions) {
-    if (row.from == state_ && row.command == cmd) return row;
-  }
-  return std::nullopt;
+  return detail::kTransitionLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(cmd)];
 }
 
 SampleResult DeviceStateMachine::sample(const DeviceInputs& in) {
+  // The common case of every sample: a stable state whose command changes nothing.
+  if (!in.fault_present && state_ >= State::start_up_inhibit && state_ <= State::enabled) {
+    const Command cmd = decode_command(in.control);
+    if (detail::kTransitionLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(cmd)].number == 0) {
+      last_control_ = in.control;
+      SampleResult stable;
+      stable.state = state_;
+      return stable;
+    }
+  }
   SampleResult r;
-  bool reset_edge = reset_fault_edge(last_control_, in.control);
+  // RESET FAULT acts on an edge seen in FAULT; an edge during the fault reaction is not stored.
+  bool reset_edge = state_ == State::fault && reset_fault_edge(last_control_, in.control);
   last_control_ = in.control;
+  const Command cmd = decode_command(in.control);
   while (r.count < SampleResult::kMax) {
-    const auto t = next(in, reset_edge);
-    if (!t) break;
-    state_ = t->to;
-    r.transitions[r.count++] = t->number;
+    const detail::Cell t = next(in, cmd, reset_edge);
+    if (t.number == 0) break;
+    state_ = t.to;
+    r.add(t.number);
     // The edge is consumed by the one transition it can cause.
-    if (t->number == 15) reset_edge = false;
+    if (t.number == 15) reset_edge = false;
   }
   r.state = state_;
   return r;

@@ -191,6 +191,12 @@ Word Sequencer::step(Word status, Time now) {
   const std::optional<State> st = decode_state(status);
   report_.status_seen = status;
   report_.state_seen = st;
+  // The common case of every cycle: holding a reached target.
+  if (report_.goal == Goal::target && report_.phase == Phase::reached &&
+      st == target_state(report_.target)) {
+    prev_state_ = st;
+    return emit(last_control_);
+  }
   struct Remember {
     std::optional<State>& prev;
     const std::optional<State>& now;

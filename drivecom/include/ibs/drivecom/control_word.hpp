@@ -52,12 +52,24 @@ inline constexpr std::array<CommandRow, 5> kCommandTable{{
     {Command::enable, 0x000F, 0x000F, {3, 4, 0, 0}, "POWER-ON/ENABLE"},
 }};
 
-constexpr Command decode_command(Word control) {
-  for (const auto& row : kCommandTable) {
-    if ((control & row.mask) == row.value) return row.command;
+namespace detail {
+// Bits 0-3 -> command, derived once from kCommandTable (the table stays the only source).
+constexpr std::array<Command, 16> make_command_lut() {
+  std::array<Command, 16> lut{};
+  for (unsigned bits = 0; bits < 16; ++bits) {
+    for (const auto& row : kCommandTable) {
+      if ((bits & row.mask) == row.value) {
+        lut[bits] = row.command;
+        break;
+      }
+    }
   }
-  return Command::block_power;  // unreachable: the table covers every word
+  return lut;
 }
+inline constexpr std::array<Command, 16> kCommandLut = make_command_lut();
+}  // namespace detail
+
+constexpr Command decode_command(Word control) { return detail::kCommandLut[control & 0x000FU]; }
 
 constexpr const CommandRow& command_row(Command c) {
   return kCommandTable[static_cast<std::size_t>(c)];

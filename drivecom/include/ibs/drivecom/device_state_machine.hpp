@@ -57,13 +57,41 @@ inline constexpr std::array<TransitionRow, 14> kCommandTransitions{{
     {State::emergency_stop_active, Command::block_power, State::start_up_inhibit, 12},
 }};
 
+namespace detail {
+// (state, command) -> transition, derived once from kCommandTransitions; number 0 = none.
+struct Cell {
+  State to;
+  std::uint8_t number;
+};
+constexpr std::array<std::array<Cell, 5>, kStateCount> make_transition_lut() {
+  std::array<std::array<Cell, 5>, kStateCount> lut{};
+  for (std::size_t s = 0; s < kStateCount; ++s) {
+    for (auto& c : lut[s]) c = {static_cast<State>(s), 0};
+  }
+  for (const auto& row : kCommandTransitions) {
+    lut[static_cast<std::size_t>(row.from)][static_cast<std::size_t>(row.command)] = {row.to, row.number};
+  }
+  return lut;
+}
+inline constexpr auto kTransitionLut = make_transition_lut();
+}  // namespace detail
+
 // The transitions one sample performed, in order (at most a handful: the longest chain is
-// 15, 2, 3, 4 or 1, 2, 3, 4).
+// 15, 2, 3, 4 or 1, 2, 3, 4). Packed four bits a transition so that it fits a register.
 struct SampleResult {
   static constexpr std::size_t kMax = 8;
-  std::array<std::uint8_t, kMax> transitions{};
+  std::uint32_t packed = 0;
   std::uint8_t count = 0;
   State state = State::not_ready;
+
+  [[nodiscard]] constexpr std::uint8_t transition(std::size_t i) const {
+    return static_cast<std::uint8_t>((packed >> (4 * i)) & 0xFU);
+  }
+  constexpr void add(std::uint8_t number) {
+    if (count >= kMax) return;
+    packed |= (number & 0xFU) << (4U * count);
+    ++count;
+  }
 };
 
 // True where the power stage drives the motor.
@@ -98,7 +126,8 @@ class DeviceStateMachine {
   }
 
  private:
-  std::optional<TransitionRow> next(const DeviceInputs& in, bool reset_edge) const;
+  // The transition the state machine takes next (number 0: none).
+  detail::Cell next(const DeviceInputs& in, Command cmd, bool reset_edge) const;
 
   EmergencyStopExit estop_exit_;
   State state_;

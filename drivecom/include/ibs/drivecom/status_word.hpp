@@ -62,12 +62,30 @@ inline constexpr std::array<StateRow, kStateCount> kStateTable{{
 constexpr const StateRow& state_row(State s) { return kStateTable[static_cast<std::size_t>(s)]; }
 constexpr std::string_view to_string(State s) { return state_row(s).name; }
 
+namespace detail {
+// Bits 0-6 -> state (or none), derived once from kStateTable; every row's mask lies in 0x7F.
+inline constexpr std::uint8_t kNoState = 0xFF;
+constexpr std::array<std::uint8_t, 128> make_state_lut() {
+  std::array<std::uint8_t, 128> lut{};
+  for (unsigned bits = 0; bits < 128; ++bits) {
+    lut[bits] = kNoState;
+    for (const auto& row : kStateTable) {
+      if ((bits & row.mask) == row.value) {
+        lut[bits] = static_cast<std::uint8_t>(row.state);
+        break;
+      }
+    }
+  }
+  return lut;
+}
+inline constexpr std::array<std::uint8_t, 128> kStateLut = make_state_lut();
+}  // namespace detail
+
 // The state a status word shows, or nullopt for a word that matches no row.
 constexpr std::optional<State> decode_state(Word status) {
-  for (const auto& row : kStateTable) {
-    if ((status & row.mask) == row.value) return row.state;
-  }
-  return std::nullopt;
+  const std::uint8_t s = detail::kStateLut[status & 0x7FU];
+  if (s == detail::kNoState) return std::nullopt;
+  return static_cast<State>(s);
 }
 
 // Bits 0-6 of the status word for a state, with bits 4 and 5 showing the block-power and

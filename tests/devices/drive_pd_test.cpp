@@ -1,0 +1,175 @@
+// The drives' process-data behaviour around the state machine: seed 001 5.2 (VF1000), 5.3 (MC6000).
+#include <gtest/gtest.h>
+
+#include <array>
+
+#include "ibs/devices/drive_pd.hpp"
+
+namespace ibs::devices {
+namespace {
+
+using drivecom::State;
+
+struct Vf {
+  Vf1000PdDevice dev;
+  std::array<Word, 3> out{}, in{};
+  void samples(int n) {
+    for (int i = 0; i < n; ++i) dev.sample(out, in, kVf1000SamplePeriod);
+  }
+};
+
+TEST(Vf1000Pd, InitialisesForAboutFourSecondsWithTheResetDistinctionBitLow) {
+  Vf v;
+  v.dev.power_on();
+  v.out = {0x0006, 0, 0};
+  v.samples(487);  // 487 * 8.2 ms = 3.99 s
+  EXPECT_EQ(v.dev.state(), State::not_ready);
+  EXPECT_EQ(v.in[0] & 0x4FU, 0U);
+  EXPECT_EQ(v.in[2], 0x0000);  // 4.1.2.2 bit 7 of the high byte = 0 while initialising
+  v.samples(1);
+  EXPECT_EQ(v.dev.state(), State::ready);  // 1 then 2: SHUTDOWN was waiting
+  EXPECT_EQ(v.in[2], 0x8000);
+}
+
+TEST(Vf1000Pd, RunsClockwiseWithStrAndCounterClockwiseWithStl) {
+  Vf v;
+  v.out = {0x8076, 400, 0};  // SHUTDOWN, ramp bits, STR, 20 Hz
+  v.samples(2);
+  v.out[0] = 0x807F;
+  v.samples(200);
+  EXPECT_DOUBLE_EQ(v.dev.frequency_hz(), 20.0);
+  EXPECT_EQ(v.in[1], 400);
+  EXPECT_EQ(v.in[0] & 0x0400U, 0x0400U);  // reference reached
+  v.out[0] = 0x407F;                      // STL: the same reference counter-clockwise
+  v.samples(400);
+  EXPECT_DOUBLE_EQ(v.dev.frequency_hz(), -20.0);
+  EXPECT_EQ(v.in[1], static_cast<Word>(-400));
+  v.out[0] = 0xC07F;  // both: no direction
+  v.samples(400);
+  EXPECT_DOUBLE_EQ(v.dev.frequency_hz(), 0.0);
+}
+
+TEST(Vf1000Pd, RampGeneratorBits4To6) {
+  Vf v;
+  v.out = {0x8076, 1000, 0};
+  v.samples(2);
+  v.out[0] = 0x807F;
+  v.samples(100);  // ramping up, 0.82 s * 20 Hz/s
+  const double f = v.dev.frequency_hz();
+  EXPECT_GT(f, 15.0);
+  EXPECT_LT(f, 50.0);
+  v.out[0] = 0x805F;  // bit 5 = 0: the ramp stops at its current value
+  v.samples(50);
+  EXPECT_DOUBLE_EQ(v.dev.frequency_hz(), f);
+  v.out[0] = 0x803F;  // bit 6 = 0: ramp to 0 Hz
+  v.samples(300);
+  EXPECT_DOUBLE_EQ(v.dev.frequency_hz(), 0.0);
+  EXPECT_EQ(v.dev.state(), State::enabled);
+  v.out[0] = 0x807F;
+  v.samples(50);
+  EXPECT_GT(v.dev.frequency_hz(), 0.0);  // bit 6 back to 1: the ramp restarts
+  v.out[0] = 0x806F;                     // bit 4 = 0: the stop function (36-RSTOP)
+  v.samples(300);
+  EXPECT_DOUBLE_EQ(v.dev.frequency_hz(), 0.0);
+}
+
+TEST(Vf1000Pd, EmergencyStopWithoutStopRampSwitchesOffAtOnce) {
+  Vf v;
+  v.dev.set_stop_ramp(0.0);  // 36-RSTOP = 0
+  v.out = {0x8076, 1000, 0};
+  v.samples(2);
+  v.out[0] = 0x807F;
+  v.samples(100);
+  ASSERT_GT(v.dev.frequency_hz(), 0.0);
+  v.out[0] = 0x807B;
+  v.samples(1);
+  EXPECT_EQ(v.dev.state(), State::start_up_inhibit);
+  ASSERT_EQ(v.dev.last_sample().count, 2);
+  EXPECT_EQ(v.dev.last_sample().transition(0), 11);
+  EXPECT_EQ(v.dev.last_sample().transition(1), 12);
+}
+
+TEST(Vf1000Pd, ReferenceWordIsAnAbsoluteValueIn005Hz) {
+  EXPECT_EQ(vf1000_reference_word(50.0), 1000);
+  EXPECT_EQ(vf1000_reference_word(-50.0), 1000);
+  EXPECT_DOUBLE_EQ(vf1000_reference_hz(0x03E8), 50.0);
+  EXPECT_EQ(vf1000_reference_word(1e9), 0xFFFF);
+}
+
+TEST(Mc6000Pd, EmergencyStopBrakesAndStaysUntilBlockPower) {
+  Mc6000PdDevice dev;
+  std::array<Word, 3> out{0x0006, 0x03E8, 0x0000}, in{};  // 1000 rpm
+  dev.sample(out, in, 1ms);
+  out[0] = 0x000F;
+  for (int i = 0; i < 100; ++i) dev.sample(out, in, 1ms);
+  ASSERT_DOUBLE_EQ(dev.actual_rpm(), 1000.0);
+  EXPECT_EQ(in[0], 0x0637);
+  out[0] = 0x000B;
+  for (int i = 0; i < 100; ++i) dev.sample(out, in, 1ms);
+  EXPECT_DOUBLE_EQ(dev.actual_rpm(), 0.0);
+  EXPECT_EQ(dev.state(), State::emergency_stop_active);
+  EXPECT_EQ(in[0], 0x0217);
+  out[0] = 0x0000;
+  dev.sample(out, in, 1ms);
+  EXPECT_EQ(dev.state(), State::start_up_inhibit);
+}
+
+TEST(Mc6000Pd, FaultReactionBrakesThenFault) {
+  Mc6000PdDevice dev;
+  std::array<Word, 3> out{0x0006, 0x03E8, 0x0000}, in{};
+  dev.sample(out, in, 1ms);
+  out[0] = 0x000F;
+  for (int i = 0; i < 100; ++i) dev.sample(out, in, 1ms);
+  dev.set_fault(true);
+  dev.sample(out, in, 1ms);
+  EXPECT_EQ(dev.state(), State::fault_response_active);
+  for (int i = 0; i < 100; ++i) dev.sample(out, in, 1ms);
+  EXPECT_EQ(dev.state(), State::fault);
+  EXPECT_EQ(in[0] & 0x4FU, 0x08U);
+}
+
+TEST(Mc6000Pd, ReferenceBeyondTheSpeedLimitSetsLimitValue) {
+  Mc6000PdDevice dev;
+  std::array<Word, 3> out{0x0006, 0x2710, 0x0000}, in{};  // 10000 rpm > 6000
+  dev.sample(out, in, 1ms);
+  out[0] = 0x000F;
+  for (int i = 0; i < 500; ++i) dev.sample(out, in, 1ms);
+  EXPECT_DOUBLE_EQ(dev.actual_rpm(), 6000.0);
+  EXPECT_EQ(in[0] & 0x0800U, 0x0800U);
+  EXPECT_EQ(in[0] & 0x0400U, 0U);
+}
+
+TEST(Mc6000Pd, Supi0ExchangesNoData) {
+  Mc6000PdConfig c;
+  c.layout = interbus::mc6000::make_layout(0, 0);
+  Mc6000PdDevice dev(c);
+  std::array<Word, 1> out{0x000F}, in{0xFFFF};
+  dev.sample(out, in, 1ms);
+  EXPECT_EQ(in[0], 0x0000);
+}
+
+TEST(PdMasters, Mc6000MasterWritesQ16AndReadsActual) {
+  Mc6000PdMaster m(interbus::mc6000::make_layout(11, 2));
+  m.set_reference_rpm(2500.25);
+  std::array<Word, 3> s2m{0x0637, 0x09C4, 0x4000}, m2s{};
+  m.sequencer().request(drivecom::Target::enabled, 0ms);
+  m.cycle(s2m, m2s, 0ms);
+  EXPECT_EQ(m2s[0], 0x000F);
+  EXPECT_EQ(m2s[1], 0x09C4);
+  EXPECT_EQ(m2s[2], 0x4000);
+  EXPECT_DOUBLE_EQ(m.actual_rpm(), 2500.25);
+}
+
+TEST(PdMasters, Vf1000MasterSetsDirectionAndRampBits) {
+  Vf1000PdMaster m;
+  m.set_frequency_hz(-12.5);
+  std::array<Word, 3> s2m{0x0231, 0, 0x8000}, m2s{};
+  m.sequencer().request(drivecom::Target::enabled, 0ms);
+  m.cycle(s2m, m2s, 0ms, 0x2416);
+  EXPECT_EQ(m2s[0], 0x407F);  // STL, ramp bits 4-6, ENABLE
+  EXPECT_EQ(m2s[1], 250);
+  EXPECT_EQ(m2s[2], 0x2416);
+}
+
+}  // namespace
+}  // namespace ibs::devices

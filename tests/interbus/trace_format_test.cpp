@@ -1,0 +1,187 @@
+// ../shared/specs/trace-format.md: reading, writing and refusing `ibs-trace 1` files.
+#include <gtest/gtest.h>
+
+#include "ibs/interbus/trace.hpp"
+
+namespace ibs::trace {
+namespace {
+
+constexpr const char* kInquiry = R"(# format: ibs-trace 1
+# device: vf1000
+# words: comm
+# request: read 0x16
+0, 0000, 8000, master idle, inverter ready for parameter access
+1, 2416, 8000, value inquiry for parameter 22 (toggle 1)
+2, 2416, A003, inverter sends high byte 03
+3, 0400, A003, master has read the byte (toggle 0)
+4, 0400, 88E8, inverter sends low byte E8 with ACK
+5, 0000, 88E8, master returns to the starting position
+6, 0000, 8000, inverter back in wait mode
+)";
+
+TEST(TraceFormat, ReadsTheSpecExample) {
+  const Trace t = parse(kInquiry, "inq.trace");
+  EXPECT_EQ(t.header.device, DeviceType::vf1000);
+  EXPECT_EQ(t.header.words, WordsKind::comm);
+  ASSERT_TRUE(t.header.request.has_value());
+  EXPECT_EQ(t.header.request->kind, Request::Kind::read);
+  EXPECT_EQ(t.header.request->parameter, 22);
+  EXPECT_EQ(t.header.request_at, 1U);
+  EXPECT_EQ(t.header.max_gap, 100000U);
+  EXPECT_EQ(t.header.supi, 11);
+  EXPECT_EQ(t.header.ibcnf, 2);
+  ASSERT_EQ(t.rows.size(), 7U);
+  EXPECT_EQ(t.rows[4].s2m[0].value, 0x88E8);
+  EXPECT_EQ(t.rows[4].line, 9U);
+  EXPECT_EQ(t.rows[4].remark, "inverter sends low byte E8 with ACK");
+}
+
+TEST(TraceFormat, RemarksMayContainCommasAndSpacesAreIgnored) {
+  const Trace t = parse("# format: ibs-trace 1\n# device: mc6000\n# words: pd\n"
+                        "  0 ,  0000 0000 0000 ,0240 0000 0000 ,  a, b, c  \n",
+                        "x");
+  EXPECT_EQ(t.rows[0].remark, "a, b, c");
+  EXPECT_EQ(t.rows[0].m2s.size(), 3U);
+}
+
+TEST(TraceFormat, PatternsQuestionMarksAndMasks) {
+  const auto w = parse_words("0?37 ???? 0437/FDFF 0a3f", "x", 1);
+  ASSERT_EQ(w.size(), 4U);
+  EXPECT_EQ(w[0].mask, 0xF0FF);
+  EXPECT_TRUE(w[0].matches(0x0537));
+  EXPECT_FALSE(w[0].matches(0x0538));
+  EXPECT_TRUE(w[1].matches(0x1234));
+  EXPECT_TRUE(w[2].matches(0x0637));  // bit 9 ignored
+  EXPECT_TRUE(w[2].matches(0x0437));
+  EXPECT_FALSE(w[2].matches(0x0436));
+  EXPECT_EQ(w[3].value, 0x0A3F);
+  EXPECT_EQ(w[0].to_string(), "0?37");
+  EXPECT_EQ(w[1].to_string(), "????");
+  EXPECT_EQ(w[2].to_string(), "0437/FDFF");
+  EXPECT_EQ(w[3].to_string(), "0A3F");
+}
+
+TEST(TraceFormat, WriteThenParseRoundTrips) {
+  const std::string text = std::string(kInquiry) + "...\n7, 0000, 8000, after a gap\n";
+  Trace t = parse(text, "a");
+  t.header.init = InitState::power_on;
+  t.header.init_given = true;
+  t.header.outcome = Outcome{Outcome::Kind::ok, 1000};
+  t.header.max_gap = 12;
+  t.header.max_gap_given = true;
+  const std::string written = write(t);
+  const Trace back = parse(written, "b");
+  EXPECT_EQ(write(back), written);
+  ASSERT_EQ(back.rows.size(), t.rows.size());
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    EXPECT_EQ(back.rows[i].gap, t.rows[i].gap);
+    EXPECT_EQ(back.rows[i].step, t.rows[i].step);
+    EXPECT_EQ(back.rows[i].m2s, t.rows[i].m2s);
+    EXPECT_EQ(back.rows[i].s2m, t.rows[i].s2m);
+    EXPECT_EQ(back.rows[i].remark, t.rows[i].remark);
+  }
+  EXPECT_EQ(back.header.outcome, t.header.outcome);
+  EXPECT_EQ(back.header.init, InitState::power_on);
+  EXPECT_EQ(back.header.max_gap, 12U);
+}
+
+TEST(TraceFormat, RequestsAndOutcomes) {
+  EXPECT_EQ(parse_request("write 0x15 500", "x", 1),
+            (Request{Request::Kind::write, 0x15, 500, StateTarget::enabled}));
+  EXPECT_EQ(parse_request("describe 45", "x", 1).kind, Request::Kind::describe);
+  EXPECT_EQ(parse_request("state start-up-inhibit", "x", 1).target, StateTarget::start_up_inhibit);
+  EXPECT_EQ(parse_outcome("ok 0x3E8", "x", 1), (Outcome{Outcome::Kind::ok, 1000}));
+  EXPECT_EQ(parse_outcome("timeout", "x", 1).kind, Outcome::Kind::timeout);
+}
+
+struct Bad {
+  const char* text;
+  std::size_t line;
+  const char* message;
+};
+
+TEST(TraceFormat, MalformedFilesSayFileLineAndWhat) {
+  const std::string h = "# format: ibs-trace 1\n# device: vf1000\n# words: comm\n";
+  const std::vector<Bad> cases{
+      {"", 1, "the first header must be 'format: ibs-trace 1'"},
+      {"# device: vf1000\n", 1, "the first header must be 'format: ibs-trace 1'"},
+      {"# format: ibs-trace 2\n", 1, "format: 'ibs-trace 2' is not 'ibs-trace 1'"},
+      {"# format: ibs-trace 1\n# words: comm\n0, 0000, 8000\n", 3, "header 'device' is missing"},
+      {"# format: ibs-trace 1\n# device: vf2000\n", 2, "device: 'vf2000' is not one of vf1000, mc6000"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# word: comm\n", 3, "unknown header 'word'"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# words: bytes\n", 3, "words: 'bytes' is not one of comm, pd, pcp"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# request: state running\n", 4,
+       "state target 'running' is not one of start-up-inhibit, ready, on, enabled"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# request: erase 5\n", 4, "request: 'erase'"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# outcome: maybe\n", 4, "outcome: 'maybe'"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# max-gap: -3\n", 4, "max-gap: '-3'"},
+      {"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# supi: eleven\n", 4, "supi: 'eleven'"},
+  };
+  for (const auto& c : cases) {
+    try {
+      parse(c.text, "f.trace");
+      ADD_FAILURE() << "accepted: " << c.text;
+    } catch (const TraceError& e) {
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("f.trace:" + std::to_string(c.line) + ": ", 0), 0U) << what;
+      EXPECT_NE(what.find(c.message), std::string::npos) << what;
+    }
+  }
+  const std::vector<Bad> rows{
+      {"1, 0000, 8000\n", 4, "the first row must be step 0"},
+      {"0, 0000, 8000\n2, 0000, 8000\n", 5, "step 2 should be 1"},
+      {"0, 000, 8000\n", 4, "must be exactly four hex digits"},
+      {"0, 00G0, 8000\n", 4, "non-hex digit 'G'"},
+      {"0, 0000/FF?F, 8000\n", 4, "'?' is not allowed in the mask"},
+      {"0, 0000\n", 4, "found 2 field(s)"},
+      {"0, , 8000\n", 4, "at least one word"},
+      {"x, 0000, 8000\n", 4, "step 'x' is not a decimal step number"},
+      {"0, 0000, 8000\n1, 0000 0000, 8000\n", 5, "row has 2 m2s and 1 s2m words; earlier rows have 1 and 1"},
+      {"...\n", 4, "a gap '...' cannot be the first row"},
+      {"0, 0000, 8000\n...\n", 5, "a gap '...' cannot be the last row"},
+      {"0, 0000, 8000\n...\n...\n1, 0000, 8000\n", 6, "two gaps"},
+      {"0, 0000, 8000\n# device: mc6000\n", 5, "no data rows"},
+  };
+  for (const auto& c : rows) {
+    try {
+      const Trace t = parse(h + c.text, "f.trace");
+      if (std::string(c.message) == "no data rows") continue;  // a '#' line after rows is a comment
+      ADD_FAILURE() << "accepted: " << c.text;
+    } catch (const TraceError& e) {
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(TraceFormat, HeaderLikeLineAfterTheFirstRowIsAComment) {
+  const Trace t = parse("# format: ibs-trace 1\n# device: vf1000\n# words: comm\n0, 0000, 8000\n"
+                        "# device: mc6000\n1, 0000, 8000\n",
+                        "x");
+  EXPECT_EQ(t.header.device, DeviceType::vf1000);
+  ASSERT_EQ(t.rows[1].comments_before.size(), 1U);
+}
+
+TEST(TraceFormat, StepsAfterAGapAreLabels) {
+  const Trace t = parse("# format: ibs-trace 1\n# device: vf1000\n# words: comm\n0, 0000, 8000\n"
+                        "...\n40, 0000, 8000\n41, 0000, 8000\n",
+                        "x");
+  EXPECT_EQ(t.rows[2].step, 40U);
+  EXPECT_THROW(parse("# format: ibs-trace 1\n# device: vf1000\n# words: comm\n0, 0000, 8000\n"
+                     "...\n40, 0000, 8000\n43, 0000, 8000\n",
+                     "x"),
+               TraceError);
+}
+
+TEST(TraceFormat, MissingFileIsAnError) {
+  try {
+    load("/nonexistent/dir/x.trace");
+    FAIL();
+  } catch (const TraceError& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/dir/x.trace:0: cannot open the file");
+  }
+}
+
+}  // namespace
+}  // namespace ibs::trace

@@ -1,0 +1,97 @@
+// The `ibs` command line as a user runs it: exit codes and what it prints.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "ibs/interbus/trace.hpp"
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(IBS_CLI) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (const std::size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string data(const std::string& name) { return std::string(IBS_TEST_DATA_DIR) + "/" + name; }
+
+std::string temp_file(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Cli, ReplayTheStartUpTableBothWays) {
+  for (const char* side : {"device", "master"}) {
+    const Result r = run(std::string("replay --emulate ") + side + " " + data("mc6000_pd_startup_5_3_4.trace"));
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_EQ(r.out, "replay: 6 steps matched\n");
+  }
+}
+
+TEST(Cli, MismatchExitsOneAndExplainsBothWords) {
+  std::ifstream in(data("mc6000_pd_startup_5_3_4.trace"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto pos = text.find("2, 0006 09C4 4000, 0231");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 23, "2, 0006 09C4 4000, 0237");
+  const Result r = run("replay --emulate device " + temp_file("mismatch.trace", text));
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("mismatch at step 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("expected 0237 0000 0000  status 0237 ENABLED"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("actual   0231 0000 0000  status 0231 READY"), std::string::npos) << r.out;
+}
+
+TEST(Cli, MalformedTraceExitsTwoWithFileAndLine) {
+  const std::string path = temp_file("bad.trace", "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n0, 0000 00000, 0240\n");
+  const Result r = run("replay --emulate device " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, path + ":4: word '00000' must be exactly four hex digits\n");
+  const Result d = run("decode " + path);
+  EXPECT_EQ(d.exit_code, 2);
+  const Result missing = run("decode /nonexistent.trace");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.out, "/nonexistent.trace:0: cannot open the file\n");
+}
+
+TEST(Cli, BadOptionsExitTwo) {
+  EXPECT_EQ(run("replay --emulate bus " + data("mc6000_pd_startup_5_3_4.trace")).exit_code, 2);
+  EXPECT_EQ(run("replay " + data("mc6000_pd_startup_5_3_4.trace")).exit_code, 2);
+  EXPECT_EQ(run("frobnicate").exit_code, 2);
+  EXPECT_EQ(run("").exit_code, 2);
+}
+
+TEST(Cli, DecodePrintsAValidTraceWithExplanations) {
+  const Result r = run("decode " + data("mc6000_pd_startup_5_3_4.trace"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto t = ibs::trace::parse(r.out, "decoded");
+  ASSERT_EQ(t.rows.size(), 7U);
+  EXPECT_NE(t.rows[2].remark.find("status 0231 READY, remote"), std::string::npos) << t.rows[2].remark;
+  // The decoded file replays like the original.
+  const Result again = run("replay --emulate device " + temp_file("decoded.trace", r.out));
+  EXPECT_EQ(again.exit_code, 0) << again.out;
+}
+
+TEST(Cli, RunBringsBothDrivesUpAndDown) {
+  const Result r = run("run");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("reference 2500.25 rpm reached"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reference 50.00 Hz reached"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("result: both drives started, ran to their references and stopped"), std::string::npos);
+}
+
+}  // namespace
