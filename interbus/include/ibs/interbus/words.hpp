@@ -12,7 +12,7 @@ constexpr std::uint8_t low_byte(Word w) { return static_cast<std::uint8_t>(w & 0
 constexpr Word make_word(std::uint8_t high, std::uint8_t low) {
   return static_cast<Word>((static_cast<unsigned>(high) << 8U) | low);
 }
-constexpr bool bit(Word w, unsigned n) { return ((w >> n) & 1U) != 0; }
+constexpr bool bit(Word w, unsigned n) { return ((static_cast<unsigned>(w) >> n) & 1U) != 0; }
 constexpr Word with_bit(Word w, unsigned n, bool on) {
   return on ? static_cast<Word>(w | (1U << n)) : static_cast<Word>(w & ~(1U << n));
 }

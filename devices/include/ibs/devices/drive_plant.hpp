@@ -1,0 +1,123 @@
+// MC6000 drive plant: the servo's PI speed loop with torque limit, its current loop as a first-
+// order lag, and a rigidly coupled mechanical load, as a continuous-time state-space model
+// discretised exactly (zero-order hold, matrix exponential) for the sample period.
+//
+// It supplies what the MC6000 emulator reports: actual speed and torque, and the status-word
+// bits 10 "reference reached" and 11 "limit value" (seed 001, 5.1.3 and 5.3.2). The speed loop
+// is a modelling choice: the manual gives no controller structure or motor data.
+//
+// States x = [w, i, T]: w motor speed (rad/s), i the PI integrator (Nm), T motor torque (Nm).
+// Inputs u = [w_ref (rad/s), d (Nm), T_lim (Nm)]: d = load torque + friction torque, held over
+// a step; T_lim the clipped command in the limited mode.
+//
+//   linear mode  (|c| <= T_max, c = Kp (w_ref - w) + i):
+//     J dw/dt = T - B w - d,   di/dt = Ki (w_ref - w),   tau dT/dt = c - T
+//   limited mode (|c| > T_max, also used with T_lim = 0 for a disabled power stage):
+//     J dw/dt = T - B w - d,   di/dt = 0 (anti-windup), tau dT/dt = T_lim - T
+//
+// The mode is chosen at the start of each step from the state and held for the step. Nothing in
+// step() allocates, throws or reads a clock; the matrices are computed in the constructor.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::devices {
+
+// Defaults: a servo motor with about 4 Nm rated torque, 2.5 x peak, driving a load of three
+// times its inertia. 0 -> 2500.25 rpm (seed 001, 5.3.4) takes about 0.22 s in the torque limit.
+struct DrivePlantParams {
+  double motor_inertia = 0.002;          // J_m, kg m^2
+  double load_inertia = 0.006;           // J_L, kg m^2, rigidly coupled: J = J_m + J_L
+  double viscous_friction = 2.0e-4;      // B, Nm per rad/s
+  double coulomb_friction = 0.1;         // Nm, opposes motion; holds the shaft at standstill
+  double kp = 2.0;                       // speed controller gain, Nm per rad/s (kp/J = 250 rad/s)
+  double ki = 50.0;                      // integral gain, Nm per rad (integral time kp/ki = 40 ms)
+  double torque_limit = 10.0;            // T_max, Nm, symmetric
+  double torque_time_constant = 0.5e-3;  // tau, s: the closed current loop as a first-order lag
+  double rated_torque = 4.0;             // Nm that read as 100 % in PlantOutput::torque_percent
+  double reference_window_rpm = 10.0;    // "reference reached" when |ref - actual| <= this
+};
+
+struct PlantInput {
+  double speed_reference_rpm = 0.0;
+  double load_torque_nm = 0.0;  // positive: opposes positive speed (a braking load)
+  bool enabled = true;          // false: power stage off, torque 0, integrator cleared; coasts
+};
+
+struct PlantOutput {
+  double speed_rpm = 0.0;
+  double torque_nm = 0.0;          // motor torque (the current loop's output)
+  double torque_percent = 0.0;     // torque_nm in % of DrivePlantParams::rated_torque
+  bool reference_reached = false;  // status bit 10: |ref - speed| <= reference_window_rpm
+  bool limit_active = false;       // status bit 11: the torque command was clipped in this step
+};
+
+// A speed reference ramp (the MC6000's reference channel has a ramp generator, seed 001 3.2.1).
+struct ReferenceRamp {
+  double rate_rpm_per_s = 0.0;  // <= 0: no ramp, the output jumps to the target
+  double value_rpm = 0.0;
+
+  // Moves value_rpm towards target by at most rate * dt and returns it.
+  double step(double target_rpm, Duration dt) noexcept;
+};
+
+constexpr double rpm_to_rad_s(double rpm) {
+  return rpm * 0.10471975511965977;
+}  // 2 pi / 60
+constexpr double rad_s_to_rpm(double w) {
+  return w * 9.549296585513720;
+}  // 60 / 2 pi
+
+class DrivePlant {
+ public:
+  using State = Eigen::Vector3d;  // [w rad/s, integrator Nm, torque Nm]
+  using Input = Eigen::Vector3d;  // [w_ref rad/s, d Nm, T_lim Nm]
+  using Matrix = Eigen::Matrix3d;
+
+  enum class Mode { linear, limited };
+
+  struct StateSpace {
+    Matrix a;
+    Matrix b;
+  };
+
+  // Throws std::invalid_argument naming a parameter out of range (configuration time).
+  explicit DrivePlant(const DrivePlantParams& params = {}, Duration period = kMc6000SamplePeriod);
+
+  // One sample period with the input held.
+  PlantOutput step(const PlantInput& in) noexcept;
+  // As many whole periods as `elapsed` (plus what earlier calls left over) covers; the remainder
+  // waits for the next call. Returns the output after the last step taken.
+  PlantOutput advance(Duration elapsed, const PlantInput& in) noexcept;
+
+  const PlantOutput& output() const noexcept { return out_; }
+  const State& state() const noexcept { return x_; }
+  void set_state(const State& x) noexcept { x_ = x; }
+  void reset() noexcept;
+
+  Duration period() const noexcept { return period_; }
+  const DrivePlantParams& params() const noexcept { return p_; }
+  double inertia() const noexcept { return p_.motor_inertia + p_.load_inertia; }
+
+  // The continuous model of a mode and its discretisation for period().
+  static StateSpace continuous(const DrivePlantParams& p, Mode m);
+  const StateSpace& discrete(Mode m) const noexcept {
+    return m == Mode::linear ? linear_ : limited_;
+  }
+
+ private:
+  DrivePlantParams p_;
+  Duration period_;
+  Duration pending_{0};
+  StateSpace linear_;
+  StateSpace limited_;
+  State x_ = State::Zero();
+  PlantOutput out_;
+};
+
+// Zero-order-hold discretisation: exp([[A, B], [0, 0]] * T) = [[Ad, Bd], [0, I]].
+DrivePlant::StateSpace discretise_zoh(const DrivePlant::StateSpace& c, Duration period);
+
+}  // namespace ibs::devices
