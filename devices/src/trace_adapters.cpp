@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ibs/devices/drive_pd.hpp"
+#include "ibs/vf1000_channel/trace_adapters.hpp"
 
 namespace ibs::devices {
 
@@ -236,13 +237,28 @@ class Vf1000Explainer final : public trace::Explainer {
 };
 
 [[noreturn]] void unsupported(const trace::Trace& t) {
-  throw TraceError(t.file, t.header.lines.words,
-                   "words: " + std::string(to_string(t.header.words)) + " is not served for device " +
-                       std::string(to_string(t.header.device)) +
-                       (t.header.words == WordsKind::comm ? " (the communication word is the VF1000's)"
-                        : t.header.words == WordsKind::pcp ? " (PCP is the MC6000's)"
-                                                           : ""));
+  const Header& h = t.header;
+  std::string why;
+  if (h.words == WordsKind::comm && h.device != DeviceType::vf1000) why = " (the communication word is the VF1000's)";
+  if (h.words == WordsKind::pcp && h.device != DeviceType::mc6000) why = " (PCP is the MC6000's)";
+  throw TraceError(t.file, h.lines.words,
+                   "words: " + std::string(to_string(h.words)) + " is not served for device " +
+                       std::string(to_string(h.device)) + why);
 }
+
+// The channel adapters report a header they cannot serve with std::invalid_argument; the user
+// gets it as FILE:LINE naming the request (or the words header).
+template <typename F>
+auto channel_adapter(const trace::Trace& t, F make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    const auto& l = t.header.lines;
+    throw TraceError(t.file, l.request != 0 ? l.request : l.words, e.what());
+  }
+}
+
+bool is_comm(const Header& h) { return h.words == WordsKind::comm && h.device == DeviceType::vf1000; }
 
 }  // namespace
 
@@ -256,6 +272,7 @@ std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
     if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Device>(layout_of(t), init_of(h));
     return std::make_unique<Vf1000Device>(init_of(h));
   }
+  if (is_comm(h)) return channel_adapter(t, [&] { return vf1000_channel::make_comm_device_side(h); });
   unsupported(t);
 }
 
@@ -266,6 +283,7 @@ std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t) {
     if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Master>(layout_of(t));
     return std::make_unique<Vf1000Master>();
   }
+  if (is_comm(h)) return channel_adapter(t, [&] { return vf1000_channel::make_comm_master_side(h); });
   unsupported(t);
 }
 
@@ -275,6 +293,7 @@ std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t) {
     if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Explainer>(layout_of(t));
     return std::make_unique<Vf1000Explainer>();
   }
+  if (is_comm(h)) return vf1000_channel::make_comm_explainer();
   unsupported(t);
 }
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -84,6 +85,27 @@ TEST(Cli, DecodePrintsAValidTraceWithExplanations) {
   // The decoded file replays like the original.
   const Result again = run("replay --emulate device " + temp_file("decoded.trace", r.out));
   EXPECT_EQ(again.exit_code, 0) << again.out;
+}
+
+TEST(Cli, EveryTraceInTestsDataReplaysThroughTheCommand) {
+  // Every transcribed table and example: the device side always; the master side where the
+  // trace hands the master a request (the others are device-only by their own comment).
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(IBS_TEST_DATA_DIR)) {
+    if (entry.path().extension() != ".trace") continue;
+    ++files;
+    const std::string path = entry.path().string();
+    const Result d = run("replay --emulate device " + path);
+    EXPECT_EQ(d.exit_code, 0) << path << "\n" << d.out;
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("# request:") == std::string::npos) continue;
+    const Result m = run("replay --emulate master " + path);
+    EXPECT_EQ(m.exit_code, 0) << path << "\n" << m.out;
+    const Result dec = run("decode " + path);
+    EXPECT_EQ(dec.exit_code, 0) << path << "\n" << dec.out;
+  }
+  EXPECT_GE(files, 5);
 }
 
 TEST(Cli, RunBringsBothDrivesUpAndDown) {

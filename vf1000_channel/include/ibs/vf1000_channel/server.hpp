@@ -1,0 +1,143 @@
+// The inverter side of the VF1000 parameter channel (seed 001, 4.1.3 and 4.1.4): one step reads
+// the master's communication word and returns the inverter's. The caller decides how often the
+// inverter processes the channel (the VF1000 samples every 8.2 ms and advances the channel about
+// one byte every few samples, 7.1); step() itself is pure: state and inputs in, word out.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+#include "ibs/interbus/time.hpp"
+#include "ibs/interbus/words.hpp"
+#include "ibs/vf1000_channel/comm_word.hpp"
+#include "ibs/vf1000_channel/parameters.hpp"
+
+namespace ibs::vf1000_channel {
+
+struct ServerConfig {
+  // After power-on the inverter initialises and runs its self-test for about 4 s (6.1); its word
+  // carries RESET distinction bit 0 meanwhile (4.1.2.2).
+  Duration init_duration = 4s;
+};
+
+// How the inverter is found when the server is made.
+enum class ServerStart : std::uint8_t {
+  power_on,     // just switched on: initialising for init_duration, then 85-SIOF power-on bit set
+  initialised,  // initialisation done, power-on bit still set (trace header `init: power-on`)
+  operational,  // running, 85-SIOF read and clear (trace header `init: operational`)
+};
+
+enum class ServerState : std::uint8_t {
+  initialising,   // RESET distinction bit 0, the master's word is ignored (6.1)
+  wait,           // wait mode: CODE 0 seen, ready for a telegram
+  sending,        // value inquiry / description scan: one byte out per master toggle
+  transfer_high,  // value transfer: PNR taken, waiting for DAT1
+  transfer_low,   // value transfer: DAT1 taken, waiting for DAT2
+  done,           // the last byte went out with ACK or NAK: waiting for CODE 0
+};
+std::string_view to_string(ServerState s);
+
+// Why the inverter answered NAK.
+enum class NakReason : std::uint8_t {
+  unintended_control_bits,  // bits 6/7 set, or CODE changed inside a telegram (4.1.4)
+  undefined_code,           // CODE 4-7 in a start word
+  no_parameter,             // no parameter with that number (4.1.3.1)
+  no_change,                // read-only, or EEPROM while the power stage is enabled (4.1.3.2)
+  invalid_value,            // outside min/max (4.1.3.3)
+  siof_pending,             // 85-SIOF <> 0: transfers refused until it is read (4.1.4, 6.1)
+  after_end,                // the master toggled again after the last byte instead of CODE 0
+};
+std::string_view to_string(NakReason r);
+
+// What one step did, for the caller (the device model reacts to written parameters).
+struct ServerEvent {
+  enum class Kind : std::uint8_t {
+    none,
+    initialised,       // initialisation finished this step
+    value_read,        // a value inquiry's last byte went out (value = the value sent)
+    value_written,     // a value transfer took effect (value = the new value)
+    description_read,  // a description scan's last byte went out
+    nak,               // NAK sent (reason, siof_set)
+    aborted,           // CODE 0 ended an unfinished telegram; a partial transfer was discarded
+  };
+  Kind kind = Kind::none;
+  Code code = Code::reset;
+  std::uint16_t number = 0;
+  Word value = 0;
+  NakReason reason = NakReason::unintended_control_bits;
+  std::uint8_t siof_set = 0;  // nak: 85-SIOF bits this NAK set (only value transfers set bits)
+};
+
+class Server {
+ public:
+  // The table must hold 85-SIOF (the channel's error register); throws std::invalid_argument
+  // otherwise, or when the table itself is malformed (see ParameterTable).
+  Server(const ServerConfig& config, ServerStart start, Time now,
+         std::span<const ParameterInfo> params = vf1000_parameters());
+
+  // One inverter processing step: reads the master's word, returns the inverter's. What the step
+  // did is in last_event() until the next step. `power_stage_enabled` is the drive's state now
+  // (EEPROM parameters are refused while it is).
+  Word step(Word from_master, Time now, bool power_stage_enabled);
+  [[nodiscard]] const ServerEvent& last_event() const { return event_; }
+
+  // Power cycle: an unfinished telegram is lost (never half-applied), RAM values return to their
+  // defaults, EEPROM values stay; RESET distinction 0 until now + init_duration; power-on bit set.
+  void power_on(Time now);
+
+  [[nodiscard]] ServerState state() const { return state_; }
+  // True while the inverter initialises (its word has RESET distinction bit 0).
+  [[nodiscard]] bool initialising(Time now) const {
+    return state_ == ServerState::initialising && now < ready_at_;
+  }
+  [[nodiscard]] Time ready_at() const { return ready_at_; }
+  // The word the inverter shows now (what the last step returned).
+  [[nodiscard]] Word output() const { return out_; }
+
+  [[nodiscard]] std::uint8_t siof() const {
+    return static_cast<std::uint8_t>(store_.value(siof_slot_));
+  }
+  // The device sets error bits of its own (e.g. the watchdog bit 1).
+  void raise_siof(std::uint8_t bits);
+
+  // The device side's access to its parameters (actual values like 911-IBSTA and 912-FIST, the
+  // control word 901-ICNTL); nullopt / false for a number the table lacks. set_value bypasses the
+  // channel's checks.
+  [[nodiscard]] std::optional<Word> value(std::uint16_t number) const;
+  bool set_value(std::uint16_t number, Word raw);
+
+  [[nodiscard]] const ParameterTable& table() const { return table_; }
+  [[nodiscard]] const ParameterStore& store() const { return store_; }
+
+ private:
+  Word process(Word m, bool power_stage_enabled);
+  Word start_telegram(Word m, bool power_stage_enabled);
+  Word next_byte();
+  Word take_high(Word m);
+  Word take_low(Word m, bool power_stage_enabled);
+  Word nak(NakReason reason, std::uint8_t siof_bits);
+  Word send(std::uint8_t data, Flag flag);
+
+  ServerConfig config_;
+  ParameterTable table_;
+  ParameterStore store_;
+  std::size_t siof_slot_ = 0;
+  int prog_slot_ = -1;
+
+  ServerState state_ = ServerState::initialising;
+  Time ready_at_{0};
+  Word out_ = 0;
+  bool toggle_ = false;      // toggle of the last master word taken (echoed in out_)
+  Code code_ = Code::reset;  // the running telegram
+  std::uint16_t number_ = 0;
+  std::int16_t slot_ = -1;   // the running telegram's parameter
+  std::uint8_t index_ = 0;   // next byte to send
+  std::uint8_t length_ = 0;  // bytes to send: 2 (inquiry) or 18 (description)
+  std::uint8_t high_ = 0;    // DAT1 of a transfer, held until DAT2 completes it
+  Word latched_ = 0;         // the value an inquiry sends, taken whole when the PNR arrives
+  ServerEvent event_;
+};
+
+}  // namespace ibs::vf1000_channel
