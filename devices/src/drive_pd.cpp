@@ -32,7 +32,8 @@ drivecom::State initial_state(InitState s) {
 
 Mc6000PdDevice::Mc6000PdDevice(const Mc6000PdConfig& config)
     : config_(config),
-      machine_(drivecom::EmergencyStopExit::on_block_power_only, State::start_up_inhibit) {
+      machine_(drivecom::EmergencyStopExit::on_block_power_only, State::start_up_inhibit),
+      plant_(config.plant, kMc6000SamplePeriod) {
   start(InitState::operational);
 }
 
@@ -43,6 +44,7 @@ void Mc6000PdDevice::power_on() {
   reference_ = 0.0;
   actual_ = 0.0;
   limit_ = false;
+  plant_.reset();
   status_ = machine_.state_bits();
 }
 
@@ -53,24 +55,26 @@ void Mc6000PdDevice::start(InitState s) {
   reference_ = 0.0;
   actual_ = 0.0;
   limit_ = false;
+  plant_.reset();
   status_ = drivecom::status_word(machine_.state(), 0, {});
 }
 
-void Mc6000PdDevice::move_actual(double dt_s) {
+void Mc6000PdDevice::move_actual(Duration dt) {
+  PlantInput in;
+  in.load_torque_nm = load_nm_;
   switch (machine_.state()) {
-    case State::enabled: {
-      const double target = std::clamp(reference_, -config_.max_speed_rpm, config_.max_speed_rpm);
-      approach(actual_, target, config_.acceleration_rpm_per_s * dt_s);
+    case State::enabled:
+      in.speed_reference_rpm = std::clamp(reference_, -config_.max_speed_rpm, config_.max_speed_rpm);
       break;
-    }
     case State::emergency_stop_active:
     case State::fault_response_active:
-      approach(actual_, 0.0, config_.quick_stop_rpm_per_s * dt_s);
+      in.speed_reference_rpm = 0.0;  // quick stop: the speed loop brakes at the torque limit
       break;
     default:
-      approach(actual_, 0.0, config_.coast_rpm_per_s * dt_s);
+      in.enabled = false;  // power stage off: the load coasts
       break;
   }
+  actual_ = plant_.advance(dt, in).speed_rpm;
 }
 
 void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Duration dt) {
@@ -82,20 +86,21 @@ void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   }
   since_power_on_ += dt;
   if (!initialised_ && since_power_on_ >= config_.init_time) initialised_ = true;
-  const Word control = m2s.empty() ? Word{0} : m2s[0];
+  const Word control = override_ ? *override_ : (m2s.empty() ? Word{0} : m2s[0]);
   const auto ref_words = m2s.subspan(1, static_cast<std::size_t>(l.reference_words));
   reference_ = interbus::mc6000::decode_reference(l, ref_words);
 
+  const bool standstill = std::fabs(actual_) < config_.standstill_rpm;
   drivecom::DeviceInputs in;
   in.control = control;
   in.initialised = initialised_;
   in.fault_present = fault_present_;
-  in.fault_reaction_done = actual_ == 0.0;
-  in.stopped = actual_ == 0.0;
+  in.fault_reaction_done = standstill;
+  in.stopped = standstill;
   last_ = machine_.sample(in);
-  move_actual(seconds(dt));
+  move_actual(dt);
   // A fault reaction that ends within this sample shows FAULT at once.
-  if (machine_.state() == State::fault_response_active && actual_ == 0.0) {
+  if (machine_.state() == State::fault_response_active && std::fabs(actual_) < config_.standstill_rpm) {
     in.fault_reaction_done = true;
     const auto more = machine_.sample(in);
     for (std::uint8_t i = 0; i < more.count; ++i) last_.add(more.transition(i));
@@ -105,7 +110,7 @@ void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   drivecom::StatusExtras e;
   e.remote = initialised_;
   e.reference_reached = machine_.state() == State::enabled &&
-                        std::fabs(reference_ - actual_) <= config_.reference_window_rpm;
+                        std::fabs(reference_ - actual_) <= config_.plant.reference_window_rpm;
   // Bit 11 "a limitation is active" (5.1.3): here the reference is beyond the speed limit. The
   // torque limit during acceleration does not set it: 5.3.4 shows 0237H while accelerating.
   limit_ = std::fabs(reference_) > config_.max_speed_rpm;
@@ -212,7 +217,7 @@ void Vf1000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
                             std::optional<Word> comm_out) {
   since_power_on_ += dt;
   if (!initialised_ && since_power_on_ >= config_.init_time) initialised_ = true;
-  const Word control = m2s[0];
+  const Word control = override_ ? *override_ : m2s[0];
   const auto b = drivecom::decode_vf1000_bits(control);
   // STR runs clockwise, STL counter-clockwise; neither or both: no direction, 0 Hz.
   const double direction = b.str == b.stl ? 0.0 : (b.str ? 1.0 : -1.0);
@@ -225,7 +230,7 @@ void Vf1000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   in.fault_reaction_done = true;  // the VF1000 switches its power stage off at once
   in.stopped = frequency_ == 0.0 || config_.stop_ramp_hz_per_s <= 0;
   last_ = machine_.sample(in);
-  run_ramp(control, static_cast<double>(dt.count()) / 1e9);
+  run_ramp(control, seconds(dt));
   // The stop ramp has been worked through: START-UP INHIBIT by itself (5.2.1) in the same sample.
   if (machine_.state() == State::emergency_stop_active && frequency_ == 0.0) {
     in.stopped = true;

@@ -38,8 +38,9 @@ constexpr std::array kVf1000Parameters = {
     // 4.1.3.1.1: actual value 3E8H (50.00 Hz); 4.1.3.2.1: 1F4H = 25 Hz, so PT_FIXPOINT16.
     ParameterInfo{pnr::kFmax1, "FMAX1", "Hz", C::eeprom, T::fixpoint16, 0, kFixpointDisplayMax,
                   1000, 0.05, "Maximum frequency 1"},
-    // 5.2.1: 36-RSTOP <> 0 programs a stop ramp, 0 disables the power stage.
-    ParameterInfo{pnr::kRstop, "RSTOP", "Hz/s", C::eeprom, T::fixpoint16, 0, kFixpointDisplayMax, 0,
+    // 5.2.1: 36-RSTOP <> 0 programs a stop ramp, 0 disables the power stage. No manual gives the
+    // factory value; 50.00 Hz/s (a modelling choice) lets EMERGENCY STOP brake as 5.2.1 describes.
+    ParameterInfo{pnr::kRstop, "RSTOP", "Hz/s", C::eeprom, T::fixpoint16, 0, kFixpointDisplayMax, 1000,
                   0.05, "Stop function / stop ramp"},
     // 4.1.3.3.1, completely: "VB2", "%", EEPROM, decimal, 0, 1F4H, A0H.
     ParameterInfo{pnr::kVb2, "VB2", "%", C::eeprom, T::fixpoint16, 0, 0x01F4, 0x00A0, 0.05,

@@ -249,14 +249,16 @@ Word Server::take_low(Word m, bool power_stage_enabled) {
   if (c != WriteCheck::ok) return nak(reason_for(c), siof_bits_for(c));
 
   // The value takes effect whole, now, after its last byte (4.1.3.2.1 row 6).
+  const Word eeprom_before = store_.eeprom_value(slot);
   store_.write(slot, value, power_stage_enabled);
+  const bool eeprom_changed = store_.eeprom_value(slot) != eeprom_before;
   if (static_cast<int>(slot) == prog_slot_ && value == kProgLoadDefaults) {
     const std::uint8_t keep = siof();
     store_.load_defaults();
     store_.set(siof_slot_, keep);
   }
   state_ = ServerState::done;
-  event_ = {ServerEvent::Kind::value_written, code_, number_, value, NakReason{}, 0};
+  event_ = {ServerEvent::Kind::value_written, code_, number_, value, NakReason{}, 0, eeprom_changed};
   return send(0, Flag::ack);
 }
 

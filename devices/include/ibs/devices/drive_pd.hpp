@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 
+#include "ibs/devices/drive_plant.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/sequencer.hpp"
 #include "ibs/interbus/mc6000_layout.hpp"
@@ -23,12 +24,10 @@ enum class InitState { operational, power_on, fault };
 
 struct Mc6000PdConfig {
   interbus::mc6000::Layout layout = interbus::mc6000::make_layout(11, 2);
-  Duration init_time = 500ms;             // power-on self-test (NOT READY)
-  double acceleration_rpm_per_s = 20000;  // torque-limited acceleration of the drive + load
-  double quick_stop_rpm_per_s = 40000;    // EMERGENCY STOP / fault reaction deceleration
-  double coast_rpm_per_s = 2000;          // power stage off: the load coasts down
-  double reference_window_rpm = 1.0;      // "reference reached" (status bit 10) window
-  double max_speed_rpm = 6000;            // the reference is limited to +-this (status bit 11)
+  Duration init_time = 500ms;         // power-on self-test (NOT READY)
+  DrivePlantParams plant{};           // speed loop and load (drive_plant.hpp)
+  double max_speed_rpm = 6000;        // the reference is limited to +-this (status bit 11)
+  double standstill_rpm = 0.5;        // below this the fault reaction counts as done
 };
 
 class Mc6000PdDevice {
@@ -49,16 +48,21 @@ class Mc6000PdDevice {
 
   void set_fault(bool present) { fault_present_ = present; }
   void set_inputs(bool is00, bool is01) { is00_ = is00; is01_ = is01; }
+  void set_load_torque(double nm) { load_nm_ = nm; }
+  // The control word the drive acts on instead of the master's while set (watchdog reactions).
+  void override_control(std::optional<Word> w) { override_ = w; }
 
   [[nodiscard]] const interbus::mc6000::Layout& layout() const { return config_.layout; }
   [[nodiscard]] drivecom::State state() const { return machine_.state(); }
   [[nodiscard]] double reference_rpm() const { return reference_; }
   [[nodiscard]] double actual_rpm() const { return actual_; }
+  [[nodiscard]] double torque_nm() const { return plant_.output().torque_nm; }
+  [[nodiscard]] bool initialised() const { return initialised_; }
   [[nodiscard]] Word status_word() const { return status_; }
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return last_; }
 
  private:
-  void move_actual(double dt_s);
+  void move_actual(Duration dt);
 
   Mc6000PdConfig config_;
   drivecom::DeviceStateMachine machine_;
@@ -69,6 +73,9 @@ class Mc6000PdDevice {
   bool is00_ = false;
   bool is01_ = false;
   bool limit_ = false;
+  double load_nm_ = 0.0;
+  std::optional<Word> override_;
+  DrivePlant plant_;
   double reference_ = 0.0;
   double actual_ = 0.0;
   Word status_ = 0;
@@ -113,6 +120,9 @@ class Vf1000PdDevice {
   void set_fault(bool present) { fault_present_ = present; }
   void set_outputs(bool s2out, bool s1out) { s2out_ = s2out; s1out_ = s1out; }
   void set_stop_ramp(double hz_per_s) { config_.stop_ramp_hz_per_s = hz_per_s; }
+  void set_max_frequency(double hz) { config_.max_frequency_hz = hz; }
+  // The control word the drive acts on instead of the master's while set (watchdog reactions).
+  void override_control(std::optional<Word> w) { override_ = w; }
 
   [[nodiscard]] bool initialised() const { return initialised_; }
   [[nodiscard]] drivecom::State state() const { return machine_.state(); }
@@ -135,6 +145,7 @@ class Vf1000PdDevice {
   double setpoint_ = 0.0;   // signed, after direction
   double frequency_ = 0.0;  // signed ramp output
   bool at_setpoint_ = false;
+  std::optional<Word> override_;
   Word status_ = 0;
   Word comm_ = 0x8000;
 };

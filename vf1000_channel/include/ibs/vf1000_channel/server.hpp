@@ -68,6 +68,8 @@ struct ServerEvent {
   Word value = 0;
   NakReason reason = NakReason::unintended_control_bits;
   std::uint8_t siof_set = 0;  // nak: 85-SIOF bits this NAK set (only value transfers set bits)
+  bool eeprom_changed = false;  // value_written: the EEPROM copy took a different value (7.1: the
+                                // write then takes longer)
 };
 
 class Server {

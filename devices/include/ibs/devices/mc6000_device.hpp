@@ -1,0 +1,70 @@
+// The MC6000 as the simulator runs it (seed 001, 3.2, 4.2, 5.3, 7.2): the process-data layout
+// 405-SUPI / 406-IBCNF read at power-on, DRIVECOM sampled every 1 ms with the servo plant behind
+// it, the 409-BUTWD bus watchdog (error 16 E-OP1, location 1), and the PCP channel words.
+#pragma once
+
+#include <optional>
+#include <span>
+
+#include "ibs/devices/drive_pd.hpp"
+#include "ibs/devices/vf1000_device.hpp"
+#include "ibs/interbus/mc6000_layout.hpp"
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::devices {
+
+struct Mc6000DeviceConfig {
+  int supi = 11;   // 405-SUPI as stored in the servo (read at power-on, 3.2.2)
+  int ibcnf = 2;   // 406-IBCNF (3.2.3)
+  interbus::mc6000::BusKind bus = interbus::mc6000::BusKind::remote;
+  Duration bus_watchdog{0};  // 409-BUTWD in ms; 0 = off (3.2.4)
+  Mc6000PdConfig pd{};       // plant and limits; its layout is replaced by supi/ibcnf
+};
+
+// The watchdog error of 3.2.4.
+inline constexpr int kMc6000WatchdogError = 16;  // E-OP1
+inline constexpr int kMc6000WatchdogLocation = 1;
+
+class Mc6000Device {
+ public:
+  // Throws interbus::mc6000::LayoutError for a SUPI/IBCNF pair the servo refuses.
+  Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time now);
+
+  [[nodiscard]] const interbus::mc6000::Layout& layout() const { return pd_.layout(); }
+
+  // One 1 ms sample: the process-data words (control word first) and the PCP channel words.
+  void sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now);
+  void output(std::span<Word> pd_s2m) const { pd_.output(pd_s2m); }
+
+  // A valid data cycle reached the device: "the watchdog is triggered with every INTERBUS cycle".
+  void bus_cycle(Time now);
+  void power_cycle(Time now);
+  void set_fault(bool present) { external_fault_ = present; }
+  void set_load_torque(double nm) { pd_.set_load_torque(nm); }
+  void set_bus_watchdog(Duration d) { config_.bus_watchdog = d; }
+
+  [[nodiscard]] bool module_error(Time) const { return false; }
+  [[nodiscard]] drivecom::State state() const { return pd_.state(); }
+  [[nodiscard]] double actual_rpm() const { return pd_.actual_rpm(); }
+  [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
+  [[nodiscard]] double torque_nm() const { return pd_.torque_nm(); }
+  [[nodiscard]] Word status_word() const { return pd_.status_word(); }
+  [[nodiscard]] bool watchdog_tripped() const { return watchdog_fault_; }
+  // The error the servo shows: 16 (E-OP1) at location 1 after the bus watchdog ran out.
+  [[nodiscard]] std::optional<int> error_number() const {
+    return watchdog_fault_ ? std::optional<int>(kMc6000WatchdogError) : std::nullopt;
+  }
+  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
+
+ private:
+  static Mc6000PdConfig pd_config(const Mc6000DeviceConfig& c);
+
+  Mc6000DeviceConfig config_;
+  Mc6000PdDevice pd_;
+  bool armed_ = false;
+  Time last_cycle_{0};
+  bool watchdog_fault_ = false;
+  bool external_fault_ = false;
+};
+
+}  // namespace ibs::devices

@@ -1,0 +1,152 @@
+// A simulation scenario: the bus (devices and configuration) and a timeline of commands and
+// faults. `ibs run` runs the built-in default scenario or one read from a TOML or JSON file
+// (docs/scenarios.md). Plain data; reading and writing files is configuration-time work.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::sim {
+
+enum class DeviceKind : std::uint8_t { mc6000, vf1000 };
+enum class BusSide : std::uint8_t { local, remote };
+
+struct DeviceConfig {
+  std::string name;                 // unique in the scenario, [A-Za-z0-9_-]+
+  DeviceKind kind = DeviceKind::mc6000;
+  int supi = 11;                    // MC6000 405-SUPI (read at power-on)
+  int ibcnf = 2;                    // MC6000 406-IBCNF
+  BusSide bus = BusSide::remote;    // the VF1000 is always a remote-bus device (seed 001, 1.3)
+  Duration phase{0};                // first sample after start (0 <= phase < sample period)
+  Duration jitter{0};               // each sample happens up to +-jitter from its nominal time
+  bool initialised = true;          // false: the run starts at the device's power-on (NOT READY,
+                                    // VF1000 ~4 s initialisation); true: initialisation finished,
+                                    // power-on bit still set in 85-SIOF/SERR
+  std::optional<int> watchdog_ms;   // MC6000 409-BUTWD (ms, 0 = off); VF1000 906-IB-WD (ms)
+  std::optional<int> watchdog_reaction;  // VF1000 907-IBCOD (0..3)
+};
+
+struct BusSettings {
+  std::optional<Duration> cycle_time;  // fixed bus cycle time; default: the cycle-time formula
+  bool baud_2mbit = false;             // 2 Mbit/s instead of 500 kbit/s (formula only)
+  Duration software_time = 200us;      // the formula's SW term
+  int recovery_cycles = 5;             // cycles without valid data after a corrupted cycle
+
+  friend bool operator==(const BusSettings&, const BusSettings&) = default;
+};
+
+// What a timeline entry does.
+enum class Action : std::uint8_t {
+  state,          // value: start-up-inhibit | ready | on | enabled (the DRIVECOM target)
+  emergency_stop, // EMERGENCY STOP now
+  block_power,    // BLOCK POWER now
+  speed,          // MC6000 reference in rpm (number)
+  frequency,      // VF1000 reference in Hz, signed: negative = counter-clockwise (number)
+  read,           // parameter read: parameter
+  write,          // parameter write: parameter, number (raw value)
+  describe,       // parameter description: parameter
+  wait_state,     // the timeline pauses until the device reports the state in `value` (or timeout)
+  fault_corrupt,  // corrupted bus cycles: count (default 1)
+  fault_power_cycle,  // the device is switched off and on again
+  fault_device,   // a device fault (FAULT RESPONSE ACTIVE -> FAULT); duration: how long the cause stays
+  fault_lost,     // the device drops off the bus (module error) for `duration`
+  master_restart, // the master restarts: drivers and channels start over
+};
+
+struct TimelineEntry {
+  Time at{0};                 // when, from the start of the run
+  std::string device;         // the device's name; empty for bus-wide entries (fault_corrupt,
+                              // master_restart)
+  Action action = Action::state;
+  std::string value;          // state / wait_state: the state's name as in the files (lower case,
+                              // hyphens: "start-up-inhibit", "ready", "on", "enabled"; wait_state
+                              // also "not-ready", "fault", "fault-response-active",
+                              // "emergency-stop-active")
+  double number = 0.0;        // speed, frequency, write value
+  std::uint16_t parameter = 0;
+  int count = 1;              // fault_corrupt
+  Duration duration{0};       // fault_device: how long the cause stays (0: it clears at once);
+                              // fault_lost: how long the device is off the bus (> 0);
+                              // wait_state: timeout (0: wait up to the end of the run)
+  std::size_t source_line = 0;  // where it was read from (0 = built in)
+};
+
+// Faults drawn at random over the run (all rates per simulated second; 0 = off).
+struct RandomFaults {
+  std::uint64_t seed = 1;
+  double corrupt_per_s = 0.0;
+  double power_cycle_per_s = 0.0;
+  double device_fault_per_s = 0.0;
+  double lost_per_s = 0.0;
+  double master_restart_per_s = 0.0;
+
+  friend bool operator==(const RandomFaults&, const RandomFaults&) = default;
+};
+
+struct Scenario {
+  std::string name = "default";
+  Duration duration = 6s;      // simulated time to run
+  BusSettings bus;
+  std::vector<DeviceConfig> devices;  // ring order
+  std::vector<TimelineEntry> timeline;  // in time order
+  RandomFaults random;
+};
+
+// The built-in scenario of `ibs run` without arguments: an MC6000 (SUPI 11 / IBCNF 2) and a
+// VF1000; both to ENABLED, the MC6000 to 2500.25 rpm, the VF1000 to 50 Hz, parameter reads and
+// writes on both channels, then both stopped.
+Scenario default_scenario();
+
+// Bad scenario input: what() is `FILE:LINE: what is wrong` (LINE 0 when the file cannot be read).
+class ScenarioError : public std::runtime_error {
+ public:
+  ScenarioError(const std::string& file, std::size_t line, const std::string& what);
+  [[nodiscard]] const std::string& file() const { return file_; }
+  [[nodiscard]] std::size_t line() const { return line_; }
+
+ private:
+  std::string file_;
+  std::size_t line_;
+};
+
+// Checks a scenario built in code with the same rules the parsers apply (lines: the entries'
+// source_line, 0 elsewhere); throws ScenarioError naming `file`.
+void validate_scenario(const Scenario& s, const std::string& file = "scenario");
+
+// Times in scenario files: a decimal number, optional spaces and a unit (ns, us, ms, s), e.g.
+// "6 s", "250 ms", "8.2 ms"; a whole number of nanoseconds, 0 .. 24 h. parse_time throws
+// std::invalid_argument saying what is wrong; format_time writes the largest unit that keeps the
+// number at least 1 ("1.5 s", "8.2 ms", "726 us", "0 s"), which parse_time reads back exactly.
+Duration parse_time(std::string_view text);
+std::string format_time(Duration d);
+
+// Names as the files spell them ("mc6000", "remote", "fault_corrupt").
+std::string_view to_string(DeviceKind k);
+std::string_view to_string(BusSide b);
+std::string_view to_string(Action a);
+
+// Reads a scenario from a .toml or .json file (by extension), checks it whole (unknown keys,
+// types, ranges, device names, SUPI/IBCNF pairs, times inside the duration) and returns it, or
+// throws ScenarioError for the first problem, naming file and line.
+Scenario load_scenario(const std::string& path);
+Scenario parse_scenario_toml(const std::string& text, const std::string& file);
+Scenario parse_scenario_json(const std::string& text, const std::string& file);
+// Writes a valid scenario so that the parsers read it back equal (operator== below).
+std::string write_scenario_toml(const Scenario& s);
+std::string write_scenario_json(const Scenario& s);
+
+// Equality of meaning: fields that do not apply are not compared (a VF1000's supi/ibcnf; of an
+// entry only the fields its action uses, never source_line), so every valid scenario survives
+// a write/parse round trip equal.
+bool operator==(const DeviceConfig& a, const DeviceConfig& b);
+bool operator==(const TimelineEntry& a, const TimelineEntry& b);
+bool operator==(const Scenario& a, const Scenario& b);
+
+}  // namespace ibs::sim

@@ -1,0 +1,179 @@
+// The cycle simulator: a bus ring of emulated drives and the master's cycle loop in simulated
+// time (integer nanoseconds). The bus cycles at its computed (or a set) cycle time; each device
+// samples at its own period with phase and jitter; a device sees the master's words only when it
+// samples, the master sees the devices' words only at cycle ends. Faults come from the scenario's
+// timeline or at random from a seed, and every one is recorded.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ibs/devices/drivers.hpp"
+#include "ibs/devices/mc6000_device.hpp"
+#include "ibs/devices/vf1000_device.hpp"
+#include "ibs/interbus/process_image.hpp"
+#include "ibs/interbus/trace.hpp"
+#include "ibs/sim/master_loop.hpp"
+#include "ibs/sim/scenario.hpp"
+
+namespace ibs::sim {
+
+struct StateRecord {
+  Time at{0};
+  std::string what;  // a DRIVECOM state as the master saw it, or an event such as a reached reference
+};
+
+struct TransactionRecord {
+  std::string device;
+  devices::ParamOp op = devices::ParamOp::read;
+  std::uint16_t number = 0;
+  std::int64_t value = 0;  // write: the value sent
+  Time submitted{0};
+  std::optional<Time> answered;  // the outcome was known
+  std::optional<Time> finished;  // the channel was free again (the transfer time of 7.1)
+  devices::ParamKind kind = devices::ParamKind::pending;
+  std::int64_t result_value = 0;  // read: the value read
+  std::string result;             // the outcome in words
+  std::size_t source_line = 0;    // the timeline entry's line in the scenario file
+  devices::ParamId id = 0;
+};
+
+struct FaultRecord {
+  Time at{0};
+  std::string device;  // empty: the whole bus
+  std::string kind;    // corrupt, power-cycle, device-fault, fault-cleared, lost, back, master-restart,
+                       // watchdog
+  std::string detail;
+};
+
+struct DeviceReport {
+  std::string name;
+  DeviceKind kind = DeviceKind::mc6000;
+  std::string id_code;  // e.g. "4DBH: remote bus device, ..."
+  std::string unit;     // rpm / Hz
+  std::vector<StateRecord> states;
+  std::string final_state;
+  double final_reference = 0.0;
+  double final_actual = 0.0;
+  std::uint64_t samples = 0;
+  std::vector<std::string> errors;  // e.g. "error 16 (E-OP1), location 1: bus watchdog"
+};
+
+struct TimingStats {
+  std::uint64_t cycles = 0;
+  double median_ns = 0.0;
+  double p99_ns = 0.0;
+  double max_ns = 0.0;
+};
+
+struct Summary {
+  std::string scenario;
+  Duration simulated{0};
+  Duration cycle_time{0};
+  std::string cycle_time_basis;  // how the cycle time was obtained
+  std::uint64_t cycles = 0;
+  std::uint64_t valid_cycles = 0;
+  std::vector<DeviceReport> devices;
+  std::vector<TransactionRecord> transactions;
+  std::vector<FaultRecord> faults;
+  TimingStats master;  // wall-clock processing time of the master's cycle (both drivers)
+  double wall_seconds = 0.0;
+};
+
+struct SimOptions {
+  bool measure_master_time = true;  // wall-clock timing of every master cycle
+  bool record_traces = false;       // keep per-device traces (traces() after run)
+  // Called now and then with the simulated time reached (for a progress display).
+  std::function<void(Time now, Duration total)> progress;
+};
+
+// Signals for a waveform recorder, reported after every event.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void on_cycle(Time at, bool valid, const interbus::ProcessImage& image) = 0;
+  virtual void on_sample(Time at, std::size_t device, std::span<const Word> m2s,
+                         std::span<const Word> s2m) = 0;
+};
+
+class Simulator {
+ public:
+  // Builds the ring, the device models and the master; throws std::invalid_argument with a clear
+  // message for a configuration the bus or a device refuses.
+  explicit Simulator(const Scenario& scenario);
+  ~Simulator();
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
+
+  void run(const SimOptions& options = {});
+  // Runs until `until` (for tests that look in between); returns false once the scenario's end
+  // has been reached.
+  bool run_until(Time until, const SimOptions& options = {});
+  void add_observer(Observer* o) { observers_.push_back(o); }
+
+  [[nodiscard]] const Summary& summary();
+  [[nodiscard]] Time now() const { return now_; }
+  [[nodiscard]] const interbus::BusConfig& bus() const { return loop_->config(); }
+  [[nodiscard]] Duration cycle_time() const { return cycle_time_; }
+  // Recorded traces, one or more per device (a power cycle starts a new one), with file names.
+  struct RecordedTrace {
+    std::string file_name;
+    trace::Trace trace;
+  };
+  [[nodiscard]] std::vector<RecordedTrace> traces() const;
+
+  // The emulated devices and the master's drivers, by ring position.
+  [[nodiscard]] std::size_t device_count() const { return devices_.size(); }
+  devices::DeviceDriver& driver(std::size_t i) { return loop_->driver(i); }
+  [[nodiscard]] drivecom::State device_state(std::size_t i) const;
+  [[nodiscard]] double device_actual(std::size_t i) const;
+  devices::Vf1000Device* vf1000(std::size_t i);
+  devices::Mc6000Device* mc6000(std::size_t i);
+  [[nodiscard]] std::optional<std::size_t> index_of(const std::string& name) const;
+
+ private:
+  struct Device;
+  struct Recording;
+
+  void start(const SimOptions& options);
+  void handle_cycle(Time t);
+  void handle_sample(std::size_t i, Time t);
+  void apply_timeline(Time t);
+  void apply(const TimelineEntry& e, Time t);
+  void apply_random_faults(Time t);
+  void fault(Time t, std::size_t device, Action kind, Duration duration, int count);
+  void observe_master(Time t);
+  Time next_sample_time(Device& d);
+  void finish();
+
+  Scenario scenario_;
+  std::unique_ptr<MasterLoop> loop_;
+  std::vector<std::unique_ptr<Device>> devices_;
+  interbus::ProcessImage image_;
+  std::vector<LinkState> links_;
+  Duration cycle_time_{0};
+  Time now_{0};
+  Time next_cycle_{0};
+  bool started_ = false;
+  bool finished_ = false;
+  int corrupt_left_ = 0;
+  int recovery_left_ = 0;
+  std::size_t timeline_next_ = 0;
+  std::vector<const TimelineEntry*> deferred_;  // entries of devices waiting for a state
+  std::mt19937_64 rng_;
+  struct RandomNext {
+    Time corrupt, power_cycle, device_fault, lost, master_restart;
+  } random_next_{};
+  std::vector<std::uint32_t> master_ns_;
+  std::vector<Observer*> observers_;
+  SimOptions options_;
+  Summary summary_;
+  double wall_start_ = 0.0;
+};
+
+}  // namespace ibs::sim

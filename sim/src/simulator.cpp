@@ -1,0 +1,658 @@
+#include "ibs/sim/simulator.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "ibs/interbus/cycle_time.hpp"
+#include "ibs/interbus/id_code.hpp"
+
+namespace ibs::sim {
+
+namespace {
+
+using devices::DeviceStart;
+using drivecom::State;
+
+std::optional<State> state_named(const std::string& s) {
+  if (s == "start-up-inhibit") return State::start_up_inhibit;
+  if (s == "ready") return State::ready;
+  if (s == "on") return State::on;
+  if (s == "enabled") return State::enabled;
+  return std::nullopt;
+}
+
+std::optional<drivecom::Target> target_named(const std::string& s) {
+  if (s == "start-up-inhibit") return drivecom::Target::start_up_inhibit;
+  if (s == "ready") return drivecom::Target::ready;
+  if (s == "on") return drivecom::Target::on;
+  if (s == "enabled") return drivecom::Target::enabled;
+  return std::nullopt;
+}
+
+std::string fmt_value(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+interbus::IdCode vf1000_id() { return interbus::IdCode{0x033B}; }  // seed 001, 3.1.2
+
+// Exponentially distributed time to the next random fault of a given rate (per second).
+Time next_random(std::mt19937_64& rng, Time from, double rate_per_s) {
+  if (rate_per_s <= 0.0) return Time::max();
+  std::exponential_distribution<double> d(rate_per_s);
+  const double s = d(rng);
+  return from + std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+struct Simulator::Recording {
+  trace::Trace trace;
+  std::uint64_t step = 0;
+  std::string remark;  // events to note on the next row
+  std::string file_name;
+};
+
+struct Simulator::Device {
+  DeviceConfig cfg;
+  std::size_t index = 0;
+  std::unique_ptr<devices::Vf1000Device> vf;
+  std::unique_ptr<devices::Mc6000Device> mc;
+  Duration period{0};
+  std::size_t pd_words = 0;
+  std::size_t pcp_words = 0;
+  std::array<Word, 4> m2s{};  // the master's process-data words as the bus last delivered them
+  std::array<Word, 4> s2m{};  // the device's words, picked up by the next valid cycle
+  std::array<Word, 4> pcp_m2s{};
+  std::array<Word, 4> pcp_s2m{};
+  std::uint64_t k = 0;  // samples taken
+  Time next_sample{0};
+  Time lost_until{-1};
+  Time fault_until{-1};
+  std::optional<State> waiting_for;
+  Time wait_deadline{0};
+  std::optional<State> last_seen;
+  double reached_for = 0.0;  // the reference whose "reached" was last reported
+  bool reached_reported = true;
+  std::optional<int> reported_error;
+  std::vector<Recording> recordings;
+  bool recording = false;
+  bool power_cycled = false;
+
+  [[nodiscard]] bool lost(Time t) const { return t < lost_until; }
+  [[nodiscard]] bool module_error(Time t) const {
+    return lost(t) || (vf ? vf->module_error(t) : mc->module_error(t));
+  }
+  [[nodiscard]] State state() const { return vf ? vf->state() : mc->state(); }
+  [[nodiscard]] std::span<Word> pd_m2s() { return {m2s.data(), pd_words}; }
+  [[nodiscard]] std::span<Word> pd_s2m() { return {s2m.data(), pd_words}; }
+};
+
+Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scenario.random.seed) {
+  if (scenario_.devices.empty()) throw std::invalid_argument("scenario '" + scenario_.name + "': no devices");
+  std::vector<interbus::DeviceSpec> specs;
+  std::vector<std::unique_ptr<devices::DeviceDriver>> drivers;
+  for (std::size_t i = 0; i < scenario_.devices.size(); ++i) {
+    const DeviceConfig& c = scenario_.devices[i];
+    auto d = std::make_unique<Device>();
+    d->cfg = c;
+    d->index = i;
+    const DeviceStart start = c.initialised ? DeviceStart::initialised : DeviceStart::power_on;
+    if (c.kind == DeviceKind::vf1000) {
+      if (c.bus == BusSide::local) {
+        throw std::invalid_argument("device '" + c.name + "': the VF1000 is a remote bus user (seed 001, 1.3)");
+      }
+      d->vf = std::make_unique<devices::Vf1000Device>(devices::Vf1000DeviceConfig{}, start, Time{0});
+      if (c.watchdog_ms) d->vf->channel().set_value(906, static_cast<Word>(*c.watchdog_ms));
+      if (c.watchdog_reaction) d->vf->channel().set_value(907, static_cast<Word>(*c.watchdog_reaction));
+      d->period = kVf1000SamplePeriod;
+      d->pd_words = devices::Vf1000Device::kWords;
+      specs.push_back({c.name, vf1000_id(), interbus::BusKind::remote});
+      drivers.push_back(std::make_unique<devices::Vf1000Driver>());
+    } else {
+      devices::Mc6000DeviceConfig mc;
+      mc.supi = c.supi;
+      mc.ibcnf = c.ibcnf;
+      mc.bus = c.bus == BusSide::local ? interbus::mc6000::BusKind::local : interbus::mc6000::BusKind::remote;
+      if (c.watchdog_ms) mc.bus_watchdog = std::chrono::milliseconds(*c.watchdog_ms);
+      try {
+        d->mc = std::make_unique<devices::Mc6000Device>(mc, start, Time{0});
+      } catch (const interbus::mc6000::LayoutError& e) {
+        throw std::invalid_argument("device '" + c.name + "': " + e.what());
+      }
+      const auto& l = d->mc->layout();
+      d->period = kMc6000SamplePeriod;
+      d->pd_words = static_cast<std::size_t>(l.exchanges_data ? l.pd_words : 0);
+      d->pcp_words = static_cast<std::size_t>(l.pcp_words);
+      specs.push_back({c.name, interbus::IdCode{l.id_code},
+                       c.bus == BusSide::local ? interbus::BusKind::local : interbus::BusKind::remote});
+      drivers.push_back(std::make_unique<devices::Mc6000Driver>(l));
+    }
+    devices_.push_back(std::move(d));
+  }
+  interbus::BusConfig config;
+  try {
+    config = interbus::make_bus_config(specs);
+  } catch (const interbus::ConfigError& e) {
+    throw std::invalid_argument(std::string("bus configuration: ") + e.what());
+  }
+  interbus::CycleTimeParams p = interbus::params_for(scenario_.bus.baud_2mbit ? interbus::BaudRate::mbit2
+                                                                               : interbus::BaudRate::kbit500);
+  p.software_time = scenario_.bus.software_time;
+  const Duration formula = interbus::cycle_time(config, p);
+  if (scenario_.bus.cycle_time) {
+    cycle_time_ = *scenario_.bus.cycle_time;
+    summary_.cycle_time_basis = "set by the scenario (the formula gives " + fmt_value(to_ms(formula)) + " ms)";
+  } else {
+    cycle_time_ = formula;
+    summary_.cycle_time_basis = "formula SW + (13 * (6 + N) + 1.5 * M) * T_bit with N = " +
+                                std::to_string(config.ring_bytes()) + " bytes, M = " +
+                                std::to_string(config.remote_devices) + " remote devices, T_bit = " +
+                                fmt_value(static_cast<double>(p.bit_time.count()) / 1000.0) + " us, SW = " +
+                                fmt_value(static_cast<double>(p.software_time.count()) / 1000.0) + " us";
+  }
+  if (cycle_time_ <= Duration{0}) throw std::invalid_argument("bus cycle time must be positive");
+  for (auto& d : devices_) {
+    if (d->mc && d->pd_words > 0 && config.devices[d->index].pd_in_words != d->pd_words) {
+      throw std::invalid_argument("device '" + d->cfg.name + "': the ring gives it " +
+                                  std::to_string(config.devices[d->index].pd_in_words) +
+                                  " process-data words, its layout " + std::to_string(d->pd_words));
+    }
+  }
+  loop_ = std::make_unique<MasterLoop>(std::move(config), std::move(drivers));
+  links_.resize(devices_.size());
+  summary_.devices.resize(devices_.size());
+  summary_.scenario = scenario_.name;
+  summary_.cycle_time = cycle_time_;
+}
+
+Simulator::~Simulator() = default;
+
+std::optional<std::size_t> Simulator::index_of(const std::string& name) const {
+  for (const auto& d : devices_) {
+    if (d->cfg.name == name) return d->index;
+  }
+  return std::nullopt;
+}
+
+State Simulator::device_state(std::size_t i) const { return devices_[i]->state(); }
+double Simulator::device_actual(std::size_t i) const {
+  return devices_[i]->vf ? devices_[i]->vf->frequency_hz() : devices_[i]->mc->actual_rpm();
+}
+devices::Vf1000Device* Simulator::vf1000(std::size_t i) { return devices_[i]->vf.get(); }
+devices::Mc6000Device* Simulator::mc6000(std::size_t i) { return devices_[i]->mc.get(); }
+
+Time Simulator::next_sample_time(Device& d) {
+  // Nominal phase + k * period, moved by up to +-jitter, never before the previous sample.
+  Time t = d.cfg.phase + static_cast<std::int64_t>(d.k) * d.period;
+  if (d.cfg.jitter > Duration{0}) {
+    std::uniform_int_distribution<std::int64_t> j(-d.cfg.jitter.count(), d.cfg.jitter.count());
+    t += Duration{j(rng_)};
+  }
+  return std::max(t, now_);
+}
+
+void Simulator::start(const SimOptions& options) {
+  options_ = options;
+  started_ = true;
+  wall_start_ = wall_now();
+  loop_->initial(image_);
+  for (auto& d : devices_) {
+    if (d->vf) d->vf->output(d->pd_s2m());
+    if (d->mc) d->mc->output(d->pd_s2m());
+    d->next_sample = next_sample_time(*d);
+    if (options_.record_traces) {
+      Recording r;
+      r.trace.file = d->cfg.name;
+      r.trace.header.device = d->vf ? trace::DeviceType::vf1000 : trace::DeviceType::mc6000;
+      r.trace.header.words = trace::WordsKind::pd;
+      if (d->mc) {
+        r.trace.header.supi = d->cfg.supi;
+        r.trace.header.ibcnf = d->cfg.ibcnf;
+        r.trace.header.supi_given = r.trace.header.ibcnf_given = true;
+      }
+      r.trace.header.init = trace::InitState::power_on;
+      r.trace.header.init_given = true;
+      r.file_name = d->cfg.name + ".trace";
+      d->recordings.push_back(std::move(r));
+      // A device switched on by the scenario is recorded once it has initialised.
+      d->recording = d->cfg.initialised;
+    }
+  }
+  master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
+  next_cycle_ = cycle_time_;
+  const auto& r = scenario_.random;
+  random_next_ = {next_random(rng_, Time{0}, r.corrupt_per_s), next_random(rng_, Time{0}, r.power_cycle_per_s),
+                  next_random(rng_, Time{0}, r.device_fault_per_s), next_random(rng_, Time{0}, r.lost_per_s),
+                  next_random(rng_, Time{0}, r.master_restart_per_s)};
+}
+
+bool Simulator::run_until(Time until, const SimOptions& options) {
+  if (!started_) start(options);
+  if (finished_) return false;
+  const Time end = std::min<Time>(until, scenario_.duration);
+  Time last_progress{0};
+  while (true) {
+    std::size_t dev = devices_.size();
+    Time t_dev = Time::max();
+    for (const auto& d : devices_) {
+      if (d->next_sample < t_dev) {
+        t_dev = d->next_sample;
+        dev = d->index;
+      }
+    }
+    const Time t = std::min(next_cycle_, t_dev);
+    if (t > end) break;
+    now_ = t;
+    // At the same instant the bus exchange comes first: a device sampling then sees its new words.
+    if (next_cycle_ <= t_dev) {
+      handle_cycle(t);
+      next_cycle_ += cycle_time_;
+    } else {
+      handle_sample(dev, t);
+    }
+    if (options_.progress && t - last_progress >= 100ms) {
+      options_.progress(t, scenario_.duration);
+      last_progress = t;
+    }
+  }
+  now_ = end;
+  if (end >= scenario_.duration) {
+    finish();
+    return false;
+  }
+  return true;
+}
+
+void Simulator::run(const SimOptions& options) { run_until(scenario_.duration, options); }
+
+void Simulator::apply_timeline(Time t) {
+  // Entries of a device that waits for a state stay deferred until the wait ends.
+  auto waiting = [&](const TimelineEntry& e) {
+    if (e.device.empty()) return false;
+    const auto i = index_of(e.device);
+    return i && devices_[*i]->waiting_for.has_value();
+  };
+  for (auto it = deferred_.begin(); it != deferred_.end();) {
+    if (!waiting(**it)) {
+      apply(**it, t);
+      it = deferred_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  while (timeline_next_ < scenario_.timeline.size() && scenario_.timeline[timeline_next_].at <= t) {
+    const TimelineEntry& e = scenario_.timeline[timeline_next_++];
+    if (waiting(e)) {
+      deferred_.push_back(&e);
+    } else {
+      apply(e, t);
+    }
+  }
+}
+
+void Simulator::apply(const TimelineEntry& e, Time t) {
+  std::optional<std::size_t> idx;
+  if (!e.device.empty()) {
+    idx = index_of(e.device);
+    if (!idx) return;  // checked when the scenario was read
+  }
+  switch (e.action) {
+    case Action::state: {
+      const auto target = target_named(e.value);
+      if (idx && target) loop_->driver(*idx).sequencer().request(*target, t);
+      break;
+    }
+    case Action::emergency_stop:
+      if (idx) loop_->driver(*idx).sequencer().request_emergency_stop(t);
+      break;
+    case Action::block_power:
+      if (idx) loop_->driver(*idx).sequencer().request_block_power(t);
+      break;
+    case Action::speed:
+    case Action::frequency:
+      if (idx) {
+        loop_->driver(*idx).set_reference(e.number);
+        devices_[*idx]->reached_reported = false;
+        devices_[*idx]->reached_for = e.number;
+      }
+      break;
+    case Action::read:
+    case Action::write:
+    case Action::describe: {
+      if (!idx) break;
+      const devices::ParamOp op = e.action == Action::read    ? devices::ParamOp::read
+                                  : e.action == Action::write ? devices::ParamOp::write
+                                                              : devices::ParamOp::describe;
+      TransactionRecord r;
+      r.device = e.device;
+      r.op = op;
+      r.number = e.parameter;
+      r.value = static_cast<std::int64_t>(e.number);
+      r.submitted = t;
+      r.source_line = e.source_line;
+      r.id = loop_->driver(*idx).parameters().submit(op, e.parameter, r.value);
+      if (r.id == 0) {
+        r.answered = r.finished = t;
+        r.kind = devices::ParamKind::refused;
+        r.result = loop_->driver(*idx).parameters().describe(0);
+      }
+      summary_.transactions.push_back(std::move(r));
+      break;
+    }
+    case Action::wait_state:
+      if (idx) {
+        devices_[*idx]->waiting_for = state_named(e.value);
+        devices_[*idx]->wait_deadline = e.duration > Duration{0} ? t + e.duration : Time::max();
+      }
+      break;
+    case Action::fault_corrupt:
+    case Action::fault_power_cycle:
+    case Action::fault_device:
+    case Action::fault_lost:
+    case Action::master_restart:
+      fault(t, idx.value_or(devices_.size()), e.action, e.duration, e.count);
+      break;
+  }
+}
+
+void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int count) {
+  FaultRecord f;
+  f.at = t;
+  if (i < devices_.size()) f.device = devices_[i]->cfg.name;
+  auto note = [&](Device& d, const std::string& what) {
+    if (!d.recordings.empty() && d.recording) {
+      auto& r = d.recordings.back().remark;
+      r += (r.empty() ? "" : "; ") + what;
+    }
+  };
+  switch (kind) {
+    case Action::fault_corrupt:
+      f.kind = "corrupt";
+      f.detail = std::to_string(count) + " corrupted cycle(s), then " +
+                 std::to_string(scenario_.bus.recovery_cycles) + " recovery cycles";
+      corrupt_left_ += std::max(count, 1);
+      break;
+    case Action::fault_power_cycle: {
+      Device& d = *devices_[i];
+      f.kind = "power-cycle";
+      f.detail = "switched off and on: initialising again";
+      if (d.vf) d.vf->power_cycle(t);
+      if (d.mc) d.mc->power_cycle(t);
+      if (d.recording) {
+        // A power cycle is not in the trace format: this recording ends, a new one starts once the
+        // device has initialised again.
+        d.recordings.back().trace.trailing_comments.push_back("# recording ends: power cycle at " +
+                                                              fmt_value(to_ms(t)) + " ms");
+        Recording next;
+        next.trace.file = d.cfg.name;
+        next.trace.header = d.recordings.back().trace.header;
+        next.file_name = d.cfg.name + "." + std::to_string(d.recordings.size() + 1) + ".trace";
+        d.recordings.push_back(std::move(next));
+        d.recording = false;
+      }
+      d.power_cycled = true;
+      break;
+    }
+    case Action::fault_device: {
+      Device& d = *devices_[i];
+      f.kind = "device-fault";
+      f.detail = "fault present for " + fmt_value(to_ms(duration)) + " ms";
+      d.fault_until = t + std::max(duration, d.period);
+      if (d.vf) d.vf->set_fault(true);
+      if (d.mc) d.mc->set_fault(true);
+      note(d, "device fault injected");
+      break;
+    }
+    case Action::fault_lost: {
+      Device& d = *devices_[i];
+      f.kind = "lost";
+      f.detail = duration > Duration{0} ? "off the bus for " + fmt_value(to_ms(duration)) + " ms"
+                                        : "off the bus until the end";
+      d.lost_until = duration > Duration{0} ? t + duration : Time::max();
+      note(d, "device lost from the bus");
+      break;
+    }
+    case Action::master_restart:
+      f.kind = "master-restart";
+      f.detail = "drivers and channels start over";
+      loop_->restart(t);
+      break;
+    default: return;
+  }
+  summary_.faults.push_back(std::move(f));
+}
+
+void Simulator::apply_random_faults(Time t) {
+  const auto& r = scenario_.random;
+  auto pick = [&]() {
+    std::uniform_int_distribution<std::size_t> u(0, devices_.size() - 1);
+    return u(rng_);
+  };
+  if (t >= random_next_.corrupt) {
+    fault(t, devices_.size(), Action::fault_corrupt, Duration{0}, 1);
+    random_next_.corrupt = next_random(rng_, t, r.corrupt_per_s);
+  }
+  if (t >= random_next_.power_cycle) {
+    fault(t, pick(), Action::fault_power_cycle, Duration{0}, 1);
+    random_next_.power_cycle = next_random(rng_, t, r.power_cycle_per_s);
+  }
+  if (t >= random_next_.device_fault) {
+    fault(t, pick(), Action::fault_device, 50ms, 1);
+    random_next_.device_fault = next_random(rng_, t, r.device_fault_per_s);
+  }
+  if (t >= random_next_.lost) {
+    fault(t, pick(), Action::fault_lost, 100ms, 1);
+    random_next_.lost = next_random(rng_, t, r.lost_per_s);
+  }
+  if (t >= random_next_.master_restart) {
+    fault(t, devices_.size(), Action::master_restart, Duration{0}, 1);
+    random_next_.master_restart = next_random(rng_, t, r.master_restart_per_s);
+  }
+}
+
+void Simulator::handle_cycle(Time t) {
+  apply_timeline(t);
+  apply_random_faults(t);
+  for (auto& d : devices_) {
+    if (d->fault_until >= Time{0} && t >= d->fault_until) {
+      d->fault_until = Time{-1};
+      if (d->vf) d->vf->set_fault(false);
+      if (d->mc) d->mc->set_fault(false);
+      summary_.faults.push_back({t, d->cfg.name, "fault-cleared", "the fault's cause has gone"});
+    }
+    if (d->lost_until >= Time{0} && d->lost_until != Time::max() && t >= d->lost_until) {
+      d->lost_until = Time{-1};
+      summary_.faults.push_back({t, d->cfg.name, "back", "back on the bus"});
+    }
+  }
+  // The cycle just ended: a corrupted one and the recovery cycles after it deliver nothing.
+  bool valid = true;
+  if (corrupt_left_ > 0) {
+    --corrupt_left_;
+    valid = false;
+    if (corrupt_left_ == 0) recovery_left_ = scenario_.bus.recovery_cycles;
+  } else if (recovery_left_ > 0) {
+    --recovery_left_;
+    valid = false;
+  }
+  ++summary_.cycles;
+  if (valid) ++summary_.valid_cycles;
+  const interbus::BusConfig& cfg = loop_->config();
+  for (auto& d : devices_) {
+    const interbus::Device& bd = cfg.devices[d->index];
+    LinkState& link = links_[d->index];
+    link.data_valid = valid;
+    link.module_error = d->module_error(t);
+    if (!valid) continue;
+    auto in = interbus::in_slice(image_, bd);
+    if (link.module_error) {
+      std::fill(in.begin(), in.end(), Word{0});  // no data from a device with a module error
+      continue;
+    }
+    const auto out = interbus::out_slice(image_, bd);
+    std::copy_n(out.begin(), std::min(out.size(), d->pd_words), d->m2s.begin());
+    std::copy_n(d->s2m.begin(), std::min(in.size(), d->pd_words), in.begin());
+    const auto pcp_out = interbus::pcp_out_slice(image_, bd);
+    auto pcp_in = interbus::pcp_in_slice(image_, bd);
+    std::copy_n(pcp_out.begin(), std::min(pcp_out.size(), d->pcp_words), d->pcp_m2s.begin());
+    std::copy_n(d->pcp_s2m.begin(), std::min(pcp_in.size(), d->pcp_words), pcp_in.begin());
+    if (d->vf) d->vf->bus_cycle(t);
+    if (d->mc) d->mc->bus_cycle(t);
+  }
+  const auto t0 = options_.measure_master_time ? std::chrono::steady_clock::now()
+                                               : std::chrono::steady_clock::time_point{};
+  loop_->cycle(image_, t, links_);
+  if (options_.measure_master_time) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0);
+    master_ns_.push_back(static_cast<std::uint32_t>(std::min<std::int64_t>(ns.count(), 0xFFFFFFFF)));
+  }
+  for (Observer* o : observers_) o->on_cycle(t, valid, image_);
+  observe_master(t);
+}
+
+void Simulator::observe_master(Time t) {
+  const interbus::BusConfig& cfg = loop_->config();
+  for (auto& d : devices_) {
+    devices::DeviceDriver& drv = loop_->driver(d->index);
+    const auto seen = drv.sequencer().report().state_seen;
+    auto& states = summary_.devices[d->index].states;
+    if (seen && seen != d->last_seen) {
+      states.push_back({t, std::string(drivecom::to_string(*seen))});
+      d->last_seen = seen;
+    }
+    // A reference the master sees reached (status bit 10 while ENABLED, the actual at it).
+    const auto in = interbus::in_slice(image_, cfg.devices[d->index]);
+    // (the actual must be at the new reference too: the status word may still show the old one)
+    const bool at_reference = std::fabs(drv.actual() - d->reached_for) <= 0.01 * std::fabs(d->reached_for) + 0.1;
+    if (!d->reached_reported && !in.empty() && seen == State::enabled &&
+        bit(in[0], drivecom::sw::kReferenceReached) && at_reference) {
+      d->reached_reported = true;
+      states.push_back({t, "reference " + fmt_value(d->reached_for) + " " + std::string(drv.unit()) +
+                               " reached (actual " + fmt_value(drv.actual()) + ")"});
+    }
+    if (d->waiting_for && (seen == d->waiting_for || t >= d->wait_deadline)) {
+      if (seen != d->waiting_for) {
+        states.push_back({t, "wait for " + std::string(drivecom::to_string(*d->waiting_for)) + " timed out"});
+      }
+      d->waiting_for.reset();
+    }
+    const auto err = d->vf ? d->vf->error_number() : d->mc->error_number();
+    if (err && err != d->reported_error) {
+      const std::string what = d->vf ? "error 12 (E-IBS): process-data watchdog 906-IB-WD ran out"
+                                     : "error 16 (E-OP1), location 1: bus watchdog 409-BUTWD ran out";
+      summary_.faults.push_back({t, d->cfg.name, "watchdog", what});
+      summary_.devices[d->index].errors.push_back(fmt_value(to_ms(t)) + " ms: " + what);
+    }
+    d->reported_error = err;
+  }
+  for (auto& r : summary_.transactions) {
+    if (r.finished) continue;
+    const auto i = index_of(r.device);
+    const devices::ParameterAccess& pa = loop_->driver(*i).parameters();
+    if (!r.answered) {
+      const devices::ParamStatus s = pa.status(r.id);
+      if (!s.done()) continue;
+      r.answered = t;
+      r.kind = s.kind;
+      r.result_value = s.value;
+      r.result = pa.describe(r.id);
+    }
+    if (!pa.closing()) r.finished = t;
+  }
+}
+
+void Simulator::handle_sample(std::size_t i, Time t) {
+  Device& d = *devices_[i];
+  const std::array<Word, 4> before = d.s2m;
+  if (d.vf) {
+    d.vf->sample(d.pd_m2s(), d.pd_s2m(), t);
+  } else if (d.pd_words > 0) {
+    d.mc->sample(d.pd_m2s(), d.pd_s2m(), t);
+  }
+  ++d.k;
+  d.next_sample = next_sample_time(d);
+  ++summary_.devices[i].samples;
+  // Recording, in the trace timing convention: this row's m2s is what the device read now, its
+  // s2m what the device showed before this sample (its answer to the previous row).
+  if (options_.record_traces && !d.recordings.empty()) {
+    if (!d.recording) {
+      // Start (again) once the device is initialised and shows START-UP INHIBIT, its channel idle.
+      const bool initialised = d.vf ? !d.vf->module_error(t) : true;
+      const auto st = drivecom::decode_state(before[0]);
+      if (initialised && st == State::start_up_inhibit && !d.module_error(t)) {
+        d.recording = true;
+        auto& h = d.recordings.back().trace.header;
+        h.init = d.vf && d.vf->channel().siof() == 0 ? trace::InitState::operational : trace::InitState::power_on;
+      }
+    }
+    if (d.recording) {
+      Recording& r = d.recordings.back();
+      trace::Row row;
+      row.step = r.step++;
+      for (std::size_t w = 0; w < d.pd_words; ++w) {
+        row.m2s.push_back(trace::WordPattern::exact(d.m2s[w]));
+        row.s2m.push_back(trace::WordPattern::exact(before[w]));
+      }
+      row.remark = fmt_value(to_ms(t)) + " ms";
+      if (!r.remark.empty()) row.remark += ": " + r.remark;
+      r.remark.clear();
+      r.trace.rows.push_back(std::move(row));
+    }
+  }
+  for (Observer* o : observers_) o->on_sample(t, i, d.pd_m2s(), d.pd_s2m());
+}
+
+void Simulator::finish() {
+  if (finished_) return;
+  finished_ = true;
+  summary_.simulated = scenario_.duration;
+  summary_.wall_seconds = wall_now() - wall_start_;
+  const interbus::BusConfig& cfg = loop_->config();
+  for (auto& d : devices_) {
+    DeviceReport& r = summary_.devices[d->index];
+    r.name = d->cfg.name;
+    r.kind = d->cfg.kind;
+    r.id_code = interbus::describe(cfg.devices[d->index].id);
+    const devices::DeviceDriver& drv = loop_->driver(d->index);
+    r.unit = std::string(drv.unit());
+    r.final_state = std::string(drivecom::to_string(d->state()));
+    r.final_reference = drv.reference();
+    r.final_actual = device_actual(d->index);
+  }
+  for (auto& r : summary_.transactions) {
+    if (!r.finished) r.result = "still pending at the end of the run";
+  }
+  if (!master_ns_.empty()) {
+    std::vector<std::uint32_t> v = master_ns_;
+    std::sort(v.begin(), v.end());
+    summary_.master.cycles = v.size();
+    summary_.master.median_ns = v[v.size() / 2];
+    summary_.master.p99_ns = v[std::min(v.size() - 1, v.size() * 99 / 100)];
+    summary_.master.max_ns = v.back();
+  }
+}
+
+const Summary& Simulator::summary() { return summary_; }
+
+std::vector<Simulator::RecordedTrace> Simulator::traces() const {
+  std::vector<RecordedTrace> out;
+  for (const auto& d : devices_) {
+    for (const auto& r : d->recordings) {
+      if (r.trace.rows.empty()) continue;
+      out.push_back({r.file_name, r.trace});
+    }
+  }
+  return out;
+}
+
+}  // namespace ibs::sim

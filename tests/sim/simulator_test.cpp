@@ -1,0 +1,311 @@
+// The cycle simulator: drives brought up and run through the master, the documented timing of
+// the VF1000 parameter channel (seed 001, 7.1), watchdogs and every fault kind.
+#include <gtest/gtest.h>
+
+#include "ibs/sim/simulator.hpp"
+
+namespace ibs::sim {
+namespace {
+
+using drivecom::State;
+
+DeviceConfig mc6000(const std::string& name = "mc") {
+  DeviceConfig d;
+  d.name = name;
+  d.kind = DeviceKind::mc6000;
+  return d;
+}
+DeviceConfig vf1000(const std::string& name = "vf") {
+  DeviceConfig d;
+  d.name = name;
+  d.kind = DeviceKind::vf1000;
+  return d;
+}
+TimelineEntry at(Time t, const std::string& dev, Action a, const std::string& value = "", double number = 0,
+                 std::uint16_t parameter = 0, Duration duration = Duration{0}, int count = 1) {
+  TimelineEntry e;
+  e.at = t;
+  e.device = dev;
+  e.action = a;
+  e.value = value;
+  e.number = number;
+  e.parameter = parameter;
+  e.duration = duration;
+  e.count = count;
+  return e;
+}
+
+const StateRecord* find_event(const DeviceReport& r, const std::string& what) {
+  for (const auto& s : r.states) {
+    if (s.what.find(what) != std::string::npos) return &s;
+  }
+  return nullptr;
+}
+
+TEST(Simulator, BringsBothDrivesUpRunsThemAndStopsThem) {
+  Scenario s;
+  s.duration = 6s;
+  s.devices = {mc6000(), vf1000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"),     at(0s, "vf", Action::state, "enabled"),
+                at(200ms, "mc", Action::speed, "", 2500.25), at(200ms, "vf", Action::frequency, "", 50.0),
+                at(4s, "mc", Action::speed, "", 0.0),        at(4s, "vf", Action::frequency, "", 0.0),
+                at(5s, "mc", Action::state, "ready"),        at(5s, "vf", Action::state, "ready")};
+  Simulator sim(s);
+  sim.run_until(3500ms);
+  EXPECT_EQ(sim.device_state(0), State::enabled);
+  EXPECT_EQ(sim.device_state(1), State::enabled);
+  EXPECT_NEAR(sim.device_actual(0), 2500.25, 1e-3);
+  EXPECT_DOUBLE_EQ(sim.device_actual(1), 50.0);
+  sim.run();
+  const Summary& r = sim.summary();
+  EXPECT_EQ(r.devices[0].final_state, "READY");
+  EXPECT_EQ(r.devices[1].final_state, "READY");
+  EXPECT_NEAR(r.devices[0].final_actual, 0.0, 0.5);
+  EXPECT_DOUBLE_EQ(r.devices[1].final_actual, 0.0);
+  const auto* mc_reached = find_event(r.devices[0], "reference 2500.25 rpm reached");
+  ASSERT_NE(mc_reached, nullptr);
+  EXPECT_LT(mc_reached->at, 700ms);
+  const auto* vf_reached = find_event(r.devices[1], "reference 50 Hz reached");
+  ASSERT_NE(vf_reached, nullptr);
+  EXPECT_GT(vf_reached->at, 2600ms);  // 50 Hz at 20 Hz/s from 200 ms
+  EXPECT_LT(vf_reached->at, 2800ms);
+  // The default ring: 14 bytes, two remote devices -> 0.726 ms (docs/bus.md).
+  EXPECT_EQ(r.cycle_time, 726us);
+  EXPECT_EQ(r.cycles, r.valid_cycles);
+  EXPECT_EQ(r.cycles, static_cast<std::uint64_t>(6s / 726us));
+}
+
+// Seed 001, 7.1, "Without KEYPAD, motor stopped": value inquiry 100 ms, value transfer 124 ms
+// (RAM or unchanged EEPROM), 250 ms (EEPROM value changed), description 490 ms; within 10 %.
+TEST(Simulator, Vf1000ChannelTransferTimesOfSection71) {
+  for (const Duration phase : {0ms, 3ms, 7ms}) {
+    Scenario s;
+    s.duration = 4s;
+    DeviceConfig v = vf1000();
+    v.phase = phase;
+    s.devices = {v};
+    s.timeline = {at(0s, "vf", Action::read, "", 0, 85),          // clears the power-on bit
+                  at(500ms, "vf", Action::read, "", 0, 22),       // inquiry
+                  at(1000ms, "vf", Action::write, "", 1000, 22),  // transfer, EEPROM unchanged
+                  at(1500ms, "vf", Action::write, "", 0, 905),    // transfer to a RAM variable
+                  at(2000ms, "vf", Action::describe, "", 0, 45),  // description
+                  at(3000ms, "vf", Action::write, "", 900, 22)};  // EEPROM value changes
+    Simulator sim(s);
+    sim.run();
+    const auto& t = sim.summary().transactions;
+    ASSERT_EQ(t.size(), 6U);
+    auto ms = [&](std::size_t i) { return to_ms(*t[i].finished - t[i].submitted); };
+    for (const auto& x : t) ASSERT_TRUE(x.finished.has_value()) << x.result;
+    EXPECT_EQ(t[1].kind, devices::ParamKind::value) << t[1].result;
+    EXPECT_EQ(t[1].result_value, 1000);
+    EXPECT_EQ(t[2].kind, devices::ParamKind::written) << t[2].result;
+    EXPECT_EQ(t[3].kind, devices::ParamKind::written) << t[3].result;
+    EXPECT_EQ(t[4].kind, devices::ParamKind::description) << t[4].result;
+    EXPECT_EQ(t[5].kind, devices::ParamKind::written) << t[5].result;
+    EXPECT_NEAR(ms(1), 100.0, 10.0) << "phase " << phase.count();
+    EXPECT_GE(ms(2), 124.0 * 0.9);
+    EXPECT_LE(ms(2), 131.0 * 1.1);
+    EXPECT_GE(ms(3), 124.0 * 0.9);
+    EXPECT_LE(ms(3), 131.0 * 1.1);
+    EXPECT_NEAR(ms(4), 490.0, 49.0);
+    EXPECT_NEAR(ms(5), 250.0, 25.0);
+  }
+}
+
+TEST(Simulator, CorruptedCyclesDeliverNothingAndTheBusRecovers) {
+  Scenario s;
+  s.duration = 1s;
+  s.devices = {mc6000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), at(500ms, "", Action::fault_corrupt, "", 0, 0, {}, 3)};
+  Simulator sim(s);
+  sim.run();
+  const Summary& r = sim.summary();
+  EXPECT_EQ(r.cycles - r.valid_cycles, 3U + 5U);  // 3 corrupted + 5 recovery cycles
+  ASSERT_EQ(r.faults.size(), 1U);
+  EXPECT_EQ(r.faults[0].kind, "corrupt");
+  EXPECT_EQ(sim.device_state(0), State::enabled);  // 8 cycles (5.8 ms) are no reason to stop
+}
+
+TEST(Simulator, Mc6000BusWatchdogTripsWithinOneSampleOfItsTime) {
+  Scenario s;
+  s.duration = 2s;
+  DeviceConfig m = mc6000();
+  m.watchdog_ms = 20;  // 409-BUTWD = 20 ms
+  s.devices = {m};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"),
+                at(1000ms, "", Action::fault_corrupt, "", 0, 0, {}, 40)};  // ~29 ms without data
+  Simulator sim(s);
+  sim.run_until(999ms);
+  ASSERT_EQ(sim.device_state(0), State::enabled);
+  const Time last_valid = sim.now();
+  // Find the moment the servo faults.
+  Time tripped{0};
+  for (Time t = 1000ms; t < 1100ms; t += 100us) {
+    sim.run_until(t);
+    if (sim.mc6000(0)->error_number()) {
+      tripped = t;
+      break;
+    }
+  }
+  ASSERT_GT(tripped, 0ns);
+  EXPECT_EQ(*sim.mc6000(0)->error_number(), 16);
+  // The last valid cycle was at most one cycle before 1000 ms; the watchdog runs out 20 ms after
+  // it and the servo notices at its next 1 ms sample.
+  EXPECT_GE(tripped, last_valid + 20ms);
+  EXPECT_LE(tripped, last_valid + 20ms + 1ms + 726us + 100us);
+  sim.run();
+  EXPECT_EQ(sim.device_state(0), State::fault);
+  bool recorded = false;
+  for (const auto& f : sim.summary().faults) recorded = recorded || f.kind == "watchdog";
+  EXPECT_TRUE(recorded);
+}
+
+TEST(Simulator, Vf1000WatchdogReactionsOf907) {
+  // 906-IB-WD = 65 -> 100 ms; 907-IBCOD 1: fault E-IBS, 2: BLOCK POWER, 3: EMERGENCY STOP.
+  const std::array<State, 4> expected{State::enabled, State::fault, State::start_up_inhibit,
+                                      State::emergency_stop_active};
+  for (int reaction = 0; reaction <= 3; ++reaction) {
+    Scenario s;
+    s.duration = 1500ms;
+    DeviceConfig v = vf1000();
+    v.watchdog_ms = 65;
+    v.watchdog_reaction = reaction;
+    s.devices = {v};
+    s.timeline = {at(0s, "vf", Action::state, "enabled"), at(100ms, "vf", Action::frequency, "", 40.0),
+                  at(1000ms, "vf", Action::fault_lost, "", 0, 0, 300ms)};
+    Simulator sim(s);
+    sim.run_until(1090ms);
+    EXPECT_EQ(sim.device_state(0), State::enabled) << "before 100 ms without data, reaction " << reaction;
+    sim.run_until(1120ms);
+    if (reaction == 3) {
+      // The stop ramp (36-RSTOP) brakes; START-UP INHIBIT once stopped.
+      EXPECT_EQ(sim.device_state(0), State::emergency_stop_active);
+    } else {
+      EXPECT_EQ(sim.device_state(0), expected[static_cast<std::size_t>(reaction)]) << "reaction " << reaction;
+    }
+    if (reaction == 1) {
+      EXPECT_EQ(sim.vf1000(0)->error_number(), 12);
+    }
+  }
+}
+
+TEST(Simulator, PowerCycleReinitialisesTheVf1000AndTheMasterBringsItBack) {
+  Scenario s;
+  s.duration = 7s;
+  s.devices = {vf1000()};
+  s.timeline = {at(0s, "vf", Action::state, "enabled"), at(500ms, "vf", Action::fault_power_cycle),
+                at(6s, "vf", Action::state, "enabled")};
+  Simulator sim(s);
+  sim.run_until(600ms);
+  EXPECT_EQ(sim.device_state(0), State::not_ready);
+  EXPECT_TRUE(sim.vf1000(0)->module_error(sim.now()));
+  sim.run_until(4600ms);
+  EXPECT_FALSE(sim.vf1000(0)->module_error(sim.now()));
+  sim.run();
+  EXPECT_EQ(sim.device_state(0), State::enabled);
+  const auto& f = sim.summary().faults;
+  ASSERT_FALSE(f.empty());
+  EXPECT_EQ(f[0].kind, "power-cycle");
+}
+
+TEST(Simulator, DeviceFaultIsReportedAndResetByANewRequest) {
+  Scenario s;
+  s.duration = 2s;
+  s.devices = {mc6000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), at(300ms, "mc", Action::speed, "", 1000),
+                at(500ms, "mc", Action::fault_device, "", 0, 0, 100ms),
+                at(1000ms, "mc", Action::state, "enabled")};
+  Simulator sim(s);
+  sim.run_until(900ms);
+  EXPECT_EQ(sim.device_state(0), State::fault);
+  EXPECT_EQ(sim.driver(0).sequencer().report().failure, drivecom::Failure::fault);
+  sim.run();
+  EXPECT_EQ(sim.device_state(0), State::enabled);
+  const auto& states = sim.summary().devices[0].states;
+  EXPECT_NE(find_event(sim.summary().devices[0], "FAULT RESPONSE ACTIVE"), nullptr);
+  EXPECT_NE(find_event(sim.summary().devices[0], "FAULT"), nullptr);
+  EXPECT_GE(states.size(), 5U);
+}
+
+TEST(Simulator, LostDeviceShowsAModuleErrorToTheMaster) {
+  Scenario s;
+  s.duration = 1s;
+  s.devices = {mc6000(), vf1000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), at(0s, "vf", Action::state, "enabled"),
+                at(400ms, "mc", Action::fault_lost, "", 0, 0, 200ms)};
+  Simulator sim(s);
+  sim.run_until(500ms);
+  // The master reads 0000H (no valid state) for the lost servo; the VF1000 carries on.
+  EXPECT_EQ(sim.driver(0).sequencer().report().status_seen, 0x0000);
+  EXPECT_EQ(sim.device_state(1), State::enabled);
+  sim.run();
+  const auto& f = sim.summary().faults;
+  ASSERT_EQ(f.size(), 2U);
+  EXPECT_EQ(f[0].kind, "lost");
+  EXPECT_EQ(f[1].kind, "back");
+}
+
+TEST(Simulator, MasterRestartSendsBlockPowerAndStartsTheChannelsOver) {
+  Scenario s;
+  s.duration = 2s;
+  s.devices = {vf1000()};
+  s.timeline = {at(0s, "vf", Action::state, "enabled"), at(300ms, "vf", Action::read, "", 0, 85),
+                at(305ms, "", Action::master_restart), at(1s, "vf", Action::state, "enabled"),
+                at(1200ms, "vf", Action::read, "", 0, 22)};
+  Simulator sim(s);
+  sim.run_until(400ms);
+  EXPECT_EQ(sim.device_state(0), State::start_up_inhibit);
+  sim.run();
+  EXPECT_EQ(sim.device_state(0), State::enabled);
+  const auto& t = sim.summary().transactions;
+  ASSERT_EQ(t.size(), 2U);
+  EXPECT_EQ(t[0].kind, devices::ParamKind::aborted) << t[0].result;
+  EXPECT_EQ(t[1].kind, devices::ParamKind::value) << t[1].result;
+  EXPECT_EQ(t[1].result_value, 1000);
+}
+
+TEST(Simulator, RandomFaultsAreReproducibleFromTheSeed) {
+  Scenario s;
+  s.duration = 3s;
+  s.devices = {mc6000(), vf1000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), at(0s, "vf", Action::state, "enabled")};
+  s.random.seed = 42;
+  s.random.corrupt_per_s = 5;
+  s.random.device_fault_per_s = 1;
+  s.random.lost_per_s = 1;
+  auto faults = [&] {
+    Simulator sim(s);
+    SimOptions o;
+    o.measure_master_time = false;
+    sim.run(o);
+    std::vector<std::string> v;
+    for (const auto& f : sim.summary().faults) v.push_back(std::to_string(f.at.count()) + f.device + f.kind);
+    return v;
+  };
+  const auto a = faults();
+  const auto b = faults();
+  EXPECT_EQ(a, b);
+  EXPECT_GE(a.size(), 10U);
+  s.random.seed = 43;
+  EXPECT_NE(faults(), a);
+}
+
+TEST(Simulator, RefusesAConfigurationTheBusOrTheDeviceRefuses) {
+  Scenario s;
+  DeviceConfig m = mc6000();
+  m.supi = 7;
+  m.ibcnf = 2;
+  s.devices = {m};
+  try {
+    Simulator sim(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "device 'mc': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
+  }
+  Scenario many;
+  for (int i = 0; i < 65; ++i) many.devices.push_back(mc6000("m" + std::to_string(i)));  // 65 x 4 words
+  EXPECT_THROW(Simulator{many}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ibs::sim
