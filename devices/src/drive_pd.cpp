@@ -221,7 +221,8 @@ void Vf1000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   const auto b = drivecom::decode_vf1000_bits(control);
   // STR runs clockwise, STL counter-clockwise; neither or both: no direction, 0 Hz.
   const double direction = b.str == b.stl ? 0.0 : (b.str ? 1.0 : -1.0);
-  setpoint_ = std::min(vf1000_reference_hz(m2s[1]), config_.max_frequency_hz) * direction;
+  const double requested_hz = vf1000_reference_hz(m2s[1]);
+  setpoint_ = std::min(requested_hz, config_.max_frequency_hz) * direction;
 
   drivecom::DeviceInputs in;
   in.control = control;
@@ -243,7 +244,8 @@ void Vf1000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   e.message = false;  // bit 8 is not implemented on the VF1000 (5.2.2)
   e.remote = initialised_;
   e.reference_reached = machine_.state() == State::enabled && at_setpoint_;
-  e.limit_value = std::fabs(setpoint_) >= config_.max_frequency_hz && direction != 0.0;
+  // Bit 11: the reference is limited (above the maximum frequency 22-FMAX1).
+  e.limit_value = requested_hz > config_.max_frequency_hz && direction != 0.0;
   e.bit14 = s2out_;
   e.bit15 = s1out_;
   status_ = drivecom::status_word(machine_.state(), machine_.last_control(), e);

@@ -4,6 +4,8 @@
 #include <string>
 
 #include "ibs/devices/drive_pd.hpp"
+#include "ibs/devices/mc6000_device.hpp"
+#include "ibs/devices/vf1000_device.hpp"
 #include "ibs/vf1000_channel/trace_adapters.hpp"
 
 namespace ibs::devices {
@@ -18,13 +20,14 @@ using trace::TraceError;
 using trace::WordPattern;
 using trace::WordsKind;
 
-InitState init_of(const Header& h) {
+// `init: power-on` is a device that has initialised with the power-on bit still set.
+DeviceStart start_of(const Header& h) {
   switch (h.init) {
-    case trace::InitState::operational: return InitState::operational;
-    case trace::InitState::power_on: return InitState::power_on;
-    case trace::InitState::fault: return InitState::fault;
+    case trace::InitState::operational: return DeviceStart::operational;
+    case trace::InitState::power_on: return DeviceStart::initialised;
+    case trace::InitState::fault: return DeviceStart::fault;
   }
-  return InitState::operational;
+  return DeviceStart::operational;
 }
 
 drivecom::Target target_of(trace::StateTarget t) {
@@ -84,25 +87,30 @@ std::string hz(double v) {
 
 // --- MC6000 pd --------------------------------------------------------------------------------
 
-class Mc6000Device final : public trace::DeviceSide {
+// The servo as the simulator runs it (mc6000_device.hpp), one 1 ms sample per row, every row a
+// valid bus cycle: recorded simulator traces replay unchanged.
+class Mc6000Side final : public trace::DeviceSide {
  public:
-  Mc6000Device(const interbus::mc6000::Layout& l, InitState init) : device_(config(l)) {
-    device_.start(init);
-  }
+  Mc6000Side(const interbus::mc6000::Layout& l, DeviceStart start) : device_(config(l), start, Time{0}) {}
   std::size_t m2s_words() const override { return static_cast<std::size_t>(device_.layout().pd_words); }
   std::size_t s2m_words() const override { return m2s_words(); }
   void initial(std::span<Word> s2m) override { device_.output(s2m); }
   void step(std::span<const Word> m2s, std::span<Word> s2m) override {
-    device_.sample(m2s, s2m, kMc6000SamplePeriod);
+    now_ += kMc6000SamplePeriod;
+    device_.bus_cycle(now_);
+    device_.sample(m2s, s2m, now_);
   }
 
  private:
-  static Mc6000PdConfig config(const interbus::mc6000::Layout& l) {
-    Mc6000PdConfig c;
-    c.layout = l;
+  static Mc6000DeviceConfig config(const interbus::mc6000::Layout& l) {
+    Mc6000DeviceConfig c;
+    c.supi = l.supi;
+    c.ibcnf = static_cast<int>(l.ibcnf);
+    c.bus = l.bus;
     return c;
   }
-  Mc6000PdDevice device_;
+  Mc6000Device device_;
+  Time now_{0};
 };
 
 class Mc6000Master final : public trace::MasterSide {
@@ -171,18 +179,23 @@ class Mc6000Explainer final : public trace::Explainer {
 
 // --- VF1000 pd --------------------------------------------------------------------------------
 
-class Vf1000Device final : public trace::DeviceSide {
+// The inverter as the simulator runs it (vf1000_device.hpp): process data, the communication word
+// with its timing, one 8.2 ms sample per row, every row a valid bus cycle.
+class Vf1000Side final : public trace::DeviceSide {
  public:
-  explicit Vf1000Device(InitState init) { device_.start(init); }
-  std::size_t m2s_words() const override { return Vf1000PdDevice::kWords; }
-  std::size_t s2m_words() const override { return Vf1000PdDevice::kWords; }
+  explicit Vf1000Side(DeviceStart start) : device_(Vf1000DeviceConfig{}, start, Time{0}) {}
+  std::size_t m2s_words() const override { return Vf1000Device::kWords; }
+  std::size_t s2m_words() const override { return Vf1000Device::kWords; }
   void initial(std::span<Word> s2m) override { device_.output(s2m); }
   void step(std::span<const Word> m2s, std::span<Word> s2m) override {
-    device_.sample(m2s, s2m, kVf1000SamplePeriod);
+    now_ += kVf1000SamplePeriod;
+    device_.bus_cycle(now_);
+    device_.sample(m2s, s2m, now_);
   }
 
  private:
-  Vf1000PdDevice device_;
+  Vf1000Device device_;
+  Time now_{0};
 };
 
 class Vf1000Master final : public trace::MasterSide {
@@ -269,8 +282,8 @@ Duration pd_step_period(DeviceType d) {
 std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
   const Header& h = t.header;
   if (h.words == WordsKind::pd) {
-    if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Device>(layout_of(t), init_of(h));
-    return std::make_unique<Vf1000Device>(init_of(h));
+    if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Side>(layout_of(t), start_of(h));
+    return std::make_unique<Vf1000Side>(start_of(h));
   }
   if (is_comm(h)) return channel_adapter(t, [&] { return vf1000_channel::make_comm_device_side(h); });
   unsupported(t);

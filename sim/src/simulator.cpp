@@ -87,6 +87,10 @@ struct Simulator::Device {
   std::vector<Recording> recordings;
   bool recording = false;
   bool power_cycled = false;
+  // What a device started for a trace shows before its first sample (`init: power-on` and
+  // `init: operational`).
+  std::array<Word, 4> fresh_initialised{};
+  std::array<Word, 4> fresh_operational{};
 
   [[nodiscard]] bool lost(Time t) const { return t < lost_until; }
   [[nodiscard]] bool module_error(Time t) const {
@@ -116,6 +120,10 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
       if (c.watchdog_reaction) d->vf->channel().set_value(907, static_cast<Word>(*c.watchdog_reaction));
       d->period = kVf1000SamplePeriod;
       d->pd_words = devices::Vf1000Device::kWords;
+      devices::Vf1000Device(devices::Vf1000DeviceConfig{}, DeviceStart::initialised, Time{0})
+          .output({d->fresh_initialised.data(), d->pd_words});
+      devices::Vf1000Device(devices::Vf1000DeviceConfig{}, DeviceStart::operational, Time{0})
+          .output({d->fresh_operational.data(), d->pd_words});
       specs.push_back({c.name, vf1000_id(), interbus::BusKind::remote});
       drivers.push_back(std::make_unique<devices::Vf1000Driver>());
     } else {
@@ -133,6 +141,8 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
       d->period = kMc6000SamplePeriod;
       d->pd_words = static_cast<std::size_t>(l.exchanges_data ? l.pd_words : 0);
       d->pcp_words = static_cast<std::size_t>(l.pcp_words);
+      devices::Mc6000Device(mc, DeviceStart::initialised, Time{0}).output({d->fresh_initialised.data(), d->pd_words});
+      d->fresh_operational = d->fresh_initialised;
       specs.push_back({c.name, interbus::IdCode{l.id_code},
                        c.bus == BusSide::local ? interbus::BusKind::local : interbus::BusKind::remote});
       drivers.push_back(std::make_unique<devices::Mc6000Driver>(l));
@@ -585,14 +595,14 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   // Recording, in the trace timing convention: this row's m2s is what the device read now, its
   // s2m what the device showed before this sample (its answer to the previous row).
   if (options_.record_traces && !d.recordings.empty()) {
-    if (!d.recording) {
-      // Start (again) once the device is initialised and shows START-UP INHIBIT, its channel idle.
-      const bool initialised = d.vf ? !d.vf->module_error(t) : true;
-      const auto st = drivecom::decode_state(before[0]);
-      if (initialised && st == State::start_up_inhibit && !d.module_error(t)) {
+    if (!d.recording && !d.module_error(t)) {
+      // Start (again) once the device shows exactly what a freshly started device of a trace
+      // `init` shows: initialised, START-UP INHIBIT after BLOCK POWER, channel at rest.
+      const bool siof_clear = d.vf && d.vf->channel().siof() == 0;
+      const std::array<Word, 4>& fresh = siof_clear ? d.fresh_operational : d.fresh_initialised;
+      if (std::equal(before.begin(), before.begin() + static_cast<std::ptrdiff_t>(d.pd_words), fresh.begin())) {
         d.recording = true;
-        auto& h = d.recordings.back().trace.header;
-        h.init = d.vf && d.vf->channel().siof() == 0 ? trace::InitState::operational : trace::InitState::power_on;
+        d.recordings.back().trace.header.init = siof_clear ? trace::InitState::operational : trace::InitState::power_on;
       }
     }
     if (d.recording) {

@@ -19,7 +19,7 @@ enum class DeviceKind : std::uint8_t { mc6000, vf1000 };
 enum class BusSide : std::uint8_t { local, remote };
 
 struct DeviceConfig {
-  std::string name;                 // unique in the scenario, [A-Za-z0-9_-]+
+  std::string name;                 // unique in the scenario, 1..32 of [A-Za-z0-9_-]
   DeviceKind kind = DeviceKind::mc6000;
   int supi = 11;                    // MC6000 405-SUPI (read at power-on)
   int ibcnf = 2;                    // MC6000 406-IBCNF

@@ -1,0 +1,137 @@
+#include "ibs/sim/report.hpp"
+
+#include <cstdarg>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace ibs::sim {
+
+namespace {
+
+__attribute__((format(printf, 1, 2))) std::string printf_string(const char* format, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return buf;
+}
+
+std::string ms(Time t) { return printf_string("%.1f ms", to_ms(t)); }
+
+std::string op_text(const TransactionRecord& r) {
+  std::string s = std::string(devices::to_string(r.op)) + " " + std::to_string(r.number);
+  if (r.op == devices::ParamOp::write) s += " = " + std::to_string(r.value);
+  return s;
+}
+
+double budget_percent(double ns, Duration budget) { return 100.0 * ns / static_cast<double>(budget.count()); }
+
+}  // namespace
+
+std::string format_text(const Summary& s) {
+  std::string o;
+  const double sim_s = static_cast<double>(s.simulated.count()) / 1e9;
+  o += printf_string("ibs run: scenario \"%s\", %.3f s simulated in %.3f s of wall time (%.0fx real time)\n",
+                     s.scenario.c_str(), sim_s, s.wall_seconds, s.wall_seconds > 0 ? sim_s / s.wall_seconds : 0.0);
+  o += printf_string("bus: %zu device(s), cycle time %.3f ms (%s)\n", s.devices.size(), to_ms(s.cycle_time),
+                     s.cycle_time_basis.c_str());
+  o += printf_string("     %llu cycles, %llu with valid data\n", static_cast<unsigned long long>(s.cycles),
+                     static_cast<unsigned long long>(s.valid_cycles));
+  for (const DeviceReport& d : s.devices) {
+    o += "\n" + d.name + " (" + d.id_code + ")\n";
+    for (const StateRecord& r : d.states) o += printf_string("  %10s  ", ms(r.at).c_str()) + r.what + "\n";
+    for (const std::string& e : d.errors) o += "  error: " + e + "\n";
+    o += printf_string("  final: %s, reference %.6g %s, actual %.6g %s, %llu samples\n", d.final_state.c_str(),
+                       d.final_reference, d.unit.c_str(), d.final_actual, d.unit.c_str(),
+                       static_cast<unsigned long long>(d.samples));
+  }
+  o += "\nparameter transactions\n";
+  if (s.transactions.empty()) o += "  none\n";
+  for (const TransactionRecord& r : s.transactions) {
+    const std::string dur = r.finished ? printf_string("%.1f ms", to_ms(*r.finished - r.submitted)) : "-";
+    o += printf_string("  %10s  %-10s %-14s %9s  ", ms(r.submitted).c_str(), r.device.c_str(), op_text(r).c_str(),
+                       dur.c_str()) +
+         r.result + "\n";
+  }
+  o += "\nfaults\n";
+  if (s.faults.empty()) o += "  none\n";
+  for (const FaultRecord& f : s.faults) {
+    o += printf_string("  %10s  %-10s %-15s ", ms(f.at).c_str(), f.device.empty() ? "bus" : f.device.c_str(),
+                       f.kind.c_str()) +
+         f.detail + "\n";
+  }
+  if (s.master.cycles > 0) {
+    o += printf_string("\nmaster processing per cycle (%zu driver(s)): median %.0f ns, p99 %.0f ns, max %.0f ns over %llu cycles\n",
+                       s.devices.size(), s.master.median_ns, s.master.p99_ns, s.master.max_ns,
+                       static_cast<unsigned long long>(s.master.cycles));
+    o += printf_string("  1 ms budget (MC6000 processing): %.4f %% at the median, %.3f %% at the max\n",
+                       budget_percent(s.master.median_ns, kMc6000SamplePeriod),
+                       budget_percent(s.master.max_ns, kMc6000SamplePeriod));
+    o += printf_string("  8.2 ms budget (VF1000 processing): %.5f %% at the median, %.4f %% at the max\n",
+                       budget_percent(s.master.median_ns, kVf1000SamplePeriod),
+                       budget_percent(s.master.max_ns, kVf1000SamplePeriod));
+  }
+  return o;
+}
+
+std::string format_json(const Summary& s) {
+  using nlohmann::json;
+  json j;
+  j["scenario"] = s.scenario;
+  j["simulated_s"] = static_cast<double>(s.simulated.count()) / 1e9;
+  j["wall_s"] = s.wall_seconds;
+  j["bus"] = {{"cycle_time_ms", to_ms(s.cycle_time)},
+              {"cycle_time_basis", s.cycle_time_basis},
+              {"cycles", s.cycles},
+              {"valid_cycles", s.valid_cycles}};
+  json devices = json::array();
+  for (const DeviceReport& d : s.devices) {
+    json states = json::array();
+    for (const StateRecord& r : d.states) states.push_back({{"at_ms", to_ms(r.at)}, {"what", r.what}});
+    devices.push_back({{"name", d.name},
+                       {"type", d.kind == DeviceKind::vf1000 ? "vf1000" : "mc6000"},
+                       {"id_code", d.id_code},
+                       {"unit", d.unit},
+                       {"states", states},
+                       {"errors", d.errors},
+                       {"final_state", d.final_state},
+                       {"final_reference", d.final_reference},
+                       {"final_actual", d.final_actual},
+                       {"samples", d.samples}});
+  }
+  j["devices"] = devices;
+  json tx = json::array();
+  for (const TransactionRecord& r : s.transactions) {
+    json t = {{"device", r.device},
+              {"op", devices::to_string(r.op)},
+              {"parameter", r.number},
+              {"submitted_ms", to_ms(r.submitted)},
+              {"outcome", devices::to_string(r.kind)},
+              {"result", r.result}};
+    if (r.op == devices::ParamOp::write) t["value"] = r.value;
+    if (r.kind == devices::ParamKind::value) t["value_read"] = r.result_value;
+    if (r.answered) t["answered_ms"] = to_ms(*r.answered);
+    if (r.finished) {
+      t["finished_ms"] = to_ms(*r.finished);
+      t["duration_ms"] = to_ms(*r.finished - r.submitted);
+    }
+    if (r.source_line != 0) t["scenario_line"] = r.source_line;
+    tx.push_back(t);
+  }
+  j["transactions"] = tx;
+  json faults = json::array();
+  for (const FaultRecord& f : s.faults) {
+    faults.push_back({{"at_ms", to_ms(f.at)}, {"device", f.device}, {"kind", f.kind}, {"detail", f.detail}});
+  }
+  j["faults"] = faults;
+  j["master"] = {{"cycles", s.master.cycles},
+                 {"median_ns", s.master.median_ns},
+                 {"p99_ns", s.master.p99_ns},
+                 {"max_ns", s.master.max_ns},
+                 {"budget_1ms_median_percent", budget_percent(s.master.median_ns, kMc6000SamplePeriod)},
+                 {"budget_8_2ms_median_percent", budget_percent(s.master.median_ns, kVf1000SamplePeriod)}};
+  return j.dump(2) + "\n";
+}
+
+}  // namespace ibs::sim
