@@ -1,6 +1,14 @@
 #include "ibs/devices/mc6000_device.hpp"
 
+#include "ibs/pcp/mc6000_parameters.hpp"
+
 namespace ibs::devices {
+
+namespace {
+
+constexpr std::uint16_t kButwd = 409;  // 409-BUTWD (3.2.4)
+
+}  // namespace
 
 Mc6000PdConfig Mc6000Device::pd_config(const Mc6000DeviceConfig& c) {
   Mc6000PdConfig p = c.pd;
@@ -8,7 +16,7 @@ Mc6000PdConfig Mc6000Device::pd_config(const Mc6000DeviceConfig& c) {
   return p;
 }
 
-Mc6000Device::Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time)
+Mc6000Device::Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time now)
     : config_(config), pd_(pd_config(config)) {
   switch (start) {
     case DeviceStart::power_on: pd_.power_on(); break;
@@ -16,12 +24,37 @@ Mc6000Device::Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, 
     case DeviceStart::operational: pd_.start(InitState::operational); break;
     case DeviceStart::fault: pd_.start(InitState::fault); break;
   }
+  const int words = pd_.layout().pcp_words;
+  if (words > 0) {
+    pcp::ServerConfig sc;
+    sc.channel_words = words;
+    sc.latency = config.pcp_latency;
+    sc.workload = config.workload;
+    sc.start = start == DeviceStart::operational ? pcp::StartMode::running : pcp::StartMode::power_on;
+    pcp_.emplace(sc);
+    // The servo's EEPROM holds the configuration it was switched on with (3.2.2, 3.2.3, 3.2.4).
+    auto& store = pcp_->parameters();
+    const auto butwd = std::chrono::duration_cast<std::chrono::milliseconds>(config.bus_watchdog).count();
+    for (const auto& [n, v] : {std::pair<std::uint16_t, std::int64_t>{pcp::kSupi, config.supi},
+                               {pcp::kIbcnf, config.ibcnf},
+                               {kButwd, butwd}}) {
+      if (const auto* info = store.info(n)) {
+        const auto raw = pcp::ParameterStore::to_raw(*info, v);
+        store.set(n, raw);
+        store.commit_eeprom(n, raw);
+      }
+    }
+    if (start == DeviceStart::power_on) pcp_->power_on(now);
+  }
 }
 
-void Mc6000Device::power_cycle(Time) {
+void Mc6000Device::power_cycle(Time now) {
   pd_.power_on();
   armed_ = false;
   watchdog_fault_ = false;
+  // 405/406 are read at power-on: a changed value takes effect on the bus only with a new
+  // configuration of the ring, which the simulator does not do; the layout stays.
+  if (pcp_) pcp_->power_on(now);
 }
 
 void Mc6000Device::bus_cycle(Time now) {
@@ -29,16 +62,31 @@ void Mc6000Device::bus_cycle(Time now) {
   last_cycle_ = now;
 }
 
-void Mc6000Device::sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now) {
+void Mc6000Device::output_pcp(Time now, std::span<Word> pcp_s2m) {
+  if (pcp_ && !pcp_s2m.empty()) pcp_->show(now, pcp_s2m);
+}
+
+void Mc6000Device::sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now,
+                          std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) {
+  if (pcp_) {
+    // 409-BUTWD as the servo holds it now (the master may have written it through PCP).
+    if (const auto v = pcp_->parameters().get(kButwd)) config_.bus_watchdog = std::chrono::milliseconds(v->raw);
+  }
   // 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16 (E-OP1),
   // location 1, a device fault that stays until it is reset once data flows again.
   const bool expired = armed_ && config_.bus_watchdog > Duration{0} &&
                        (now - last_cycle_) > config_.bus_watchdog;
   if (expired) watchdog_fault_ = true;
   pd_.set_fault(external_fault_ || expired);
-  pd_.sample(pd_m2s, pd_s2m, kMc6000SamplePeriod);
+  if (pd_.layout().pd_words > 0) pd_.sample(pd_m2s, pd_s2m, kMc6000SamplePeriod);
   if (watchdog_fault_ && !expired && pd_.state() == drivecom::State::start_up_inhibit) {
     watchdog_fault_ = false;  // reset by the master after the data came back
+  }
+  if (pcp_ && !pcp_m2s.empty()) {
+    pcp_->set_drive_running(drivecom::power_stage_enabled(pd_.state()));
+    pcp_->set_fault(pd_.state() == drivecom::State::fault || pd_.state() == drivecom::State::fault_response_active);
+    pcp_->parameters().set(pcp::kIbsta, pd_.status_word());  // 408-IBSTA mirrors the status word
+    pcp_->step(now, pcp_m2s, pcp_s2m);
   }
 }
 

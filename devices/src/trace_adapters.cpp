@@ -6,6 +6,7 @@
 #include "ibs/devices/drive_pd.hpp"
 #include "ibs/devices/mc6000_device.hpp"
 #include "ibs/devices/vf1000_device.hpp"
+#include "ibs/pcp/trace_adapters.hpp"
 #include "ibs/vf1000_channel/trace_adapters.hpp"
 
 namespace ibs::devices {
@@ -272,6 +273,7 @@ auto channel_adapter(const trace::Trace& t, F make) {
 }
 
 bool is_comm(const Header& h) { return h.words == WordsKind::comm && h.device == DeviceType::vf1000; }
+bool is_pcp(const Header& h) { return h.words == WordsKind::pcp && h.device == DeviceType::mc6000; }
 
 }  // namespace
 
@@ -286,6 +288,7 @@ std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
     return std::make_unique<Vf1000Side>(start_of(h));
   }
   if (is_comm(h)) return channel_adapter(t, [&] { return vf1000_channel::make_comm_device_side(h); });
+  if (is_pcp(h)) return channel_adapter(t, [&] { return pcp::make_pcp_device_side(h); });
   unsupported(t);
 }
 
@@ -297,6 +300,7 @@ std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t) {
     return std::make_unique<Vf1000Master>();
   }
   if (is_comm(h)) return channel_adapter(t, [&] { return vf1000_channel::make_comm_master_side(h); });
+  if (is_pcp(h)) return channel_adapter(t, [&] { return pcp::make_pcp_master_side(h); });
   unsupported(t);
 }
 
@@ -307,6 +311,7 @@ std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t) {
     return std::make_unique<Vf1000Explainer>();
   }
   if (is_comm(h)) return vf1000_channel::make_comm_explainer();
+  if (is_pcp(h)) return channel_adapter(t, [&] { return pcp::make_pcp_explainer(h); });
   unsupported(t);
 }
 

@@ -17,11 +17,16 @@ namespace {
 using devices::DeviceStart;
 using drivecom::State;
 
+// The state names of scenario files (docs/scenarios.md), every DRIVECOM state.
 std::optional<State> state_named(const std::string& s) {
+  if (s == "not-ready") return State::not_ready;
   if (s == "start-up-inhibit") return State::start_up_inhibit;
   if (s == "ready") return State::ready;
   if (s == "on") return State::on;
   if (s == "enabled") return State::enabled;
+  if (s == "fault") return State::fault;
+  if (s == "fault-response-active") return State::fault_response_active;
+  if (s == "emergency-stop-active") return State::emergency_stop_active;
   return std::nullopt;
 }
 
@@ -195,6 +200,7 @@ std::optional<std::size_t> Simulator::index_of(const std::string& name) const {
 }
 
 State Simulator::device_state(std::size_t i) const { return devices_[i]->state(); }
+bool Simulator::module_error(std::size_t i, Time t) const { return devices_[i]->module_error(t); }
 double Simulator::device_actual(std::size_t i) const {
   return devices_[i]->vf ? devices_[i]->vf->frequency_hz() : devices_[i]->mc->actual_rpm();
 }
@@ -218,7 +224,10 @@ void Simulator::start(const SimOptions& options) {
   loop_->initial(image_);
   for (auto& d : devices_) {
     if (d->vf) d->vf->output(d->pd_s2m());
-    if (d->mc) d->mc->output(d->pd_s2m());
+    if (d->mc) {
+      d->mc->output(d->pd_s2m());
+      d->mc->output_pcp(Time{0}, {d->pcp_s2m.data(), d->pcp_words});
+    }
     d->next_sample = next_sample_time(*d);
     if (options_.record_traces) {
       Recording r;
@@ -586,8 +595,8 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   const std::array<Word, 4> before = d.s2m;
   if (d.vf) {
     d.vf->sample(d.pd_m2s(), d.pd_s2m(), t);
-  } else if (d.pd_words > 0) {
-    d.mc->sample(d.pd_m2s(), d.pd_s2m(), t);
+  } else {
+    d.mc->sample(d.pd_m2s(), d.pd_s2m(), t, {d.pcp_m2s.data(), d.pcp_words}, {d.pcp_s2m.data(), d.pcp_words});
   }
   ++d.k;
   d.next_sample = next_sample_time(d);

@@ -108,12 +108,54 @@ TEST(Cli, EveryTraceInTestsDataReplaysThroughTheCommand) {
   EXPECT_GE(files, 5);
 }
 
-TEST(Cli, RunBringsBothDrivesUpAndDown) {
+TEST(Cli, RunTheDefaultScenario) {
   const Result r = run("run");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("reference 2500.25 rpm reached"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("reference 50.00 Hz reached"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("result: both drives started, ran to their references and stopped"), std::string::npos);
+  EXPECT_NE(r.out.find("reference 50 Hz reached"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cycle time 0.726 ms"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("master processing per cycle"), std::string::npos) << r.out;
+  // Every parameter transaction of the default scenario succeeds.
+  for (const char* what : {"read 85", "write 409 = 100", "write 22 = 1000", "read 409", "read 22",
+                           "describe 406", "describe 45"}) {
+    EXPECT_NE(r.out.find(what), std::string::npos) << what;
+  }
+  EXPECT_EQ(r.out.find("NAK"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("negative"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("timeout"), std::string::npos) << r.out;
+}
+
+TEST(Cli, RunWritesJsonTracesAndVcd) {
+  const std::string dir = ::testing::TempDir() + "ibs_run_traces";
+  const std::string vcd = ::testing::TempDir() + "ibs_run.vcd";
+  const Result r = run("run --json --trace " + dir + " --vcd " + vcd);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out.front(), '{');
+  EXPECT_NE(r.out.find("\"cycle_time_ms\": 0.726"), std::string::npos) << r.out;
+  for (const char* name : {"mc6000.trace", "vf1000.trace"}) {
+    const std::string path = dir + "/" + name;
+    const Result replay = run("replay --emulate device " + path);
+    EXPECT_EQ(replay.exit_code, 0) << path << "\n" << replay.out;
+  }
+  std::ifstream in(vcd);
+  std::string first;
+  std::getline(in, first);
+  EXPECT_EQ(first.rfind("$date", 0) == 0 || first.rfind("$version", 0) == 0 || first.rfind("$comment", 0) == 0, true)
+      << first;
+  std::ifstream filter(vcd + ".states.txt");
+  const std::string names((std::istreambuf_iterator<char>(filter)), std::istreambuf_iterator<char>());
+  EXPECT_NE(names.find("0 NOT_READY"), std::string::npos) << names;
+  EXPECT_NE(names.find("4 ENABLED"), std::string::npos) << names;
+}
+
+TEST(Cli, RunRefusesABadScenarioWithFileAndLine) {
+  const std::string path = temp_file("bad.toml", "name = \"x\"\nduration = \"1 s\"\n[[device]]\nname = \"m\"\ntype = \"mc6000\"\nsupi = 7\nibcnf = 2\n");
+  const Result r = run("run " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  // The line of the value the refusal names (406-IBCNF).
+  EXPECT_NE(r.out.find(path + ":7: device 'm': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(run("run /nonexistent.toml").exit_code, 2);
 }
 
 }  // namespace

@@ -10,8 +10,15 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitMismatch = 1;  // replay: a row did not match
 inline constexpr int kExitBadInput = 2;  // malformed file, bad option, refused configuration
 
+struct RunOptions {
+  std::string scenario;   // empty: the built-in default scenario
+  bool json = false;
+  std::string trace_dir;  // empty: no traces
+  std::string vcd_file;   // empty: no VCD
+};
+
 int replay(const std::string& emulate, const std::string& file);
 int decode(const std::string& file);
-int run_demo();
+int run(const RunOptions& options);
 
 }  // namespace ibs::cli

@@ -2,13 +2,20 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "bus_commands.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"ibs: INTERBUS-S stack and cycle simulator for LUST VF1000 and MC6000 drives"};
   app.require_subcommand(1);
 
-  auto* run = app.add_subcommand("run", "run the main job: bring both drives up, run them, stop them");
+  ibs::cli::RunOptions run_options;
+  auto* run = app.add_subcommand(
+      "run", "simulate a bus: the built-in default (an MC6000 and a VF1000 brought up, run and stopped) or a scenario file");
+  run->add_option("SCENARIO", run_options.scenario, "a scenario file (.toml or .json, docs/scenarios.md)");
+  run->add_flag("--json", run_options.json, "print the summary as JSON");
+  run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory");
+  run->add_option("--vcd", run_options.vcd_file, "write the run as a VCD file for gtkwave");
 
   std::string emulate;
   std::string replay_file;
@@ -23,6 +30,9 @@ int main(int argc, char** argv) {
   auto* decode = app.add_subcommand("decode", "print a trace with every word explained in the remark");
   decode->add_option("FILE", decode_file, "the trace file")->required();
 
+  ibs::cli::BusCommandState bus_state;
+  ibs::cli::add_bus_commands(app, bus_state);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -33,7 +43,8 @@ int main(int argc, char** argv) {
     app.exit(e);
     return ibs::cli::kExitBadInput;
   }
-  if (run->parsed()) return ibs::cli::run_demo();
+  if (const auto rc = ibs::cli::run_bus_commands(bus_state)) return *rc;
+  if (run->parsed()) return ibs::cli::run(run_options);
   if (replay->parsed()) return ibs::cli::replay(emulate, replay_file);
   if (decode->parsed()) return ibs::cli::decode(decode_file);
   return ibs::cli::kExitBadInput;

@@ -13,6 +13,7 @@
 #include "ibs/devices/drive_pd.hpp"
 #include "ibs/interbus/mc6000_layout.hpp"
 #include "ibs/interbus/time.hpp"
+#include "ibs/pcp/client.hpp"
 #include "ibs/vf1000_channel/client.hpp"
 
 namespace ibs::devices {
@@ -115,8 +116,14 @@ class Vf1000Driver final : public DeviceDriver, private ParameterAccess {
   vf1000_channel::SubmitError last_refusal_ = vf1000_channel::SubmitError::none;
 };
 
+// The MC6000's parameters go through PCP (pcp/client.hpp): the driver queues requests, opens the
+// association with Initiate when it has none, and works the queue one request at a time, since
+// PCP allows one outstanding request per communication reference.
 class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
  public:
+  static constexpr std::size_t kQueueCapacity = 16;
+  static constexpr std::size_t kCompletedCapacity = 16;
+
   explicit Mc6000Driver(const interbus::mc6000::Layout& layout,
                         const drivecom::SequencerConfig& config = drivecom::SequencerConfig::defaults());
   void cycle(const DriverIo& io, Time now) override;
@@ -128,13 +135,44 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   [[nodiscard]] double reference() const override { return master_.reference_rpm(); }
   [[nodiscard]] double actual() const override { return master_.actual_rpm(); }
   [[nodiscard]] std::string_view unit() const override { return "rpm"; }
+  [[nodiscard]] const pcp::Client* pcp() const { return client_ ? &*client_ : nullptr; }
 
  private:
+  struct Pending {
+    ParamId id = 0;
+    ParamOp op = ParamOp::read;
+    std::uint16_t number = 0;
+    std::int64_t value = 0;
+  };
+  struct Completed {
+    ParamId id = 0;
+    ParamKind kind = ParamKind::pending;
+    std::int64_t value = 0;
+    pcp::Result result{};
+  };
+  enum class Refusal : std::uint8_t { none, no_channel, queue_full, bad_value };
+
   ParamId submit(ParamOp op, std::uint16_t number, std::int64_t value) override;
   [[nodiscard]] ParamStatus status(ParamId id) const override;
   [[nodiscard]] std::string describe(ParamId id) const override;
 
+  void take_results(Time now);
+  void start_next(Time now);
+  void complete(const Pending& p, ParamKind kind, std::int64_t value, const pcp::Result& r);
+  [[nodiscard]] const Completed* find_completed(ParamId id) const;
+
   Mc6000PdMaster master_;
+  pcp::ClientConfig pcp_config_{};
+  std::optional<pcp::Client> client_;
+  std::array<Pending, kQueueCapacity> queue_{};
+  std::size_t queue_head_ = 0;
+  std::size_t queue_count_ = 0;
+  bool active_ = false;      // the queue head has been sent
+  bool initiating_ = false;  // an Initiate is outstanding for the queue head
+  std::array<Completed, kCompletedCapacity> completed_{};
+  std::size_t completed_next_ = 0;
+  ParamId next_id_ = 1;
+  Refusal refusal_ = Refusal::none;
 };
 
 }  // namespace ibs::devices

@@ -10,6 +10,7 @@
 #include "ibs/devices/vf1000_device.hpp"
 #include "ibs/interbus/mc6000_layout.hpp"
 #include "ibs/interbus/time.hpp"
+#include "ibs/pcp/server.hpp"
 
 namespace ibs::devices {
 
@@ -19,6 +20,9 @@ struct Mc6000DeviceConfig {
   interbus::mc6000::BusKind bus = interbus::mc6000::BusKind::remote;
   Duration bus_watchdog{0};  // 409-BUTWD in ms; 0 = off (3.2.4)
   Mc6000PdConfig pd{};       // plant and limits; its layout is replaced by supi/ibcnf
+  // The PCP server's latency model (pcp/server.hpp); empty: calibrated for the channel width.
+  std::optional<pcp::LatencyModel> pcp_latency;
+  double workload = 0.0;  // processor workload 0..1: PCP answers take longer as it grows (7.2)
 };
 
 // The watchdog error of 3.2.4.
@@ -32,9 +36,12 @@ class Mc6000Device {
 
   [[nodiscard]] const interbus::mc6000::Layout& layout() const { return pd_.layout(); }
 
-  // One 1 ms sample: the process-data words (control word first) and the PCP channel words.
-  void sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now);
+  // One 1 ms sample: the process-data words (control word first) and the PCP channel words
+  // (layout().pcp_words each; empty spans without PCP).
+  void sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now,
+              std::span<const Word> pcp_m2s = {}, std::span<Word> pcp_s2m = {});
   void output(std::span<Word> pd_s2m) const { pd_.output(pd_s2m); }
+  void output_pcp(Time now, std::span<Word> pcp_s2m);
 
   // A valid data cycle reached the device: "the watchdog is triggered with every INTERBUS cycle".
   void bus_cycle(Time now);
@@ -55,12 +62,18 @@ class Mc6000Device {
     return watchdog_fault_ ? std::optional<int>(kMc6000WatchdogError) : std::nullopt;
   }
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
+  // The PCP server and its parameters (nullptr for a layout without PCP words).
+  [[nodiscard]] pcp::Server* pcp() { return pcp_ ? &*pcp_ : nullptr; }
+  [[nodiscard]] const pcp::Server* pcp() const { return pcp_ ? &*pcp_ : nullptr; }
+  // How many times 15-PLRDY = 1 recalculated the controller (4.2).
+  [[nodiscard]] std::uint32_t recalculations() const { return pcp_ ? pcp_->plrdy_requests() : 0; }
 
  private:
   static Mc6000PdConfig pd_config(const Mc6000DeviceConfig& c);
 
   Mc6000DeviceConfig config_;
   Mc6000PdDevice pd_;
+  std::optional<pcp::Server> pcp_;
   bool armed_ = false;
   Time last_cycle_{0};
   bool watchdog_fault_ = false;

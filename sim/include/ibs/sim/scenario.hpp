@@ -127,14 +127,16 @@ void validate_scenario(const Scenario& s, const std::string& file = "scenario");
 Duration parse_time(std::string_view text);
 std::string format_time(Duration d);
 
-// Names as the files spell them ("mc6000", "remote", "fault_corrupt").
+// Names for reports: kinds and sides as the files spell them ("mc6000", "remote"), actions as
+// their enumerators ("fault_corrupt"; the files write fault = "corrupt").
 std::string_view to_string(DeviceKind k);
 std::string_view to_string(BusSide b);
 std::string_view to_string(Action a);
 
 // Reads a scenario from a .toml or .json file (by extension), checks it whole (unknown keys,
 // types, ranges, device names, SUPI/IBCNF pairs, times inside the duration) and returns it, or
-// throws ScenarioError for the first problem, naming file and line.
+// throws ScenarioError for the first problem, naming file and line. A file without `name` is
+// named after its file name's stem.
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario_toml(const std::string& text, const std::string& file);
 Scenario parse_scenario_json(const std::string& text, const std::string& file);

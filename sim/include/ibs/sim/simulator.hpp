@@ -135,6 +135,8 @@ class Simulator {
   devices::Vf1000Device* vf1000(std::size_t i);
   devices::Mc6000Device* mc6000(std::size_t i);
   [[nodiscard]] std::optional<std::size_t> index_of(const std::string& name) const;
+  // The bus reports a module error for the device (lost, or initialising).
+  [[nodiscard]] bool module_error(std::size_t i, Time t) const;
 
  private:
   struct Device;

@@ -1,0 +1,98 @@
+// CPU cost of the PCP machines: one complete Read (submit -> confirmation) over 1, 2 and 4
+// channel words, the client stepped every bus cycle and the server every device sample in
+// lock-step (1 ms each, the trace timing). Simulated time is not measured here; docs/pcp.md
+// ("Latency model") has that.
+#include <benchmark/benchmark.h>
+
+#include <array>
+
+#include "ibs/pcp/client.hpp"
+#include "ibs/pcp/crc16.hpp"
+#include "ibs/pcp/server.hpp"
+
+namespace {
+
+using namespace ibs;
+using namespace ibs::pcp;
+
+struct Loop {
+  explicit Loop(int words, LatencyModel latency)
+      : client([&] {
+          ClientConfig c;
+          c.channel_words = words;
+          return c;
+        }()),
+        server([&] {
+          ServerConfig c;
+          c.channel_words = words;
+          c.latency = latency;
+          c.start = StartMode::running;
+          return c;
+        }()) {}
+
+  // Steps until the client reports; returns the number of steps.
+  int until_result(Result& out) {
+    int steps = 0;
+    for (;;) {
+      now += 1ms;
+      const auto to_server = m2s;
+      const auto to_client = s2m;
+      client.step(now, to_client, m2s);
+      server.step(now, to_server, s2m);
+      ++steps;
+      if (auto r = client.take_result()) {
+        out = *r;
+        return steps;
+      }
+    }
+  }
+
+  Client client;
+  Server server;
+  Time now{};
+  std::array<Word, 4> m2s{};
+  std::array<Word, 4> s2m{};
+};
+
+void run_reads(benchmark::State& state, LatencyModel latency) {
+  const int words = static_cast<int>(state.range(0));
+  Loop loop(words, latency);
+  Result r;
+  loop.client.initiate(loop.now);
+  loop.until_result(r);
+  if (!r.ok()) state.SkipWithError("Initiate failed");
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    loop.client.read(loop.now, ParameterRef::number(kIbstu));
+    steps += loop.until_result(r);
+    benchmark::DoNotOptimize(r.data);
+  }
+  if (!r.ok()) state.SkipWithError("Read failed");
+  state.counters["steps/read"] =
+      benchmark::Counter(static_cast<double>(steps) / static_cast<double>(state.iterations()));
+  state.counters["ns/step"] = benchmark::Counter(
+      static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// Protocol work only: the servo answers in the step the request completes.
+void BM_Read(benchmark::State& state) {
+  run_reads(state, LatencyModel::immediate());
+}
+BENCHMARK(BM_Read)->Arg(1)->Arg(2)->Arg(4);
+
+// With the calibrated latency model at workload 0 (idle steps while the servo "processes").
+void BM_ReadCalibratedLatency(benchmark::State& state) {
+  run_reads(state, LatencyModel::for_channel(static_cast<int>(state.range(0))));
+}
+BENCHMARK(BM_ReadCalibratedLatency)->Arg(1)->Arg(2)->Arg(4);
+
+// The message check over the largest message.
+void BM_Crc16MaxPdu(benchmark::State& state) {
+  std::array<std::uint8_t, kMaxPduSize> b{};
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = static_cast<std::uint8_t>(i * 31U);
+  for (auto _ : state) benchmark::DoNotOptimize(crc16(b));
+  state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(b.size()));
+}
+BENCHMARK(BM_Crc16MaxPdu);
+
+}  // namespace

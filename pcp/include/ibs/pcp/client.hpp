@@ -1,0 +1,162 @@
+// The master's PCP client for one MC6000 (one communication reference): Initiate, Read, Write,
+// Get-OV long, Identify, Status and Abort over the parameter channel (seed 001, 3.2.2 and 4.2).
+//
+// Asynchronous: a request is submitted (one at a time per communication reference), the cycle
+// loop calls step() once per bus cycle with the servo's channel words and the time, and the
+// result is taken with take_result(). Every request ends in exactly one result: a confirmation,
+// or timeout / link reset / abort / protocol error. A timeout or protocol error aborts the
+// channel, which ends the association: the next request needs a new Initiate.
+//
+// The cycle path (submissions, step, take_result) allocates nothing, throws nothing.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/interbus/time.hpp"
+#include "ibs/interbus/words.hpp"
+#include "ibs/pcp/data_types.hpp"
+#include "ibs/pcp/link.hpp"
+#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/pcp/pdu.hpp"
+
+namespace ibs::pcp {
+
+struct ClientConfig {
+  int channel_words = 1;  // 1, 2 or 4 (405-SUPI)
+  // The communication reference the master's KBL gives the servo (chosen default).
+  std::uint8_t communication_reference = 2;
+  Kbl kbl = kDefaultClientKbl;
+  std::uint16_t password = 0;
+  std::uint16_t access_groups = 0;
+  Duration request_timeout = 500ms;  // submit -> confirmation, unless a request says otherwise
+  Duration link_ack_timeout = 100ms;
+};
+
+enum class SubmitStatus : std::uint8_t {
+  accepted,
+  busy,              // a request is outstanding
+  not_initiated,     // Read, Write, Get-OV, Identify, Status need an association
+  invalid_argument,  // a value that does not convert, or data too long for the PDU
+};
+std::string_view to_string(SubmitStatus s);
+
+enum class ResultKind : std::uint8_t {
+  ok,              // positive confirmation
+  negative,        // negative confirmation: Result::error
+  incompatible,    // Initiate: the server's KBL does not fit ours (Result::mismatch); aborted
+  type_mismatch,   // typed Read: the data length is not the type's
+  aborted,         // Abort from the server (Result::abort_reason) or by our user
+  link_reset,      // the channel was reset (servo restart, its timeout) before the confirmation
+  timeout,         // no confirmation in time; the client aborted the channel
+  protocol_error,  // a message that does not answer the request; the client aborted the channel
+};
+std::string_view to_string(ResultKind k);
+
+struct Result {
+  ServiceCode service = ServiceCode::read;
+  ResultKind kind = ResultKind::ok;
+  std::uint16_t index = 0;  // Read, Write, Get-OV: the object
+  std::uint8_t invoke_id = 0;
+  PcpError error{};
+  AbortReason abort_reason = AbortReason::user;
+  KblMismatch mismatch = KblMismatch::none;
+  DataBytes data;                 // Read: the value's bytes
+  std::optional<Value> value;     // typed Read: the value
+  ObjectDescription description;  // Get-OV
+  IdentifyInfo identity;          // Identify
+  StatusInfo status;              // Status
+  Kbl peer_kbl{};                 // Initiate (also when negative or incompatible)
+  Time submitted_at{};
+  Time completed_at{};
+
+  [[nodiscard]] bool ok() const { return kind == ResultKind::ok; }
+};
+
+struct InformationReport {
+  std::uint16_t index = 0;
+  DataBytes data;
+  Time at{};
+};
+
+struct ClientStats {
+  std::uint32_t requests = 0;
+  std::uint32_t confirmations = 0;
+  std::uint32_t timeouts = 0;
+  std::uint32_t link_resets = 0;
+  std::uint32_t protocol_errors = 0;
+  std::uint32_t aborts_received = 0;
+};
+
+class Client {
+ public:
+  // Throws std::invalid_argument for a bad width or KBL (configuration time).
+  explicit Client(const ClientConfig& cfg);
+
+  // Submissions. `timeout` zero means the configured request_timeout.
+  SubmitStatus initiate(Time now, Duration timeout = Duration::zero());
+  SubmitStatus read(Time now, ParameterRef p, Duration timeout = Duration::zero());
+  SubmitStatus read(Time now, ParameterRef p, DataType expected,
+                    Duration timeout = Duration::zero());
+  SubmitStatus read_subindex(Time now, ParameterRef p, std::uint8_t subindex,
+                             Duration timeout = Duration::zero());
+  SubmitStatus write(Time now, ParameterRef p, Value v, Duration timeout = Duration::zero());
+  // Engineering value converted to the type (seed 000, 2.3.2).
+  SubmitStatus write(Time now, ParameterRef p, DataType t, double value,
+                     Duration timeout = Duration::zero());
+  SubmitStatus write_bytes(Time now, ParameterRef p, std::span<const std::uint8_t> data,
+                           std::uint8_t subindex = 0, Duration timeout = Duration::zero());
+  SubmitStatus get_ov(Time now, ParameterRef p, Duration timeout = Duration::zero());
+  SubmitStatus identify(Time now, Duration timeout = Duration::zero());
+  SubmitStatus status(Time now, Duration timeout = Duration::zero());
+  // Abort (unconfirmed): ends the association. An outstanding request ends as `aborted` and
+  // the channel is reset; otherwise the Abort message is sent.
+  void abort(Time now);
+
+  // One bus cycle: reads the servo's channel words, writes the master's.
+  void step(Time now, std::span<const Word> s2m, std::span<Word> m2s);
+  // The frame the master shows before its first step (a trace's m2s[0]).
+  void show(Time now, std::span<Word> m2s);
+
+  [[nodiscard]] bool busy() const { return outstanding_; }
+  [[nodiscard]] bool associated() const { return associated_; }
+  std::optional<Result> take_result();
+  std::optional<InformationReport> take_information_report();
+
+  [[nodiscard]] const Link& link() const { return link_; }
+  [[nodiscard]] const ClientStats& stats() const { return stats_; }
+  [[nodiscard]] const ClientConfig& config() const { return cfg_; }
+  // The server's KBL from the last positive Initiate.
+  [[nodiscard]] const Kbl& peer_kbl() const { return peer_kbl_; }
+
+ private:
+  SubmitStatus submit(Time now, RequestPdu& req, Duration timeout, bool needs_association);
+  void complete(Time now, ResultKind kind);
+  void handle_message(Time now, std::span<const std::uint8_t> msg);
+  void fail_protocol(Time now);
+
+  ClientConfig cfg_;
+  Link link_;
+  bool associated_ = false;
+  Kbl peer_kbl_{};
+  std::uint8_t next_invoke_id_ = 0;
+
+  bool outstanding_ = false;
+  bool sent_ = false;
+  RequestPdu request_{};
+  std::optional<DataType> expected_type_;
+  Pdu pdu_{};
+  Time deadline_{};
+  Result result_{};
+  bool result_ready_ = false;
+
+  bool abort_pending_ = false;
+  Pdu abort_pdu_{};
+
+  InformationReport report_{};
+  bool report_ready_ = false;
+  ClientStats stats_{};
+};
+
+}  // namespace ibs::pcp

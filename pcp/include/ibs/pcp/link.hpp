@@ -1,0 +1,164 @@
+// Segmentation of PMS messages over the MC6000's PCP channel of 1, 2 or 4 words (seed 001,
+// 3.2.2) — the project's own design, because the chip's administrative byte is not public
+// (public-facts.md, PCP). docs/pcp.md specifies it; this header is its one interface.
+//
+// Every bus cycle each side shows one frame: the administrative byte (high byte of the first
+// channel word) and 2 * words - 1 data bytes. The administrative byte:
+//
+//     bit  7     DIR   0 = master -> servo, 1 = servo -> master
+//     bits 6..5  TYPE  00 control, 01 first fragment, 10 continuation, 11 last fragment
+//     bits 4..3  SEQ   data frames: sequence counter (mod 4)
+//                      control frames: 00 IDLE, 01 ABORT, 10 ABORT-ACK, 11 invalid
+//     bits 2..1  ACK   SEQ of the last data frame accepted from the peer
+//     bit  0     P     odd parity over the byte (00H and FFH are never valid)
+//
+// Stop-and-wait: a fragment stays on the channel until the peer's ACK names its SEQ; a message is
+// `PDU bytes, CRC-16 (high, low)`, its length follows from the PDU's count word, and the last
+// fragment is padded with zeros. A lost, repeated or discarded cycle shows the receiver an old
+// frame again, which the SEQ rule ignores; a message is delivered only when its length, padding
+// and CRC check. ABORT / ABORT-ACK resynchronise both sides (start, restart, timeout, protocol
+// violation) and drop every message in transfer.
+//
+// The cycle path (receive, transmit, send) allocates nothing, throws nothing, reads no clock.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/interbus/time.hpp"
+#include "ibs/interbus/words.hpp"
+#include "ibs/pcp/pdu.hpp"
+
+namespace ibs::pcp {
+
+inline constexpr std::size_t kCrcSize = 2;
+inline constexpr std::size_t kMaxMessageSize = kMaxPduSize + kCrcSize;
+inline constexpr int kMaxChannelWords = 4;
+inline constexpr std::size_t kMaxFrameBytes = 2 * static_cast<std::size_t>(kMaxChannelWords);
+inline constexpr std::size_t kMaxFrameData = kMaxFrameBytes - 1;
+// The smallest message spans two frames even at 4 words, so FIRST and LAST are always distinct.
+static_assert(kMinPduSize + kCrcSize > kMaxFrameData);
+
+enum class Direction : std::uint8_t { to_server = 0, to_client = 1 };
+enum class FrameType : std::uint8_t { control = 0, first = 1, middle = 2, last = 3 };
+enum class ControlCode : std::uint8_t { idle = 0, abort = 1, abort_ack = 2 };
+
+struct AdminByte {
+  Direction dir = Direction::to_server;
+  FrameType type = FrameType::control;
+  std::uint8_t seq = 0;  // data: sequence counter; control: ControlCode
+  std::uint8_t ack = 0;
+  friend bool operator==(const AdminByte&, const AdminByte&) = default;
+};
+
+std::uint8_t encode_admin(AdminByte a);
+// nullopt for a parity error or the invalid control code 11.
+std::optional<AdminByte> decode_admin(std::uint8_t b);
+
+constexpr bool valid_channel_words(int words) {
+  return words == 1 || words == 2 || words == 4;
+}
+constexpr std::size_t frame_data_size(int words) {
+  return static_cast<std::size_t>(2 * words - 1);
+}
+
+enum class LinkState : std::uint8_t {
+  aborting,  // showing ABORT until the peer answers ABORT-ACK (after start, restart, abort)
+  acking,    // the peer aborts: showing ABORT-ACK until it shows something else
+  ready,
+};
+std::string_view to_string(LinkState s);
+
+struct LinkConfig {
+  int channel_words = 1;                       // 1, 2 or 4 (405-SUPI)
+  Direction direction = Direction::to_server;  // DIR of the frames this side sends
+  // A data frame the peer does not acknowledge within this time ends in a link abort.
+  Duration ack_timeout = 100ms;
+  // Start in `ready` instead of `aborting`: a side that was running before a recording starts
+  // (trace `init: operational`). A restarting side must not use it.
+  bool start_ready = false;
+};
+
+struct LinkStats {
+  std::uint32_t frames_invalid = 0;      // parity, direction or control-code errors
+  std::uint32_t frames_repeated = 0;     // a data frame seen again (stale cycle)
+  std::uint32_t frames_refused = 0;      // a new data frame not taken while a message waits
+  std::uint32_t fragments_orphaned = 0;  // continuation/last without a first
+  std::uint32_t messages_sent = 0;
+  std::uint32_t messages_received = 0;
+  std::uint32_t messages_dropped = 0;  // length, padding or CRC check failed
+  std::uint32_t sequence_errors = 0;
+  std::uint32_t ack_timeouts = 0;
+  std::uint32_t aborts_local = 0;  // aborts this side started
+  std::uint32_t aborts_peer = 0;   // aborts the peer started
+};
+
+// What one receive() brought.
+struct LinkEvents {
+  bool reset = false;             // all transfers were dropped (peer abort, timeout, protocol)
+  bool message_sent = false;      // the peer acknowledged the last fragment of our message
+  bool message_received = false;  // a checked message waits in message()
+};
+
+class Link {
+ public:
+  // Throws std::invalid_argument (configuration time) for a width other than 1, 2 or 4.
+  explicit Link(const LinkConfig& cfg);
+
+  [[nodiscard]] const LinkConfig& config() const { return cfg_; }
+  [[nodiscard]] LinkState state() const { return state_; }
+  [[nodiscard]] const LinkStats& stats() const { return stats_; }
+
+  // Drops everything and resynchronises with the peer (ABORT until ABORT-ACK).
+  void abort();
+
+  // Reads the peer's frame of this cycle.
+  LinkEvents receive(Time now, std::span<const Word> in);
+  // Writes this side's frame for this cycle (channel_words words).
+  void transmit(Time now, std::span<Word> out);
+
+  // Starts sending a PDU (kMinPduSize..kMaxPduSize bytes); false while not ready or busy.
+  [[nodiscard]] bool can_send() const { return state_ == LinkState::ready && !tx_active_; }
+  bool send(std::span<const std::uint8_t> pdu);
+  [[nodiscard]] bool sending() const { return tx_active_; }
+
+  // The received message (PDU without the CRC) until release_message().
+  [[nodiscard]] bool has_message() const { return rx_complete_; }
+  [[nodiscard]] std::span<const std::uint8_t> message() const;
+  void release_message();
+
+ private:
+  void reset_transfers();
+  void enter_acking();
+  void take_ack(std::uint8_t ack, LinkEvents& ev);
+  void process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev);
+  void finish_message(LinkEvents& ev);
+
+  LinkConfig cfg_;
+  std::size_t data_size_;
+  Direction peer_dir_;
+  LinkState state_ = LinkState::aborting;
+  LinkStats stats_{};
+
+  // Sending.
+  std::array<std::uint8_t, kMaxMessageSize> tx_{};
+  std::size_t tx_size_ = 0;
+  std::size_t tx_offset_ = 0;  // first byte of the fragment on the channel
+  bool tx_active_ = false;
+  bool tx_shown_ = false;  // the current fragment has been transmitted at least once
+  Time tx_shown_at_{};
+  std::uint8_t tx_seq_ = 0;
+
+  // Receiving.
+  std::array<std::uint8_t, kMaxMessageSize + kMaxFrameData> rx_{};
+  std::size_t rx_size_ = 0;
+  std::size_t rx_expected_ = 0;  // message size once the count word is in, else 0
+  bool rx_in_message_ = false;
+  bool rx_complete_ = false;
+  std::uint8_t rx_last_ = 3;
+};
+
+}  // namespace ibs::pcp

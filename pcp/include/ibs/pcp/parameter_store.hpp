@@ -1,0 +1,58 @@
+// The MC6000's parameter memory behind the PCP server: a RAM value per parameter and an EEPROM
+// copy per EEPROM parameter (seed 000, 11.2.1: "each have an EEPROM address and a RAM address").
+// Fixed size; the table is checked once at construction (configuration time).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/pcp/data_types.hpp"
+#include "ibs/pcp/mc6000_parameters.hpp"
+
+namespace ibs::pcp {
+
+inline constexpr std::size_t kMaxParameters = 64;
+
+class ParameterStore {
+ public:
+  // Throws std::invalid_argument naming the parameter when the table has more than
+  // kMaxParameters rows, a duplicate number, a number above 999, an empty or over-long name,
+  // limits that do not fit the type, min > max, or a default outside min..max.
+  explicit ParameterStore(std::span<const ParameterInfo> table);
+
+  [[nodiscard]] std::span<const ParameterInfo> table() const { return table_; }
+  [[nodiscard]] const ParameterInfo* info(std::uint16_t number) const;
+
+  // The RAM value, the one every access sees.
+  [[nodiscard]] std::optional<Value> get(std::uint16_t number) const;
+  // Sets the RAM value without any check but existence: the device model's door for actual
+  // values (408-IBSTA, 77-SPEED) and for reading back control values.
+  bool set(std::uint16_t number, std::uint32_t raw);
+  // The EEPROM copy of an EEPROM parameter (nullopt for RAM parameters).
+  [[nodiscard]] std::optional<Value> eeprom(std::uint16_t number) const;
+  bool commit_eeprom(std::uint16_t number, std::uint32_t raw);
+
+  // Power-on: EEPROM values copied to RAM, RAM control values and actual values set to their
+  // defaults (seed 000, 11.2.1).
+  void power_on();
+  // 4-PROG = 1: every value, RAM and EEPROM, back to its default (seed 000, 10).
+  void factory_defaults();
+
+  // A table number (min, max, default: signed_raw numbers or float bits) as the raw value.
+  [[nodiscard]] static std::uint32_t to_raw(const ParameterInfo& p, std::int64_t number);
+  [[nodiscard]] static std::uint32_t default_raw(const ParameterInfo& p) {
+    return to_raw(p, p.default_value);
+  }
+
+ private:
+  [[nodiscard]] std::optional<std::size_t> slot(std::uint16_t number) const;
+
+  std::span<const ParameterInfo> table_;
+  std::array<std::uint32_t, kMaxParameters> ram_{};
+  std::array<std::uint32_t, kMaxParameters> eeprom_{};
+};
+
+}  // namespace ibs::pcp

@@ -1,0 +1,157 @@
+// The MC6000's PCP server: the servo side of the parameter channel (seed 001, 4.2). The device
+// model steps it once per 1 ms sample (seed 001, 7.2) with the channel words and the time; the
+// server answers Initiate, Read, Write, Get-OV long, Identify and Status from its parameter
+// model and may send Information Reports (the KBL of 4.2.2).
+//
+// Latency model (docs/pcp.md, "Latency model"): a complete request is executed
+// `processing(workload)` after it arrived, processing = min + workload * (max - min), then the
+// confirmation is segmented back. EEPROM writes are acknowledged once in RAM and saved in the
+// background, 15 ms per byte (seed 000, 3 and 10.2.2); another EEPROM write in that time is
+// refused with "not executable now" and sets the EEPROM-busy bit of 85-SERR.
+//
+// The cycle path (step, the setters) allocates nothing, throws nothing, reads no clock.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/interbus/time.hpp"
+#include "ibs/interbus/words.hpp"
+#include "ibs/pcp/link.hpp"
+#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/pcp/parameter_store.hpp"
+#include "ibs/pcp/pdu.hpp"
+
+namespace ibs::pcp {
+
+struct LatencyModel {
+  // Time from a complete request to its execution: the servo's background task, slower as the
+  // control loop takes more of the processor. processing = min + workload * (max - min).
+  Duration processing_min = 7ms;
+  Duration processing_max = 27ms;
+  // Seed 000, 3: "To save a byte in EEPROM, the servocontroller needs 15 ms".
+  Duration eeprom_byte_time = 15ms;
+  // Seed 000, 10, exception 1: 4-PROG = 1 answers once all parameters are reset, "up to 10 s".
+  Duration factory_defaults_time = 10s;
+  // 80-SLOAD = -2: the dataset check and save before SLOAD reads 0 (seed 000, 11.4; chosen).
+  Duration dataset_check_time = 500ms;
+
+  [[nodiscard]] Duration processing(double workload) const;
+
+  // The defaults per channel width, calibrated so that a Read or Write, end to end at the master,
+  // spans seed 001 7.2's 10..35 ms as the workload goes 0..1 (bus cycle 0.567 ms of one MC6000 on
+  // the ring, 1 ms samples): 4 words 7..27 ms, 2 words 0..21 ms. One word cannot: its
+  // segmentation alone takes 33..36 ms, so processing gets 0..2 ms (docs/pcp.md, errata).
+  static LatencyModel for_channel(int channel_words);
+  // Replay (one trace step = one device step): a request is executed in the step it completes.
+  static LatencyModel immediate();
+};
+
+enum class StartMode : std::uint8_t {
+  power_on,  // as after switching on: SERR power-on bit set, the link announces the restart
+  running,   // running for a while: SERR read and clear, link ready (trace `init: operational`)
+};
+
+struct ServerConfig {
+  int channel_words = 1;  // 1, 2 or 4 (405-SUPI)
+  Kbl kbl = kMc6000Kbl;
+  std::uint16_t password = 0;           // an Initiate must carry it
+  std::optional<LatencyModel> latency;  // empty: LatencyModel::for_channel(channel_words)
+  double workload = 0.0;                // 0..1
+  Duration link_ack_timeout = 100ms;
+  IdentifyInfo identity{Name::from("Lust"), Name::from("MC6000"), Name::from("PCP 2.0")};
+  StartMode start = StartMode::power_on;
+};
+
+struct ServerStats {
+  std::uint32_t requests = 0;
+  std::uint32_t positive = 0;
+  std::uint32_t negative = 0;
+  std::uint32_t aborts_sent = 0;
+  std::uint32_t aborts_received = 0;
+  std::uint32_t link_resets = 0;
+  std::uint32_t eeprom_saves = 0;
+};
+
+class Server {
+ public:
+  // Throws std::invalid_argument for a bad width, workload or table (configuration time).
+  explicit Server(const ServerConfig& cfg, std::span<const ParameterInfo> table =
+                                               std::span<const ParameterInfo>(kMc6000Parameters));
+
+  // Switches the servo off and on: RAM from EEPROM, an EEPROM save in progress is lost, SERR
+  // power-on bit, association gone, the link announces the restart with ABORT.
+  void power_on(Time now);
+
+  // One device sample: reads the master's channel words, writes the servo's.
+  void step(Time now, std::span<const Word> m2s, std::span<Word> s2m);
+  // The frame the servo shows before its first sample (a trace's s2m[0]).
+  void show(Time now, std::span<Word> s2m) { link_.transmit(now, s2m); }
+
+  [[nodiscard]] ParameterStore& parameters() { return store_; }
+  [[nodiscard]] const ParameterStore& parameters() const { return store_; }
+
+  // Inputs from the device model.
+  void set_workload(double workload);                           // clamped to 0..1
+  void set_drive_running(bool running) { running_ = running; }  // 80-SLOAD only at standstill
+  void set_fault(bool fault) { fault_ = fault; }                // Status: physical status 1
+
+  // Queues an Information Report with the parameter's value; false without an association,
+  // while the server is busy, or for an unknown parameter.
+  bool information_report(std::uint16_t number);
+
+  // How many times 15-PLRDY = 1 was written since construction (the device model recalculates).
+  [[nodiscard]] std::uint32_t plrdy_requests() const { return plrdy_requests_; }
+  [[nodiscard]] bool associated() const { return associated_; }
+  [[nodiscard]] bool busy() const { return job_active_ || out_pending_; }
+  [[nodiscard]] bool eeprom_busy(Time now) const { return now < eeprom_busy_until_; }
+  [[nodiscard]] const Link& link() const { return link_; }
+  [[nodiscard]] const ServerStats& stats() const { return stats_; }
+  [[nodiscard]] const ServerConfig& config() const { return cfg_; }
+
+ private:
+  void advance(Time now);
+  void handle_message(Time now, std::span<const std::uint8_t> msg);
+  void execute(Time now);
+  void queue_abort(AbortReason reason, std::uint8_t cr);
+  void drop_association();
+  [[nodiscard]] std::uint8_t serr() const;
+  void set_serr_bits(std::uint8_t bits);
+  PcpError do_read(ResponsePdu& r);
+  PcpError do_write(Time now, Duration& extra_delay);
+
+  ServerConfig cfg_;
+  LatencyModel latency_;
+  ParameterStore store_;
+  Link link_;
+  double workload_ = 0.0;
+  bool running_ = false;
+  bool fault_ = false;
+
+  bool associated_ = false;
+  std::uint8_t cr_ = 0;
+
+  bool job_active_ = false;
+  RequestPdu job_{};
+  Time job_at_{};
+
+  bool out_pending_ = false;
+  bool out_is_report_ = false;
+  Pdu out_{};
+  Time out_at_{};
+
+  bool eeprom_pending_ = false;
+  std::uint16_t eeprom_number_ = 0;
+  std::uint32_t eeprom_value_ = 0;
+  Time eeprom_busy_until_{};
+
+  bool download_active_ = false;  // 80-SLOAD = -1 seen
+  bool dataset_checking_ = false;
+  Time dataset_done_at_{};
+
+  std::uint32_t plrdy_requests_ = 0;
+  ServerStats stats_{};
+};
+
+}  // namespace ibs::pcp

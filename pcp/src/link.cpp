@@ -1,0 +1,308 @@
+#include "ibs/pcp/link.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+#include <string>
+
+#include "ibs/pcp/crc16.hpp"
+
+namespace ibs::pcp {
+
+namespace {
+
+constexpr std::uint8_t kSeqMask = 0x03;
+
+constexpr std::uint8_t next_seq(std::uint8_t s) {
+  return static_cast<std::uint8_t>((s + 1U) & kSeqMask);
+}
+
+}  // namespace
+
+std::uint8_t encode_admin(AdminByte a) {
+  unsigned b = (static_cast<unsigned>(a.dir) & 1U) << 7U;
+  b |= (static_cast<unsigned>(a.type) & 3U) << 5U;
+  b |= (static_cast<unsigned>(a.seq) & 3U) << 3U;
+  b |= (static_cast<unsigned>(a.ack) & 3U) << 1U;
+  // Odd parity: the byte always has an odd number of ones.
+  if (std::popcount(b) % 2 == 0) b |= 1U;
+  return static_cast<std::uint8_t>(b);
+}
+
+std::optional<AdminByte> decode_admin(std::uint8_t b) {
+  if (std::popcount(static_cast<unsigned>(b)) % 2 == 0) return std::nullopt;
+  AdminByte a;
+  a.dir = static_cast<Direction>((b >> 7U) & 1U);
+  a.type = static_cast<FrameType>((b >> 5U) & 3U);
+  a.seq = static_cast<std::uint8_t>((b >> 3U) & 3U);
+  a.ack = static_cast<std::uint8_t>((b >> 1U) & 3U);
+  if (a.type == FrameType::control && a.seq == 3) return std::nullopt;
+  return a;
+}
+
+std::string_view to_string(LinkState s) {
+  switch (s) {
+    case LinkState::aborting:
+      return "aborting";
+    case LinkState::acking:
+      return "acking";
+    case LinkState::ready:
+      return "ready";
+  }
+  return "?";
+}
+
+Link::Link(const LinkConfig& cfg)
+    : cfg_(cfg),
+      data_size_(valid_channel_words(cfg.channel_words) ? frame_data_size(cfg.channel_words) : 0),
+      peer_dir_(cfg.direction == Direction::to_server ? Direction::to_client
+                                                      : Direction::to_server) {
+  if (!valid_channel_words(cfg.channel_words)) {
+    throw std::invalid_argument("PCP channel of " + std::to_string(cfg.channel_words) +
+                                " words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)");
+  }
+  if (cfg.ack_timeout <= Duration::zero()) {
+    throw std::invalid_argument("PCP link ack_timeout must be positive");
+  }
+  reset_transfers();
+  if (cfg.start_ready) state_ = LinkState::ready;
+}
+
+void Link::reset_transfers() {
+  tx_size_ = 0;
+  tx_offset_ = 0;
+  tx_active_ = false;
+  tx_shown_ = false;
+  tx_seq_ = 0;
+  rx_size_ = 0;
+  rx_expected_ = 0;
+  rx_in_message_ = false;
+  rx_complete_ = false;
+  rx_last_ = 3;  // the first data frame after a reset carries SEQ 0
+}
+
+void Link::abort() {
+  reset_transfers();
+  state_ = LinkState::aborting;
+  ++stats_.aborts_local;
+}
+
+void Link::enter_acking() {
+  reset_transfers();
+  state_ = LinkState::acking;
+  ++stats_.aborts_peer;
+}
+
+bool Link::send(std::span<const std::uint8_t> pdu) {
+  if (!can_send() || pdu.size() < kMinPduSize || pdu.size() > kMaxPduSize) return false;
+  PduHeader h;
+  // The receiver delimits the message by its count word, so it must be right.
+  if (decode_header(pdu, h) != PduError::none) return false;
+  std::copy(pdu.begin(), pdu.end(), tx_.begin());
+  const std::uint16_t crc = crc16(pdu);
+  tx_[pdu.size()] = high_byte(crc);
+  tx_[pdu.size() + 1] = low_byte(crc);
+  tx_size_ = pdu.size() + kCrcSize;
+  tx_offset_ = 0;
+  tx_active_ = true;
+  tx_shown_ = false;
+  return true;
+}
+
+std::span<const std::uint8_t> Link::message() const {
+  if (!rx_complete_) return {};
+  return {rx_.data(), rx_expected_ - kCrcSize};
+}
+
+void Link::release_message() {
+  rx_complete_ = false;
+  rx_size_ = 0;
+  rx_expected_ = 0;
+}
+
+LinkEvents Link::receive(Time now, std::span<const Word> in) {
+  LinkEvents ev;
+  if (state_ == LinkState::ready && tx_active_ && tx_shown_ &&
+      now - tx_shown_at_ >= cfg_.ack_timeout) {
+    ++stats_.ack_timeouts;
+    abort();
+    ev.reset = true;
+    return ev;
+  }
+  const auto words = static_cast<std::size_t>(cfg_.channel_words);
+  if (in.size() < words) {
+    ++stats_.frames_invalid;
+    return ev;
+  }
+  std::array<std::uint8_t, kMaxFrameBytes> b{};
+  for (std::size_t i = 0; i < words; ++i) {
+    b[2 * i] = high_byte(in[i]);
+    b[2 * i + 1] = low_byte(in[i]);
+  }
+  const std::optional<AdminByte> a = decode_admin(b[0]);
+  const std::span<const std::uint8_t> data(b.data() + 1, data_size_);
+  if (!a || a->dir != peer_dir_) {
+    ++stats_.frames_invalid;
+    return ev;
+  }
+
+  if (a->type == FrameType::control) {
+    if (std::any_of(data.begin(), data.end(), [](std::uint8_t x) { return x != 0; })) {
+      ++stats_.frames_invalid;
+      return ev;
+    }
+    const auto code = static_cast<ControlCode>(a->seq);
+    switch (state_) {
+      case LinkState::aborting:
+        if (code == ControlCode::abort_ack) state_ = LinkState::ready;
+        if (code == ControlCode::abort) enter_acking();  // both sides started an abort
+        break;
+      case LinkState::acking:
+        if (code != ControlCode::abort) state_ = LinkState::ready;
+        break;
+      case LinkState::ready:
+        if (code == ControlCode::abort) {
+          enter_acking();
+          ev.reset = true;
+        } else if (code == ControlCode::idle) {
+          take_ack(a->ack, ev);  // an idle peer still acknowledges our fragments
+        }
+        break;
+    }
+    return ev;
+  }
+
+  // A data frame.
+  if (state_ == LinkState::aborting) return ev;  // the peer has not seen our ABORT yet
+  if (state_ == LinkState::acking) state_ = LinkState::ready;
+  take_ack(a->ack, ev);
+  process_data(*a, data, ev);
+  return ev;
+}
+
+void Link::take_ack(std::uint8_t ack, LinkEvents& ev) {
+  // Only a fragment that has been on the channel can be acknowledged; ACK names its SEQ.
+  if (!tx_active_ || !tx_shown_ || ack != tx_seq_) return;
+  tx_offset_ += std::min(data_size_, tx_size_ - tx_offset_);
+  tx_seq_ = next_seq(tx_seq_);
+  tx_shown_ = false;
+  if (tx_offset_ >= tx_size_) {
+    tx_active_ = false;
+    ++stats_.messages_sent;
+    ev.message_sent = true;
+  }
+}
+
+void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev) {
+  if (a.seq == rx_last_) {
+    ++stats_.frames_repeated;
+    return;
+  }
+  if (a.seq != next_seq(rx_last_)) {
+    // Stop-and-wait never skips a number: the peer's state is not ours. Resynchronise.
+    ++stats_.sequence_errors;
+    abort();
+    ev.reset = true;
+    return;
+  }
+  if (rx_complete_) {
+    ++stats_.frames_refused;  // not acknowledged: the peer repeats it until we take it
+    return;
+  }
+  rx_last_ = a.seq;
+  if (a.type == FrameType::first) {
+    rx_size_ = 0;
+    rx_expected_ = 0;
+    rx_in_message_ = true;
+  } else if (!rx_in_message_) {
+    ++stats_.fragments_orphaned;
+    return;
+  }
+  if (rx_size_ + data.size() > rx_.size()) {
+    rx_in_message_ = false;
+    ++stats_.messages_dropped;
+    return;
+  }
+  std::copy(data.begin(), data.end(), rx_.begin() + static_cast<std::ptrdiff_t>(rx_size_));
+  rx_size_ += data.size();
+  if (rx_expected_ == 0 && rx_size_ >= 4) {
+    const std::size_t pdu = 4U + 2U * make_word(rx_[2], rx_[3]);
+    if (pdu < kMinPduSize || pdu > kMaxPduSize) {
+      rx_in_message_ = false;
+      ++stats_.messages_dropped;
+      return;
+    }
+    rx_expected_ = pdu + kCrcSize;
+  }
+  if (a.type == FrameType::last) {
+    finish_message(ev);
+  } else if (rx_expected_ != 0 && rx_size_ >= rx_expected_) {
+    rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
+    ++stats_.messages_dropped;
+  }
+}
+
+void Link::finish_message(LinkEvents& ev) {
+  rx_in_message_ = false;
+  const bool length_ok =
+      rx_expected_ != 0 && rx_size_ >= rx_expected_ && rx_size_ - rx_expected_ < data_size_;
+  bool ok = length_ok;
+  if (ok) {
+    for (std::size_t i = rx_expected_; i < rx_size_; ++i) ok = ok && rx_[i] == 0;
+  }
+  if (ok) {
+    const std::size_t pdu = rx_expected_ - kCrcSize;
+    const std::uint16_t crc = crc16(std::span<const std::uint8_t>(rx_.data(), pdu));
+    ok = make_word(rx_[pdu], rx_[pdu + 1]) == crc;
+  }
+  if (!ok) {
+    ++stats_.messages_dropped;
+    rx_size_ = 0;
+    rx_expected_ = 0;
+    return;
+  }
+  rx_complete_ = true;
+  ++stats_.messages_received;
+  ev.message_received = true;
+}
+
+void Link::transmit(Time now, std::span<Word> out) {
+  std::array<std::uint8_t, kMaxFrameBytes> b{};
+  AdminByte a;
+  a.dir = cfg_.direction;
+  a.ack = rx_last_;
+  switch (state_) {
+    case LinkState::aborting:
+      a.type = FrameType::control;
+      a.seq = static_cast<std::uint8_t>(ControlCode::abort);
+      break;
+    case LinkState::acking:
+      a.type = FrameType::control;
+      a.seq = static_cast<std::uint8_t>(ControlCode::abort_ack);
+      break;
+    case LinkState::ready:
+      if (!tx_active_) {
+        a.type = FrameType::control;
+        a.seq = static_cast<std::uint8_t>(ControlCode::idle);
+        break;
+      }
+      {
+        const std::size_t n = std::min(data_size_, tx_size_ - tx_offset_);
+        a.type = tx_offset_ == 0
+                     ? FrameType::first
+                     : (tx_offset_ + n == tx_size_ ? FrameType::last : FrameType::middle);
+        a.seq = tx_seq_;
+        std::copy_n(tx_.begin() + static_cast<std::ptrdiff_t>(tx_offset_), n, b.begin() + 1);
+        if (!tx_shown_) {
+          tx_shown_ = true;
+          tx_shown_at_ = now;
+        }
+      }
+      break;
+  }
+  b[0] = encode_admin(a);
+  const std::size_t words = std::min(out.size(), static_cast<std::size_t>(cfg_.channel_words));
+  for (std::size_t i = 0; i < words; ++i) out[i] = make_word(b[2 * i], b[2 * i + 1]);
+}
+
+}  // namespace ibs::pcp

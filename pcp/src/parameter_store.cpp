@@ -1,0 +1,107 @@
+#include "ibs/pcp/parameter_store.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace ibs::pcp {
+
+namespace {
+
+[[noreturn]] void refuse(const ParameterInfo& p, const std::string& why) {
+  throw std::invalid_argument("parameter table: " + std::to_string(p.number) + "-" +
+                              std::string(p.name) + ": " + why);
+}
+
+bool fits(const ParameterInfo& p, std::int64_t v) {
+  if (p.type == DataType::float_ieee) return v >= 0 && v <= 0xFFFFFFFFLL;
+  return value_from_signed_raw(p.type, v).has_value();
+}
+
+std::uint32_t raw_of(const ParameterInfo& p, std::int64_t v) {
+  if (p.type == DataType::float_ieee) return static_cast<std::uint32_t>(v);
+  return value_from_signed_raw(p.type, v)->raw;
+}
+
+}  // namespace
+
+ParameterStore::ParameterStore(std::span<const ParameterInfo> table) : table_(table) {
+  if (table.size() > kMaxParameters) {
+    throw std::invalid_argument("parameter table has " + std::to_string(table.size()) +
+                                " rows; the store holds at most " + std::to_string(kMaxParameters));
+  }
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const ParameterInfo& p = table[i];
+    if (p.number > kMaxParameterNumber) refuse(p, "number above 999");
+    if (p.name.empty() || p.name.size() > 5) refuse(p, "name must have 1 to 5 characters");
+    for (std::size_t j = 0; j < i; ++j) {
+      if (table[j].number == p.number) refuse(p, "number appears twice");
+    }
+    if (!fits(p, p.min) || !fits(p, p.max) || !fits(p, p.default_value)) {
+      refuse(p, "a limit or the default does not fit " + std::string(to_string(p.type)));
+    }
+    if (compare(p.type, raw_of(p, p.min), raw_of(p, p.max)) > 0) refuse(p, "min above max");
+    const std::uint32_t d = raw_of(p, p.default_value);
+    if (compare(p.type, d, raw_of(p, p.min)) < 0 || compare(p.type, d, raw_of(p, p.max)) > 0) {
+      refuse(p, "default outside min..max");
+    }
+  }
+  factory_defaults();
+}
+
+std::uint32_t ParameterStore::to_raw(const ParameterInfo& p, std::int64_t number) {
+  return fits(p, number) ? raw_of(p, number) : 0;
+}
+
+std::optional<std::size_t> ParameterStore::slot(std::uint16_t number) const {
+  for (std::size_t i = 0; i < table_.size(); ++i) {
+    if (table_[i].number == number) return i;
+  }
+  return std::nullopt;
+}
+
+const ParameterInfo* ParameterStore::info(std::uint16_t number) const {
+  const auto s = slot(number);
+  return s ? &table_[*s] : nullptr;
+}
+
+std::optional<Value> ParameterStore::get(std::uint16_t number) const {
+  const auto s = slot(number);
+  if (!s) return std::nullopt;
+  return Value{table_[*s].type, ram_[*s]};
+}
+
+bool ParameterStore::set(std::uint16_t number, std::uint32_t raw) {
+  const auto s = slot(number);
+  if (!s) return false;
+  const std::size_t bytes = size_of(table_[*s].type);
+  ram_[*s] = bytes >= 4 ? raw : (raw & ((1U << (8U * bytes)) - 1U));
+  return true;
+}
+
+std::optional<Value> ParameterStore::eeprom(std::uint16_t number) const {
+  const auto s = slot(number);
+  if (!s || table_[*s].category != Category::eeprom) return std::nullopt;
+  return Value{table_[*s].type, eeprom_[*s]};
+}
+
+bool ParameterStore::commit_eeprom(std::uint16_t number, std::uint32_t raw) {
+  const auto s = slot(number);
+  if (!s || table_[*s].category != Category::eeprom) return false;
+  eeprom_[*s] = raw;
+  return true;
+}
+
+void ParameterStore::power_on() {
+  for (std::size_t i = 0; i < table_.size(); ++i) {
+    ram_[i] = table_[i].category == Category::eeprom ? eeprom_[i] : default_raw(table_[i]);
+  }
+}
+
+void ParameterStore::factory_defaults() {
+  for (std::size_t i = 0; i < table_.size(); ++i) {
+    ram_[i] = default_raw(table_[i]);
+    eeprom_[i] = ram_[i];
+  }
+}
+
+}  // namespace ibs::pcp

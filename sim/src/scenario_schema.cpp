@@ -1,0 +1,469 @@
+// The scenario schema (docs/scenarios.md): a document tree of either format -> Scenario. Refuses
+// unknown keys, wrong types and values the data model cannot hold; the meaning is checked
+// afterwards by validate() (scenario_validate.cpp).
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibs/sim/scenario.hpp"
+#include "scenario_internal.hpp"
+
+namespace ibs::sim::detail {
+
+namespace {
+
+using Kind = Node::Kind;
+
+const std::vector<std::string_view> kTopKeys = {"name",   "duration", "bus",
+                                                "device", "timeline", "random_faults"};
+const std::vector<std::string_view> kBusKeys = {"cycle_time", "baud", "software_time",
+                                                "recovery_cycles"};
+const std::vector<std::string_view> kDeviceKeys = {
+    "name",  "type",   "supi",        "ibcnf",       "bus",
+    "phase", "jitter", "initialised", "watchdog_ms", "watchdog_reaction"};
+const std::vector<std::string_view> kActionKeys = {
+    "state", "emergency_stop", "block_power", "speed", "frequency",     "read",
+    "write", "describe",       "wait_state",  "fault", "master_restart"};
+const std::vector<std::string_view> kEntryKeys = [] {
+  std::vector<std::string_view> keys{"at", "device"};
+  keys.insert(keys.end(), kActionKeys.begin(), kActionKeys.end());
+  keys.insert(keys.end(), {"timeout", "count", "duration"});
+  return keys;
+}();
+const std::vector<std::string_view> kWriteKeys = {"parameter", "value"};
+const std::vector<std::string_view> kRandomKeys = {
+    "seed",       "corrupt_per_s",       "power_cycle_per_s", "device_fault_per_s",
+    "lost_per_s", "master_restart_per_s"};
+
+std::string join(const std::vector<std::string_view>& names) {
+  std::string out;
+  for (const std::string_view n : names) {
+    if (!out.empty()) out += ", ";
+    out += n;
+  }
+  return out;
+}
+
+class Reader {
+ public:
+  Reader(Format format, const std::string& file) : format_(format), file_(file) {}
+
+  [[noreturn]] void fail(std::size_t line, const std::string& what) const {
+    throw ScenarioError(file_, line, what);
+  }
+
+  std::string kind_name(const Node& n) const {
+    switch (n.kind) {
+      case Kind::table:
+        return format_ == Format::json ? "an object" : "a table";
+      case Kind::array:
+        return "an array";
+      case Kind::string:
+        return "a string";
+      case Kind::integer:
+        return "an integer";
+      case Kind::floating:
+        return "a fractional number";
+      case Kind::boolean:
+        return n.boolean ? "true" : "false";
+      case Kind::null:
+        return "null";
+      case Kind::datetime:
+        return "a date/time";
+    }
+    return "?";
+  }
+  std::string table_word() const { return format_ == Format::json ? "an object" : "a table"; }
+
+  // Calls `each(key, key_line, value)` for every member of a table, after refusing keys not in
+  // `known` (with a suggestion for a near miss).
+  template <typename F>
+  void members(const Node& table, const std::vector<std::string_view>& known,
+               std::string_view where, F&& each) const {
+    for (std::size_t i = 0; i < table.children.size(); ++i) {
+      const std::string& key = table.keys[i];
+      bool found = false;
+      for (const std::string_view k : known) found = found || k == key;
+      if (!found) {
+        const std::string_view near = closest_name(key, known);
+        fail(table.key_lines[i],
+             "unknown key '" + key + "' " + std::string(where) +
+                 (near.empty() ? " (known: " + join(known) + ")"
+                               : " (did you mean '" + std::string(near) + "'?)"));
+      }
+      each(key, table.key_lines[i], table.children[i]);
+    }
+  }
+
+  void expect_table(const Node& n, std::string_view key) const {
+    if (n.kind != Kind::table) {
+      fail(n.line, "'" + std::string(key) + "' must be " + table_word() + ", not " + kind_name(n));
+    }
+  }
+
+  std::string string(const Node& n, std::string_view key) const {
+    if (n.kind != Kind::string) {
+      fail(n.line, "'" + std::string(key) + "' must be a string, not " + kind_name(n));
+    }
+    return n.text;
+  }
+
+  bool boolean(const Node& n, std::string_view key) const {
+    if (n.kind != Kind::boolean) {
+      fail(n.line, "'" + std::string(key) + "' must be true or false, not " + kind_name(n));
+    }
+    return n.boolean;
+  }
+
+  // An action flag: only `true` makes sense (leaving the key out is the "no").
+  void flag(const Node& n, std::string_view key) const {
+    if (!boolean(n, key)) {
+      fail(n.line, "'" + std::string(key) + "' can only be true (leave the entry out instead)");
+    }
+  }
+
+  std::int64_t integer(const Node& n, std::string_view key, std::int64_t min,
+                       std::int64_t max) const {
+    if (n.kind != Kind::integer) {
+      fail(n.line, "'" + std::string(key) + "' must be an integer, not " + kind_name(n));
+    }
+    if (n.integer < min || n.integer > max) {
+      fail(n.line, "'" + std::string(key) + "' = " + std::to_string(n.integer) +
+                       " is out of range (" + std::to_string(min) + ".." + std::to_string(max) +
+                       ")");
+    }
+    return n.integer;
+  }
+
+  int int_value(const Node& n, std::string_view key) const {
+    return static_cast<int>(
+        integer(n, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+  }
+
+  double number(const Node& n, std::string_view key) const {
+    if (n.kind == Kind::integer) return static_cast<double>(n.integer);
+    if (n.kind == Kind::floating) return n.floating;
+    fail(n.line, "'" + std::string(key) + "' must be a number, not " + kind_name(n));
+  }
+
+  Duration time(const Node& n, std::string_view key) const {
+    if (n.kind != Kind::string) {
+      fail(n.line, "'" + std::string(key) +
+                       "' must be a time string with a unit, e.g. \"250 ms\", not " + kind_name(n));
+    }
+    try {
+      return parse_time(n.text);
+    } catch (const std::invalid_argument& e) {
+      fail(n.line, "'" + std::string(key) + "': " + e.what());
+    }
+  }
+
+  std::uint16_t parameter(const Node& n, std::string_view key) const {
+    return static_cast<std::uint16_t>(integer(n, key, 0, 0xFFFF));
+  }
+
+ private:
+  Format format_;
+  const std::string& file_;
+};
+
+void read_bus(const Reader& r, const Node& n, BusSettings& bus, SourceMap& lines) {
+  r.expect_table(n, "bus");
+  lines.bus = n.line;
+  r.members(n, kBusKeys, "in bus", [&](const std::string& key, std::size_t, const Node& v) {
+    if (key == "cycle_time") {
+      bus.cycle_time = r.time(v, key);
+      lines.cycle_time = v.line;
+    } else if (key == "baud") {
+      const std::string baud = r.string(v, key);
+      if (baud != "500k" && baud != "2M") {
+        r.fail(v.line, "'baud' must be \"500k\" or \"2M\", not \"" + baud + "\"");
+      }
+      bus.baud_2mbit = baud == "2M";
+    } else if (key == "software_time") {
+      bus.software_time = r.time(v, key);
+      lines.software_time = v.line;
+    } else if (key == "recovery_cycles") {
+      bus.recovery_cycles = r.int_value(v, key);
+      lines.recovery_cycles = v.line;
+    }
+  });
+}
+
+void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l) {
+  if (n.kind != Kind::table) {
+    r.fail(n.line, "each 'device' must be " + r.table_word() + ", not " + r.kind_name(n));
+  }
+  l.table = n.line;
+  bool has_type = false;
+  r.members(n, kDeviceKeys, "in a device", [&](const std::string& key, std::size_t, const Node& v) {
+    if (key == "name") {
+      d.name = r.string(v, key);
+      l.name = v.line;
+    } else if (key == "type") {
+      const std::string type = r.string(v, key);
+      if (type != "mc6000" && type != "vf1000") {
+        r.fail(v.line, "'type' must be \"mc6000\" or \"vf1000\", not \"" + type + "\"");
+      }
+      d.kind = type == "vf1000" ? DeviceKind::vf1000 : DeviceKind::mc6000;
+      has_type = true;
+    } else if (key == "supi") {
+      d.supi = r.int_value(v, key);
+      l.supi = v.line;
+    } else if (key == "ibcnf") {
+      d.ibcnf = r.int_value(v, key);
+      l.ibcnf = v.line;
+    } else if (key == "bus") {
+      const std::string bus = r.string(v, key);
+      if (bus != "local" && bus != "remote") {
+        r.fail(v.line, "'bus' must be \"local\" or \"remote\", not \"" + bus + "\"");
+      }
+      d.bus = bus == "local" ? BusSide::local : BusSide::remote;
+      l.bus = v.line;
+    } else if (key == "phase") {
+      d.phase = r.time(v, key);
+      l.phase = v.line;
+    } else if (key == "jitter") {
+      d.jitter = r.time(v, key);
+      l.jitter = v.line;
+    } else if (key == "initialised") {
+      d.initialised = r.boolean(v, key);
+    } else if (key == "watchdog_ms") {
+      d.watchdog_ms = r.int_value(v, key);
+      l.watchdog_ms = v.line;
+    } else if (key == "watchdog_reaction") {
+      d.watchdog_reaction = r.int_value(v, key);
+      l.watchdog_reaction = v.line;
+    }
+  });
+  if (l.name == 0) r.fail(n.line, "a device needs a 'name'");
+  if (!has_type)
+    r.fail(n.line, "device '" + d.name + "' needs a 'type' (\"mc6000\" or \"vf1000\")");
+  if (d.kind == DeviceKind::vf1000) {
+    // The struct keeps its defaults for these; a VF1000 has neither (seed 001, 3.1.2).
+    if (l.supi != 0) r.fail(l.supi, "'supi' is an MC6000 setting; a VF1000 has no 405-SUPI");
+    if (l.ibcnf != 0) r.fail(l.ibcnf, "'ibcnf' is an MC6000 setting; a VF1000 has no 406-IBCNF");
+  }
+}
+
+void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l) {
+  if (n.kind != Kind::table) {
+    r.fail(n.line, "each 'timeline' entry must be " + r.table_word() + ", not " + r.kind_name(n));
+  }
+  l.table = n.line;
+  e.source_line = n.line;
+  std::string action_key;
+  std::string modifier_key;
+  bool has_at = false;
+  r.members(
+      n, kEntryKeys, "in a timeline entry",
+      [&](const std::string& key, std::size_t key_line, const Node& v) {
+        if (key == "at") {
+          e.at = r.time(v, key);
+          l.at = v.line;
+          has_at = true;
+          return;
+        }
+        if (key == "device") {
+          e.device = r.string(v, key);
+          l.device = v.line;
+          return;
+        }
+        if (key == "timeout" || key == "count" || key == "duration") {
+          if (!modifier_key.empty()) {
+            r.fail(key_line, "'" + key + "' and '" + modifier_key + "' (line " +
+                                 std::to_string(l.modifier) + ") do not go together in one entry");
+          }
+          modifier_key = key;
+          l.modifier = v.line;
+          if (key == "count") {
+            e.count = r.int_value(v, key);
+          } else {
+            e.duration = r.time(v, key);
+          }
+          return;
+        }
+        // An action key.
+        if (!action_key.empty()) {
+          r.fail(key_line, "a timeline entry holds one action: this one already has '" +
+                               action_key + "' (line " + std::to_string(l.action) + "), so '" +
+                               key + "' needs an entry of its own");
+        }
+        action_key = key;
+        l.action = v.line;
+        if (key == "state" || key == "wait_state") {
+          e.action = key == "state" ? Action::state : Action::wait_state;
+          e.value = r.string(v, key);
+        } else if (key == "emergency_stop" || key == "block_power" || key == "master_restart") {
+          r.flag(v, key);
+          e.action = key == "emergency_stop" ? Action::emergency_stop
+                     : key == "block_power"  ? Action::block_power
+                                             : Action::master_restart;
+        } else if (key == "speed" || key == "frequency") {
+          e.action = key == "speed" ? Action::speed : Action::frequency;
+          e.number = r.number(v, key);
+        } else if (key == "read" || key == "describe") {
+          e.action = key == "read" ? Action::read : Action::describe;
+          e.parameter = r.parameter(v, key);
+          l.parameter = v.line;
+        } else if (key == "write") {
+          e.action = Action::write;
+          r.expect_table(v, key);
+          bool has_parameter = false;
+          bool has_value = false;
+          r.members(v, kWriteKeys, "in write",
+                    [&](const std::string& k, std::size_t, const Node& w) {
+                      if (k == "parameter") {
+                        e.parameter = r.parameter(w, k);
+                        l.parameter = w.line;
+                        has_parameter = true;
+                      } else {
+                        e.number = r.number(w, k);
+                        l.value = w.line;
+                        has_value = true;
+                      }
+                    });
+          if (!has_parameter) r.fail(v.line, "'write' needs a 'parameter' (its number)");
+          if (!has_value) r.fail(v.line, "'write' needs a 'value' (the raw value)");
+        } else if (key == "fault") {
+          const std::string fault = r.string(v, key);
+          if (fault == "corrupt") {
+            e.action = Action::fault_corrupt;
+          } else if (fault == "power-cycle") {
+            e.action = Action::fault_power_cycle;
+          } else if (fault == "device") {
+            e.action = Action::fault_device;
+          } else if (fault == "lost") {
+            e.action = Action::fault_lost;
+          } else {
+            r.fail(v.line,
+                   "'fault' must be \"corrupt\", \"power-cycle\", \"device\" or \"lost\", not \"" +
+                       fault + "\"");
+          }
+        }
+      });
+  if (!has_at) r.fail(n.line, "a timeline entry needs 'at' (its time, e.g. at = \"250 ms\")");
+  if (action_key.empty()) {
+    r.fail(n.line, "a timeline entry needs an action (one of: " + join(kActionKeys) + ")");
+  }
+  // Which modifier belongs to which action.
+  std::string_view wanted;  // the modifier this action takes, if any
+  switch (e.action) {
+    case Action::wait_state:
+      wanted = "timeout";
+      break;
+    case Action::fault_corrupt:
+      wanted = "count";
+      break;
+    case Action::fault_device:
+    case Action::fault_lost:
+      wanted = "duration";
+      break;
+    default:
+      break;
+  }
+  const std::string what = !fault_name(e.action).empty()
+                               ? "fault = \"" + std::string(fault_name(e.action)) + "\""
+                               : "'" + action_key + "'";
+  if (!modifier_key.empty() && modifier_key != wanted) {
+    r.fail(l.modifier, "'" + modifier_key + "' does not go with " + what +
+                           (wanted.empty() ? "" : " (it takes '" + std::string(wanted) + "')"));
+  }
+  if (e.action == Action::fault_lost && modifier_key.empty()) {
+    r.fail(l.action, "fault = \"lost\" needs 'duration': how long the device stays off the bus");
+  }
+}
+
+void read_random(const Reader& r, const Node& n, RandomFaults& rf, SourceMap& lines) {
+  r.expect_table(n, "random_faults");
+  lines.random = n.line;
+  r.members(n, kRandomKeys, "in random_faults",
+            [&](const std::string& key, std::size_t, const Node& v) {
+              if (key == "seed") {
+                rf.seed = static_cast<std::uint64_t>(
+                    r.integer(v, key, 0, std::numeric_limits<std::int64_t>::max()));
+                lines.seed = v.line;
+                return;
+              }
+              double* rate = nullptr;
+              std::size_t index = 0;
+              if (key == "corrupt_per_s") {
+                rate = &rf.corrupt_per_s;
+                index = 0;
+              } else if (key == "power_cycle_per_s") {
+                rate = &rf.power_cycle_per_s;
+                index = 1;
+              } else if (key == "device_fault_per_s") {
+                rate = &rf.device_fault_per_s;
+                index = 2;
+              } else if (key == "lost_per_s") {
+                rate = &rf.lost_per_s;
+                index = 3;
+              } else {
+                rate = &rf.master_restart_per_s;
+                index = 4;
+              }
+              *rate = r.number(v, key);
+              lines.rates[index] = v.line;
+            });
+}
+
+template <typename T, typename L, typename F>
+void read_array(const Reader& r, const Node& n, std::string_view key, std::string_view toml_form,
+                std::vector<T>& out, std::vector<L>& lines, F&& read_one) {
+  if (n.kind != Kind::array) {
+    r.fail(n.line, "'" + std::string(key) + "' must be an array (" + std::string(toml_form) +
+                       " in TOML, [ ... ] in JSON), not " + r.kind_name(n));
+  }
+  out.resize(n.children.size());
+  lines.resize(n.children.size());
+  for (std::size_t i = 0; i < n.children.size(); ++i) read_one(n.children[i], out[i], lines[i]);
+}
+
+}  // namespace
+
+Scenario read_tree(const Node& root, Format format, const std::string& file, SourceMap& lines) {
+  const Reader r(format, file);
+  Scenario s;
+  s.name = std::filesystem::path(file).stem().string();
+  if (s.name.empty()) s.name = "scenario";
+  lines.root = root.line;
+  if (root.kind != Kind::table) {
+    r.fail(root.line,
+           "a scenario must be " + r.table_word() + " at the top, not " + r.kind_name(root));
+  }
+  bool has_duration = false;
+  r.members(
+      root, kTopKeys, "at the top level", [&](const std::string& key, std::size_t, const Node& v) {
+        if (key == "name") {
+          s.name = r.string(v, key);
+          lines.name = v.line;
+        } else if (key == "duration") {
+          s.duration = r.time(v, key);
+          lines.duration = v.line;
+          has_duration = true;
+        } else if (key == "bus") {
+          read_bus(r, v, s.bus, lines);
+        } else if (key == "device") {
+          lines.device_array = v.line;
+          read_array(
+              r, v, key, "[[device]]", s.devices, lines.devices,
+              [&](const Node& n, DeviceConfig& d, DeviceLines& l) { read_device(r, n, d, l); });
+        } else if (key == "timeline") {
+          read_array(
+              r, v, key, "[[timeline]]", s.timeline, lines.entries,
+              [&](const Node& n, TimelineEntry& e, EntryLines& l) { read_entry(r, n, e, l); });
+        } else if (key == "random_faults") {
+          read_random(r, v, s.random, lines);
+        }
+      });
+  if (!has_duration) {
+    r.fail(root.line, "a scenario needs 'duration' (the simulated time to run, e.g. \"6 s\")");
+  }
+  return s;
+}
+
+}  // namespace ibs::sim::detail

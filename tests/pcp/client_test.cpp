@@ -1,0 +1,258 @@
+// The PCP client: submissions, the KBL check, timeouts, aborts, restarts of either side.
+#include "ibs/pcp/client.hpp"
+
+#include <gtest/gtest.h>
+
+#include "pcp_harness.hpp"
+#include "peers.hpp"
+
+namespace ibs::pcp {
+namespace {
+
+using test::FakeServer;
+using test::pdu_bytes;
+using test::Session;
+
+TEST(Client, SubmissionsAreCheckedBeforeAnythingIsSent) {
+  Session s(1);
+  const Time t = s.bus.now();
+  EXPECT_EQ(s.client.read(t, ParameterRef::number(83)), SubmitStatus::not_initiated);
+  EXPECT_EQ(s.client.status(t), SubmitStatus::not_initiated);
+  EXPECT_EQ(s.client.initiate(t), SubmitStatus::accepted);
+  EXPECT_EQ(s.client.initiate(t), SubmitStatus::busy);
+  ASSERT_TRUE(s.bus.await()->ok());
+  EXPECT_EQ(s.client.write(t, ParameterRef::number(82), DataType::usign8, 300.0),
+            SubmitStatus::invalid_argument);
+  std::vector<std::uint8_t> big(kMaxDataSize + 1, 0);
+  EXPECT_EQ(s.client.write_bytes(t, ParameterRef::number(83), big), SubmitStatus::invalid_argument);
+  EXPECT_FALSE(s.client.busy());
+  EXPECT_THROW(Client(test::client_config(3)), std::invalid_argument);
+  ClientConfig bad;
+  bad.kbl.max_pdu_sending = 200;
+  EXPECT_THROW(Client{bad}, std::invalid_argument);
+}
+
+TEST(Client, ARequestBiggerThanTheKblSendingSizeIsRefused) {
+  ClientConfig cc;
+  cc.kbl.max_pdu_sending = 20;  // just the Initiate request
+  Session s(2, Session::running_server(), cc);
+  ASSERT_TRUE(s.initiate().ok());
+  const std::array<std::uint8_t, 12> twelve{};
+  EXPECT_EQ(s.client.write_bytes(s.bus.now(), ParameterRef::number(428), twelve),
+            SubmitStatus::invalid_argument);
+  EXPECT_EQ(s.client.read(s.bus.now(), ParameterRef::number(428)), SubmitStatus::accepted);
+  // Below the Initiate's own 20 bytes (either way) a client could never open an association.
+  ClientConfig tiny;
+  tiny.kbl.max_pdu_sending = 18;
+  EXPECT_THROW(Client{tiny}, std::invalid_argument);
+  tiny.kbl.max_pdu_sending = 134;
+  tiny.kbl.max_pdu_receiving = 18;
+  EXPECT_THROW(Client{tiny}, std::invalid_argument);
+}
+
+TEST(Client, TypedReadReportsALengthThatIsNotTheTypes) {
+  Session s(4);
+  ASSERT_TRUE(s.initiate().ok());
+  const Result r = s.run(
+      [](Client& c, Time t) { return c.read(t, ParameterRef::number(83), DataType::int32q16); });
+  EXPECT_EQ(r.kind, ResultKind::type_mismatch);
+  EXPECT_EQ(r.data.size, 2U);
+  EXPECT_TRUE(s.client.associated());
+}
+
+TEST(Client, ServerRefusesAnIncompatibleKbl) {
+  ClientConfig small;
+  small.kbl.max_pdu_receiving = 64;  // the servo may send 134
+  Session a(2, Session::running_server(), small);
+  Result r = a.initiate();
+  EXPECT_EQ(r.kind, ResultKind::negative);
+  EXPECT_EQ(r.error, errors::kServiceNotExecutable);
+  EXPECT_EQ(r.peer_kbl, kMc6000Kbl) << "the negative confirmation tells why";
+  EXPECT_FALSE(a.client.associated());
+
+  ClientConfig put;
+  put.kbl.services.client(kSvcPutOv);  // the MC6000 serves no Put-OV
+  Session b(2, Session::running_server(), put);
+  EXPECT_EQ(b.initiate().error, errors::kServiceNotExecutable);
+
+  ServerConfig locked = Session::running_server();
+  locked.password = 0x1234;
+  Session c(2, locked);
+  EXPECT_EQ(c.initiate().error, errors::kNoAccess);
+  ClientConfig key;
+  key.password = 0x1234;
+  Session d(2, locked, key);
+  EXPECT_TRUE(d.initiate().ok());
+}
+
+TEST(Client, ClientRefusesAServerKblThatDoesNotServeIt) {
+  Client client(test::client_config(2));
+  FakeServer fake(
+      client, [](const std::vector<std::uint8_t>& m) -> std::optional<std::vector<std::uint8_t>> {
+        if (m[1] != 0x8B) return std::nullopt;
+        // Positive, but the server part offers only Get-OV long: no Read, no Write.
+        return pdu_bytes({0x808B, 0x0007, static_cast<Word>(m[4] << 8 | m[5]), 0x0000, 134, 134,
+                          0x0000, 0x0004, 0x0000});
+      });
+  ASSERT_EQ(client.initiate(fake.now()), SubmitStatus::accepted);
+  const auto r = fake.await();
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->kind, ResultKind::incompatible);
+  EXPECT_EQ(r->mismatch, KblMismatch::service_not_supported);
+  EXPECT_FALSE(client.associated());
+  fake.run(50);
+  ASSERT_EQ(fake.received().size(), 2U);
+  EXPECT_EQ(fake.received()[1],
+            pdu_bytes({0x088D, 0x0002, 0x0002, static_cast<Word>(AbortReason::kbl_mismatch)}));
+}
+
+TEST(Client, AConfirmationThatDoesNotAnswerTheRequestIsAProtocolError) {
+  Client client(test::client_config(4));
+  FakeServer fake(
+      client, [](const std::vector<std::uint8_t>& m) -> std::optional<std::vector<std::uint8_t>> {
+        const Word iid_cr = static_cast<Word>(m[4] << 8 | m[5]);
+        if (m[1] == 0x8B)
+          return pdu_bytes({0x808B, 0x0007, iid_cr, 0x0000, 134, 134, 0x0000, 0x0004, 0x0304});
+        // Answers a Read with another InvokeID.
+        return pdu_bytes(
+            {0x8081, 0x0004, static_cast<Word>(iid_cr + 0x0100), 0x0000, 0x0002, 0x1234});
+      });
+  ASSERT_EQ(client.initiate(fake.now()), SubmitStatus::accepted);
+  ASSERT_TRUE(fake.await()->ok());
+  ASSERT_EQ(client.read(fake.now(), ParameterRef::number(83)), SubmitStatus::accepted);
+  const auto r = fake.await();
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->kind, ResultKind::protocol_error);
+  EXPECT_FALSE(client.associated());
+  EXPECT_EQ(client.link().state(), LinkState::aborting) << "the channel is resynchronised";
+}
+
+TEST(Client, AServerAbortEndsTheRequest) {
+  Client client(test::client_config(1));
+  FakeServer fake(
+      client, [](const std::vector<std::uint8_t>& m) -> std::optional<std::vector<std::uint8_t>> {
+        const Word iid_cr = static_cast<Word>(m[4] << 8 | m[5]);
+        if (m[1] == 0x8B)
+          return pdu_bytes({0x808B, 0x0007, iid_cr, 0x0000, 134, 134, 0x0000, 0x0004, 0x0304});
+        return pdu_bytes({0x088D, 0x0002, 0x0002, static_cast<Word>(AbortReason::not_initiated)});
+      });
+  ASSERT_EQ(client.initiate(fake.now()), SubmitStatus::accepted);
+  ASSERT_TRUE(fake.await()->ok());
+  ASSERT_EQ(client.status(fake.now()), SubmitStatus::accepted);
+  const auto r = fake.await();
+  EXPECT_EQ(r->kind, ResultKind::aborted);
+  EXPECT_EQ(r->abort_reason, AbortReason::not_initiated);
+  EXPECT_FALSE(client.associated());
+}
+
+TEST(Client, ASilentServoEndsInATimeout) {
+  Client client(test::client_config(2));
+  std::array<Word, 2> zero{};
+  std::array<Word, 2> out{};
+  ASSERT_EQ(client.initiate(0ms), SubmitStatus::accepted);
+  std::optional<Result> r;
+  Time t{};
+  while (!r) {
+    t += 1ms;
+    client.step(t, zero, out);
+    r = client.take_result();
+    ASSERT_LE(t, 600ms);
+  }
+  EXPECT_EQ(r->kind, ResultKind::timeout);
+  EXPECT_EQ(t, 500ms);
+  EXPECT_EQ(client.link().state(), LinkState::aborting);
+  EXPECT_GT(client.link().stats().frames_invalid, 0U) << "a zero channel is never a frame";
+}
+
+TEST(Client, AStuckServoTimesOutAndTheAbortEndsItsAssociation) {
+  ServerConfig sc = Session::running_server();
+  LatencyModel stuck;
+  stuck.processing_min = stuck.processing_max = 5s;
+  sc.latency = stuck;
+  Session s(2, sc);
+  // Initiate itself is executed after 5 s: give it a long timeout.
+  const Result init = s.run([](Client& c, Time t) { return c.initiate(t, 6s); });
+  ASSERT_TRUE(init.ok()) << to_string(init.kind);
+  ASSERT_TRUE(s.server.associated());
+  const Result r = s.read(83);
+  EXPECT_EQ(r.kind, ResultKind::timeout);
+  EXPECT_EQ(r.completed_at - r.submitted_at, 500ms);
+  s.idle(20ms);
+  EXPECT_FALSE(s.server.associated()) << "the link abort ended it";
+  EXPECT_FALSE(s.server.busy()) << "and dropped the stuck job";
+  EXPECT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::not_initiated);
+}
+
+TEST(Client, UserAbortWithARequestOutstanding) {
+  Session s(1);
+  ASSERT_TRUE(s.initiate().ok());
+  ASSERT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::accepted);
+  for (int i = 0; i < 7; ++i) s.bus.cycle();  // half-way through the request's fragments
+  s.client.abort(s.bus.now());
+  const auto r = s.client.take_result();
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->kind, ResultKind::aborted);
+  EXPECT_EQ(r->abort_reason, AbortReason::user);
+  s.idle(20ms);
+  EXPECT_FALSE(s.server.associated());
+  EXPECT_FALSE(s.client.take_result().has_value()) << "exactly one result per request";
+  EXPECT_TRUE(s.initiate().ok());
+  EXPECT_TRUE(s.read(83).ok());
+}
+
+TEST(Client, UserAbortWhenIdleSendsTheAbortMessage) {
+  Session s(2);
+  ASSERT_TRUE(s.initiate().ok());
+  s.client.abort(s.bus.now());
+  EXPECT_FALSE(s.client.associated());
+  s.idle(30ms);
+  EXPECT_FALSE(s.server.associated());
+  EXPECT_EQ(s.server.stats().aborts_received, 1U);
+  EXPECT_FALSE(s.client.take_result().has_value()) << "Abort is unconfirmed";
+}
+
+TEST(Client, ServoRestartEndsTheOutstandingRequestWithALinkReset) {
+  Session s(1);
+  ASSERT_TRUE(s.initiate().ok());
+  ASSERT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::accepted);
+  for (int i = 0; i < 30; ++i) s.bus.cycle();
+  s.server.power_on(s.bus.now());
+  const auto r = s.bus.await(100ms);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->kind, ResultKind::link_reset);
+  EXPECT_LT(r->completed_at - s.bus.now(), 10ms) << "no waiting for the timeout";
+  EXPECT_TRUE(s.initiate().ok());
+  EXPECT_EQ(s.read_serr(), kSerrPowerOn);
+}
+
+TEST(Client, ARestartedMasterNeverSeesTheOldConfirmation) {
+  for (const int words : {1, 2, 4}) {
+    Session s(words);
+    ASSERT_TRUE(s.initiate().ok());
+    s.server.parameters().set(83, 1111);
+    s.server.parameters().set(kIbstu, 2222);
+    ASSERT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::accepted);
+    // Run until the servo is half-way through sending the Read's confirmation.
+    ASSERT_TRUE(s.bus.run_until(
+        [&] { return s.server.stats().requests == 2 && !s.server.busy() && s.server.link().sending(); },
+        1s));
+    s.bus.cycle();
+    s.bus.cycle();
+    ASSERT_TRUE(s.server.link().sending()) << "still on the wire when the master restarts";
+    Client fresh(test::client_config(words));  // the master program restarts
+    s.bus.set_client(fresh);
+    ASSERT_EQ(fresh.initiate(s.bus.now()), SubmitStatus::accepted);
+    auto r = s.bus.await();
+    ASSERT_TRUE(r.has_value() && r->ok()) << words;
+    ASSERT_EQ(fresh.read(s.bus.now(), ParameterRef::number(kIbstu)), SubmitStatus::accepted);
+    r = s.bus.await();
+    ASSERT_TRUE(r->ok());
+    EXPECT_EQ(r->index, index_of(kIbstu));
+    EXPECT_EQ(make_word(r->data.data[0], r->data.data[1]), 2222);
+    EXPECT_EQ(fresh.stats().protocol_errors, 0U);
+    s.bus.set_client(s.client);  // the session's destructor order needs nothing more
+  }
+}
+
+}  // namespace
+}  // namespace ibs::pcp

@@ -1,0 +1,398 @@
+// The channel segmentation (docs/pcp.md, "Segmentation"): administrative byte, stop-and-wait,
+// message check, resynchronisation.
+#include "ibs/pcp/link.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <bit>
+#include <vector>
+
+#include "ibs/pcp/crc16.hpp"
+
+namespace ibs::pcp {
+namespace {
+
+std::vector<std::uint8_t> pdu_of_size(std::size_t size, std::uint8_t seed) {
+  std::vector<std::uint8_t> p(size);
+  p[0] = 0x00;
+  p[1] = 0x81;
+  const auto count = static_cast<std::uint16_t>((size - 4) / 2);
+  p[2] = high_byte(count);
+  p[3] = low_byte(count);
+  for (std::size_t i = 4; i < size; ++i) p[i] = static_cast<std::uint8_t>(seed + i * 7U);
+  return p;
+}
+
+// Two links in the trace's lock-step timing: each reads what the other showed the step before.
+struct Pair {
+  explicit Pair(int words, Duration timeout = 100ms)
+      : a({words, Direction::to_server, timeout}), b({words, Direction::to_client, timeout}) {}
+  void step() {
+    now += 1ms;
+    const auto a_in = b_out;
+    const auto b_in = a_out;
+    ea = a.receive(now, a_in);
+    a.transmit(now, a_out);
+    eb = b.receive(now, b_in);
+    b.transmit(now, b_out);
+  }
+  Link a;
+  Link b;
+  Time now{};
+  std::array<Word, 4> a_out{};
+  std::array<Word, 4> b_out{};
+  LinkEvents ea;
+  LinkEvents eb;
+};
+
+TEST(AdminByte, RoundTripsEveryFieldCombinationWithOddParity) {
+  for (unsigned dir = 0; dir < 2; ++dir) {
+    for (unsigned type = 0; type < 4; ++type) {
+      for (std::uint8_t seq = 0; seq < 4; ++seq) {
+        for (std::uint8_t ack = 0; ack < 4; ++ack) {
+          if (type == 0 && seq == 3) continue;  // the invalid control code
+          const AdminByte a{static_cast<Direction>(dir), static_cast<FrameType>(type), seq, ack};
+          const std::uint8_t b = encode_admin(a);
+          EXPECT_EQ(std::popcount(static_cast<unsigned>(b)) % 2, 1) << int(b);
+          const auto d = decode_admin(b);
+          ASSERT_TRUE(d.has_value()) << int(b);
+          EXPECT_EQ(*d, a);
+        }
+      }
+    }
+  }
+}
+
+TEST(AdminByte, DecodesExactlyTheOddParityBytesWithoutControlCode3) {
+  int valid = 0;
+  for (unsigned b = 0; b < 256; ++b) {
+    const bool odd = std::popcount(b) % 2 == 1;
+    const bool control3 = ((b >> 5U) & 3U) == 0 && ((b >> 3U) & 3U) == 3;
+    EXPECT_EQ(decode_admin(static_cast<std::uint8_t>(b)).has_value(), odd && !control3) << b;
+    valid += decode_admin(static_cast<std::uint8_t>(b)).has_value() ? 1 : 0;
+  }
+  EXPECT_EQ(valid, 128 - 8);
+  // A zeroed or all-ones process image is never a frame.
+  EXPECT_FALSE(decode_admin(0x00).has_value());
+  EXPECT_FALSE(decode_admin(0xFF).has_value());
+}
+
+TEST(AdminByte, HandComputedValuesOfTheDocumentedLayout) {
+  // docs/pcp.md example: master ABORT 0EH, servo ABORT-ACK 97H, master IDLE a3 07H,
+  // master FIRST s0 a3 26H, servo IDLE a0 80H, master NEXT s1 a3 4FH, servo ABORT 8FH.
+  EXPECT_EQ(encode_admin({Direction::to_server, FrameType::control, 1, 3}), 0x0E);
+  EXPECT_EQ(encode_admin({Direction::to_client, FrameType::control, 2, 3}), 0x97);
+  EXPECT_EQ(encode_admin({Direction::to_server, FrameType::control, 0, 3}), 0x07);
+  EXPECT_EQ(encode_admin({Direction::to_server, FrameType::first, 0, 3}), 0x26);
+  EXPECT_EQ(encode_admin({Direction::to_client, FrameType::control, 0, 0}), 0x80);
+  EXPECT_EQ(encode_admin({Direction::to_server, FrameType::middle, 1, 3}), 0x4F);
+  EXPECT_EQ(encode_admin({Direction::to_client, FrameType::control, 1, 3}), 0x8F);
+}
+
+TEST(Crc16, MatchesTheCcittCheckValue) {
+  const std::array<std::uint8_t, 9> check{'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  EXPECT_EQ(crc16(check), 0x29B1);
+}
+
+TEST(Link, RefusesWidthsOtherThan124) {
+  EXPECT_THROW(Link({3, Direction::to_server, 100ms}), std::invalid_argument);
+  EXPECT_THROW(Link({0, Direction::to_server, 100ms}), std::invalid_argument);
+  EXPECT_NO_THROW(Link({4, Direction::to_server, 100ms}));
+}
+
+TEST(Link, OneWordReadRequestCycleByCycle) {
+  Pair p(1);
+  // Step 0 outputs: both sides start by announcing a reset.
+  p.a.transmit(p.now, p.a_out);
+  p.b.transmit(p.now, p.b_out);
+  EXPECT_EQ(p.a_out[0], 0x0E00);  // master ABORT
+  EXPECT_EQ(p.b_out[0], 0x8F00);  // servo ABORT
+  p.step();                       // both see ABORT: both answer ABORT-ACK
+  EXPECT_EQ(p.a_out[0], 0x1600);
+  EXPECT_EQ(p.b_out[0], 0x9700);
+  p.step();  // both see ABORT-ACK: ready
+  EXPECT_EQ(p.a.state(), LinkState::ready);
+  EXPECT_EQ(p.b.state(), LinkState::ready);
+  EXPECT_EQ(p.a_out[0], 0x0700);
+  EXPECT_EQ(p.b_out[0], 0x8600);
+
+  const std::vector<std::uint8_t> read{0x00, 0x81, 0x00, 0x03, 0x07, 0x02, 0x5D, 0x97, 0x00, 0x00};
+  ASSERT_TRUE(p.a.send(read));
+  std::vector<std::uint8_t> wire;
+  std::vector<Word> frames;
+  while (!p.eb.message_received) {
+    p.step();
+    frames.push_back(p.a_out[0]);
+    ASSERT_LT(frames.size(), 100U);
+  }
+  // 10 PDU bytes + 2 CRC bytes = 12 fragments, each shown until acknowledged (2 steps each).
+  std::vector<Word> distinct;
+  for (const Word w : frames) {
+    if (distinct.empty() || distinct.back() != w) distinct.push_back(w);
+  }
+  const std::uint16_t crc = crc16(read);
+  ASSERT_GE(distinct.size(), 12U);
+  EXPECT_EQ(distinct[0], 0x2600);  // FIRST s0 a3, 00
+  EXPECT_EQ(distinct[1], 0x4F81);  // NEXT s1 a3, 81
+  EXPECT_EQ(low_byte(distinct[10]), high_byte(crc));
+  EXPECT_EQ(high_byte(distinct[11]) & 0x60, 0x60);  // LAST
+  EXPECT_EQ(low_byte(distinct[11]), low_byte(crc));
+  ASSERT_TRUE(p.b.has_message());
+  const auto m = p.b.message();
+  EXPECT_EQ(std::vector<std::uint8_t>(m.begin(), m.end()), read);
+}
+
+TEST(Link, EveryMessageSizeArrivesIntactOverEveryWidth) {
+  for (const int words : {1, 2, 4}) {
+    Pair p(words);
+    for (std::size_t size = kMinPduSize; size <= kMaxPduSize; size += 2) {
+      const auto pdu = pdu_of_size(size, static_cast<std::uint8_t>(size));
+      while (!p.a.can_send()) p.step();
+      ASSERT_TRUE(p.a.send(pdu));
+      int steps = 0;
+      while (!p.eb.message_received) {
+        p.step();
+        ASSERT_LT(++steps, 1000) << "width " << words << " size " << size;
+      }
+      const auto m = p.b.message();
+      ASSERT_EQ(std::vector<std::uint8_t>(m.begin(), m.end()), pdu) << "width " << words;
+      p.b.release_message();
+      // Two steps per fragment: the sender waits for each acknowledgement.
+      const std::size_t fragments =
+          (size + kCrcSize + frame_data_size(words) - 1) / frame_data_size(words);
+      EXPECT_LE(static_cast<std::size_t>(steps), 2 * fragments + 1);
+    }
+    EXPECT_EQ(p.b.stats().messages_dropped, 0U);
+  }
+}
+
+TEST(Link, RefusesPdusWhoseCountWordIsWrongOrSizeOutOfRange) {
+  Pair p(2);
+  while (!p.a.can_send()) p.step();
+  auto pdu = pdu_of_size(10, 1);
+  pdu[3] = 4;  // says 12 bytes
+  EXPECT_FALSE(p.a.send(pdu));
+  EXPECT_FALSE(p.a.send(pdu_of_size(4, 1)));
+  std::vector<std::uint8_t> big(kMaxPduSize + 2, 0);
+  EXPECT_FALSE(p.a.send(big));
+  EXPECT_TRUE(p.a.send(pdu_of_size(10, 1)));
+  EXPECT_FALSE(p.a.send(pdu_of_size(10, 1))) << "one message at a time";
+}
+
+// Drives a receiving link with hand-made frames: the peer side of a malformed sender.
+struct Injector {
+  explicit Injector(int w) : words(w), rx({w, Direction::to_client, 100ms, true}) {}
+  LinkEvents frame(FrameType type, std::uint8_t s, std::span<const std::uint8_t> data) {
+    std::array<std::uint8_t, 8> b{};
+    b[0] = encode_admin({Direction::to_server, type, s, 3});
+    for (std::size_t i = 0; i < data.size() && i + 1 < b.size(); ++i) b[i + 1] = data[i];
+    std::array<Word, 4> w{};
+    for (std::size_t i = 0; i < 4; ++i) w[i] = make_word(b[2 * i], b[2 * i + 1]);
+    now += 1ms;
+    return rx.receive(now, w);
+  }
+  // Sends `bytes` as fragments with consecutive SEQ, the last typed `last_type`.
+  LinkEvents message(std::span<const std::uint8_t> bytes, FrameType last_type = FrameType::last) {
+    const std::size_t n = frame_data_size(words);
+    LinkEvents ev;
+    for (std::size_t off = 0; off < bytes.size(); off += n) {
+      const std::size_t len = std::min(n, bytes.size() - off);
+      const FrameType t =
+          off == 0 ? FrameType::first : (off + len == bytes.size() ? last_type : FrameType::middle);
+      ev = frame(t, seq, bytes.subspan(off, len));
+      seq = static_cast<std::uint8_t>((seq + 1) & 3);
+    }
+    return ev;
+  }
+  int words;
+  Link rx;
+  Time now{};
+  std::uint8_t seq = 0;
+};
+
+std::vector<std::uint8_t> with_crc(std::vector<std::uint8_t> pdu) {
+  const std::uint16_t c = crc16(pdu);
+  pdu.push_back(high_byte(c));
+  pdu.push_back(low_byte(c));
+  return pdu;
+}
+
+TEST(Link, DeliversAHandMadeMessage) {
+  Injector in(2);
+  const auto bytes = with_crc(pdu_of_size(10, 3));
+  const LinkEvents ev = in.message(bytes);
+  EXPECT_TRUE(ev.message_received);
+  EXPECT_EQ(in.rx.stats().messages_received, 1U);
+}
+
+TEST(Link, DropsAMessageWithABadCrc) {
+  Injector in(2);
+  auto bytes = with_crc(pdu_of_size(10, 3));
+  bytes[6] ^= 0x10;
+  EXPECT_FALSE(in.message(bytes).message_received);
+  EXPECT_EQ(in.rx.stats().messages_dropped, 1U);
+  EXPECT_FALSE(in.rx.has_message());
+}
+
+TEST(Link, DropsAMessageWhoseLastFragmentComesTooEarlyOrTooLate) {
+  {
+    Injector in(1);
+    auto bytes = with_crc(pdu_of_size(10, 3));
+    bytes.pop_back();  // LAST one byte early
+    EXPECT_FALSE(in.message(bytes).message_received);
+    EXPECT_EQ(in.rx.stats().messages_dropped, 1U);
+  }
+  {
+    Injector in(1);
+    auto bytes = with_crc(pdu_of_size(10, 3));
+    bytes.push_back(0);  // LAST one byte late
+    EXPECT_FALSE(in.message(bytes).message_received);
+    EXPECT_EQ(in.rx.stats().messages_dropped, 1U);
+  }
+  {
+    Injector in(1);
+    const auto bytes = with_crc(pdu_of_size(10, 3));
+    in.message(bytes, FrameType::middle);  // never says LAST
+    EXPECT_FALSE(in.rx.has_message());
+    EXPECT_EQ(in.rx.stats().messages_dropped, 1U);
+  }
+}
+
+TEST(Link, DropsAMessageWithNonZeroPadding) {
+  Injector in(4);  // 12 bytes over 7-byte frames: the last frame has 2 padding bytes
+  auto bytes = with_crc(pdu_of_size(10, 3));
+  std::array<std::uint8_t, 7> last{};
+  std::copy(bytes.begin() + 7, bytes.end(), last.begin());
+  last[6] = 0x55;
+  in.frame(FrameType::first, 0, std::span<const std::uint8_t>(bytes.data(), 7));
+  EXPECT_FALSE(in.frame(FrameType::last, 1, last).message_received);
+  EXPECT_EQ(in.rx.stats().messages_dropped, 1U);
+}
+
+TEST(Link, DropsACountWordBeyondTheKblSize) {
+  Injector in(2);
+  const std::array<std::uint8_t, 3> first{0x00, 0x81, 0x00};
+  const std::array<std::uint8_t, 3> next{66, 0x01, 0x02};  // count 66: 136 bytes > 134
+  in.frame(FrameType::first, 0, first);
+  in.frame(FrameType::middle, 1, next);
+  EXPECT_EQ(in.rx.stats().messages_dropped, 1U);
+}
+
+TEST(Link, IgnoresRepeatedFramesAndOrphanFragments) {
+  Injector in(2);
+  const auto bytes = with_crc(pdu_of_size(10, 3));
+  const std::span<const std::uint8_t> s(bytes);
+  in.frame(FrameType::first, 0, s.subspan(0, 3));
+  in.frame(FrameType::first, 0, s.subspan(0, 3));  // the same frame again: a stale cycle
+  in.frame(FrameType::middle, 1, s.subspan(3, 3));
+  in.frame(FrameType::middle, 1, s.subspan(3, 3));
+  in.frame(FrameType::middle, 2, s.subspan(6, 3));
+  const LinkEvents ev = in.frame(FrameType::last, 3, s.subspan(9, 3));
+  EXPECT_TRUE(ev.message_received);
+  EXPECT_EQ(in.rx.stats().frames_repeated, 2U);
+  in.rx.release_message();
+  // A continuation without a first fragment is never the start of a message.
+  in.frame(FrameType::middle, 0, s.subspan(3, 3));
+  EXPECT_FALSE(in.frame(FrameType::last, 1, s.subspan(9, 3)).message_received);
+  EXPECT_EQ(in.rx.stats().fragments_orphaned, 2U);
+}
+
+TEST(Link, ASkippedSequenceNumberResynchronises) {
+  Injector in(2);
+  const auto bytes = with_crc(pdu_of_size(10, 3));
+  in.frame(FrameType::first, 0, std::span<const std::uint8_t>(bytes.data(), 3));
+  const LinkEvents ev =
+      in.frame(FrameType::middle, 2, std::span<const std::uint8_t>(bytes.data() + 3, 3));
+  EXPECT_TRUE(ev.reset);
+  EXPECT_EQ(in.rx.state(), LinkState::aborting);
+  EXPECT_EQ(in.rx.stats().sequence_errors, 1U);
+}
+
+TEST(Link, RejectsFramesOfTheWrongDirectionAndControlFramesWithData) {
+  Link rx({1, Direction::to_client, 100ms, true});
+  const std::array<Word, 1> own{
+      make_word(encode_admin({Direction::to_client, FrameType::first, 0, 3}), 0)};
+  rx.receive(1ms, own);
+  const std::array<Word, 1> dirty_idle{
+      make_word(encode_admin({Direction::to_server, FrameType::control, 0, 3}), 1)};
+  rx.receive(2ms, dirty_idle);
+  EXPECT_EQ(rx.stats().frames_invalid, 2U);
+  const std::array<Word, 1> zero{0x0000};
+  rx.receive(3ms, zero);
+  EXPECT_EQ(rx.stats().frames_invalid, 3U);
+  EXPECT_EQ(rx.state(), LinkState::ready);
+}
+
+TEST(Link, HoldsANewMessageBackUntilTheLastIsReleased) {
+  Pair p(4);
+  while (!p.a.can_send()) p.step();
+  ASSERT_TRUE(p.a.send(pdu_of_size(10, 1)));
+  while (!p.ea.message_sent) p.step();
+  ASSERT_TRUE(p.b.has_message());
+  ASSERT_TRUE(p.a.send(pdu_of_size(12, 2)));
+  for (int i = 0; i < 10; ++i) p.step();
+  EXPECT_TRUE(p.a.sending()) << "the receiver has not taken the first message yet";
+  EXPECT_GT(p.b.stats().frames_refused, 0U);
+  EXPECT_EQ(p.b.message().size(), 10U);
+  p.b.release_message();
+  while (!p.eb.message_received) p.step();
+  EXPECT_EQ(p.b.message().size(), 12U);
+}
+
+TEST(Link, AnUnacknowledgedFragmentTimesOutIntoAnAbort) {
+  Link a({2, Direction::to_server, 50ms, true});
+  std::array<Word, 2> out{};
+  const std::array<Word, 2> silent{
+      make_word(encode_admin({Direction::to_client, FrameType::control, 0, 3}), 0), 0};
+  ASSERT_TRUE(a.send(pdu_of_size(10, 1)));
+  Time t{};
+  a.transmit(t, out);
+  LinkEvents ev;
+  while (!ev.reset) {
+    t += 1ms;
+    ev = a.receive(t, silent);
+    a.transmit(t, out);
+    ASSERT_LE(t, 60ms);
+  }
+  EXPECT_GE(t, 50ms);
+  EXPECT_EQ(a.state(), LinkState::aborting);
+  EXPECT_EQ(a.stats().ack_timeouts, 1U);
+  EXPECT_EQ(high_byte(out[0]), 0x0E);  // showing ABORT
+}
+
+TEST(Link, APeerRestartMidMessageResetsTheOtherSide) {
+  Pair p(1);
+  while (!p.a.can_send() || p.b.state() != LinkState::ready) p.step();
+  ASSERT_TRUE(p.a.send(pdu_of_size(20, 5)));
+  for (int i = 0; i < 9; ++i) p.step();
+  p.b.abort();  // the servo restarts
+  bool a_reset = false;
+  for (int i = 0; i < 6; ++i) {
+    p.step();
+    a_reset = a_reset || p.ea.reset;
+  }
+  EXPECT_TRUE(a_reset);
+  EXPECT_FALSE(p.a.sending());
+  EXPECT_EQ(p.a.state(), LinkState::ready);
+  EXPECT_EQ(p.b.state(), LinkState::ready);
+  EXPECT_FALSE(p.b.has_message());
+  // And the channel works again.
+  ASSERT_TRUE(p.a.send(pdu_of_size(8, 6)));
+  while (!p.eb.message_received) p.step();
+  EXPECT_EQ(p.b.message().size(), 8U);
+}
+
+TEST(Link, SimultaneousAbortsConverge) {
+  Pair p(2);
+  for (int i = 0; i < 4; ++i) p.step();
+  ASSERT_EQ(p.a.state(), LinkState::ready);
+  p.a.abort();
+  p.b.abort();
+  for (int i = 0; i < 4; ++i) p.step();
+  EXPECT_EQ(p.a.state(), LinkState::ready);
+  EXPECT_EQ(p.b.state(), LinkState::ready);
+}
+
+}  // namespace
+}  // namespace ibs::pcp

@@ -1,0 +1,197 @@
+// Test fixtures: a PCP client and server on one simulated channel.
+//
+// Two clocks: the master steps the client every bus cycle, the servo steps the server every
+// device sample (1 ms, seed 001 7.2). With cycle == sample it is the trace's lock-step timing.
+// Between them the bus: every cycle each side's latest frame is delivered to the other unless a
+// fault says otherwise (the fault model of the brief):
+//   corrupted - the cycle is discarded: neither direction's data is delivered;
+//   lost      - one direction's word does not arrive, the receiver keeps the previous one;
+//   repeated  - the receiver sees the same word again (as delivered the cycle before).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <random>
+
+#include "ibs/pcp/client.hpp"
+#include "ibs/pcp/server.hpp"
+
+namespace ibs::pcp::test {
+
+struct FaultRates {
+  double corrupted = 0.0;
+  double lost_m2s = 0.0;
+  double lost_s2m = 0.0;
+  double repeated_m2s = 0.0;
+  double repeated_s2m = 0.0;
+};
+
+struct FaultCounts {
+  std::uint64_t corrupted = 0;
+  std::uint64_t lost = 0;
+  std::uint64_t repeated = 0;
+};
+
+class Bus {
+ public:
+  Bus(Client& client, Server& server, Duration cycle = 1ms, Duration sample = 1ms)
+      : client_(&client), server_(&server), cycle_(cycle), sample_(sample) {}
+
+  void set_faults(const FaultRates& f, std::uint32_t seed) {
+    faults_ = f;
+    rng_.seed(seed);
+  }
+  void set_client(Client& c) { client_ = &c; }
+  void set_server(Server& s) { server_ = &s; }
+
+  [[nodiscard]] Time now() const { return now_; }
+  [[nodiscard]] const FaultCounts& fault_counts() const { return counts_; }
+
+  // One bus cycle; the servo samples whenever its next sample time has come.
+  void cycle() {
+    now_ += cycle_;
+    deliver();
+    client_->step(now_, client_in_, client_out_);
+    while (next_sample_ <= now_) {
+      server_->step(next_sample_, server_in_, server_out_);
+      next_sample_ += sample_;
+    }
+  }
+
+  // Runs cycles until `done` or `limit` of simulated time has passed; true when done.
+  bool run_until(const std::function<bool()>& done, Duration limit) {
+    const Time end = now_ + limit;
+    while (!done()) {
+      if (now_ >= end) return false;
+      cycle();
+    }
+    return true;
+  }
+
+  // Runs until the client has a result and returns it (nullopt after `limit`).
+  std::optional<Result> await(Duration limit = 5s) {
+    std::optional<Result> r;
+    run_until(
+        [&] {
+          r = client_->take_result();
+          return r.has_value();
+        },
+        limit);
+    return r;
+  }
+
+  [[nodiscard]] std::span<const Word> client_out() const { return {client_out_.data(), 4}; }
+  [[nodiscard]] std::span<const Word> server_out() const { return {server_out_.data(), 4}; }
+
+ private:
+  bool chance(double p) {
+    return p > 0.0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p;
+  }
+
+  void deliver() {
+    if (chance(faults_.corrupted)) {
+      ++counts_.corrupted;
+      return;
+    }
+    if (chance(faults_.lost_m2s)) {
+      ++counts_.lost;
+    } else if (chance(faults_.repeated_m2s)) {
+      ++counts_.repeated;  // server_in_ stays what it was: the same word again
+    } else {
+      server_in_ = client_out_;
+    }
+    if (chance(faults_.lost_s2m)) {
+      ++counts_.lost;
+    } else if (chance(faults_.repeated_s2m)) {
+      ++counts_.repeated;
+    } else {
+      client_in_ = server_out_;
+    }
+  }
+
+  Client* client_;
+  Server* server_;
+  Duration cycle_;
+  Duration sample_;
+  Time now_{};
+  Time next_sample_{};
+  std::array<Word, 4> client_in_{};
+  std::array<Word, 4> client_out_{};
+  std::array<Word, 4> server_in_{};
+  std::array<Word, 4> server_out_{};
+  FaultRates faults_{};
+  FaultCounts counts_{};
+  std::mt19937 rng_{1};
+};
+
+inline ClientConfig client_config(int words) {
+  ClientConfig c;
+  c.channel_words = words;
+  return c;
+}
+
+inline ServerConfig server_config(int words, std::optional<LatencyModel> latency = std::nullopt) {
+  ServerConfig c;
+  c.channel_words = words;
+  c.latency = latency;
+  return c;
+}
+
+// A client and a server on a lock-step bus (1 ms cycles and samples), with shortcuts.
+struct Session {
+  explicit Session(int words, ServerConfig sc, ClientConfig cc = {})
+      : client([&] {
+          cc.channel_words = words;
+          return cc;
+        }()),
+        server([&] {
+          sc.channel_words = words;
+          return sc;
+        }()),
+        bus(client, server) {}
+  explicit Session(int words) : Session(words, running_server()) {}
+
+  static ServerConfig running_server() {
+    ServerConfig s;
+    s.start = StartMode::running;
+    return s;
+  }
+
+  template <class Submit>
+  Result run(Submit submit, Duration limit = 20s) {
+    const SubmitStatus st = submit(client, bus.now());
+    EXPECT_EQ(st, SubmitStatus::accepted) << to_string(st);
+    const auto r = bus.await(limit);
+    EXPECT_TRUE(r.has_value()) << "no result";
+    return r ? *r : Result{};
+  }
+  Result initiate() {
+    return run([](Client& c, Time t) { return c.initiate(t); });
+  }
+  Result read(std::uint16_t number) {
+    return run([&](Client& c, Time t) { return c.read(t, ParameterRef::number(number)); });
+  }
+  Result write(std::uint16_t number, Value v) {
+    return run([&](Client& c, Time t) { return c.write(t, ParameterRef::number(number), v); });
+  }
+  // Reads 85-SERR (clearing it) and returns its value.
+  std::uint32_t read_serr() {
+    const Result r = read(kSerr);
+    EXPECT_TRUE(r.ok());
+    return r.data.size == 1 ? r.data.data[0] : 0xFFFF;
+  }
+  void idle(Duration d) {
+    const Time end = bus.now() + d;
+    while (bus.now() < end) bus.cycle();
+  }
+
+  Client client;
+  Server server;
+  Bus bus;
+};
+
+}  // namespace ibs::pcp::test

@@ -1,0 +1,89 @@
+// The CLI11 wiring of `ibs layout` and `ibs timing`, and the number formatting both share.
+#include "bus_commands.hpp"
+
+#include <CLI/CLI.hpp>
+#include <array>
+#include <charconv>
+#include <cstdint>
+#include <iostream>
+
+namespace ibs::cli {
+
+namespace {
+
+// `ns` in units of 10^digits ns, exactly, trailing zeros dropped.
+std::string decimal(std::int64_t ns, int digits) {
+  std::int64_t scale = 1;
+  for (int i = 0; i < digits; ++i) scale *= 10;
+  const bool negative = ns < 0;
+  const std::uint64_t mag =
+      negative ? 0U - static_cast<std::uint64_t>(ns) : static_cast<std::uint64_t>(ns);
+  const auto uscale = static_cast<std::uint64_t>(scale);
+  std::string s = (negative ? "-" : "") + std::to_string(mag / uscale);
+  std::string frac = std::to_string(mag % uscale);
+  frac.insert(0, static_cast<std::size_t>(digits) - frac.size(), '0');
+  while (!frac.empty() && frac.back() == '0') frac.pop_back();
+  if (!frac.empty()) s += "." + frac;
+  return s;
+}
+
+}  // namespace
+
+std::string format_us(Duration d) {
+  return decimal(d.count(), 3);
+}
+std::string format_ms(Duration d) {
+  return decimal(d.count(), 6);
+}
+
+std::string format_number(double v) {
+  std::array<char, 32> buf{};
+  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return {buf.data(), r.ptr};
+}
+
+void add_bus_commands(CLI::App& app, BusCommandState& state) {
+  LayoutOptions& lo = state.layout_options;
+  state.layout = app.add_subcommand(
+      "layout", "print a drive's ID code and the meaning of each process-data word");
+  state.layout->add_option("DEVICE", lo.device, "mc6000 or vf1000")->required();
+  state.layout->add_option_function<int>(
+      "--supi", [&lo](const int& v) { lo.supi = v; },
+      "405-SUPI, 0..12: process data / PCP split (mc6000)");
+  state.layout->add_option_function<int>(
+      "--ibcnf", [&lo](const int& v) { lo.ibcnf = v; },
+      "406-IBCNF, 0..4: reference and actual format (mc6000)");
+  state.layout->add_option_function<std::string>(
+      "--bus", [&lo](const std::string& v) { lo.bus = v; },
+      "local or remote (mc6000; default remote)");
+  state.layout->add_flag("--json", lo.json, "print JSON");
+
+  TimingOptions& to = state.timing_options;
+  state.timing = app.add_subcommand(
+      "timing", "cycle time of a ring with every term, worst-case reaction and recovery time");
+  state.timing->add_option(
+      "DEVICE", to.devices,
+      "mc6000:SUPI[:local|remote] or vf1000, in ring order (default: mc6000:11 vf1000)");
+  state.timing->add_option("--baud", to.baud, "500k (default) or 2M");
+  state.timing->add_option_function<double>(
+      "--sw-us", [&to](const double& v) { to.software_time_us = v; },
+      "master software time SW in microseconds (default 200)");
+  state.timing->add_flag("--json", to.json, "print JSON");
+}
+
+std::optional<int> run_bus_commands(const BusCommandState& state, std::ostream& out,
+                                    std::ostream& err) {
+  if (state.layout != nullptr && state.layout->parsed()) {
+    return layout_command(state.layout_options, out, err);
+  }
+  if (state.timing != nullptr && state.timing->parsed()) {
+    return timing_command(state.timing_options, out, err);
+  }
+  return std::nullopt;
+}
+
+std::optional<int> run_bus_commands(const BusCommandState& state) {
+  return run_bus_commands(state, std::cout, std::cerr);
+}
+
+}  // namespace ibs::cli
