@@ -94,4 +94,20 @@ void BM_SimulatedCycleFullBus(benchmark::State& st) {
 }
 BENCHMARK(BM_SimulatedCycleFullBus);
 
+// The default scenario of `ibs run` (an MC6000 and a VF1000, 8 s with parameter traffic).
+void BM_SimulateDefaultScenario(benchmark::State& st) {
+  const Scenario s = default_scenario();
+  double simulated = 0;
+  for (auto _ : st) {
+    Simulator sim(s);
+    SimOptions o;
+    o.measure_master_time = false;
+    sim.run(o);
+    simulated += static_cast<double>(s.duration.count()) / 1e9;
+    benchmark::DoNotOptimize(sim.summary().cycles);
+  }
+  st.counters["x_real_time"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SimulateDefaultScenario)->Unit(benchmark::kMillisecond);
+
 }  // namespace

@@ -12,15 +12,23 @@ MasterLoop::MasterLoop(interbus::BusConfig config,
     throw std::invalid_argument("master loop: " + std::to_string(drivers_.size()) + " drivers for " +
                                 std::to_string(config_.devices.size()) + " devices");
   }
+  for (const interbus::Device& d : config_.devices) {
+    // make_bus_config keeps every slice inside its area; checked once here, not every cycle.
+    if (d.in.end() > interbus::kMaxProcessWords || d.out.end() > interbus::kMaxProcessWords ||
+        d.pcp.end() > interbus::kMaxPcpWords) {
+      throw std::invalid_argument("master loop: device '" + d.name + "' lies outside the process image");
+    }
+    places_.push_back({d.in, d.out, d.pcp});
+  }
 }
 
 devices::DriverIo MasterLoop::io(interbus::ProcessImage& image, std::size_t i) const {
-  const interbus::Device& d = config_.devices[i];
+  const Place& p = places_[i];
   devices::DriverIo io;
-  io.pd_in = interbus::in_slice(image, d);
-  io.pd_out = interbus::out_slice(image, d);
-  io.pcp_in = interbus::pcp_in_slice(image, d);
-  io.pcp_out = interbus::pcp_out_slice(image, d);
+  io.pd_in = {image.in.data() + p.in.offset, p.in.length};
+  io.pd_out = {image.out.data() + p.out.offset, p.out.length};
+  io.pcp_in = {image.pcp_in.data() + p.pcp.offset, p.pcp.length};
+  io.pcp_out = {image.pcp_out.data() + p.pcp.offset, p.pcp.length};
   return io;
 }
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 
 #include "ibs/interbus/cycle_time.hpp"
@@ -248,6 +249,9 @@ void Simulator::start(const SimOptions& options) {
     }
   }
   master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
+  samples_.clear();
+  for (const auto& d : devices_) samples_.push_back({d->next_sample, d->index});
+  std::make_heap(samples_.begin(), samples_.end(), std::greater<>{});
   next_cycle_ = cycle_time_;
   const auto& r = scenario_.random;
   random_next_ = {next_random(rng_, Time{0}, r.corrupt_per_s), next_random(rng_, Time{0}, r.power_cycle_per_s),
@@ -261,23 +265,17 @@ bool Simulator::run_until(Time until, const SimOptions& options) {
   const Time end = std::min<Time>(until, scenario_.duration);
   Time last_progress{0};
   while (true) {
-    std::size_t dev = devices_.size();
-    Time t_dev = Time::max();
-    for (const auto& d : devices_) {
-      if (d->next_sample < t_dev) {
-        t_dev = d->next_sample;
-        dev = d->index;
-      }
-    }
-    const Time t = std::min(next_cycle_, t_dev);
+    const SampleEvent next = samples_.front();  // the earliest sample of any device
+    const Time t = std::min(next_cycle_, next.at);
     if (t > end) break;
     now_ = t;
     // At the same instant the bus exchange comes first: a device sampling then sees its new words.
-    if (next_cycle_ <= t_dev) {
+    if (next_cycle_ <= next.at) {
       handle_cycle(t);
       next_cycle_ += cycle_time_;
     } else {
-      handle_sample(dev, t);
+      handle_sample(next.device, t);
+      reschedule_front(devices_[next.device]->next_sample);
     }
     if (options_.progress && t - last_progress >= 100ms) {
       options_.progress(t, scenario_.duration);
@@ -293,6 +291,24 @@ bool Simulator::run_until(Time until, const SimOptions& options) {
 }
 
 void Simulator::run(const SimOptions& options) { run_until(scenario_.duration, options); }
+
+void Simulator::reschedule_front(Time at) {
+  // The device at the top of the min-heap sampled: give it its next time and sift it down (one
+  // pass instead of a pop and a push).
+  const std::size_t n = samples_.size();
+  SampleEvent moving{at, samples_[0].device};
+  std::size_t i = 0;
+  while (true) {
+    const std::size_t l = 2 * i + 1;
+    if (l >= n) break;
+    std::size_t c = l;
+    if (l + 1 < n && samples_[l + 1] < samples_[l]) c = l + 1;
+    if (!(samples_[c] < moving)) break;
+    samples_[i] = samples_[c];
+    i = c;
+  }
+  samples_[i] = moving;
+}
 
 void Simulator::apply_timeline(Time t) {
   // Entries of a device that waits for a state stay deferred until the wait ends.

@@ -3,6 +3,7 @@
 // with the reference/actual conversion to engineering units.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 
@@ -176,6 +177,9 @@ class Mc6000PdMaster {
   interbus::mc6000::Layout layout_;
   drivecom::Sequencer sequencer_;
   double reference_ = 0.0;
+  // The reference as bus words, encoded again only when it changes.
+  std::array<Word, 2> reference_words_{};
+  double encoded_reference_ = 0.0;
   interbus::mc6000::Actual actual_{};
 };
 

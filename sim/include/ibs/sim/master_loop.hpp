@@ -40,8 +40,13 @@ class MasterLoop {
  private:
   devices::DriverIo io(interbus::ProcessImage& image, std::size_t i) const;
 
+  // Where each device's words lie in the image, from the checked configuration.
+  struct Place {
+    interbus::Slice in, out, pcp;
+  };
   interbus::BusConfig config_;
   std::vector<std::unique_ptr<devices::DeviceDriver>> drivers_;
+  std::vector<Place> places_;
 };
 
 }  // namespace ibs::sim

@@ -151,6 +151,7 @@ class Simulator {
   void fault(Time t, std::size_t device, Action kind, Duration duration, int count);
   void observe_master(Time t);
   Time next_sample_time(Device& d);
+  void reschedule_front(Time at);
   void finish();
 
   Scenario scenario_;
@@ -171,6 +172,13 @@ class Simulator {
   struct RandomNext {
     Time corrupt, power_cycle, device_fault, lost, master_restart;
   } random_next_{};
+  // Every device's next sample, as a min-heap on time (ties: lower ring position first).
+  struct SampleEvent {
+    Time at{0};
+    std::size_t device = 0;
+    friend auto operator<=>(const SampleEvent&, const SampleEvent&) = default;
+  };
+  std::vector<SampleEvent> samples_;
   std::vector<std::uint32_t> master_ns_;
   std::vector<Observer*> observers_;
   SimOptions options_;
