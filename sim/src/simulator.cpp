@@ -93,6 +93,7 @@ struct Simulator::Device {
   std::vector<Recording> recordings;
   bool recording = false;
   bool power_cycled = false;
+  std::uint32_t recalculations = 0;
   // What a device started for a trace shows before its first sample (`init: power-on` and
   // `init: operational`).
   std::array<Word, 4> fresh_initialised{};
@@ -617,6 +618,11 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   ++d.k;
   d.next_sample = next_sample_time(d);
   ++summary_.devices[i].samples;
+  if (d.mc && d.mc->recalculations() != d.recalculations) {
+    // 4.2: 15-PLRDY = 1 makes the servo recalculate its controller parameters.
+    d.recalculations = d.mc->recalculations();
+    summary_.devices[i].states.push_back({t, "15-PLRDY = 1: controller parameters recalculated"});
+  }
   // Recording, in the trace timing convention: this row's m2s is what the device read now, its
   // s2m what the device showed before this sample (its answer to the previous row).
   if (options_.record_traces && !d.recordings.empty()) {

@@ -3,49 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <atomic>
-#include <cstdlib>
-#include <new>
 
 #include "ibs/devices/drive_pd.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/sequencer.hpp"
 
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (g_counting.load()) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-// The nothrow forms too, so that every allocation and its release go through malloc/free.
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  if (g_counting.load()) g_allocations.fetch_add(1);
-  return std::malloc(n == 0 ? 1 : n);
-}
-void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+#include "../support/counting_new.hpp"
 
 namespace ibs {
 namespace {
 
-struct Counting {
-  Counting() {
-    g_allocations = 0;
-    g_counting = true;
-  }
-  ~Counting() { g_counting = false; }
-  long count() const { return g_allocations.load(); }
-};
+using Counting = test::AllocationCounter;
 
 TEST(CyclePath, CounterSeesAnAllocation) {
   // Proves the counter works, so the zero below means something.

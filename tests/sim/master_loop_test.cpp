@@ -2,35 +2,14 @@
 // allocation per cycle.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 
+#include <array>
+
+#include "ibs/devices/mc6000_device.hpp"
+#include "ibs/devices/vf1000_device.hpp"
 #include "ibs/sim/master_loop.hpp"
 
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (g_counting.load()) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-// The nothrow forms too, so that every allocation and its release go through malloc/free.
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  if (g_counting.load()) g_allocations.fetch_add(1);
-  return std::malloc(n == 0 ? 1 : n);
-}
-void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+#include "../support/counting_new.hpp"
 
 namespace ibs::sim {
 namespace {
@@ -53,11 +32,13 @@ TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
     loop.driver(i).set_reference(100.0 * static_cast<double>(i));
   }
   for (std::size_t i = 0; i < 64; ++i) image.in[4 * i] = 0x0231;  // every servo READY
-  g_allocations = 0;
-  g_counting = true;
-  for (int c = 0; c < 100; ++c) loop.cycle(image, std::chrono::milliseconds(c), links);
-  g_counting = false;
-  EXPECT_EQ(g_allocations.load(), 0);
+  long allocations = 0;
+  {
+    test::AllocationCounter counter;
+    for (int c = 0; c < 100; ++c) loop.cycle(image, std::chrono::milliseconds(c), links);
+    allocations = counter.count();
+  }
+  EXPECT_EQ(allocations, 0);
   // Each servo got ENABLE and its own reference in its own slice (Q16, high word first).
   for (std::size_t i = 0; i < 64; ++i) {
     EXPECT_EQ(image.out[4 * i], 0x000F) << i;
@@ -65,6 +46,49 @@ TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
               static_cast<std::uint32_t>(100 * i) << 16U)
         << i;
   }
+}
+
+TEST(MasterLoop, DeviceModelsAndDriversWithParameterTrafficAllocateNothing) {
+  // Both device models with their parameter channels, both drivers, requests on both channels.
+  devices::Mc6000Device mc({}, devices::DeviceStart::initialised, 0ns);
+  devices::Vf1000Device vf({}, devices::DeviceStart::initialised, 0ns);
+  devices::Mc6000Driver mc_driver(mc.layout());
+  devices::Vf1000Driver vf_driver;
+  std::array<Word, 3> mc_out{}, mc_in{}, vf_out{}, vf_in{};
+  std::array<Word, 1> pcp_out{}, pcp_in{};
+  const devices::DriverIo mc_io{mc_in, mc_out, pcp_in, pcp_out, true, false};
+  const devices::DriverIo vf_io{vf_in, vf_out, {}, {}, true, false};
+  mc_driver.initial(mc_io);
+  vf_driver.initial(vf_io);
+  long allocations = 0;
+  {
+    test::AllocationCounter counter;
+    mc_driver.sequencer().request(drivecom::Target::enabled, 0ns);
+    vf_driver.sequencer().request(drivecom::Target::enabled, 0ns);
+    mc_driver.set_reference(1000.0);
+    vf_driver.set_reference(-20.0);
+    const auto a = mc_driver.parameters().submit(devices::ParamOp::read, 85, 0);
+    const auto b = mc_driver.parameters().submit(devices::ParamOp::describe, 409, 0);
+    const auto c = vf_driver.parameters().submit(devices::ParamOp::read, 85, 0);
+    const auto d = vf_driver.parameters().submit(devices::ParamOp::write, 905, 100);
+    for (int ms = 1; ms < 3000; ++ms) {
+      const Time now = std::chrono::milliseconds(ms);
+      mc.bus_cycle(now);
+      mc.sample(mc_out, mc_in, now, pcp_out, pcp_in);
+      mc_driver.cycle(mc_io, now);
+      if (ms % 8 == 0) {
+        vf.bus_cycle(now);
+        vf.sample(vf_out, vf_in, now);
+      }
+      vf_driver.cycle(vf_io, now);
+    }
+    for (const auto id : {a, b}) EXPECT_TRUE(mc_driver.parameters().status(id).done());
+    for (const auto id : {c, d}) EXPECT_TRUE(vf_driver.parameters().status(id).done());
+    allocations = counter.count();
+  }
+  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(mc.state(), drivecom::State::enabled);
+  EXPECT_EQ(vf.state(), drivecom::State::enabled);
 }
 
 TEST(MasterLoop, RefusesMismatchedDrivers) {
