@@ -231,7 +231,8 @@ void Simulator::start(const SimOptions& options) {
       d->mc->output_pcp(Time{0}, {d->pcp_s2m.data(), d->pcp_words});
     }
     d->next_sample = next_sample_time(*d);
-    if (options_.record_traces) {
+    // A device without process data (MC6000 SUPI 0..3) has no `words: pd` rows to record.
+    if (options_.record_traces && d->pd_words > 0) {
       Recording r;
       r.trace.file = d->cfg.name;
       r.trace.header.device = d->vf ? trace::DeviceType::vf1000 : trace::DeviceType::mc6000;

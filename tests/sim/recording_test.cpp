@@ -112,3 +112,33 @@ TEST(Recording, APowerCycleStartsANewRecordingOnceTheDeviceLooksFreshlyStarted) 
 
 }  // namespace
 }  // namespace ibs::sim
+
+namespace ibs::sim {
+namespace {
+
+TEST(Recording, ADeviceWithoutProcessDataIsNotRecorded) {
+  Scenario s;
+  s.duration = 500ms;
+  DeviceConfig pcp_only;
+  pcp_only.name = "parameters";
+  pcp_only.kind = DeviceKind::mc6000;
+  pcp_only.supi = 3;  // 4 PCP words, no process data
+  pcp_only.ibcnf = 0;
+  DeviceConfig vf;
+  vf.name = "inverter";
+  vf.kind = DeviceKind::vf1000;
+  s.devices = {pcp_only, vf};
+  s.timeline = {entry(0s, "parameters", Action::read, "", 0, 85)};
+  Simulator sim(s);
+  SimOptions o;
+  o.record_traces = true;
+  sim.run(o);
+  const auto traces = sim.traces();
+  ASSERT_EQ(traces.size(), 1U);
+  EXPECT_EQ(traces[0].file_name, "inverter.trace");
+  ASSERT_EQ(sim.summary().transactions.size(), 1U);
+  EXPECT_EQ(sim.summary().transactions[0].kind, devices::ParamKind::value) << sim.summary().transactions[0].result;
+}
+
+}  // namespace
+}  // namespace ibs::sim
