@@ -2,6 +2,8 @@
 // the VF1000 parameter channel (seed 001, 7.1), watchdogs and every fault kind.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "ibs/sim/simulator.hpp"
 
 namespace ibs::sim {
@@ -325,6 +327,23 @@ TEST(Simulator, RandomFaultsAreReproducibleFromTheSeed) {
   EXPECT_GE(a.size(), 10U);
   s.random.seed = 43;
   EXPECT_NE(faults(), a);
+}
+
+TEST(Simulator, ReportsProgressInSimulatedTime) {
+  Scenario s;
+  s.duration = 2s;
+  s.devices = {vf1000()};
+  Simulator sim(s);
+  std::vector<Time> seen;
+  SimOptions o;
+  o.progress = [&](Time now, Duration total) {
+    EXPECT_EQ(total, 2s);
+    seen.push_back(now);
+  };
+  sim.run(o);
+  ASSERT_GE(seen.size(), 15U);  // every 100 ms of simulated time
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_LE(seen.back(), 2s);
 }
 
 TEST(Simulator, RefusesAConfigurationTheBusOrTheDeviceRefuses) {
