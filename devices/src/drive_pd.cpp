@@ -122,7 +122,7 @@ void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
 }
 
 void Mc6000PdDevice::output(std::span<Word> s2m) const {
-  std::fill(s2m.begin(), s2m.end(), Word{0});
+  for (Word& w : s2m) w = 0;
   const auto& l = config_.layout;
   if (!l.exchanges_data || s2m.empty()) return;
   s2m[0] = status_;

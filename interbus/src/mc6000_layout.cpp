@@ -63,10 +63,17 @@ Layout make_layout(int supi, int ibcnf, BusKind bus) {
 }
 
 std::int32_t to_q16(double value) {
-  const double raw = std::round(value * 65536.0);
+  // Rounded half away from zero, as std::round, without the library call (every device sample
+  // encodes its actual value): inside the clamp c - trunc(c) is exact.
   constexpr double kMax = std::numeric_limits<std::int32_t>::max();
   constexpr double kMin = std::numeric_limits<std::int32_t>::min();
-  return static_cast<std::int32_t>(std::clamp(raw, kMin, kMax));
+  const double c = std::clamp(value * 65536.0, kMin, kMax);
+  auto i = static_cast<std::int64_t>(c);
+  const double frac = c - static_cast<double>(i);
+  if (frac >= 0.5) ++i;
+  if (frac <= -0.5) --i;
+  return static_cast<std::int32_t>(std::clamp<std::int64_t>(i, std::numeric_limits<std::int32_t>::min(),
+                                                            std::numeric_limits<std::int32_t>::max()));
 }
 
 double from_q16(std::int32_t raw) { return static_cast<double>(raw) / 65536.0; }
@@ -88,7 +95,7 @@ double get_q16(std::span<const Word> words) {
 }  // namespace
 
 void encode_reference(const Layout& l, double value, std::span<Word> words) {
-  std::fill(words.begin(), words.end(), Word{0});
+  for (Word& w : words) w = 0;
   switch (l.ibcnf) {
     case Ibcnf::word16:
       if (!words.empty()) words[0] = to_word16(value);
@@ -114,7 +121,7 @@ double decode_reference(const Layout& l, std::span<const Word> words) {
 }
 
 void encode_actual(const Layout& l, const Actual& a, std::span<Word> words) {
-  std::fill(words.begin(), words.end(), Word{0});
+  for (Word& w : words) w = 0;
   switch (l.ibcnf) {
     case Ibcnf::word16:
       if (!words.empty()) words[0] = to_word16(a.value);

@@ -94,6 +94,15 @@ struct Simulator::Device {
   bool recording = false;
   bool power_cycled = false;
   std::uint32_t recalculations = 0;
+  Time last_sample{0};
+  std::uint64_t jitter_state = 0;
+  // splitmix64: a small, fast generator of its own for the device's sample jitter.
+  std::uint64_t jitter_rng() {
+    std::uint64_t z = (jitter_state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30U)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27U)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31U);
+  }
   // What a device started for a trace shows before its first sample (`init: power-on` and
   // `init: operational`).
   std::array<Word, 4> fresh_initialised{};
@@ -117,6 +126,7 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
     auto d = std::make_unique<Device>();
     d->cfg = c;
     d->index = i;
+    d->jitter_state = scenario_.random.seed ^ (0xD1B54A32D192ED03ULL * (i + 1));
     const DeviceStart start = c.initialised ? DeviceStart::initialised : DeviceStart::power_on;
     if (c.kind == DeviceKind::vf1000) {
       if (c.bus == BusSide::local) {
@@ -210,13 +220,15 @@ devices::Vf1000Device* Simulator::vf1000(std::size_t i) { return devices_[i]->vf
 devices::Mc6000Device* Simulator::mc6000(std::size_t i) { return devices_[i]->mc.get(); }
 
 Time Simulator::next_sample_time(Device& d) {
-  // Nominal phase + k * period, moved by up to +-jitter, never before the previous sample.
+  // Nominal phase + k * period, moved by up to +-jitter, never before the previous sample. Each
+  // device draws its jitter from its own generator, so the order in which devices are stepped
+  // does not change the run.
   Time t = d.cfg.phase + static_cast<std::int64_t>(d.k) * d.period;
   if (d.cfg.jitter > Duration{0}) {
-    std::uniform_int_distribution<std::int64_t> j(-d.cfg.jitter.count(), d.cfg.jitter.count());
-    t += Duration{j(rng_)};
+    const auto span = static_cast<std::uint64_t>(2 * d.cfg.jitter.count() + 1);
+    t += Duration{static_cast<std::int64_t>(d.jitter_rng() % span) - d.cfg.jitter.count()};
   }
-  return std::max(t, now_);
+  return std::max(t, d.last_sample);
 }
 
 void Simulator::start(const SimOptions& options) {
@@ -251,9 +263,7 @@ void Simulator::start(const SimOptions& options) {
     }
   }
   master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
-  samples_.clear();
-  for (const auto& d : devices_) samples_.push_back({d->next_sample, d->index});
-  std::make_heap(samples_.begin(), samples_.end(), std::greater<>{});
+  samples_.reserve(devices_.size());
   next_cycle_ = cycle_time_;
   const auto& r = scenario_.random;
   random_next_ = {next_random(rng_, Time{0}, r.corrupt_per_s), next_random(rng_, Time{0}, r.power_cycle_per_s),
@@ -265,7 +275,50 @@ bool Simulator::run_until(Time until, const SimOptions& options) {
   if (!started_) start(options);
   if (finished_) return false;
   const Time end = std::min<Time>(until, scenario_.duration);
-  Time last_progress{0};
+  if (observers_.empty()) {
+    run_device_major(end);
+  } else {
+    run_time_ordered(end);
+  }
+  now_ = end;
+  if (end >= scenario_.duration) {
+    finish();
+    return false;
+  }
+  return true;
+}
+
+void Simulator::run_device_major(Time end) {
+  // Devices interact only through the bus exchange: between two cycle ends every device can take
+  // all its samples on its own, in its own time order, with exactly the result of the globally
+  // time-ordered loop (a sample at the instant of a cycle end comes after the exchange).
+  Time last_progress = now_;
+  while (true) {
+    const Time limit = std::min(next_cycle_, end + Duration{1});
+    for (auto& dp : devices_) {
+      Device& d = *dp;
+      while (d.next_sample < limit) {
+        now_ = d.next_sample;
+        handle_sample(d.index, d.next_sample);
+      }
+    }
+    if (next_cycle_ > end) break;
+    now_ = next_cycle_;
+    handle_cycle(next_cycle_);
+    next_cycle_ += cycle_time_;
+    if (options_.progress && now_ - last_progress >= 100ms) {
+      options_.progress(now_, scenario_.duration);
+      last_progress = now_;
+    }
+  }
+}
+
+void Simulator::run_time_ordered(Time end) {
+  // With observers (a VCD file) the events go strictly in time order across devices.
+  samples_.clear();
+  for (const auto& d : devices_) samples_.push_back({d->next_sample, d->index});
+  std::make_heap(samples_.begin(), samples_.end(), std::greater<>{});
+  Time last_progress = now_;
   while (true) {
     const SampleEvent next = samples_.front();  // the earliest sample of any device
     const Time t = std::min(next_cycle_, next.at);
@@ -284,12 +337,6 @@ bool Simulator::run_until(Time until, const SimOptions& options) {
       last_progress = t;
     }
   }
-  now_ = end;
-  if (end >= scenario_.duration) {
-    finish();
-    return false;
-  }
-  return true;
 }
 
 void Simulator::run(const SimOptions& options) { run_until(scenario_.duration, options); }
@@ -610,7 +657,10 @@ void Simulator::observe_master(Time t) {
 
 void Simulator::handle_sample(std::size_t i, Time t) {
   Device& d = *devices_[i];
-  const std::array<Word, 4> before = d.s2m;
+  d.last_sample = t;
+  const bool recording = options_.record_traces && !d.recordings.empty();
+  std::array<Word, 4> before{};
+  if (recording) before = d.s2m;
   if (d.vf) {
     d.vf->sample(d.pd_m2s(), d.pd_s2m(), t);
   } else {
@@ -619,14 +669,14 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   ++d.k;
   d.next_sample = next_sample_time(d);
   ++summary_.devices[i].samples;
-  if (d.mc && d.mc->recalculations() != d.recalculations) {
+  if (d.pcp_words > 0 && d.mc->recalculations() != d.recalculations) {
     // 4.2: 15-PLRDY = 1 makes the servo recalculate its controller parameters.
     d.recalculations = d.mc->recalculations();
     summary_.devices[i].states.push_back({t, "15-PLRDY = 1: controller parameters recalculated"});
   }
   // Recording, in the trace timing convention: this row's m2s is what the device read now, its
   // s2m what the device showed before this sample (its answer to the previous row).
-  if (options_.record_traces && !d.recordings.empty()) {
+  if (recording) {
     if (!d.recording && !d.module_error(t)) {
       // Start (again) once the device shows exactly what a freshly started device of a trace
       // `init` shows: initialised, START-UP INHIBIT after BLOCK POWER, channel at rest.

@@ -142,3 +142,52 @@ TEST(Recording, ADeviceWithoutProcessDataIsNotRecorded) {
 
 }  // namespace
 }  // namespace ibs::sim
+
+namespace ibs::sim {
+namespace {
+
+struct NullObserver final : Observer {
+  void on_cycle(Time, bool, const interbus::ProcessImage&) override { ++cycles; }
+  void on_sample(Time, std::size_t, std::span<const Word>, std::span<const Word>) override { ++samples; }
+  std::uint64_t cycles = 0;
+  std::uint64_t samples = 0;
+};
+
+std::string fingerprint(Simulator& sim) {
+  std::string f;
+  for (const auto& d : sim.summary().devices) {
+    for (const auto& s : d.states) f += std::to_string(s.at.count()) + d.name + s.what + "\n";
+  }
+  for (const auto& t : sim.summary().transactions) {
+    f += std::to_string(t.finished ? t.finished->count() : -1) + t.result + "\n";
+  }
+  for (const auto& x : sim.summary().faults) f += std::to_string(x.at.count()) + x.kind + "\n";
+  for (const auto& r : sim.traces()) f += trace::write(r.trace);
+  return f;
+}
+
+TEST(Recording, AnObserverDoesNotChangeTheRun) {
+  // Without an observer the simulator steps device by device between cycle ends; with one (a VCD
+  // file) strictly in time order. Both must give the same run, jitter and random faults included.
+  Scenario s = busy_run();
+  s.random.seed = 7;
+  s.random.corrupt_per_s = 3;
+  s.random.device_fault_per_s = 0.5;
+  SimOptions o;
+  o.record_traces = true;
+  o.measure_master_time = false;
+  Simulator plain(s);
+  plain.run(o);
+  Simulator observed(s);
+  NullObserver null;
+  observed.add_observer(&null);
+  observed.run(o);
+  EXPECT_GT(null.samples, 3000U);
+  EXPECT_EQ(null.cycles, observed.summary().cycles);
+  const std::string a = fingerprint(plain);
+  EXPECT_GT(a.size(), 10000U);
+  EXPECT_EQ(a, fingerprint(observed));
+}
+
+}  // namespace
+}  // namespace ibs::sim

@@ -143,6 +143,8 @@ class Simulator {
   struct Recording;
 
   void start(const SimOptions& options);
+  void run_device_major(Time end);
+  void run_time_ordered(Time end);
   void handle_cycle(Time t);
   void handle_sample(std::size_t i, Time t);
   void apply_timeline(Time t);
