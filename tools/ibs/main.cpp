@@ -5,7 +5,9 @@
 #include "bus_commands.hpp"
 #include "commands.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_ibs(int argc, char** argv) {
   CLI::App app{"ibs: INTERBUS-S stack and cycle simulator for LUST VF1000 and MC6000 drives"};
   app.require_subcommand(1);
 
@@ -47,5 +49,20 @@ int main(int argc, char** argv) {
   if (run->parsed()) return ibs::cli::run(run_options);
   if (replay->parsed()) return ibs::cli::replay(emulate, replay_file);
   if (decode->parsed()) return ibs::cli::decode(decode_file);
+  return ibs::cli::kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every command reports bad input itself; what reaches here is unexpected (out of memory, a
+  // failed write), and still gets a message and a non-zero exit rather than an abort.
+  try {
+    return run_ibs(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "ibs: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "ibs: unknown error\n";
+  }
   return ibs::cli::kExitBadInput;
 }

@@ -50,7 +50,7 @@ class Mc6000Device {
   void set_load_torque(double nm) { pd_.set_load_torque(nm); }
   void set_bus_watchdog(Duration d) { config_.bus_watchdog = d; }
 
-  [[nodiscard]] bool module_error(Time) const { return false; }
+  [[nodiscard]] bool module_error(Time /*now*/) const { return false; }
   [[nodiscard]] drivecom::State state() const { return pd_.state(); }
   [[nodiscard]] double actual_rpm() const { return pd_.actual_rpm(); }
   [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }

@@ -150,7 +150,7 @@ class Simulator {
   void apply_timeline(Time t);
   void apply(const TimelineEntry& e, Time t);
   void apply_random_faults(Time t);
-  void fault(Time t, std::size_t device, Action kind, Duration duration, int count);
+  void fault(Time t, std::size_t i, Action kind, Duration duration, int count);
   void observe_master(Time t);
   Time next_sample_time(Device& d);
   void reschedule_front(Time at);
@@ -178,7 +178,7 @@ class Simulator {
   struct SampleEvent {
     Time at{0};
     std::size_t device = 0;
-    friend auto operator<=>(const SampleEvent&, const SampleEvent&) = default;
+    friend auto operator<=>(const SampleEvent&, const SampleEvent&) = default;  // NOLINT(modernize-use-nullptr): clang-tidy 14 misreads a defaulted <=>
   };
   std::vector<SampleEvent> samples_;
   std::vector<std::uint32_t> master_ns_;
