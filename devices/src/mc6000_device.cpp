@@ -52,9 +52,16 @@ void Mc6000Device::power_cycle(Time now) {
   pd_.power_on();
   armed_ = false;
   watchdog_fault_ = false;
-  // 405/406 are read at power-on: a changed value takes effect on the bus only with a new
-  // configuration of the ring, which the simulator does not do; the layout stays.
-  if (pcp_) pcp_->power_on(now);
+  if (!pcp_) return;
+  pcp_->power_on(now);
+  // 405/406 are read at power-on (3.2.2): values written through PCP since the ring was
+  // configured give another layout and ID code, which the running ring cannot carry.
+  const auto& store = pcp_->parameters();
+  const auto supi = store.get(pcp::kSupi);
+  const auto ibcnf = store.get(pcp::kIbcnf);
+  const auto& l = pd_.layout();
+  configuration_mismatch_ = (supi && static_cast<int>(supi->raw) != l.supi) ||
+                            (ibcnf && static_cast<int>(ibcnf->raw) != static_cast<int>(l.ibcnf));
 }
 
 void Mc6000Device::bus_cycle(Time now) {
@@ -85,7 +92,9 @@ void Mc6000Device::sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, 
   if (pcp_ && !pcp_m2s.empty()) {
     pcp_->set_drive_running(drivecom::power_stage_enabled(pd_.state()));
     pcp_->set_fault(pd_.state() == drivecom::State::fault || pd_.state() == drivecom::State::fault_response_active);
-    pcp_->parameters().set(pcp::kIbsta, pd_.status_word());  // 408-IBSTA mirrors the status word
+    // 408-IBSTA mirrors the status word, 77-SPEED the actual speed (Q16 rpm, seed 000 6.1.1.2).
+    pcp_->parameters().set(pcp::kIbsta, pd_.status_word());
+    pcp_->parameters().set(pcp::kSpeed, static_cast<std::uint32_t>(interbus::mc6000::to_q16(pd_.actual_rpm())));
     pcp_->step(now, pcp_m2s, pcp_s2m);
   }
 }

@@ -303,6 +303,31 @@ TEST(Simulator, Mc6000ParametersThroughPcpInTheManualsTime) {
   EXPECT_NE(find_event(sim.summary().devices[0], "15-PLRDY = 1"), nullptr);
 }
 
+TEST(Simulator, Mc6000SwitchedOnWithAnotherSupiNoLongerFitsTheRing) {
+  // 405-SUPI is read at power-on (3.2.2): written through PCP, it changes the servo's layout and ID
+  // code at the next power cycle, and the configured ring reports a module error for it.
+  Scenario s;
+  s.duration = 2s;
+  DeviceConfig m = mc6000();
+  m.supi = 9;
+  m.ibcnf = 1;
+  s.devices = {m};
+  s.timeline = {at(0s, "mc", Action::read, "", 0, 85), at(300ms, "mc", Action::write, "", 12, 405),
+                at(300ms, "mc", Action::read, "", 0, 77), at(800ms, "mc", Action::fault_power_cycle)};
+  Simulator sim(s);
+  sim.run_until(700ms);
+  const auto& t = sim.summary().transactions;
+  ASSERT_EQ(t.size(), 3U);
+  EXPECT_EQ(t[1].kind, devices::ParamKind::written) << t[1].result;
+  EXPECT_EQ(t[2].kind, devices::ParamKind::value) << t[2].result;  // 77-SPEED: 0 at standstill
+  EXPECT_EQ(t[2].result_value, 0);
+  EXPECT_FALSE(sim.module_error(0, sim.now()));
+  sim.run();
+  EXPECT_TRUE(sim.mc6000(0)->configuration_mismatch());
+  EXPECT_TRUE(sim.module_error(0, sim.now()));
+  EXPECT_EQ(sim.driver(0).sequencer().report().status_seen, 0x0000);
+}
+
 TEST(Simulator, RandomFaultsAreReproducibleFromTheSeed) {
   Scenario s;
   s.duration = 3s;

@@ -50,7 +50,11 @@ class Mc6000Device {
   void set_load_torque(double nm) { pd_.set_load_torque(nm); }
   void set_bus_watchdog(Duration d) { config_.bus_watchdog = d; }
 
-  [[nodiscard]] bool module_error(Time /*now*/) const { return false; }
+  // A servo switched on with other 405-SUPI / 406-IBCNF values than the ring was configured for
+  // shows another ID code: the master's configuration no longer fits it and the bus reports a
+  // module error until the ring is configured again (a new run).
+  [[nodiscard]] bool module_error(Time /*now*/) const { return configuration_mismatch_; }
+  [[nodiscard]] bool configuration_mismatch() const { return configuration_mismatch_; }
   [[nodiscard]] drivecom::State state() const { return pd_.state(); }
   [[nodiscard]] double actual_rpm() const { return pd_.actual_rpm(); }
   [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
@@ -78,6 +82,7 @@ class Mc6000Device {
   Time last_cycle_{0};
   bool watchdog_fault_ = false;
   bool external_fault_ = false;
+  bool configuration_mismatch_ = false;
 };
 
 }  // namespace ibs::devices
