@@ -35,12 +35,25 @@ build() {
   cmake --build --preset "$preset" -j "$jobs" "$@"
 }
 
+# The main job keeps its output to the run itself: the build is quiet unless it fails.
+quiet_build() {
+  local log
+  log=$(mktemp)
+  if ! build "$@" >"$log" 2>&1; then
+    cat "$log" >&2
+    rm -f "$log"
+    echo "dev.sh: the build failed" >&2
+    exit 1
+  fi
+  rm -f "$log"
+}
+
 cmd=${1:-}
 case "$cmd" in
   run)
     shift
     ensure_packages
-    build release --target ibs >/dev/null
+    quiet_build release --target ibs
     exec ./build/release/tools/ibs/ibs run "$@"
     ;;
   test)
