@@ -41,10 +41,7 @@ void Mc6000PdDevice::power_on() {
   machine_.power_on();
   since_power_on_ = 0ns;
   initialised_ = false;
-  reference_ = 0.0;
-  actual_ = 0.0;
-  limit_ = false;
-  plant_.reset();
+  reset_motion();
   status_ = machine_.state_bits();
 }
 
@@ -52,11 +49,14 @@ void Mc6000PdDevice::start(InitState s) {
   machine_.force(initial_state(s));
   since_power_on_ = config_.init_time;
   initialised_ = true;
+  reset_motion();
+  status_ = drivecom::status_word(machine_.state(), 0, {});
+}
+
+void Mc6000PdDevice::reset_motion() {
   reference_ = 0.0;
   actual_ = 0.0;
-  limit_ = false;
   plant_.reset();
-  status_ = drivecom::status_word(machine_.state(), 0, {});
 }
 
 void Mc6000PdDevice::move_actual(Duration dt) {
@@ -113,8 +113,7 @@ void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
                         std::fabs(reference_ - actual_) <= config_.plant.reference_window_rpm;
   // Bit 11 "a limitation is active" (5.1.3): here the reference is beyond the speed limit. The
   // torque limit during acceleration does not set it: 5.3.4 shows 0237H while accelerating.
-  limit_ = std::fabs(reference_) > config_.max_speed_rpm;
-  e.limit_value = limit_;
+  e.limit_value = std::fabs(reference_) > config_.max_speed_rpm;
   e.bit14 = is00_;
   e.bit15 = is01_;
   status_ = drivecom::status_word(machine_.state(), machine_.last_control(), e);

@@ -88,31 +88,37 @@ std::string hz(double v) {
 
 // --- MC6000 pd --------------------------------------------------------------------------------
 
-// The servo as the simulator runs it (mc6000_device.hpp), one 1 ms sample per row, every row a
-// valid bus cycle: recorded simulator traces replay unchanged.
-class Mc6000Side final : public trace::DeviceSide {
+// A device as the simulator runs it (mc6000_device.hpp, vf1000_device.hpp), one sample of its
+// period per row and every row a valid bus cycle: recorded simulator traces replay unchanged.
+template <typename Device>
+class SimulatedDeviceSide final : public trace::DeviceSide {
  public:
-  Mc6000Side(const interbus::mc6000::Layout& l, DeviceStart start) : device_(config(l), start, Time{0}) {}
-  std::size_t m2s_words() const override { return static_cast<std::size_t>(device_.layout().pd_words); }
-  std::size_t s2m_words() const override { return m2s_words(); }
+  template <typename Config>
+  SimulatedDeviceSide(std::size_t words, Duration period, const Config& config, DeviceStart start)
+      : words_(words), period_(period), device_(config, start, Time{0}) {}
+  std::size_t m2s_words() const override { return words_; }
+  std::size_t s2m_words() const override { return words_; }
   void initial(std::span<Word> s2m) override { device_.output(s2m); }
   void step(std::span<const Word> m2s, std::span<Word> s2m) override {
-    now_ += kMc6000SamplePeriod;
+    now_ += period_;
     device_.bus_cycle(now_);
     device_.sample(m2s, s2m, now_);
   }
 
  private:
-  static Mc6000DeviceConfig config(const interbus::mc6000::Layout& l) {
-    Mc6000DeviceConfig c;
-    c.supi = l.supi;
-    c.ibcnf = static_cast<int>(l.ibcnf);
-    c.bus = l.bus;
-    return c;
-  }
-  Mc6000Device device_;
+  std::size_t words_;
+  Duration period_;
+  Device device_;
   Time now_{0};
 };
+
+Mc6000DeviceConfig mc6000_config(const interbus::mc6000::Layout& l) {
+  Mc6000DeviceConfig c;
+  c.supi = l.supi;
+  c.ibcnf = static_cast<int>(l.ibcnf);
+  c.bus = l.bus;
+  return c;
+}
 
 class Mc6000Master final : public trace::MasterSide {
  public:
@@ -179,25 +185,6 @@ class Mc6000Explainer final : public trace::Explainer {
 };
 
 // --- VF1000 pd --------------------------------------------------------------------------------
-
-// The inverter as the simulator runs it (vf1000_device.hpp): process data, the communication word
-// with its timing, one 8.2 ms sample per row, every row a valid bus cycle.
-class Vf1000Side final : public trace::DeviceSide {
- public:
-  explicit Vf1000Side(DeviceStart start) : device_(Vf1000DeviceConfig{}, start, Time{0}) {}
-  std::size_t m2s_words() const override { return Vf1000Device::kWords; }
-  std::size_t s2m_words() const override { return Vf1000Device::kWords; }
-  void initial(std::span<Word> s2m) override { device_.output(s2m); }
-  void step(std::span<const Word> m2s, std::span<Word> s2m) override {
-    now_ += kVf1000SamplePeriod;
-    device_.bus_cycle(now_);
-    device_.sample(m2s, s2m, now_);
-  }
-
- private:
-  Vf1000Device device_;
-  Time now_{0};
-};
 
 class Vf1000Master final : public trace::MasterSide {
  public:
@@ -284,8 +271,13 @@ Duration pd_step_period(DeviceType d) {
 std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
   const Header& h = t.header;
   if (h.words == WordsKind::pd) {
-    if (h.device == DeviceType::mc6000) return std::make_unique<Mc6000Side>(layout_of(t), start_of(h));
-    return std::make_unique<Vf1000Side>(start_of(h));
+    if (h.device == DeviceType::mc6000) {
+      const auto l = layout_of(t);
+      return std::make_unique<SimulatedDeviceSide<Mc6000Device>>(static_cast<std::size_t>(l.pd_words),
+                                                                  kMc6000SamplePeriod, mc6000_config(l), start_of(h));
+    }
+    return std::make_unique<SimulatedDeviceSide<Vf1000Device>>(Vf1000Device::kWords, kVf1000SamplePeriod,
+                                                               Vf1000DeviceConfig{}, start_of(h));
   }
   if (is_comm(h)) return channel_adapter(t, [&] { return vf1000_channel::make_comm_device_side(h); });
   if (is_pcp(h)) return channel_adapter(t, [&] { return pcp::make_pcp_device_side(h); });

@@ -64,6 +64,7 @@ class Mc6000PdDevice {
 
  private:
   void move_actual(Duration dt);
+  void reset_motion();
 
   Mc6000PdConfig config_;
   drivecom::DeviceStateMachine machine_;
@@ -73,7 +74,6 @@ class Mc6000PdDevice {
   bool fault_present_ = false;
   bool is00_ = false;
   bool is01_ = false;
-  bool limit_ = false;
   double load_nm_ = 0.0;
   std::optional<Word> override_;
   DrivePlant plant_;
