@@ -31,17 +31,7 @@ detail::Cell DeviceStateMachine::next(const DeviceInputs& in, Command cmd, bool 
   return detail::kTransitionLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(cmd)];
 }
 
-SampleResult DeviceStateMachine::sample(const DeviceInputs& in) {
-  // The common case of every sample: a stable state whose command changes nothing.
-  if (!in.fault_present && state_ >= State::start_up_inhibit && state_ <= State::enabled) {
-    const Command cmd = decode_command(in.control);
-    if (detail::kTransitionLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(cmd)].number == 0) {
-      last_control_ = in.control;
-      SampleResult stable;
-      stable.state = state_;
-      return stable;
-    }
-  }
+SampleResult DeviceStateMachine::sample_transitions(const DeviceInputs& in) {
   SampleResult r;
   // RESET FAULT acts on an edge seen in FAULT; an edge during the fault reaction is not stored.
   bool reset_edge = state_ == State::fault && reset_fault_edge(last_control_, in.control);

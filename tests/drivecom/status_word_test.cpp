@@ -57,6 +57,23 @@ TEST(StatusWord, EveryStateRoundTripsForEveryControlWord) {
   }
 }
 
+TEST(StatusWord, TheLookupAgreesWithTheStateBitsForEveryStateAndControlWord) {
+  // status_word() reads bits 0-6 from a table built at compile time; every one of the 65536
+  // control words must give what state_bits() and the extra bits say.
+  for (const auto& row : kStateTable) {
+    for (unsigned c = 0; c <= 0xFFFF; ++c) {
+      for (const bool reached : {false, true}) {
+        StatusExtras e{};
+        e.reference_reached = reached;
+        e.bit15 = (c & 1U) != 0;
+        const auto w = static_cast<Word>(c);
+        ASSERT_EQ(status_word(row.state, w, e), static_cast<Word>(state_bits(row.state, w) | extras_bits(e)))
+            << "state " << to_string(row.state) << ", control word " << c;
+      }
+    }
+  }
+}
+
 TEST(StatusWord, DeviceBitsOf522And532) {
   StatusExtras e{};
   e.remote = false;

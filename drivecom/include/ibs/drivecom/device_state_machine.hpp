@@ -107,7 +107,19 @@ class DeviceStateMachine {
 
   // Processes one sample: transitions are taken until the state is stable, so READY + ENABLE
   // reaches ENABLED in one sample (5.3.4). Never allocates, never throws.
-  SampleResult sample(const DeviceInputs& in);
+  SampleResult sample(const DeviceInputs& in) {
+    // The common case of every sample, inline: a stable state whose command changes nothing.
+    if (!in.fault_present && state_ >= State::start_up_inhibit && state_ <= State::enabled &&
+        detail::kTransitionLut[static_cast<std::size_t>(state_)]
+                              [static_cast<std::size_t>(decode_command(in.control))]
+                                  .number == 0) {
+      last_control_ = in.control;
+      SampleResult stable;
+      stable.state = state_;
+      return stable;
+    }
+    return sample_transitions(in);
+  }
 
   [[nodiscard]] State state() const { return state_; }
   [[nodiscard]] Word last_control() const { return last_control_; }
@@ -126,6 +138,8 @@ class DeviceStateMachine {
   }
 
  private:
+  // A sample that takes at least one transition (or may: the fault and e-stop states).
+  SampleResult sample_transitions(const DeviceInputs& in);
   // The transition the state machine takes next (number 0: none).
   detail::Cell next(const DeviceInputs& in, Command cmd, bool reset_edge) const;
 

@@ -114,19 +114,30 @@ struct StatusExtras {
   bool bit15 = false;               // VF1000 S1OUT, MC6000 IS01
 };
 constexpr Word extras_bits(const StatusExtras& e) {
-  Word w = 0;
-  w = with_bit(w, sw::kAlarm, e.alarm);
-  w = with_bit(w, sw::kMessage, e.message);
-  w = with_bit(w, sw::kRemote, e.remote);
-  w = with_bit(w, sw::kReferenceReached, e.reference_reached);
-  w = with_bit(w, sw::kLimitValue, e.limit_value);
-  w = with_bit(w, 14, e.bit14);
-  w = with_bit(w, 15, e.bit15);
-  return w;
+  const auto at = [](bool on, unsigned n) { return static_cast<unsigned>(on) << n; };
+  return static_cast<Word>(at(e.alarm, sw::kAlarm) | at(e.message, sw::kMessage) |
+                           at(e.remote, sw::kRemote) |
+                           at(e.reference_reached, sw::kReferenceReached) |
+                           at(e.limit_value, sw::kLimitValue) | at(e.bit14, 14) | at(e.bit15, 15));
 }
 
+namespace detail {
+// state_bits for every state and both request bits (1 and 2) of the last control word: the
+// status word of every device sample is a lookup here plus the extra bits.
+constexpr std::array<std::array<Word, 4>, kStateCount> make_state_bits_lut() {
+  std::array<std::array<Word, 4>, kStateCount> lut{};
+  for (std::size_t s = 0; s < kStateCount; ++s) {
+    for (unsigned r = 0; r < 4; ++r) lut[s][r] = state_bits(static_cast<State>(s), static_cast<Word>(r << 1U));
+  }
+  return lut;
+}
+inline constexpr auto kStateBitsLut = make_state_bits_lut();
+static_assert(cw::kBlockPower == 1 && cw::kEmergencyStop == 2, "the lookup takes control bits 1-2");
+}  // namespace detail
+
 constexpr Word status_word(State s, Word last_control, const StatusExtras& e) {
-  return static_cast<Word>(state_bits(s, last_control) | extras_bits(e));
+  const Word bits = detail::kStateBitsLut[static_cast<std::size_t>(s)][(last_control >> 1U) & 3U];
+  return static_cast<Word>(bits | extras_bits(e));
 }
 
 // A status word in words, e.g. "0231 READY, remote" or "0637 ENABLED, remote, reference reached".
