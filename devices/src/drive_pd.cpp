@@ -74,59 +74,65 @@ void Mc6000PdDevice::move_actual(Duration dt) {
       in.enabled = false;  // power stage off: the load coasts
       break;
   }
-  actual_ = plant_.advance(dt, in).speed_rpm;
+  plant_.advance(dt, in);
+  actual_ = plant_.speed_rpm();
 }
 
-void Mc6000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Duration dt) {
+void Mc6000PdDevice::step_held(std::span<const Word> m2s, Duration dt, std::uint32_t count) {
   const auto& l = config_.layout;
-  if (!l.exchanges_data) {
-    // SUPI 0: the INTERBUS CPU loops without exchanging data with the servo (3.2.2).
-    std::fill(s2m.begin(), s2m.end(), Word{0});
-    return;
-  }
-  since_power_on_ += dt;
-  if (!initialised_ && since_power_on_ >= config_.init_time) initialised_ = true;
+  // SUPI 0: the INTERBUS CPU loops without exchanging data with the servo (3.2.2).
+  if (!l.exchanges_data || count == 0) return;
   const Word control = override_ ? *override_ : (m2s.empty() ? Word{0} : m2s[0]);
-  const auto ref_words = m2s.subspan(1, static_cast<std::size_t>(l.reference_words));
-  reference_ = interbus::mc6000::decode_reference(l, ref_words);
+  reference_ = interbus::mc6000::decode_reference(
+      l, m2s.subspan(1, static_cast<std::size_t>(l.reference_words)));
+  for (std::uint32_t k = 0; k < count; ++k) sample_held(control, dt);
 
-  const bool standstill = std::fabs(actual_) < config_.standstill_rpm;
-  drivecom::DeviceInputs in;
-  in.control = control;
-  in.initialised = initialised_;
-  in.fault_present = fault_present_;
-  in.fault_reaction_done = standstill;
-  in.stopped = standstill;
-  last_ = machine_.sample(in);
-  move_actual(dt);
-  // A fault reaction that ends within this sample shows FAULT at once.
-  if (machine_.state() == State::fault_response_active && std::fabs(actual_) < config_.standstill_rpm) {
-    in.fault_reaction_done = true;
-    const auto more = machine_.sample(in);
-    for (std::uint8_t i = 0; i < more.count; ++i) last_.add(more.transition(i));
-    last_.state = more.state;
-  }
-
+  // The status word after the last sample (nothing reads it in between).
+  const State state = machine_.state();
   drivecom::StatusExtras e;
   e.remote = initialised_;
-  e.reference_reached = machine_.state() == State::enabled &&
-                        std::fabs(reference_ - actual_) <= config_.plant.reference_window_rpm;
+  e.reference_reached =
+      state == State::enabled && std::fabs(reference_ - actual_) <= config_.plant.reference_window_rpm;
   // Bit 11 "a limitation is active" (5.1.3): here the reference is beyond the speed limit. The
   // torque limit during acceleration does not set it: 5.3.4 shows 0237H while accelerating.
   e.limit_value = std::fabs(reference_) > config_.max_speed_rpm;
   e.bit14 = is00_;
   e.bit15 = is01_;
-  status_ = drivecom::status_word(machine_.state(), machine_.last_control(), e);
-  output(s2m);
+  status_ = drivecom::status_word(state, machine_.last_control(), e);
+}
+
+void Mc6000PdDevice::sample_held(Word control, Duration dt) {
+  if (!initialised_) {
+    since_power_on_ += dt;
+    initialised_ = since_power_on_ >= config_.init_time;
+  }
+  const bool standstill = std::fabs(actual_) < config_.standstill_rpm;
+  const drivecom::DeviceInputs in{control, initialised_, fault_present_, standstill, standstill};
+  last_ = machine_.sample(in);
+  move_actual(dt);
+  // A fault reaction that ends within this sample shows FAULT at once.
+  if (machine_.state() == State::fault_response_active && std::fabs(actual_) < config_.standstill_rpm) {
+    drivecom::DeviceInputs done = in;
+    done.fault_reaction_done = true;
+    const auto more = machine_.sample(done);
+    for (std::uint8_t i = 0; i < more.count; ++i) last_.add(more.transition(i));
+    last_.state = more.state;
+  }
 }
 
 void Mc6000PdDevice::output(std::span<Word> s2m) const {
-  for (Word& w : s2m) w = 0;
   const auto& l = config_.layout;
-  if (!l.exchanges_data || s2m.empty()) return;
+  if (s2m.empty()) return;
+  if (!l.exchanges_data) {
+    std::fill(s2m.begin(), s2m.end(), Word{0});  // SUPI 0 (3.2.2)
+    return;
+  }
   s2m[0] = status_;
-  interbus::mc6000::encode_actual(l, {actual_, 0.0},
-                                  s2m.subspan(1, static_cast<std::size_t>(l.actual_words)));
+  // The actual words, and 0 in a word the layout leaves unused (SUPI 12 with IBCNF 2). IBCNF 3
+  // sends the torque in its second word, in % of the rated torque (a modelling choice: the
+  // manual gives no scaling).
+  const double torque = l.ibcnf == interbus::mc6000::Ibcnf::speed_torque ? torque_percent() : 0.0;
+  interbus::mc6000::encode_actual(l, {actual_, torque}, s2m.subspan(1));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -67,6 +67,18 @@ DrivePlant::StateSpace discretise_zoh(const DrivePlant::StateSpace& c, Duration 
   return {e.topLeftCorner<3, 3>(), e.topRightCorner<3, 3>()};
 }
 
+DrivePlant::Rows DrivePlant::rows_of(const StateSpace& d) {
+  Rows r{};
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    auto& row = r[static_cast<std::size_t>(i)];
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      row[static_cast<std::size_t>(j)] = d.a(i, j);
+      row[static_cast<std::size_t>(j) + 3] = d.b(i, j);
+    }
+  }
+  return r;
+}
+
 DrivePlant::DrivePlant(const DrivePlantParams& params, Duration period)
     : p_(params), period_(period) {
   require(p_.motor_inertia > 0.0, "motor_inertia", p_.motor_inertia, "> 0 kg m^2");
@@ -83,75 +95,77 @@ DrivePlant::DrivePlant(const DrivePlantParams& params, Duration period)
   require(period_.count() > 0, "period (ns)", static_cast<double>(period_.count()), "> 0");
   linear_ = discretise_zoh(continuous(p_, Mode::linear), period_);
   limited_ = discretise_zoh(continuous(p_, Mode::limited), period_);
+  rows_ = {rows_of(linear_), rows_of(limited_)};
   reset();
 }
 
 void DrivePlant::reset() noexcept {
   x_ = State::Zero();
   pending_ = Duration{0};
-  out_ = PlantOutput{};
+  reference_rpm_ = 0.0;
+  limited_last_ = false;
 }
 
-PlantOutput DrivePlant::step(const PlantInput& in) noexcept {
+void DrivePlant::update(const PlantInput& in) noexcept {
   const double w_ref = rpm_to_rad_s(in.speed_reference_rpm);
   const double w0 = x_(0);
+  double i0 = x_(1);
   const double t0 = x_(2);
+  const double tmax = p_.torque_limit;
 
   // Friction and load, held over the step. At standstill, static friction balances up to its
   // full value whatever drive torque there is (stiction), so the shaft stays put.
-  double friction = 0.0;
-  if (std::abs(w0) > kStandstill) {
-    friction = std::copysign(p_.coulomb_friction, w0);
-  } else {
-    friction = std::clamp(t0 - in.load_torque_nm, -p_.coulomb_friction, p_.coulomb_friction);
-  }
-  Input u(w_ref, in.load_torque_nm + friction, 0.0);
+  const double friction = std::abs(w0) > kStandstill
+                              ? std::copysign(p_.coulomb_friction, w0)
+                              : std::clamp(t0 - in.load_torque_nm, -p_.coulomb_friction, p_.coulomb_friction);
+  const double d = in.load_torque_nm + friction;
 
-  Mode mode = Mode::limited;
-  bool limited = false;
+  // The mode for this step: limited (clipped command T_lim, or T_lim = 0 with the power stage
+  // off) or linear.
+  bool linear = false;
+  double t_lim = 0.0;
   if (!in.enabled) {
-    x_(1) = 0.0;  // power stage off: torque decays to 0, the controller starts afresh
+    i0 = 0.0;  // power stage off: torque decays to 0, the controller starts afresh
   } else {
-    const double command = p_.kp * (w_ref - w0) + x_(1);
-    if (std::abs(command) > p_.torque_limit) {
-      u(2) = std::copysign(p_.torque_limit, command);
-      limited = true;
+    const double command = p_.kp * (w_ref - w0) + i0;
+    if (std::abs(command) > tmax) {
+      t_lim = std::copysign(tmax, command);
     } else {
-      mode = Mode::linear;
+      linear = true;
     }
   }
 
-  const StateSpace& d = discrete(mode);
-  x_ = d.a * x_ + d.b * u;
-
-  if (mode == Mode::linear) {
+  // x' = Ad x + Bd u with u = [w_ref, d, T_lim].
+  const Rows& r = rows_[linear ? 0 : 1];
+  const auto row = [&](const std::array<double, 6>& c) {
+    return c[0] * w0 + c[1] * i0 + c[2] * t0 + c[3] * w_ref + c[4] * d + c[5] * t_lim;
+  };
+  double w1 = row(r[0]);
+  double i1 = row(r[1]);
+  double t1 = row(r[2]);
+  if (linear) {
     // Integrator clamp (anti-windup), and the current limit for a command that rose past
     // T_max inside the step.
-    x_(1) = std::clamp(x_(1), -p_.torque_limit, p_.torque_limit);
-    x_(2) = std::clamp(x_(2), -p_.torque_limit, p_.torque_limit);
+    i1 = std::clamp(i1, -tmax, tmax);
+    t1 = std::clamp(t1, -tmax, tmax);
   }
   // Coulomb friction only brakes: a speed it alone carried through zero stops at zero.
-  const bool crossed = (w0 > kStandstill && x_(0) < 0.0) || (w0 < -kStandstill && x_(0) > 0.0);
-  if (crossed && std::abs(x_(2) - in.load_torque_nm) <= p_.coulomb_friction) {
-    x_(0) = 0.0;
-  }
+  const bool crossed = (w0 > kStandstill && w1 < 0.0) || (w0 < -kStandstill && w1 > 0.0);
+  if (crossed && std::abs(t1 - in.load_torque_nm) <= p_.coulomb_friction) w1 = 0.0;
 
-  out_.speed_rpm = rad_s_to_rpm(x_(0));
-  out_.torque_nm = x_(2);
-  out_.torque_percent = 100.0 * x_(2) / p_.rated_torque;
-  out_.reference_reached =
-      std::abs(in.speed_reference_rpm - out_.speed_rpm) <= p_.reference_window_rpm;
-  out_.limit_active = limited;
-  return out_;
+  x_ = State(w1, i1, t1);
+  reference_rpm_ = in.speed_reference_rpm;
+  limited_last_ = in.enabled && !linear;
 }
 
-PlantOutput DrivePlant::advance(Duration elapsed, const PlantInput& in) noexcept {
-  pending_ += elapsed;
-  while (pending_ >= period_) {
-    step(in);
-    pending_ -= period_;
-  }
-  return out_;
+PlantOutput DrivePlant::output() const noexcept {
+  PlantOutput o;
+  o.speed_rpm = speed_rpm();
+  o.torque_nm = x_(2);
+  o.torque_percent = 100.0 * x_(2) / p_.rated_torque;
+  o.reference_reached = std::abs(reference_rpm_ - o.speed_rpm) <= p_.reference_window_rpm;
+  o.limit_active = limited_last_;
+  return o;
 }
 
 }  // namespace ibs::devices

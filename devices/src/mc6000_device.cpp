@@ -1,5 +1,7 @@
 #include "ibs/devices/mc6000_device.hpp"
 
+#include <algorithm>
+
 #include "ibs/pcp/mc6000_parameters.hpp"
 
 namespace ibs::devices {
@@ -73,8 +75,32 @@ void Mc6000Device::output_pcp(Time now, std::span<Word> pcp_s2m) {
   if (pcp_ && !pcp_s2m.empty()) pcp_->show(now, pcp_s2m);
 }
 
-void Mc6000Device::sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now,
-                          std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) {
+void Mc6000Device::step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
+  if (pcp_ || watchdog_fault_ || period <= Duration{0}) {
+    // The channel's parameters (409-BUTWD among them) and the watchdog's reset are looked at
+    // sample by sample.
+    for (std::uint32_t k = 0; k < count; ++k) step(pd_m2s, first + static_cast<std::int64_t>(k) * period);
+    return;
+  }
+  // 3.2.4: the monitoring time runs out at the first sample more than 409-BUTWD after the last
+  // cycle; from there on every sample of this stretch sees the watchdog fault.
+  std::uint32_t in_time = count;
+  if (armed_ && config_.bus_watchdog > Duration{0}) {
+    const Duration left = config_.bus_watchdog - (first - last_cycle_);
+    in_time = left < Duration{0} ? 0U : static_cast<std::uint32_t>(std::min<std::int64_t>(count, left / period + 1));
+  }
+  const bool pd = pd_.layout().pd_words > 0;
+  pd_.set_fault(external_fault_);
+  if (pd) pd_.step_held(pd_m2s, kMc6000SamplePeriod, in_time);
+  if (in_time < count) {
+    watchdog_fault_ = true;
+    pd_.set_fault(true);
+    if (pd) pd_.step_held(pd_m2s, kMc6000SamplePeriod, count - in_time);
+  }
+}
+
+void Mc6000Device::step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s,
+                        std::span<Word> pcp_s2m) {
   if (pcp_) {
     // 409-BUTWD as the servo holds it now (the master may have written it through PCP).
     if (const auto v = pcp_->parameters().get(kButwd)) config_.bus_watchdog = std::chrono::milliseconds(v->raw);
@@ -85,7 +111,7 @@ void Mc6000Device::sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, 
                        (now - last_cycle_) > config_.bus_watchdog;
   if (expired) watchdog_fault_ = true;
   pd_.set_fault(external_fault_ || expired);
-  if (pd_.layout().pd_words > 0) pd_.sample(pd_m2s, pd_s2m, kMc6000SamplePeriod);
+  if (pd_.layout().pd_words > 0) pd_.step(pd_m2s, kMc6000SamplePeriod);
   if (watchdog_fault_ && !expired && pd_.state() == drivecom::State::start_up_inhibit) {
     watchdog_fault_ = false;  // reset by the master after the data came back
   }

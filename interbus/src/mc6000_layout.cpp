@@ -121,23 +121,31 @@ double decode_reference(const Layout& l, std::span<const Word> words) {
 }
 
 void encode_actual(const Layout& l, const Actual& a, std::span<Word> words) {
-  for (Word& w : words) w = 0;
+  // Written word by word, without clearing first: every device sample goes through here.
+  Word first = 0;
+  Word second = 0;
   switch (l.ibcnf) {
-    case Ibcnf::word16:
-      if (!words.empty()) words[0] = to_word16(a.value);
-      break;
+    case Ibcnf::word16: first = to_word16(a.value); break;
     case Ibcnf::q16:
-      if (words.size() >= 2) put_q16(a.value, words);
+      if (words.size() >= 2) {
+        const auto raw = static_cast<std::uint32_t>(to_q16(a.value));
+        first = high_word(raw);
+        second = low_word(raw);
+      }
       break;
     case Ibcnf::speed_torque:
-      if (words.size() >= 2) {
-        words[0] = to_word16(a.value);
-        words[1] = to_word16(a.torque);
-      }
+      first = to_word16(a.value);
+      second = to_word16(a.torque);
       break;
     case Ibcnf::none:
     case Ibcnf::lisim: break;
   }
+  const std::size_t n = words.size();
+  if (n > 0) words[0] = first;
+  if (n > 1) words[1] = second;
+  // (Word by word: a loop here becomes a library memset call for what is at most one word.)
+  if (n > 2) words[2] = 0;
+  for (std::size_t i = 3; i < n; ++i) words[i] = 0;
 }
 
 Actual decode_actual(const Layout& l, std::span<const Word> words) {

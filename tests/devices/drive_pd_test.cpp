@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <cstdint>
 
 #include "ibs/devices/drive_pd.hpp"
 
@@ -137,6 +139,29 @@ TEST(Mc6000Pd, ReferenceBeyondTheSpeedLimitSetsLimitValue) {
   EXPECT_NEAR(dev.actual_rpm(), 6000.0, 0.1);
   EXPECT_EQ(in[0] & 0x0800U, 0x0800U);
   EXPECT_EQ(in[0] & 0x0400U, 0U);
+}
+
+TEST(Mc6000Pd, Ibcnf3SendsSpeedAndTorqueInTheirOwnWords) {
+  // 3.2.3: IBCNF 3 answers with a 16-bit speed (1st word) and a 16-bit torque (2nd word); the
+  // torque reads in % of the rated torque (docs/bus.md).
+  Mc6000PdConfig c;
+  c.layout = interbus::mc6000::make_layout(10, 3);
+  Mc6000PdDevice dev(c);
+  const auto q16 = static_cast<std::uint32_t>(interbus::mc6000::to_q16(2500.25));
+  std::array<Word, 3> out{0x0006, high_word(q16), low_word(q16)}, in{};
+  dev.sample(out, in, 1ms);
+  out[0] = 0x000F;
+  for (int i = 0; i < 50; ++i) dev.sample(out, in, 1ms);
+  // Accelerating in the torque limit: 10 Nm of 4 Nm rated.
+  EXPECT_EQ(static_cast<std::int16_t>(in[1]), static_cast<std::int16_t>(std::lround(dev.actual_rpm())));
+  EXPECT_EQ(static_cast<std::int16_t>(in[2]), 250);
+  for (int i = 0; i < 2000; ++i) dev.sample(out, in, 1ms);
+  // At speed the torque only covers friction: 0.1 Nm + 2e-4 Nm s/rad * 261.8 rad/s = 0.152 Nm, 4 %.
+  EXPECT_EQ(static_cast<std::int16_t>(in[1]), 2500);
+  EXPECT_EQ(static_cast<std::int16_t>(in[2]), 4);
+  const auto a = interbus::mc6000::decode_actual(c.layout, std::span<const Word>(in).subspan(1));
+  EXPECT_EQ(a.value, 2500.0);
+  EXPECT_EQ(a.torque, 4.0);
 }
 
 TEST(Mc6000Pd, Supi0ExchangesNoData) {

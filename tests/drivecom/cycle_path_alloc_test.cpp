@@ -19,6 +19,7 @@ TEST(CyclePath, CounterSeesAnAllocation) {
   // Proves the counter works, so the zero below means something.
   Counting c;
   auto* p = new int(4);
+  test::escape(p);
   delete p;
   EXPECT_EQ(c.count(), 1);
 }

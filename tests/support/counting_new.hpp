@@ -21,6 +21,10 @@ struct AllocationCounter {
   AllocationCounter& operator=(const AllocationCounter&) = delete;
   [[nodiscard]] long count() const { return g_allocations.load(); }
 };
+
+// Makes `p` escape, so that the compiler keeps an allocation whose result is otherwise unused
+// (a new/delete pair may be removed since C++14, and is with link-time optimisation).
+inline void escape(const void* p) { asm volatile("" : : "g"(p) : "memory"); }
 }  // namespace ibs::test
 
 void* operator new(std::size_t n) {

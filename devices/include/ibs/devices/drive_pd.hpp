@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 
@@ -43,8 +44,18 @@ class Mc6000PdDevice {
   // One processing sample (dt = 1 ms normally): reads the pd words the master wrote (control
   // word first), writes the pd words the master reads (status word first). Both spans are
   // layout().pd_words long. No allocation, no exceptions.
-  void sample(std::span<const Word> m2s, std::span<Word> s2m, Duration dt);
-  // The words the device shows before its first sample.
+  void sample(std::span<const Word> m2s, std::span<Word> s2m, Duration dt) {
+    step(m2s, dt);
+    output(s2m);
+  }
+  // The same sample without writing the words: output() then writes them as they stand after
+  // the last sample. A simulator that reads the words only at a bus cycle end forms them once
+  // per cycle instead of once per sample; the words are the same.
+  void step(std::span<const Word> m2s, Duration dt) { step_held(m2s, dt, 1); }
+  // `count` samples with the same master words (between two bus cycles they do not change):
+  // exactly what `count` calls of step() do, with the words decoded once.
+  void step_held(std::span<const Word> m2s, Duration dt, std::uint32_t count);
+  // The words the device shows: after the last sample, or before the first.
   void output(std::span<Word> s2m) const;
 
   void set_fault(bool present) { fault_present_ = present; }
@@ -57,12 +68,15 @@ class Mc6000PdDevice {
   [[nodiscard]] drivecom::State state() const { return machine_.state(); }
   [[nodiscard]] double reference_rpm() const { return reference_; }
   [[nodiscard]] double actual_rpm() const { return actual_; }
-  [[nodiscard]] double torque_nm() const { return plant_.output().torque_nm; }
+  [[nodiscard]] double torque_nm() const { return plant_.torque_nm(); }
+  // The motor torque in % of the rated torque (IBCNF 3's second actual word).
+  [[nodiscard]] double torque_percent() const { return 100.0 * plant_.torque_nm() / config_.plant.rated_torque; }
   [[nodiscard]] bool initialised() const { return initialised_; }
   [[nodiscard]] Word status_word() const { return status_; }
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return last_; }
 
  private:
+  void sample_held(Word control, Duration dt);
   void move_actual(Duration dt);
   void reset_motion();
 

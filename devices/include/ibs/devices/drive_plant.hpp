@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include "ibs/interbus/time.hpp"
 
@@ -86,13 +87,31 @@ class DrivePlant {
   // Throws std::invalid_argument naming a parameter out of range (configuration time).
   explicit DrivePlant(const DrivePlantParams& params = {}, Duration period = kMc6000SamplePeriod);
 
-  // One sample period with the input held.
-  PlantOutput step(const PlantInput& in) noexcept;
+  // One sample period with the input held; returns the output after it.
+  PlantOutput step(const PlantInput& in) noexcept {
+    update(in);
+    return output();
+  }
+  // The same without forming the output: the per-sample path of the device models.
+  void update(const PlantInput& in) noexcept;
   // As many whole periods as `elapsed` (plus what earlier calls left over) covers; the remainder
-  // waits for the next call. Returns the output after the last step taken.
-  PlantOutput advance(Duration elapsed, const PlantInput& in) noexcept;
+  // waits for the next call.
+  void advance(Duration elapsed, const PlantInput& in) noexcept {
+    if (pending_.count() == 0 && elapsed == period_) {
+      update(in);  // the usual case: one call per sample period
+      return;
+    }
+    pending_ += elapsed;
+    while (pending_ >= period_) {
+      update(in);
+      pending_ -= period_;
+    }
+  }
 
-  const PlantOutput& output() const noexcept { return out_; }
+  // The output after the last step (formed from the state when asked for).
+  [[nodiscard]] PlantOutput output() const noexcept;
+  [[nodiscard]] double speed_rpm() const noexcept { return rad_s_to_rpm(x_(0)); }
+  [[nodiscard]] double torque_nm() const noexcept { return x_(2); }
   const State& state() const noexcept { return x_; }
   void set_state(const State& x) noexcept { x_ = x; }
   void reset() noexcept;
@@ -108,13 +127,20 @@ class DrivePlant {
   }
 
  private:
+  // [Ad | Bd] of a mode, row by row: x'(r) = sum over c of rows[r][c] * [x; u](c). The step
+  // reads these plain arrays; the Eigen matrices stay for discretising and inspecting.
+  using Rows = std::array<std::array<double, 6>, 3>;
+  static Rows rows_of(const StateSpace& d);
+
   DrivePlantParams p_;
   Duration period_;
   Duration pending_{0};
   StateSpace linear_;
   StateSpace limited_;
+  std::array<Rows, 2> rows_{};  // [linear, limited]
   State x_ = State::Zero();
-  PlantOutput out_;
+  double reference_rpm_ = 0.0;  // the last step's input, for PlantOutput::reference_reached
+  bool limited_last_ = false;   // the last step ran in the torque limit
 };
 
 // Zero-order-hold discretisation: exp([[A, B], [0, 0]] * T) = [[Ad, Bd], [0, I]].

@@ -39,7 +39,18 @@ class Mc6000Device {
   // One 1 ms sample: the process-data words (control word first) and the PCP channel words
   // (layout().pcp_words each; empty spans without PCP).
   void sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now,
-              std::span<const Word> pcp_m2s = {}, std::span<Word> pcp_s2m = {});
+              std::span<const Word> pcp_m2s = {}, std::span<Word> pcp_s2m = {}) {
+    step(pd_m2s, now, pcp_m2s, pcp_s2m);
+    output(pd_s2m);
+  }
+  // The same sample without writing the process-data words; output() writes them as they stand
+  // after the last sample (Mc6000PdDevice::step). The PCP words are written in every sample.
+  void step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s = {},
+            std::span<Word> pcp_s2m = {});
+  // `count` samples at first, first + period, ... with the same process-data words (between two
+  // bus cycles they do not change): exactly what as many calls of step() do. A servo with PCP
+  // words steps its channel sample by sample (use step() for those words).
+  void step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
   void output(std::span<Word> pd_s2m) const { pd_.output(pd_s2m); }
   void output_pcp(Time now, std::span<Word> pcp_s2m);
 

@@ -96,6 +96,8 @@ struct Actual {
   double value = 0.0;   // speed (or torque / position, by control mode)
   double torque = 0.0;  // IBCNF 3 only: the second actual word
 };
+// Writes the actual value(s) into `words` (the words after the status word); words the layout
+// leaves unused are set to 0.
 void encode_actual(const Layout& l, const Actual& a, std::span<Word> words);
 Actual decode_actual(const Layout& l, std::span<const Word> words);
 
