@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <functional>
 #include <stdexcept>
+#include <thread>
 
 #include "ibs/interbus/cycle_time.hpp"
 #include "ibs/interbus/id_code.hpp"
@@ -80,6 +81,9 @@ struct Simulator::Device {
   std::array<Word, 4> s2m{};  // the device's words, picked up by the next valid cycle
   std::array<Word, 4> pcp_m2s{};
   std::array<Word, 4> pcp_s2m{};
+  // The device's slices of the master's process image (set once the ring is built): its whole
+  // input slot, and the words it exchanges each way.
+  std::span<Word> in_slot, in, out, pcp_in, pcp_out;
   std::uint64_t k = 0;  // samples taken
   Time next_sample{0};
   Time lost_until{-1};
@@ -150,7 +154,7 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
       mc.bus = c.bus == BusSide::local ? interbus::mc6000::BusKind::local : interbus::mc6000::BusKind::remote;
       if (c.watchdog_ms) mc.bus_watchdog = std::chrono::milliseconds(*c.watchdog_ms);
       try {
-        d->mc = std::make_unique<devices::Mc6000Device>(mc, start, Time{0});
+        d->mc = std::make_unique<devices::Mc6000Device>(mc6000_prototype(mc, start));
       } catch (const interbus::mc6000::LayoutError& e) {
         throw std::invalid_argument("device '" + c.name + "': " + e.what());
       }
@@ -158,7 +162,7 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
       d->period = kMc6000SamplePeriod;
       d->pd_words = static_cast<std::size_t>(l.exchanges_data ? l.pd_words : 0);
       d->pcp_words = static_cast<std::size_t>(l.pcp_words);
-      devices::Mc6000Device(mc, DeviceStart::initialised, Time{0}).output({d->fresh_initialised.data(), d->pd_words});
+      mc6000_prototype(mc, DeviceStart::initialised).output({d->fresh_initialised.data(), d->pd_words});
       d->fresh_operational = d->fresh_initialised;
       specs.push_back({c.name, interbus::IdCode{l.id_code},
                        c.bus == BusSide::local ? interbus::BusKind::local : interbus::BusKind::remote});
@@ -196,13 +200,42 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
     }
   }
   loop_ = std::make_unique<MasterLoop>(std::move(config), std::move(drivers));
+  for (auto& d : devices_) {
+    // The device's slices, cut to the words it exchanges (an MC6000 with SUPI 0 has a slot on
+    // the ring but exchanges nothing, 3.2.2).
+    const interbus::Device& bd = loop_->config().devices[d->index];
+    const auto cut = [](std::span<Word> slice, std::size_t words) {
+      return slice.first(std::min(slice.size(), words));
+    };
+    d->in_slot = interbus::in_slice(image_, bd);
+    d->in = cut(d->in_slot, d->pd_words);
+    d->out = cut(interbus::out_slice(image_, bd), d->pd_words);
+    d->pcp_in = cut(interbus::pcp_in_slice(image_, bd), d->pcp_words);
+    d->pcp_out = cut(interbus::pcp_out_slice(image_, bd), d->pcp_words);
+  }
   links_.resize(devices_.size());
   summary_.devices.resize(devices_.size());
   summary_.scenario = scenario_.name;
   summary_.cycle_time = cycle_time_;
+  prototypes_.clear();
 }
 
 Simulator::~Simulator() = default;
+
+const devices::Mc6000Device& Simulator::mc6000_prototype(const devices::Mc6000DeviceConfig& c, DeviceStart start) {
+  // Servos of the same configuration start out identical: one is built (its plant discretised)
+  // and the others are copies of it. The key is what the scenario sets; the rest is default.
+  for (const auto& p : prototypes_) {
+    const auto& k = p.config;
+    if (p.start == start && k.supi == c.supi && k.ibcnf == c.ibcnf && k.bus == c.bus &&
+        k.bus_watchdog == c.bus_watchdog) {
+      return *p.device;
+    }
+  }
+  auto device = std::make_unique<devices::Mc6000Device>(c, start, Time{0});
+  prototypes_.push_back({c, start, std::move(device)});
+  return *prototypes_.back().device;
+}
 
 std::optional<std::size_t> Simulator::index_of(const std::string& name) const {
   for (const auto& d : devices_) {
@@ -262,6 +295,7 @@ void Simulator::start(const SimOptions& options) {
       d->recording = d->cfg.initialised;
     }
   }
+  if (observers_.empty()) start_threads(options_.threads);
   master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
   samples_.reserve(devices_.size());
   next_cycle_ = cycle_time_;
@@ -295,13 +329,7 @@ void Simulator::run_device_major(Time end) {
   Time last_progress = now_;
   while (true) {
     const Time limit = std::min(next_cycle_, end + Duration{1});
-    for (auto& dp : devices_) {
-      Device& d = *dp;
-      while (d.next_sample < limit) {
-        now_ = d.next_sample;
-        handle_sample(d.index, d.next_sample);
-      }
-    }
+    step_devices(limit);
     if (next_cycle_ > end) break;
     now_ = next_cycle_;
     handle_cycle(next_cycle_);
@@ -311,6 +339,75 @@ void Simulator::run_device_major(Time end) {
       last_progress = now_;
     }
   }
+}
+
+void Simulator::step_devices(Time limit) {
+  if (!workers_) {
+    for (auto& d : devices_) step_device(*d, limit);
+    return;
+  }
+  window_limit_ = limit;
+  workers_->run();
+}
+
+void Simulator::start_threads(unsigned requested) {
+  // Work of a device: its samples per simulated millisecond (an MC6000 1, a VF1000 0.12).
+  std::vector<double> work;
+  double total = 0.0;
+  for (const auto& d : devices_) {
+    work.push_back(1e6 / static_cast<double>(d->period.count()));
+    total += work.back();
+  }
+  constexpr double kWorkPerThread = 16.0;  // below this the hand-over costs more than it gains
+  unsigned n = requested;
+  if (n == 0) {
+    const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+    n = std::min(cores, static_cast<unsigned>(std::max(1.0, total / kWorkPerThread)));
+  }
+  n = std::min<unsigned>(n, static_cast<unsigned>(devices_.size()));
+  if (n <= 1) return;
+  // Contiguous parts of about total / n each.
+  parts_.assign(n, Part{});
+  std::size_t i = 0;
+  double done = 0.0;
+  for (unsigned p = 0; p < n; ++p) {
+    parts_[p].first = i;
+    const double target = total * (p + 1) / n;
+    const std::size_t keep = n - p - 1;  // devices left for the parts after this one
+    while (i < devices_.size() - keep && (i == parts_[p].first || done + 0.5 * work[i] <= target)) {
+      done += work[i++];
+    }
+    parts_[p].end = p + 1 == n ? devices_.size() : i;
+  }
+  workers_ = std::make_unique<ForkJoin>(n, [this](unsigned part) {
+    for (std::size_t k = parts_[part].first; k < parts_[part].end; ++k) step_device(*devices_[k], window_limit_);
+  });
+}
+
+void Simulator::step_device(Device& d, Time limit) {
+  if (d.next_sample >= limit) return;
+  if (d.vf || d.pcp_words > 0 || !d.recordings.empty()) {
+    while (d.next_sample < limit) handle_sample(d.index, d.next_sample);
+    return;
+  }
+  // An MC6000 without PCP words, not recorded: nobody reads its process-data words before the
+  // cycle end, so they are formed once, after its last sample before it. Without jitter its
+  // samples up to the cycle end are known at once and it takes them in one go.
+  if (d.cfg.jitter == Duration{0}) {
+    const auto count = static_cast<std::uint64_t>((limit - d.next_sample + d.period - Duration{1}) / d.period);
+    d.mc->step_held(d.pd_m2s(), d.next_sample, d.period, static_cast<std::uint32_t>(count));
+    d.k += count;
+    d.last_sample = d.next_sample + static_cast<std::int64_t>(count - 1) * d.period;
+    d.next_sample = next_sample_time(d);
+  } else {
+    do {
+      d.last_sample = d.next_sample;
+      d.mc->step(d.pd_m2s(), d.next_sample);
+      ++d.k;
+      d.next_sample = next_sample_time(d);
+    } while (d.next_sample < limit);
+  }
+  d.mc->output(d.pd_s2m());
 }
 
 void Simulator::run_time_ordered(Time end) {
@@ -571,25 +668,19 @@ void Simulator::handle_cycle(Time t) {
   }
   ++summary_.cycles;
   if (valid) ++summary_.valid_cycles;
-  const interbus::BusConfig& cfg = loop_->config();
   for (auto& d : devices_) {
-    const interbus::Device& bd = cfg.devices[d->index];
     LinkState& link = links_[d->index];
     link.data_valid = valid;
     link.module_error = d->module_error(t);
     if (!valid) continue;
-    auto in = interbus::in_slice(image_, bd);
     if (link.module_error) {
-      std::fill(in.begin(), in.end(), Word{0});  // no data from a device with a module error
+      std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
       continue;
     }
-    const auto out = interbus::out_slice(image_, bd);
-    std::copy_n(out.begin(), std::min(out.size(), d->pd_words), d->m2s.begin());
-    std::copy_n(d->s2m.begin(), std::min(in.size(), d->pd_words), in.begin());
-    const auto pcp_out = interbus::pcp_out_slice(image_, bd);
-    auto pcp_in = interbus::pcp_in_slice(image_, bd);
-    std::copy_n(pcp_out.begin(), std::min(pcp_out.size(), d->pcp_words), d->pcp_m2s.begin());
-    std::copy_n(d->pcp_s2m.begin(), std::min(pcp_in.size(), d->pcp_words), pcp_in.begin());
+    std::copy(d->out.begin(), d->out.end(), d->m2s.begin());
+    std::copy_n(d->s2m.begin(), d->in.size(), d->in.begin());
+    std::copy(d->pcp_out.begin(), d->pcp_out.end(), d->pcp_m2s.begin());
+    std::copy_n(d->pcp_s2m.begin(), d->pcp_in.size(), d->pcp_in.begin());
     if (d->vf) d->vf->bus_cycle(t);
     if (d->mc) d->mc->bus_cycle(t);
   }
@@ -605,7 +696,6 @@ void Simulator::handle_cycle(Time t) {
 }
 
 void Simulator::observe_master(Time t) {
-  const interbus::BusConfig& cfg = loop_->config();
   for (auto& d : devices_) {
     devices::DeviceDriver& drv = loop_->driver(d->index);
     const auto seen = drv.sequencer().report().state_seen;
@@ -615,7 +705,7 @@ void Simulator::observe_master(Time t) {
       d->last_seen = seen;
     }
     // A reference the master sees reached (status bit 10 while ENABLED, the actual at it).
-    const auto in = interbus::in_slice(image_, cfg.devices[d->index]);
+    const std::span<const Word> in = d->in_slot;
     // (the actual must be at the new reference too: the status word may still show the old one)
     const bool at_reference = std::fabs(drv.actual() - d->reached_for) <= 0.01 * std::fabs(d->reached_for) + 0.1;
     if (!d->reached_reported && !in.empty() && seen == State::enabled &&
@@ -658,50 +748,51 @@ void Simulator::observe_master(Time t) {
 void Simulator::handle_sample(std::size_t i, Time t) {
   Device& d = *devices_[i];
   d.last_sample = t;
-  const bool recording = options_.record_traces && !d.recordings.empty();
+  const bool recording = !d.recordings.empty();  // only with SimOptions::record_traces
   std::array<Word, 4> before{};
   if (recording) before = d.s2m;
-  if (d.vf) {
-    d.vf->sample(d.pd_m2s(), d.pd_s2m(), t);
-  } else {
+  if (d.mc) {
     d.mc->sample(d.pd_m2s(), d.pd_s2m(), t, {d.pcp_m2s.data(), d.pcp_words}, {d.pcp_s2m.data(), d.pcp_words});
+  } else {
+    d.vf->sample(d.pd_m2s(), d.pd_s2m(), t);
   }
   ++d.k;
   d.next_sample = next_sample_time(d);
-  ++summary_.devices[i].samples;
   if (d.pcp_words > 0 && d.mc->recalculations() != d.recalculations) {
     // 4.2: 15-PLRDY = 1 makes the servo recalculate its controller parameters.
     d.recalculations = d.mc->recalculations();
     summary_.devices[i].states.push_back({t, "15-PLRDY = 1: controller parameters recalculated"});
   }
-  // Recording, in the trace timing convention: this row's m2s is what the device read now, its
-  // s2m what the device showed before this sample (its answer to the previous row).
-  if (recording) {
-    if (!d.recording && !d.module_error(t)) {
-      // Start (again) once the device shows exactly what a freshly started device of a trace
-      // `init` shows: initialised, START-UP INHIBIT after BLOCK POWER, channel at rest.
-      const bool siof_clear = d.vf && d.vf->channel().siof() == 0;
-      const std::array<Word, 4>& fresh = siof_clear ? d.fresh_operational : d.fresh_initialised;
-      if (std::equal(before.begin(), before.begin() + static_cast<std::ptrdiff_t>(d.pd_words), fresh.begin())) {
-        d.recording = true;
-        d.recordings.back().trace.header.init = siof_clear ? trace::InitState::operational : trace::InitState::power_on;
-      }
-    }
-    if (d.recording) {
-      Recording& r = d.recordings.back();
-      trace::Row row;
-      row.step = r.step++;
-      for (std::size_t w = 0; w < d.pd_words; ++w) {
-        row.m2s.push_back(trace::WordPattern::exact(d.m2s[w]));
-        row.s2m.push_back(trace::WordPattern::exact(before[w]));
-      }
-      row.remark = fmt_value(to_ms(t)) + " ms";
-      if (!r.remark.empty()) row.remark += ": " + r.remark;
-      r.remark.clear();
-      r.trace.rows.push_back(std::move(row));
+  if (recording) record_sample(d, before, t);
+  for (Observer* o : observers_) o->on_sample(t, i, d.pd_m2s(), d.pd_s2m());
+}
+
+void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time t) {
+  // In the trace timing convention: this row's m2s is what the device read now, its s2m what the
+  // device showed before this sample (its answer to the previous row).
+  if (!d.recording && !d.module_error(t)) {
+    // Start (again) once the device shows exactly what a freshly started device of a trace
+    // `init` shows: initialised, START-UP INHIBIT after BLOCK POWER, channel at rest.
+    const bool siof_clear = d.vf && d.vf->channel().siof() == 0;
+    const std::array<Word, 4>& fresh = siof_clear ? d.fresh_operational : d.fresh_initialised;
+    if (std::equal(before.begin(), before.begin() + static_cast<std::ptrdiff_t>(d.pd_words), fresh.begin())) {
+      d.recording = true;
+      d.recordings.back().trace.header.init = siof_clear ? trace::InitState::operational : trace::InitState::power_on;
     }
   }
-  for (Observer* o : observers_) o->on_sample(t, i, d.pd_m2s(), d.pd_s2m());
+  if (d.recording) {
+    Recording& r = d.recordings.back();
+    trace::Row row;
+    row.step = r.step++;
+    for (std::size_t w = 0; w < d.pd_words; ++w) {
+      row.m2s.push_back(trace::WordPattern::exact(d.m2s[w]));
+      row.s2m.push_back(trace::WordPattern::exact(before[w]));
+    }
+    row.remark = fmt_value(to_ms(t)) + " ms";
+    if (!r.remark.empty()) row.remark += ": " + r.remark;
+    r.remark.clear();
+    r.trace.rows.push_back(std::move(row));
+  }
 }
 
 void Simulator::finish() {
@@ -720,6 +811,7 @@ void Simulator::finish() {
     r.final_state = std::string(drivecom::to_string(d->state()));
     r.final_reference = drv.reference();
     r.final_actual = device_actual(d->index);
+    r.samples = d->k;
   }
   for (auto& r : summary_.transactions) {
     if (!r.finished) r.result = "still pending at the end of the run";

@@ -148,6 +148,17 @@ TEST(Cli, RunWritesJsonTracesAndVcd) {
   EXPECT_NE(names.find("4 ENABLED"), std::string::npos) << names;
 }
 
+TEST(Cli, RunTakesAThreadCountAndRefusesABadOne) {
+  const Result r = run("run --threads 3");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("reference 2500.25 rpm reached"), std::string::npos) << r.out;
+  for (const char* bad : {"--threads many", "--threads -1", "--threads 1000"}) {
+    const Result b = run(std::string("run ") + bad);
+    EXPECT_EQ(b.exit_code, 2) << bad;
+    EXPECT_NE(b.out.find("--threads"), std::string::npos) << b.out;
+  }
+}
+
 TEST(Cli, RunRefusesABadScenarioWithFileAndLine) {
   const std::string path = temp_file("bad.toml", "name = \"x\"\nduration = \"1 s\"\n[[device]]\nname = \"m\"\ntype = \"mc6000\"\nsupi = 7\nibcnf = 2\n");
   const Result r = run("run " + path);

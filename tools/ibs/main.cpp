@@ -18,6 +18,11 @@ int run_ibs(int argc, char** argv) {
   run->add_flag("--json", run_options.json, "print the summary as JSON");
   run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory");
   run->add_option("--vcd", run_options.vcd_file, "write the run as a VCD file for gtkwave");
+  run->add_option("--threads", run_options.threads,
+                  "threads that step the devices (the run is the same for any number; 0: one per core "
+                  "as far as the ring has work for them)")
+      ->check(CLI::Range(0U, 256U))
+      ->default_val(0U);
 
   std::string emulate;
   std::string replay_file;

@@ -1,4 +1,4 @@
-// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE]`: the main job.
+// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--threads N]`: the main job.
 #include <unistd.h>
 
 #include <chrono>
@@ -63,6 +63,7 @@ int run(const RunOptions& o) {
 
   sim::SimOptions options;
   options.record_traces = !o.trace_dir.empty();
+  options.threads = o.threads;
   // A long run shows its progress on a terminal (never in pipes or files).
   const bool tty = isatty(fileno(stderr)) != 0;
   auto last = std::chrono::steady_clock::now();

@@ -5,6 +5,7 @@
 // timeline or at random from a seed, and every one is recorded.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "ibs/devices/vf1000_device.hpp"
 #include "ibs/interbus/process_image.hpp"
 #include "ibs/interbus/trace.hpp"
+#include "ibs/sim/fork_join.hpp"
 #include "ibs/sim/master_loop.hpp"
 #include "ibs/sim/scenario.hpp"
 
@@ -90,6 +92,11 @@ struct SimOptions {
   bool record_traces = false;       // keep per-device traces (traces() after run)
   // Called now and then with the simulated time reached (for a progress display).
   std::function<void(Time now, Duration total)> progress;
+  // Threads that step the devices between two cycle ends; the run is the same for any number.
+  // 0: one per processor core, as far as the ring has work for them (16 MC6000 -- or the
+  // samples of as many -- per thread); 1: everything on the calling thread. A run with an
+  // observer (a VCD file) always uses one thread.
+  unsigned threads = 0;
 };
 
 // Signals for a waveform recorder, reported after every event.
@@ -120,6 +127,8 @@ class Simulator {
   [[nodiscard]] Time now() const { return now_; }
   [[nodiscard]] const interbus::BusConfig& bus() const { return loop_->config(); }
   [[nodiscard]] Duration cycle_time() const { return cycle_time_; }
+  // The threads stepping the devices (1 until the run has started, or without worker threads).
+  [[nodiscard]] unsigned threads() const { return workers_ ? workers_->parts() : 1; }
   // Recorded traces, one or more per device (a power cycle starts a new one), with file names.
   struct RecordedTrace {
     std::string file_name;
@@ -142,11 +151,16 @@ class Simulator {
   struct Device;
   struct Recording;
 
+  const devices::Mc6000Device& mc6000_prototype(const devices::Mc6000DeviceConfig& c, devices::DeviceStart start);
   void start(const SimOptions& options);
   void run_device_major(Time end);
+  void step_devices(Time limit);
+  void step_device(Device& d, Time limit);
+  void start_threads(unsigned requested);
   void run_time_ordered(Time end);
   void handle_cycle(Time t);
   void handle_sample(std::size_t i, Time t);
+  void record_sample(Device& d, const std::array<Word, 4>& before, Time t);
   void apply_timeline(Time t);
   void apply(const TimelineEntry& e, Time t);
   void apply_random_faults(Time t);
@@ -157,6 +171,12 @@ class Simulator {
   void finish();
 
   Scenario scenario_;
+  struct Mc6000Prototype {
+    devices::Mc6000DeviceConfig config;
+    devices::DeviceStart start;
+    std::unique_ptr<devices::Mc6000Device> device;
+  };
+  std::vector<Mc6000Prototype> prototypes_;  // while the ring is built (constructor only)
   std::unique_ptr<MasterLoop> loop_;
   std::vector<std::unique_ptr<Device>> devices_;
   interbus::ProcessImage image_;
@@ -186,6 +206,14 @@ class Simulator {
   SimOptions options_;
   Summary summary_;
   double wall_start_ = 0.0;
+  // Device stepping on several threads: the ring split into parts of about equal work.
+  struct Part {
+    std::size_t first = 0;
+    std::size_t end = 0;
+  };
+  std::vector<Part> parts_;
+  Time window_limit_{0};              // the cycle end the parts step up to
+  std::unique_ptr<ForkJoin> workers_;  // last: its threads stop before the devices go
 };
 
 }  // namespace ibs::sim
