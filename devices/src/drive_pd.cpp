@@ -60,20 +60,11 @@ void Mc6000PdDevice::reset_motion() {
 }
 
 void Mc6000PdDevice::move_actual(Duration dt) {
-  PlantInput in;
-  in.load_torque_nm = load_nm_;
-  switch (machine_.state()) {
-    case State::enabled:
-      in.speed_reference_rpm = std::clamp(reference_, -config_.max_speed_rpm, config_.max_speed_rpm);
-      break;
-    case State::emergency_stop_active:
-    case State::fault_response_active:
-      in.speed_reference_rpm = 0.0;  // quick stop: the speed loop brakes at the torque limit
-      break;
-    default:
-      in.enabled = false;  // power stage off: the load coasts
-      break;
-  }
+  // ENABLED follows the reference; EMERGENCY STOP ACTIVE and FAULT RESPONSE ACTIVE brake to 0 at
+  // the torque limit (quick stop); with the power stage off the load coasts.
+  const State s = machine_.state();
+  PlantInput in{0.0, load_nm_, drivecom::power_stage_enabled(s)};
+  if (s == State::enabled) in.speed_reference_rpm = std::clamp(reference_, -config_.max_speed_rpm, config_.max_speed_rpm);
   plant_.advance(dt, in);
   actual_ = plant_.speed_rpm();
 }

@@ -10,9 +10,6 @@ namespace ibs::devices {
 
 namespace {
 
-// Below this speed (rad/s, about 1e-8 rpm) the shaft counts as standing still.
-constexpr double kStandstill = 1e-9;
-
 void require(bool ok, const char* name, double value, const char* rule) {
   if (!ok) {
     throw std::invalid_argument(std::string("drive plant: ") + name + " = " +
@@ -67,14 +64,13 @@ DrivePlant::StateSpace discretise_zoh(const DrivePlant::StateSpace& c, Duration 
   return {e.topLeftCorner<3, 3>(), e.topRightCorner<3, 3>()};
 }
 
-DrivePlant::Rows DrivePlant::rows_of(const StateSpace& d) {
+DrivePlant::Rows DrivePlant::rows_of(const StateSpace& d, Eigen::Index first_input) {
   Rows r{};
   for (Eigen::Index i = 0; i < 3; ++i) {
     auto& row = r[static_cast<std::size_t>(i)];
-    for (Eigen::Index j = 0; j < 3; ++j) {
-      row[static_cast<std::size_t>(j)] = d.a(i, j);
-      row[static_cast<std::size_t>(j) + 3] = d.b(i, j);
-    }
+    for (Eigen::Index j = 0; j < 3; ++j) row[static_cast<std::size_t>(j)] = d.a(i, j);
+    row[3] = d.b(i, first_input);
+    row[4] = d.b(i, first_input + 1);
   }
   return r;
 }
@@ -95,7 +91,7 @@ DrivePlant::DrivePlant(const DrivePlantParams& params, Duration period)
   require(period_.count() > 0, "period (ns)", static_cast<double>(period_.count()), "> 0");
   linear_ = discretise_zoh(continuous(p_, Mode::linear), period_);
   limited_ = discretise_zoh(continuous(p_, Mode::limited), period_);
-  rows_ = {rows_of(linear_), rows_of(limited_)};
+  rows_ = {rows_of(linear_, 0), rows_of(limited_, 1)};  // inputs (w_ref, d) and (d, T_lim)
   reset();
 }
 
@@ -104,58 +100,6 @@ void DrivePlant::reset() noexcept {
   pending_ = Duration{0};
   reference_rpm_ = 0.0;
   limited_last_ = false;
-}
-
-void DrivePlant::update(const PlantInput& in) noexcept {
-  const double w_ref = rpm_to_rad_s(in.speed_reference_rpm);
-  const double w0 = x_(0);
-  double i0 = x_(1);
-  const double t0 = x_(2);
-  const double tmax = p_.torque_limit;
-
-  // Friction and load, held over the step. At standstill, static friction balances up to its
-  // full value whatever drive torque there is (stiction), so the shaft stays put.
-  const double friction = std::abs(w0) > kStandstill
-                              ? std::copysign(p_.coulomb_friction, w0)
-                              : std::clamp(t0 - in.load_torque_nm, -p_.coulomb_friction, p_.coulomb_friction);
-  const double d = in.load_torque_nm + friction;
-
-  // The mode for this step: limited (clipped command T_lim, or T_lim = 0 with the power stage
-  // off) or linear.
-  bool linear = false;
-  double t_lim = 0.0;
-  if (!in.enabled) {
-    i0 = 0.0;  // power stage off: torque decays to 0, the controller starts afresh
-  } else {
-    const double command = p_.kp * (w_ref - w0) + i0;
-    if (std::abs(command) > tmax) {
-      t_lim = std::copysign(tmax, command);
-    } else {
-      linear = true;
-    }
-  }
-
-  // x' = Ad x + Bd u with u = [w_ref, d, T_lim].
-  const Rows& r = rows_[linear ? 0 : 1];
-  const auto row = [&](const std::array<double, 6>& c) {
-    return c[0] * w0 + c[1] * i0 + c[2] * t0 + c[3] * w_ref + c[4] * d + c[5] * t_lim;
-  };
-  double w1 = row(r[0]);
-  double i1 = row(r[1]);
-  double t1 = row(r[2]);
-  if (linear) {
-    // Integrator clamp (anti-windup), and the current limit for a command that rose past
-    // T_max inside the step.
-    i1 = std::clamp(i1, -tmax, tmax);
-    t1 = std::clamp(t1, -tmax, tmax);
-  }
-  // Coulomb friction only brakes: a speed it alone carried through zero stops at zero.
-  const bool crossed = (w0 > kStandstill && w1 < 0.0) || (w0 < -kStandstill && w1 > 0.0);
-  if (crossed && std::abs(t1 - in.load_torque_nm) <= p_.coulomb_friction) w1 = 0.0;
-
-  x_ = State(w1, i1, t1);
-  reference_rpm_ = in.speed_reference_rpm;
-  limited_last_ = in.enabled && !linear;
 }
 
 PlantOutput DrivePlant::output() const noexcept {

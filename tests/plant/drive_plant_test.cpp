@@ -69,6 +69,24 @@ TEST(DrivePlant, DiscreteMatricesMatchFineStepEulerInBothModes) {
   }
 }
 
+TEST(DrivePlant, EachModeLeavesOutTheInputItDoesNotUseExactly) {
+  // The step leaves out T_lim in the linear mode and w_ref in the limited one: their columns of
+  // B are zero, so the zero-order hold gives columns of Bd that are exactly zero, not merely
+  // small, and leaving them out changes nothing.
+  for (const Duration period : {Duration{1ms}, Duration{500us}, Duration{8200us}}) {
+    const DrivePlant plant(DrivePlantParams{}, period);
+    const auto& lin = plant.discrete(DrivePlant::Mode::linear);
+    const auto& lim = plant.discrete(DrivePlant::Mode::limited);
+    for (Eigen::Index i = 0; i < 3; ++i) {
+      EXPECT_EQ(lin.b(i, 2), 0.0) << i;
+      EXPECT_EQ(lim.b(i, 0), 0.0) << i;
+    }
+    // ...while the inputs each mode does use act on the speed.
+    EXPECT_NE(lin.b(0, 0), 0.0);
+    EXPECT_NE(lim.b(0, 2), 0.0);
+  }
+}
+
 TEST(DrivePlant, TwoHalfPeriodsEqualOneFullPeriod) {
   // Exact ZOH: with the input held, exp(A T) = exp(A T/2)^2, so a 0.5 ms plant stepped twice
   // lands where the 1 ms plant does in one step (friction sign and mode unchanged here).

@@ -20,7 +20,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "ibs/interbus/time.hpp"
 
@@ -127,10 +129,13 @@ class DrivePlant {
   }
 
  private:
-  // [Ad | Bd] of a mode, row by row: x'(r) = sum over c of rows[r][c] * [x; u](c). The step
-  // reads these plain arrays; the Eigen matrices stay for discretising and inspecting.
-  using Rows = std::array<std::array<double, 6>, 3>;
-  static Rows rows_of(const StateSpace& d);
+  // [Ad | two columns of Bd] of a mode, row by row: x'(r) = sum over c of rows[r][c] * [x; u1; u2](c)
+  // with (u1, u2) = (w_ref, d) in the linear mode and (d, T_lim) in the limited one. The input a
+  // mode does not use has a zero column in B, so its column of Bd (the zero-order hold of a zero
+  // column) is exactly zero and is left out. The step reads these plain arrays; the Eigen
+  // matrices stay for discretising and inspecting.
+  using Rows = std::array<std::array<double, 5>, 3>;
+  static Rows rows_of(const StateSpace& d, Eigen::Index first_input);
 
   DrivePlantParams p_;
   Duration period_;
@@ -142,6 +147,64 @@ class DrivePlant {
   double reference_rpm_ = 0.0;  // the last step's input, for PlantOutput::reference_reached
   bool limited_last_ = false;   // the last step ran in the torque limit
 };
+
+// Below this speed (rad/s, about 1e-8 rpm) the shaft counts as standing still.
+inline constexpr double kPlantStandstill = 1e-9;
+
+// Inline: every simulated servo sample runs it, inside the device model's sample loop.
+inline void DrivePlant::update(const PlantInput& in) noexcept {
+  const double w_ref = rpm_to_rad_s(in.speed_reference_rpm);
+  const double w0 = x_(0);
+  double i0 = x_(1);
+  const double t0 = x_(2);
+  const double tmax = p_.torque_limit;
+
+  // Friction and load, held over the step. At standstill, static friction balances up to its
+  // full value whatever drive torque there is (stiction), so the shaft stays put.
+  const double friction = std::abs(w0) > kPlantStandstill
+                              ? std::copysign(p_.coulomb_friction, w0)
+                              : std::clamp(t0 - in.load_torque_nm, -p_.coulomb_friction, p_.coulomb_friction);
+  const double d = in.load_torque_nm + friction;
+
+  // The mode for this step: limited (clipped command T_lim, or T_lim = 0 with the power stage
+  // off) or linear.
+  bool linear = false;
+  double t_lim = 0.0;
+  if (!in.enabled) {
+    i0 = 0.0;  // power stage off: torque decays to 0, the controller starts afresh
+  } else {
+    const double command = p_.kp * (w_ref - w0) + i0;
+    if (std::abs(command) > tmax) {
+      t_lim = std::copysign(tmax, command);
+    } else {
+      linear = true;
+    }
+  }
+
+  // x' = Ad x + Bd u with u = [w_ref, d, T_lim], the input the mode does not use left out.
+  const Rows& r = rows_[linear ? 0 : 1];
+  const double u1 = linear ? w_ref : d;
+  const double u2 = linear ? d : t_lim;
+  const auto row = [&](const std::array<double, 5>& c) {
+    return c[0] * w0 + c[1] * i0 + c[2] * t0 + c[3] * u1 + c[4] * u2;
+  };
+  double w1 = row(r[0]);
+  double i1 = row(r[1]);
+  double t1 = row(r[2]);
+  if (linear) {
+    // Integrator clamp (anti-windup), and the current limit for a command that rose past
+    // T_max inside the step.
+    i1 = std::clamp(i1, -tmax, tmax);
+    t1 = std::clamp(t1, -tmax, tmax);
+  }
+  // Coulomb friction only brakes: a speed it alone carried through zero stops at zero.
+  const bool crossed = (w0 > kPlantStandstill && w1 < 0.0) || (w0 < -kPlantStandstill && w1 > 0.0);
+  if (crossed && std::abs(t1 - in.load_torque_nm) <= p_.coulomb_friction) w1 = 0.0;
+
+  x_ = State(w1, i1, t1);
+  reference_rpm_ = in.speed_reference_rpm;
+  limited_last_ = in.enabled && !linear;
+}
 
 // Zero-order-hold discretisation: exp([[A, B], [0, 0]] * T) = [[Ad, Bd], [0, I]].
 DrivePlant::StateSpace discretise_zoh(const DrivePlant::StateSpace& c, Duration period);
