@@ -7,8 +7,10 @@ namespace ibs::sim {
 namespace {
 
 // A wait of a few microseconds is the common case (the other side is finishing a bus cycle), so
-// both sides spin before they ask the kernel to put them to sleep.
-constexpr int kSpins = 4000;
+// both sides spin briefly, then yield the processor (the other side may be waiting for it: more
+// threads than free cores), and only then ask the kernel to put them to sleep.
+constexpr int kSpins = 32;
+constexpr int kYields = 256;
 
 inline void relax() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -22,6 +24,10 @@ void wait_while(const std::atomic<T>& a, T value) {
   for (int i = 0; i < kSpins; ++i) {
     if (a.load(std::memory_order_acquire) != value) return;
     relax();
+  }
+  for (int i = 0; i < kYields; ++i) {
+    if (a.load(std::memory_order_acquire) != value) return;
+    std::this_thread::yield();
   }
   while (a.load(std::memory_order_acquire) == value) a.wait(value, std::memory_order_acquire);
 }

@@ -1,5 +1,7 @@
 #include "ibs/sim/simulator.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -52,6 +54,28 @@ double wall_now() {
 
 interbus::IdCode vf1000_id() { return interbus::IdCode{0x033B}; }  // seed 001, 3.1.2
 
+// The processor cores this process may run on (its affinity mask: `taskset` and container CPU
+// sets count, not only the machine's cores).
+unsigned usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return static_cast<unsigned>(std::max(1, CPU_COUNT(&set)));
+  return std::max(1U, std::thread::hardware_concurrency());
+}
+
+// Copies a device's words (at most four) without a library call: every cycle does it for every
+// device.
+void copy_words(std::span<const Word> from, Word* to) {
+  switch (from.size()) {
+    case 4: to[3] = from[3]; [[fallthrough]];
+    case 3: to[2] = from[2]; [[fallthrough]];
+    case 2: to[1] = from[1]; [[fallthrough]];
+    case 1: to[0] = from[0]; [[fallthrough]];
+    case 0: break;
+    default: std::copy(from.begin(), from.end(), to);
+  }
+}
+
 // Exponentially distributed time to the next random fault of a given rate (per second).
 Time next_random(std::mt19937_64& rng, Time from, double rate_per_s) {
   if (rate_per_s <= 0.0) return Time::max();
@@ -77,16 +101,20 @@ struct Simulator::Device {
   Duration period{0};
   std::size_t pd_words = 0;
   std::size_t pcp_words = 0;
-  std::array<Word, 4> m2s{};  // the master's process-data words as the bus last delivered them
-  std::array<Word, 4> s2m{};  // the device's words, picked up by the next valid cycle
-  std::array<Word, 4> pcp_m2s{};
-  std::array<Word, 4> pcp_s2m{};
   // The device's slices of the master's process image (set once the ring is built): its whole
   // input slot, and the words it exchanges each way.
   std::span<Word> in_slot, in, out, pcp_in, pcp_out;
+  std::array<Word, 4> m2s{};  // the master's process-data words as the bus last delivered them
+  std::array<Word, 4> pcp_m2s{};
+  // What the device's sampling writes, in cache lines of its own: with several threads the
+  // device is stepped on one while the cycle end runs on another.
+  alignas(64) std::array<Word, 4> s2m{};  // the device's words, picked up by the next valid cycle
+  std::array<Word, 4> pcp_s2m{};
   std::uint64_t k = 0;  // samples taken
   Time next_sample{0};
-  Time lost_until{-1};
+  Time last_sample{0};
+  std::uint64_t jitter_state = 0;
+  alignas(64) Time lost_until{-1};
   Time fault_until{-1};
   std::optional<State> waiting_for;
   Time wait_deadline{0};
@@ -98,8 +126,6 @@ struct Simulator::Device {
   bool recording = false;
   bool power_cycled = false;
   std::uint32_t recalculations = 0;
-  Time last_sample{0};
-  std::uint64_t jitter_state = 0;
   // splitmix64: a small, fast generator of its own for the device's sample jitter.
   std::uint64_t jitter_rng() {
     std::uint64_t z = (jitter_state += 0x9E3779B97F4A7C15ULL);
@@ -361,7 +387,7 @@ void Simulator::start_threads(unsigned requested) {
   constexpr double kWorkPerThread = 16.0;  // below this the hand-over costs more than it gains
   unsigned n = requested;
   if (n == 0) {
-    const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
+    const unsigned cores = usable_cores();
     n = std::min(cores, static_cast<unsigned>(std::max(1.0, total / kWorkPerThread)));
   }
   n = std::min<unsigned>(n, static_cast<unsigned>(devices_.size()));
@@ -677,10 +703,10 @@ void Simulator::handle_cycle(Time t) {
       std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
       continue;
     }
-    std::copy(d->out.begin(), d->out.end(), d->m2s.begin());
-    std::copy_n(d->s2m.begin(), d->in.size(), d->in.begin());
-    std::copy(d->pcp_out.begin(), d->pcp_out.end(), d->pcp_m2s.begin());
-    std::copy_n(d->pcp_s2m.begin(), d->pcp_in.size(), d->pcp_in.begin());
+    copy_words(d->out, d->m2s.data());
+    copy_words({d->s2m.data(), d->in.size()}, d->in.data());
+    copy_words(d->pcp_out, d->pcp_m2s.data());
+    copy_words({d->pcp_s2m.data(), d->pcp_in.size()}, d->pcp_in.data());
     if (d->vf) d->vf->bus_cycle(t);
     if (d->mc) d->mc->bus_cycle(t);
   }
