@@ -76,7 +76,15 @@ void Mc6000PdDevice::step_held(std::span<const Word> m2s, Duration dt, std::uint
   const Word control = override_ ? *override_ : (m2s.empty() ? Word{0} : m2s[0]);
   reference_ = interbus::mc6000::decode_reference(
       l, m2s.subspan(1, static_cast<std::size_t>(l.reference_words)));
-  for (std::uint32_t k = 0; k < count; ++k) sample_held(control, dt);
+  for (std::uint32_t k = 0; k < count; ++k) {
+    sample_held(control, dt);
+    if (initialised_ && machine_.holds({control, initialised_, fault_present_, true, true})) {
+      // The state machine holds its state with these words for the rest of the stretch (what
+      // decides that does not change in it): the other samples only move the plant.
+      for (++k; k < count; ++k) move_actual(dt);
+      break;
+    }
+  }
 
   // The status word after the last sample (nothing reads it in between).
   const State state = machine_.state();

@@ -109,16 +109,22 @@ class DeviceStateMachine {
   // reaches ENABLED in one sample (5.3.4). Never allocates, never throws.
   SampleResult sample(const DeviceInputs& in) {
     // The common case of every sample, inline: a stable state whose command changes nothing.
-    if (!in.fault_present && state_ >= State::start_up_inhibit && state_ <= State::enabled &&
-        detail::kTransitionLut[static_cast<std::size_t>(state_)]
-                              [static_cast<std::size_t>(decode_command(in.control))]
-                                  .number == 0) {
+    if (holds(in)) {
       last_control_ = in.control;
       SampleResult stable;
       stable.state = state_;
       return stable;
     }
     return sample_transitions(in);
+  }
+  // True when a sample with these inputs takes no transition and changes nothing but the last
+  // control word: a stable state (START-UP INHIBIT .. ENABLED), no fault, and a command that
+  // does not move it. The same inputs again then hold it again.
+  [[nodiscard]] bool holds(const DeviceInputs& in) const {
+    return !in.fault_present && state_ >= State::start_up_inhibit && state_ <= State::enabled &&
+           detail::kTransitionLut[static_cast<std::size_t>(state_)]
+                                 [static_cast<std::size_t>(decode_command(in.control))]
+                                     .number == 0;
   }
 
   [[nodiscard]] State state() const { return state_; }
