@@ -27,6 +27,11 @@ struct AllocationCounter {
 inline void escape(const void* p) { asm volatile("" : : "g"(p) : "memory"); }
 }  // namespace ibs::test
 
+// GCC (12, optimising) takes these for the library's operator new/delete and warns that free()
+// releases what "operator new" returned; here both sides are malloc/free.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 void* operator new(std::size_t n) {
   if (ibs::test::g_counting.load()) ibs::test::g_allocations.fetch_add(1);
   if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
@@ -45,3 +50,5 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+
+#pragma GCC diagnostic pop
