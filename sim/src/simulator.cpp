@@ -126,6 +126,10 @@ struct Simulator::Device {
   bool recording = false;
   bool power_cycled = false;
   std::uint32_t recalculations = 0;
+  // Summary records the device's sampling made (15-PLRDY), moved into the summary at the next
+  // cycle end: the sampling may run on another thread than the summary's.
+  std::vector<StateRecord> records;
+  std::optional<int> error_at_cycle;  // error_number() at the last cycle end
   // splitmix64: a small, fast generator of its own for the device's sample jitter.
   std::uint64_t jitter_rng() {
     std::uint64_t z = (jitter_state += 0x9E3779B97F4A7C15ULL);
@@ -340,6 +344,7 @@ bool Simulator::run_until(Time until, const SimOptions& options) {
   } else {
     run_time_ordered(end);
   }
+  merge_device_records();
   now_ = end;
   if (end >= scenario_.duration) {
     finish();
@@ -352,13 +357,18 @@ void Simulator::run_device_major(Time end) {
   // Devices interact only through the bus exchange: between two cycle ends every device can take
   // all its samples on its own, in its own time order, with exactly the result of the globally
   // time-ordered loop (a sample at the instant of a cycle end comes after the exchange).
+  // The master's cycle after a cycle end and the devices' samples up to the next one do not meet
+  // either (the master's new words reach the devices only at that next cycle end), so they run
+  // side by side: the master's on the calling thread, ahead of its part of the devices.
   Time last_progress = now_;
   while (true) {
     const Time limit = std::min(next_cycle_, end + Duration{1});
     step_devices(limit);
+    master_due_.reset();
     if (next_cycle_ > end) break;
     now_ = next_cycle_;
-    handle_cycle(next_cycle_);
+    cycle_exchange(next_cycle_);
+    master_due_ = next_cycle_;
     next_cycle_ += cycle_time_;
     if (options_.progress && now_ - last_progress >= 100ms) {
       options_.progress(now_, scenario_.duration);
@@ -368,12 +378,18 @@ void Simulator::run_device_major(Time end) {
 }
 
 void Simulator::step_devices(Time limit) {
+  window_limit_ = limit;
   if (!workers_) {
-    for (auto& d : devices_) step_device(*d, limit);
+    step_part(0);
     return;
   }
-  window_limit_ = limit;
   workers_->run();
+}
+
+void Simulator::step_part(unsigned part) {
+  if (part == 0 && master_due_) cycle_master(*master_due_);
+  const Part p = parts_.empty() ? Part{0, devices_.size()} : parts_[part];
+  for (std::size_t k = p.first; k < p.end; ++k) step_device(*devices_[k], window_limit_);
 }
 
 void Simulator::start_threads(unsigned requested) {
@@ -385,6 +401,9 @@ void Simulator::start_threads(unsigned requested) {
     total += work.back();
   }
   constexpr double kWorkPerThread = 16.0;  // below this the hand-over costs more than it gains
+  // The master's cycle and the summary, on the first part's thread: about one and a half
+  // servo samples per device and cycle.
+  const double master = 1.5 * static_cast<double>(devices_.size()) * 1e6 / static_cast<double>(cycle_time_.count());
   unsigned n = requested;
   if (n == 0) {
     const unsigned cores = usable_cores();
@@ -392,22 +411,20 @@ void Simulator::start_threads(unsigned requested) {
   }
   n = std::min<unsigned>(n, static_cast<unsigned>(devices_.size()));
   if (n <= 1) return;
-  // Contiguous parts of about total / n each.
+  // Contiguous parts of about (total + master) / n each, the first with the master's work.
   parts_.assign(n, Part{});
   std::size_t i = 0;
-  double done = 0.0;
+  double done = master;
   for (unsigned p = 0; p < n; ++p) {
     parts_[p].first = i;
-    const double target = total * (p + 1) / n;
+    const double target = (total + master) * (p + 1) / n;
     const std::size_t keep = n - p - 1;  // devices left for the parts after this one
     while (i < devices_.size() - keep && (i == parts_[p].first || done + 0.5 * work[i] <= target)) {
       done += work[i++];
     }
     parts_[p].end = p + 1 == n ? devices_.size() : i;
   }
-  workers_ = std::make_unique<ForkJoin>(n, [this](unsigned part) {
-    for (std::size_t k = parts_[part].first; k < parts_[part].end; ++k) step_device(*devices_[k], window_limit_);
-  });
+  workers_ = std::make_unique<ForkJoin>(n, [this](unsigned part) { step_part(part); });
 }
 
 void Simulator::step_device(Device& d, Time limit) {
@@ -668,6 +685,12 @@ void Simulator::apply_random_faults(Time t) {
 }
 
 void Simulator::handle_cycle(Time t) {
+  cycle_exchange(t);
+  cycle_master(t);
+}
+
+void Simulator::cycle_exchange(Time t) {
+  merge_device_records();
   apply_timeline(t);
   apply_random_faults(t);
   for (auto& d : devices_) {
@@ -710,6 +733,13 @@ void Simulator::handle_cycle(Time t) {
     if (d->vf) d->vf->bus_cycle(t);
     if (d->mc) d->mc->bus_cycle(t);
   }
+  // What the master's side reports of the devices, as they are at this cycle end (the devices
+  // may be sampling again while the master's cycle runs).
+  for (auto& d : devices_) d->error_at_cycle = d->vf ? d->vf->error_number() : d->mc->error_number();
+  last_cycle_valid_ = valid;
+}
+
+void Simulator::cycle_master(Time t) {
   const auto t0 = options_.measure_master_time ? std::chrono::steady_clock::now()
                                                : std::chrono::steady_clock::time_point{};
   loop_->cycle(image_, t, links_);
@@ -717,8 +747,17 @@ void Simulator::handle_cycle(Time t) {
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0);
     master_ns_.push_back(static_cast<std::uint32_t>(std::min<std::int64_t>(ns.count(), 0xFFFFFFFF)));
   }
-  for (Observer* o : observers_) o->on_cycle(t, valid, image_);
+  for (Observer* o : observers_) o->on_cycle(t, last_cycle_valid_, image_);
   observe_master(t);
+}
+
+void Simulator::merge_device_records() {
+  for (auto& d : devices_) {
+    if (d->records.empty()) continue;
+    auto& states = summary_.devices[d->index].states;
+    states.insert(states.end(), d->records.begin(), d->records.end());
+    d->records.clear();
+  }
 }
 
 void Simulator::observe_master(Time t) {
@@ -746,7 +785,7 @@ void Simulator::observe_master(Time t) {
       }
       d->waiting_for.reset();
     }
-    const auto err = d->vf ? d->vf->error_number() : d->mc->error_number();
+    const auto err = d->error_at_cycle;
     if (err && err != d->reported_error) {
       const std::string what = d->vf ? "error 12 (E-IBS): process-data watchdog 906-IB-WD ran out"
                                      : "error 16 (E-OP1), location 1: bus watchdog 409-BUTWD ran out";
@@ -787,7 +826,7 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   if (d.pcp_words > 0 && d.mc->recalculations() != d.recalculations) {
     // 4.2: 15-PLRDY = 1 makes the servo recalculate its controller parameters.
     d.recalculations = d.mc->recalculations();
-    summary_.devices[i].states.push_back({t, "15-PLRDY = 1: controller parameters recalculated"});
+    d.records.push_back({t, "15-PLRDY = 1: controller parameters recalculated"});
   }
   if (recording) record_sample(d, before, t);
   for (Observer* o : observers_) o->on_sample(t, i, d.pd_m2s(), d.pd_s2m());

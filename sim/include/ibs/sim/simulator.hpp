@@ -158,7 +158,13 @@ class Simulator {
   void step_device(Device& d, Time limit);
   void start_threads(unsigned requested);
   void run_time_ordered(Time end);
-  void handle_cycle(Time t);
+  void handle_cycle(Time t);  // cycle_exchange, then cycle_master
+  // The cycle end up to the bus exchange: timeline, faults, validity, the words both ways.
+  void cycle_exchange(Time t);
+  // The master's cycle after the exchange and what the summary takes from it.
+  void cycle_master(Time t);
+  void merge_device_records();
+  void step_part(unsigned part);
   void handle_sample(std::size_t i, Time t);
   void record_sample(Device& d, const std::array<Word, 4>& before, Time t);
   void apply_timeline(Time t);
@@ -213,6 +219,8 @@ class Simulator {
   };
   std::vector<Part> parts_;
   Time window_limit_{0};              // the cycle end the parts step up to
+  std::optional<Time> master_due_;    // a cycle whose master's part runs with the next stepping
+  bool last_cycle_valid_ = true;
   std::unique_ptr<ForkJoin> workers_;  // last: its threads stop before the devices go
 };
 
