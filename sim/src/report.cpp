@@ -32,8 +32,9 @@ double budget_percent(double ns, Duration budget) { return 100.0 * ns / static_c
 std::string format_text(const Summary& s) {
   std::string o;
   const double sim_s = static_cast<double>(s.simulated.count()) / 1e9;
-  o += printf_string("ibs run: scenario \"%s\", %.3f s simulated in %.3f s of wall time (%.0fx real time)\n",
-                     s.scenario.c_str(), sim_s, s.wall_seconds, s.wall_seconds > 0 ? sim_s / s.wall_seconds : 0.0);
+  o += printf_string("ibs run: scenario \"%s\", %.3f s simulated in %.3f s of wall time on %u thread%s (%.0fx real time)\n",
+                     s.scenario.c_str(), sim_s, s.wall_seconds, s.threads, s.threads == 1 ? "" : "s",
+                     s.wall_seconds > 0 ? sim_s / s.wall_seconds : 0.0);
   o += printf_string("bus: %zu device(s), cycle time %.3f ms (%s)\n", s.devices.size(), to_ms(s.cycle_time),
                      s.cycle_time_basis.c_str());
   o += printf_string("     %llu cycles, %llu with valid data\n", static_cast<unsigned long long>(s.cycles),
@@ -81,6 +82,7 @@ std::string format_json(const Summary& s) {
   j["scenario"] = s.scenario;
   j["simulated_s"] = static_cast<double>(s.simulated.count()) / 1e9;
   j["wall_s"] = s.wall_seconds;
+  j["threads"] = s.threads;
   j["bus"] = {{"cycle_time_ms", to_ms(s.cycle_time)},
               {"cycle_time_basis", s.cycle_time_basis},
               {"cycles", s.cycles},

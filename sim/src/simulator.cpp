@@ -865,6 +865,7 @@ void Simulator::finish() {
   finished_ = true;
   summary_.simulated = scenario_.duration;
   summary_.wall_seconds = wall_now() - wall_start_;
+  summary_.threads = threads();
   const interbus::BusConfig& cfg = loop_->config();
   for (auto& d : devices_) {
     DeviceReport& r = summary_.devices[d->index];

@@ -30,6 +30,18 @@ TEST(ScenarioExamples, EveryExampleLoads) {
   EXPECT_GE(files, 3);
 }
 
+TEST(ScenarioExamples, FullBusIsTheBusOfThePerformanceFigures) {
+  // 64 MC6000 with four process-data words each: 256 words each way (docs/performance.md).
+  const Scenario s = load_scenario(kExamples + "/full_bus.toml");
+  ASSERT_EQ(s.devices.size(), 64U);
+  for (const auto& d : s.devices) {
+    EXPECT_EQ(d.kind, DeviceKind::mc6000) << d.name;
+    EXPECT_EQ(d.supi, 12) << d.name;
+    EXPECT_EQ(d.ibcnf, 2) << d.name;
+  }
+  EXPECT_EQ(count(s, Action::speed), 64U);
+}
+
 TEST(ScenarioExamples, DefaultTomlIsTheBuiltInScenario) {
   EXPECT_EQ(load_scenario(kExamples + "/default.toml"), default_scenario());
 }

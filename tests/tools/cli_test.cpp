@@ -152,6 +152,23 @@ TEST(Cli, RunTakesAThreadCountAndRefusesABadOne) {
   const Result r = run("run --threads 3");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("reference 2500.25 rpm reached"), std::string::npos) << r.out;
+  // Two devices: --threads 3 gives two threads, one device each.
+  EXPECT_NE(r.out.find("of wall time on 2 threads"), std::string::npos) << r.out;
+  // The full bus on one and on two threads: the same run, the summary says which.
+  const std::string full = std::string(IBS_SOURCE_DIR) + "/examples/full_bus.toml";
+  const Result one = run("run --threads 1 " + full);
+  const Result two = run("run --threads 2 " + full);
+  ASSERT_EQ(one.exit_code, 0) << one.out;
+  ASSERT_EQ(two.exit_code, 0) << two.out;
+  EXPECT_NE(one.out.find("on 1 thread ("), std::string::npos) << one.out;
+  EXPECT_NE(two.out.find("on 2 threads ("), std::string::npos) << two.out;
+  const auto after_timing = [](const std::string& out) {
+    // From the device reports on; the header's wall time and the master's timing differ.
+    const std::string from = out.substr(out.find("servo00"));
+    return from.substr(0, from.find("master processing"));
+  };
+  EXPECT_EQ(after_timing(one.out), after_timing(two.out));
+  EXPECT_NE(one.out.find("reference 1630 rpm reached"), std::string::npos) << one.out;
   for (const char* bad : {"--threads many", "--threads -1", "--threads 1000"}) {
     const Result b = run(std::string("run ") + bad);
     EXPECT_EQ(b.exit_code, 2) << bad;

@@ -85,6 +85,7 @@ struct Summary {
   std::vector<FaultRecord> faults;
   TimingStats master;  // wall-clock processing time of the master's cycle (both drivers)
   double wall_seconds = 0.0;
+  unsigned threads = 1;  // that stepped the devices
 };
 
 struct SimOptions {
