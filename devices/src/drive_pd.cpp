@@ -59,13 +59,17 @@ void Mc6000PdDevice::reset_motion() {
   plant_.reset();
 }
 
-void Mc6000PdDevice::move_actual(Duration dt) {
+PlantInput Mc6000PdDevice::plant_input() const {
   // ENABLED follows the reference; EMERGENCY STOP ACTIVE and FAULT RESPONSE ACTIVE brake to 0 at
   // the torque limit (quick stop); with the power stage off the load coasts.
   const State s = machine_.state();
   PlantInput in{0.0, load_nm_, drivecom::power_stage_enabled(s)};
   if (s == State::enabled) in.speed_reference_rpm = std::clamp(reference_, -config_.max_speed_rpm, config_.max_speed_rpm);
-  plant_.advance(dt, in);
+  return in;
+}
+
+void Mc6000PdDevice::move_actual(Duration dt) {
+  plant_.advance(dt, plant_input());
   actual_ = plant_.speed_rpm();
 }
 
@@ -80,8 +84,10 @@ void Mc6000PdDevice::step_held(std::span<const Word> m2s, Duration dt, std::uint
     sample_held(control, dt);
     if (initialised_ && machine_.holds({control, initialised_, fault_present_, true, true})) {
       // The state machine holds its state with these words for the rest of the stretch (what
-      // decides that does not change in it): the other samples only move the plant.
-      for (++k; k < count; ++k) move_actual(dt);
+      // decides that does not change in it): the other samples only move the plant, with the
+      // same input each time.
+      plant_.advance_held(dt, plant_input(), count - k - 1);
+      actual_ = plant_.speed_rpm();
       break;
     }
   }

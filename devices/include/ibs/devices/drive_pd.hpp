@@ -77,6 +77,7 @@ class Mc6000PdDevice {
 
  private:
   void sample_held(Word control, Duration dt);
+  [[nodiscard]] PlantInput plant_input() const;
   void move_actual(Duration dt);
   void reset_motion();
 

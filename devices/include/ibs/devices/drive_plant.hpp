@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "ibs/interbus/time.hpp"
 
@@ -96,6 +97,8 @@ class DrivePlant {
   }
   // The same without forming the output: the per-sample path of the device models.
   void update(const PlantInput& in) noexcept;
+  // `count` periods with the input held (the same as as many update() calls).
+  void update_held(const PlantInput& in, std::uint32_t count) noexcept;
   // As many whole periods as `elapsed` (plus what earlier calls left over) covers; the remainder
   // waits for the next call.
   void advance(Duration elapsed, const PlantInput& in) noexcept {
@@ -108,6 +111,16 @@ class DrivePlant {
       update(in);
       pending_ -= period_;
     }
+  }
+
+  // advance(elapsed, in) `count` times with the same input: one loop for the samples of a bus
+  // cycle in which the device's inputs do not change.
+  void advance_held(Duration elapsed, const PlantInput& in, std::uint32_t count) noexcept {
+    if (pending_.count() == 0 && elapsed == period_) {
+      update_held(in, count);
+      return;
+    }
+    for (std::uint32_t k = 0; k < count; ++k) advance(elapsed, in);
   }
 
   // The output after the last step (formed from the state when asked for).
@@ -152,56 +165,66 @@ class DrivePlant {
 inline constexpr double kPlantStandstill = 1e-9;
 
 // Inline: every simulated servo sample runs it, inside the device model's sample loop.
-inline void DrivePlant::update(const PlantInput& in) noexcept {
+inline void DrivePlant::update(const PlantInput& in) noexcept { update_held(in, 1); }
+
+inline void DrivePlant::update_held(const PlantInput& in, std::uint32_t count) noexcept {
+  if (count == 0) return;
+  // The state and the input in locals for the loop: the steps of a cycle's stretch run on them.
   const double w_ref = rpm_to_rad_s(in.speed_reference_rpm);
-  const double w0 = x_(0);
-  double i0 = x_(1);
-  const double t0 = x_(2);
+  const double load = in.load_torque_nm;
   const double tmax = p_.torque_limit;
-
-  // Friction and load, held over the step. At standstill, static friction balances up to its
-  // full value whatever drive torque there is (stiction), so the shaft stays put.
-  const double friction = std::abs(w0) > kPlantStandstill
-                              ? std::copysign(p_.coulomb_friction, w0)
-                              : std::clamp(t0 - in.load_torque_nm, -p_.coulomb_friction, p_.coulomb_friction);
-  const double d = in.load_torque_nm + friction;
-
-  // The mode for this step: limited (clipped command T_lim, or T_lim = 0 with the power stage
-  // off) or linear.
+  const double tc = p_.coulomb_friction;
+  const double kp = p_.kp;
+  double w0 = x_(0);
+  double i0 = x_(1);
+  double t0 = x_(2);
   bool linear = false;
-  double t_lim = 0.0;
-  if (!in.enabled) {
-    i0 = 0.0;  // power stage off: torque decays to 0, the controller starts afresh
-  } else {
-    const double command = p_.kp * (w_ref - w0) + i0;
-    if (std::abs(command) > tmax) {
-      t_lim = std::copysign(tmax, command);
+  for (std::uint32_t k = 0; k < count; ++k) {
+    // Friction and load, held over the step. At standstill, static friction balances up to its
+    // full value whatever drive torque there is (stiction), so the shaft stays put.
+    const double friction =
+        std::abs(w0) > kPlantStandstill ? std::copysign(tc, w0) : std::clamp(t0 - load, -tc, tc);
+    const double d = load + friction;
+
+    // The mode for this step: limited (clipped command T_lim, or T_lim = 0 with the power stage
+    // off) or linear.
+    linear = false;
+    double t_lim = 0.0;
+    if (!in.enabled) {
+      i0 = 0.0;  // power stage off: torque decays to 0, the controller starts afresh
     } else {
-      linear = true;
+      const double command = kp * (w_ref - w0) + i0;
+      if (std::abs(command) > tmax) {
+        t_lim = std::copysign(tmax, command);
+      } else {
+        linear = true;
+      }
     }
-  }
 
-  // x' = Ad x + Bd u with u = [w_ref, d, T_lim], the input the mode does not use left out.
-  const Rows& r = rows_[linear ? 0 : 1];
-  const double u1 = linear ? w_ref : d;
-  const double u2 = linear ? d : t_lim;
-  const auto row = [&](const std::array<double, 5>& c) {
-    return c[0] * w0 + c[1] * i0 + c[2] * t0 + c[3] * u1 + c[4] * u2;
-  };
-  double w1 = row(r[0]);
-  double i1 = row(r[1]);
-  double t1 = row(r[2]);
-  if (linear) {
-    // Integrator clamp (anti-windup), and the current limit for a command that rose past
-    // T_max inside the step.
-    i1 = std::clamp(i1, -tmax, tmax);
-    t1 = std::clamp(t1, -tmax, tmax);
+    // x' = Ad x + Bd u with u = [w_ref, d, T_lim], the input the mode does not use left out.
+    const Rows& r = rows_[linear ? 0 : 1];
+    const double u1 = linear ? w_ref : d;
+    const double u2 = linear ? d : t_lim;
+    const auto row = [&](const std::array<double, 5>& c) {
+      return c[0] * w0 + c[1] * i0 + c[2] * t0 + c[3] * u1 + c[4] * u2;
+    };
+    double w1 = row(r[0]);
+    double i1 = row(r[1]);
+    double t1 = row(r[2]);
+    if (linear) {
+      // Integrator clamp (anti-windup), and the current limit for a command that rose past
+      // T_max inside the step.
+      i1 = std::clamp(i1, -tmax, tmax);
+      t1 = std::clamp(t1, -tmax, tmax);
+    }
+    // Coulomb friction only brakes: a speed it alone carried through zero stops at zero.
+    const bool crossed = (w0 > kPlantStandstill && w1 < 0.0) || (w0 < -kPlantStandstill && w1 > 0.0);
+    if (crossed && std::abs(t1 - load) <= tc) w1 = 0.0;
+    w0 = w1;
+    i0 = i1;
+    t0 = t1;
   }
-  // Coulomb friction only brakes: a speed it alone carried through zero stops at zero.
-  const bool crossed = (w0 > kPlantStandstill && w1 < 0.0) || (w0 < -kPlantStandstill && w1 > 0.0);
-  if (crossed && std::abs(t1 - in.load_torque_nm) <= p_.coulomb_friction) w1 = 0.0;
-
-  x_ = State(w1, i1, t1);
+  x_ = State(w0, i0, t0);
   reference_rpm_ = in.speed_reference_rpm;
   limited_last_ = in.enabled && !linear;
 }
