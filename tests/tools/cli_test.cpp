@@ -168,6 +168,15 @@ TEST(Cli, RunTakesAThreadCountAndRefusesABadOne) {
     return from.substr(0, from.find("master processing"));
   };
   EXPECT_EQ(after_timing(one.out), after_timing(two.out));
+  // 0: as many as the machine's usable cores, at most one per 16 servos (64 here: up to 4).
+  const Result any = run("run --threads 0 " + full);
+  ASSERT_EQ(any.exit_code, 0) << any.out;
+  EXPECT_TRUE(any.out.find("on 1 thread (") != std::string::npos || any.out.find("on 2 threads (") != std::string::npos ||
+              any.out.find("on 3 threads (") != std::string::npos || any.out.find("on 4 threads (") != std::string::npos)
+      << any.out;
+  EXPECT_EQ(after_timing(one.out), after_timing(any.out));
+  // Without the option: one thread.
+  EXPECT_NE(run("run " + full).out.find("on 1 thread ("), std::string::npos);
   EXPECT_NE(one.out.find("reference 1630 rpm reached"), std::string::npos) << one.out;
   for (const char* bad : {"--threads many", "--threads -1", "--threads 1000"}) {
     const Result b = run(std::string("run ") + bad);

@@ -15,7 +15,7 @@ struct RunOptions {
   bool json = false;
   std::string trace_dir;  // empty: no traces
   std::string vcd_file;   // empty: no VCD
-  unsigned threads = 0;   // device-stepping threads (sim::SimOptions::threads): 0 = automatic
+  unsigned threads = 1;   // device-stepping threads (sim::SimOptions::threads): 0 = automatic
 };
 
 int replay(const std::string& emulate, const std::string& file);

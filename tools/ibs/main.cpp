@@ -22,7 +22,7 @@ int run_ibs(int argc, char** argv) {
                   "threads that step the devices (the run is the same for any number; 0: one per core "
                   "as far as the ring has work for them)")
       ->check(CLI::Range(0U, 256U))
-      ->default_val(0U);
+      ->default_val(1U);
 
   std::string emulate;
   std::string replay_file;

@@ -94,10 +94,11 @@ struct SimOptions {
   // Called now and then with the simulated time reached (for a progress display).
   std::function<void(Time now, Duration total)> progress;
   // Threads that step the devices between two cycle ends; the run is the same for any number.
-  // 0: one per processor core, as far as the ring has work for them (16 MC6000 -- or the
-  // samples of as many -- per thread); 1: everything on the calling thread. A run with an
-  // observer (a VCD file) always uses one thread.
-  unsigned threads = 0;
+  // 1: everything on the calling thread (the default: on the 2-core machine of
+  // docs/performance.md a second thread costs more in hand-overs than it gains, even on the
+  // full bus); 0: one per core the process may use, as far as the ring has 16 MC6000 -- or
+  // the samples of as many -- per thread. A run with an observer (a VCD file) uses one.
+  unsigned threads = 1;
 };
 
 // Signals for a waveform recorder, reported after every event.
