@@ -5,7 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstring>
+#include <bit>
+#include <cstdint>
 #include <random>
 
 #include "ibs/devices/mc6000_device.hpp"
@@ -24,10 +25,10 @@ void expect_same(const Mc6000Device& a, const Mc6000Device& b, int window) {
   ASSERT_EQ(a.state(), b.state()) << "window " << window;
   ASSERT_EQ(a.status_word(), b.status_word()) << "window " << window;
   // Bit for bit, not within a tolerance: the same arithmetic in the same order.
-  const double va = a.actual_rpm();
-  const double vb = b.actual_rpm();
-  ASSERT_EQ(std::memcmp(&va, &vb, sizeof va), 0) << "window " << window << ": " << va << " vs " << vb;
-  ASSERT_EQ(a.torque_nm(), b.torque_nm()) << "window " << window;
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  ASSERT_EQ(bits(a.actual_rpm()), bits(b.actual_rpm()))
+      << "window " << window << ": " << a.actual_rpm() << " vs " << b.actual_rpm();
+  ASSERT_EQ(bits(a.torque_nm()), bits(b.torque_nm())) << "window " << window;
   ASSERT_EQ(a.watchdog_tripped(), b.watchdog_tripped()) << "window " << window;
   ASSERT_EQ(a.last_sample().packed, b.last_sample().packed) << "window " << window;
   ASSERT_EQ(a.last_sample().count, b.last_sample().count) << "window " << window;
