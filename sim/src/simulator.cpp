@@ -400,7 +400,10 @@ void Simulator::start_threads(unsigned requested) {
     work.push_back(1e6 / static_cast<double>(d->period.count()));
     total += work.back();
   }
-  constexpr double kWorkPerThread = 16.0;  // below this the hand-over costs more than it gains
+  // Automatic: a thread only for at least this much work (servo samples per millisecond); less
+  // cannot pay for the hand-over each cycle. (On the 2-vCPU machine of docs/performance.md even
+  // 32 per thread did not, hence one thread by default.)
+  constexpr double kWorkPerThread = 16.0;
   // The master's cycle and the summary, on the first part's thread: about three servo samples
   // per device and cycle (measured with callgrind on the full bus).
   const double master = 3.0 * static_cast<double>(devices_.size()) * 1e6 / static_cast<double>(cycle_time_.count());
