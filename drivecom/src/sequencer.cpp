@@ -11,32 +11,107 @@ constexpr bool is_fault_state(State s) {
 }
 
 constexpr Word kResetBit = 1U << cw::kResetFault;
+constexpr std::size_t kTargets = 4;
+constexpr std::size_t kCommands = kCommandTable.size();
+constexpr std::uint8_t kFar = 0xFF;
 
-// The state a transition leads from and to, for reports.
-struct Edge {
-  std::string_view from;
-  std::string_view to;
+// ---------------------------------------------------------------------------------------------
+// The master's paths, derived at compile time from the one DRIVECOM table (kCommandTransitions,
+// 5.1.2) plus the automatic transition 1: for each state and target, the command to send and the
+// transition it waits for. The fault states are left the same way for every target (see plan()).
+
+struct PathStep {
+  Command command = Command::block_power;
+  std::uint8_t transition = 0;  // 0: holding the target
 };
-constexpr Edge transition_edge(std::uint8_t n) {
-  switch (n) {
-    case 1: return {"NOT READY", "START-UP INHIBIT"};
-    case 2: return {"START-UP INHIBIT", "READY"};
-    case 3: return {"READY", "ON"};
-    case 4: return {"ON", "ENABLED"};
-    case 5: return {"ENABLED", "ON"};
-    case 6: return {"ON", "READY"};
-    case 7: return {"READY", "START-UP INHIBIT"};
-    case 8: return {"ENABLED", "READY"};
-    case 9: return {"ENABLED", "START-UP INHIBIT"};
-    case 10: return {"ON", "START-UP INHIBIT"};
-    case 11: return {"ENABLED", "EMERGENCY STOP ACTIVE"};
-    case 12: return {"EMERGENCY STOP ACTIVE", "START-UP INHIBIT"};
-    case 13: return {"any", "FAULT RESPONSE ACTIVE"};
-    case 14: return {"FAULT RESPONSE ACTIVE", "FAULT"};
-    case 15: return {"FAULT", "START-UP INHIBIT"};
-    default: return {"?", "?"};
+
+constexpr std::size_t idx(State s) { return static_cast<std::size_t>(s); }
+
+// Steps from each state to each target state along command transitions (and 1 from NOT READY).
+constexpr std::array<std::array<std::uint8_t, kStateCount>, kTargets> make_distances() {
+  std::array<std::array<std::uint8_t, kStateCount>, kTargets> dist{};
+  for (std::size_t t = 0; t < kTargets; ++t) {
+    for (auto& d : dist[t]) d = kFar;
+    dist[t][idx(target_state(static_cast<Target>(t)))] = 0;
+    for (std::size_t round = 0; round < kStateCount; ++round) {
+      for (const auto& row : kCommandTransitions) {
+        const std::uint8_t via = dist[t][idx(row.to)];
+        if (via != kFar && via + 1 < dist[t][idx(row.from)]) dist[t][idx(row.from)] = static_cast<std::uint8_t>(via + 1);
+      }
+      const std::uint8_t via = dist[t][idx(State::start_up_inhibit)];
+      if (via != kFar && via + 1 < dist[t][idx(State::not_ready)]) dist[t][idx(State::not_ready)] = static_cast<std::uint8_t>(via + 1);
+    }
   }
+  return dist;
 }
+inline constexpr auto kDistance = make_distances();
+
+// The command that holds a target: one that moves nothing there and leads into it from a
+// neighbour (first in the command table's order): BLOCK POWER, SHUTDOWN, DISABLE, ENABLE.
+constexpr Command hold_command(State target) {
+  for (const auto& c : kCommandTable) {
+    if (detail::kTransitionLut[idx(target)][static_cast<std::size_t>(c.command)].number != 0) continue;
+    for (const auto& row : kCommandTransitions) {
+      if (row.to == target && row.command == c.command) return c.command;
+    }
+  }
+  return Command::block_power;
+}
+
+// The first step of a shortest path. Among equally short ones the step whose command is also the
+// next state's command wins, so that a drive taking several transitions in one sample (READY +
+// ENABLE -> ON -> ENABLED, 5.3.4) gets one word for all of them; then the command table's order.
+constexpr std::array<std::array<PathStep, kStateCount>, kTargets> make_paths() {
+  std::array<std::array<PathStep, kStateCount>, kTargets> paths{};
+  for (std::size_t t = 0; t < kTargets; ++t) {
+    const State target = target_state(static_cast<Target>(t));
+    paths[t][idx(target)] = {hold_command(target), 0};
+    // Nearer states first, so that a step can look at its successor's command.
+    for (std::uint8_t d = 1; d < kStateCount; ++d) {
+      for (std::size_t s = 0; s < kStateCount; ++s) {
+        if (kDistance[t][s] != d) continue;
+        if (static_cast<State>(s) == State::not_ready) {
+          // 1 happens by itself; the word already is what START-UP INHIBIT will need.
+          paths[t][s] = {paths[t][idx(State::start_up_inhibit)].command, 1};
+          continue;
+        }
+        bool found = false;
+        PathStep best{};
+        bool best_matches = false;
+        for (const auto& row : kCommandTransitions) {
+          if (idx(row.from) != s || kDistance[t][idx(row.to)] + 1 != d) continue;
+          const bool matches = paths[t][idx(row.to)].command == row.command;
+          const bool earlier = static_cast<std::size_t>(row.command) < static_cast<std::size_t>(best.command);
+          if (!found || (matches && !best_matches) || (matches == best_matches && earlier)) {
+            best = {row.command, row.number};
+            best_matches = matches;
+            found = true;
+          }
+        }
+        paths[t][s] = best;
+      }
+    }
+  }
+  return paths;
+}
+inline constexpr auto kPaths = make_paths();
+
+constexpr PathStep path(State s, Target t) { return kPaths[static_cast<std::size_t>(t)][idx(s)]; }
+
+// The table of docs/drivecom.md, pinned where the manual is explicit: the start-up of 5.3.4
+// (0006H in START-UP INHIBIT, 000FH in READY taking 3 and 4) and every state's way out.
+static_assert(path(State::start_up_inhibit, Target::enabled).command == Command::shutdown);
+static_assert(path(State::ready, Target::enabled).command == Command::enable);
+static_assert(path(State::ready, Target::enabled).transition == 3);
+static_assert(path(State::ready, Target::on).command == Command::disable);
+static_assert(path(State::enabled, Target::on).transition == 5);
+static_assert(path(State::enabled, Target::start_up_inhibit).transition == 9);
+static_assert(path(State::not_ready, Target::start_up_inhibit).command == Command::block_power);
+static_assert(path(State::not_ready, Target::ready).command == Command::shutdown);
+static_assert(path(State::emergency_stop_active, Target::enabled).transition == 12);
+static_assert(path(State::enabled, Target::enabled).command == Command::enable);
+static_assert(path(State::enabled, Target::enabled).transition == 0);
+static_assert(kCommands == 5);
 
 }  // namespace
 
@@ -69,7 +144,9 @@ Sequencer::Sequencer(const SequencerConfig& config)
 void Sequencer::restart() {
   report_ = Report{};
   last_control_ = 0;
-  prev_state_.reset();
+  prev_seen_.reset();
+  known_.reset();
+  reset_allowed_ = false;
   pulse_started_ = false;
 }
 
@@ -87,6 +164,7 @@ void Sequencer::begin(Goal g, Time now) {
 void Sequencer::request(Target t, Time now) {
   report_.target = t;
   begin(Goal::target, now);
+  reset_allowed_ = !known_ || is_fault_state(*known_);
 }
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
@@ -99,7 +177,7 @@ Word Sequencer::emit(Word drivecom_bits) {
 }
 
 void Sequencer::wait_for(std::uint8_t transition, Time now) {
-  if (transition != report_.transition || report_.state_seen != prev_state_) {
+  if (transition != report_.transition || report_.state_seen != prev_seen_) {
     report_.since = now;
   }
   report_.transition = transition;
@@ -108,9 +186,12 @@ void Sequencer::wait_for(std::uint8_t transition, Time now) {
   if (report_.waited > report_.timeout) fail(Failure::timeout);
 }
 
-void Sequencer::fail(Failure f) {
+Word Sequencer::fail(Failure f) {
+  if (report_.phase != Phase::failed) report_.failed_command = last_control_;
   report_.phase = Phase::failed;
   report_.failure = f;
+  pulse_started_ = false;
+  return emit(command_word(Command::block_power));
 }
 
 Sequencer::Move Sequencer::reset_pulse(Time now) {
@@ -130,144 +211,96 @@ Sequencer::Move Sequencer::reset_pulse(Time now) {
 }
 
 Sequencer::Move Sequencer::plan(State s, Time now) {
-  const Word bp = command_word(Command::block_power);
-  const Word sd = command_word(Command::shutdown);
-  const Word dis = command_word(Command::disable);
-  const Word en = command_word(Command::enable);
   // States every target leaves the same way.
   switch (s) {
     case State::fault: return reset_pulse(now);
-    case State::fault_response_active: return {bp, 14};  // wait, bit 7 low
-    case State::emergency_stop_active: return {bp, 12};
+    case State::fault_response_active: return {command_word(Command::block_power), 14};  // wait, bit 7 low
     default: break;
   }
   pulse_started_ = false;
-  switch (report_.target) {
-    case Target::enabled:
-      switch (s) {
-        case State::not_ready: return {sd, 1};
-        case State::start_up_inhibit: return {sd, 2};
-        case State::ready: return {en, 3};  // LUST drives take 3 and 4 in one sample (5.3.4)
-        case State::on: return {en, 4};
-        case State::enabled: return {en, 0};
-        default: break;
-      }
-      break;
-    case Target::on:
-      switch (s) {
-        case State::not_ready: return {sd, 1};
-        case State::start_up_inhibit: return {sd, 2};
-        case State::ready: return {dis, 3};
-        case State::on: return {dis, 0};
-        case State::enabled: return {dis, 5};
-        default: break;
-      }
-      break;
-    case Target::ready:
-      switch (s) {
-        case State::not_ready: return {sd, 1};
-        case State::start_up_inhibit: return {sd, 2};
-        case State::ready: return {sd, 0};
-        case State::on: return {sd, 6};
-        case State::enabled: return {sd, 8};
-        default: break;
-      }
-      break;
-    case Target::start_up_inhibit:
-      switch (s) {
-        case State::not_ready: return {bp, 1};
-        case State::start_up_inhibit: return {bp, 0};
-        case State::ready: return {bp, 7};
-        case State::on: return {bp, 10};
-        case State::enabled: return {bp, 9};
-        default: break;
-      }
-      break;
-  }
-  return {bp, 0};
+  const PathStep p = path(s, report_.target);
+  return {command_word(p.command), p.transition};
 }
 
 Word Sequencer::step(Word status, Time now) {
   const std::optional<State> st = decode_state(status);
   report_.status_seen = status;
   report_.state_seen = st;
+  Word w = 0;
   // The common case of every cycle: holding a reached target.
-  if (report_.goal == Goal::target && report_.phase == Phase::reached &&
-      st == target_state(report_.target)) {
-    prev_state_ = st;
-    return emit(last_control_);
-  }
-  struct Remember {
-    std::optional<State>& prev;
-    const std::optional<State>& now;
-    ~Remember() { prev = now; }
-  } remember{prev_state_, st};
-
-  const Word bp = command_word(Command::block_power);
-  switch (report_.goal) {
-    case Goal::idle: return emit(bp);
-
-    case Goal::emergency_stop:
-    case Goal::block_power: {
-      const bool estop = report_.goal == Goal::emergency_stop;
-      const Word word = estop ? command_word(Command::emergency_stop) : bp;
-      if (!st) {
-        wait_for(report_.transition, now);
-        return emit(word);
-      }
-      std::uint8_t t = 0;
-      switch (*st) {
-        case State::ready: t = 7; break;
-        case State::on: t = 10; break;
-        case State::enabled: t = estop ? 11 : 9; break;
-        case State::emergency_stop_active: t = estop ? 0 : 12; break;
-        case State::fault_response_active: t = 14; break;
-        case State::not_ready:
-        case State::start_up_inhibit:
-        case State::fault: t = 0; break;
-      }
-      if (t == 0) {
-        report_.phase = Phase::reached;
-        report_.transition = 0;
-      } else if (report_.phase != Phase::failed) {
-        report_.phase = Phase::moving;
-        wait_for(t, now);
-      }
-      return emit(word);
+  if (report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)) {
+    w = emit(last_control_);
+  } else {
+    switch (report_.goal) {
+      case Goal::idle: w = emit(command_word(Command::block_power)); break;
+      case Goal::emergency_stop:
+      case Goal::block_power: w = step_stop(st, now); break;
+      case Goal::target: w = step_target(st, now); break;
     }
-
-    case Goal::target: break;
   }
+  prev_seen_ = st;
+  if (st) known_ = st;
+  return w;
+}
 
-  if (report_.phase == Phase::failed) {
-    // Hold still. Out of a fault only a new request moves on, and never with ENABLE.
-    if (st && is_fault_state(*st)) return emit(bp);
-    return emit(last_control_);
-  }
+Word Sequencer::step_stop(std::optional<State> st, Time now) {
+  const bool estop = report_.goal == Goal::emergency_stop;
+  const Word word = command_word(estop ? Command::emergency_stop : Command::block_power);
+  if (report_.phase == Phase::failed) return fail(report_.failure);
   if (!st) {
-    // An unreadable status word: keep the command, let the transition's timeout decide.
     wait_for(report_.transition, now);
-    if (report_.phase == Phase::failed) report_.failure = Failure::invalid_status;
-    return emit(last_control_);
+    return report_.phase == Phase::failed ? fail(Failure::invalid_status) : emit(word);
   }
-  const bool was_fault = prev_state_ && is_fault_state(*prev_state_);
-  if (is_fault_state(*st) && prev_state_ && !was_fault) {
-    fail(Failure::fault);
-    return emit(bp);
+  // The transition the request waits for, from the seen state (0: there already).
+  std::uint8_t t = 0;
+  switch (*st) {
+    case State::ready: t = 7; break;
+    case State::on: t = 10; break;
+    case State::enabled: t = estop ? 11 : 9; break;
+    case State::emergency_stop_active: t = estop ? 0 : 12; break;
+    case State::fault_response_active: t = 14; break;
+    case State::not_ready:
+    case State::start_up_inhibit:
+    case State::fault: t = 0; break;
   }
-  if (report_.phase == Phase::reached && *st != target_state(report_.target)) {
-    fail(Failure::left_target);
-    return emit(last_control_);
+  if (t == 0) {
+    report_.phase = Phase::reached;
+    report_.transition = 0;
+    return emit(word);
   }
+  report_.phase = Phase::moving;
+  wait_for(t, now);
+  return report_.phase == Phase::failed ? fail(Failure::timeout) : emit(word);
+}
+
+Word Sequencer::step_target(std::optional<State> st, Time now) {
+  // Once failed, BLOCK POWER until a new request: never a reset, never a power-on.
+  if (report_.phase == Phase::failed) return fail(report_.failure);
+  if (!st) {
+    // An unreadable status word erases nothing: the command stays the one for the last state
+    // seen (a new request may have changed it), and the transition's timeout decides.
+    const Move m = plan(known_.value_or(State::not_ready), now);
+    wait_for(m.transition, now);
+    if (report_.phase == Phase::failed) return fail(Failure::invalid_status);
+    return emit(m.word);
+  }
+  if (is_fault_state(*st)) {
+    // A fault the request did not cover: it appeared after the drive was seen in another state.
+    if (!reset_allowed_) return fail(Failure::fault);
+  } else {
+    reset_allowed_ = false;
+  }
+  if (report_.phase == Phase::reached && *st != target_state(report_.target)) return fail(Failure::left_target);
   const Move m = plan(*st, now);
   if (m.transition == 0) {
     report_.phase = Phase::reached;
     report_.transition = 0;
     report_.waited = 0ns;
-  } else {
-    report_.phase = Phase::moving;
-    wait_for(m.transition, now);
+    return emit(m.word);
   }
+  report_.phase = Phase::moving;
+  wait_for(m.transition, now);
+  if (report_.phase == Phase::failed) return fail(Failure::timeout);
   return emit(m.word);
 }
 
@@ -296,25 +329,27 @@ std::string describe(const Report& r) {
     case Phase::moving:
     case Phase::failed: break;
   }
-  const Edge e = transition_edge(r.transition);
-  const std::string wait = "transition " + std::to_string(r.transition) + " (" + std::string(e.from) +
-                           " -> " + std::string(e.to) + ")";
+  const auto ends = transition_ends(r.transition);
+  const std::string from = !ends ? "?" : ends->from ? std::string(to_string(*ends->from)) : "any";
+  const std::string to = ends ? std::string(to_string(ends->to)) : "?";
+  const std::string wait = "transition " + std::to_string(r.transition) + " (" + from + " -> " + to + ")";
   if (r.phase == Phase::moving) {
     return "moving to " + goal + ": waiting for " + wait + " for " + ms(r.waited) + " of " +
            ms(r.timeout) + "; state " + seen + ", sending " + sent;
   }
+  const std::string was = hex(r.failed_command) + " " + std::string(to_string(decode_command(r.failed_command)));
+  const std::string then = "; sending " + sent + " until a new request";
   switch (r.failure) {
     case Failure::timeout:
     case Failure::invalid_status:
-      return wait + " did not happen: state seen " + seen + ", command sent " + sent + ", waited " +
+      return wait + " did not happen: state seen " + seen + ", command sent " + was + ", waited " +
              ms(r.waited) + " (timeout " + ms(r.timeout) + ")" +
-             (r.failure == Failure::invalid_status ? "; the status word matches no DRIVECOM state"
-                                                   : "");
+             (r.failure == Failure::invalid_status ? "; the status word matches no DRIVECOM state" : "") + then;
     case Failure::fault:
-      return "the drive faulted on the way to " + goal + ": state seen " + seen + ", command sent " +
-             sent + "; request a target again to reset the fault";
+      return "the drive faulted (target " + goal + "): state seen " + seen + ", command sent " + was + then +
+             "; request a target again to reset the fault";
     case Failure::left_target:
-      return "the drive left " + goal + " on its own: state seen " + seen + ", command sent " + sent;
+      return "the drive left " + goal + " on its own: state seen " + seen + ", command sent " + was + then;
     case Failure::none: break;
   }
   return "failed: " + seen;

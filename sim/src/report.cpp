@@ -43,6 +43,7 @@ std::string format_text(const Summary& s) {
     o += "\n" + d.name + " (" + d.id_code + ")\n";
     for (const StateRecord& r : d.states) o += printf_string("  %10s  ", ms(r.at).c_str()) + r.what + "\n";
     for (const std::string& e : d.errors) o += "  error: " + e + "\n";
+    for (const FailureRecord& f : d.failures) o += "  failure at " + ms(f.at) + ": " + f.what + "\n";
     o += printf_string("  final: %s, reference %.6g %s, actual %.6g %s, %llu samples\n", d.final_state.c_str(),
                        d.final_reference, d.unit.c_str(), d.final_actual, d.unit.c_str(),
                        static_cast<unsigned long long>(d.samples));
@@ -91,12 +92,17 @@ std::string format_json(const Summary& s) {
   for (const DeviceReport& d : s.devices) {
     json states = json::array();
     for (const StateRecord& r : d.states) states.push_back({{"at_ms", to_ms(r.at)}, {"what", r.what}});
+    json failures = json::array();
+    for (const FailureRecord& f : d.failures) {
+      failures.push_back({{"at_ms", to_ms(f.at)}, {"failure", f.failure}, {"what", f.what}});
+    }
     devices.push_back({{"name", d.name},
                        {"type", d.kind == DeviceKind::vf1000 ? "vf1000" : "mc6000"},
                        {"id_code", d.id_code},
                        {"unit", d.unit},
                        {"states", states},
                        {"errors", d.errors},
+                       {"failures", failures},
                        {"final_state", d.final_state},
                        {"final_reference", d.final_reference},
                        {"final_actual", d.final_actual},

@@ -122,6 +122,7 @@ struct Simulator::Device {
   double reached_for = 0.0;  // the reference whose "reached" was last reported
   bool reached_reported = true;
   std::optional<int> reported_error;
+  bool failure_reported = false;  // the sequencer's current failure is in the summary
   std::vector<Recording> recordings;
   bool recording = false;
   bool power_cycled = false;
@@ -727,6 +728,9 @@ void Simulator::cycle_exchange(Time t) {
     if (!valid) continue;
     if (link.module_error) {
       std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
+      // A device that is on the ring but initialising (6.1) still takes the master's words into
+      // its bus interface: it acts on the newest ones once it is ready, not on words from before.
+      if (!d->lost(t) && d->vf) copy_words(d->out, d->m2s.data());
       continue;
     }
     copy_words(d->out, d->m2s.data());
@@ -787,6 +791,15 @@ void Simulator::observe_master(Time t) {
         states.push_back({t, "wait for " + std::string(drivecom::to_string(*d->waiting_for)) + " timed out"});
       }
       d->waiting_for.reset();
+    }
+    const drivecom::Report& rep = drv.sequencer().report();
+    if (rep.phase != drivecom::Phase::failed) {
+      d->failure_reported = false;
+    } else if (!d->failure_reported) {
+      d->failure_reported = true;
+      const std::string why = drivecom::describe(rep);
+      states.push_back({t, "master: request failed (" + std::string(drivecom::to_string(rep.failure)) + ")"});
+      summary_.devices[d->index].failures.push_back({t, std::string(drivecom::to_string(rep.failure)), why});
     }
     const auto err = d->error_at_cycle;
     if (err && err != d->reported_error) {

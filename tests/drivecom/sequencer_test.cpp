@@ -224,7 +224,8 @@ TEST(Sequencer, DeviceThatNeverAnswersTimesOutOnEachTransitionAndSaysWhich) {
     EXPECT_EQ(r.failure, Failure::timeout);
     EXPECT_EQ(r.transition, c.transition);
     EXPECT_EQ(r.state_seen, c.stuck);
-    EXPECT_EQ(r.command_sent, c.command);
+    EXPECT_EQ(r.failed_command, c.command);
+    EXPECT_EQ(r.command_sent, 0x0000) << "BLOCK POWER once failed";
     EXPECT_GT(r.waited, limit);
     EXPECT_EQ(r.timeout, limit);
     const std::string why = describe(r);

@@ -216,6 +216,54 @@ TEST(Simulator, PowerCycleReinitialisesTheVf1000AndTheMasterBringsItBack) {
   EXPECT_EQ(f[0].kind, "power-cycle");
 }
 
+// Issue 9, defect 2: a VF1000 switched off and on while ENABLED shows NOT READY and then
+// START-UP INHIBIT; the master must stop commanding POWER-ON/ENABLE at once, send BLOCK POWER and
+// say in the summary that its request failed.
+TEST(Simulator, PowerCycleWhileEnabledEndsTheRequestWithBlockPowerAndIsReported) {
+  struct Words : Observer {
+    void on_cycle(Time, bool, const interbus::ProcessImage&) override {}
+    void on_sample(Time at, std::size_t, std::span<const Word> m2s, std::span<const Word> s2m) override {
+      if (at > 500ms) seen.push_back({m2s[0], s2m[0]});
+    }
+    std::vector<std::pair<Word, Word>> seen;  // control word the drive read, status it showed
+  } words;
+  Scenario s;
+  s.duration = 6s;
+  s.devices = {vf1000()};
+  s.timeline = {at(0s, "vf", Action::state, "enabled"), at(500ms, "vf", Action::fault_power_cycle)};
+  Simulator sim(s);
+  sim.add_observer(&words);
+  sim.run_until(450ms);
+  ASSERT_EQ(sim.device_state(0), State::enabled);
+  sim.run();
+  ASSERT_GT(words.seen.size(), 500U);
+  std::size_t block_power = 0;
+  for (std::size_t i = 0; i < words.seen.size(); ++i) {
+    const auto [control, status] = words.seen[i];
+    const auto cmd = drivecom::decode_command(control);
+    // After the first few samples (the master sees the module error one cycle later and the
+    // drive reads the new word in its next sample) nothing but BLOCK POWER with bit 7 low.
+    if (i >= 4) {
+      EXPECT_EQ(cmd, drivecom::Command::block_power) << "sample " << i << ": " << std::hex << control;
+      EXPECT_EQ(control & 0x0080U, 0U);
+      ++block_power;
+    }
+    const auto st = drivecom::decode_state(status);
+    if (i >= 2 && (st == State::start_up_inhibit || st == State::not_ready)) {
+      EXPECT_NE(cmd, drivecom::Command::enable) << "ENABLE while the drive shows " << drivecom::to_string(*st);
+    }
+  }
+  EXPECT_GT(block_power, 500U);
+  EXPECT_EQ(sim.device_state(0), State::start_up_inhibit);
+  const auto& failures = sim.summary().devices[0].failures;
+  ASSERT_EQ(failures.size(), 1U);
+  EXPECT_EQ(failures[0].failure, "left target");
+  EXPECT_GE(failures[0].at, 500ms);
+  EXPECT_LT(failures[0].at, 520ms);
+  EXPECT_NE(failures[0].what.find("left ENABLED"), std::string::npos) << failures[0].what;
+  EXPECT_NE(find_event(sim.summary().devices[0], "request failed (left target)"), nullptr);
+}
+
 TEST(Simulator, DeviceFaultIsReportedAndResetByANewRequest) {
   Scenario s;
   s.duration = 2s;

@@ -57,6 +57,36 @@ inline constexpr std::array<TransitionRow, 14> kCommandTransitions{{
     {State::emergency_stop_active, Command::block_power, State::start_up_inhibit, 12},
 }};
 
+// Transitions no command triggers (5.1.1): the end of the self-test, a fault and its reaction,
+// RESET FAULT. With kCommandTransitions this names every numbered transition of the profile.
+struct AutomaticTransition {
+  std::uint8_t number;
+  std::optional<State> from;  // nullopt: from every state but the two fault states
+  State to;
+};
+inline constexpr std::array<AutomaticTransition, 4> kAutomaticTransitions{{
+    {1, State::not_ready, State::start_up_inhibit},
+    {13, std::nullopt, State::fault_response_active},
+    {14, State::fault_response_active, State::fault},
+    {15, State::fault, State::start_up_inhibit},
+}};
+
+// Where transition `number` leads from and to (from nullopt: any state); nullopt for a number
+// the profile does not have.
+struct TransitionEnds {
+  std::optional<State> from;
+  State to;
+};
+constexpr std::optional<TransitionEnds> transition_ends(std::uint8_t number) {
+  for (const auto& row : kCommandTransitions) {
+    if (row.number == number) return TransitionEnds{row.from, row.to};
+  }
+  for (const auto& row : kAutomaticTransitions) {
+    if (row.number == number) return TransitionEnds{row.from, row.to};
+  }
+  return std::nullopt;
+}
+
 namespace detail {
 // (state, command) -> transition, derived once from kCommandTransitions; number 0 = none.
 struct Cell {

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "ibs/drivecom/control_word.hpp"
+#include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/status_word.hpp"
 #include "ibs/interbus/time.hpp"
 
@@ -68,7 +69,8 @@ struct Report {
   Failure failure = Failure::none;
   std::optional<State> state_seen;  // nullopt: the status word matched no state
   Word status_seen = 0;
-  Word command_sent = 0;
+  Word command_sent = 0;            // the word sent last (BLOCK POWER once failed)
+  Word failed_command = 0;          // failed: the word that was being sent when it failed
   std::uint8_t transition = 0;      // the transition waited for (0: none)
   Duration waited{0};               // how long it has been waited for
   Duration timeout{0};
@@ -82,7 +84,9 @@ class Sequencer {
  public:
   explicit Sequencer(const SequencerConfig& config = SequencerConfig::defaults());
 
-  // Requests a target state; clears an emergency-stop or block-power request.
+  // Requests a target state; clears an emergency-stop or block-power request. A fault the drive
+  // is in (or shows first, when its state is not known yet) is reset on the way; a fault that
+  // appears after the drive has been seen in another state ends the request as failed.
   void request(Target t, Time now);
   // Sends EMERGENCY STOP from the next step on, whatever the state, until the next request().
   void request_emergency_stop(Time now);
@@ -90,7 +94,7 @@ class Sequencer {
   void request_block_power(Time now);
 
   // One master cycle: reads the status word, returns the control word to send. Never allocates,
-  // never throws.
+  // never throws. After any failure it sends BLOCK POWER with bit 7 low until the next request.
   Word step(Word status, Time now);
 
   [[nodiscard]] const Report& report() const { return report_; }
@@ -108,15 +112,25 @@ class Sequencer {
   Move plan(State s, Time now);
   Move reset_pulse(Time now);
   void begin(Goal g, Time now);
+  Word step_stop(std::optional<State> st, Time now);
+  Word step_target(std::optional<State> st, Time now);
   void wait_for(std::uint8_t transition, Time now);
-  void fail(Failure f);
+  Word fail(Failure f);
   Word emit(Word drivecom_bits);
 
   SequencerConfig config_;
   Word app_bits_;
   Report report_;
   Word last_control_ = 0;
-  std::optional<State> prev_state_;
+  // The state decoded from the previous status word (nullopt: it matched no state); a change
+  // restarts the transition timer.
+  std::optional<State> prev_seen_;
+  // The last state a status word showed: an undecodable word does not erase it.
+  std::optional<State> known_;
+  // The request covers resetting a fault: the drive was in a fault state (or its state was not
+  // known) when the target was requested, and no other state has been seen since. A fault that
+  // appears after the drive was seen healthy is never reset without a new request.
+  bool reset_allowed_ = false;
   Time pulse_edge_{0};
   bool pulse_started_ = false;
 };

@@ -53,6 +53,14 @@ struct FaultRecord {
   std::string detail;
 };
 
+// The master's sequencer failed a request (drivecom::Failure): it then sends BLOCK POWER until
+// the next request.
+struct FailureRecord {
+  Time at{0};
+  std::string failure;  // "fault", "left target", "timeout", "invalid status word"
+  std::string what;     // drivecom::describe of the report
+};
+
 struct DeviceReport {
   std::string name;
   DeviceKind kind = DeviceKind::mc6000;
@@ -64,6 +72,7 @@ struct DeviceReport {
   double final_actual = 0.0;
   std::uint64_t samples = 0;
   std::vector<std::string> errors;  // e.g. "error 16 (E-OP1), location 1: bus watchdog"
+  std::vector<FailureRecord> failures;  // the master's sequencer gave up on a request
 };
 
 struct TimingStats {
