@@ -156,6 +156,8 @@ class Mc6000Master final : public trace::MasterSide {
 class Mc6000Explainer final : public trace::Explainer {
  public:
   explicit Mc6000Explainer(const interbus::mc6000::Layout& l) : layout_(l) {}
+  std::size_t m2s_words() const override { return static_cast<std::size_t>(layout_.pd_words); }
+  std::size_t s2m_words() const override { return static_cast<std::size_t>(layout_.pd_words); }
   std::string explain_m2s(std::span<const Word> w) const override {
     if (w.empty()) return "no process data";
     std::string s = "control " + drivecom::explain_control_word(drivecom::DeviceType::mc6000, w[0], prev_control_);
@@ -215,6 +217,8 @@ class Vf1000Master final : public trace::MasterSide {
 
 class Vf1000Explainer final : public trace::Explainer {
  public:
+  std::size_t m2s_words() const override { return Vf1000PdDevice::kWords; }
+  std::size_t s2m_words() const override { return Vf1000PdDevice::kWords; }
   std::string explain_m2s(std::span<const Word> w) const override {
     std::string s = "control " + drivecom::explain_control_word(drivecom::DeviceType::vf1000, w[0], prev_control_);
     prev_control_ = w[0];

@@ -101,11 +101,21 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
       // During a gap the master keeps sending the previous row's m2s; s2m is not checked until
       // it matches this row (trace-format.md, "Gaps").
       bool found = false;
+      std::uint64_t unchanged = 0;
+      std::vector<Word> before = s2m;
       for (std::uint64_t g = 0; g <= t.header.max_gap; ++g) {
         device.step(prev_m2s, s2m);
         if (matches(r.s2m, s2m)) {
           found = true;
           break;
+        }
+        unchanged = s2m == before ? unchanged + 1 : 0;
+        before = s2m;
+        if (unchanged >= kGapSettleSteps) {
+          return failed(n, "gap before " + where(t, r) + ": s2m cannot reach " + format_patterns(r.s2m) +
+                               ": the device's words have not changed for " + std::to_string(kGapSettleSteps) +
+                               " steps (" + std::to_string(g + 1) + " into the gap)\n  last actual " +
+                               format_words(s2m) + "  " + e.explain_s2m(s2m));
         }
       }
       if (!found) {
@@ -164,11 +174,20 @@ ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& 
       // The device's words during a gap are unknown: the master keeps seeing the previous row's
       // s2m and must keep sending the previous row's m2s until its output matches this row.
       bool found = false;
+      std::uint64_t unchanged = 0;
+      std::vector<Word> before = m2s;
       for (std::uint64_t g = 0; g <= h.max_gap; ++g) {
         master.step(prev_s2m, prev_row->m2s, m2s);
         if (matches(r.m2s, m2s)) {
           found = true;
           break;
+        }
+        unchanged = m2s == before ? unchanged + 1 : 0;
+        before = m2s;
+        if (unchanged >= kGapSettleSteps) {
+          return failed(n, "gap before " + where(t, r) + ": m2s cannot reach " + format_patterns(r.m2s) +
+                               ": the master's words have not changed for " + std::to_string(kGapSettleSteps) +
+                               " steps (" + std::to_string(g + 1) + " into the gap)");
         }
         if (!matches(prev_row->m2s, m2s)) {
           return failed(n, "during the gap before " + where(t, r) +
@@ -208,6 +227,7 @@ ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& 
 }
 
 Trace decode(const Trace& t, const Explainer& e) {
+  check_counts(t, e.m2s_words(), e.s2m_words());
   Trace out = t;
   for (Row& r : out.rows) {
     if (r.gap) continue;

@@ -2,9 +2,9 @@
 
 #include <array>
 #include <charconv>
-#include <fstream>
 #include <limits>
-#include <sstream>
+
+#include "ibs/interbus/text_file.hpp"
 
 namespace ibs::trace {
 
@@ -146,8 +146,27 @@ std::string hex4(unsigned v) {
   return s;
 }
 
+// The line a header key was first given on (0: not yet).
+std::size_t* header_line(Header& h, std::string_view key) {
+  auto& l = h.lines;
+  if (key == "device") return &l.device;
+  if (key == "words") return &l.words;
+  if (key == "supi") return &l.supi;
+  if (key == "ibcnf") return &l.ibcnf;
+  if (key == "init") return &l.init;
+  if (key == "request") return &l.request;
+  if (key == "request-at") return &l.request_at;
+  if (key == "outcome") return &l.outcome;
+  if (key == "max-gap") return &l.max_gap;
+  return nullptr;
+}
+
 void parse_header(Header& h, std::string_view key, std::string_view value, const std::string& file,
                   std::size_t line) {
+  // A header given twice is an error: which one a reader took would silently change a test.
+  if (const std::size_t* first = header_line(h, key); first != nullptr && *first != 0) {
+    fail(file, line, "header '" + std::string(key) + "' given twice (first on line " + std::to_string(*first) + ")");
+  }
   if (key == "device") {
     h.lines.device = line;
     const auto d = lookup(value, kDevices);
@@ -191,6 +210,10 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
   } else if (key == "max-gap") {
     h.lines.max_gap = line;
     h.max_gap = parse_count(value, key, file, line);
+    if (h.max_gap > kMaxGapLimit) {
+      fail(file, line, "max-gap: " + std::to_string(h.max_gap) + " is more than the " +
+                           std::to_string(kMaxGapLimit) + " steps a gap may stand for");
+    }
     h.max_gap_given = true;
   } else {
     fail(file, line, "unknown header '" + std::string(key) + "'");
@@ -459,12 +482,13 @@ Trace parse(std::string_view text, const std::string& file) {
 }
 
 Trace load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw TraceError(path, 0, "cannot open the file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw TraceError(path, 0, "read error");
-  return parse(ss.str(), path);
+  std::string text;
+  try {
+    text = read_text_file(path);
+  } catch (const FileReadError& e) {
+    throw TraceError(path, 0, e.what());
+  }
+  return parse(text, path);
 }
 
 std::string write(const Trace& t) {

@@ -79,17 +79,24 @@ std::size_t trace_value_bytes(std::uint16_t pnr, std::int64_t raw, std::span<std
 class PcpMasterSide final : public ibs::trace::MasterSide {
  public:
   explicit PcpMasterSide(const ibs::trace::Header& h)
-      : words_(trace_channel_words(h)), client_(config(h)) {}
+      : words_(trace_channel_words(h)), client_(config(h)) {
+    if (h.request) check_request(*h.request);
+  }
   [[nodiscard]] std::size_t m2s_words() const override { return static_cast<std::size_t>(words_); }
   [[nodiscard]] std::size_t s2m_words() const override { return static_cast<std::size_t>(words_); }
   void initial(std::span<Word> m2s) override { client_.show(now_, m2s); }
 
-  void submit(const ibs::trace::Request& request) override {
+  // A request the channel cannot carry; thrown at construction, where the caller names the line.
+  static void check_request(const ibs::trace::Request& request) {
     if (request.kind == ibs::trace::Request::Kind::state) {
       throw std::invalid_argument(
           "a PCP channel trace cannot carry `request: " + ibs::trace::to_string(request) +
           "` (DRIVECOM states travel in `words: pd`)");
     }
+  }
+
+  void submit(const ibs::trace::Request& request) override {
+    check_request(request);
     request_ = request;
     phase_ = client_.associated() ? Phase::request : Phase::initiate;
     outcome_.reset();
@@ -170,12 +177,18 @@ class PcpMasterSide final : public ibs::trace::MasterSide {
 
 class PcpExplainer final : public ibs::trace::Explainer {
  public:
+  explicit PcpExplainer(int words) : words_(static_cast<std::size_t>(words)) {}
+  [[nodiscard]] std::size_t m2s_words() const override { return words_; }
+  [[nodiscard]] std::size_t s2m_words() const override { return words_; }
   [[nodiscard]] std::string explain_m2s(std::span<const Word> m2s) const override {
     return "M>S " + explain_frame(m2s, Direction::to_server);
   }
   [[nodiscard]] std::string explain_s2m(std::span<const Word> s2m) const override {
     return "S>M " + explain_frame(s2m, Direction::to_client);
   }
+
+ private:
+  std::size_t words_;
 };
 
 }  // namespace
@@ -207,7 +220,7 @@ std::unique_ptr<ibs::trace::MasterSide> make_pcp_master_side(const ibs::trace::H
 
 std::unique_ptr<ibs::trace::Explainer> make_pcp_explainer(const ibs::trace::Header& header) {
   check_header(header);
-  return std::make_unique<PcpExplainer>();
+  return std::make_unique<PcpExplainer>(trace_channel_words(header));
 }
 
 }  // namespace ibs::pcp

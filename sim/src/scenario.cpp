@@ -9,6 +9,7 @@
 #include <string>
 #include <system_error>
 
+#include "ibs/interbus/text_file.hpp"
 #include "scenario_internal.hpp"
 
 namespace ibs::sim {
@@ -27,19 +28,11 @@ std::string lower(std::string s) {
 }
 
 std::string read_file(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) {
-    throw ScenarioError(path, 0, "cannot read the file: it does not exist");
+  try {
+    return read_text_file(path);
+  } catch (const FileReadError& e) {
+    throw ScenarioError(path, 0, e.what());
   }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw ScenarioError(path, 0, "cannot read the file: it is not a regular file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path, 0, "cannot open the file");
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw ScenarioError(path, 0, "cannot read the file");
-  return text;
 }
 
 }  // namespace

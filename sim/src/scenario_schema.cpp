@@ -138,7 +138,14 @@ class Reader {
     return n.integer;
   }
 
-  int int_value(const Node& n, std::string_view key) const {
+  // An integer for an `int` field. The documented range [lo, hi] is what a message quotes for a
+  // number no `int` holds; inside that, the validator judges the value with its own reasons.
+  int int_value(const Node& n, std::string_view key, std::int64_t lo, std::int64_t hi) const {
+    if (n.kind == Kind::integer &&
+        (n.integer < std::numeric_limits<int>::min() || n.integer > std::numeric_limits<int>::max())) {
+      fail(n.line, "'" + std::string(key) + "' = " + std::to_string(n.integer) + " is out of range (" +
+                       std::to_string(lo) + ".." + std::to_string(hi) + ")");
+    }
     return static_cast<int>(
         integer(n, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
   }
@@ -187,7 +194,7 @@ void read_bus(const Reader& r, const Node& n, BusSettings& bus, SourceMap& lines
       bus.software_time = r.time(v, key);
       lines.software_time = v.line;
     } else if (key == "recovery_cycles") {
-      bus.recovery_cycles = r.int_value(v, key);
+      bus.recovery_cycles = r.int_value(v, key, 0, 100);
       lines.recovery_cycles = v.line;
     }
   });
@@ -211,10 +218,10 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
       d.kind = type == "vf1000" ? DeviceKind::vf1000 : DeviceKind::mc6000;
       has_type = true;
     } else if (key == "supi") {
-      d.supi = r.int_value(v, key);
+      d.supi = r.int_value(v, key, 0, 12);
       l.supi = v.line;
     } else if (key == "ibcnf") {
-      d.ibcnf = r.int_value(v, key);
+      d.ibcnf = r.int_value(v, key, 0, 4);
       l.ibcnf = v.line;
     } else if (key == "bus") {
       const std::string bus = r.string(v, key);
@@ -232,10 +239,10 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
     } else if (key == "initialised") {
       d.initialised = r.boolean(v, key);
     } else if (key == "watchdog_ms") {
-      d.watchdog_ms = r.int_value(v, key);
+      d.watchdog_ms = r.int_value(v, key, 0, 65535);
       l.watchdog_ms = v.line;
     } else if (key == "watchdog_reaction") {
-      d.watchdog_reaction = r.int_value(v, key);
+      d.watchdog_reaction = r.int_value(v, key, 0, 3);
       l.watchdog_reaction = v.line;
     }
   });
@@ -280,7 +287,7 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l)
           modifier_key = key;
           l.modifier = v.line;
           if (key == "count") {
-            e.count = r.int_value(v, key);
+            e.count = r.int_value(v, key, 1, 10000);
           } else {
             e.duration = r.time(v, key);
           }

@@ -34,7 +34,7 @@ TEST(PdReplay, ManualsLastStatusWord0437IsRefusedByTheDevice) {
   t.rows.back().s2m[0] = trace::WordPattern::exact(0x0437);
   const auto r = as_device(t);
   EXPECT_FALSE(r.matched);
-  EXPECT_NE(r.message.find("did not reach 0437 09C4 4000"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("cannot reach 0437 09C4 4000"), std::string::npos) << r.message;
 }
 
 TEST(PdReplay, FaultResetTraceBothWays) {

@@ -8,6 +8,8 @@ namespace ibs::trace {
 namespace {
 
 struct HexExplainer final : Explainer {
+  std::size_t m2s_words() const override { return 1; }
+  std::size_t s2m_words() const override { return 1; }
   std::string explain_m2s(std::span<const Word> w) const override { return "m" + format_words(w); }
   std::string explain_s2m(std::span<const Word> w) const override { return "s" + format_words(w); }
 };

@@ -1,5 +1,8 @@
 // ../shared/specs/trace-format.md: reading, writing and refusing `ibs-trace 1` files.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
 
 #include "ibs/interbus/trace.hpp"
 
@@ -179,7 +182,69 @@ TEST(TraceFormat, MissingFileIsAnError) {
     load("/nonexistent/dir/x.trace");
     FAIL();
   } catch (const TraceError& e) {
-    EXPECT_EQ(std::string(e.what()), "/nonexistent/dir/x.trace:0: cannot open the file");
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/dir/x.trace:0: cannot read the file: it does not exist");
+  }
+}
+
+// Issue 9, defect 6: a header given twice was taken silently (the last one won).
+TEST(TraceFormat, AHeaderGivenTwiceIsAnError) {
+  for (const char* key : {"device: vf1000", "words: pd", "supi: 3", "ibcnf: 2", "init: fault", "request: read 1",
+                          "request-at: 1", "outcome: ok", "max-gap: 5"}) {
+    const std::string text = std::string("# format: ibs-trace 1\n# device: mc6000\n# words: pcp\n# ") + key +
+                             "\n# " + key + "\n0, 0000, 0000\n";
+    const std::string name = std::string(key).substr(0, std::string(key).find(':'));
+    try {
+      parse(text, "t.trace");
+      ADD_FAILURE() << key << " given twice was accepted";
+    } catch (const TraceError& e) {
+      const std::string first = name == "device" ? "2" : name == "words" ? "3" : "4";
+      const std::string line = name == "device" || name == "words" ? "4" : "5";
+      EXPECT_EQ(std::string(e.what()), "t.trace:" + line + ": header '" + name + "' given twice (first on line " +
+                                           first + ")");
+    }
+  }
+}
+
+// Issue 9, defect 4: max-gap is bounded (a gap that stands for 2^63 steps never ends).
+TEST(TraceFormat, MaxGapIsBounded) {
+  const std::string head = "# format: ibs-trace 1\n# device: vf1000\n# words: comm\n";
+  EXPECT_EQ(parse(head + "# max-gap: 10000000\n0, 0000, 8000\n", "t").header.max_gap, kMaxGapLimit);
+  try {
+    parse(head + "# max-gap: 9223372036854775807\n0, 0000, 8000\n", "t");
+    FAIL();
+  } catch (const TraceError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "t:4: max-gap: 9223372036854775807 is more than the 10000000 steps a gap may stand for");
+  }
+}
+
+TEST(TraceFormat, OnlyRegularFilesAreRead) {
+  const std::string dir = ::testing::TempDir() + "ibs_trace_dir.trace";
+  std::filesystem::create_directories(dir);
+  try {
+    load(dir);
+    FAIL();
+  } catch (const TraceError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ":0: cannot read the file: it is a directory");
+  }
+  std::filesystem::remove(dir);
+  // A FIFO would block the reader until a writer came: refused without opening it.
+  const std::string fifo = ::testing::TempDir() + "ibs_trace_fifo.trace";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    load(fifo);
+    FAIL();
+  } catch (const TraceError& e) {
+    EXPECT_EQ(std::string(e.what()), fifo + ":0: cannot read the file: it is a FIFO (a named pipe), not a regular file");
+  }
+  std::filesystem::remove(fifo);
+  // A regular file whose read fails (proc's memory file reads EIO at offset 0).
+  try {
+    load("/proc/self/mem");
+    FAIL();
+  } catch (const TraceError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("/proc/self/mem:0: read error: ", 0), 0U) << e.what();
   }
 }
 

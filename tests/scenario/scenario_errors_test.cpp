@@ -249,7 +249,7 @@ TEST(ScenarioErrors, Mc6000LayoutsOf322And323) {
                              "device 'x': 406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nsupi = 3000000000\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"supi\": 3000000000}", 5,
-                             "'supi' = 3000000000 is out of range (-2147483648..2147483647)"));
+                             "'supi' = 3000000000 is out of range (0..12)"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nsupi = \"11\"\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"supi\": \"11\"}", 5,
                              "'supi' must be an integer, not a string"));

@@ -118,7 +118,7 @@ TEST(ScenarioExamples, LoadRefusesOtherExtensionsAndMissingFiles) {
     (void)load_scenario(dir);
     FAIL();
   } catch (const ScenarioError& e) {
-    EXPECT_EQ(std::string(e.what()), dir + ":0: cannot read the file: it is not a regular file");
+    EXPECT_EQ(std::string(e.what()), dir + ":0: cannot read the file: it is a directory");
   }
   std::filesystem::remove(dir);
 }

@@ -1,5 +1,6 @@
 // The `ibs` command line as a user runs it: exit codes and what it prints.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -7,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "ibs/interbus/trace.hpp"
 
@@ -17,8 +19,7 @@ struct Result {
   std::string out;  // stdout and stderr together
 };
 
-Result run(const std::string& args) {
-  const std::string cmd = std::string(IBS_CLI) + " " + args + " 2>&1";
+Result run_shell(const std::string& cmd) {
   FILE* p = popen(cmd.c_str(), "r");
   if (p == nullptr) return {-1, ""};
   std::string out;
@@ -27,6 +28,8 @@ Result run(const std::string& args) {
   const int status = pclose(p);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
+
+Result run(const std::string& args) { return run_shell(std::string(IBS_CLI) + " " + args + " 2>&1"); }
 
 std::string data(const std::string& name) { return std::string(IBS_TEST_DATA_DIR) + "/" + name; }
 
@@ -66,7 +69,7 @@ TEST(Cli, MalformedTraceExitsTwoWithFileAndLine) {
   EXPECT_EQ(d.exit_code, 2);
   const Result missing = run("decode /nonexistent.trace");
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_EQ(missing.out, "/nonexistent.trace:0: cannot open the file\n");
+  EXPECT_EQ(missing.out, "/nonexistent.trace:0: cannot read the file: it does not exist\n");
 }
 
 TEST(Cli, BadOptionsExitTwo) {
@@ -193,6 +196,107 @@ TEST(Cli, RunRefusesABadScenarioWithFileAndLine) {
   EXPECT_NE(r.out.find(path + ":7: device 'm': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7"), std::string::npos)
       << r.out;
   EXPECT_EQ(run("run /nonexistent.toml").exit_code, 2);
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 9, defect 3: decode read past the end of a row with fewer words than the device has.
+TEST(Cli, DecodeChecksTheWordCountsAsReplayDoes) {
+  const std::string path =
+      temp_file("short_row.trace", "# format: ibs-trace 1\n# device: vf1000\n# words: pd\n0, 0000, 0000\n");
+  const Result d = run("decode " + path);
+  EXPECT_EQ(d.exit_code, 2) << d.out;
+  EXPECT_EQ(d.out, path + ":4: this vf1000 with words: pd exchanges 3 m2s and 3 s2m words per row; the row has 1 and 1\n");
+  const Result r = run("replay --emulate device " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, d.out);
+}
+
+// Issue 9, defect 4: a gap that never matches ran until max-gap, up to forever.
+TEST(Cli, AGapThatCannotMatchFailsFast) {
+  const std::string path = temp_file("endless_gap.trace",
+                                     "# format: ibs-trace 1\n# device: vf1000\n# words: pd\n# max-gap: 10000000\n"
+                                     "0, 0000 0000 0000, 0240 0000 8000\n...\n1, 0000 0000 0000, 0237 0000 8000\n");
+  const Result r = run("replay --emulate device " + path);
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_NE(r.out.find("s2m cannot reach 0237 0000 8000: the device's words have not changed for 50000 steps"),
+            std::string::npos)
+      << r.out;
+  const Result big = run("replay --emulate device " +
+                         temp_file("huge_gap.trace", "# format: ibs-trace 1\n# device: vf1000\n# words: pd\n"
+                                                     "# max-gap: 9223372036854775807\n0, 0000 0000 0000, 0240 0000 8000\n"));
+  EXPECT_EQ(big.exit_code, 2) << big.out;
+}
+
+// Issue 9, defect 6: every refusal of a file says FILE:LINE.
+TEST(Cli, EveryRefusalOfATraceNamesItsFileAndLine) {
+  const std::string pcp = temp_file("pcp_state.trace",
+                                    "# format: ibs-trace 1\n# device: mc6000\n# words: pcp\n# request: state enabled\n"
+                                    "0, 0000, 0000\n1, 0000, 0000\n");
+  const Result r = run("replay --emulate master " + pcp);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind(pcp + ":4: a PCP channel trace cannot carry `request: state enabled`", 0), 0U) << r.out;
+  const std::string dir = ::testing::TempDir() + "ibs_cli_dir.trace";
+  std::filesystem::create_directories(dir);
+  const Result d = run("decode " + dir);
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_EQ(d.out, dir + ":0: cannot read the file: it is a directory\n");
+  std::filesystem::remove(dir);
+  const std::string fifo = ::testing::TempDir() + "ibs_cli_fifo.trace";
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const Result f = run_shell("timeout 20 " + std::string(IBS_CLI) + " decode " + fifo + " 2>&1");
+  EXPECT_EQ(f.exit_code, 2) << "a FIFO must be refused, not block the reader: " << f.out;
+  EXPECT_EQ(f.out, fifo + ":0: cannot read the file: it is a FIFO (a named pipe), not a regular file\n");
+  std::filesystem::remove(fifo);
+}
+
+TEST(Cli, ScenarioReadErrorsAndRangesSayWhereAndWhat) {
+  // A scenario whose read fails: a .toml name for proc's memory file (read: EIO).
+  const std::string link = ::testing::TempDir() + "ibs_mem.toml";
+  std::filesystem::remove(link);
+  std::filesystem::create_symlink("/proc/self/mem", link);
+  const Result r = run("run " + link);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out.rfind(link + ":0: read error: ", 0), 0U) << r.out;
+  std::filesystem::remove(link);
+  const std::string big = temp_file("big_supi.toml",
+                                    "name = \"x\"\nduration = \"1 s\"\n[[device]]\nname = \"a\"\ntype = \"mc6000\"\n"
+                                    "supi = 99999999999\n");
+  const Result s = run("run " + big);
+  EXPECT_EQ(s.exit_code, 2);
+  EXPECT_EQ(s.out, big + ":6: 'supi' = 99999999999 is out of range (0..12)\n");
+}
+
+// Issue 9, defect 7: on a full disk `ibs run` left a partial VCD or trace, printed the summary
+// before the failing write, and left an empty trace directory behind.
+TEST(Cli, RunLeavesNoHalfWrittenOutputWhenAWriteFails) {
+  const std::string base = ::testing::TempDir() + "ibs_full_disk";
+  std::filesystem::remove_all(base);
+  std::filesystem::create_directories(base);
+  const std::string vcd = base + "/run.vcd";
+  const std::string traces = base + "/traces";
+  // The file-size limit stands for a full disk: a write past 16 KiB fails (SIGXFSZ ignored).
+  const Result r = run_shell("bash -c 'trap \"\" XFSZ; ulimit -f 16; exec " + std::string(IBS_CLI) + " run --vcd " + vcd +
+                             " --trace " + traces + "' 2>&1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.out.find("ibs run:"), std::string::npos) << "no summary for a run that could not be saved: " << r.out;
+  EXPECT_EQ(r.out.rfind(vcd + ": ", 0), 0U) << "the message names the file that could not be written: " << r.out;
+  std::vector<std::string> left;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(base)) left.push_back(e.path().string());
+  EXPECT_TRUE(left.empty()) << "left behind: " << (left.empty() ? "" : left.front());
+  // Without the limit the same run writes everything.
+  const Result ok = run("run --vcd " + vcd + " --trace " + traces);
+  EXPECT_EQ(ok.exit_code, 0) << ok.out;
+  EXPECT_TRUE(std::filesystem::exists(vcd));
+  EXPECT_TRUE(std::filesystem::exists(vcd + ".states.txt"));
+  EXPECT_FALSE(std::filesystem::is_empty(traces));
+  for (const auto& e : std::filesystem::recursive_directory_iterator(base)) {
+    EXPECT_EQ(e.path().string().find("ibs-partial"), std::string::npos) << e.path();
+  }
+  std::filesystem::remove_all(base);
 }
 
 }  // namespace

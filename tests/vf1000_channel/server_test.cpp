@@ -361,6 +361,23 @@ TEST(ServerHalfWrite, Code0AfterTheHighByteDropsTheTransfer) {
   EXPECT_EQ(inv.s.value(pnr::kFmax1), 0x0064);
 }
 
+// Issue 9, defect 5: 85-SIOF is checked where the value is taken, not only at the PNR.
+TEST(ServerNak, SiofSetBetweenThePnrAndTheValueRefusesTheTransfer) {
+  for (const int after_row : {1, 2}) {  // after the PNR, after the high byte
+    Inverter inv;
+    EXPECT_EQ(inv.step(0x2816), 0xA000);  // PNR 22, accepted: 85-SIOF is 0
+    if (after_row == 1) inv.s.raise_siof(siof_mask(SiofBit::watchdog));
+    EXPECT_EQ(inv.step(0x0801), 0x8000);  // high byte
+    if (after_row == 2) inv.s.raise_siof(siof_mask(SiofBit::watchdog));
+    const Word answer = inv.step(0x28F4);  // low byte: here the value would take effect
+    EXPECT_TRUE(inverter_nak(answer)) << std::hex << answer;
+    EXPECT_EQ(inv.last.event.kind, ServerEvent::Kind::nak);
+    EXPECT_EQ(inv.last.event.reason, NakReason::siof_pending);
+    EXPECT_EQ(inv.s.value(pnr::kFmax1), 0x03E8) << "the value must not change";
+    EXPECT_EQ(inv.s.siof(), siof_mask(SiofBit::watchdog)) << "the refusal adds no cause of its own";
+  }
+}
+
 TEST(ServerHalfWrite, RestartAfterTheHighByteDropsTheTransfer) {
   Inverter inv;
   EXPECT_EQ(inv.step(0x2816), 0xA000);

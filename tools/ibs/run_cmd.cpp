@@ -8,22 +8,13 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output_files.hpp"
 #include "ibs/sim/report.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
 #include "ibs/sim/vcd_recorder.hpp"
 
 namespace ibs::cli {
-
-namespace {
-
-bool write_file(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-  return static_cast<bool>(out);
-}
-
-}  // namespace
 
 int run(const RunOptions& o) {
   sim::Scenario scenario;
@@ -40,24 +31,22 @@ int run(const RunOptions& o) {
     std::cerr << (o.scenario.empty() ? std::string("default scenario") : o.scenario) << ": " << e.what() << "\n";
     return kExitBadInput;
   }
-  // Recordings go to files named up front, so a path that cannot be written fails before the run.
-  if (!o.trace_dir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(o.trace_dir, ec);
-    if (ec || !std::filesystem::is_directory(o.trace_dir)) {
-      std::cerr << o.trace_dir << ": cannot create the trace directory" << (ec ? ": " + ec.message() : "") << "\n";
-      return kExitBadInput;
-    }
+  // Every output is written under a temporary name and renamed into place only when all of them
+  // have been written; a path that cannot be created fails before the run.
+  OutputFiles outputs;
+  std::string error;
+  if (!o.trace_dir.empty() && !outputs.make_directory(o.trace_dir, error)) {
+    std::cerr << error << "\n";
+    return kExitBadInput;
   }
-  std::unique_ptr<std::ofstream> vcd_file;
   std::unique_ptr<sim::VcdRecorder> vcd;
   if (!o.vcd_file.empty()) {
-    vcd_file = std::make_unique<std::ofstream>(o.vcd_file, std::ios::binary);
-    if (!*vcd_file) {
-      std::cerr << o.vcd_file << ": cannot write the VCD file\n";
+    std::ostream* vcd_stream = outputs.open(o.vcd_file, error);
+    if (vcd_stream == nullptr) {
+      std::cerr << error << "\n";
       return kExitBadInput;
     }
-    vcd = std::make_unique<sim::VcdRecorder>(*simulator, *vcd_file);
+    vcd = std::make_unique<sim::VcdRecorder>(*simulator, *vcd_stream);
     simulator->add_observer(vcd.get());
   }
 
@@ -84,32 +73,40 @@ int run(const RunOptions& o) {
   if (vcd) {
     try {
       vcd->finish(scenario.duration);
-      vcd_file->close();
     } catch (const std::exception& e) {
       std::cerr << o.vcd_file << ": " << e.what() << "\n";
       return kExitBadInput;
     }
     // The state names for gtkwave's translate filter (docs/vcd.md), beside the VCD file.
-    if (!write_file(o.vcd_file + ".states.txt", vcd->state_filter()) || !*vcd_file) {
-      std::cerr << o.vcd_file << ": cannot write the VCD file\n";
+    if (!outputs.write(o.vcd_file + ".states.txt", vcd->state_filter(), error)) {
+      std::cerr << error << "\n";
       return kExitBadInput;
     }
   }
-
-  const sim::Summary& summary = simulator->summary();
-  std::cout << (o.json ? sim::format_json(summary) : sim::format_text(summary));
+  std::vector<std::string> written;
   if (!o.trace_dir.empty()) {
     for (const auto& r : simulator->traces()) {
       const auto path = std::filesystem::path(o.trace_dir) / r.file_name;
-      if (!write_file(path, trace::write(r.trace))) {
-        std::cerr << path.string() << ": cannot write the trace\n";
+      if (!outputs.write(path, trace::write(r.trace), error)) {
+        std::cerr << error << "\n";
         return kExitBadInput;
       }
-      if (!o.json) std::cout << "trace written: " << path.string() << "\n";
+      written.push_back(path.string());
     }
   }
-  if (vcd && !o.json) {
-    std::cout << "VCD written: " << o.vcd_file << " (state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
+  if (!outputs.commit(error)) {
+    std::cerr << error << "\n";
+    return kExitBadInput;
+  }
+
+  // The summary only once every file is in place: a run that could not be saved says nothing else.
+  const sim::Summary& summary = simulator->summary();
+  std::cout << (o.json ? sim::format_json(summary) : sim::format_text(summary));
+  if (!o.json) {
+    for (const auto& path : written) std::cout << "trace written: " << path << "\n";
+    if (vcd) {
+      std::cout << "VCD written: " << o.vcd_file << " (state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
+    }
   }
   return kExitOk;
 }

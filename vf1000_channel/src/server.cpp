@@ -244,6 +244,9 @@ Word Server::take_low(Word m, bool power_stage_enabled) {
   const Word value = make_word(high_, low_byte(m));
   const auto slot = static_cast<std::size_t>(slot_);
   const ParameterInfo& p = table_.params()[slot];
+  // 85-SIOF <> 0 refuses every value transfer (4.1.4): a bit set since the PNR arrived (a
+  // watchdog, the device) refuses it here, where the value is taken.
+  if (siof() != 0) return nak(NakReason::siof_pending, 0);
   // The power stage may have been enabled since the PNR arrived: checked again here.
   const WriteCheck c = check_write(&p, value, power_stage_enabled);
   if (c != WriteCheck::ok) return nak(reason_for(c), siof_bits_for(c));

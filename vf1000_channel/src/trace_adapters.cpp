@@ -92,6 +92,8 @@ class CommMasterSide final : public tr::MasterSide {
 
 class CommExplainer final : public tr::Explainer {
  public:
+  [[nodiscard]] std::size_t m2s_words() const override { return 1; }
+  [[nodiscard]] std::size_t s2m_words() const override { return 1; }
   [[nodiscard]] std::string explain_m2s(std::span<const Word> m2s) const override {
     if (m2s.size() != 1) return "expected 1 communication word, got " + std::to_string(m2s.size());
     return explain_master_word(m2s[0]);

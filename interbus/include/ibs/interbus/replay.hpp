@@ -18,6 +18,10 @@ namespace ibs::trace {
 class Explainer {
  public:
   virtual ~Explainer() = default;
+  // The words a row of this trace kind carries each way; decode() checks every row against
+  // them as replay does, so that an explainer only ever sees rows of the right size.
+  [[nodiscard]] virtual std::size_t m2s_words() const = 0;
+  [[nodiscard]] virtual std::size_t s2m_words() const = 0;
   [[nodiscard]] virtual std::string explain_m2s(std::span<const Word> m2s) const = 0;
   [[nodiscard]] virtual std::string explain_s2m(std::span<const Word> s2m) const = 0;
 };
@@ -49,6 +53,12 @@ class MasterSide {
   [[nodiscard]] virtual std::optional<Outcome> outcome() const = 0;
 };
 
+// A gap cannot match once the emulated side's words have stayed the same for this many steps of
+// unchanged input: every emulated side settles within seconds (its longest timer is 10 s, a
+// master's transition timeout), so 50 000 steps (50 s of MC6000 samples) of nothing is a gap that
+// will never end, and replay says so instead of running to `max-gap`.
+inline constexpr std::uint64_t kGapSettleSteps = 50'000;
+
 struct ReplayResult {
   bool matched = false;
   std::size_t steps_matched = 0;  // rows compared and matched
@@ -62,7 +72,8 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
 ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& explain);
 
 // The trace with every row's remark replaced by the explainer's reading of its words
-// (the original remark kept after ` | `), ready for write().
+// (the original remark kept after ` | `), ready for write(). Throws TraceError (FILE:LINE) for a
+// row whose word counts are not the explainer's.
 Trace decode(const Trace& t, const Explainer& explain);
 
 }  // namespace ibs::trace

@@ -72,6 +72,10 @@ struct Row {
   std::vector<std::string> comments_before;  // `#` comment lines that preceded the row
 };
 
+// The most steps a `...` row may stand for (`max-gap`): 10 million steps are 2.8 hours of MC6000
+// samples and 23 hours of VF1000 samples, far beyond any table, and bound the replay's work.
+inline constexpr std::uint64_t kMaxGapLimit = 10'000'000;
+
 struct Header {
   DeviceType device = DeviceType::vf1000;
   WordsKind words = WordsKind::pd;

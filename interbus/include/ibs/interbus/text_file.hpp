@@ -1,0 +1,26 @@
+// Reading a whole input file (a trace, a scenario) for a command, with every way it can fail said
+// in words: no such file, a directory, something that is not a regular file (a FIFO would block
+// the reader forever, a device never end), unreadable, a read error, too large. Configuration-time
+// code: it allocates and throws.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace ibs {
+
+// Why a file could not be read; what() is the reason alone ("it is a directory"), for the caller
+// to put after the file name and its own line convention.
+class FileReadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The largest input file read (traces and scenarios are text of at most a few MB).
+inline constexpr std::size_t kMaxInputFileBytes = std::size_t{256} << 20U;
+
+// The file's bytes; throws FileReadError. Never opens anything but a regular file.
+std::string read_text_file(const std::string& path);
+
+}  // namespace ibs

@@ -1,0 +1,97 @@
+#include "output_files.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace ibs::cli {
+
+namespace {
+
+std::filesystem::path temp_name(const std::filesystem::path& final_path) {
+  return final_path.string() + ".ibs-partial-" + std::to_string(::getpid());
+}
+
+}  // namespace
+
+OutputFiles::~OutputFiles() {
+  if (committed_) return;
+  std::error_code ec;
+  for (File& f : files_) {
+    f.stream.reset();
+    std::filesystem::remove(f.temp_path, ec);
+  }
+  // Directories made for the outputs go again, deepest first, as far as they are empty.
+  for (auto it = made_dirs_.rbegin(); it != made_dirs_.rend(); ++it) {
+    if (std::filesystem::is_empty(*it, ec)) std::filesystem::remove(*it, ec);
+  }
+}
+
+bool OutputFiles::make_directory(const std::filesystem::path& dir, std::string& error) {
+  std::error_code ec;
+  // Remember every level that does not exist yet, to remove it again on failure.
+  std::vector<std::filesystem::path> missing;
+  for (std::filesystem::path p = std::filesystem::absolute(dir, ec); !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    missing.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    error = dir.string() + ": cannot create the directory" + (ec ? ": " + ec.message() : "");
+    return false;
+  }
+  made_dirs_.insert(made_dirs_.end(), missing.rbegin(), missing.rend());
+  return true;
+}
+
+std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::string& error) {
+  File f;
+  f.final_path = final_path;
+  f.temp_path = temp_name(final_path);
+  f.stream = std::make_unique<std::ofstream>(f.temp_path, std::ios::binary | std::ios::trunc);
+  if (!*f.stream) {
+    error = final_path.string() + ": cannot create the file: " + std::strerror(errno);
+    return nullptr;
+  }
+  files_.push_back(std::move(f));
+  return files_.back().stream.get();
+}
+
+bool OutputFiles::write(const std::filesystem::path& final_path, const std::string& text, std::string& error) {
+  std::ostream* out = open(final_path, error);
+  if (out == nullptr) return false;
+  out->write(text.data(), static_cast<std::streamsize>(text.size()));
+  out->flush();
+  if (!*out) {
+    error = final_path.string() + ": cannot write the file (disk full?)";
+    return false;
+  }
+  return true;
+}
+
+bool OutputFiles::commit(std::string& error) {
+  for (File& f : files_) {
+    f.stream->flush();
+    f.stream->close();
+    if (f.stream->fail()) {
+      error = f.final_path.string() + ": cannot write the file (disk full?)";
+      return false;
+    }
+  }
+  for (File& f : files_) {
+    std::error_code ec;
+    std::filesystem::rename(f.temp_path, f.final_path, ec);
+    if (ec) {
+      error = f.final_path.string() + ": cannot rename the written file into place: " + ec.message();
+      // What was renamed already is complete; the rest is removed.
+      return false;
+    }
+    f.renamed = true;
+  }
+  committed_ = true;
+  return true;
+}
+
+}  // namespace ibs::cli

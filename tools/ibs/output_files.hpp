@@ -1,0 +1,44 @@
+// The files a command writes, all or nothing: each is written under a temporary name beside its
+// final one, and only when every one of them has been written in full are they renamed to their
+// final names. Whatever fails, no partial or half-written file is left under a final name, the
+// temporaries are removed, and a directory made for the outputs is removed again if it stays empty.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ibs::cli {
+
+class OutputFiles {
+ public:
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles();
+
+  // Makes `dir` (and its parents) if missing; false with `error` set when it cannot.
+  bool make_directory(const std::filesystem::path& dir, std::string& error);
+  // A stream to write `final_path` through; nullptr with `error` set when it cannot be created.
+  std::ostream* open(const std::filesystem::path& final_path, std::string& error);
+  // Writes `text` as `final_path`.
+  bool write(const std::filesystem::path& final_path, const std::string& text, std::string& error);
+  // Closes every stream, checks that everything was written, then renames all to their final
+  // names. False with `error` (naming the file) on the first failure; nothing is renamed then.
+  bool commit(std::string& error);
+
+ private:
+  struct File {
+    std::filesystem::path final_path;
+    std::filesystem::path temp_path;
+    std::unique_ptr<std::ofstream> stream;
+    bool renamed = false;
+  };
+  std::vector<File> files_;
+  std::vector<std::filesystem::path> made_dirs_;  // deepest last
+  bool committed_ = false;
+};
+
+}  // namespace ibs::cli
