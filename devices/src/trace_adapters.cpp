@@ -104,6 +104,9 @@ class SimulatedDeviceSide final : public trace::DeviceSide {
     device_.bus_cycle(now_);
     device_.sample(m2s, s2m, now_);
   }
+  // The device faults a recording injects (trace-format.md, "Events").
+  bool supports(trace::Event::Kind) const override { return true; }
+  void apply(const trace::Event& e) override { device_.set_fault(e.kind == trace::Event::Kind::fault); }
 
  private:
   std::size_t words_;

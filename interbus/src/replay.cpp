@@ -74,6 +74,16 @@ ReplayResult failed(std::size_t n, std::string message) { return {false, n, std:
 ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& e) {
   check_counts(t, device.m2s_words(), device.s2m_words());
   for (const Row& r : t.rows) {
+    for (const Event& ev : r.events_before) {
+      if (!device.supports(ev.kind)) {
+        throw TraceError(t.file, ev.line,
+                         "event '" + std::string(to_string(ev.kind)) + "': the emulated " +
+                             std::string(to_string(t.header.device)) + " with words: " +
+                             std::string(to_string(t.header.words)) + " cannot act on it");
+      }
+    }
+  }
+  for (const Row& r : t.rows) {
     if (r.gap) continue;
     for (const auto& w : r.m2s) {
       if (!w.is_exact()) {
@@ -93,6 +103,7 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
       pending_gap = true;
       continue;
     }
+    for (const Event& ev : r.events_before) device.apply(ev);
     if (n == 0) {
       device.initial(s2m);
     } else if (!pending_gap) {

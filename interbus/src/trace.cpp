@@ -102,6 +102,8 @@ constexpr std::array<std::pair<std::string_view, InitState>, 3> kInits{
     {{"operational", InitState::operational},
      {"power-on", InitState::power_on},
      {"fault", InitState::fault}}};
+constexpr std::array<std::pair<std::string_view, Event::Kind>, 2> kEvents{
+    {{"fault", Event::Kind::fault}, {"fault-cleared", Event::Kind::fault_cleared}}};
 constexpr std::array<std::pair<std::string_view, StateTarget>, 4> kTargets{
     {{"start-up-inhibit", StateTarget::start_up_inhibit},
      {"ready", StateTarget::ready},
@@ -226,6 +228,7 @@ std::string_view to_string(DeviceType d) { return name_of(d, kDevices); }
 std::string_view to_string(WordsKind w) { return name_of(w, kWords); }
 std::string_view to_string(InitState s) { return name_of(s, kInits); }
 std::string_view to_string(StateTarget t) { return name_of(t, kTargets); }
+std::string_view to_string(Event::Kind k) { return name_of(k, kEvents); }
 
 std::string to_string(const Request& r) {
   switch (r.kind) {
@@ -372,6 +375,7 @@ Trace parse(std::string_view text, const std::string& file) {
   std::size_t m2s_words = 0;
   std::size_t s2m_words = 0;
   std::vector<std::string> pending_comments;
+  std::vector<Event> pending_events;
   std::size_t line_no = 0;
   std::size_t pos = 0;
   while (pos <= text.size()) {
@@ -410,6 +414,26 @@ Trace parse(std::string_view text, const std::string& file) {
       pending_comments.emplace_back(raw.substr(raw.find('#')));
       continue;
     }
+    if (line.front() == '!') {
+      // An event (trace-format.md, "Events"): between two data rows, never next to a gap.
+      if (!format_seen) fail(file, line_no, "the first header must be 'format: ibs-trace 1'");
+      if (t.rows.empty()) {
+        fail(file, line_no, "an event must stand between two data rows; this one comes before the first row");
+      }
+      if (t.rows.back().gap) {
+        fail(file, line_no, "an event cannot follow a gap '...': it would happen at no known step");
+      }
+      const std::string_view body = trim(line.substr(1));
+      const auto space = body.find_first_of(" \t");
+      const std::string_view name = body.substr(0, space);
+      const auto kind = lookup(name, kEvents);
+      if (!kind) {
+        fail(file, line_no, "unknown event '" + std::string(name) + "' (one of: " + choices(kEvents) + ")");
+      }
+      pending_events.push_back(
+          {*kind, std::string(space == std::string_view::npos ? std::string_view{} : trim(body.substr(space))), line_no});
+      continue;
+    }
     // A data row.
     if (!format_seen) fail(file, line_no, "the first header must be 'format: ibs-trace 1'");
     if (!in_body) {
@@ -421,6 +445,12 @@ Trace parse(std::string_view text, const std::string& file) {
     row.line = line_no;
     row.comments_before = std::move(pending_comments);
     pending_comments.clear();
+    if (line == "..." && !pending_events.empty()) {
+      fail(file, line_no, "a gap '...' cannot follow an event (line " + std::to_string(pending_events.back().line) +
+                              "): the event would happen at no known step");
+    }
+    row.events_before = std::move(pending_events);
+    pending_events.clear();
     if (line == "...") {
       if (t.rows.empty()) fail(file, line_no, "a gap '...' cannot be the first row");
       if (t.rows.back().gap) fail(file, line_no, "two gaps '...' in a row");
@@ -477,6 +507,9 @@ Trace parse(std::string_view text, const std::string& file) {
   if (!format_seen) fail(file, line_no, "empty trace: the first header must be 'format: ibs-trace 1'");
   if (t.rows.empty()) fail(file, line_no, "the trace has no data rows");
   if (t.rows.back().gap) fail(file, t.rows.back().line, "a gap '...' cannot be the last row");
+  if (!pending_events.empty()) {
+    fail(file, pending_events.front().line, "an event must stand between two data rows; no row follows this one");
+  }
   t.trailing_comments = std::move(pending_comments);
   return t;
 }
@@ -506,6 +539,9 @@ std::string write(const Trace& t) {
   if (h.max_gap_given) out += "# max-gap: " + std::to_string(h.max_gap) + "\n";
   for (const Row& r : t.rows) {
     for (const auto& c : r.comments_before) out += c + "\n";
+    for (const Event& e : r.events_before) {
+      out += "! " + std::string(to_string(e.kind)) + (e.text.empty() ? "" : " " + e.text) + "\n";
+    }
     if (r.gap) {
       out += "...\n";
       continue;

@@ -90,6 +90,10 @@ struct Simulator::Recording {
   trace::Trace trace;
   std::uint64_t step = 0;
   std::string remark;  // events to note on the next row
+  // Device faults as trace events: injected before the device's next sample, they show in the
+  // row after that sample's row (whose s2m is the first answer the fault can change).
+  std::vector<trace::Event> events_pending;
+  std::vector<trace::Event> events_ready;
   std::string file_name;
 };
 
@@ -603,6 +607,9 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
       r += (r.empty() ? "" : "; ") + what;
     }
   };
+  auto event = [&](Device& d, trace::Event::Kind what, const std::string& text) {
+    if (!d.recordings.empty() && d.recording) d.recordings.back().events_pending.push_back({what, text, 0});
+  };
   switch (kind) {
     case Action::fault_corrupt:
       f.kind = "corrupt";
@@ -639,6 +646,7 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
       if (d.vf) d.vf->set_fault(true);
       if (d.mc) d.mc->set_fault(true);
       note(d, "device fault injected");
+      event(d, trace::Event::Kind::fault, "injected at " + fmt_value(to_ms(t)) + " ms");
       break;
     }
     case Action::fault_lost: {
@@ -703,6 +711,10 @@ void Simulator::cycle_exchange(Time t) {
       if (d->vf) d->vf->set_fault(false);
       if (d->mc) d->mc->set_fault(false);
       summary_.faults.push_back({t, d->cfg.name, "fault-cleared", "the fault's cause has gone"});
+      if (!d->recordings.empty() && d->recording) {
+        d->recordings.back().events_pending.push_back(
+            {trace::Event::Kind::fault_cleared, "at " + fmt_value(to_ms(t)) + " ms", 0});
+      }
     }
     if (d->lost_until >= Time{0} && d->lost_until != Time::max() && t >= d->lost_until) {
       d->lost_until = Time{-1};
@@ -872,6 +884,9 @@ void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time
     row.remark = fmt_value(to_ms(t)) + " ms";
     if (!r.remark.empty()) row.remark += ": " + r.remark;
     r.remark.clear();
+    row.events_before = std::move(r.events_ready);
+    r.events_ready = std::move(r.events_pending);
+    r.events_pending.clear();
     r.trace.rows.push_back(std::move(row));
   }
 }

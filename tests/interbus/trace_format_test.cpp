@@ -205,6 +205,44 @@ TEST(TraceFormat, AHeaderGivenTwiceIsAnError) {
   }
 }
 
+// trace-format.md, "Events": `! fault` and `! fault-cleared` between two data rows.
+TEST(TraceFormat, EventLinesBetweenRowsAreReadAndWrittenBack) {
+  const std::string head = "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n";
+  const std::string text = head + "0, 0000 0000 0000, 0240 0000 0000\n! fault overcurrent\n! fault-cleared\n"
+                                  "1, 0000 0000 0000, 023F 0000 0000\n";
+  const Trace t = parse(text, "e.trace");
+  ASSERT_EQ(t.rows.size(), 2U);
+  ASSERT_EQ(t.rows[1].events_before.size(), 2U);
+  EXPECT_EQ(t.rows[1].events_before[0].kind, Event::Kind::fault);
+  EXPECT_EQ(t.rows[1].events_before[0].text, "overcurrent");
+  EXPECT_EQ(t.rows[1].events_before[0].line, 5U);
+  EXPECT_EQ(t.rows[1].events_before[1].kind, Event::Kind::fault_cleared);
+  EXPECT_EQ(write(t), text);
+  const auto refused = [&](const std::string& body, const std::string& why) {
+    try {
+      parse(head + body, "e.trace");
+      return std::string("accepted");
+    } catch (const TraceError& e) {
+      return std::string(e.what()) == "e.trace:" + why ? std::string() : std::string(e.what());
+    }
+  };
+  EXPECT_EQ(refused("! fault\n0, 0000 0000 0000, 0240 0000 0000\n",
+                    "4: an event must stand between two data rows; this one comes before the first row"),
+            "");
+  EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n! fault\n",
+                    "5: an event must stand between two data rows; no row follows this one"),
+            "");
+  EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n! brownout\n1, 0000 0000 0000, 0240 0000 0000\n",
+                    "5: unknown event 'brownout' (one of: fault, fault-cleared)"),
+            "");
+  EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n...\n! fault\n1, 0000 0000 0000, 0240 0000 0000\n",
+                    "6: an event cannot follow a gap '...': it would happen at no known step"),
+            "");
+  EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n! fault\n...\n1, 0000 0000 0000, 0240 0000 0000\n",
+                    "6: a gap '...' cannot follow an event (line 5): the event would happen at no known step"),
+            "");
+}
+
 // Issue 9, defect 4: max-gap is bounded (a gap that stands for 2^63 steps never ends).
 TEST(TraceFormat, MaxGapIsBounded) {
   const std::string head = "# format: ibs-trace 1\n# device: vf1000\n# words: comm\n";

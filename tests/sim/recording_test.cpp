@@ -73,6 +73,40 @@ TEST(Recording, EveryDeviceTraceReplaysUnchanged) {
   EXPECT_EQ(traces[1].file_name, "inverter.trace");
 }
 
+// Device faults are recorded as `! fault` / `! fault-cleared` event lines
+// (trace-format.md, "Events"), so a recording with injected faults replays unchanged.
+TEST(Recording, InjectedDeviceFaultsAreRecordedAsEventsAndReplay) {
+  Scenario s = busy_run();
+  for (const char* dev : {"servo", "inverter"}) {
+    TimelineEntry f = entry(600ms, dev, Action::fault_device);
+    f.duration = 40ms;
+    s.timeline.push_back(f);
+    s.timeline.push_back(entry(1200ms, dev, Action::state, "enabled"));
+  }
+  std::stable_sort(s.timeline.begin(), s.timeline.end(), [](const auto& a, const auto& b) { return a.at < b.at; });
+  Simulator sim(s);
+  SimOptions o;
+  o.record_traces = true;
+  sim.run(o);
+  const auto traces = sim.traces();
+  ASSERT_EQ(traces.size(), 2U);
+  for (const auto& r : traces) {
+    const std::string text = trace::write(r.trace);
+    EXPECT_NE(text.find("\n! fault injected at 60"), std::string::npos) << r.file_name;
+    EXPECT_NE(text.find("\n! fault-cleared at "), std::string::npos) << r.file_name;
+    const trace::Trace t = trace::parse(text, r.file_name);
+    const auto result = trace::replay_device(t, *devices::make_device_side(t), *devices::make_explainer(t));
+    EXPECT_TRUE(result.matched) << r.file_name << "\n" << result.message;
+    EXPECT_EQ(result.steps_matched, t.rows.size());
+    // Without its events the same recording does not replay: the fault is not in the words.
+    trace::Trace stripped = t;
+    for (auto& row : stripped.rows) row.events_before.clear();
+    const auto without = trace::replay_device(stripped, *devices::make_device_side(stripped),
+                                              *devices::make_explainer(stripped));
+    EXPECT_FALSE(without.matched) << r.file_name;
+  }
+}
+
 TEST(Recording, ATamperedRecordingFailsAtTheTamperedRow) {
   Simulator sim(busy_run());
   SimOptions o;

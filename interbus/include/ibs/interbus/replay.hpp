@@ -34,6 +34,10 @@ class DeviceSide {
   [[nodiscard]] virtual std::size_t s2m_words() const = 0;
   virtual void initial(std::span<Word> s2m) = 0;
   virtual void step(std::span<const Word> m2s, std::span<Word> s2m) = 0;
+  // Events (trace-format.md, "Events") the side can act on; replay refuses a trace with others.
+  [[nodiscard]] virtual bool supports(Event::Kind /*kind*/) const { return false; }
+  // The event happens now: after the previous row's step, before the next one's.
+  virtual void apply(const Event& /*event*/) {}
 };
 
 // The master side of a trace: m2s[0] = initial(); m2s[k] = step(s2m[k-1]).

@@ -62,6 +62,19 @@ struct WordPattern {
 std::string format_words(std::span<const Word> words);
 std::string format_patterns(std::span<const WordPattern> words);
 
+// Something that happened to the device that its words cannot show (trace-format.md, "Events"):
+// a `! EVENT [text]` line between two data rows, after the previous row's step and before the
+// next row's.
+struct Event {
+  enum class Kind { fault, fault_cleared };
+  Kind kind = Kind::fault;
+  std::string text;      // the free text after the event's name (may be empty)
+  std::size_t line = 0;  // 1-based line in the file (0 when built in memory)
+
+  friend bool operator==(const Event& a, const Event& b) { return a.kind == b.kind && a.text == b.text; }
+};
+std::string_view to_string(Event::Kind k);
+
 struct Row {
   std::size_t line = 0;  // 1-based line in the file it came from (0 when built in memory)
   bool gap = false;      // a `...` row: no words, stands for 0..max-gap steps
@@ -70,6 +83,7 @@ struct Row {
   std::vector<WordPattern> s2m;
   std::string remark;
   std::vector<std::string> comments_before;  // `#` comment lines that preceded the row
+  std::vector<Event> events_before;          // events between the previous row and this one
 };
 
 // The most steps a `...` row may stand for (`max-gap`): 10 million steps are 2.8 hours of MC6000
