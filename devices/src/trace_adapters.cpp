@@ -59,8 +59,14 @@ interbus::mc6000::Layout layout_of(const trace::Trace& t) {
   try {
     return interbus::mc6000::make_layout(h.supi, h.ibcnf);
   } catch (const interbus::mc6000::LayoutError& e) {
-    const std::size_t line = h.lines.supi != 0 ? h.lines.supi : (h.lines.ibcnf != 0 ? h.lines.ibcnf : h.lines.device);
-    throw TraceError(t.file, line, e.what());
+    // The offending header's line: a message about 405-SUPI on the supi line, any other (IBCNF,
+    // the pair) on the ibcnf line, each falling back to the other and then to the device line.
+    const std::string msg = e.what();
+    const bool about_supi = msg.rfind("405-SUPI", 0) == 0;
+    const std::size_t first = about_supi ? h.lines.supi : h.lines.ibcnf;
+    const std::size_t second = about_supi ? h.lines.ibcnf : h.lines.supi;
+    const std::size_t line = first != 0 ? first : (second != 0 ? second : h.lines.device);
+    throw TraceError(t.file, line, msg);
   }
 }
 

@@ -300,3 +300,21 @@ TEST(Cli, RunLeavesNoHalfWrittenOutputWhenAWriteFails) {
 }
 
 }  // namespace
+
+namespace {
+
+// docs/replay.md promises the offending header's line: an IBCNF the servo refuses is reported on
+// the `ibcnf` line, a SUPI on the `supi` line.
+TEST(Cli, ALayoutErrorNamesTheOffendingHeadersLine) {
+  const std::string head = "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n";
+  const std::string bad_ibcnf = temp_file("bad_ibcnf.trace", head + "# supi: 11\n# ibcnf: 7\n0, 0000 0000 0000, 0240 0000 0000\n");
+  const Result i = run("replay --emulate device " + bad_ibcnf);
+  EXPECT_EQ(i.exit_code, 2);
+  EXPECT_EQ(i.out, bad_ibcnf + ":5: 406-IBCNF = 7 is out of range (0..4, seed 001 3.2.3)\n");
+  const std::string bad_supi = temp_file("bad_supi.trace", head + "# supi: 13\n# ibcnf: 2\n0, 0000 0000 0000, 0240 0000 0000\n");
+  const Result s = run("decode " + bad_supi);
+  EXPECT_EQ(s.exit_code, 2);
+  EXPECT_EQ(s.out, bad_supi + ":4: 405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)\n");
+}
+
+}  // namespace
