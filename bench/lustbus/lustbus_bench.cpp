@@ -1,0 +1,92 @@
+// LUSTBUS protocol core: one telegram encoded and decoded, the device's receiver taking a SELECT,
+// and a whole ENQUIRY — host submit to outcome, device receiver and responder — in memory.
+#include <benchmark/benchmark.h>
+
+#include "ibs/lustbus/host.hpp"
+#include "ibs/lustbus/receiver.hpp"
+
+namespace {
+
+using namespace ibs;
+using namespace ibs::lustbus;
+
+// A responder with one value, the least a drive can do.
+class OneValue : public Responder {
+ public:
+  EnquiryAnswer enquiry(const Code&, const Context&) override {
+    return EnquiryAnswer::text(value_);
+  }
+  SelectAnswer select(const Code&, const Value& v, const Context&) override {
+    value_ = v;
+    return SelectAnswer::ack();
+  }
+  void checksum_error(const Context&) override {}
+
+ private:
+  Value value_ = make_value("03E8");
+};
+
+void BM_EncodeSelect(benchmark::State& state) {
+  const Code c = make_code(105);
+  const Value v = make_value("03E8");
+  for (auto _ : state) {
+    Frame f = encode_select(1, c, v);
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_EncodeSelect);
+
+void BM_EncodeMc32BitValue(benchmark::State& state) {
+  for (auto _ : state) {
+    const auto v = encode(Family::mc6000, DataType::int32q16, 333.254);
+    Frame f = encode_select(1, make_code(20428), v.value);
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_EncodeMc32BitValue);
+
+void BM_DecodeAnswer(benchmark::State& state) {
+  const Frame answer = encode_text_answer(1, make_code(112), make_value("03E8"));
+  AnswerDecoder d;
+  for (auto _ : state) {
+    d.start(1, make_code(112), AnswerDecoder::Expect::text_or_nak);
+    for (std::size_t i = 0; i < answer.size; ++i) d.feed(answer.bytes[i]);
+    benchmark::DoNotOptimize(d.value());
+  }
+}
+BENCHMARK(BM_DecodeAnswer);
+
+void BM_ReceiverSelect(benchmark::State& state) {
+  OneValue r;
+  Receiver rx(r, 1);
+  const Frame sel = encode_select(1, make_code(105), make_value("03E8"));
+  Time now{0};
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < sel.size; ++i) rx.receive(sel.bytes[i], now);
+    benchmark::DoNotOptimize(rx.take_answer(now));
+  }
+}
+BENCHMARK(BM_ReceiverSelect);
+
+// Submit, EOT ADR CODE ENQ to the receiver, its answer to the host, the host's EOT, outcome.
+void BM_EnquiryBothSides(benchmark::State& state) {
+  OneValue r;
+  Receiver rx(r, 1);
+  Host host;
+  const Request req = enquiry(1, make_code(112));
+  Time now{0};
+  for (auto _ : state) {
+    const RequestId id = host.submit(req).id;
+    host.step(now);
+    for (const auto b : host.take_output()) rx.receive(b, now);
+    host.output_done(now);
+    for (const auto b : rx.take_answer(now)) host.receive(b, now);
+    for (const auto b : host.take_output()) rx.receive(b, now);  // EOT
+    host.output_done(now);
+    benchmark::DoNotOptimize(host.outcome(id));
+    now += std::chrono::microseconds{1};
+  }
+}
+BENCHMARK(BM_EnquiryBothSides);
+
+}  // namespace

@@ -1,0 +1,110 @@
+// Parameter descriptions (seed 000, 11.1 VF1000, 11.2 MC6000) and value substitution texts
+// (11.3), as VALUE strings: parsed by the host, built by a drive (a Responder) from its table.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "ibs/lustbus/value.hpp"
+
+namespace ibs::lustbus {
+
+// ---- 11.1: the VF1000's 26 characters -----------------------------------------------------------
+inline constexpr std::size_t kVfDescriptionLength = 26;
+inline constexpr std::size_t kVfNameLength = 6;  // right-justified, blank-padded
+
+struct VfDescription {
+  std::array<char, kVfNameLength + 1> name{};  // without the padding, NUL-terminated
+  std::array<char, kVfNameLength + 1> unit{};
+  char kind = '0';  // '0'..'7' (11.1 "Parameter kind"), the channel's Category codes
+  char type = '1';  // '1'..'6' (11.1 "Parameter type")
+  std::uint16_t min = 0;
+  std::uint16_t max = 0;
+  std::uint16_t basis = 0;  // default (factory setting)
+
+  [[nodiscard]] std::string_view name_view() const { return name.data(); }
+  [[nodiscard]] std::string_view unit_view() const { return unit.data(); }
+};
+
+enum class DescriptionError : std::uint8_t {
+  none,
+  wrong_length,
+  bad_name,   // a character outside digits, capitals, '_', '-' (or not right-justified)
+  bad_unit,   // not printable, or not right-justified
+  bad_kind,   // VF: not '0'..'7'; MC: not '0'..'2'
+  bad_type,   // VF: not '1'..'6'
+  bad_value,  // min / max / default not capital hex
+  not_7bit,   // an MC binary element that a 7-bit line cannot carry, or a frame character
+};
+std::string_view to_string(DescriptionError e);
+
+template <typename T>
+struct Parsed {
+  T value{};
+  DescriptionError error = DescriptionError::none;
+  [[nodiscard]] bool ok() const { return error == DescriptionError::none; }
+};
+
+Parsed<VfDescription> parse_vf_description(std::string_view value);
+// The 26 characters; refuses a name or unit longer than 6 or with characters 11.1 does not allow.
+std::optional<Value> format_vf_description(std::string_view name, std::string_view unit,
+                                           char kind, char type, std::uint16_t min,
+                                           std::uint16_t max, std::uint16_t basis);
+std::optional<Value> format_vf_description(const VfDescription& d);
+// The data type of a VF type character ('1'..'6', 11.1).
+std::optional<DataType> vf_type_from_char(char c);
+
+// ---- 11.2: the MC6000's description ----------------------------------------------------------
+// The element table adds up to 42 characters; the text says 43 twice (LB-E9). Parsing reads the
+// elements at the table's offsets and accepts 42 or 43 characters; formatting writes 43, the last
+// one a NUL.
+inline constexpr std::size_t kMcDescriptionElements = 42;
+inline constexpr std::size_t kMcDescriptionLength = 43;
+inline constexpr std::size_t kMcNameLength = 5;  // "five characters ending with '\0'"
+
+struct McDescription {
+  std::array<char, kMcNameLength + 1> name{};
+  std::uint8_t unit = 0;  // index into 107-UNIT's substitution texts (11.2.1)
+  char kind = '0';        // '0' RAM actual, '1' RAM control, '2' EEPROM (11.2.1)
+  std::uint8_t type = 0;  // the servo's type code (the seed gives no coding: raw)
+  std::uint32_t min = 0;  // 8 hex characters each (11.2.1 "eight characters are transferred")
+  std::uint32_t max = 0;
+  std::uint32_t reference = 0;
+  // The extended description (11.2.1), binary bytes, 2-byte elements high byte first (LB-D10).
+  std::uint8_t level = 0;  // low nibble read level, high nibble write level
+  std::uint16_t attribute = 0;
+  std::uint16_t hardware_filter = 0;
+  std::uint16_t structure_filter = 0;
+  std::uint8_t subject_area = 0;
+  std::uint8_t activity_area = 0;
+
+  [[nodiscard]] std::string_view name_view() const { return name.data(); }
+  [[nodiscard]] std::uint8_t read_level() const { return level & 0x0FU; }
+  [[nodiscard]] std::uint8_t write_level() const { return static_cast<std::uint8_t>(level >> 4); }
+};
+
+// 11.2.1 attribute bits.
+inline constexpr std::uint16_t kAttrShowParaText = 0x0004;
+inline constexpr std::uint16_t kAttrShowNoFract = 0x0008;
+inline constexpr std::uint16_t kAttrShowFract1 = 0x0010;
+inline constexpr std::uint16_t kAttrShowText = 0x0020;  // has a value substitution text (11.3)
+inline constexpr std::uint16_t kAttrInitControl = 0x0040;
+inline constexpr std::uint16_t kAttrNoInit = 0x0080;
+inline constexpr std::uint16_t kAttrShowHex = 0x0100;
+inline constexpr std::uint16_t kAttrPassword = 0x0200;
+// 11.2.1 hardware flags; MPTC is 4000H (bit 14), the table's 8000H is an erratum (LB-E8).
+inline constexpr std::uint16_t kHwMptc = 0x4000;
+inline constexpr std::uint16_t kHwBrake = 0x8000;
+
+Parsed<McDescription> parse_mc_description(std::string_view value);
+// nullopt when an element cannot travel: a binary byte >= 80H or a frame control character
+// (LB-D10), or a name longer than 5 / with characters 11.2.1 does not allow.
+std::optional<Value> format_mc_description(const McDescription& d);
+
+// ---- 11.3: value substitution text --------------------------------------------------------------
+// The text of an ENQUIRY of 61xxx: the VALUE with trailing blanks and NULs removed.
+std::string_view substitution_text(std::string_view value);
+
+}  // namespace ibs::lustbus

@@ -1,0 +1,304 @@
+#include "ibs/lustbus/receiver.hpp"
+
+namespace ibs::lustbus {
+
+std::string_view to_string(ReceiverState s) {
+  switch (s) {
+    case ReceiverState::idle:
+      return "idle";
+    case ReceiverState::address:
+      return "address";
+    case ReceiverState::enquiry_code:
+      return "enquiry_code";
+    case ReceiverState::enquiry_end:
+      return "enquiry_end";
+    case ReceiverState::select_code:
+      return "select_code";
+    case ReceiverState::select_equals:
+      return "select_equals";
+    case ReceiverState::select_value:
+      return "select_value";
+    case ReceiverState::select_bcc:
+      return "select_bcc";
+    case ReceiverState::deferred:
+      return "deferred";
+    case ReceiverState::answering:
+      return "answering";
+    case ReceiverState::ignoring:
+      return "ignoring";
+  }
+  return "?";
+}
+
+std::string_view to_string(ReceiverEvent e) {
+  switch (e) {
+    case ReceiverEvent::none:
+      return "none";
+    case ReceiverEvent::reset:
+      return "reset";
+    case ReceiverEvent::enquiry:
+      return "enquiry";
+    case ReceiverEvent::select:
+      return "select";
+    case ReceiverEvent::broadcast:
+      return "broadcast";
+    case ReceiverEvent::checksum_error:
+      return "checksum_error";
+    case ReceiverEvent::dropped:
+      return "dropped";
+  }
+  return "?";
+}
+
+std::string_view to_string(Reply r) {
+  switch (r) {
+    case Reply::text:
+      return "text";
+    case Reply::ack:
+      return "ACK";
+    case Reply::nak:
+      return "NAK";
+    case Reply::deferred:
+      return "deferred";
+    case Reply::none:
+      return "none";
+  }
+  return "?";
+}
+
+Receiver::Receiver(Responder& responder, Address own) : responder_(&responder), own_(own) {}
+
+void Receiver::power_on() {
+  state_ = ReceiverState::idle;
+  event_ = ReceiverEvent::none;
+  answer_pending_ = false;
+  answer_.size = 0;
+}
+
+// 3: "No answer: improper telegram construction; incorrect received control characters".
+void Receiver::drop() {
+  state_ = ReceiverState::ignoring;
+  event_ = ReceiverEvent::dropped;
+  ++counters_.dropped;
+}
+
+void Receiver::receive(std::uint8_t b, Time now) {
+  event_ = ReceiverEvent::none;
+  // 2.2: the byte after ETX is the BCC whatever its value — even EOT.
+  if (state_ == ReceiverState::select_bcc) {
+    finish_select(b, now);
+    return;
+  }
+  // 3: EOT sets the state machine back to its start; an answer not yet sent is dropped.
+  if (b == kEot) {
+    state_ = ReceiverState::idle;
+    event_ = ReceiverEvent::reset;
+    answer_pending_ = false;
+    return;
+  }
+  const bool digit = b >= '0' && b <= '9';
+  switch (state_) {
+    case ReceiverState::idle: {
+      const auto a = address_from_char(b);
+      if (!a) {
+        drop();
+        return;
+      }
+      // 4.2: 0 every device, 31 every device (broadcast), else only the own address.
+      if (*a == kAddressAny || *a == kAddressBroadcast || (*a == own_ && own_ != kAddressAny)) {
+        address_ = *a;
+        state_ = ReceiverState::address;
+      } else {
+        state_ = ReceiverState::ignoring;
+      }
+      return;
+    }
+    case ReceiverState::address:
+      if (b == kStx) {  // 6.2 SELECT
+        state_ = ReceiverState::select_code;
+        code_pos_ = 0;
+        bcc_ = 0;
+        value_.clear();
+      } else if (digit) {  // 6.1 ENQUIRY: EOT ADR CODE ENQ
+        code_digits_[0] = static_cast<char>(b);
+        code_pos_ = 1;
+        state_ = ReceiverState::enquiry_code;
+      } else {
+        drop();
+      }
+      return;
+    case ReceiverState::enquiry_code:
+      if (!digit) {
+        drop();
+        return;
+      }
+      code_digits_[code_pos_++] = static_cast<char>(b);
+      if (code_pos_ == kCodeLength) state_ = ReceiverState::enquiry_end;
+      return;
+    case ReceiverState::enquiry_end:
+      if (b != kEnq) {
+        drop();
+        return;
+      }
+      finish_enquiry(now);
+      return;
+    case ReceiverState::select_code:
+      if (!digit) {
+        drop();
+        return;
+      }
+      bcc_ ^= b;
+      code_digits_[code_pos_++] = static_cast<char>(b);
+      if (code_pos_ == kCodeLength) state_ = ReceiverState::select_equals;
+      return;
+    case ReceiverState::select_equals:
+      if (b != kEquals) {
+        drop();
+        return;
+      }
+      bcc_ ^= b;
+      state_ = ReceiverState::select_value;
+      return;
+    case ReceiverState::select_value:
+      if (b == kEtx) {
+        bcc_ ^= b;
+        state_ = ReceiverState::select_bcc;
+        return;
+      }
+      // A frame character or a garbled one breaks the telegram; more than 100 characters is an
+      // improper construction (LB-D4).
+      if (!value_.push_back(b)) {
+        drop();
+        return;
+      }
+      bcc_ ^= b;
+      return;
+    case ReceiverState::select_bcc:  // handled above
+    case ReceiverState::deferred:
+    case ReceiverState::answering:
+    case ReceiverState::ignoring:
+      return;
+  }
+}
+
+void Receiver::finish_enquiry(Time now) {
+  // 4.2 / 9.1: no answer at the broadcast address; an ENQUIRY there makes no sense.
+  if (address_ == kAddressBroadcast) {
+    drop();
+    return;
+  }
+  code_ = *Code::parse({code_digits_.data(), kCodeLength});
+  const Context ctx{address_, now};
+  ++counters_.enquiries;
+  event_ = ReceiverEvent::enquiry;
+  responder_->telegram_received(ctx);
+  const EnquiryAnswer a = responder_->enquiry(code_, ctx);
+  if (a.reply == Reply::deferred) {
+    state_ = ReceiverState::deferred;
+    deferred_enquiry_ = true;
+    return;
+  }
+  prepare(a, now);
+}
+
+void Receiver::finish_select(std::uint8_t bcc_received, Time now) {
+  const Context ctx{address_, now};
+  if (bcc_received != bcc_) {
+    // 3: "ADR NAK: occurs with wrong BCC"; 9.2 bit 3. None at 31 (4.2).
+    ++counters_.checksum_errors;
+    event_ = ReceiverEvent::checksum_error;
+    responder_->checksum_error(ctx);
+    if (ctx.broadcast()) {
+      state_ = ReceiverState::ignoring;
+      return;
+    }
+    prepare(SelectAnswer::nak(), now);
+    return;
+  }
+  code_ = *Code::parse({code_digits_.data(), kCodeLength});
+  responder_->telegram_received(ctx);
+  const SelectAnswer a = responder_->select(code_, value_, ctx);
+  if (ctx.broadcast()) {
+    // 4.2: "Every device reacts to the position command without giving a receipt".
+    ++counters_.broadcasts;
+    event_ = ReceiverEvent::broadcast;
+    state_ = ReceiverState::ignoring;
+    return;
+  }
+  ++counters_.selects;
+  event_ = ReceiverEvent::select;
+  if (a.reply == Reply::deferred) {
+    state_ = ReceiverState::deferred;
+    deferred_enquiry_ = false;
+    return;
+  }
+  prepare(a, now);
+}
+
+void Receiver::prepare(const EnquiryAnswer& a, Time now) {
+  state_ = ReceiverState::answering;
+  answer_pending_ = true;
+  answer_at_ = now + a.reaction;
+  switch (a.reply) {
+    case Reply::text:
+      answer_ = encode_text_answer(address_, code_, a.value);
+      return;
+    case Reply::nak:
+      answer_ = encode_nak(address_);
+      return;
+    case Reply::ack:       // not an answer to an ENQUIRY: the drive is wrong; say nothing
+    case Reply::deferred:  // deferring a deferred answer
+    case Reply::none:
+      answer_pending_ = false;
+      return;
+  }
+}
+
+void Receiver::prepare(const SelectAnswer& a, Time now) {
+  state_ = ReceiverState::answering;
+  answer_pending_ = true;
+  answer_at_ = now + a.reaction;
+  switch (a.reply) {
+    case Reply::ack:
+      answer_ = encode_ack(address_);
+      return;
+    case Reply::nak:
+      answer_ = encode_nak(address_);
+      return;
+    case Reply::text:
+    case Reply::deferred:
+    case Reply::none:
+      answer_pending_ = false;
+      return;
+  }
+}
+
+bool Receiver::deliver_enquiry(const EnquiryAnswer& a, Time now) {
+  if (state_ != ReceiverState::deferred || !deferred_enquiry_ || a.reply == Reply::deferred) {
+    return false;
+  }
+  prepare(a, now);
+  return true;
+}
+
+bool Receiver::deliver_select(const SelectAnswer& a, Time now) {
+  if (state_ != ReceiverState::deferred || deferred_enquiry_ || a.reply == Reply::deferred) {
+    return false;
+  }
+  prepare(a, now);
+  return true;
+}
+
+std::optional<Time> Receiver::answer_due() const {
+  if (!answer_pending_) return std::nullopt;
+  return answer_at_;
+}
+
+std::span<const std::uint8_t> Receiver::take_answer(Time now) {
+  if (!answer_pending_ || now < answer_at_) return {};
+  answer_pending_ = false;
+  ++counters_.answers;
+  return answer_.span();
+}
+
+}  // namespace ibs::lustbus
