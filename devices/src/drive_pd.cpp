@@ -82,7 +82,7 @@ void Mc6000PdDevice::step_held(std::span<const Word> m2s, Duration dt, std::uint
       l, m2s.subspan(1, static_cast<std::size_t>(l.reference_words)));
   for (std::uint32_t k = 0; k < count; ++k) {
     sample_held(control, dt);
-    if (initialised_ && machine_.holds({control, initialised_, fault_present_, true, true})) {
+    if (initialised_ && machine_.holds({control, initialised_, fault_present_, true, true, enable_locked_})) {
       // The state machine holds its state with these words for the rest of the stretch (what
       // decides that does not change in it): the other samples only move the plant, with the
       // same input each time.
@@ -112,7 +112,7 @@ void Mc6000PdDevice::sample_held(Word control, Duration dt) {
     initialised_ = since_power_on_ >= config_.init_time;
   }
   const bool standstill = std::fabs(actual_) < config_.standstill_rpm;
-  const drivecom::DeviceInputs in{control, initialised_, fault_present_, standstill, standstill};
+  const drivecom::DeviceInputs in{control, initialised_, fault_present_, standstill, standstill, enable_locked_};
   last_ = machine_.sample(in);
   move_actual(dt);
   // A fault reaction that ends within this sample shows FAULT at once.

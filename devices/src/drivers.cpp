@@ -61,7 +61,9 @@ void Vf1000Driver::initial(const DriverIo& io) {
 void Vf1000Driver::cycle(const DriverIo& io, Time now) {
   // A module error (the inverter initialising, 6.1) shows as words 0000H: the sequencer reads
   // NOT READY and the channel client sees RESET distinction 0.
-  const Word comm = client_.step(io.pd_in[2], now);
+  // A cycle without valid data: the channel reads nothing (its resync hold must count words the
+  // inverter really saw), the sequencer sees the last status word again.
+  const Word comm = client_.step(io.pd_in[2], now, io.data_valid);
   master_.cycle(io.pd_in, io.pd_out, now, comm);
 }
 
@@ -230,7 +232,12 @@ void Mc6000Driver::start_next(Time now) {
       // The value's type is the parameter's; for a number the table does not know, 16 bits (the
       // servo refuses it as a missing object anyway).
       const pcp::DataType t = info != nullptr ? info->type : pcp::DataType::usign16;
-      if (const auto v = pcp::value_from_signed_raw(t, p.value)) s = client_->write(now, ref, *v);
+      // 4-PROG = 1 loads the factory defaults; the servo confirms after up to 10 s (seed 000,
+      // 10): that write gets the time it needs, plus the usual confirmation time.
+      const Duration timeout = p.number == pcp::kProg && p.value == pcp::kProgFactoryDefaults
+                                   ? kFactoryDefaultsTimeout
+                                   : Duration::zero();
+      if (const auto v = pcp::value_from_signed_raw(t, p.value)) s = client_->write(now, ref, *v, timeout);
       break;
     }
     case ParamOp::describe: s = client_->get_ov(now, ref); break;

@@ -111,6 +111,7 @@ void Mc6000Device::step(std::span<const Word> pd_m2s, Time now, std::span<const 
                        (now - last_cycle_) > config_.bus_watchdog;
   if (expired) watchdog_fault_ = true;
   pd_.set_fault(external_fault_ || expired);
+  if (pcp_) pd_.set_enable_locked(pcp_->engage_locked());
   if (pd_.layout().pd_words > 0) pd_.step(pd_m2s, kMc6000SamplePeriod);
   if (watchdog_fault_ && !expired && pd_.state() == drivecom::State::start_up_inhibit) {
     watchdog_fault_ = false;  // reset by the master after the data came back

@@ -28,7 +28,9 @@ detail::Cell DeviceStateMachine::next(const DeviceInputs& in, Command cmd, bool 
     case State::on:
     case State::enabled: break;
   }
-  return detail::kTransitionLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(cmd)];
+  const detail::Cell cell = detail::kTransitionLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(cmd)];
+  if (in.enable_locked && cell.number == 4) return {state_, 0};
+  return cell;
 }
 
 SampleResult DeviceStateMachine::sample_transitions(const DeviceInputs& in) {

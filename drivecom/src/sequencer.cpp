@@ -123,6 +123,7 @@ std::string_view to_string(Failure f) {
     case Failure::timeout: return "timeout";
     case Failure::fault: return "fault";
     case Failure::left_target: return "left target";
+    case Failure::restarted: return "restarted";
     case Failure::invalid_status: return "invalid status word";
   }
   return "?";
@@ -147,6 +148,7 @@ void Sequencer::restart() {
   prev_seen_.reset();
   known_.reset();
   reset_allowed_ = false;
+  up_since_request_ = false;
   pulse_started_ = false;
 }
 
@@ -165,6 +167,7 @@ void Sequencer::request(Target t, Time now) {
   report_.target = t;
   begin(Goal::target, now);
   reset_allowed_ = !known_ || is_fault_state(*known_);
+  up_since_request_ = false;
 }
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
@@ -291,6 +294,11 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
     reset_allowed_ = false;
   }
   if (report_.phase == Phase::reached && *st != target_state(report_.target)) return fail(Failure::left_target);
+  if (*st == State::not_ready) {
+    if (up_since_request_) return fail(Failure::restarted);
+  } else {
+    up_since_request_ = true;
+  }
   const Move m = plan(*st, now);
   if (m.transition == 0) {
     report_.phase = Phase::reached;
@@ -350,6 +358,9 @@ std::string describe(const Report& r) {
              "; request a target again to reset the fault";
     case Failure::left_target:
       return "the drive left " + goal + " on its own: state seen " + seen + ", command sent " + was + then;
+    case Failure::restarted:
+      return "the drive restarted on the way to " + goal + " (NOT READY again): state seen " + seen +
+             ", command sent " + was + then + "; request a target again once it is up";
     case Failure::none: break;
   }
   return "failed: " + seen;

@@ -12,94 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "../support/sequencer_monitor.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/sequencer.hpp"
 
 namespace ibs::drivecom {
 namespace {
 
-bool is_fault(State s) { return s == State::fault || s == State::fault_response_active; }
-
-// What the user asked for, and what the status words showed; checks each word the sequencer sent.
-class Monitor {
- public:
-  enum class Ask : std::uint8_t { none, target, emergency_stop, block_power };
-
-  void on_request(Target t) {
-    ask_ = Ask::target;
-    target_ = t;
-    covered_ = !known_ || is_fault(*known_);
-    target_seen_ = false;
-    must_block_ = false;
-  }
-  void on_emergency_stop() { ask_ = Ask::emergency_stop; must_block_ = false; }
-  void on_block_power() { ask_ = Ask::block_power; must_block_ = false; }
-  void on_restart() {
-    ask_ = Ask::none;
-    known_.reset();
-    must_block_ = false;
-    prev_word_ = 0;
-  }
-
-  // The sequencer answered `status` with `word`; returns what is wrong ("" if nothing).
-  std::string check(Word status, Word word, const Report& report) {
-    const std::optional<State> st = decode_state(status);
-    if (ask_ == Ask::target && st) {
-      if (is_fault(*st) && !covered_) must_block_ = true;  // a fault nobody asked to reset
-      if (!is_fault(*st)) covered_ = false;
-      if (target_seen_ && *st != target_state(target_)) must_block_ = true;  // left the target
-      if (*st == target_state(target_)) target_seen_ = true;
-    }
-    if (st) known_ = st;
-    std::string why = judge(word, report);
-    prev_word_ = word;
-    return why;
-  }
-
- private:
-  std::string judge(Word word, const Report& report) const {
-    const Command c = decode_command(word);
-    const bool bit7 = (word & 0x0080U) != 0;
-    const bool rising = bit7 && (prev_word_ & 0x0080U) == 0;
-    if ((word & cw::kReservedMask) != 0) return "reserved bits 8-10 set";
-    if (report.phase == Phase::failed || must_block_) {
-      if (c != Command::block_power || bit7) return "not BLOCK POWER with bit 7 low after a failure";
-      if (must_block_ && report.phase != Phase::failed) return "the failure is not reported";
-      return "";
-    }
-    switch (ask_) {
-      case Ask::none:
-        if (c != Command::block_power || bit7) return "not BLOCK POWER without a request";
-        return "";
-      case Ask::emergency_stop:
-        if (c != Command::emergency_stop || bit7) return "EMERGENCY STOP requested but not sent";
-        return "";
-      case Ask::block_power:
-        if (c != Command::block_power || bit7) return "BLOCK POWER requested but not sent";
-        return "";
-      case Ask::target: break;
-    }
-    if (c == Command::enable && target_ != Target::enabled) return "ENABLE that nobody asked for";
-    if (c == Command::disable && target_ != Target::on && target_ != Target::enabled) {
-      return "POWER-ON that nobody asked for";
-    }
-    if ((c == Command::enable || c == Command::disable) &&
-        !(known_ == State::ready || known_ == State::on || known_ == State::enabled)) {
-      return "POWER-ON while the drive was last seen in " +
-             (known_ ? std::string(to_string(*known_)) : std::string("no state")) + " (SHUTDOWN skipped)";
-    }
-    if (rising && !(covered_ && known_ == State::fault)) return "a reset edge the request did not cover";
-    return "";
-  }
-
-  Ask ask_ = Ask::none;
-  Target target_ = Target::start_up_inhibit;
-  std::optional<State> known_;
-  bool covered_ = false;
-  bool target_seen_ = false;
-  bool must_block_ = false;
-  Word prev_word_ = 0;
-};
+using test_support::Monitor;
 
 std::string hex(Word w) {
   char b[8];
@@ -158,6 +78,19 @@ TEST(SequencerSafety, FaultAfterAnUndecodableWordIsAFaultNotLeftTarget) {
   const auto sent = run(Target::enabled, {0x0240, 0x0231, 0x0237, 0x0001, 0x0208, 0x0208}, &f);
   EXPECT_EQ(words_text(sent), "0006 000F 000F 000F 0000 0000");
   EXPECT_EQ(f, Failure::fault);
+}
+
+// Found by the fault campaign (docs/robustness.md, defect A): a drive switched off and on while
+// the master was still on its way to ENABLED was brought up to ENABLED after its restart. NOT
+// READY comes only from power-on (5.1.1): the request does not carry across it.
+TEST(SequencerSafety, ADriveThatRestartsOnTheWayEndsTheRequest) {
+  Failure f = Failure::none;
+  const auto sent = run(Target::enabled, {0x0240, 0x0231, 0x0233, 0x0000, 0x0000, 0x0240, 0x0231, 0x0233}, &f);
+  EXPECT_EQ(words_text(sent), "0006 000F 000F 0000 0000 0000 0000 0000");
+  EXPECT_EQ(f, Failure::restarted);
+  // A drive still initialising when the request is made is brought up as before.
+  const auto up = run(Target::enabled, {0x0000, 0x0000, 0x0240, 0x0231, 0x0237});
+  EXPECT_EQ(words_text(up), "0006 0006 0006 000F 000F");
 }
 
 TEST(SequencerSafety, FaultPresentAtTheRequestIsResetOnTheWay) {

@@ -264,6 +264,43 @@ TEST(Simulator, PowerCycleWhileEnabledEndsTheRequestWithBlockPowerAndIsReported)
   EXPECT_NE(find_event(sim.summary().devices[0], "request failed (left target)"), nullptr);
 }
 
+// Seed 000, 11.4: after 80-SLOAD = -1 "the servocontroller will be secured against being engaged
+// until the download has ended" (found missing by the fault campaign, docs/robustness.md, C).
+// And 4-PROG = 1 is confirmed after up to 10 s: the driver waits for it.
+TEST(Simulator, AnMc6000DownloadLocksEngagingAndFactoryDefaultsGetTheirTime) {
+  Scenario s;
+  s.duration = 16s;
+  s.devices = {mc6000()};
+  s.timeline = {at(0s, "mc", Action::read, "", 0, 85),
+                at(200ms, "mc", Action::write, "", -1, 80),
+                at(500ms, "mc", Action::state, "enabled"),
+                at(1000ms, "mc", Action::write, "", -2, 80),
+                at(1800ms, "mc", Action::read, "", 0, 80),
+                at(2000ms, "mc", Action::state, "enabled"),
+                at(3000ms, "mc", Action::state, "start-up-inhibit"),
+                at(3500ms, "mc", Action::write, "", 1, 4)};
+  Simulator sim(s);
+  sim.run_until(600ms);
+  EXPECT_EQ(sim.device_state(0), State::on) << "ENABLE during the download stops in ON";
+  sim.run_until(950ms);
+  const auto& report = sim.driver(0).sequencer().report();
+  EXPECT_EQ(report.failure, drivecom::Failure::timeout);
+  EXPECT_EQ(report.transition, 4);
+  EXPECT_EQ(sim.device_state(0), State::start_up_inhibit) << "BLOCK POWER after the failure";
+  sim.run_until(2900ms);
+  EXPECT_EQ(sim.device_state(0), State::enabled) << "the download has ended: the drive can be started";
+  sim.run();
+  const auto& tx = sim.summary().transactions;
+  ASSERT_EQ(tx.size(), 5U);
+  EXPECT_EQ(tx[1].kind, devices::ParamKind::written) << tx[1].result;
+  EXPECT_EQ(tx[2].kind, devices::ParamKind::written) << tx[2].result;
+  EXPECT_EQ(tx[3].kind, devices::ParamKind::value) << tx[3].result;
+  EXPECT_EQ(tx[3].result_value, 0) << "SLOAD 0: the dataset was accepted";
+  EXPECT_EQ(tx[4].kind, devices::ParamKind::written) << "4-PROG = 1: " << tx[4].result;
+  ASSERT_TRUE(tx[4].answered.has_value());
+  EXPECT_GT(*tx[4].answered - tx[4].submitted, 9s);
+}
+
 TEST(Simulator, DeviceFaultIsReportedAndResetByANewRequest) {
   Scenario s;
   s.duration = 2s;

@@ -237,6 +237,42 @@ TEST(ClientRestarts, InverterRestartMidTransactionIsReportedAndSiofReadBeforeThe
   EXPECT_EQ(m.c.poll(again).state, RequestState::active);
 }
 
+// Found by the fault campaign (docs/robustness.md, defect B): a master restart during a data
+// outage let the resync hold run out while no CODE 0 reached the inverter, and the next telegram
+// completed the inverter's old one. The hold counts only cycles that delivered data.
+TEST(ClientRestarts, TheResyncHoldCountsOnlyCyclesWithValidData) {
+  ClientConfig cfg = synchronised();
+  cfg.resync_hold = 50ms;
+  Master m(cfg);
+  m.c.restart(m.now);
+  const RequestId id = m.c.submit(value_inquiry(0x16)).id;
+  // 300 ms without valid data: the words are old, the hold must not run out.
+  for (int i = 0; i < 30; ++i) {
+    m.now += m.period;
+    EXPECT_EQ(m.c.step(0x8000, m.now, false), 0x0000) << i;
+  }
+  EXPECT_EQ(m.c.state(), ClientState::resync);
+  // Data flows again: CODE 0 for the whole hold, counted from the first valid cycle.
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(m.step(0x8000), 0x0000) << i;
+  EXPECT_EQ(m.step(0x8000), 0x2416);
+  EXPECT_EQ(m.c.poll(id).state, RequestState::active);
+}
+
+TEST(ClientTimeout, ADeadlineRunsOutWithoutValidDataToo) {
+  ClientConfig cfg = synchronised();
+  cfg.timeout = 100ms;
+  Master m(cfg);
+  const RequestId id = m.c.submit(value_inquiry(0x16)).id;
+  EXPECT_EQ(m.step(0x8000), 0x2416);
+  for (int i = 0; i < 10; ++i) {
+    m.now += m.period;
+    m.c.step(0xA003, m.now, false);  // an answer that never arrived: not read
+  }
+  EXPECT_EQ(m.c.poll(id).state, RequestState::done);
+  EXPECT_EQ(m.outcome(id).kind, OutcomeKind::timeout);
+  EXPECT_EQ(m.outcome(id).answers, 0) << "the invalid cycles' words are not taken as answers";
+}
+
 TEST(ClientRestarts, InverterRestartWhileIdleOnlyMarks85Unread) {
   ClientConfig cfg = synchronised();
   cfg.resync_hold = 0ms;

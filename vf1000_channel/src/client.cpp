@@ -244,8 +244,21 @@ Word Client::enter_closing() {
   return out_;
 }
 
-Word Client::step(Word in, Time now) {
+Word Client::step(Word in, Time now, bool data_valid) {
   if (!active_ && queue_count_ > 0) activate_next(now);
+  if (!data_valid) {
+    // The bus delivered nothing this cycle: `in` is an old word and the master's word did not
+    // reach the inverter either. Only time runs: a transaction's deadline still ends it, and a
+    // resync hold starts over, since it counts CODE 0 words the inverter has really seen.
+    if (active_ && now >= deadline_) {
+      if (transfer_refused_) siof_unread_ = true;
+      const bool was_exchanging = state_ == ClientState::exchanging;
+      fail(OutcomeKind::timeout, answers_so_far());
+      if (was_exchanging) enter_resync(now);
+    }
+    if (state_ == ClientState::resync) resync_started_ = false;
+    return out_;
+  }
 
   const bool ready = inverter_ready(in);
   if (!ready) {

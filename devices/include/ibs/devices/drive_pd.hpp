@@ -59,6 +59,8 @@ class Mc6000PdDevice {
   void output(std::span<Word> s2m) const;
 
   void set_fault(bool present) { fault_present_ = present; }
+  // While set the drive is not engaged: ENABLE stops in ON (80-SLOAD download, seed 000 11.4).
+  void set_enable_locked(bool locked) { enable_locked_ = locked; }
   void set_inputs(bool is00, bool is01) { is00_ = is00; is01_ = is01; }
   void set_load_torque(double nm) { load_nm_ = nm; }
   // The control word the drive acts on instead of the master's while set (watchdog reactions).
@@ -87,6 +89,7 @@ class Mc6000PdDevice {
   Duration since_power_on_{0};
   bool initialised_ = true;
   bool fault_present_ = false;
+  bool enable_locked_ = false;
   bool is00_ = false;
   bool is01_ = false;
   double load_nm_ = 0.0;

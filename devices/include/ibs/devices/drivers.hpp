@@ -123,6 +123,8 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
  public:
   static constexpr std::size_t kQueueCapacity = 16;
   static constexpr std::size_t kCompletedCapacity = 16;
+  // A write of 4-PROG = 1 (factory defaults) is confirmed after up to 10 s (seed 000, 10).
+  static constexpr Duration kFactoryDefaultsTimeout = 10500ms;
 
   explicit Mc6000Driver(const interbus::mc6000::Layout& layout,
                         const drivecom::SequencerConfig& config = drivecom::SequencerConfig::defaults());

@@ -28,6 +28,9 @@ struct DeviceInputs {
   bool fault_present = false;       // a fault condition: any state -> FAULT RESPONSE ACTIVE (13)
   bool fault_reaction_done = true;  // the fault reaction has finished (14)
   bool stopped = true;              // the motor has come to rest (VF1000 transition 12)
+  // The drive may not be engaged: transition 4 (ON -> ENABLED) is not taken, ENABLE leaves it in
+  // ON (the MC6000 during an 80-SLOAD download, seed 000 11.4; a decision, docs/drivecom.md).
+  bool enable_locked = false;
 };
 
 // One row of the transition table: `from` + `command` -> `to` with its profile number.
@@ -151,7 +154,7 @@ class DeviceStateMachine {
   // control word: a stable state (START-UP INHIBIT .. ENABLED), no fault, and a command that
   // does not move it. The same inputs again then hold it again.
   [[nodiscard]] bool holds(const DeviceInputs& in) const {
-    return !in.fault_present && state_ >= State::start_up_inhibit && state_ <= State::enabled &&
+    return !in.fault_present && !in.enable_locked && state_ >= State::start_up_inhibit && state_ <= State::enabled &&
            detail::kTransitionLut[static_cast<std::size_t>(state_)]
                                  [static_cast<std::size_t>(decode_command(in.control))]
                                      .number == 0;

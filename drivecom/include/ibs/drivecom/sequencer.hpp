@@ -43,6 +43,7 @@ enum class Failure : std::uint8_t {
   timeout,        // the expected transition did not happen in its time
   fault,          // the drive went to FAULT / FAULT RESPONSE ACTIVE on its own
   left_target,    // the drive left the reached target state without being told
+  restarted,      // the drive showed NOT READY again after the request: it was switched off and on
   invalid_status, // the status word matches no DRIVECOM state (counts against the timeout)
 };
 std::string_view to_string(Failure f);
@@ -131,6 +132,9 @@ class Sequencer {
   // known) when the target was requested, and no other state has been seen since. A fault that
   // appears after the drive was seen healthy is never reset without a new request.
   bool reset_allowed_ = false;
+  // A state other than NOT READY has been seen since the request: NOT READY now means the drive
+  // restarted (only power-on leads there, 5.1.1), and the request does not carry across that.
+  bool up_since_request_ = false;
   Time pulse_edge_{0};
   bool pulse_started_ = false;
 };

@@ -95,6 +95,9 @@ class Server {
   // Inputs from the device model.
   void set_workload(double workload);                           // clamped to 0..1
   void set_drive_running(bool running) { running_ = running; }  // 80-SLOAD only at standstill
+  // Seed 000, 11.4: from 80-SLOAD = -1 until the dataset check has ended, "the servocontroller
+  // will be secured against being engaged".
+  [[nodiscard]] bool engage_locked() const { return download_active_ || dataset_checking_; }
   void set_fault(bool fault) { fault_ = fault; }                // Status: physical status 1
 
   // Queues an Information Report with the parameter's value; false without an association,

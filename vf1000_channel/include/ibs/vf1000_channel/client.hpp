@@ -132,8 +132,10 @@ class Client {
 
   // Queues a request (no allocation).
   Submitted submit(const Request& r);
-  // One master cycle: reads the inverter's word, returns the master's.
-  Word step(Word from_inverter, Time now);
+  // One master cycle: reads the inverter's word, returns the master's. With `data_valid` false
+  // (the bus delivered nothing: a corrupted or recovery cycle) the word is not read, the master's
+  // word stays, transaction deadlines still run and a resync hold starts over.
+  Word step(Word from_inverter, Time now, bool data_valid = true);
   [[nodiscard]] Poll poll(RequestId id) const;
   // The outcome in place, without a copy; nullptr while the request has none (or is unknown).
   // Valid until the next step() or restart().
