@@ -281,6 +281,11 @@ std::optional<std::size_t> Simulator::index_of(const std::string& name) const {
 
 State Simulator::device_state(std::size_t i) const { return devices_[i]->state(); }
 bool Simulator::module_error(std::size_t i, Time t) const { return devices_[i]->module_error(t); }
+void Simulator::inject_fault(Action kind, std::size_t i, Duration duration, int count) {
+  const bool bus_wide = kind == Action::fault_corrupt || kind == Action::master_restart;
+  if (!bus_wide && i >= devices_.size()) return;
+  fault(now_, bus_wide ? devices_.size() : i, kind, duration, count);
+}
 double Simulator::device_actual(std::size_t i) const {
   return devices_[i]->vf ? devices_[i]->vf->frequency_hz() : devices_[i]->mc->actual_rpm();
 }

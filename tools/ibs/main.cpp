@@ -37,6 +37,17 @@ int run_ibs(int argc, char** argv) {
   auto* decode = app.add_subcommand("decode", "print a trace with every word explained in the remark");
   decode->add_option("FILE", decode_file, "the trace file")->required();
 
+  ibs::cli::CampaignOptions campaign_options;
+  auto* campaign = app.add_subcommand(
+      "campaign", "the fault campaign: random faults during parameter traffic and state commands, every step checked");
+  campaign->add_option("--seed", campaign_options.seed, "the random seed (default 1)");
+  campaign->add_option("--transactions", campaign_options.transactions,
+                       "parameter transactions to run (default 100000, at most 100 million)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100000000}));
+  campaign->add_flag("--json", campaign_options.json, "print the result as JSON");
+  campaign->add_flag("--enable-during-download", campaign_options.enable_during_download,
+                     "also request ENABLED while an 80-SLOAD download is open (the servo must refuse)");
+
   ibs::cli::BusCommandState bus_state;
   ibs::cli::add_bus_commands(app, bus_state);
 
@@ -54,6 +65,7 @@ int run_ibs(int argc, char** argv) {
   if (run->parsed()) return ibs::cli::run(run_options);
   if (replay->parsed()) return ibs::cli::replay(emulate, replay_file);
   if (decode->parsed()) return ibs::cli::decode(decode_file);
+  if (campaign->parsed()) return ibs::cli::campaign(campaign_options);
   return ibs::cli::kExitBadInput;
 }
 

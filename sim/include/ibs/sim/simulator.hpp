@@ -157,6 +157,11 @@ class Simulator {
   [[nodiscard]] std::optional<std::size_t> index_of(const std::string& name) const;
   // The bus reports a module error for the device (lost, or initialising).
   [[nodiscard]] bool module_error(std::size_t i, Time t) const;
+  // Applies a fault now (between two run_until calls), exactly as a timeline entry at the time
+  // reached would, and records it in the summary: fault_corrupt (count cycles from the next cycle
+  // end on), fault_power_cycle, fault_device (duration), fault_lost (duration) of device `i`,
+  // master_restart (i ignored). Other actions are ignored. Used by the fault campaign.
+  void inject_fault(Action kind, std::size_t i, Duration duration = Duration{0}, int count = 1);
 
  private:
   struct Device;
