@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libcli11-dev
-          nlohmann-json3-dev libtomlplusplus-dev)
+          nlohmann-json3-dev libtomlplusplus-dev libasio-dev libpcap-dev)
 
 ensure_packages() {
   local missing=()

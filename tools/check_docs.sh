@@ -6,9 +6,12 @@
 #
 # What it runs: every line of every ```sh / ```bash block (a line ending in `\` continues on the
 # next). A command must exit 0, unless the line ends in a comment `# exit N`, then it must exit N.
-# A block right after a line `<!-- check-docs: skip REASON -->` is not run (hardware, a serial
-# port, a command that serves until it is stopped); REASON is printed. `./dev.sh test` lines are
-# not run again: .ci/run runs them itself. Each command has 20 minutes.
+# A block right after a line `<!-- check-docs: skip REASON -->` is not run (hardware, a real
+# serial port); REASON is printed. A block right after `<!-- check-docs: script -->` runs as one
+# shell script, so that its lines share variables and background jobs (an emulator started with
+# `&` and stopped with `kill %1`); each of its lines is still checked for its exit status.
+# `./dev.sh test` lines are not run again: .ci/run runs them itself. Each command (or script) has
+# 20 minutes.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
@@ -40,11 +43,44 @@ run_one() {  # file line command
   fi
 }
 
+# A script block: every command followed by a check of its exit status; `cmd &` is not checked.
+script=""
+script_lines=0
+add_to_script() {  # line command
+  local line=$1 cmd=$2 want=0
+  if [[ $cmd =~ \#[[:space:]]*exit[[:space:]]+([0-9]+)[[:space:]]*$ ]]; then want=${BASH_REMATCH[1]}; fi
+  script_lines=$((script_lines + 1))
+  if [[ $cmd =~ \&[[:space:]]*(\#.*)?$ ]]; then
+    script+="$cmd"$'\n'
+    return
+  fi
+  script+="$cmd"$'\n'"__rc=\$?; if [ \$__rc -ne $want ]; then echo \"check-docs: line $line: exit \$__rc, expected $want\" >&2; __failed=1; fi"$'\n'
+}
+run_script() {  # file first-line
+  local file=$1 line=$2
+  ran=$((ran + 1))
+  timeout 1200 bash -c "__failed=0"$'\n'"$script"$'\n'"wait; exit \$__failed" >"$log" 2>&1 </dev/null
+  local rc=$?
+  if ((rc != 0)); then
+    failed=$((failed + 1))
+    echo "check-docs: $file:$line: FAILED (script of $script_lines commands, exit $rc)"
+    grep -E '^check-docs: line' "$log" | sed 's/^/    /'
+    tail -n 20 "$log" | sed 's/^/    /'
+  else
+    echo "check-docs: $file:$line: ok: script of $script_lines commands"
+  fi
+  script=""
+  script_lines=0
+}
+
 for file in "${files[@]}"; do
   [[ -f $file ]] || continue
   in_block=0
   skip_next=0
   skip_block=0
+  script_next=0
+  script_block=0
+  block_line=0
   pending=""
   pending_line=0
   n=0
@@ -56,8 +92,15 @@ for file in "${files[@]}"; do
         reason=${BASH_REMATCH[1]}
         continue
       fi
+      if [[ $text =~ ^[[:space:]]*\<\!--[[:space:]]*check-docs:[[:space:]]*script[[:space:]]*--\>[[:space:]]*$ ]]; then
+        script_next=1
+        continue
+      fi
       if [[ $text =~ ^[[:space:]]*\`\`\`(sh|bash)[[:space:]]*$ ]]; then
         in_block=1
+        block_line=$n
+        script_block=$script_next
+        script_next=0
         skip_block=$skip_next
         if ((skip_block)); then
           skipped=$((skipped + 1))
@@ -65,12 +108,15 @@ for file in "${files[@]}"; do
         fi
       elif [[ -n ${text// /} ]]; then
         skip_next=0
+        script_next=0
       fi
       continue
     fi
     if [[ $text =~ ^[[:space:]]*\`\`\`[[:space:]]*$ ]]; then
       in_block=0
       skip_next=0
+      if ((script_block && !skip_block)); then run_script "$file" "$block_line"; fi
+      script_block=0
       continue
     fi
     ((skip_block)) && continue
@@ -81,7 +127,11 @@ for file in "${files[@]}"; do
       continue
     fi
     pending+=$text
-    run_one "$file" "$pending_line" "$pending"
+    if ((script_block)); then
+      add_to_script "$pending_line" "$pending"
+    else
+      run_one "$file" "$pending_line" "$pending"
+    fi
     pending=""
   done <"$file"
 done

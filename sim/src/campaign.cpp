@@ -197,6 +197,7 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
           c->ram = {-1};
           c->settle_at.reset();
           d.download_open = true;
+          d.lock_may_end.reset();
         } else {
           add(c->ram, -1);
         }
@@ -207,6 +208,7 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
           c->settle_at = now + 500ms + 2 * d.spec.period + 2 * d.spec.jitter;
           c->settle = 0;
           c->settle_ram = true;
+          d.lock_may_end = o.submitted + 500ms;
         } else {
           add(c->ram, -1);
           add(c->ram, 0);
@@ -487,7 +489,7 @@ void CampaignChecker::observe(std::size_t dev, Time t, State state, bool watchdo
     return;
   }
   ++counts_.state_checks;
-  if (d.download_open && !d.lock_reported) {
+  if (d.download_open && !(d.lock_may_end && t >= *d.lock_may_end) && !d.lock_reported) {
     d.lock_reported = true;
     violation(d, t, "download-lock", "ENABLED during an open 80-SLOAD download (seed 000 11.4: secured until it ends)");
   }

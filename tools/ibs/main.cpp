@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "bus_commands.hpp"
+#include "dfs1_cmd.hpp"
 #include "commands.hpp"
 
 namespace {
@@ -50,6 +51,8 @@ int run_ibs(int argc, char** argv) {
 
   ibs::cli::BusCommandState bus_state;
   ibs::cli::add_bus_commands(app, bus_state);
+  ibs::cli::Dfs1CommandState dfs1_state;
+  ibs::cli::add_dfs1_commands(app, dfs1_state);
 
   try {
     app.parse(argc, argv);
@@ -62,6 +65,7 @@ int run_ibs(int argc, char** argv) {
     return ibs::cli::kExitBadInput;
   }
   if (const auto rc = ibs::cli::run_bus_commands(bus_state)) return *rc;
+  if (const auto rc = ibs::cli::run_dfs1_commands(dfs1_state)) return *rc;
   if (run->parsed()) return ibs::cli::run(run_options);
   if (replay->parsed()) return ibs::cli::replay(emulate, replay_file);
   if (decode->parsed()) return ibs::cli::decode(decode_file);

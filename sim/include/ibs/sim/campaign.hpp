@@ -172,6 +172,9 @@ class CampaignChecker {
     std::string leave_why;
     bool enabled_reported = false;
     bool download_open = false;
+    // 80-SLOAD = -2 confirmed: the servo may free the drive from this time on (its dataset check
+    // ends 500 ms after it executed the write, which happened after the submission).
+    std::optional<Time> lock_may_end;
     // Watchdog.
     bool armed = false;
     std::optional<Time> last_fed;

@@ -1,0 +1,162 @@
+// The master's side of the CANLust parameter channel (seed 003, 4.5): a sans-I/O client with a
+// request queue, at most one request per drive at a time (CAL: every request gets exactly one
+// reply), a timeout per request, and string reads and writes as one call each.
+//
+//   client.submit(read(1, 360));          // queued
+//   client.step(now);                      // starts requests, times them out
+//   while (auto f = client.take_frame()) bus.send(*f);
+//   client.receive(frame, now);            // every frame from the bus (others are ignored)
+//   client.poll(id)                        // queued / active / done + the outcome
+//
+// submit, step, take_frame and receive allocate nothing and throw nothing: the queue, the
+// per-drive slots, the outbox and the ring of outcomes are allocated by the constructor.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "ibs/canlust/frame.hpp"
+#include "ibs/canlust/identifiers.hpp"
+#include "ibs/canlust/parameter_channel.hpp"
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::canlust {
+
+struct ClientConfig {
+  IdentifierMap ids{};
+  // A whole single-value request, from its request telegram to the reply (4.3.3: 150-SAVE takes
+  // "a few hundred ms"; give such a request its own timeout).
+  Duration timeout = 250ms;
+  // A whole string transfer (up to 27 telegram pairs).
+  Duration string_timeout = 2s;
+  std::size_t queue_capacity = 32;
+  std::size_t completed_capacity = 64;
+  std::size_t outbox_capacity = 16;
+};
+
+enum class RequestKind : std::uint8_t { read, write, describe, read_string, write_string };
+std::string_view to_string(RequestKind k);
+
+struct Request {
+  RequestKind kind = RequestKind::read;
+  Address address = 0;
+  std::uint16_t parameter = 0;
+  std::uint8_t index = 0;       // byte 7: field index (read/write) or description item
+  std::uint32_t value = 0;      // write: bytes 3-6
+  FixedString text{};           // write_string
+  bool text_too_long = false;   // write_string(): the text had more than 99 characters
+  std::optional<Duration> timeout;
+};
+Request read(Address a, std::uint16_t parameter, std::uint8_t index = 0);
+Request write(Address a, std::uint16_t parameter, std::uint32_t value, std::uint8_t index = 0);
+Request describe(Address a, std::uint16_t parameter, std::uint8_t item);
+Request read_string(Address a, std::uint16_t parameter);
+Request write_string(Address a, std::uint16_t parameter, std::string_view text);
+
+enum class OutcomeKind : std::uint8_t {
+  done,               // status 0: `value` (read, describe, write echo) or `text` (read_string)
+  refused,            // the drive answered with status bits `status` (and the transfer ended)
+  timeout,            // no (complete) answer within the request's timeout
+  checksum_mismatch,  // string read: List_End's checksum is not the XOR of the blocks received
+  bad_reply,          // a reply that breaks the sequence: a write block not echoed, List_End
+                      // before the terminator, data after it, more than 100 bytes
+  aborted,            // abort_all()
+};
+std::string_view to_string(OutcomeKind k);
+
+struct Outcome {
+  OutcomeKind kind = OutcomeKind::aborted;
+  std::uint8_t status = 0;
+  std::uint32_t value = 0;
+  FixedString text{};
+  std::uint8_t telegrams = 0;  // request telegrams sent
+  Time started{};              // when its first telegram was handed out
+  Time finished{};
+};
+std::string describe(const Outcome& o);  // allocates: for reports
+
+using RequestId = std::uint32_t;
+enum class SubmitError : std::uint8_t { none, queue_full, invalid_address, text_too_long, invalid_timeout };
+std::string_view to_string(SubmitError e);
+struct Submitted {
+  RequestId id = 0;
+  SubmitError error = SubmitError::none;
+  explicit operator bool() const { return error == SubmitError::none; }
+};
+enum class RequestState : std::uint8_t { queued, active, done, unknown };
+struct Poll {
+  RequestState state = RequestState::unknown;
+  const Outcome* outcome = nullptr;  // when done; valid until completed_capacity more finish
+};
+
+struct ClientCounters {
+  std::uint32_t stray_replies = 0;  // replies no active request waited for
+  std::uint32_t timeouts = 0;
+  std::uint32_t dropped_frames = 0;  // outbox full (frames not taken): the request times out
+};
+
+class ParameterClient {
+ public:
+  explicit ParameterClient(const ClientConfig& config = {});
+
+  Submitted submit(const Request& r);
+  void step(Time now);
+  std::optional<CanFrame> take_frame();
+  // Any frame; parameter replies of drives with an active request are taken, others ignored.
+  void receive(const CanFrame& f, Time now);
+  [[nodiscard]] Time next_deadline() const;
+
+  [[nodiscard]] Poll poll(RequestId id) const;
+  [[nodiscard]] bool idle() const;
+  [[nodiscard]] const ClientConfig& config() const { return config_; }
+  [[nodiscard]] const ClientCounters& counters() const { return counters_; }
+  // Ends every queued and active request with `aborted`.
+  void abort_all(Time now);
+
+ private:
+  struct Active {
+    bool busy = false;
+    RequestId id = 0;
+    Request request{};
+    Time started{};
+    Time deadline{};
+    std::uint8_t block = 0;        // of the telegram awaiting its reply
+    std::uint8_t telegrams = 0;
+    std::uint32_t sent_data = 0;   // of that telegram (echo check)
+    std::uint32_t checksum = 0;
+    std::size_t bytes = 0;         // string read: bytes received; write: bytes to send
+    bool terminator = false;       // string read: the 0 has arrived
+    std::uint8_t awaiting_mode = 0;
+    FixedString text{};
+  };
+  struct Queued {
+    RequestId id = 0;
+    Request request{};
+  };
+  struct Completed {
+    RequestId id = 0;
+    Outcome outcome{};
+  };
+
+  void start(Active& a, Time now);
+  void send(Active& a, std::uint8_t mode, std::uint32_t data, std::uint8_t block, Time now);
+  void finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status = 0, std::uint32_t value = 0);
+  void on_reply(Active& a, const ParameterTelegram& t, Time now);
+  void send_write_block(Active& a, Time now);
+
+  ClientConfig config_;
+  std::vector<Queued> queue_;  // in submission order; capacity reserved by the constructor
+  std::vector<Active> active_;  // one per address 0..max_address
+  std::vector<CanFrame> outbox_;  // ring
+  std::size_t out_head_ = 0;
+  std::size_t out_size_ = 0;
+  std::vector<Completed> completed_;  // ring
+  std::size_t completed_next_ = 0;
+  RequestId next_id_ = 1;
+  ClientCounters counters_{};
+};
+
+}  // namespace ibs::canlust

@@ -1,0 +1,125 @@
+// Encoding and decoding of every CANLust telegram (seed 003, 4.5, 5.5; public-facts "CANLust").
+// All multi-byte fields are Intel order (low byte first). Decoders check the identifier's kind
+// only through the caller (IdentifierMap::classify) and the length here: a DLC longer than the
+// nominal one is accepted and the extra bytes ignored (the examples of 7.1.2 print 7 bytes where
+// 5.5.5 says 6: public-facts "Control / status telegrams"); a shorter one is refused, since the
+// missing bytes cannot be invented (decision D4). RTR frames are refused by every decoder
+// (broadcasts never set RTR; CANLust uses no remote frames).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "ibs/canlust/data_types.hpp"
+#include "ibs/canlust/frame.hpp"
+#include "ibs/canlust/identifiers.hpp"
+
+namespace ibs::canlust {
+
+enum class DecodeError : std::uint8_t {
+  none,
+  wrong_kind,   // the identifier is not this telegram's (or not a CANLust one)
+  remote,       // an RTR frame
+  too_short,    // fewer bytes than the telegram needs
+  bad_value,    // e.g. a System Start/Stop byte other than 00H / 01H
+};
+std::string_view to_string(DecodeError e);
+
+template <typename T>
+struct Decoded {
+  T value{};
+  DecodeError error = DecodeError::none;
+  explicit operator bool() const { return error == DecodeError::none; }
+};
+
+// ---- System Start / Stop, identifier 221 (5.2, 5.5.4) -------------------------------------
+
+enum class SystemCommand : std::uint8_t {
+  stop = 0x00,   // decision D3: the Stop value is not public; 00H
+  start = 0x01,  // 5.5.4 / public-facts: data byte 01H
+};
+std::string_view to_string(SystemCommand c);
+CanFrame encode_system(SystemCommand c);
+Decoded<SystemCommand> decode_system(const CanFrame& f);
+
+// ---- Logon, 1543 + address, no data (5.2, 5.5.4) -----------------------------------------
+
+CanFrame encode_logon(const IdentifierMap& ids, Address a);
+
+// ---- Control and status, 661 / 881 + address (5.4, 5.5.5, 5.5.6; 4.3.2 492-CACNF) ---------
+
+// How bytes 0..5 of the control and status telegrams are read. 492-CACNF picks one
+// (process_layout_for_cacnf); the core never looks at the word's bits beyond the telegram.
+enum class WordMode : std::uint8_t {
+  drivecom,   // bytes 0-1 the DRIVECOM control / status word (5.4.2)
+  easydrive,  // bytes 0-1 the EasyDrive direct-control bits (5.4.1)
+};
+enum class ValueWidth : std::uint8_t {
+  int16q0 = 2,   // 16-bit reference / actual value (5.5.5: "CACNF = 1 ... Int16Q0")
+  int32q16 = 4,  // 32-bit Q16 reference / actual frequency (5.5.5, 5.5.6)
+};
+struct ProcessLayout {
+  WordMode mode = WordMode::drivecom;
+  ValueWidth reference = ValueWidth::int32q16;  // in the control telegram
+  ValueWidth actual = ValueWidth::int32q16;     // in the status telegram
+  friend constexpr bool operator==(const ProcessLayout&, const ProcessLayout&) = default;
+};
+// 492-CACNF -> layout; nullopt for values the manual does not describe (decision D5: 1 DRIVECOM
+// 16/16 bit, 2 DRIVECOM Q16/Q16, 3 DRIVECOM Q16 reference with the 16-bit actual value that the
+// fragment of 5.5.6 names for "CACNF 1, 3", 4 EasyDrive Q16/Q16 as example 7.1.1).
+std::optional<ProcessLayout> process_layout_for_cacnf(std::uint8_t cacnf);
+
+constexpr std::uint8_t nominal_length(ValueWidth w) { return static_cast<std::uint8_t>(2U + static_cast<unsigned>(w)); }
+
+struct ControlTelegram {
+  std::uint16_t word = 0;       // bytes 0-1
+  std::int32_t reference = 0;   // bytes 2-3 (int16q0, sign-extended here) or 2-5 (Q16 raw)
+  friend constexpr bool operator==(const ControlTelegram&, const ControlTelegram&) = default;
+};
+struct StatusTelegram {
+  std::uint16_t word = 0;
+  std::int32_t actual = 0;
+  friend constexpr bool operator==(const StatusTelegram&, const StatusTelegram&) = default;
+};
+// A 16-bit layout keeps the low 16 bits of the value (the caller scales and clamps).
+std::optional<CanFrame> encode_control(const IdentifierMap& ids, Address a,
+                                       const ProcessLayout& layout, const ControlTelegram& t);
+std::optional<CanFrame> encode_status(const IdentifierMap& ids, Address a,
+                                      const ProcessLayout& layout, const StatusTelegram& t);
+Decoded<ControlTelegram> decode_control(const CanFrame& f, const ProcessLayout& layout);
+Decoded<StatusTelegram> decode_status(const CanFrame& f, const ProcessLayout& layout);
+
+// ---- Error message, 441 + address, 3 bytes (5.5; 6.2 table 5.9) ---------------------------
+
+// Byte 0 the error number of table 5.9 ("Bus" column), byte 1 the error location, byte 2: not
+// public; decision D6: the error reaction the drive took (ErrorReaction code, errors.hpp).
+struct ErrorTelegram {
+  std::uint8_t number = 0;
+  std::uint8_t location = 0;
+  std::uint8_t reaction = 0;
+  friend constexpr bool operator==(const ErrorTelegram&, const ErrorTelegram&) = default;
+};
+std::optional<CanFrame> encode_error(const IdentifierMap& ids, Address a, const ErrorTelegram& e);
+Decoded<ErrorTelegram> decode_error(const CanFrame& f);
+
+// ---- Parameter channel, 1101 / 1321 + address, 8 bytes (4.5) -------------------------------
+
+// Byte 0-1 parameter number (low, high; 4.4), byte 2 mode (request) / status (reply), bytes 3-6
+// data (32 bits, Intel order), byte 7 block counter or field index.
+struct ParameterTelegram {
+  std::uint16_t parameter = 0;
+  std::uint8_t code = 0;  // the mode of a request, the status of a reply
+  std::uint32_t data = 0;
+  std::uint8_t block = 0;
+  friend constexpr bool operator==(const ParameterTelegram&, const ParameterTelegram&) = default;
+};
+inline constexpr std::uint8_t kParameterTelegramLength = 8;
+std::optional<CanFrame> encode_parameter_request(const IdentifierMap& ids, Address a,
+                                                 const ParameterTelegram& t);
+std::optional<CanFrame> encode_parameter_reply(const IdentifierMap& ids, Address a,
+                                               const ParameterTelegram& t);
+// The 8 bytes whatever the identifier (the caller classified it).
+Decoded<ParameterTelegram> decode_parameter(const CanFrame& f);
+
+}  // namespace ibs::canlust

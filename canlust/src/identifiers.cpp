@@ -1,0 +1,56 @@
+#include "ibs/canlust/identifiers.hpp"
+
+#include <array>
+
+namespace ibs::canlust {
+
+std::string_view to_string(TelegramKind k) {
+  switch (k) {
+    case TelegramKind::error: return "error";
+    case TelegramKind::logon: return "logon";
+    case TelegramKind::control: return "control";
+    case TelegramKind::status: return "status";
+    case TelegramKind::parameter_request: return "parameter request";
+    case TelegramKind::parameter_reply: return "parameter reply";
+    case TelegramKind::system: return "system start/stop";
+  }
+  return "?";
+}
+
+namespace {
+constexpr std::array<TelegramKind, 6> kSelective = {
+    TelegramKind::error,  TelegramKind::logon,
+    TelegramKind::control, TelegramKind::status,
+    TelegramKind::parameter_request, TelegramKind::parameter_reply};
+}  // namespace
+
+std::optional<Classified> IdentifierMap::classify(std::uint16_t id) const {
+  if (id == kIdSystem) return Classified{TelegramKind::system, 0};
+  if (step == 0) return std::nullopt;
+  for (const auto k : kSelective) {
+    const std::uint16_t base = base_of(k);
+    if (id < base) continue;
+    const unsigned off = id - base;
+    if (off % step != 0) continue;
+    const unsigned a = off / step;
+    if (a > max_address) continue;
+    return Classified{k, static_cast<Address>(a)};
+  }
+  return std::nullopt;
+}
+
+bool IdentifierMap::unambiguous() const {
+  if (step == 0) return false;
+  std::array<bool, 0x800> used{};
+  used[kIdSystem] = true;
+  for (const auto k : kSelective) {
+    for (unsigned a = 0; a <= max_address; ++a) {
+      const auto v = id(k, static_cast<Address>(a));
+      if (!v || used[*v]) return false;
+      used[*v] = true;
+    }
+  }
+  return true;
+}
+
+}  // namespace ibs::canlust

@@ -1,0 +1,350 @@
+#include "ibs/canlust/parameter_client.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+namespace ibs::canlust {
+
+std::string_view to_string(RequestKind k) {
+  switch (k) {
+    case RequestKind::read: return "read";
+    case RequestKind::write: return "write";
+    case RequestKind::describe: return "describe";
+    case RequestKind::read_string: return "read string";
+    case RequestKind::write_string: return "write string";
+  }
+  return "?";
+}
+
+std::string_view to_string(OutcomeKind k) {
+  switch (k) {
+    case OutcomeKind::done: return "done";
+    case OutcomeKind::refused: return "refused";
+    case OutcomeKind::timeout: return "timeout";
+    case OutcomeKind::checksum_mismatch: return "checksum mismatch";
+    case OutcomeKind::bad_reply: return "bad reply";
+    case OutcomeKind::aborted: return "aborted";
+  }
+  return "?";
+}
+
+std::string_view to_string(SubmitError e) {
+  switch (e) {
+    case SubmitError::none: return "none";
+    case SubmitError::queue_full: return "queue full";
+    case SubmitError::invalid_address: return "invalid address";
+    case SubmitError::text_too_long: return "text too long";
+    case SubmitError::invalid_timeout: return "timeout not positive";
+  }
+  return "?";
+}
+
+std::string describe(const Outcome& o) {
+  std::string s(to_string(o.kind));
+  if (o.kind == OutcomeKind::refused) s += ", status " + describe_status(o.status);
+  if (o.kind == OutcomeKind::done) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, ", value %08X", static_cast<unsigned>(o.value));
+    s += buf;
+    if (o.text.length > 0) s += ", text \"" + std::string(o.text.view()) + "\"";
+  }
+  return s;
+}
+
+Request read(Address a, std::uint16_t parameter, std::uint8_t index) {
+  Request r;
+  r.kind = RequestKind::read;
+  r.address = a;
+  r.parameter = parameter;
+  r.index = index;
+  return r;
+}
+Request write(Address a, std::uint16_t parameter, std::uint32_t value, std::uint8_t index) {
+  Request r = read(a, parameter, index);
+  r.kind = RequestKind::write;
+  r.value = value;
+  return r;
+}
+Request describe(Address a, std::uint16_t parameter, std::uint8_t item) {
+  Request r = read(a, parameter, item);
+  r.kind = RequestKind::describe;
+  return r;
+}
+Request read_string(Address a, std::uint16_t parameter) {
+  Request r = read(a, parameter);
+  r.kind = RequestKind::read_string;
+  return r;
+}
+Request write_string(Address a, std::uint16_t parameter, std::string_view text) {
+  Request r = read(a, parameter);
+  r.kind = RequestKind::write_string;
+  r.text = FixedString::from(text);
+  r.text_too_long = text.size() > kMaxStringChars;
+  return r;
+}
+
+ParameterClient::ParameterClient(const ClientConfig& config) : config_(config) {
+  queue_.reserve(std::max<std::size_t>(1, config_.queue_capacity));
+  if (config_.timeout <= Duration::zero()) config_.timeout = 1ms;
+  if (config_.string_timeout <= Duration::zero()) config_.string_timeout = 1ms;
+  active_.resize(static_cast<std::size_t>(config_.ids.max_address) + 1);
+  outbox_.resize(std::max<std::size_t>(config_.outbox_capacity, active_.size()));
+  completed_.resize(std::max<std::size_t>(1, config_.completed_capacity));
+}
+
+Submitted ParameterClient::submit(const Request& r) {
+  if (r.address > config_.ids.max_address) return {0, SubmitError::invalid_address};
+  if (r.kind == RequestKind::write_string && (r.text_too_long || r.text.length > kMaxStringChars)) {
+    return {0, SubmitError::text_too_long};
+  }
+  if (r.timeout && *r.timeout <= Duration::zero()) return {0, SubmitError::invalid_timeout};
+  if (queue_.size() >= queue_.capacity()) return {0, SubmitError::queue_full};
+  const RequestId id = next_id_++;
+  queue_.push_back({id, r});
+  return {id, SubmitError::none};
+}
+
+void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std::uint8_t block,
+                           Time now) {
+  (void)now;
+  a.awaiting_mode = mode;
+  a.block = block;
+  a.sent_data = data;
+  ++a.telegrams;
+  const auto f = encode_parameter_request(config_.ids, a.request.address,
+                                          {a.request.parameter, mode, data, block});
+  if (!f) return;  // address checked at submit
+  if (out_size_ == outbox_.size()) {
+    ++counters_.dropped_frames;
+    return;
+  }
+  outbox_[(out_head_ + out_size_) % outbox_.size()] = *f;
+  ++out_size_;
+}
+
+void ParameterClient::start(Active& a, Time now) {
+  a.started = now;
+  const Duration limit = a.request.timeout.value_or(
+      a.request.kind == RequestKind::read_string || a.request.kind == RequestKind::write_string
+          ? config_.string_timeout
+          : config_.timeout);
+  a.deadline = now + limit;
+  a.telegrams = 0;
+  a.checksum = 0;
+  a.bytes = 0;
+  a.terminator = false;
+  a.text = FixedString{};
+  const Request& r = a.request;
+  switch (r.kind) {
+    case RequestKind::read: send(a, kModeRead, 0, r.index, now); return;
+    case RequestKind::write: send(a, kModeWrite, r.value, r.index, now); return;
+    case RequestKind::describe: send(a, kModeDescribe, 0, r.index, now); return;
+    case RequestKind::read_string: send(a, kModeStringRead, 0, 0, now); return;
+    case RequestKind::write_string:
+      // The text and its terminator, padded with zeros to whole blocks of 4 (decision D13).
+      a.bytes = (static_cast<std::size_t>(r.text.length) + 1 + 3) / 4 * 4;
+      send(a, kModeStringWrite, 0, 0, now);
+      return;
+  }
+}
+
+void ParameterClient::finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status,
+                             std::uint32_t value) {
+  Completed& c = completed_[completed_next_];
+  completed_next_ = (completed_next_ + 1) % completed_.size();
+  c.id = a.id;
+  c.outcome.kind = kind;
+  c.outcome.status = status;
+  c.outcome.value = value;
+  c.outcome.text = kind == OutcomeKind::done ? a.text : FixedString{};
+  c.outcome.telegrams = a.telegrams;
+  c.outcome.started = a.started;
+  c.outcome.finished = now;
+  a.busy = false;
+}
+
+void ParameterClient::step(Time now) {
+  for (auto& a : active_) {
+    if (a.busy && now >= a.deadline) {
+      ++counters_.timeouts;
+      finish(a, OutcomeKind::timeout, now);
+    }
+  }
+  // Start the oldest queued request of every free drive (one request per drive at a time).
+  for (auto it = queue_.begin(); it != queue_.end();) {
+    Active& a = active_[it->request.address];
+    if (a.busy) {
+      ++it;
+      continue;
+    }
+    a.busy = true;
+    a.id = it->id;
+    a.request = it->request;
+    start(a, now);
+    it = queue_.erase(it);  // shifts; no allocation
+  }
+}
+
+std::optional<CanFrame> ParameterClient::take_frame() {
+  if (out_size_ == 0) return std::nullopt;
+  const CanFrame f = outbox_[out_head_];
+  out_head_ = (out_head_ + 1) % outbox_.size();
+  --out_size_;
+  return f;
+}
+
+void ParameterClient::receive(const CanFrame& f, Time now) {
+  const auto c = config_.ids.classify(f.id);
+  if (!c || c->kind != TelegramKind::parameter_reply) return;
+  const auto t = decode_parameter(f);
+  if (!t) return;
+  Active& a = active_[c->address];
+  if (!a.busy || now >= a.deadline || t.value.parameter != a.request.parameter ||
+      t.value.block != a.block) {
+    ++counters_.stray_replies;
+    return;
+  }
+  on_reply(a, t.value, now);
+}
+
+void ParameterClient::send_write_block(Active& a, Time now) {
+  const std::size_t offset = 4U * (static_cast<std::size_t>(a.block));  // block k carries bytes 4(k-1)..
+  const auto next = static_cast<std::uint8_t>(a.block + 1);
+  const std::size_t start = offset;  // bytes of block `next` begin at 4 x (next - 1) = offset
+  if (start >= a.bytes) {
+    send(a, kModeListEnd, a.checksum, next, now);  // closes with the checksum
+    return;
+  }
+  std::array<std::uint8_t, 4> b{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::size_t k = start + i;
+    b[i] = k < a.request.text.length ? static_cast<std::uint8_t>(a.request.text.chars[k]) : 0;
+  }
+  const std::uint32_t d = get_le32(b);
+  a.checksum = string_checksum_step(a.checksum, d);
+  send(a, kModeStringWrite, d, next, now);
+}
+
+void ParameterClient::on_reply(Active& a, const ParameterTelegram& t, Time now) {
+  const Request& r = a.request;
+  switch (r.kind) {
+    case RequestKind::read:
+    case RequestKind::describe:
+      if (t.code != kStatusOk) {
+        finish(a, OutcomeKind::refused, now, t.code);
+      } else {
+        finish(a, OutcomeKind::done, now, 0, t.data);
+      }
+      return;
+    case RequestKind::write:
+      if (t.code != kStatusOk) {
+        finish(a, OutcomeKind::refused, now, t.code);
+      } else {
+        finish(a, OutcomeKind::done, now, 0, t.data);
+      }
+      return;
+    case RequestKind::read_string: {
+      if (t.code == kStatusListEnd && a.block > 0) {
+        // The last reply: List_End and the checksum over the blocks before it (D8).
+        if (!a.terminator) {
+          finish(a, OutcomeKind::bad_reply, now, t.code);
+        } else if (t.data != a.checksum) {
+          finish(a, OutcomeKind::checksum_mismatch, now, t.code, t.data);
+        } else {
+          finish(a, OutcomeKind::done, now, 0, t.data);
+        }
+        return;
+      }
+      if (t.code != kStatusOk) {
+        finish(a, OutcomeKind::refused, now, t.code);
+        return;
+      }
+      if (a.terminator || a.bytes + 4 > kMaxStringBytes) {
+        finish(a, OutcomeKind::bad_reply, now);  // data after the terminator, or over 100 bytes
+        return;
+      }
+      a.checksum = string_checksum_step(a.checksum, t.data);
+      for (std::size_t i = 0; i < 4 && !a.terminator; ++i) {
+        const auto ch = static_cast<char>((t.data >> (8U * i)) & 0xFFU);
+        if (ch == '\0') {
+          a.terminator = true;
+        } else {
+          a.text.chars[a.text.length++] = ch;
+        }
+      }
+      a.bytes += 4;
+      if (a.text.length >= kMaxStringBytes - 1 && !a.terminator) {
+        finish(a, OutcomeKind::bad_reply, now);
+        return;
+      }
+      send(a, kModeStringRead, 0, static_cast<std::uint8_t>(a.block + 1), now);
+      return;
+    }
+    case RequestKind::write_string: {
+      if (t.code != kStatusOk) {
+        finish(a, OutcomeKind::refused, now, t.code);
+        return;
+      }
+      if (a.awaiting_mode == kModeListEnd) {
+        finish(a, OutcomeKind::done, now, 0, t.data);
+        return;
+      }
+      if (a.block > 0 && t.data != a.sent_data) {
+        finish(a, OutcomeKind::bad_reply, now);  // every block is echoed
+        return;
+      }
+      send_write_block(a, now);
+      return;
+    }
+  }
+}
+
+Time ParameterClient::next_deadline() const {
+  if (out_size_ > 0) return Time::min();  // frames to take now
+  if (!queue_.empty()) {
+    for (const auto& q : queue_) {
+      if (!active_[q.request.address].busy) return Time::min();
+    }
+  }
+  Time t = Time::max();
+  for (const auto& a : active_) {
+    if (a.busy) t = std::min(t, a.deadline);
+  }
+  return t;
+}
+
+Poll ParameterClient::poll(RequestId id) const {
+  for (const auto& a : active_) {
+    if (a.busy && a.id == id) return {RequestState::active, nullptr};
+  }
+  for (const auto& q : queue_) {
+    if (q.id == id) return {RequestState::queued, nullptr};
+  }
+  for (const auto& c : completed_) {
+    if (c.id == id && id != 0) return {RequestState::done, &c.outcome};
+  }
+  return {RequestState::unknown, nullptr};
+}
+
+bool ParameterClient::idle() const {
+  if (!queue_.empty()) return false;
+  return std::none_of(active_.begin(), active_.end(), [](const Active& a) { return a.busy; });
+}
+
+void ParameterClient::abort_all(Time now) {
+  for (auto& a : active_) {
+    if (a.busy) finish(a, OutcomeKind::aborted, now);
+  }
+  for (const auto& q : queue_) {
+    Active tmp;
+    tmp.id = q.id;
+    tmp.request = q.request;
+    tmp.started = now;
+    finish(tmp, OutcomeKind::aborted, now);
+  }
+  queue_.clear();
+  out_size_ = 0;
+}
+
+}  // namespace ibs::canlust

@@ -1,0 +1,86 @@
+// The controller's side of the DFS-1 protocol: it hears every byte on the line, takes the
+// frames for its UID and the global 83 (UID 0), answers unknown commands and wrong data lengths
+// with NAK 86 itself, hands every other request to a RequestHandler (the drive), and sends the
+// reply after the communications turnaround delay (parameter 56; decision D2 for its unit).
+//
+// receive(), pending(), consume() allocate nothing and throw nothing; time is passed in.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/dfs1/frame.hpp"
+#include "ibs/dfs1/protocol.hpp"
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::dfs1 {
+
+// What the drive answers to one request.
+struct Reply {
+  enum class Kind : std::uint8_t { ack, nak, none };
+  Kind kind = Kind::none;
+  ErrorCode error = ErrorCode::illegal_command;  // nak
+  std::uint8_t size = 0;                         // ack data bytes
+  std::array<std::uint8_t, kMaxData> data{};
+
+  static Reply ack(std::span<const std::uint8_t> d = {});
+  static Reply ack_value(std::uint32_t v);
+  static Reply nak(ErrorCode e);
+  static Reply none() { return {}; }
+};
+
+// The drive behind a receiver. `request` has a known command with its data length (protocol.hpp);
+// `global` is true for the 83 to UID 0, whose reply is never sent.
+class RequestHandler {
+ public:
+  virtual Reply handle(const Frame& request, bool global, Time now) = 0;
+
+ protected:
+  RequestHandler() = default;
+  RequestHandler(const RequestHandler&) = default;
+  RequestHandler& operator=(const RequestHandler&) = default;
+  ~RequestHandler() = default;
+};
+
+class ControllerReceiver {
+ public:
+  ControllerReceiver(std::uint8_t uid, Duration turnaround) : uid_(uid), turnaround_(turnaround) {}
+
+  void receive(std::uint8_t byte, Time now, RequestHandler& handler);
+  void receive(std::span<const std::uint8_t> bytes, Time now, RequestHandler& handler);
+  // The reply bytes not yet sent, once the turnaround has passed at `now`; empty otherwise.
+  std::span<const std::uint8_t> pending(Time now) const;
+  // `n` bytes of pending() have been put on the line.
+  void consume(std::size_t n);
+  // When a reply becomes due; nullopt when none waits.
+  std::optional<Time> next_deadline() const;
+  bool replying() const { return sent_ < reply_.size; }
+
+  std::uint8_t uid() const { return uid_; }
+  void set_uid(std::uint8_t uid) { uid_ = uid; }
+  Duration turnaround() const { return turnaround_; }
+  void set_turnaround(Duration d) { turnaround_ = d; }
+
+  struct Counters {
+    std::uint64_t requests = 0;  // frames for us or global, handled or NAKed
+    std::uint64_t globals = 0;   // 83 to UID 0
+    std::uint64_t foreign = 0;   // frames for another UID, or UID 0 with another command
+    std::uint64_t decode_errors = 0;
+    std::uint64_t dropped_replies = 0;  // a new request came before the old reply was sent
+  };
+  const Counters& counters() const { return counters_; }
+
+ private:
+  void on_frame(const Frame& f, Time now, RequestHandler& handler);
+
+  std::uint8_t uid_;
+  Duration turnaround_;
+  FrameDecoder decoder_;
+  EncodedFrame reply_{};
+  std::size_t sent_ = 0;
+  Time due_{};
+  Counters counters_{};
+};
+
+}  // namespace ibs::dfs1

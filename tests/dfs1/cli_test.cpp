@@ -1,0 +1,203 @@
+// `ibs dfs1 ...`: `emulate --pty` as a process (prints `pty: PATH` first, serves, exits 0 on
+// SIGTERM and SIGINT), the client commands in process against it, their JSON, exit codes and the
+// byte log.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dfs1_cmd.hpp"
+
+namespace ibs::cli {
+namespace {
+
+struct CliRun {
+  int rc = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run_cli(std::vector<std::string> args) {
+  CLI::App app{"test"};
+  app.require_subcommand(1);
+  Dfs1CommandState state;
+  add_dfs1_commands(app, state);
+  CliRun r;
+  std::reverse(args.begin(), args.end());
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    r.rc = kExitDfs1BadInput;
+    r.err = e.what();
+    return r;
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  r.rc = run_dfs1_commands(state, out, err).value_or(-1);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+// `dfs1 emulate --pty DEVICES...` as a child process; the first line of its output is the pty.
+class Emulator {
+ public:
+  explicit Emulator(std::vector<std::string> devices) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error("pipe");
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(fds[1], STDOUT_FILENO);
+      ::close(fds[0]);
+      ::close(fds[1]);
+      std::vector<std::string> args = {IBS_DFS1_CLI, "dfs1", "emulate", "--pty"};
+      args.insert(args.end(), devices.begin(), devices.end());
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(fds[1]);
+    out_ = ::fdopen(fds[0], "r");
+    char line[512] = {};
+    if (std::fgets(line, sizeof line, out_) != nullptr) first_line_ = line;
+    if (!first_line_.empty() && first_line_.back() == '\n') first_line_.pop_back();
+  }
+  Emulator(const Emulator&) = delete;
+  Emulator& operator=(const Emulator&) = delete;
+  ~Emulator() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    if (out_ != nullptr) std::fclose(out_);
+  }
+  const std::string& first_line() const { return first_line_; }
+  std::string pty() const { return first_line_.substr(first_line_.find(' ') + 1); }
+  // Sends `sig` and returns the exit code (-1: not a normal exit).
+  int stop(int sig) {
+    ::kill(pid_, sig);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* out_ = nullptr;
+  std::string first_line_;
+};
+
+TEST(Dfs1Cli, EmulatePrintsThePtyFirstAndExitsZeroOnSigterm) {
+  Emulator emu({"dfs1@1", "dfs1@2"});
+  ASSERT_EQ(emu.first_line().rfind("pty: /dev/pts/", 0), 0U) << emu.first_line();
+  const CliRun r =
+      run_cli({"dfs1", "status", "--port", emu.pty(), "--uid", "2", "--timeout-ms", "3000"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("uid 2: commanded 0 rpm, actual 0 rpm, load 0 %"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("ST2 31H: at-speed forward zero-speed"), std::string::npos) << r.out;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+TEST(Dfs1Cli, EmulateExitsZeroOnSigint) {
+  Emulator emu({"dfs1@5"});
+  ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U);
+  EXPECT_EQ(emu.stop(SIGINT), 0);
+}
+
+TEST(Dfs1Cli, ReadWriteSpeedStatusWithJson) {
+  Emulator emu({"dfs1@1", "dfs1@7"});
+  const std::string port = emu.pty();
+  CliRun r = run_cli(
+      {"dfs1", "read", "--port", port, "--uid", "7", "56", "--json", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["value"], 2);
+  EXPECT_EQ(j["parameter"], 56);
+  EXPECT_EQ(j["outcome"], "ack");
+
+  r = run_cli({"dfs1", "speed", "--port", port, "--uid", "7", "500", "--timeout-ms", "3000"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("NAK 80H not in remote"), std::string::npos) << r.err;
+
+  r = run_cli({"dfs1", "write", "--port", port, "--uid", "7", "3", "15", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "uid 7 write parameter 3 = 15: ack\n");
+
+  r = run_cli(
+      {"dfs1", "speed", "--port", port, "--uid", "7", "-500", "--json", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["value"], -500);
+
+  r = run_cli({"dfs1", "status", "--port", port, "--uid", "7", "--json", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["commanded_speed"], -500);
+  EXPECT_EQ(j["st2"].get<int>() & 0x80, 0x80);  // remote
+
+  r = run_cli(
+      {"dfs1", "read", "--port", port, "--uid", "1", "99", "--json", "--timeout-ms", "3000"});
+  EXPECT_EQ(r.rc, 1);
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["outcome"], "nak");
+  EXPECT_EQ(j["error"], 0x82);
+  EXPECT_EQ(j["error_name"], "illegal parameter number");
+
+  r = run_cli({"dfs1", "status", "--port", port, "--uid", "9", "--timeout-ms", "100"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("timeout (no answer within 100 ms)"), std::string::npos) << r.err;
+
+  r = run_cli({"dfs1", "speed", "--port", port, "--uid", "0", "--execute", "--json"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["outcome"], "sent");
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+TEST(Dfs1Cli, BadInputIsExitTwo) {
+  EXPECT_EQ(run_cli({"dfs1", "status", "--port", "/dev/ibs-no-such-port", "--uid", "1"}).rc, 2);
+  const CliRun zero = run_cli({"dfs1", "status", "--port", "/dev/null", "--uid", "0"});
+  EXPECT_EQ(zero.rc, 2);
+  EXPECT_NE(zero.err.find("UID 0 is the global address"), std::string::npos) << zero.err;
+  EXPECT_EQ(run_cli({"dfs1", "status", "--port", "/dev/null", "--uid", "256"}).rc, 2);
+  EXPECT_EQ(run_cli({"dfs1", "speed", "--port", "/dev/null", "--uid", "1"}).rc, 2);
+  EXPECT_EQ(run_cli({"dfs1", "emulate", "--pty", "vf1000@1"}).rc, 2);
+  EXPECT_EQ(run_cli({"dfs1", "emulate", "--pty", "dfs1@0"}).rc, 2);
+  EXPECT_EQ(run_cli({"dfs1", "emulate", "--pty", "dfs1@3", "dfs1@3"}).rc, 2);
+  EXPECT_EQ(run_cli({"dfs1", "emulate", "dfs1@3"}).rc, 2);     // neither --port nor --pty
+  EXPECT_EQ(run_cli({"dfs1", "status", "--uid", "1"}).rc, 2);  // --port missing
+}
+
+TEST(Dfs1Cli, LogRecordsEveryByteWithTimeAndDirection) {
+  Emulator emu({"dfs1@1"});
+  const std::string log = ::testing::TempDir() + "dfs1_cli_log.txt";
+  const CliRun r = run_cli(
+      {"dfs1", "status", "--port", emu.pty(), "--uid", "1", "--log", log, "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  std::ifstream in(log);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "ibs-serial-log 1");
+  std::getline(in, line);
+  EXPECT_NE(line.find(" tx " + emu.pty() + " 10 02 01 81 10 03 7E"), std::string::npos) << line;
+  std::string rx;
+  while (std::getline(in, line)) rx += line.substr(line.rfind(emu.pty()) + emu.pty().size());
+  // The 23 bytes of the status answer, maybe in several reads.
+  EXPECT_EQ(rx.rfind(" 10 02 01 06", 0), 0U) << rx;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+  std::remove(log.c_str());
+}
+
+}  // namespace
+}  // namespace ibs::cli

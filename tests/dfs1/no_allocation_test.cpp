@@ -1,0 +1,67 @@
+// The cycle path allocates nothing (design.md): encode, decode, host transactions, the
+// controller's receiver and emulator, the master's queue and the simulated line all run between
+// two readings of a global allocation counter.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "ibs/devices/dfs1/line.hpp"
+#include "ibs/dfs1/host.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace ibs::devices::dfs1 {
+namespace {
+
+namespace proto = ::ibs::dfs1;
+namespace request = proto::request;
+
+TEST(Dfs1CyclePath, AllocatesNothing) {
+  Master master({50ms, 5ms});
+  Controller a({1});
+  Controller b({2});
+  SimulatedLine line(master, {&a, &b}, 19200);
+  std::size_t acks = 0;
+  std::size_t others = 0;
+
+  const long before = g_allocations.load();
+  for (int round = 0; round < 50; ++round) {
+    (void)master.submit(request::write_parameter(1, 3, 15));
+    (void)master.submit(request::set_and_execute_speed(1, 100 + round));
+    (void)master.submit(request::status(1));
+    (void)master.submit(request::status(2));
+    (void)master.submit(request::read_parameter(2, 99));  // NAK 82
+    (void)master.submit(request::status(9));              // timeout
+    (void)master.submit(request::execute_speed(0));       // global
+    (void)master.submit(proto::request::read_digital_input(2, 1));
+    line.run_until_idle(line.now() + 10s);
+    while (auto c = master.take_completion()) {
+      (c->result.outcome == proto::Outcome::ack ? acks : others) += 1;
+    }
+    proto::FrameDecoder d;
+    for (std::uint8_t byte : proto::encode(request::set_speed(1, 4096)).span()) (void)d.push(byte);
+  }
+  const long after = g_allocations.load();
+  EXPECT_EQ(after - before, 0);
+  EXPECT_EQ(acks, 50U * 5U);
+  EXPECT_EQ(others, 50U * 3U);
+}
+
+}  // namespace
+}  // namespace ibs::devices::dfs1

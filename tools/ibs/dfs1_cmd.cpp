@@ -1,0 +1,459 @@
+// The CLI11 wiring of `ibs dfs1 ...`, the emulator's serving loop and the host's transaction loop
+// over a serial port.
+#include "dfs1_cmd.hpp"
+
+#include <signal.h>
+#include <sys/signalfd.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+
+#include "ibs/devices/dfs1/parameters.hpp"
+#include "ibs/serial/byte_log.hpp"
+#include "ibs/serial/pty.hpp"
+
+namespace ibs::cli {
+
+namespace proto = ::ibs::dfs1;
+namespace dev = ::ibs::devices::dfs1;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr Duration kServePoll = 20ms;
+constexpr Duration kInterByteTimeout = 20ms;
+
+Time since(Clock::time_point t0) {
+  return std::chrono::duration_cast<Duration>(Clock::now() - t0);
+}
+
+serial::PortOptions port_options(const Dfs1PortOptions& o) {
+  serial::PortOptions p;
+  p.baud = o.baud;
+  p.framing = serial::parse_framing(o.framing);
+  p.rs485 = o.rs485;
+  return p;
+}
+
+// "dfs1@7" -> 7; throws std::invalid_argument naming the text.
+std::uint8_t parse_device(const std::string& spec) {
+  const std::string prefix = "dfs1@";
+  const auto bad = [&]() {
+    return std::invalid_argument("device '" + spec + "': expected dfs1@UID with UID 1..255");
+  };
+  if (spec.rfind(prefix, 0) != 0) throw bad();
+  const std::string rest = spec.substr(prefix.size());
+  unsigned v = 0;
+  const auto r = std::from_chars(rest.data(), rest.data() + rest.size(), v);
+  if (rest.empty() || r.ec != std::errc{} || r.ptr != rest.data() + rest.size() || v < 1 ||
+      v > 255) {
+    throw bad();
+  }
+  return static_cast<std::uint8_t>(v);
+}
+
+// SIGINT and SIGTERM as a descriptor, blocked for the process while it lives (no global flag).
+class StopSignals {
+ public:
+  StopSignals() {
+    sigemptyset(&mask_);
+    sigaddset(&mask_, SIGINT);
+    sigaddset(&mask_, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &mask_, &old_);
+    fd_ = signalfd(-1, &mask_, SFD_NONBLOCK | SFD_CLOEXEC);
+    if (fd_ < 0) throw std::runtime_error("signalfd failed");
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  ~StopSignals() {
+    ::close(fd_);
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  // Takes the signal (so that unblocking it later does not deliver it again).
+  bool raised() {
+    signalfd_siginfo info{};
+    return ::read(fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info);
+  }
+
+ private:
+  sigset_t mask_{};
+  sigset_t old_{};
+  int fd_ = -1;
+};
+
+std::string hex2(unsigned v) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  return {kHex[(v >> 4) & 0xF], kHex[v & 0xF]};
+}
+
+std::vector<std::string> st2_flags(std::uint8_t s) {
+  static constexpr std::array<const char*, 8> kNames = {
+      "zero-speed", "uP-fault", "enabled", "fault", "forward", "at-speed", "slave", "remote"};
+  std::vector<std::string> out;
+  for (int bit = 7; bit >= 0; --bit) {
+    if ((s >> bit) & 1U) out.emplace_back(kNames[static_cast<std::size_t>(bit)]);
+  }
+  return out;
+}
+
+std::vector<std::string> st1_flags(std::uint8_t s) {
+  static constexpr std::array<const char*, 8> kNames = {
+      "undervolt", "overvolt", "commutation", "heatsink-overtemp",
+      "I2t",       "stall",    "IOC",         "bus-not-charged"};
+  std::vector<std::string> out;
+  for (int bit = 7; bit >= 0; --bit) {
+    if ((s >> bit) & 1U) out.emplace_back(kNames[static_cast<std::size_t>(bit)]);
+  }
+  return out;
+}
+
+std::string join(const std::vector<std::string>& v) {
+  if (v.empty()) return "none";
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
+int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
+  if (o.pty == !o.port.port.empty()) {
+    err << "ibs dfs1 emulate: give either --port PATH or --pty\n";
+    return kExitDfs1BadInput;
+  }
+  if (o.devices.empty()) {
+    err << "ibs dfs1 emulate: no device: give dfs1@UID (one or more)\n";
+    return kExitDfs1BadInput;
+  }
+  std::vector<std::unique_ptr<dev::Controller>> controllers;
+  std::vector<dev::Controller*> raw;
+  std::set<std::uint8_t> uids;
+  serial::PortOptions popts;
+  try {
+    popts = port_options(o.port);
+    for (const std::string& spec : o.devices) {
+      const std::uint8_t uid = parse_device(spec);
+      if (!uids.insert(uid).second) {
+        throw std::invalid_argument("device '" + spec + "': UID " + std::to_string(uid) +
+                                    " is given twice");
+      }
+      controllers.push_back(std::make_unique<dev::Controller>(dev::ControllerConfig{uid}));
+      if (auto code = dev::code_for_baud(o.port.baud)) {
+        (void)controllers.back()->set_parameter(dev::kBaudCode, *code);
+      }
+      raw.push_back(controllers.back().get());
+    }
+  } catch (const std::invalid_argument& e) {
+    err << "ibs dfs1 emulate: " << e.what() << "\n";
+    return kExitDfs1BadInput;
+  }
+
+  // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
+  StopSignals signals;
+  std::optional<serial::PtyPair> pair;
+  std::optional<serial::SerialPort> opened;
+  try {
+    if (o.pty) {
+      pair.emplace(serial::PtyPair::open(popts));
+    } else {
+      opened.emplace(serial::SerialPort::open(o.port.port, popts));
+    }
+  } catch (const std::exception& e) {
+    err << "ibs dfs1 emulate: " << e.what() << "\n";
+    return kExitDfs1BadInput;
+  }
+  serial::SerialPort& port = pair ? pair->master() : *opened;
+  if (pair) out << "pty: " << pair->slave_path() << "\n" << std::flush;
+  for (const std::string& n : port.notes()) err << "ibs dfs1 emulate: " << n << "\n";
+
+  std::unique_ptr<serial::ByteLog> log;
+  try {
+    if (!o.port.log.empty()) log = std::make_unique<serial::ByteLog>(o.port.log);
+  } catch (const std::exception& e) {
+    err << "ibs dfs1 emulate: " << e.what() << "\n";
+    return kExitDfs1BadInput;
+  }
+  port.set_log(log.get());
+
+  serve_dfs1(port, raw, [&signals]() { return signals.raised(); });
+  return kExitDfs1Ok;
+}
+
+struct ClientPlan {
+  proto::Frame request;
+  std::string what;
+};
+
+int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
+           std::ostream& err) {
+  const std::string name = which.get_name();
+  const auto bad = [&](const std::string& what) {
+    err << "ibs dfs1 " << name << ": " << what << "\n";
+    return kExitDfs1BadInput;
+  };
+  if (o.uid < 0 || o.uid > 255) return bad("--uid must be 0..255");
+  const auto uid = static_cast<std::uint8_t>(o.uid);
+  const bool execute_global = name == "speed" && o.execute_only;
+  if (uid == 0 && !execute_global) {
+    return bad("UID 0 is the global address, only for `speed --execute` (command 83)");
+  }
+  if (o.timeout_ms <= 0) return bad("--timeout-ms must be positive");
+
+  ClientPlan plan;
+  if (name == "status") {
+    plan = {proto::request::status(uid), "status"};
+  } else if (name == "read" || name == "write") {
+    if (!o.parameter || *o.parameter < 0 || *o.parameter > 255) return bad("PARAM must be 0..255");
+    const auto p = static_cast<std::uint8_t>(*o.parameter);
+    if (name == "read") {
+      plan = {proto::request::read_parameter(uid, p), "read parameter " + std::to_string(p)};
+    } else {
+      if (!o.value || *o.value < 0 || *o.value > 0xFFFFFFFFLL)
+        return bad("VALUE must be 0..4294967295");
+      const auto v = static_cast<std::uint32_t>(*o.value);
+      plan = {proto::request::write_parameter(uid, p, v),
+              "write parameter " + std::to_string(p) + " = " + std::to_string(v)};
+    }
+  } else {  // speed
+    if (o.set_only && o.execute_only) return bad("--set and --execute exclude each other");
+    if (o.execute_only) {
+      if (o.value) return bad("--execute takes no RPM: it runs the speed set before");
+      plan = {proto::request::execute_speed(uid), "execute speed"};
+    } else {
+      if (!o.value) return bad("RPM is required (or --execute)");
+      if (*o.value < INT32_MIN || *o.value > INT32_MAX) return bad("RPM does not fit 32 bits");
+      const auto rpm = static_cast<std::int32_t>(*o.value);
+      plan = o.set_only ? ClientPlan{proto::request::set_speed(uid, rpm),
+                                     "set speed " + std::to_string(rpm)}
+                        : ClientPlan{proto::request::set_and_execute_speed(uid, rpm),
+                                     "set and execute speed " + std::to_string(rpm)};
+    }
+  }
+
+  std::optional<serial::SerialPort> port;
+  std::unique_ptr<serial::ByteLog> log;
+  try {
+    if (o.port.port.empty()) return bad("--port PATH is required");
+    port.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
+    if (!o.port.log.empty()) log = std::make_unique<serial::ByteLog>(o.port.log);
+  } catch (const std::exception& e) {
+    return bad(e.what());
+  }
+  port->set_log(log.get());
+
+  const proto::HostResult r = transact_dfs1(
+      *port, plan.request, {std::chrono::milliseconds(o.timeout_ms), kInterByteTimeout});
+
+  nlohmann::json j;
+  j["uid"] = o.uid;
+  j["command"] = std::string(proto::to_string(static_cast<proto::Command>(plan.request.code)));
+  j["outcome"] = std::string(proto::to_string(r.outcome));
+  j["elapsed_ms"] = to_ms(r.elapsed);
+  if (plan.request.code == static_cast<std::uint8_t>(proto::Command::read_parameter) ||
+      plan.request.code == static_cast<std::uint8_t>(proto::Command::write_parameter)) {
+    j["parameter"] = *o.parameter;
+  }
+  const std::string who = "uid " + std::to_string(o.uid) + " " + plan.what;
+
+  if (r.outcome == proto::Outcome::nak) {
+    j["error"] = r.error;
+    j["error_name"] = std::string(proto::error_name(r.error));
+    if (o.json) out << j.dump() << "\n";
+    err << "ibs dfs1 " << name << ": " << who << ": NAK " << hex2(r.error) << "H "
+        << proto::error_name(r.error) << "\n";
+    return kExitDfs1Device;
+  }
+  if (r.outcome != proto::Outcome::ack && r.outcome != proto::Outcome::sent) {
+    if (r.last_decode_error)
+      j["last_decode_error"] = std::string(proto::to_string(*r.last_decode_error));
+    if (o.json) out << j.dump() << "\n";
+    err << "ibs dfs1 " << name << ": " << who << ": " << proto::to_string(r.outcome);
+    if (r.outcome == proto::Outcome::timeout)
+      err << " (no answer within " << o.timeout_ms << " ms)";
+    if (r.last_decode_error)
+      err << ", last corrupt frame: " << proto::to_string(*r.last_decode_error);
+    err << "\n";
+    return kExitDfs1Device;
+  }
+
+  if (name == "status") {
+    const auto& f = r.response;
+    const auto commanded = proto::to_signed(f.value_at(0));
+    const auto actual = proto::to_signed(f.value_at(4));
+    const std::uint32_t load = f.value_at(8);
+    const std::uint8_t st2 = f.data[14];
+    const std::uint8_t st1 = f.data[15];
+    j["value"] = f.value_at(12);
+    j["commanded_speed"] = commanded;
+    j["actual_speed"] = actual;
+    j["load_percent"] = load;
+    j["st2"] = st2;
+    j["st1"] = st1;
+    j["st2_flags"] = st2_flags(st2);
+    j["st1_flags"] = st1_flags(st1);
+    if (o.json) {
+      out << j.dump() << "\n";
+    } else {
+      out << "uid " << o.uid << ": commanded " << commanded << " rpm, actual " << actual
+          << " rpm, load " << load << " %\n"
+          << "ST2 " << hex2(st2) << "H: " << join(st2_flags(st2)) << "\n"
+          << "ST1 " << hex2(st1) << "H: " << join(st1_flags(st1)) << "\n";
+    }
+  } else if (name == "read") {
+    const std::uint32_t v = r.value();
+    j["value"] = v;
+    const dev::ParameterInfo* p = dev::find_parameter(static_cast<std::uint8_t>(*o.parameter));
+    if (p != nullptr) j["name"] = std::string(p->name);
+    if (o.json) {
+      out << j.dump() << "\n";
+    } else {
+      out << "uid " << o.uid << " parameter " << *o.parameter;
+      if (p != nullptr) out << " (" << p->name << ")";
+      out << ": " << v;
+      if (p != nullptr && !p->unit.empty()) out << " " << p->unit;
+      out << "\n";
+    }
+  } else {
+    if (o.value) j["value"] = *o.value;
+    if (o.json) {
+      out << j.dump() << "\n";
+    } else {
+      out << who << ": " << proto::to_string(r.outcome) << "\n";
+    }
+  }
+  return kExitDfs1Ok;
+}
+
+void add_port_options(CLI::App* cmd, Dfs1PortOptions& p) {
+  cmd->add_option("--baud", p.baud, "baud rate (default 9600; a pty ignores it)");
+  cmd->add_option("--framing", p.framing, "data bits, parity, stop bits (default 8N1)");
+  cmd->add_flag("--rs485", p.rs485, "let the driver switch the RS-485 transmitter (TIOCSRS485)");
+  cmd->add_option("--log", p.log, "write every byte with time and direction to FILE");
+}
+
+void add_client_options(CLI::App* cmd, Dfs1ClientOptions& o) {
+  cmd->add_option("--port", o.port.port, "the serial port (e.g. /dev/ttyUSB0 or a pty)")
+      ->required();
+  cmd->add_option("--uid", o.uid, "the controller's unit ID, 1..255")->required();
+  cmd->add_option("--timeout-ms", o.timeout_ms, "response timeout in ms (default 200)");
+  cmd->add_flag("--json", o.json, "print JSON");
+  add_port_options(cmd, o.port);
+}
+
+}  // namespace
+
+void serve_dfs1(serial::SerialPort& port, std::span<dev::Controller* const> controllers,
+                const std::function<bool()>& stop) {
+  const Clock::time_point t0 = Clock::now();
+  std::array<std::uint8_t, 256> buf{};
+  while (!stop()) {
+    Time now = since(t0);
+    Duration wait = kServePoll;
+    for (const dev::Controller* c : controllers) {
+      if (auto due = c->next_deadline()) wait = std::min(wait, std::max(*due - now, Duration(0)));
+    }
+    const std::size_t n = port.read(buf, std::max(wait, Duration(100us)));
+    now = since(t0);
+    for (dev::Controller* c : controllers) {
+      c->receive(std::span<const std::uint8_t>(buf.data(), n), now);
+      c->step(now);
+    }
+    for (dev::Controller* c : controllers) {
+      const auto p = c->pending(now);
+      if (p.empty()) continue;
+      port.write(p);
+      c->consume(p.size());
+    }
+  }
+}
+
+proto::HostResult transact_dfs1(serial::SerialPort& port, const proto::Frame& request,
+                                proto::HostTimeouts timeouts) {
+  const Clock::time_point t0 = Clock::now();
+  proto::HostTransaction t(timeouts);
+  if (t.start(request, since(t0)) != proto::StartStatus::accepted) {
+    throw std::invalid_argument("dfs1: request refused: " +
+                                std::string(proto::to_string(proto::check_request(request))));
+  }
+  port.discard_input();  // stale bytes are no answer to this request (nanoMODBUS flushes too)
+  port.write(t.tx());
+  t.transmitted(since(t0));
+  std::array<std::uint8_t, 256> buf{};
+  while (!t.done()) {
+    const Time now = since(t0);
+    const Duration wait = std::max(t.next_deadline().value_or(now) - now, Duration(100us));
+    const std::size_t n = port.read(buf, wait);
+    t.receive(std::span<const std::uint8_t>(buf.data(), n), since(t0));
+    t.poll(since(t0));
+  }
+  return *t.take_result();
+}
+
+void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
+  state.dfs1 = app.add_subcommand("dfs1",
+                                  "PowerTec DFS-1 over a serial port: emulate controllers, "
+                                  "or ask one (docs/dfs1.md)");
+  state.dfs1->require_subcommand(1);
+
+  Dfs1EmulateOptions& eo = state.emulate_options;
+  state.emulate = state.dfs1->add_subcommand(
+      "emulate", "emulate DFS-1 controllers on a port or a new pty until SIGINT/SIGTERM");
+  state.emulate->add_option("DEVICE", eo.devices, "dfs1@UID, one per controller")->required();
+  state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
+  state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
+  add_port_options(state.emulate, eo.port);
+
+  Dfs1ClientOptions& co = state.client_options;
+  state.status = state.dfs1->add_subcommand("status", "command 81: speeds, load, ST2 and ST1");
+  add_client_options(state.status, co);
+
+  state.read = state.dfs1->add_subcommand("read", "command 85: read a parameter");
+  state.read
+      ->add_option_function<long long>(
+          "PARAM", [&co](const long long& v) { co.parameter = v; }, "parameter number")
+      ->required();
+  add_client_options(state.read, co);
+
+  state.write = state.dfs1->add_subcommand("write", "command 86: write a parameter");
+  state.write
+      ->add_option_function<long long>(
+          "PARAM", [&co](const long long& v) { co.parameter = v; }, "parameter number")
+      ->required();
+  state.write
+      ->add_option_function<long long>(
+          "VALUE", [&co](const long long& v) { co.value = v; }, "the value (4 bytes)")
+      ->required();
+  add_client_options(state.write, co);
+
+  state.speed = state.dfs1->add_subcommand(
+      "speed", "84 set and execute RPM; --set: 82 only; --execute: 83 (UID 0: every controller)");
+  state.speed->add_option_function<long long>(
+      "RPM", [&co](const long long& v) { co.value = v; }, "speed in rpm, negative reverse");
+  state.speed->add_flag("--set", co.set_only, "command 82: set the speed, do not run it");
+  state.speed->add_flag("--execute", co.execute_only, "command 83: run the speed set before");
+  add_client_options(state.speed, co);
+}
+
+std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
+                                     std::ostream& err) {
+  if (state.dfs1 == nullptr || !state.dfs1->parsed()) return std::nullopt;
+  if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
+  for (const CLI::App* c : {state.status, state.read, state.write, state.speed}) {
+    if (c->parsed()) return client(*c, state.client_options, out, err);
+  }
+  return kExitDfs1BadInput;
+}
+
+std::optional<int> run_dfs1_commands(const Dfs1CommandState& state) {
+  return run_dfs1_commands(state, std::cout, std::cerr);
+}
+
+}  // namespace ibs::cli

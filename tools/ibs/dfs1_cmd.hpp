@@ -1,0 +1,92 @@
+// `ibs dfs1 ...`: the PowerTec DFS-1 over a serial port (docs/dfs1.md, "Command line").
+//
+//   ibs dfs1 emulate (--port PATH | --pty) [--baud N] dfs1@UID...
+//   ibs dfs1 status --port PATH --uid N
+//   ibs dfs1 read   --port PATH --uid N PARAM
+//   ibs dfs1 write  --port PATH --uid N PARAM VALUE
+//   ibs dfs1 speed  --port PATH --uid N [RPM] [--set | --execute]
+//
+// with [--baud N] [--framing 8N1] [--timeout-ms N] [--rs485] [--json] [--log FILE]. Exit codes:
+// 0 ok, 1 the device answered NAK or not at all (the decoded error is printed), 2 bad input.
+// This is floor 4: real time from the steady clock, real ports; the protocol machines inside are
+// the sans-I/O ones of dfs1/ and devices/dfs1/.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "ibs/devices/dfs1/controller.hpp"
+#include "ibs/dfs1/host.hpp"
+#include "ibs/serial/serial_port.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace ibs::cli {
+
+inline constexpr int kExitDfs1Ok = 0;
+inline constexpr int kExitDfs1Device = 1;    // NAK, timeout, bad response
+inline constexpr int kExitDfs1BadInput = 2;  // bad options, a port that does not open
+
+struct Dfs1PortOptions {
+  std::string port;
+  std::uint32_t baud = 9600;
+  std::string framing = "8N1";  // decision D9: binary data needs 8 bits
+  bool rs485 = false;
+  std::string log;  // empty: no byte log
+};
+
+struct Dfs1EmulateOptions {
+  Dfs1PortOptions port;
+  bool pty = false;
+  std::vector<std::string> devices;  // dfs1@UID
+};
+
+struct Dfs1ClientOptions {
+  Dfs1PortOptions port;
+  int uid = -1;
+  int timeout_ms = 200;  // response timeout; the inter-byte timeout is 20 ms
+  bool json = false;
+  std::optional<long long> parameter;  // read, write
+  std::optional<long long> value;      // write; speed: RPM
+  bool set_only = false;               // speed --set: 82
+  bool execute_only = false;           // speed --execute: 83 (UID 0 allowed)
+};
+
+struct Dfs1CommandState {
+  CLI::App* dfs1 = nullptr;
+  CLI::App* emulate = nullptr;
+  CLI::App* status = nullptr;
+  CLI::App* read = nullptr;
+  CLI::App* write = nullptr;
+  CLI::App* speed = nullptr;
+  Dfs1EmulateOptions emulate_options;
+  Dfs1ClientOptions client_options;
+};
+
+// Adds `dfs1` and its subcommands to the app; `state` must outlive app.parse().
+void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state);
+// After app.parse(): runs the chosen one and returns its exit code; nullopt when `dfs1` was not
+// chosen. `emulate` serves until SIGINT or SIGTERM and then returns 0.
+std::optional<int> run_dfs1_commands(const Dfs1CommandState& state);
+std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
+                                     std::ostream& err);
+
+// The I/O loops, also for tests.
+//
+// Serves `controllers` on one line: every byte read goes to every controller with the time since
+// the loop began; a reply is written when its turnaround has passed. Returns when stop() is true
+// (asked between reads, at least every 20 ms).
+void serve_dfs1(serial::SerialPort& port, std::span<devices::dfs1::Controller* const> controllers,
+                const std::function<bool()>& stop);
+// One transaction in real time: flushes the input, writes the request, waits for the outcome.
+::ibs::dfs1::HostResult transact_dfs1(serial::SerialPort& port, const ::ibs::dfs1::Frame& request,
+                                      ::ibs::dfs1::HostTimeouts timeouts);
+
+}  // namespace ibs::cli
