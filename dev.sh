@@ -3,18 +3,26 @@
 #
 #   ./dev.sh run [ARGS...]   build (release) and run the main job: `ibs run ARGS...`
 #   ./dev.sh test [PRESET]   build and run the whole test suite with CTest (PRESET: debug | asan)
+#   ./dev.sh fuzz [SECONDS] [TARGET...]
+#                            build the libFuzzer targets (clang, preset `fuzz`) and run each for
+#                            SECONDS (default 10) on its seed corpus: fuzz/run.sh, docs/robustness.md
 #
-# Both first check for the Debian packages the build needs and install the missing ones through
-# apt-get (saying so); nothing is downloaded at build time.
+# Each first checks for the Debian packages the build needs and installs the missing ones through
+# apt-get (saying so); nothing is downloaded at build time. Only `fuzz` needs clang.
 set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libcli11-dev
           nlohmann-json3-dev libtomlplusplus-dev libasio-dev libpcap-dev)
+# The fuzz targets only: clang with libFuzzer and the sanitizer runtimes.
+fuzz_packages=(clang libclang-rt-14-dev)
 
+# ensure_packages [PACKAGE...]: installs the missing ones (default: the build's packages).
 ensure_packages() {
+  local wanted=("$@")
+  ((${#wanted[@]} == 0)) && wanted=("${packages[@]}")
   local missing=()
-  for p in "${packages[@]}"; do
+  for p in "${wanted[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
   done
   ((${#missing[@]} == 0)) && return 0
@@ -62,8 +70,14 @@ case "$cmd" in
     build "$preset"
     ctest --preset "$preset" -j "$jobs"
     ;;
+  fuzz)
+    shift
+    ensure_packages
+    ensure_packages "${fuzz_packages[@]}"
+    exec fuzz/run.sh "$@"
+    ;;
   *)
-    echo "usage: ./dev.sh run [ARGS...] | ./dev.sh test [debug|asan]" >&2
+    echo "usage: ./dev.sh run [ARGS...] | ./dev.sh test [debug|asan] | ./dev.sh fuzz [SECONDS] [TARGET...]" >&2
     exit 2
     ;;
 esac

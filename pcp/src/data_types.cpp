@@ -123,7 +123,7 @@ Converted from_engineering(DataType t, double value) {
       return scaled(t, value, 65536.0, -2147483648.0, 2147483647.0);
     case DataType::float_ieee: {
       if (std::isnan(value)) return {{t, 0}, ConversionError::not_a_number};
-      constexpr double kMax = std::numeric_limits<float>::max();
+      constexpr double kMax = static_cast<double>(std::numeric_limits<float>::max());
       if (value > kMax) return {{t, 0}, ConversionError::too_high};
       if (value < -kMax) return {{t, 0}, ConversionError::too_low};
       return {{t, std::bit_cast<std::uint32_t>(static_cast<float>(value))}, ConversionError::none};

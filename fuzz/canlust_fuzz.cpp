@@ -1,0 +1,336 @@
+// CANLust (docs/canlust.md): arbitrary frames to every telegram decoder, to the cannelloni
+// decoder, and to both sides of the parameter channel - the drive's ParameterServer fed arbitrary
+// request telegrams, and the master's ParameterClient answered by a "noisy drive" that replies to
+// its requests with arbitrary (often wrong) replies, with time steps in between.
+//
+// Asserts:
+// - decoders: a decoded telegram re-encodes to the same bytes (the nominal length's prefix of the
+//   frame; longer DLCs are tolerated on receive, decision D4); classify() and id() are inverse;
+//   a datagram the cannelloni decoder accepts re-encodes to a datagram that decodes to the same
+//   frames;
+// - server: every request gets exactly one reply, with the request's parameter number and block
+//   counter, once the drive's delay has passed; a string write is only ever accepted (status 0
+//   to List_End, write_string() called) when its checksum is the XOR of the blocks echoed;
+// - client: every accepted request ends with exactly one documented outcome, and within its
+//   timeout (active since T with timeout D -> done once now >= T + D); a string read never ends
+//   `done` unless List_End's checksum is the XOR of the data blocks the client took.
+//
+// Input: byte 0 selects the part (0: decoders, 1: cannelloni, 2: server, 3: client); the rest is
+// that part's input, read front to back.
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "fuzz_support.hpp"
+#include "ibs/can/cannelloni.hpp"
+#include "ibs/canlust/parameter_channel.hpp"
+#include "ibs/canlust/parameter_client.hpp"
+#include "ibs/canlust/telegrams.hpp"
+
+namespace {
+
+using namespace ibs;
+using namespace ibs::canlust;
+using ibs::fuzz::Input;
+
+CanFrame read_frame(Input& in) {
+  CanFrame f;
+  f.id = static_cast<std::uint16_t>(in.ConsumeIntegral<std::uint16_t>() & 0x7FFU);
+  const auto flags = in.ConsumeIntegral<std::uint8_t>();
+  f.dlc = static_cast<std::uint8_t>(flags % 9U);
+  f.rtr = (flags & 0x80U) != 0 && (flags & 0x40U) != 0;
+  for (auto& b : f.data) b = in.ConsumeIntegral<std::uint8_t>();
+  for (std::size_t i = f.dlc; i < f.data.size(); ++i) f.data[i] = 0;
+  return f;
+}
+
+bool same_prefix(const CanFrame& a, const CanFrame& b, std::size_t n) {
+  return std::memcmp(a.data.data(), b.data.data(), n) == 0;
+}
+
+void decoders(Input& in) {
+  IdentifierMap ids;
+  ids.step = static_cast<std::uint8_t>(1 + in.ConsumeIntegral<std::uint8_t>() % 2);
+  while (in.remaining_bytes() > 0) {
+    const CanFrame f = read_frame(in);
+    const auto c = ids.classify(f.id);
+    if (c) IBS_FUZZ_REQUIRE(ids.id(c->kind, c->address) == f.id, "classify/id not inverse");
+    const Address a = c ? c->address : 0;
+    if (const auto s = decode_system(f)) {
+      IBS_FUZZ_REQUIRE(same_prefix(encode_system(s.value), f, 1), "system re-encode");
+    }
+    for (std::uint8_t cacnf = 1; cacnf <= 4; ++cacnf) {
+      const auto l = *process_layout_for_cacnf(cacnf);
+      if (const auto d = decode_control(f, l)) {
+        const auto e = encode_control(ids, a, l, d.value);
+        IBS_FUZZ_REQUIRE(e && same_prefix(*e, f, nominal_length(l.reference)), "control re-encode");
+      }
+      if (const auto d = decode_status(f, l)) {
+        const auto e = encode_status(ids, a, l, d.value);
+        IBS_FUZZ_REQUIRE(e && same_prefix(*e, f, nominal_length(l.actual)), "status re-encode");
+      }
+    }
+    if (const auto d = decode_error(f)) {
+      const auto e = encode_error(ids, a, d.value);
+      IBS_FUZZ_REQUIRE(e && same_prefix(*e, f, 3), "error re-encode");
+    }
+    if (const auto d = decode_parameter(f)) {
+      const auto e = encode_parameter_request(ids, a, d.value);
+      IBS_FUZZ_REQUIRE(e && same_prefix(*e, f, 8), "parameter re-encode");
+      if (f.dlc == 8 && c && c->kind == TelegramKind::parameter_request) {
+        IBS_FUZZ_REQUIRE(*e == f, "parameter frame re-encodes identically");
+      }
+    }
+  }
+}
+
+void cannelloni_part(Input& in) {
+  const auto bytes = in.ConsumeBytes<std::uint8_t>(in.remaining_bytes());
+  std::array<CanFrame, 64> out{};
+  const auto r = can::cannelloni::decode(bytes, out);
+  if (r.status != can::cannelloni::DecodeStatus::ok) return;
+  std::vector<std::uint8_t> again(can::cannelloni::encoded_size(std::span(out.data(), r.frames)));
+  const auto n = can::cannelloni::encode(std::span(out.data(), r.frames), r.sequence, again);
+  IBS_FUZZ_REQUIRE(n.has_value(), "decoded frames must encode");
+  std::array<CanFrame, 64> back{};
+  const auto r2 = can::cannelloni::decode(std::span(again.data(), *n), back);
+  IBS_FUZZ_REQUIRE(r2.status == can::cannelloni::DecodeStatus::ok && r2.frames == r.frames &&
+                       r2.skipped == 0 && r2.sequence == r.sequence, "cannelloni round trip");
+  for (std::size_t i = 0; i < r.frames; ++i) IBS_FUZZ_REQUIRE(back[i] == out[i], "frame differs");
+}
+
+// A drive whose answers come from the input; it records the string writes it accepted.
+class FuzzDrive final : public ParameterAccess {
+ public:
+  explicit FuzzDrive(Input& in) : in_(&in) {}
+  ValueResult read(std::uint16_t, std::uint8_t, Time) override {
+    return {status(), DataType::usign32, in_->ConsumeIntegral<std::uint32_t>(), delay()};
+  }
+  AccessResult write(std::uint16_t, std::uint8_t, std::uint32_t, Time) override { return {status(), delay()}; }
+  ValueResult describe(std::uint16_t, std::uint8_t, Time) override {
+    return {status(), DataType::usign32, in_->ConsumeIntegral<std::uint32_t>(), delay()};
+  }
+  StringResult read_string(std::uint16_t, std::span<char> out, Time) override {
+    const auto n = static_cast<std::uint8_t>(in_->ConsumeIntegral<std::uint8_t>() % (out.size() + 1));
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<char>(1 + in_->ConsumeIntegral<std::uint8_t>() % 255);
+    return {status(), n, delay()};
+  }
+  AccessResult begin_string_write(std::uint16_t, Time) override { return {status(), delay()}; }
+  AccessResult write_string(std::uint16_t, std::string_view text, Time) override {
+    IBS_FUZZ_REQUIRE(text.size() <= kMaxStringChars, "string longer than 99 characters");
+    return {kStatusOk, {}};
+  }
+
+ private:
+  std::uint8_t status() { return in_->ConsumeIntegral<std::uint8_t>() % 4 == 0 ? kStatusUnknownParameter : kStatusOk; }
+  Duration delay() { return std::chrono::milliseconds(in_->ConsumeIntegral<std::uint8_t>() % 4 == 0 ? 50 : 0); }
+  Input* in_;
+};
+
+void server_part(Input& in) {
+  FuzzDrive drive(in);
+  ParameterServer server(drive);
+  Time now{0};
+  std::uint32_t requests = 0, replies = 0;
+  // The string write as the server echoed it: open after an accepted block 0.
+  bool open = false;
+  std::uint16_t open_param = 0;
+  std::uint32_t xor_echoed = 0;
+  std::vector<ParameterTelegram> sent;  // requests in order, matched with replies in order
+  auto check_reply = [&](const ParameterTelegram& rep) {
+    ++replies;
+    IBS_FUZZ_REQUIRE(!sent.empty(), "a reply without a request");
+    ParameterTelegram req;
+    req = sent.front();
+    sent.erase(sent.begin());
+    IBS_FUZZ_REQUIRE(rep.parameter == req.parameter && rep.block == req.block, "reply does not echo");
+    if (req.code == kModeStringWrite) {
+      if (req.block == 0) {
+        open = rep.code == kStatusOk;
+        open_param = req.parameter;
+        xor_echoed = 0;
+      } else if (open && rep.code == kStatusOk) {
+        IBS_FUZZ_REQUIRE(rep.data == req.data, "block not echoed");
+        xor_echoed ^= req.data;
+      } else {
+        open = false;
+      }
+    } else if (req.code == kModeListEnd) {
+      if (rep.code == kStatusOk) {
+        IBS_FUZZ_REQUIRE(open && open_param == req.parameter && req.data == xor_echoed,
+                         "string accepted with a wrong checksum or without a transfer");
+      }
+      open = false;
+    } else {
+      open = false;
+    }
+  };
+  while (in.remaining_bytes() > 0) {
+    const auto action = in.ConsumeIntegral<std::uint8_t>();
+    if (action < 0x40) {
+      now += std::chrono::milliseconds(action);
+    } else {
+      ParameterTelegram t;
+      static constexpr std::uint8_t kModes[] = {kModeRead, kModeWrite, kModeDescribe, kModeStringRead,
+                                                kModeStringWrite, kModeListEnd, 0x33};
+      t.code = kModes[action % 7];
+      t.parameter = in.ConsumeIntegral<std::uint8_t>() % 3;
+      t.block = in.ConsumeIntegral<std::uint8_t>() % 8;
+      t.data = in.ConsumeBool() ? in.ConsumeIntegral<std::uint32_t>() : xor_echoed;
+      const bool pending = server.next_deadline() != Time::max();
+      ++requests;
+      server.receive(t, now);
+      if (pending) {
+        // One request at a time: a second one gets "repeat" at once (D12), before the first's reply.
+        const auto r = server.take_reply(now);
+        IBS_FUZZ_REQUIRE(r && r->code == kStatusRepeat && r->parameter == t.parameter &&
+                             r->block == t.block, "busy request not answered with repeat");
+        ++replies;
+      } else {
+        sent.push_back(t);
+      }
+    }
+    while (auto r = server.take_reply(now)) check_reply(*r);
+  }
+  now += 1s;
+  while (auto r = server.take_reply(now)) check_reply(*r);
+  IBS_FUZZ_REQUIRE(requests == replies, "every request gets exactly one reply");
+}
+
+struct Tracked {
+  RequestId id = 0;
+  Request request;
+  Duration timeout{};
+  bool active = false;
+  bool done = false;
+  Time since{};
+};
+
+void client_part(Input& in) {
+  ClientConfig cfg;
+  cfg.timeout = std::chrono::milliseconds(1 + in.ConsumeIntegral<std::uint8_t>());
+  cfg.string_timeout = std::chrono::milliseconds(1 + in.ConsumeIntegral<std::uint8_t>() * 4);
+  cfg.queue_capacity = 1 + in.ConsumeIntegral<std::uint8_t>() % 8;
+  cfg.completed_capacity = 64;
+  ParameterClient client(cfg);
+  const IdentifierMap ids;
+  std::vector<Tracked> tracked;
+  Time now{0};
+  // The noisy drive's view of the string read of each address (0..3).
+  struct Noisy {
+    bool waiting = false;
+    ParameterTelegram request{};
+    bool answered = false;  // a matching reply went out for this request
+    std::uint32_t xor_taken = 0;
+  };
+  std::array<Noisy, 4> drives{};
+  std::array<std::uint32_t, 4> last_list_end{};
+
+  auto step = [&] {
+    client.step(now);
+    for (auto& t : tracked) {
+      const auto p = client.poll(t.id);
+      if (t.done) continue;
+      if (p.state == RequestState::active && !t.active) {
+        t.active = true;
+        t.since = now;
+      }
+      if (p.state == RequestState::done) {
+        t.done = true;
+        const Outcome& o = *p.outcome;
+        IBS_FUZZ_REQUIRE(o.kind <= OutcomeKind::aborted, "undocumented outcome");
+        if (o.kind == OutcomeKind::timeout) {
+          IBS_FUZZ_REQUIRE(o.finished >= o.started + t.timeout, "timeout reported early");
+        } else {
+          IBS_FUZZ_REQUIRE(o.finished < o.started + t.timeout, "reply taken after the timeout");
+        }
+        if (t.request.kind == RequestKind::read_string && o.kind == OutcomeKind::done) {
+          IBS_FUZZ_REQUIRE(o.value == drives[t.request.address].xor_taken &&
+                               o.value == last_list_end[t.request.address],
+                           "string read done with a wrong checksum");
+        }
+        continue;
+      }
+      if (t.active) IBS_FUZZ_REQUIRE(now < t.since + t.timeout, "request active past its timeout");
+    }
+    while (auto f = client.take_frame()) {
+      const auto c = ids.classify(f->id);
+      IBS_FUZZ_REQUIRE(c && c->kind == TelegramKind::parameter_request, "client sent a non-request");
+      const auto d = decode_parameter(*f);
+      IBS_FUZZ_REQUIRE(static_cast<bool>(d), "client's request does not decode");
+      Noisy& n = drives[c->address % 4];
+      if (d.value.code == kModeStringRead && d.value.block == 0) n.xor_taken = 0;
+      n.waiting = true;
+      n.request = d.value;
+      n.answered = false;
+    }
+  };
+
+  while (in.remaining_bytes() > 0) {
+    const auto action = in.ConsumeIntegral<std::uint8_t>();
+    if (action < 0x60) {
+      now += std::chrono::milliseconds(action % 32);
+    } else if (action < 0x80) {
+      const auto a = static_cast<Address>(in.ConsumeIntegral<std::uint8_t>() % 4);
+      Request r;
+      switch (in.ConsumeIntegral<std::uint8_t>() % 5) {
+        case 0: r = read(a, 1); break;
+        case 1: r = write(a, 1, in.ConsumeIntegral<std::uint32_t>()); break;
+        case 2: r = describe(a, 1, 0); break;
+        case 3: r = read_string(a, 2); break;
+        default: r = write_string(a, 2, std::string(in.ConsumeIntegral<std::uint8_t>() % 110, 'x')); break;
+      }
+      if (in.ConsumeBool()) r.timeout = std::chrono::milliseconds(in.ConsumeIntegral<std::uint8_t>());
+      const auto s = client.submit(r);
+      if (s) {
+        const bool str = r.kind == RequestKind::read_string || r.kind == RequestKind::write_string;
+        tracked.push_back({s.id, r, r.timeout.value_or(str ? cfg.string_timeout : cfg.timeout)});
+      }
+    } else if (action < 0xF0) {
+      // The noisy drive answers its address's outstanding request, correctly or not.
+      Noisy& n = drives[action % 4];
+      const Address a = action % 4;
+      ParameterTelegram rep = n.request;
+      const auto how = in.ConsumeIntegral<std::uint8_t>();
+      rep.code = (how & 3U) == 0 ? in.ConsumeIntegral<std::uint8_t>() : ((how & 3U) == 1 ? kStatusListEnd : kStatusOk);
+      rep.data = (how & 4U) != 0 ? n.xor_taken : in.ConsumeIntegral<std::uint32_t>();
+      if ((how & 8U) != 0) rep.block = in.ConsumeIntegral<std::uint8_t>();
+      if ((how & 16U) != 0) rep.parameter = in.ConsumeIntegral<std::uint16_t>();
+      const bool matching = n.waiting && !n.answered && rep.parameter == n.request.parameter &&
+                            rep.block == n.request.block;
+      if (matching) {
+        n.answered = true;
+        if (n.request.code == kModeStringRead && rep.code == kStatusOk) n.xor_taken ^= rep.data;
+        if (n.request.code == kModeStringRead && rep.code == kStatusListEnd) last_list_end[a] = rep.data;
+      }
+      client.receive(*encode_parameter_reply(ids, a, rep), now);
+    } else {
+      // Any frame at all.
+      client.receive(read_frame(in), now);
+    }
+    step();
+  }
+  // The drive falls silent: queued requests start as the ones before them time out.
+  for (std::size_t i = 0; i <= cfg.queue_capacity + 1; ++i) {
+    now += 10s;
+    step();
+  }
+  for (const auto& t : tracked) IBS_FUZZ_REQUIRE(t.done, "request never ended");
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Input in(data, size);
+  switch (in.ConsumeIntegral<std::uint8_t>() % 4) {
+    case 0: decoders(in); break;
+    case 1: cannelloni_part(in); break;
+    case 2: server_part(in); break;
+    default: client_part(in); break;
+  }
+  return 0;
+}

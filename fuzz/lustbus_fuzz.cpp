@@ -1,0 +1,253 @@
+// LUSTBUS (docs/lustbus.md): the host's answer decoder, the device's receiver (seed 000,
+// section 3) and the host client, fed arbitrary bytes, faults and times.
+//
+// Byte 0 picks the part; the rest drives it.
+// - decoder: arbitrary bytes as a device answer. Asserts: a completed text answer re-encodes to
+//   exactly the bytes consumed (ADR STX CODE = VALUE ETX BCC with the rule's BCC); ACK / NAK only
+//   as two bytes; an error never after done.
+// - receiver: arbitrary bytes into a Receiver with a checking responder. Asserts: a SELECT reaches
+//   the responder only when the bytes since the last EOT are exactly EOT? ADR STX CODE = VALUE ETX
+//   BCC for that code and value with the right BCC (so no value is ever taken from a broken
+//   telegram); an ENQUIRY only after ADR CODE ENQ; never at another address; broadcast never
+//   answered; every answer is a well-formed answer (decodes) to the telegram just received.
+// - host: requests and arbitrary answer bytes at arbitrary times into a Host. Asserts: every
+//   request ends within a bound of simulated time; a value outcome holds only VALUE characters;
+//   the host's output is always EOT-led telegrams or a lone EOT; nothing is sent while awaiting.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fuzz_support.hpp"
+#include "ibs/lustbus/host.hpp"
+#include "ibs/lustbus/receiver.hpp"
+
+namespace {
+
+using namespace ibs;
+using namespace ibs::lustbus;
+using ibs::fuzz::fail;
+using In = ibs::fuzz::Input;
+
+std::string random_string(In& in, std::size_t max) {
+  const auto n = in.ConsumeIntegralInRange<std::size_t>(0, max);
+  const auto bytes = in.ConsumeBytes<std::uint8_t>(n);
+  return {bytes.begin(), bytes.end()};
+}
+
+void fuzz_decoder(In& in) {
+  const auto a = static_cast<Address>(in.ConsumeIntegralInRange<int>(0, 30));
+  const Code c = make_code(in.ConsumeIntegralInRange<std::uint32_t>(0, 99999));
+  const bool enq = in.ConsumeBool();
+  const auto bytes = in.ConsumeBytes<std::uint8_t>(in.remaining_bytes());
+  AnswerDecoder d;
+  d.start(a, c, enq ? AnswerDecoder::Expect::text_or_nak : AnswerDecoder::Expect::ack_or_nak);
+  std::size_t used = 0;
+  for (const auto b : bytes) {
+    const auto before = d.status();
+    const auto st = d.feed(b);
+    if (before != AnswerDecoder::Status::need_more && st != before) fail("status changed after the end");
+    if (before == AnswerDecoder::Status::need_more) ++used;
+  }
+  if (d.status() != AnswerDecoder::Status::done) return;
+  const std::vector<std::uint8_t> got(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(used));
+  Frame f;
+  switch (d.kind()) {
+    case AnswerKind::text:
+      if (!enq) fail("text accepted for a SELECT");
+      f = encode_text_answer(a, c, d.value());
+      break;
+    case AnswerKind::ack:
+      if (enq) fail("ACK accepted for an ENQUIRY");
+      f = encode_ack(a);
+      break;
+    case AnswerKind::nak:
+      f = encode_nak(a);
+      break;
+    case AnswerKind::none:
+      fail("done without a kind");
+  }
+  if (std::vector<std::uint8_t>(f.bytes.begin(), f.bytes.begin() + f.size) != got) {
+    fail("accepted answer does not re-encode to its bytes");
+  }
+}
+
+class Checking : public Responder {
+ public:
+  explicit Checking(In& in) : in_(in) {}
+  std::vector<std::uint8_t> since_eot;  // the bytes since the last EOT, EOT included
+  Address own = 1;
+  bool last_was_select = false;
+  Code code{};
+  Value value{};
+  Address addr = 0;
+
+  EnquiryAnswer enquiry(const Code& c, const Context& ctx) override {
+    check_address(ctx);
+    if (ctx.broadcast()) fail("ENQUIRY at 31 reached the responder");
+    const Frame f = encode_enquiry(ctx.address, c);
+    if (!ends_with(f, 0)) fail("ENQUIRY taken from bytes that are not EOT ADR CODE ENQ");
+    last_was_select = false;
+    code = c;
+    addr = ctx.address;
+    if (in_.ConsumeBool()) return EnquiryAnswer::nak();
+    const auto v = Value::from(random_string(in_, 100));
+    return v ? EnquiryAnswer::text(*v, Duration{in_.ConsumeIntegral<std::uint8_t>()})
+             : EnquiryAnswer::nak();
+  }
+  SelectAnswer select(const Code& c, const Value& v, const Context& ctx) override {
+    check_address(ctx);
+    const Frame f = encode_select(ctx.address, c, v);
+    if (!ends_with(f, 1)) fail("SELECT taken from bytes that are not its telegram with its BCC");
+    last_was_select = true;
+    code = c;
+    value = v;
+    addr = ctx.address;
+    return in_.ConsumeBool() ? SelectAnswer::ack() : SelectAnswer::nak();
+  }
+  void checksum_error(const Context& ctx) override {
+    check_address(ctx);
+    last_was_select = true;
+    addr = ctx.address;
+  }
+
+ private:
+  void check_address(const Context& ctx) const {
+    if (ctx.address != 0 && ctx.address != 31 && ctx.address != own) fail("another device's telegram taken");
+  }
+  // The bytes since the last reset end with the frame's telegram (without its leading EOT), and
+  // only EOTs precede it.
+  bool ends_with(const Frame& f, int) const {
+    const std::size_t body = f.size - 1;  // without the frame's leading EOT
+    if (since_eot.size() < body) return false;
+    const std::size_t off = since_eot.size() - body;
+    for (std::size_t i = 0; i < body; ++i) {
+      if (since_eot[off + i] != f.bytes[i + 1]) return false;
+    }
+    // Only EOTs may precede the telegram since the receiver was reset.
+    for (std::size_t i = 0; i < off; ++i) {
+      if (since_eot[i] != kEot) return false;
+    }
+    return true;
+  }
+  In& in_;
+};
+
+void fuzz_receiver(In& in) {
+  Checking r(in);
+  r.own = static_cast<Address>(in.ConsumeIntegralInRange<int>(0, 30));
+  Receiver rx(r, r.own);
+  Time now{0};
+  while (in.remaining_bytes() > 0) {
+    const auto b = in.ConsumeIntegral<std::uint8_t>();
+    const bool bcc_position = rx.state() == ReceiverState::select_bcc;
+    if (b == kEot && !bcc_position) {
+      r.since_eot.assign(1, kEot);
+    } else {
+      r.since_eot.push_back(b);
+    }
+    rx.receive(b, now);
+    now += Duration{in.ConsumeIntegral<std::uint16_t>()};
+    const auto due = rx.answer_due();
+    if (!due) continue;
+    const auto answer = rx.take_answer(*due);
+    if (answer.empty()) fail("a due answer was not given");
+    if (r.addr == kAddressBroadcast) fail("a broadcast was answered");
+    AnswerDecoder d;
+    d.start(r.addr, r.code,
+            r.last_was_select ? AnswerDecoder::Expect::ack_or_nak : AnswerDecoder::Expect::text_or_nak);
+    for (const auto x : answer) d.feed(x);
+    if (d.status() != AnswerDecoder::Status::done) fail("an answer that does not decode");
+  }
+}
+
+void fuzz_host(In& in) {
+  HostConfig cfg;
+  cfg.response_timeout = Duration{in.ConsumeIntegralInRange<std::int64_t>(1, 300'000'000)};
+  cfg.inter_char_timeout = Duration{in.ConsumeIntegralInRange<std::int64_t>(1, 50'000'000)};
+  cfg.turnaround = Duration{in.ConsumeIntegralInRange<std::int64_t>(0, 5'000'000)};
+  cfg.download_timeout = 1s;
+  cfg.download_poll_interval = 50ms;
+  cfg.scan_response_timeout = 10ms;
+  cfg.queue_capacity = 4;
+  Host host(cfg);
+  static const Assignment kRecords[] = {{make_code(20300), make_value("2")}};
+  Time now{0};
+  std::vector<RequestId> ids;
+  while (in.remaining_bytes() > 0) {
+    switch (in.ConsumeIntegralInRange<int>(0, 9)) {
+      case 0: {
+        const auto a = static_cast<Address>(in.ConsumeIntegralInRange<int>(0, 31));
+        const Code c = make_code(in.ConsumeIntegralInRange<std::uint32_t>(0, 99999));
+        const auto v = Value::from(random_string(in, 12)).value_or(Value{});
+        Request r;
+        switch (in.ConsumeIntegralInRange<int>(0, 5)) {
+          case 0: r = enquiry(a, c); break;
+          case 1: r = select(a, c, v); break;
+          case 2: r = broadcast(c, v); break;
+          case 3: r = network_scan(); break;
+          case 4: r = download(a, kRecords); break;
+          default: r = substitution_text_request(a, static_cast<std::uint16_t>(c.number() % 1000), 1); break;
+        }
+        const auto s = host.submit(r);
+        if (s) ids.push_back(s.id);
+        break;
+      }
+      case 1:
+      case 2:
+      case 3:
+        host.receive(in.ConsumeIntegral<std::uint8_t>(), now);
+        break;
+      case 4:
+        if (in.ConsumeBool()) host.restart(now);
+        break;
+      default:
+        now += Duration{in.ConsumeIntegralInRange<std::int64_t>(0, 20'000'000)};
+        break;
+    }
+    host.step(now);
+    const auto out = host.take_output();
+    if (!out.empty()) {
+      if (out[0] != kEot) fail("host output does not start with EOT");
+      host.output_done(now);
+    }
+  }
+  // With no more answers, every request ends within a bound of simulated time.
+  const Time limit = now + 600s;
+  while (!host.idle() && now < limit) {
+    const Time d = host.next_deadline();
+    now = d == Time::max() ? now + 1ms : std::max(d, now);
+    host.step(now);
+    if (!host.take_output().empty()) host.output_done(now);
+  }
+  if (!host.idle()) fail("a request never ended");
+  // The ring keeps the last completed_capacity outcomes.
+  for (const RequestId id : ids) {
+    if (id + cfg.completed_capacity <= ids.back()) continue;
+    const Poll p = host.poll(id);
+    if (p.state != RequestState::done) fail("request " + std::to_string(id) + " not done");
+    if (p.outcome->kind == OutcomeKind::value) {
+      for (const char ch : p.outcome->value.view()) {
+        if (!is_value_char(static_cast<std::uint8_t>(ch))) fail("value outcome with a frame character");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  In in(data, size);
+  switch (in.ConsumeIntegralInRange<int>(0, 2)) {
+    case 0:
+      fuzz_decoder(in);
+      break;
+    case 1:
+      fuzz_receiver(in);
+      break;
+    default:
+      fuzz_host(in);
+      break;
+  }
+  return 0;
+}
