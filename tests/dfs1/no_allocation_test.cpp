@@ -1,30 +1,11 @@
 // The cycle path allocates nothing (design.md): encode, decode, host transactions, the
 // controller's receiver and emulator, the master's queue and the simulated line all run between
-// two readings of a global allocation counter.
+// two readings of the shared allocation counter (tests/support/counting_new.hpp).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
+#include "../support/counting_new.hpp"
 #include "ibs/devices/dfs1/line.hpp"
 #include "ibs/dfs1/host.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace ibs::devices::dfs1 {
 namespace {
@@ -40,7 +21,7 @@ TEST(Dfs1CyclePath, AllocatesNothing) {
   std::size_t acks = 0;
   std::size_t others = 0;
 
-  const long before = g_allocations.load();
+  test::AllocationCounter counting;
   for (int round = 0; round < 50; ++round) {
     (void)master.submit(request::write_parameter(1, 3, 15));
     (void)master.submit(request::set_and_execute_speed(1, 100 + round));
@@ -57,8 +38,7 @@ TEST(Dfs1CyclePath, AllocatesNothing) {
     proto::FrameDecoder d;
     for (std::uint8_t byte : proto::encode(request::set_speed(1, 4096)).span()) (void)d.push(byte);
   }
-  const long after = g_allocations.load();
-  EXPECT_EQ(after - before, 0);
+  EXPECT_EQ(counting.count(), 0);
   EXPECT_EQ(acks, 50U * 5U);
   EXPECT_EQ(others, 50U * 3U);
 }
