@@ -100,8 +100,8 @@ std::vector<std::string> st2_flags(std::uint8_t s) {
   static constexpr std::array<const char*, 8> kNames = {
       "zero-speed", "uP-fault", "enabled", "fault", "forward", "at-speed", "slave", "remote"};
   std::vector<std::string> out;
-  for (int bit = 7; bit >= 0; --bit) {
-    if ((s >> bit) & 1U) out.emplace_back(kNames[static_cast<std::size_t>(bit)]);
+  for (std::size_t bit = 8; bit-- > 0;) {
+    if (((static_cast<unsigned>(s) >> bit) & 1U) != 0U) out.emplace_back(kNames[bit]);
   }
   return out;
 }
@@ -111,8 +111,8 @@ std::vector<std::string> st1_flags(std::uint8_t s) {
       "undervolt", "overvolt", "commutation", "heatsink-overtemp",
       "I2t",       "stall",    "IOC",         "bus-not-charged"};
   std::vector<std::string> out;
-  for (int bit = 7; bit >= 0; --bit) {
-    if ((s >> bit) & 1U) out.emplace_back(kNames[static_cast<std::size_t>(bit)]);
+  for (std::size_t bit = 8; bit-- > 0;) {
+    if (((static_cast<unsigned>(s) >> bit) & 1U) != 0U) out.emplace_back(kNames[bit]);
   }
   return out;
 }
