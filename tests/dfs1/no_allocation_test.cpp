@@ -36,7 +36,8 @@ TEST(Dfs1CyclePath, AllocatesNothing) {
       (c->result.outcome == proto::Outcome::ack ? acks : others) += 1;
     }
     proto::FrameDecoder d;
-    for (std::uint8_t byte : proto::encode(request::set_speed(1, 4096)).span()) (void)d.push(byte);
+    const auto frame = proto::encode(request::set_speed(1, 4096));  // outlives the loop over its bytes
+    for (std::uint8_t byte : frame.span()) (void)d.push(byte);
   }
   EXPECT_EQ(counting.count(), 0);
   EXPECT_EQ(acks, 50U * 5U);
