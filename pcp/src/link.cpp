@@ -83,14 +83,29 @@ void Link::reset_transfers() {
 
 void Link::abort() {
   reset_transfers();
+  own_abort_pending_ = false;
+  // A new abort gets the next number; aborting again before the peer answered is the same abort
+  // (nothing can have crossed meanwhile), so that an old ABORT-ACK on a channel the peer stopped
+  // updating cannot come round again as the answer after four quick aborts.
+  if (state_ != LinkState::aborting) abort_number_ = next_seq(abort_number_);
   state_ = LinkState::aborting;
   ++stats_.aborts_local;
 }
 
-void Link::enter_acking() {
+void Link::enter_acking(std::uint8_t peer_abort_number) {
   reset_transfers();
+  peer_abort_number_ = peer_abort_number;
+  peer_abort_waiting_ = false;
   state_ = LinkState::acking;
   ++stats_.aborts_peer;
+}
+
+void Link::leave_acking() {
+  if (own_abort_pending_) {
+    abort();  // the master never answered the servo's own abort: announce it again
+  } else {
+    state_ = LinkState::ready;
+  }
 }
 
 bool Link::send(std::span<const std::uint8_t> pdu) {
@@ -154,15 +169,44 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
     const auto code = static_cast<ControlCode>(a->seq);
     switch (state_) {
       case LinkState::aborting:
-        if (code == ControlCode::abort_ack) state_ = LinkState::ready;
-        if (code == ControlCode::abort) enter_acking();  // both sides started an abort
+        if (code == ControlCode::abort_ack && a->ack == abort_number_) {
+          // The answer to this abort (an ABORT-ACK of an earlier one may still be on the channel,
+          // a repeated cycle). The master then answers the servo's abort it saw meanwhile.
+          if (peer_abort_waiting_) {
+            enter_acking(peer_abort_number_);
+          } else {
+            state_ = LinkState::ready;
+          }
+        } else if (code == ControlCode::abort) {
+          // Both sides abort: the master's goes first. The servo answers it and waits for the
+          // master's answer to its own; the master notes the servo's and answers it after.
+          if (cfg_.direction == Direction::to_client) {
+            enter_acking(a->ack);
+            own_abort_pending_ = true;
+          } else {
+            peer_abort_waiting_ = true;
+            peer_abort_number_ = a->ack;
+          }
+        }
         break;
       case LinkState::acking:
-        if (code != ControlCode::abort) state_ = LinkState::ready;
+        if (code == ControlCode::abort && a->ack != peer_abort_number_) {
+          enter_acking(a->ack);  // the peer aborted once more
+          ev.reset = true;
+        } else if (code == ControlCode::abort_ack && cfg_.direction == Direction::to_client &&
+                   a->ack == abort_number_) {
+          // The master answers the servo's abort after its own: both have dropped everything.
+          own_abort_pending_ = false;
+          state_ = LinkState::ready;
+        } else if (code == ControlCode::idle) {
+          // The peer took our ABORT-ACK. A servo whose own abort is unanswered announces it again:
+          // the master's ABORT it answered may have been an old one on a repeated cycle.
+          leave_acking();
+        }
         break;
       case LinkState::ready:
         if (code == ControlCode::abort) {
-          enter_acking();
+          enter_acking(a->ack);
           ev.reset = true;
         } else if (code == ControlCode::idle) {
           take_ack(a->ack, ev);  // an idle peer still acknowledges our fragments
@@ -174,7 +218,13 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
 
   // A data frame.
   if (state_ == LinkState::aborting) return ev;  // the peer has not seen our ABORT yet
-  if (state_ == LinkState::acking) state_ = LinkState::ready;
+  if (state_ == LinkState::acking) {
+    // The peer took our ABORT-ACK and starts its first message (FIRST s0); any other data frame
+    // is from before its abort.
+    if (a->type != FrameType::first || a->seq != 0) return ev;
+    leave_acking();
+    if (state_ != LinkState::ready) return ev;
+  }
   take_ack(a->ack, ev);
   process_data(*a, data, ev);
   return ev;
@@ -275,10 +325,12 @@ void Link::transmit(Time now, std::span<Word> out) {
     case LinkState::aborting:
       a.type = FrameType::control;
       a.seq = static_cast<std::uint8_t>(ControlCode::abort);
+      a.ack = abort_number_;
       break;
     case LinkState::acking:
       a.type = FrameType::control;
       a.seq = static_cast<std::uint8_t>(ControlCode::abort_ack);
+      a.ack = peer_abort_number_;
       break;
     case LinkState::ready:
       if (!tx_active_) {

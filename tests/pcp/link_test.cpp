@@ -106,16 +106,25 @@ TEST(Link, OneWordReadRequestCycleByCycle) {
   // Step 0 outputs: both sides start by announcing a reset.
   p.a.transmit(p.now, p.a_out);
   p.b.transmit(p.now, p.b_out);
-  EXPECT_EQ(p.a_out[0], 0x0E00);  // master ABORT
-  EXPECT_EQ(p.b_out[0], 0x8F00);  // servo ABORT
-  p.step();                       // both see ABORT: both answer ABORT-ACK
-  EXPECT_EQ(p.a_out[0], 0x1600);
+  EXPECT_EQ(p.a_out[0], 0x0E00);  // master ABORT, abort number 3
+  EXPECT_EQ(p.b_out[0], 0x8F00);  // servo ABORT, abort number 3
+  p.step();  // both abort: the master's goes first; the servo answers it, the master waits
+  EXPECT_EQ(p.a_out[0], 0x0E00);
+  EXPECT_EQ(p.b_out[0], 0x9700);  // ABORT-ACK of the master's abort 3
+  p.step();  // the master has its answer and answers the servo's abort it noted
+  EXPECT_EQ(p.a_out[0], 0x1600);  // ABORT-ACK of the servo's abort 3
   EXPECT_EQ(p.b_out[0], 0x9700);
-  p.step();  // both see ABORT-ACK: ready
+  p.step();  // the servo has its answer too: ready
+  EXPECT_EQ(p.b.state(), LinkState::ready);
+  EXPECT_EQ(p.a_out[0], 0x1600);
+  EXPECT_EQ(p.b_out[0], 0x8600);
+  p.step();  // the master sees IDLE: ready
   EXPECT_EQ(p.a.state(), LinkState::ready);
   EXPECT_EQ(p.b.state(), LinkState::ready);
   EXPECT_EQ(p.a_out[0], 0x0700);
   EXPECT_EQ(p.b_out[0], 0x8600);
+  EXPECT_EQ(p.a.stats().aborts_peer, 1U);
+  EXPECT_EQ(p.b.stats().aborts_peer, 1U);
 
   const std::vector<std::uint8_t> read{0x00, 0x81, 0x00, 0x03, 0x07, 0x02, 0x5D, 0x97, 0x00, 0x00};
   ASSERT_TRUE(p.a.send(read));
@@ -358,7 +367,10 @@ TEST(Link, AnUnacknowledgedFragmentTimesOutIntoAnAbort) {
   EXPECT_GE(t, 50ms);
   EXPECT_EQ(a.state(), LinkState::aborting);
   EXPECT_EQ(a.stats().ack_timeouts, 1U);
-  EXPECT_EQ(high_byte(out[0]), 0x0E);  // showing ABORT
+  // Showing ABORT with abort number 0, the first after the one of the start (3).
+  EXPECT_EQ(high_byte(out[0]), 0x08);
+  EXPECT_EQ(high_byte(out[0]),
+            encode_admin({Direction::to_server, FrameType::control, 1, 0}));
 }
 
 TEST(Link, APeerRestartMidMessageResetsTheOtherSide) {
@@ -385,13 +397,133 @@ TEST(Link, APeerRestartMidMessageResetsTheOtherSide) {
 
 TEST(Link, SimultaneousAbortsConverge) {
   Pair p(2);
-  for (int i = 0; i < 4; ++i) p.step();
+  // The start: nothing on the channel yet, then the same five frames as below.
+  for (int i = 0; i < 5; ++i) p.step();
   ASSERT_EQ(p.a.state(), LinkState::ready);
   p.a.abort();
   p.b.abort();
-  for (int i = 0; i < 4; ++i) p.step();
+  // The last frames before the aborts, ABORT both ways, the servo's ABORT-ACK, the master's
+  // ABORT-ACK, the servo's IDLE.
+  for (int i = 0; i < 5; ++i) p.step();
   EXPECT_EQ(p.a.state(), LinkState::ready);
   EXPECT_EQ(p.b.state(), LinkState::ready);
+  EXPECT_EQ(p.a.stats().aborts_peer, 2U);  // the start and this one: each side answered both
+  EXPECT_EQ(p.b.stats().aborts_peer, 2U);
+  ASSERT_TRUE(p.a.send(pdu_of_size(8, 6)));
+  while (!p.eb.message_received) p.step();
+  EXPECT_EQ(p.b.message().size(), 8U);
+}
+
+// The frames a side shows, written out (docs/pcp.md, "Link").
+Word master_frame(FrameType type, std::uint8_t seq, std::uint8_t ack, std::uint8_t data = 0) {
+  return make_word(encode_admin({Direction::to_server, type, seq, ack}), data);
+}
+Word servo_frame(FrameType type, std::uint8_t seq, std::uint8_t ack, std::uint8_t data = 0) {
+  return make_word(encode_admin({Direction::to_client, type, seq, ack}), data);
+}
+constexpr std::uint8_t kAbort = static_cast<std::uint8_t>(ControlCode::abort);
+constexpr std::uint8_t kAbortAck = static_cast<std::uint8_t>(ControlCode::abort_ack);
+constexpr std::uint8_t kIdle = static_cast<std::uint8_t>(ControlCode::idle);
+
+// F1 (docs/robustness.md): a repeated cycle shows an ABORT-ACK of an earlier abort.
+TEST(Link, AnAbortAckOfAnEarlierAbortDoesNotEndANewerOne) {
+  Link a({1, Direction::to_server, 100ms, true});
+  std::array<Word, 1> out{};
+  a.abort();  // abort number 0
+  a.transmit(Time{}, out);
+  EXPECT_EQ(out[0], master_frame(FrameType::control, kAbort, 0));
+  (void)a.receive(Time{}, std::array<Word, 1>{servo_frame(FrameType::control, kAbortAck, 0)});
+  ASSERT_EQ(a.state(), LinkState::ready);
+  a.abort();  // abort number 1
+  (void)a.receive(Time{}, std::array<Word, 1>{servo_frame(FrameType::control, kAbortAck, 0)});
+  EXPECT_EQ(a.state(), LinkState::aborting) << "the answer to abort 0 ended abort 1";
+  (void)a.receive(Time{}, std::array<Word, 1>{servo_frame(FrameType::control, kAbortAck, 1)});
+  EXPECT_EQ(a.state(), LinkState::ready);
+}
+
+// F1 (the 10-minute run after the first repair): a side that aborts again and again while its
+// view of the peer stands still on the answer to an earlier abort must not see that answer come
+// round again when the abort number wraps. Aborting again before an answer keeps the number.
+TEST(Link, AbortingAgainBeforeTheAnswerKeepsTheAbortNumber) {
+  Link b({1, Direction::to_client, 100ms, true});
+  std::array<Word, 1> out{};
+  b.abort();  // abort number 0
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbortAck, 0)});
+  ASSERT_EQ(b.state(), LinkState::ready);
+  // The master's frame stays ABORT-ACK 0 on the servo's side (its view stands still).
+  for (int i = 0; i < 6; ++i) {
+    b.abort();
+    b.transmit(Time{}, out);
+    EXPECT_EQ(out[0], servo_frame(FrameType::control, kAbort, 1)) << "abort " << i;
+    (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbortAck, 0)});
+    EXPECT_EQ(b.state(), LinkState::aborting) << "abort " << i;
+  }
+  EXPECT_EQ(b.stats().aborts_local, 7U);
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbortAck, 1)});
+  EXPECT_EQ(b.state(), LinkState::ready);
+}
+
+// F1: a fragment shown before the peer's abort but seen after it belongs to the old link.
+TEST(Link, AckingEndsOnlyOnIdleOrTheFirstFragmentOfANewMessage) {
+  Link b({1, Direction::to_client, 100ms, true});
+  std::array<Word, 1> out{};
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbort, 2)});
+  ASSERT_EQ(b.state(), LinkState::acking);
+  b.transmit(Time{}, out);
+  EXPECT_EQ(out[0], servo_frame(FrameType::control, kAbortAck, 2));  // names the abort it answers
+  for (const Word old : {master_frame(FrameType::middle, 1, 3, 0x81),
+                         master_frame(FrameType::last, 2, 3, 0x55),
+                         master_frame(FrameType::first, 1, 3, 0x00)}) {
+    const LinkEvents ev = b.receive(Time{}, std::array<Word, 1>{old});
+    EXPECT_EQ(b.state(), LinkState::acking) << std::hex << old;
+    EXPECT_FALSE(ev.message_received);
+  }
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::first, 0, 3, 0x00)});
+  EXPECT_EQ(b.state(), LinkState::ready);
+  EXPECT_EQ(b.stats().frames_repeated + b.stats().sequence_errors, 0U);
+}
+
+// F1: the servo aborts and then sees a master ABORT it cannot tell from an old one on a repeated
+// cycle; it answers it, and when the master goes on without answering the servo's own abort, the
+// servo announces it again.
+TEST(Link, AServoWhoseAbortWentUnansweredAbortsAgain) {
+  Link b({1, Direction::to_client, 100ms, true});
+  std::array<Word, 1> out{};
+  b.abort();  // abort number 0
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbort, 1)});
+  ASSERT_EQ(b.state(), LinkState::acking);
+  b.transmit(Time{}, out);
+  EXPECT_EQ(out[0], servo_frame(FrameType::control, kAbortAck, 1));
+  // The master is already past that abort: it shows a fragment of a message, then IDLE.
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::first, 0, 3, 0x00)});
+  EXPECT_EQ(b.state(), LinkState::aborting);
+  EXPECT_EQ(b.stats().aborts_local, 2U);
+  b.transmit(Time{}, out);
+  EXPECT_EQ(out[0], servo_frame(FrameType::control, kAbort, 1));  // abort number 1
+  // Answered this time, the servo is ready.
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbortAck, 1)});
+  EXPECT_EQ(b.state(), LinkState::ready);
+}
+
+// Both abort at once: the master's goes first and the servo's is answered after it.
+TEST(Link, WhenBothAbortTheMastersIsAnsweredFirstThenTheServos) {
+  Link a({1, Direction::to_server, 100ms, true});
+  Link b({1, Direction::to_client, 100ms, true});
+  std::array<Word, 1> out{};
+  a.abort();
+  b.abort();
+  (void)a.receive(Time{}, std::array<Word, 1>{servo_frame(FrameType::control, kAbort, 0)});
+  EXPECT_EQ(a.state(), LinkState::aborting) << "the master keeps its abort first";
+  (void)b.receive(Time{}, std::array<Word, 1>{master_frame(FrameType::control, kAbort, 0)});
+  EXPECT_EQ(b.state(), LinkState::acking);
+  (void)a.receive(Time{}, std::array<Word, 1>{servo_frame(FrameType::control, kAbortAck, 0)});
+  EXPECT_EQ(a.state(), LinkState::acking) << "the master answers the servo's abort it noted";
+  a.transmit(Time{}, out);
+  EXPECT_EQ(out[0], master_frame(FrameType::control, kAbortAck, 0));
+  (void)b.receive(Time{}, out);
+  EXPECT_EQ(b.state(), LinkState::ready);
+  (void)a.receive(Time{}, std::array<Word, 1>{servo_frame(FrameType::control, kIdle, 3)});
+  EXPECT_EQ(a.state(), LinkState::ready);
 }
 
 }  // namespace

@@ -9,7 +9,9 @@
 //     bits 6..5  TYPE  00 control, 01 first fragment, 10 continuation, 11 last fragment
 //     bits 4..3  SEQ   data frames: sequence counter (mod 4)
 //                      control frames: 00 IDLE, 01 ABORT, 10 ABORT-ACK, 11 invalid
-//     bits 2..1  ACK   SEQ of the last data frame accepted from the peer
+//     bits 2..1  ACK   data and IDLE frames: SEQ of the last data frame accepted from the peer
+//                      ABORT: this side's abort number (mod 4, one more with every abort)
+//                      ABORT-ACK: the abort number of the peer's ABORT it answers
 //     bit  0     P     odd parity over the byte (00H and FFH are never valid)
 //
 // Stop-and-wait: a fragment stays on the channel until the peer's ACK names its SEQ; a message is
@@ -17,7 +19,10 @@
 // fragment is padded with zeros. A lost, repeated or discarded cycle shows the receiver an old
 // frame again, which the SEQ rule ignores; a message is delivered only when its length, padding
 // and CRC check. ABORT / ABORT-ACK resynchronise both sides (start, restart, timeout, protocol
-// violation) and drop every message in transfer.
+// violation) and drop every message in transfer. The abort number ties an ABORT-ACK to the ABORT it
+// answers, and `acking` ends only on IDLE or a FIRST s0 frame, so a frame shown before an abort but
+// seen after it never counts for the new link; when both sides abort at once the master's abort
+// is answered first, then the servo's (docs/pcp.md, "Link").
 //
 // The cycle path (receive, transmit, send) allocates nothing, throws nothing, reads no clock.
 #pragma once
@@ -132,7 +137,8 @@ class Link {
 
  private:
   void reset_transfers();
-  void enter_acking();
+  void enter_acking(std::uint8_t peer_abort_number);
+  void leave_acking();
   void take_ack(std::uint8_t ack, LinkEvents& ev);
   void process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev);
   void finish_message(LinkEvents& ev);
@@ -142,6 +148,15 @@ class Link {
   Direction peer_dir_;
   LinkState state_ = LinkState::aborting;
   LinkStats stats_{};
+  // Abort numbers: this side's (the first ABORT after construction carries 3, then 0, 1, ...) and
+  // the one of the peer's ABORT being answered.
+  std::uint8_t abort_number_ = 3;
+  std::uint8_t peer_abort_number_ = 3;
+  // Both sides aborted at once (the master's goes first): the servo answers the master's abort and
+  // waits for the answer to its own (own_abort_pending_); the master has noted the servo's abort
+  // and answers it after its own (peer_abort_waiting_).
+  bool own_abort_pending_ = false;
+  bool peer_abort_waiting_ = false;
 
   // Sending.
   std::array<std::uint8_t, kMaxMessageSize> tx_{};
