@@ -25,9 +25,11 @@
 #include <string>
 
 #include "fuzz_support.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/client.hpp"
 #include "ibs/pcp/link.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace {
@@ -60,13 +62,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cfg.request_timeout = std::chrono::milliseconds(1 + in.ConsumeIntegral<std::uint8_t>());
   cfg.link_ack_timeout = std::chrono::milliseconds(1 + in.ConsumeIntegral<std::uint8_t>());
   Client client(cfg);
-  ServerConfig scfg;
+  ServerConfig scfg = ibs::devices::mc6000::server_config(1);
   scfg.channel_words = cfg.channel_words;
   scfg.start = (h & 0x04U) != 0 ? StartMode::running : StartMode::power_on;
   if ((h & 0x08U) == 0) scfg.latency = LatencyModel::immediate();
-  Server servo(scfg);
+  Server servo(scfg, ibs::devices::mc6000::parameters());
   const auto words = static_cast<std::size_t>(cfg.channel_words);
-  const auto table = std::span<const ParameterInfo>(kMc6000Parameters);
+  const auto table = ibs::devices::mc6000::parameters();
 
   std::optional<Outstanding> open;
   std::uint8_t next_iid = 0;

@@ -31,9 +31,11 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/link.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/pdu.hpp"
 #include "ibs/pcp/server.hpp"
 #include "pcp_model.hpp"
@@ -45,6 +47,9 @@ using namespace ibs::pcp;
 using ibs::fuzz::Bytes;
 using ibs::fuzz::fail;
 using ibs::fuzz::hex4;
+using ibs::devices::mc6000::kProg;
+using ibs::devices::mc6000::kSerr;
+using ibs::devices::mc6000::kSload;
 
 // A Write.req as docs/pcp.md lays it out: `0082 count IID,CR index subindex<<8|length data...`.
 struct PlausibleWrite {
@@ -78,7 +83,7 @@ Bytes make_request(ibs::fuzz::Input& in, std::uint8_t kind, std::uint16_t passwo
   RequestPdu r;
   r.invoke_id = iid;
   r.cr = in.ConsumeIntegral<std::uint8_t>() < 240 ? 2 : in.ConsumeIntegral<std::uint8_t>();
-  const auto table = std::span<const ParameterInfo>(kMc6000Parameters);
+  const auto table = ibs::devices::mc6000::parameters();
   const auto pick_index = [&]() -> std::uint16_t {
     const std::uint8_t b = in.ConsumeIntegral<std::uint8_t>();
     if (b < 224) return table[b % table.size()].index();
@@ -128,14 +133,14 @@ Bytes make_request(ibs::fuzz::Input& in, std::uint8_t kind, std::uint16_t passwo
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   ibs::fuzz::Input in(data, size);
   const std::uint8_t h = in.ConsumeIntegral<std::uint8_t>();
-  ServerConfig cfg;
+  ServerConfig cfg = ibs::devices::mc6000::server_config(1);
   cfg.channel_words = width(h);
   cfg.start = (h & 0x04U) != 0 ? StartMode::running : StartMode::power_on;
   if ((h & 0x08U) == 0) cfg.latency = LatencyModel::immediate();
   cfg.workload = static_cast<double>(in.ConsumeIntegral<std::uint8_t>()) / 255.0;
   cfg.password = (h & 0x10U) != 0 ? in.ConsumeIntegral<std::uint16_t>() : 0;
   cfg.link_ack_timeout = std::chrono::milliseconds(10 + in.ConsumeIntegral<std::uint8_t>());
-  Server server(cfg);
+  Server server(cfg, ibs::devices::mc6000::parameters());
   const auto words = static_cast<std::size_t>(cfg.channel_words);
   // The master's side of the channel, for the input's PDUs.
   Link master(LinkConfig{cfg.channel_words, Direction::to_server, cfg.link_ack_timeout, cfg.start == StartMode::running});

@@ -31,13 +31,16 @@
 
 #include "fuzz_support.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
-#include "ibs/vf1000_channel/parameters.hpp"
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 namespace {
 
 using namespace ibs;
 using namespace ibs::vf1000_channel;
+using namespace ibs::drive;
+using namespace ibs::devices::vf1000;
 using ibs::fuzz::fail;
 using ibs::fuzz::hex4;
 
@@ -75,13 +78,13 @@ std::vector<Word> snapshot(const Server& s) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   ibs::fuzz::Input in(data, size);
   const std::uint8_t header = in.ConsumeIntegral<std::uint8_t>();
-  ServerConfig cfg;
+  ServerConfig cfg = server_config();
   cfg.init_duration = std::chrono::milliseconds(in.ConsumeIntegral<std::uint8_t>());
   const ServerStart start = (header % 3) == 0 ? ServerStart::power_on
                             : (header % 3) == 1 ? ServerStart::initialised
                                                 : ServerStart::operational;
   Time now{0};
-  Server server(cfg, start, now);
+  Server server(cfg, start, now, parameters());
   const auto params = server.table().params();
   const ParameterTable& table = server.table();
   Model model;
@@ -190,7 +193,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (written && trace) std::fprintf(stderr, "parameter %u = %04X written\n", e.number, e.value);
 
     // Which parameters changed, and why they may have.
-    const bool defaults = written && number == pnr::kProg && value == kProgLoadDefaults;
+    const bool defaults = written && number == pnr::kProg && value == kLoadDefaults;
     for (std::size_t i = 0; i < params.size(); ++i) {
       const ParameterInfo& p = params[i];
       if (p.number == pnr::kSiof || before[i] == after[i]) continue;

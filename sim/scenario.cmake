@@ -14,8 +14,8 @@ add_library(ibs_scenario
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scenario_json.cpp)
 target_include_directories(ibs_scenario PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(ibs_scenario
-  PUBLIC ibs::interbus_core
-  PRIVATE ibs::interbus_bus tomlplusplus::tomlplusplus nlohmann_json::nlohmann_json)
+  PUBLIC ibs::devices_api ibs::interbus_core ibs::interbus_bus
+  PRIVATE ibs::devices tomlplusplus::tomlplusplus nlohmann_json::nlohmann_json)
 target_compile_features(ibs_scenario PUBLIC cxx_std_20)
 ibs_set_warnings(ibs_scenario)
 add_library(ibs::scenario ALIAS ibs_scenario)

@@ -4,7 +4,10 @@
 
 #include <array>
 
-#include "ibs/devices/drive_pd.hpp"
+#include "ibs/devices/mc6000/pd_device.hpp"
+#include "ibs/devices/mc6000/pd_master.hpp"
+#include "ibs/devices/vf1000/pd_device.hpp"
+#include "ibs/devices/vf1000/pd_master.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/sequencer.hpp"
 
@@ -56,12 +59,12 @@ void BM_Vf1000PdDeviceSample(benchmark::State& st) {
   devices::Vf1000PdDevice dev;
   std::array<Word, 3> out{0x807F, 0x03E8, 0x0000}, in{};
   for (auto _ : st) {
-    dev.sample(out, in, kVf1000SamplePeriod);
+    dev.sample(out, in, ibs::devices::vf1000::kSamplePeriod);
     benchmark::DoNotOptimize(in);
   }
 }
 void BM_Mc6000PdMasterCycle(benchmark::State& st) {
-  devices::Mc6000PdMaster m(interbus::mc6000::make_layout(11, 2));
+  devices::Mc6000PdMaster m(devices::mc6000::make_layout(11, 2));
   m.set_reference_rpm(2500.25);
   m.sequencer().request(Target::enabled, 0ns);
   std::array<Word, 3> s2m{0x0637, 0x09C4, 0x4000}, m2s{};

@@ -7,6 +7,8 @@
 #include <array>
 
 #include "ibs/pcp/client.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/crc16.hpp"
 #include "ibs/pcp/server.hpp"
 
@@ -23,12 +25,12 @@ struct Loop {
           return c;
         }()),
         server([&] {
-          ServerConfig c;
+          ServerConfig c = ibs::devices::mc6000::server_config(1);
           c.channel_words = words;
           c.latency = latency;
           c.start = StartMode::running;
           return c;
-        }()) {}
+        }(), ibs::devices::mc6000::parameters()) {}
 
   // Steps until the client reports; returns the number of steps.
   int until_result(Result& out) {
@@ -63,7 +65,7 @@ void run_reads(benchmark::State& state, LatencyModel latency) {
   if (!r.ok()) state.SkipWithError("Initiate failed");
   std::int64_t steps = 0;
   for (auto _ : state) {
-    loop.client.read(loop.now, ParameterRef::number(kIbstu));
+    loop.client.read(loop.now, ParameterRef::number(ibs::devices::mc6000::kIbstu));
     steps += loop.until_result(r);
     benchmark::DoNotOptimize(r.data);
   }

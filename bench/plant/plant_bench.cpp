@@ -1,7 +1,7 @@
 // One MC6000 plant step (1 ms of simulated time), in the torque limit and in the linear mode.
 #include <benchmark/benchmark.h>
 
-#include "ibs/devices/drive_plant.hpp"
+#include "ibs/devices/mc6000/plant.hpp"
 
 namespace {
 

@@ -14,7 +14,7 @@ using namespace ibs::sim;
 void BM_MasterCycleFullBus(benchmark::State& st) {
   std::vector<interbus::DeviceSpec> specs;
   std::vector<std::unique_ptr<devices::DeviceDriver>> drivers;
-  const auto layout = interbus::mc6000::make_layout(12, 2);
+  const auto layout = devices::mc6000::make_layout(12, 2);
   for (int i = 0; i < 64; ++i) {
     specs.push_back({"mc" + std::to_string(i), interbus::IdCode{layout.id_code}, std::nullopt});
     drivers.push_back(std::make_unique<devices::Mc6000Driver>(layout));
@@ -43,7 +43,7 @@ Scenario full_bus(Duration duration) {
   for (int i = 0; i < 64; ++i) {
     DeviceConfig d;
     d.name = "mc" + std::to_string(i);
-    d.kind = DeviceKind::mc6000;
+    d.kind = "mc6000";
     d.supi = 12;
     d.ibcnf = 2;
     d.phase = std::chrono::microseconds(i * 15);

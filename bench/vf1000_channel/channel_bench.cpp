@@ -4,11 +4,15 @@
 #include <benchmark/benchmark.h>
 
 #include "ibs/vf1000_channel/client.hpp"
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 namespace {
 
 using namespace ibs::vf1000_channel;
+using namespace ibs::drive;
+using namespace ibs::devices::vf1000;
 using ibs::Time;
 using ibs::Word;
 using namespace std::chrono_literals;
@@ -21,7 +25,7 @@ ClientConfig bench_client() {
 
 // Inverter step with nothing new (the master holds its word): the most frequent case.
 void BM_ServerStepHold(benchmark::State& state) {
-  Server s(ServerConfig{}, ServerStart::operational, Time{0});
+  Server s(server_config(), ServerStart::operational, Time{0}, parameters());
   Time now{0};
   s.step(0x2C2D, now, false);  // a description scan is running
   for (auto _ : state) {
@@ -33,7 +37,7 @@ BENCHMARK(BM_ServerStepHold);
 
 // Inverter step that sends the next byte of a description scan (a toggle every step).
 void BM_ServerStepNextByte(benchmark::State& state) {
-  Server s(ServerConfig{}, ServerStart::operational, Time{0});
+  Server s(server_config(), ServerStart::operational, Time{0}, parameters());
   Time now{0};
   bool toggle = true;
   s.step(master_start_word(true, Code::description_scan, pnr::kVb2), now, false);
@@ -75,7 +79,7 @@ BENCHMARK(BM_ClientStepWaiting);
 // loop, so each iteration also carries the previous transaction's return to wait mode.
 template <typename MakeRequest>
 void run_transactions(benchmark::State& state, MakeRequest make, OutcomeKind expected) {
-  Server s(ServerConfig{}, ServerStart::operational, Time{0});
+  Server s(server_config(), ServerStart::operational, Time{0}, parameters());
   Client c(bench_client());
   Time now{0};
   Word m2s = Client::initial_word();

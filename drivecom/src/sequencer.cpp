@@ -149,6 +149,7 @@ void Sequencer::restart() {
   known_.reset();
   reset_allowed_ = false;
   up_since_request_ = false;
+  reset_edge_sent_ = false;
   pulse_started_ = false;
 }
 
@@ -168,6 +169,7 @@ void Sequencer::request(Target t, Time now) {
   begin(Goal::target, now);
   reset_allowed_ = !known_ || is_fault_state(*known_);
   up_since_request_ = false;
+  reset_edge_sent_ = false;
 }
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
@@ -295,11 +297,19 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
   }
   if (report_.phase == Phase::reached && *st != target_state(report_.target)) return fail(Failure::left_target);
   if (*st == State::not_ready) {
-    if (up_since_request_) return fail(Failure::restarted);
+    // NOT READY straight after the RESET FAULT this request sent is the drive booting from it
+    // (the VF1000 performs a software reset, seed 001 5.2.1), not a restart: the request goes on
+    // as after power-on. The fault was reset; one that comes back ends the request (above).
+    const bool booting_from_reset = known_ == State::fault && reset_edge_sent_;
+    if (up_since_request_ && !booting_from_reset) return fail(Failure::restarted);
+    up_since_request_ = false;
+    reset_edge_sent_ = false;
   } else {
     up_since_request_ = true;
   }
   const Move m = plan(*st, now);
+  if (*st == State::fault && (m.word & kResetBit) != 0 && (last_control_ & kResetBit) == 0) reset_edge_sent_ = true;
+  if (*st != State::fault) reset_edge_sent_ = false;
   if (m.transition == 0) {
     report_.phase = Phase::reached;
     report_.transition = 0;

@@ -4,7 +4,7 @@
 
 namespace ibs::drivecom {
 
-std::string explain_status_word(DeviceType d, Word status) {
+std::string explain_status_word(Word status, const StatusBitNames& names) {
   char hex[8];
   std::snprintf(hex, sizeof hex, "%04X", static_cast<unsigned>(status));
   const auto st = decode_state(status);
@@ -14,12 +14,12 @@ std::string explain_status_word(DeviceType d, Word status) {
     s += ", e-stop request";
   }
   if (bit(status, sw::kAlarm)) s += ", alarm";
-  if (bit(status, sw::kMessage)) s += d == DeviceType::mc6000 ? ", message" : ", bit 8 (not implemented) set";
+  if (bit(status, sw::kMessage)) s += ", " + std::string(names.bit8);
   if (bit(status, sw::kRemote)) s += ", remote";
   if (bit(status, sw::kReferenceReached)) s += ", reference reached";
   if (bit(status, sw::kLimitValue)) s += ", limit value";
-  if (bit(status, 14)) s += d == DeviceType::vf1000 ? ", S2OUT" : ", IS00";
-  if (bit(status, 15)) s += d == DeviceType::vf1000 ? ", S1OUT" : ", IS01";
+  if (bit(status, 14)) s += ", " + std::string(names.bit14);
+  if (bit(status, 15)) s += ", " + std::string(names.bit15);
   return s;
 }
 

@@ -54,7 +54,7 @@ void check_counts(const Trace& t, std::size_t m2s_words, std::size_t s2m_words) 
     if (r.gap) continue;
     if (r.m2s.size() != m2s_words || r.s2m.size() != s2m_words) {
       throw TraceError(t.file, r.line,
-                       "this " + std::string(to_string(t.header.device)) + " with words: " +
+                       "this " + t.header.device + " with words: " +
                            std::string(to_string(t.header.words)) + " exchanges " +
                            std::to_string(m2s_words) + " m2s and " + std::to_string(s2m_words) +
                            " s2m words per row; the row has " + std::to_string(r.m2s.size()) +
@@ -78,7 +78,7 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
       if (!device.supports(ev.kind)) {
         throw TraceError(t.file, ev.line,
                          "event '" + std::string(to_string(ev.kind)) + "': the emulated " +
-                             std::string(to_string(t.header.device)) + " with words: " +
+                             t.header.device + " with words: " +
                              std::string(to_string(t.header.words)) + " cannot act on it");
       }
     }
@@ -248,6 +248,11 @@ Trace decode(const Trace& t, const Explainer& e) {
     if (!all_exact(r.m2s)) remark += " (masked bits shown as 0)";
     remark += "; s2m: " + e.explain_s2m(s);
     if (!all_exact(r.s2m)) remark += " (masked bits shown as 0)";
+    // A row decoded before (the same reading, with or without an original remark after ` | `)
+    // keeps its remark: decoding a decoded file changes nothing.
+    const bool decoded_before =
+        r.remark == remark || r.remark.rfind(remark + " | ", 0) == 0;
+    if (decoded_before) continue;
     if (!r.remark.empty()) remark += " | " + r.remark;
     r.remark = std::move(remark);
   }

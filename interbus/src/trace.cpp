@@ -1,5 +1,6 @@
 #include "ibs/interbus/trace.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <limits>
@@ -94,21 +95,25 @@ std::optional<E> lookup(std::string_view s, const std::array<std::pair<std::stri
   return std::nullopt;
 }
 
-constexpr std::array<std::pair<std::string_view, DeviceType>, 2> kDevices{
-    {{"vf1000", DeviceType::vf1000}, {"mc6000", DeviceType::mc6000}}};
 constexpr std::array<std::pair<std::string_view, WordsKind>, 3> kWords{
     {{"comm", WordsKind::comm}, {"pd", WordsKind::pd}, {"pcp", WordsKind::pcp}}};
-constexpr std::array<std::pair<std::string_view, InitState>, 3> kInits{
-    {{"operational", InitState::operational},
-     {"power-on", InitState::power_on},
-     {"fault", InitState::fault}}};
+constexpr std::array<std::pair<std::string_view, DeviceStart>, 3> kInits{
+    {{"operational", DeviceStart::operational},
+     {"power-on", DeviceStart::initialised},
+     {"fault", DeviceStart::fault}}};
 constexpr std::array<std::pair<std::string_view, Event::Kind>, 2> kEvents{
     {{"fault", Event::Kind::fault}, {"fault-cleared", Event::Kind::fault_cleared}}};
-constexpr std::array<std::pair<std::string_view, StateTarget>, 4> kTargets{
-    {{"start-up-inhibit", StateTarget::start_up_inhibit},
-     {"ready", StateTarget::ready},
-     {"on", StateTarget::on},
-     {"enabled", StateTarget::enabled}}};
+// A name from a vocabulary list, or any single word when the list is empty.
+bool known(std::string_view name, std::span<const std::string_view> names) {
+  if (names.empty()) return !name.empty() && name.find_first_of(" \t") == std::string_view::npos;
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+std::string listed(std::span<const std::string_view> names) {
+  if (names.empty()) return "a single word";
+  std::string s;
+  for (const std::string_view n : names) s += (s.empty() ? "" : ", ") + std::string(n);
+  return s;
+}
 
 template <typename E, std::size_t N>
 std::string_view name_of(E e, const std::array<std::pair<std::string_view, E>, N>& t) {
@@ -164,16 +169,17 @@ std::size_t* header_line(Header& h, std::string_view key) {
 }
 
 void parse_header(Header& h, std::string_view key, std::string_view value, const std::string& file,
-                  std::size_t line) {
+                  std::size_t line, const Vocabulary& vocabulary) {
   // A header given twice is an error: which one a reader took would silently change a test.
   if (const std::size_t* first = header_line(h, key); first != nullptr && *first != 0) {
     fail(file, line, "header '" + std::string(key) + "' given twice (first on line " + std::to_string(*first) + ")");
   }
   if (key == "device") {
     h.lines.device = line;
-    const auto d = lookup(value, kDevices);
-    if (!d) fail(file, line, "device: '" + std::string(value) + "' is not one of " + choices(kDevices));
-    h.device = *d;
+    if (!known(value, vocabulary.devices)) {
+      fail(file, line, "device: '" + std::string(value) + "' is not one of " + listed(vocabulary.devices));
+    }
+    h.device = std::string(value);
   } else if (key == "words") {
     h.lines.words = line;
     const auto w = lookup(value, kWords);
@@ -201,7 +207,7 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
     h.init_given = true;
   } else if (key == "request") {
     h.lines.request = line;
-    h.request = parse_request(value, file, line);
+    h.request = parse_request(value, file, line, vocabulary);
   } else if (key == "request-at") {
     h.lines.request_at = line;
     h.request_at = parse_count(value, key, file, line);
@@ -224,10 +230,8 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
 
 }  // namespace
 
-std::string_view to_string(DeviceType d) { return name_of(d, kDevices); }
 std::string_view to_string(WordsKind w) { return name_of(w, kWords); }
-std::string_view to_string(InitState s) { return name_of(s, kInits); }
-std::string_view to_string(StateTarget t) { return name_of(t, kTargets); }
+std::string_view to_string(DeviceStart s) { return name_of(s, kInits); }
 std::string_view to_string(Event::Kind k) { return name_of(k, kEvents); }
 
 std::string to_string(const Request& r) {
@@ -236,7 +240,7 @@ std::string to_string(const Request& r) {
     case Request::Kind::write:
       return "write " + std::to_string(r.parameter) + " " + std::to_string(r.value);
     case Request::Kind::describe: return "describe " + std::to_string(r.parameter);
-    case Request::Kind::state: return "state " + std::string(to_string(r.target));
+    case Request::Kind::state: return "state " + r.target;
   }
   return "?";
 }
@@ -304,7 +308,8 @@ std::vector<WordPattern> parse_words(std::string_view field, const std::string& 
   return out;
 }
 
-Request parse_request(std::string_view text, const std::string& file, std::size_t line) {
+Request parse_request(std::string_view text, const std::string& file, std::size_t line,
+                      const Vocabulary& vocabulary) {
   const auto parts = split_spaces(text);
   if (parts.empty()) fail(file, line, "request: empty");
   Request r;
@@ -329,13 +334,12 @@ Request parse_request(std::string_view text, const std::string& file, std::size_
     r.value = *v;
   } else if (verb == "state") {
     if (parts.size() != 2) fail(file, line, "request: 'state' takes one target");
-    const auto t = lookup(parts[1], kTargets);
-    if (!t) {
+    if (!known(parts[1], vocabulary.targets)) {
       fail(file, line, "request: state target '" + std::string(parts[1]) + "' is not one of " +
-                           choices(kTargets));
+                           listed(vocabulary.targets));
     }
     r.kind = Request::Kind::state;
-    r.target = *t;
+    r.target = std::string(parts[1]);
   } else {
     fail(file, line, "request: '" + std::string(verb) + "' is not one of read, write, describe, state");
   }
@@ -364,7 +368,7 @@ Outcome parse_outcome(std::string_view text, const std::string& file, std::size_
   return o;
 }
 
-Trace parse(std::string_view text, const std::string& file) {
+Trace parse(std::string_view text, const std::string& file, const Vocabulary& vocabulary) {
   Trace t;
   t.file = file;
   bool format_seen = false;
@@ -407,7 +411,7 @@ Trace parse(std::string_view text, const std::string& file) {
         if (key == "format") fail(file, line_no, "format: given twice");
         if (key == "device") device_seen = true;
         if (key == "words") words_seen = true;
-        parse_header(t.header, key, value, file, line_no);
+        parse_header(t.header, key, value, file, line_no, vocabulary);
         continue;
       }
       if (!format_seen) fail(file, line_no, "the first header must be 'format: ibs-trace 1'");
@@ -514,21 +518,21 @@ Trace parse(std::string_view text, const std::string& file) {
   return t;
 }
 
-Trace load(const std::string& path) {
+Trace load(const std::string& path, const Vocabulary& vocabulary) {
   std::string text;
   try {
     text = read_text_file(path);
   } catch (const FileReadError& e) {
     throw TraceError(path, 0, e.what());
   }
-  return parse(text, path);
+  return parse(text, path, vocabulary);
 }
 
 std::string write(const Trace& t) {
   std::string out;
   const Header& h = t.header;
   out += "# format: ibs-trace 1\n";
-  out += "# device: " + std::string(to_string(h.device)) + "\n";
+  out += "# device: " + h.device + "\n";
   out += "# words: " + std::string(to_string(h.words)) + "\n";
   if (h.supi_given) out += "# supi: " + std::to_string(h.supi) + "\n";
   if (h.ibcnf_given) out += "# ibcnf: " + std::to_string(h.ibcnf) + "\n";

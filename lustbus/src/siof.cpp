@@ -22,6 +22,6 @@ std::string_view to_string(SiofRemedy r) {
   return "?";
 }
 
-std::string describe_siof(std::uint8_t siof) { return vf1000_channel::describe_siof(siof); }
+std::string describe_siof(std::uint8_t siof) { return drive::describe_siof(siof); }
 
 }  // namespace ibs::lustbus

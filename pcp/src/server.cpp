@@ -62,6 +62,9 @@ const ServerConfig& checked(const ServerConfig& cfg) {
   return cfg;
 }
 
+// Whether `number` is the parameter of a role the drive gave (0: none).
+constexpr bool is(std::uint16_t number, std::uint16_t role) { return role != 0 && number == role; }
+
 }  // namespace
 
 Server::Server(const ServerConfig& cfg, std::span<const ParameterInfo> table)
@@ -71,7 +74,7 @@ Server::Server(const ServerConfig& cfg, std::span<const ParameterInfo> table)
       link_(link_config(cfg)),
       workload_(cfg.workload) {
   store_.power_on();
-  if (cfg.start == StartMode::power_on) set_serr_bits(kSerrPowerOn);
+  if (cfg.start == StartMode::power_on) set_serr_bits(drive::siof_mask(drive::SiofBit::power_on));
 }
 
 void Server::set_workload(double workload) {
@@ -79,17 +82,17 @@ void Server::set_workload(double workload) {
 }
 
 std::uint8_t Server::serr() const {
-  const auto v = store_.get(kSerr);
+  const auto v = store_.get(cfg_.roles.serr);
   return v ? static_cast<std::uint8_t>(v->raw & 0xFFU) : 0;
 }
 
 void Server::set_serr_bits(std::uint8_t bits) {
-  store_.set(kSerr, static_cast<std::uint32_t>(serr() | bits));
+  store_.set(cfg_.roles.serr, static_cast<std::uint32_t>(serr() | bits));
 }
 
 void Server::power_on(Time now) {
   store_.power_on();  // an unfinished EEPROM save is lost: the EEPROM keeps the old value
-  set_serr_bits(kSerrPowerOn);
+  set_serr_bits(drive::siof_mask(drive::SiofBit::power_on));
   eeprom_pending_ = false;
   eeprom_busy_until_ = now;  // idle from now on
   download_active_ = false;
@@ -115,7 +118,7 @@ void Server::advance(Time now) {
   if (dataset_checking_ && now >= dataset_done_at_) {
     // Every value was range-checked when written, so the dataset is plausible: SLOAD = 0.
     dataset_checking_ = false;
-    store_.set(kSload, 0);
+    store_.set(cfg_.roles.sload, 0);
   }
 }
 
@@ -193,7 +196,7 @@ PcpError Server::do_read(ResponsePdu& r) {
   const std::size_t n = encode(v, b);
   r.data.assign(std::span<const std::uint8_t>(b.data(), n));
   // Seed 000, 6 and 9.2: reading 85-SERR clears it. Read errors never enter SERR (6.1).
-  if (p->number == kSerr) store_.set(kSerr, 0);
+  if (p->number == cfg_.roles.serr) store_.set(cfg_.roles.serr, 0);
   return {};
 }
 
@@ -202,49 +205,49 @@ PcpError Server::do_write(Time now, Duration& extra_delay) {
   // Checks from the most to the least specific; each failure also sets its SERR bit (seed 000,
   // 9.2), which then refuses every further write until 85-SERR is read (seed 000, 6).
   if (p == nullptr) {
-    set_serr_bits(kSerrNoParameter);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::no_parameter));
     return errors::kObjectDoesNotExist;
   }
   if (job_.subindex != 0) {
-    set_serr_bits(kSerrNoParameter);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::no_parameter));
     return errors::kInvalidSubindex;
   }
   if (!p->writable()) {
-    set_serr_bits(kSerrNoChange);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::no_change));
     return errors::kNoAccess;
   }
   const auto v = decode(p->type, job_.data.view());
   if (!v) {
-    set_serr_bits(kSerrInvalidValue);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
     return errors::kDataLength;
   }
   const std::uint32_t lo = ParameterStore::to_raw(*p, p->min);
   const std::uint32_t hi = ParameterStore::to_raw(*p, p->max);
   if (compare(p->type, v->raw, hi) > 0) {
-    set_serr_bits(kSerrInvalidValue);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
     return errors::kValueTooHigh;
   }
   if (compare(p->type, v->raw, lo) < 0) {
-    set_serr_bits(kSerrInvalidValue);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
     return errors::kValueTooLow;
   }
   const std::int64_t number = signed_raw(*v);
   // Seed 000, 11.4: the master writes only -1 (begin) and -2 (end); 0.. are the servo's answers.
-  if (p->number == kSload && number >= 0) {
-    set_serr_bits(kSerrInvalidValue);
+  if (is(p->number, cfg_.roles.sload) && number >= 0) {
+    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
     return errors::kValueTooHigh;
   }
   if (serr() != 0) {
-    set_serr_bits(kSerrNoChange);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::no_change));
     return errors::kNotExecutableNow;
   }
-  if (p->number == kSload &&
-      (running_ || (number == kSloadEnd && !download_active_) || dataset_checking_)) {
-    set_serr_bits(kSerrNoChange);
+  if (is(p->number, cfg_.roles.sload) &&
+      (running_ || (number == drive::kDownloadEnd && !download_active_) || dataset_checking_)) {
+    set_serr_bits(drive::siof_mask(drive::SiofBit::no_change));
     return errors::kNotExecutableNow;  // seed 000, 11.4: "only when the system is in a stillstand"
   }
   if (p->category == Category::eeprom && eeprom_busy(now)) {
-    set_serr_bits(kSerrEepromBusy);
+    set_serr_bits(drive::siof_mask(drive::SiofBit::eeprom_busy));
     return errors::kNotExecutableNow;  // seed 000, 3: repeat until the value is accepted
   }
 
@@ -257,31 +260,26 @@ PcpError Server::do_write(Time now, Duration& extra_delay) {
     eeprom_busy_until_ =
         now + latency_.eeprom_byte_time * static_cast<Duration::rep>(size_of(p->type));
   }
-  switch (p->number) {
-    case kProg:
-      if (number == kProgFactoryDefaults) {
-        store_.factory_defaults();
-        eeprom_pending_ = false;
-        extra_delay = latency_.factory_defaults_time;
-      }
-      // 111 activates a new LUSTBUS baud rate (seed 000, 11.5): nothing to do on INTERBUS.
-      store_.set(kProg, 0);  // a command, not a setting
-      break;
-    case kPlrdy:
-      if (number == 1) ++plrdy_requests_;
-      break;
-    case kSload:
-      if (number == kSloadBegin) {
-        download_active_ = true;
-      } else {
-        download_active_ = false;
-        dataset_checking_ = true;
-        dataset_done_at_ = now + latency_.dataset_check_time;
-        store_.set(kSload, value_from_signed_raw(DataType::integer16, -1)->raw);
-      }
-      break;
-    default:
-      break;
+  const ParameterRoles& roles = cfg_.roles;
+  if (is(p->number, roles.prog)) {
+    if (number == drive::kLoadDefaults) {
+      store_.factory_defaults();
+      eeprom_pending_ = false;
+      extra_delay = latency_.factory_defaults_time;
+    }
+    // 111 activates a new LUSTBUS baud rate (seed 000, 11.5): nothing to do on INTERBUS.
+    store_.set(roles.prog, 0);  // a command, not a setting
+  } else if (is(p->number, roles.plrdy)) {
+    if (number == 1) ++plrdy_requests_;
+  } else if (is(p->number, roles.sload)) {
+    if (number == drive::kDownloadBegin) {
+      download_active_ = true;
+    } else {
+      download_active_ = false;
+      dataset_checking_ = true;
+      dataset_done_at_ = now + latency_.dataset_check_time;
+      store_.set(roles.sload, value_from_signed_raw(DataType::integer16, -1)->raw);
+    }
   }
   return {};
 }

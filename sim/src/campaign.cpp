@@ -8,11 +8,15 @@
 #include <random>
 #include <unordered_map>
 
+#include "ibs/devices/mc6000/descriptor.hpp"
+#include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/vf1000/descriptor.hpp"
+#include "ibs/devices/vf1000/device.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/pcp/data_types.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
 #include "ibs/pcp/parameter_store.hpp"
 #include "ibs/sim/simulator.hpp"
-#include "ibs/vf1000_channel/parameters.hpp"
 
 namespace ibs::sim {
 
@@ -318,8 +322,26 @@ void CampaignChecker::withdraw(Dev& d, Time t, const std::string& why, bool via_
   }
 }
 
+void CampaignChecker::software_reset(std::size_t dev, Time now) {
+  // The VF1000's RESET FAULT (seed 001, 5.2.1): it boots, its store as after a power cycle; the
+  // master asked for it, so neither its request nor the bus watchdog's arming is touched.
+  reboot_store(devices_[dev], now);
+}
+
 void CampaignChecker::power_cycle(std::size_t dev, Time now, std::optional<State> state_then) {
   Dev& d = devices_[dev];
+  reboot_store(d, now);
+  d.armed = false;
+  d.tripped = false;
+  d.last_fed.reset();
+  d.fed_before_slice.reset();
+  // A drive switched off and on while it still initialises (NOT READY) looks the same to the
+  // master before and after: a request made then covers it (as a fault joins a latched one).
+  if (state_then && *state_then == State::not_ready) return;
+  withdraw(d, now, "power cycle", false);
+}
+
+void CampaignChecker::reboot_store(Dev& d, Time now) {
   settle(d, now);
   for (auto& c : d.cells) {
     switch (c.spec.role) {
@@ -339,14 +361,6 @@ void CampaignChecker::power_cycle(std::size_t dev, Time now, std::optional<State
       if (Cell* c = cell(d, d.out->number)) add_all(d.out->allowed, c->ram);
     }
   }
-  d.armed = false;
-  d.tripped = false;
-  d.last_fed.reset();
-  d.fed_before_slice.reset();
-  // A drive switched off and on while it still initialises (NOT READY) looks the same to the
-  // master before and after: a request made then covers it (as a fault joins a latched one).
-  if (state_then && *state_then == State::not_ready) return;
-  withdraw(d, now, "power cycle", false);
 }
 
 void CampaignChecker::device_fault(std::size_t dev, Time now, std::optional<State> state_then) {
@@ -425,8 +439,8 @@ std::pair<std::int64_t, std::int64_t> CampaignChecker::watchdog_window(const Dev
   bool off = false;
   for (std::int64_t v : values) {
     std::int64_t t = v;
-    if (d.spec.kind == DeviceKind::vf1000) {
-      const auto m = vf1000_channel::ib_wd_monitoring_time(static_cast<Word>(v));
+    if (d.spec.kind == devices::vf1000::kName) {
+      const auto m = devices::vf1000::ib_wd_monitoring_time(static_cast<Word>(v));
       t = m ? m->count() : 0;
     }
     if (t <= 0) {
@@ -521,6 +535,14 @@ std::vector<std::int64_t> CampaignChecker::possible(std::size_t dev, std::uint16
 
 namespace {
 
+// The campaign's oracle knows both drives it runs; the simulator hands out their emulators.
+devices::Mc6000Device& mc6000_of(Simulator& sim, std::size_t i) {
+  return dynamic_cast<devices::Mc6000Device&>(sim.emulator(i));
+}
+devices::Vf1000Device& vf1000_of(Simulator& sim, std::size_t i) {
+  return dynamic_cast<devices::Vf1000Device&>(sim.emulator(i));
+}
+
 namespace vc = vf1000_channel;
 
 constexpr Duration kPcpTimeout = 500ms;      // pcp::ClientConfig::request_timeout (docs/pcp.md)
@@ -544,7 +566,7 @@ struct Step {
 
 struct Node {
   std::size_t index = 0;
-  DeviceKind kind = DeviceKind::mc6000;
+  std::string kind;  // the drive kind's name
   int supi = 0;
   int ibcnf = 0;
   bool pcp = false;
@@ -563,6 +585,7 @@ struct Node {
   // State commands.
   Time next_command{0};
   std::optional<State> last_state;
+  std::uint32_t software_resets = 0;  // VF1000 boots from RESET FAULT seen so far
   // 405/406 and the technician.
   std::optional<Time> power_cycle_at;
   bool check_layout = false;
@@ -615,11 +638,11 @@ struct Runner {
     for (const auto& m : mcs) {
       DeviceConfig c;
       c.name = m.name;
-      c.kind = DeviceKind::mc6000;
+      c.kind = devices::mc6000::kName;
       c.supi = m.supi;
       c.ibcnf = m.ibcnf;
-      c.bus = chance(0.3) ? BusSide::local : BusSide::remote;
-      c.phase = between(Duration{0}, kMc6000SamplePeriod - Duration{1});
+      c.bus = chance(0.3) ? interbus::BusKind::local : interbus::BusKind::remote;
+      c.phase = between(Duration{0}, ibs::devices::mc6000::kSamplePeriod - Duration{1});
       c.jitter = std::string(m.name) == "mcpd" ? Duration{0} : pick(std::vector<Duration>{0us, 20us, 50us, 100us});
       c.initialised = !chance(0.2);
       c.watchdog_ms = pick(m.butwd);
@@ -629,8 +652,8 @@ struct Runner {
     for (int v = 0; v < 4; ++v) {
       DeviceConfig c;
       c.name = "vf" + std::to_string(v + 1);
-      c.kind = DeviceKind::vf1000;
-      c.phase = between(Duration{0}, kVf1000SamplePeriod - Duration{1});
+      c.kind = devices::vf1000::kName;
+      c.phase = between(Duration{0}, ibs::devices::vf1000::kSamplePeriod - Duration{1});
       c.jitter = pick(std::vector<Duration>{0us, 100us, 400us});
       c.initialised = !chance(0.25);
       c.watchdog_ms = ibwd[static_cast<std::size_t>(v)] == 65535 ? 65535 : static_cast<int>(uniform(8, ibwd[static_cast<std::size_t>(v)]));
@@ -660,18 +683,18 @@ struct Runner {
       spec.kind = c.kind;
       spec.jitter = c.jitter;
       std::string desc = c.name + ": ";
-      if (c.kind == DeviceKind::mc6000) {
-        const auto& l = sim->mc6000(i)->layout();
+      if (c.kind == devices::mc6000::kName) {
+        const auto& l = mc6000_of(*sim, i).layout();
         n.supi = c.supi;
         n.ibcnf = c.ibcnf;
         n.pcp = l.pcp_words > 0;
         n.pd = l.pd_words > 0;
-        spec.period = kMc6000SamplePeriod;
+        spec.period = ibs::devices::mc6000::kSamplePeriod;
         spec.has_pd = n.pd;
         desc += "MC6000 SUPI " + std::to_string(c.supi) + " / IBCNF " + std::to_string(c.ibcnf) + ", " +
                 std::to_string(l.pd_words) + " process-data word(s), " +
                 (n.pcp ? "PCP " + std::to_string(l.pcp_words) + " word(s)" : std::string("no PCP")) + ", " +
-                (c.bus == BusSide::local ? "local" : "remote") + std::string(" bus, 409-BUTWD ") + std::to_string(*c.watchdog_ms) + " ms";
+                (c.bus == interbus::BusKind::local ? "local" : "remote") + std::string(" bus, 409-BUTWD ") + std::to_string(*c.watchdog_ms) + " ms";
         if (n.pcp) {
           spec.watchdog_parameter = 409;
           build_mc_params(n, spec, c);
@@ -681,7 +704,7 @@ struct Runner {
       } else {
         n.pcp = true;  // the communication word
         n.pd = true;
-        spec.period = kVf1000SamplePeriod;
+        spec.period = ibs::devices::vf1000::kSamplePeriod;
         spec.watchdog_parameter = 906;
         desc += "VF1000, 906-IB-WD " + std::to_string(*c.watchdog_ms) + " ms, 907-IBCOD " +
                 std::to_string(*c.watchdog_reaction);
@@ -703,25 +726,25 @@ struct Runner {
   }
 
   void build_mc_params(Node& n, CheckerDeviceSpec& spec, const DeviceConfig& c) {
-    for (const pcp::ParameterInfo& p : pcp::kMc6000Parameters) {
+    for (const pcp::ParameterInfo& p : devices::mc6000::kParameters) {
       ParamModelSpec m;
       m.number = p.number;
       m.eeprom = p.category == pcp::Category::eeprom;
       m.factory = p.default_value;
-      m.initial = p.number == pcp::kSupi ? c.supi : p.number == pcp::kIbcnf ? c.ibcnf
+      m.initial = p.number == devices::mc6000::kSupi ? c.supi : p.number == devices::mc6000::kIbcnf ? c.ibcnf
                   : p.number == 409        ? *c.watchdog_ms
                                            : p.default_value;
       m.min = p.min;
       m.max = p.max;
       m.eeprom_save = std::chrono::milliseconds(15) * static_cast<std::int64_t>(pcp::size_of(p.type)) +
-                      kMc6000SamplePeriod + 2 * c.jitter;
+                      ibs::devices::mc6000::kSamplePeriod + 2 * c.jitter;
       m.role = !p.writable() ? ParamRole::device_owned
-               : p.number == pcp::kProg  ? ParamRole::command
-               : p.number == pcp::kSload ? ParamRole::sload
+               : p.number == devices::mc6000::kProg  ? ParamRole::command
+               : p.number == devices::mc6000::kSload ? ParamRole::sload
                                          : ParamRole::normal;
       spec.params.push_back(m);
       n.readable.push_back(p.number);
-      if (m.role != ParamRole::normal || p.number == pcp::kSupi || p.number == pcp::kIbcnf) continue;
+      if (m.role != ParamRole::normal || p.number == devices::mc6000::kSupi || p.number == devices::mc6000::kIbcnf) continue;
       Pool pool;
       pool.number = p.number;
       pool.in_range = {p.default_value, p.min, p.max};
@@ -733,21 +756,21 @@ struct Runner {
   }
 
   void build_vf_params(Node& n, CheckerDeviceSpec& spec, const DeviceConfig& c) {
-    for (const vc::ParameterInfo& p : vc::vf1000_parameters()) {
+    for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
       ParamModelSpec m;
       m.number = p.number;
-      const vc::Storage s = vc::storage(p.category);
-      m.eeprom = s == vc::Storage::eeprom || s == vc::Storage::eeprom_ram;
-      m.eeprom_ram = s == vc::Storage::eeprom_ram;
+      const drive::Storage s = drive::storage(p.category);
+      m.eeprom = s == drive::Storage::eeprom || s == drive::Storage::eeprom_ram;
+      m.eeprom_ram = s == drive::Storage::eeprom_ram;
       m.factory = p.default_value;
-      m.initial = p.number == vc::pnr::kIbWd ? *c.watchdog_ms : p.number == vc::pnr::kIbcod ? *c.watchdog_reaction
+      m.initial = p.number == devices::vf1000::pnr::kIbWd ? *c.watchdog_ms : p.number == devices::vf1000::pnr::kIbcod ? *c.watchdog_reaction
                                                                                            : p.default_value;
       m.min = p.min;
       m.max = p.max;
       m.eeprom_save = Duration{0};  // the inverter's store takes the EEPROM copy with the value
-      const bool mirrored = p.number == vc::pnr::kIcntl || p.number == vc::pnr::kFdriv;
-      m.role = (!vc::writable(p.category) || mirrored) ? ParamRole::device_owned
-               : p.number == vc::pnr::kProg           ? ParamRole::command
+      const bool mirrored = p.number == devices::vf1000::pnr::kIcntl || p.number == devices::vf1000::pnr::kFdriv;
+      m.role = (!drive::writable(p.category) || mirrored) ? ParamRole::device_owned
+               : p.number == devices::vf1000::pnr::kProg           ? ParamRole::command
                                                       : ParamRole::normal;
       spec.params.push_back(m);
       n.readable.push_back(p.number);
@@ -756,9 +779,9 @@ struct Runner {
       pool.number = p.number;
       pool.in_range = {p.default_value, p.min, p.max};
       for (int k = 0; k < 2; ++k) add(pool.in_range, uniform(p.min, p.max));
-      if (p.number == vc::pnr::kIbWd) pool.in_range = {100, 200, 400, 65535, m.initial};
+      if (p.number == devices::vf1000::pnr::kIbWd) pool.in_range = {100, 200, 400, 65535, m.initial};
       if (p.max < 0xFFFF) pool.out_of_range.push_back(p.max + 1);
-      if (p.type == vc::DataType::usign8 || p.type == vc::DataType::binary8) pool.out_of_range.push_back(0x1FF);
+      if (p.type == drive::DataType::usign8 || p.type == drive::DataType::binary8) pool.out_of_range.push_back(0x1FF);
       if (p.min > 0) pool.out_of_range.push_back(p.min - 1);
       n.pools.push_back(std::move(pool));
     }
@@ -772,12 +795,12 @@ struct Runner {
       n.script.pop_front();
       return s;
     }
-    const bool mc = n.kind == DeviceKind::mc6000;
+    const bool mc = n.kind == devices::mc6000::kName;
     if (mc && chance(1.0 / 3000)) start_download(n);
     if (mc && chance(1.0 / 3000)) {
       // 405-SUPI / 406-IBCNF: evaluated only at the next power-on (seed 001 3.2.2).
       const bool supi = chance(0.5);
-      const std::uint16_t number = supi ? pcp::kSupi : pcp::kIbcnf;
+      const std::uint16_t number = supi ? devices::mc6000::kSupi : devices::mc6000::kIbcnf;
       const int configured = supi ? n.supi : n.ibcnf;
       std::int64_t v = configured;
       if (chance(0.5)) {
@@ -788,7 +811,7 @@ struct Runner {
     if (chance(1.0 / 6000)) {
       // 4-PROG / 71-PROG: 1 loads the factory defaults (seed 000 10); 111 (MC6000) a baud rate.
       const std::int64_t v = mc && chance(0.3) ? pick(std::vector<std::int64_t>{0, 111}) : 1;
-      n.script.push_back({ParamOp::write, static_cast<std::uint16_t>(mc ? pcp::kProg : vc::pnr::kProg), v,
+      n.script.push_back({ParamOp::write, static_cast<std::uint16_t>(mc ? devices::mc6000::kProg : devices::vf1000::pnr::kProg), v,
                           Duration{0}, mc ? "4-PROG writes" : "71-PROG writes"});
     }
     if (!n.script.empty()) return next_step(n);
@@ -812,13 +835,13 @@ struct Runner {
     ++res.special["80-SLOAD downloads started"];
     n.sload_end_retries = 0;
     if (n.pd) command(n, StateCommand::block_power, sim->now());
-    n.script.push_back({ParamOp::write, pcp::kSload, -1, 30ms, "80-SLOAD = -1"});
+    n.script.push_back({ParamOp::write, devices::mc6000::kSload, -1, 30ms, "80-SLOAD = -1"});
     for (int k = 0; k < 3; ++k) {
       const Pool& p = pick(n.pools);
       n.script.push_back({ParamOp::write, p.number, pick(p.in_range), Duration{0}, "writes during a download"});
     }
-    n.script.push_back({ParamOp::write, pcp::kSload, -2, Duration{0}, "80-SLOAD = -2"});
-    n.script.push_back({ParamOp::read, pcp::kSload, 0, 600ms, "80-SLOAD polls"});
+    n.script.push_back({ParamOp::write, devices::mc6000::kSload, -2, Duration{0}, "80-SLOAD = -2"});
+    n.script.push_back({ParamOp::read, devices::mc6000::kSload, 0, 600ms, "80-SLOAD polls"});
   }
 
   void submit(Node& n, Time now) {
@@ -832,11 +855,11 @@ struct Runner {
     devices::DeviceDriver& drv = sim->driver(n.index);
     // An MC6000 request: an Initiate and the request itself, each with the PCP client's timeout;
     // a write of 4-PROG = 1 waits for the factory defaults (seed 000, 10: up to 10 s).
-    const bool factory_defaults = n.kind == DeviceKind::mc6000 && s.op == devices::ParamOp::write &&
-                                  s.number == pcp::kProg && s.value == pcp::kProgFactoryDefaults;
+    const bool factory_defaults = n.kind == devices::mc6000::kName && s.op == devices::ParamOp::write &&
+                                  s.number == devices::mc6000::kProg && s.value == devices::mc6000::kProgFactoryDefaults;
     const Duration mc_limit =
         kPcpTimeout + (factory_defaults ? devices::Mc6000Driver::kFactoryDefaultsTimeout : kPcpTimeout);
-    const Duration limit = (n.kind == DeviceKind::mc6000 ? mc_limit : kVfTimeout) + kMarginCycles * sim->cycle_time();
+    const Duration limit = (n.kind == devices::mc6000::kName ? mc_limit : kVfTimeout) + kMarginCycles * sim->cycle_time();
     n.current = s;
     trace(n, now, "submit " + std::string(devices::to_string(s.op)) + " " + std::to_string(s.number) + " " + std::to_string(s.value));
     checker.submitted(n.index, s.op, s.number, s.value, now, limit);
@@ -853,30 +876,30 @@ struct Runner {
     ++res.transactions_by[std::string(devices::to_string(n.current.op)) + " " + kind_name(st.kind)];
     if (!n.current.special.empty()) ++res.special[n.current.special + " (" + kind_name(st.kind) + ")"];
     check_store(n, now);
-    const bool mc = n.kind == DeviceKind::mc6000;
+    const bool mc = n.kind == devices::mc6000::kName;
     if (mc && n.current.op == ParamOp::write && st.kind != ParamKind::written && st.kind != ParamKind::refused) {
       // A refused PCP write sets 85-SERR, which refuses every further write until it is read.
-      n.script.push_front({ParamOp::read, pcp::kSerr, 0, Duration{0}, ""});
+      n.script.push_front({ParamOp::read, devices::mc6000::kSerr, 0, Duration{0}, ""});
       // A download whose start or end was refused is given up (or its end repeated).
-      if (n.current.number == pcp::kSload && n.current.value == -1) {
-        while (!n.script.empty() && !n.script.front().special.empty() && n.script.front().number != pcp::kSerr) n.script.pop_front();
+      if (n.current.number == devices::mc6000::kSload && n.current.value == -1) {
+        while (!n.script.empty() && !n.script.front().special.empty() && n.script.front().number != devices::mc6000::kSerr) n.script.pop_front();
         std::erase_if(n.script, [](const Step& x) { return !x.special.empty(); });
       }
-      if (n.current.number == pcp::kSload && n.current.value == -2 && n.sload_end_retries < 3) {
+      if (n.current.number == devices::mc6000::kSload && n.current.value == -2 && n.sload_end_retries < 3) {
         ++n.sload_end_retries;
-        n.script.push_back({ParamOp::write, pcp::kSload, -2, 100ms, "80-SLOAD = -2"});
+        n.script.push_back({ParamOp::write, devices::mc6000::kSload, -2, 100ms, "80-SLOAD = -2"});
       }
     }
-    if (mc && n.current.op == ParamOp::read && n.current.number == pcp::kSload && st.kind == ParamKind::value &&
+    if (mc && n.current.op == ParamOp::read && n.current.number == devices::mc6000::kSload && st.kind == ParamKind::value &&
         !n.current.special.empty()) {
       ++res.special[st.value == 0 ? "80-SLOAD downloads completed (reads 0)" : "80-SLOAD polls still -1"];
       if (st.value == -1 && checker.download_open(n.index)) {
-        n.script.push_back({ParamOp::read, pcp::kSload, 0, 100ms, "80-SLOAD polls"});
+        n.script.push_back({ParamOp::read, devices::mc6000::kSload, 0, 100ms, "80-SLOAD polls"});
       }
     }
     if (mc && n.current.op == ParamOp::write && st.kind == ParamKind::written &&
-        (n.current.number == pcp::kSupi || n.current.number == pcp::kIbcnf) &&
-        n.current.value != (n.current.number == pcp::kSupi ? n.supi : n.ibcnf)) {
+        (n.current.number == devices::mc6000::kSupi || n.current.number == devices::mc6000::kIbcnf) &&
+        n.current.value != (n.current.number == devices::mc6000::kSupi ? n.supi : n.ibcnf)) {
       // Switch the servo off and on once the EEPROM has the value: it must come back with a
       // module error (its layout no longer fits the ring).
       n.power_cycle_at = now + 40ms;
@@ -885,10 +908,10 @@ struct Runner {
 
   void check_store(Node& n, Time now) {
     store.clear();
-    if (n.kind == DeviceKind::mc6000) {
-      const pcp::Server* s = sim->mc6000(n.index)->pcp();
+    if (n.kind == devices::mc6000::kName) {
+      const pcp::Server* s = mc6000_of(*sim, n.index).pcp();
       if (s == nullptr) return;
-      for (const pcp::ParameterInfo& p : pcp::kMc6000Parameters) {
+      for (const pcp::ParameterInfo& p : devices::mc6000::kParameters) {
         const auto v = s->parameters().get(p.number);
         const auto e = s->parameters().eeprom(p.number);
         StoreEntry entry{p.number, v ? pcp::signed_raw(*v) : 0, std::nullopt};
@@ -896,8 +919,8 @@ struct Runner {
         store.push_back(entry);
       }
     } else {
-      const vc::Server& s = sim->vf1000(n.index)->channel();
-      for (const vc::ParameterInfo& p : vc::vf1000_parameters()) {
+      const vc::Server& s = vf1000_of(*sim, n.index).channel();
+      for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
         const int slot = s.table().slot(p.number);
         if (slot < 0) continue;
         store.push_back({p.number, s.store().value(static_cast<std::size_t>(slot)),
@@ -931,9 +954,9 @@ struct Runner {
   }
 
   [[nodiscard]] bool in_download(const Node& n) const {
-    if (n.kind != DeviceKind::mc6000) return false;
-    if (checker.download_open(n.index) || (n.busy && n.current.number == pcp::kSload)) return true;
-    return std::any_of(n.script.begin(), n.script.end(), [](const Step& s) { return s.number == pcp::kSload; });
+    if (n.kind != devices::mc6000::kName) return false;
+    if (checker.download_open(n.index) || (n.busy && n.current.number == devices::mc6000::kSload)) return true;
+    return std::any_of(n.script.begin(), n.script.end(), [](const Step& s) { return s.number == devices::mc6000::kSload; });
   }
 
   void random_command(Node& n, Time now) {
@@ -946,7 +969,7 @@ struct Runner {
     command(n, c, now);
     if (chance(0.2)) {
       devices::DeviceDriver& drv = sim->driver(n.index);
-      drv.set_reference(n.kind == DeviceKind::mc6000 ? static_cast<double>(uniform(-3000, 3000))
+      drv.set_reference(n.kind == devices::mc6000::kName ? static_cast<double>(uniform(-3000, 3000))
                                                      : static_cast<double>(uniform(-60, 60)));
     }
     // Mostly every few cycles; now and then a long pause, in which a request runs its whole
@@ -958,8 +981,8 @@ struct Runner {
 
   void recommission(Node& n, Time now) {
     // 405/406 back to the ring's configuration (keypad), then switched off and on.
-    pcp::ParameterStore& ps = sim->mc6000(n.index)->pcp()->parameters();
-    for (const auto& [number, v] : {std::pair<std::uint16_t, int>{pcp::kSupi, n.supi}, {pcp::kIbcnf, n.ibcnf}}) {
+    pcp::ParameterStore& ps = mc6000_of(*sim, n.index).pcp()->parameters();
+    for (const auto& [number, v] : {std::pair<std::uint16_t, int>{devices::mc6000::kSupi, n.supi}, {devices::mc6000::kIbcnf, n.ibcnf}}) {
       const auto raw = pcp::ParameterStore::to_raw(*ps.info(number), v);
       ps.set(number, raw);
       ps.commit_eeprom(number, raw);
@@ -990,7 +1013,7 @@ struct Runner {
       Node& n = nodes[it->second];
       if (f.kind == "power-cycle") {
         checker.power_cycle(n.index, f.at, n.last_state);
-        if (n.kind == DeviceKind::mc6000 && n.pcp) n.script.push_front({ParamOp::read, pcp::kSerr, 0, Duration{0}, ""});
+        if (n.kind == devices::mc6000::kName && n.pcp) n.script.push_front({ParamOp::read, devices::mc6000::kSerr, 0, Duration{0}, ""});
       } else if (f.kind == "device-fault") {
         checker.device_fault(n.index, f.at, n.last_state);
       }
@@ -1008,6 +1031,15 @@ struct Runner {
     for (std::int64_t k = 1;; ++k) {
       const Time t = Time{0} + k * ct;
       const bool more = sim->run_until(t, so);
+      // A VF1000 that booted from RESET FAULT during this stretch: the model's store follows before
+      // any outcome of this cycle is checked against the device's.
+      for (Node& n : nodes) {
+        if (n.kind != devices::vf1000::kName) continue;
+        if (const std::uint32_t r = vf1000_of(*sim, n.index).software_resets(); r != n.software_resets) {
+          n.software_resets = r;
+          checker.software_reset(n.index, t);
+        }
+      }
       const std::uint64_t valid_now = sim->summary().valid_cycles;
       const bool valid = valid_now > valid_before;
       valid_before = valid_now;
@@ -1015,8 +1047,8 @@ struct Runner {
       for (Node& n : nodes) {
         const bool me = sim->module_error(n.index, t);
         bool lost = me;
-        if (n.kind == DeviceKind::vf1000 && sim->vf1000(n.index)->module_error(t)) lost = false;  // initialising
-        if (n.kind == DeviceKind::mc6000 && sim->mc6000(n.index)->configuration_mismatch()) lost = true;
+        if (n.kind == devices::vf1000::kName && vf1000_of(*sim, n.index).module_error(t)) lost = false;  // initialising
+        if (n.kind == devices::mc6000::kName && mc6000_of(*sim, n.index).configuration_mismatch()) lost = true;
         checker.exchange(n.index, t, valid && !lost, valid && !me);
         if (traced && *traced == n.index && (valid && !me) != n.fed_trace) {
           n.fed_trace = valid && !me;
@@ -1033,11 +1065,11 @@ struct Runner {
         const State s = sim->device_state(n.index);
         bool tripped = false;
         bool wd_fault = false;
-        if (n.kind == DeviceKind::vf1000) {
-          tripped = sim->vf1000(n.index)->watchdog_tripped();
-          wd_fault = sim->vf1000(n.index)->error_number().has_value();
+        if (n.kind == devices::vf1000::kName) {
+          tripped = vf1000_of(*sim, n.index).watchdog_tripped();
+          wd_fault = vf1000_of(*sim, n.index).error_number().has_value();
         } else {
-          tripped = wd_fault = sim->mc6000(n.index)->watchdog_tripped();
+          tripped = wd_fault = mc6000_of(*sim, n.index).watchdog_tripped();
         }
         checker.observe(n.index, t, s, tripped, wd_fault);
         if (traced && *traced == n.index && (s != n.last_state || tripped != n.tripped_trace)) {
@@ -1050,22 +1082,22 @@ struct Runner {
       if (!more || res.transactions >= opt.transactions) break;
       // Layout checks and the technician.
       for (Node& n : nodes) {
-        if (n.kind != DeviceKind::mc6000 || !n.pcp) continue;
-        devices::Mc6000Device* mc = sim->mc6000(n.index);
+        if (n.kind != devices::mc6000::kName || !n.pcp) continue;
+        devices::Mc6000Device* mc = &mc6000_of(*sim, n.index);
         if (n.check_layout) {
           n.check_layout = false;
           if (mc->configuration_mismatch() != n.layout_expected_mismatch) {
             checker.report(n.index, t, "layout",
-                           std::string("after a power-on with 405/406 = ") + show(checker.possible(n.index, pcp::kSupi, true)) +
-                               " / " + show(checker.possible(n.index, pcp::kIbcnf, true)) + " the device " +
+                           std::string("after a power-on with 405/406 = ") + show(checker.possible(n.index, devices::mc6000::kSupi, true)) +
+                               " / " + show(checker.possible(n.index, devices::mc6000::kIbcnf, true)) + " the device " +
                                (n.layout_expected_mismatch ? "does not show" : "shows") + " a module error");
           }
           ++res.special["layout checks after a power-on with changed 405/406"];
         }
         if (n.power_cycle_at && t >= *n.power_cycle_at && !n.busy) {
           n.power_cycle_at.reset();
-          const auto supi = checker.possible(n.index, pcp::kSupi, true);
-          const auto ibcnf = checker.possible(n.index, pcp::kIbcnf, true);
+          const auto supi = checker.possible(n.index, devices::mc6000::kSupi, true);
+          const auto ibcnf = checker.possible(n.index, devices::mc6000::kIbcnf, true);
           if (supi.size() == 1 && ibcnf.size() == 1) {
             n.check_layout = true;
             n.layout_expected_mismatch = supi[0] != n.supi || ibcnf[0] != n.ibcnf;
@@ -1079,7 +1111,7 @@ struct Runner {
       // Traffic and commands.
       for (Node& n : nodes) {
         if (!n.busy && t >= n.pause_until && !n.power_cycle_at && n.pcp &&
-            !(n.kind == DeviceKind::vf1000 && sim->driver(n.index).parameters().closing())) {
+            !(n.kind == devices::vf1000::kName && sim->driver(n.index).parameters().closing())) {
           submit(n, t);
         }
         if (n.pd && t >= n.next_command) random_command(n, t);

@@ -1,8 +1,14 @@
 #include "ibs/sim/report.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "ibs/devices/registry.hpp"
 
 namespace ibs::sim {
 
@@ -26,6 +32,36 @@ std::string op_text(const TransactionRecord& r) {
 }
 
 double budget_percent(double ns, Duration budget) { return 100.0 * ns / static_cast<double>(budget.count()); }
+
+// The processing period of every drive kind the project knows, against which the master's time
+// per cycle is set (the MC6000's 1 ms, the VF1000's 8.2 ms), in the registry's order.
+struct Budget {
+  Duration period;
+  std::string period_text;  // "8.2 ms"
+  std::string key;          // "budget_8_2ms_median_percent"
+  std::string drives;       // "VF1000"
+  int decimals;             // at the median; one fewer at the max
+};
+
+std::vector<Budget> budgets() {
+  std::vector<Budget> out;
+  for (const devices::DriveKind& k : devices::drive_kinds()) {
+    const devices::DriveFacts& f = k->facts();
+    const auto same = std::find_if(out.begin(), out.end(), [&](const Budget& b) { return b.period == f.sample_period; });
+    if (same != out.end()) {
+      same->drives += "/" + std::string(f.title);
+      continue;
+    }
+    std::string number = printf_string("%g", to_ms(f.sample_period));
+    std::string key = number;
+    std::replace(key.begin(), key.end(), '.', '_');
+    // One more decimal for every tenfold period: the same significant digits for each budget.
+    const int decimals = 4 + static_cast<int>(std::lround(std::log10(to_ms(f.sample_period))));
+    out.push_back({f.sample_period, number + " ms", "budget_" + key + "ms_median_percent", std::string(f.title),
+                   decimals});
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -67,12 +103,12 @@ std::string format_text(const Summary& s) {
     o += printf_string("\nmaster processing per cycle (%zu driver(s)): median %.0f ns, p99 %.0f ns, max %.0f ns over %llu cycles\n",
                        s.devices.size(), s.master.median_ns, s.master.p99_ns, s.master.max_ns,
                        static_cast<unsigned long long>(s.master.cycles));
-    o += printf_string("  1 ms budget (MC6000 processing): %.4f %% at the median, %.3f %% at the max\n",
-                       budget_percent(s.master.median_ns, kMc6000SamplePeriod),
-                       budget_percent(s.master.max_ns, kMc6000SamplePeriod));
-    o += printf_string("  8.2 ms budget (VF1000 processing): %.5f %% at the median, %.4f %% at the max\n",
-                       budget_percent(s.master.median_ns, kVf1000SamplePeriod),
-                       budget_percent(s.master.max_ns, kVf1000SamplePeriod));
+    for (const Budget& b : budgets()) {
+      o += printf_string("  %s budget (%s processing): %.*f %% at the median, %.*f %% at the max\n",
+                         b.period_text.c_str(), b.drives.c_str(), b.decimals,
+                         budget_percent(s.master.median_ns, b.period), b.decimals - 1,
+                         budget_percent(s.master.max_ns, b.period));
+    }
   }
   return o;
 }
@@ -97,7 +133,7 @@ std::string format_json(const Summary& s) {
       failures.push_back({{"at_ms", to_ms(f.at)}, {"failure", f.failure}, {"what", f.what}});
     }
     devices.push_back({{"name", d.name},
-                       {"type", d.kind == DeviceKind::vf1000 ? "vf1000" : "mc6000"},
+                       {"type", d.kind},
                        {"id_code", d.id_code},
                        {"unit", d.unit},
                        {"states", states},
@@ -136,9 +172,8 @@ std::string format_json(const Summary& s) {
   j["master"] = {{"cycles", s.master.cycles},
                  {"median_ns", s.master.median_ns},
                  {"p99_ns", s.master.p99_ns},
-                 {"max_ns", s.master.max_ns},
-                 {"budget_1ms_median_percent", budget_percent(s.master.median_ns, kMc6000SamplePeriod)},
-                 {"budget_8_2ms_median_percent", budget_percent(s.master.median_ns, kVf1000SamplePeriod)}};
+                 {"max_ns", s.master.max_ns}};
+  for (const Budget& b : budgets()) j["master"][b.key] = budget_percent(s.master.median_ns, b.period);
   return j.dump(2) + "\n";
 }
 

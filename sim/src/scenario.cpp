@@ -51,10 +51,21 @@ void validate_scenario(const Scenario& s, const std::string& file) {
   detail::validate(s, detail::SourceMap{}, file);
 }
 
+devices::DeviceSettings device_settings(const DeviceConfig& d) {
+  devices::DeviceSettings s;
+  s.supi = d.supi;
+  s.ibcnf = d.ibcnf;
+  s.bus = d.bus;
+  s.watchdog_ms = d.watchdog_ms;
+  s.watchdog_reaction = d.watchdog_reaction;
+  return s;
+}
+
 bool operator==(const DeviceConfig& a, const DeviceConfig& b) {
-  // A VF1000 has no SUPI/IBCNF (seed 001, 3.1.2): the fields keep whatever they hold.
-  const bool layout_equal =
-      a.kind == DeviceKind::vf1000 || (a.supi == b.supi && a.ibcnf == b.ibcnf);
+  // A setting the kind refuses (a VF1000's SUPI/IBCNF, seed 001 3.1.2) keeps whatever it holds.
+  const devices::DriveKind* k = devices::find_drive_kind(a.kind);
+  const auto applies = [k](std::string_view key) { return k == nullptr || !(*k)->refused_setting(key); };
+  const bool layout_equal = (!applies("supi") || a.supi == b.supi) && (!applies("ibcnf") || a.ibcnf == b.ibcnf);
   return a.name == b.name && a.kind == b.kind && layout_equal && a.bus == b.bus &&
          a.phase == b.phase && a.jitter == b.jitter && a.initialised == b.initialised &&
          a.watchdog_ms == b.watchdog_ms && a.watchdog_reaction == b.watchdog_reaction;
@@ -101,15 +112,15 @@ Scenario default_scenario() {
 
   DeviceConfig mc;
   mc.name = "mc6000";
-  mc.kind = DeviceKind::mc6000;
+  mc.kind = "mc6000";
   mc.supi = 11;
   mc.ibcnf = 2;
-  mc.bus = BusSide::remote;
+  mc.bus = interbus::BusKind::remote;
   mc.initialised = true;
   DeviceConfig vf;
   vf.name = "vf1000";
-  vf.kind = DeviceKind::vf1000;
-  vf.bus = BusSide::remote;
+  vf.kind = "vf1000";
+  vf.bus = interbus::BusKind::remote;
   vf.initialised = true;
   s.devices = {mc, vf};
 

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ibs/devices/registry.hpp"
+#include "ibs/drivecom/sequencer.hpp"
 #include "ibs/sim/scenario.hpp"
 
 namespace ibs::sim::detail {
@@ -90,15 +92,9 @@ void validate(const Scenario& s, const SourceMap& lines, const std::string& file
 
 // --- names and text shared by the reader, the validator and the writers ---------------------
 
-inline constexpr std::string_view kTargetStates[] = {"start-up-inhibit", "ready", "on", "enabled"};
-inline constexpr std::string_view kWaitStates[] = {"not-ready",
-                                                   "start-up-inhibit",
-                                                   "ready",
-                                                   "on",
-                                                   "enabled",
-                                                   "fault",
-                                                   "fault-response-active",
-                                                   "emergency-stop-active"};
+// The DRIVECOM states' names as the files write them: drivecom's state table is their only source.
+inline constexpr const auto& kTargetStates = drivecom::kTargetKeys;
+inline constexpr const auto& kWaitStates = drivecom::kStateKeys;
 
 // The `fault = "..."` names.
 std::string_view fault_name(Action a);  // empty for a non-fault action

@@ -212,10 +212,10 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
       l.name = v.line;
     } else if (key == "type") {
       const std::string type = r.string(v, key);
-      if (type != "mc6000" && type != "vf1000") {
-        r.fail(v.line, "'type' must be \"mc6000\" or \"vf1000\", not \"" + type + "\"");
+      if (devices::find_drive_kind(type) == nullptr) {
+        r.fail(v.line, "'type' must be " + devices::drive_kind_names(", ", " or ", "\"") + ", not \"" + type + "\"");
       }
-      d.kind = type == "vf1000" ? DeviceKind::vf1000 : DeviceKind::mc6000;
+      d.kind = type;
       has_type = true;
     } else if (key == "supi") {
       d.supi = r.int_value(v, key, 0, 12);
@@ -228,7 +228,7 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
       if (bus != "local" && bus != "remote") {
         r.fail(v.line, "'bus' must be \"local\" or \"remote\", not \"" + bus + "\"");
       }
-      d.bus = bus == "local" ? BusSide::local : BusSide::remote;
+      d.bus = bus == "local" ? interbus::BusKind::local : interbus::BusKind::remote;
       l.bus = v.line;
     } else if (key == "phase") {
       d.phase = r.time(v, key);
@@ -248,11 +248,13 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
   });
   if (l.name == 0) r.fail(n.line, "a device needs a 'name'");
   if (!has_type)
-    r.fail(n.line, "device '" + d.name + "' needs a 'type' (\"mc6000\" or \"vf1000\")");
-  if (d.kind == DeviceKind::vf1000) {
-    // The struct keeps its defaults for these; a VF1000 has neither (seed 001, 3.1.2).
-    if (l.supi != 0) r.fail(l.supi, "'supi' is an MC6000 setting; a VF1000 has no 405-SUPI");
-    if (l.ibcnf != 0) r.fail(l.ibcnf, "'ibcnf' is an MC6000 setting; a VF1000 has no 406-IBCNF");
+    r.fail(n.line, "device '" + d.name + "' needs a 'type' (" + devices::drive_kind_names(", ", " or ", "\"") + ")");
+  // A setting the kind does not have at all (a VF1000's 405-SUPI, seed 001 3.1.2); the struct keeps
+  // its default for it.
+  const devices::DriveDescriptor& kind = **devices::find_drive_kind(d.kind);
+  for (const auto& [key, line] : {std::pair<std::string_view, std::size_t>{"supi", l.supi}, {"ibcnf", l.ibcnf}}) {
+    if (line == 0) continue;
+    if (const auto refusal = kind.refused_setting(key)) r.fail(line, std::string(*refusal));
   }
 }
 

@@ -120,12 +120,8 @@ std::string format_time(Duration d) {
   return text + " " + std::string(unit->name);
 }
 
-std::string_view to_string(DeviceKind k) {
-  return k == DeviceKind::vf1000 ? "vf1000" : "mc6000";
-}
-
-std::string_view to_string(BusSide b) {
-  return b == BusSide::local ? "local" : "remote";
+std::string_view bus_text(interbus::BusKind b) {
+  return b == interbus::BusKind::local ? "local" : "remote";
 }
 
 std::string_view to_string(Action a) {

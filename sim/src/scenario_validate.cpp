@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "ibs/devices/registry.hpp"
 #include "ibs/interbus/bus_config.hpp"
-#include "ibs/interbus/mc6000_layout.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "scenario_internal.hpp"
 
@@ -20,32 +20,12 @@ namespace ibs::sim::detail {
 
 namespace {
 
-namespace mc = interbus::mc6000;
-
 constexpr Duration kMaxRunTime = 24h;
 constexpr Duration kMaxBusTime = 1s;  // cycle and software time: more is a unit typo
 constexpr int kMaxRecoveryCycles = 100;
 constexpr std::size_t kMaxNameLength = 32;
 constexpr int kMaxCorruptCount = 10'000;
 constexpr double kMaxRatePerS = 1000.0;
-
-// The VF1000's ID code: remote bus, profile device, 3 words, no PCP (seed 001, 3.1.2).
-constexpr Word kVf1000IdCode = 0x33B;
-// VF1000 parameter numbers: 10 bits, the low byte and bits 0-1 of the control byte (4.1.2.1).
-constexpr int kVf1000MaxParameter = 0x3FF;
-// MC6000 parameter numbers: 0..999 (seed 000, 2.4.2); PCP index = number + 5C00H (seed 001, 4.2).
-constexpr int kMc6000MaxParameter = 999;
-// 906-IB-WD 8..65535 ms, the maximum switching monitoring off (seed 001, 4.1.1); 409-BUTWD in ms,
-// 0 = off (3.2.4), an Unsigned 16.
-constexpr int kVf1000MinWatchdogMs = 8;
-constexpr int kMaxWatchdogMs = 0xFFFF;
-// 907-IBCOD 0..3 (4.1.1).
-constexpr int kMaxWatchdogReaction = 3;
-// The VF1000 reference word: 0.05 Hz per bit, an absolute value (5.2.3).
-constexpr double kMaxFrequencyHz = 65535 * 0.05;
-// The MC6000 reference: rpm, a signed 16-bit word or Q16 in 32 bits (3.2.3, 5.3.4).
-constexpr double kMinSpeedRpm = -32768.0;
-constexpr double kMaxSpeedRpm = 32767.0;
 
 std::size_t pick(std::size_t line, std::size_t fallback) {
   return line != 0 ? line : fallback;
@@ -62,24 +42,21 @@ bool is_name_char(char c) {
          c == '-';
 }
 
-template <std::size_t N>
-bool one_of(std::string_view v, const std::string_view (&names)[N]) {
-  return std::find(std::begin(names), std::end(names), v) != std::end(names);
+bool one_of(std::string_view v, std::span<const std::string_view> names) {
+  return std::find(names.begin(), names.end(), v) != names.end();
 }
 
-template <std::size_t N>
-std::string list(const std::string_view (&names)[N]) {
+std::string list(std::span<const std::string_view> names) {
   std::string out;
   for (const std::string_view n : names) out += (out.empty() ? "" : ", ") + std::string(n);
   return out;
 }
 
-std::string kind_text(DeviceKind k) {
-  return k == DeviceKind::vf1000 ? "VF1000" : "MC6000";
+std::string kind_text(const devices::DriveDescriptor& k) { return std::string(k.facts().title); }
+std::string a_kind(const devices::DriveDescriptor& k) {
+  return std::string(k.facts().article) + " " + std::string(k.facts().title);
 }
-std::string a_kind(DeviceKind k) {
-  return k == DeviceKind::vf1000 ? "a VF1000" : "an MC6000";
-}
+
 
 // Numbers in messages: integers without a fraction ("40000", not "40000.0").
 std::string number_text(double v) {
@@ -92,7 +69,8 @@ std::string number_text(double v) {
 struct Known {
   const DeviceConfig* config = nullptr;
   std::size_t line = 0;
-  std::optional<mc::Layout> layout;  // MC6000 only
+  const devices::DriveDescriptor* kind = nullptr;
+  devices::Configuration configuration;
 };
 
 class Validator {
@@ -185,57 +163,47 @@ class Validator {
              "device name '" + d.name + "' is already used (line " + std::to_string(k.line) + ")");
       }
     }
-    Known known{&d, table, std::nullopt};
-    const Duration period =
-        d.kind == DeviceKind::vf1000 ? kVf1000SamplePeriod : kMc6000SamplePeriod;
     const std::string who = "device '" + d.name + "': ";
-    if (d.kind == DeviceKind::vf1000) {
-      if (d.bus == BusSide::local) {
-        fail(pick(l.bus, table), who + "a VF1000 is always a remote bus device (seed 001, 1.3)");
-      }
-    } else {
-      try {
-        known.layout = mc::make_layout(
-            d.supi, d.ibcnf, d.bus == BusSide::local ? mc::BusKind::local : mc::BusKind::remote);
-      } catch (const mc::LayoutError& e) {
-        const std::string msg = e.what();
-        const bool about_supi = msg.rfind("405-SUPI", 0) == 0;
-        const std::size_t first = about_supi ? l.supi : l.ibcnf;
-        const std::size_t second = about_supi ? l.ibcnf : l.supi;
-        fail(pick(first, pick(second, table)), who + msg);
-      }
+    const devices::DriveKind* kind = devices::find_drive_kind(d.kind);
+    if (kind == nullptr) {
+      fail(table, who + "unknown type '" + d.kind + "' (" + devices::drive_kind_names(", ", " or ", "\"") + ")");
     }
+    const devices::DriveDescriptor& k = **kind;
+    // The line a setting the drive refuses was given on (the table's when it was not given).
+    const auto line_of = [&l](std::string_view setting) -> std::size_t {
+      if (setting == "supi") return l.supi;
+      if (setting == "ibcnf") return l.ibcnf;
+      if (setting == "bus") return l.bus;
+      if (setting == "watchdog_ms") return l.watchdog_ms;
+      if (setting == "watchdog_reaction") return l.watchdog_reaction;
+      return 0;
+    };
+    const auto refuse = [&](const devices::SettingsError& e) {
+      fail(pick(line_of(e.setting()), pick(line_of(e.fallback()), table)), who + e.what());
+    };
+    const devices::DeviceSettings settings = device_settings(d);
+    Known known{&d, table, &k, {}};
+    try {
+      known.configuration = k.configure(settings);
+    } catch (const devices::SettingsError& e) {
+      refuse(e);
+    }
+    const Duration period = k.facts().sample_period;
     if (d.phase < Duration::zero() || d.phase >= period) {
       fail(pick(l.phase, table), who + "'phase' " + format_time(d.phase) +
                                      " must be at least 0 s and shorter than the " +
-                                     kind_text(d.kind) + "'s sample period " + format_time(period));
+                                     kind_text(k) + "'s sample period " + format_time(period));
     }
     if (d.jitter < Duration::zero() || d.jitter * 2 >= period) {
       fail(pick(l.jitter, table), who + "'jitter' " + format_time(d.jitter) +
                                       " must be at least 0 s and shorter than half the " +
-                                      kind_text(d.kind) + "'s sample period (" +
+                                      kind_text(k) + "'s sample period (" +
                                       format_time(period / 2) + ")");
     }
-    if (d.watchdog_ms) {
-      const int min = d.kind == DeviceKind::vf1000 ? kVf1000MinWatchdogMs : 0;
-      if (*d.watchdog_ms < min || *d.watchdog_ms > kMaxWatchdogMs) {
-        fail(pick(l.watchdog_ms, table),
-             who + "'watchdog_ms' = " + std::to_string(*d.watchdog_ms) + " is out of range (" +
-                 std::to_string(min) + ".." + std::to_string(kMaxWatchdogMs) +
-                 (d.kind == DeviceKind::vf1000 ? ", 906-IB-WD" : ", 409-BUTWD, 0 = off") + ")");
-      }
-    }
-    if (d.watchdog_reaction) {
-      const std::size_t line = pick(l.watchdog_reaction, table);
-      if (d.kind != DeviceKind::vf1000) {
-        fail(line, who +
-                       "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 "
-                       "always reports E-OP1 (seed 001, 3.2.4)");
-      }
-      if (*d.watchdog_reaction < 0 || *d.watchdog_reaction > kMaxWatchdogReaction) {
-        fail(line, who + "'watchdog_reaction' = " + std::to_string(*d.watchdog_reaction) +
-                       " is out of range (0..3, 907-IBCOD)");
-      }
+    try {
+      k.check_watchdog(settings);
+    } catch (const devices::SettingsError& e) {
+      refuse(e);
     }
     known_.push_back(known);
   }
@@ -247,10 +215,7 @@ class Validator {
     std::vector<interbus::DeviceSpec> ring;
     ring.reserve(s_.devices.size());
     for (const Known& k : known_) {
-      const bool vf = k.config->kind == DeviceKind::vf1000;
-      ring.push_back(
-          {k.config->name, interbus::IdCode{vf ? kVf1000IdCode : k.layout->id_code},
-           k.config->bus == BusSide::local ? interbus::BusKind::local : interbus::BusKind::remote});
+      ring.push_back({k.config->name, k.configuration.id_code, k.configuration.bus});
     }
     const auto refused = [&](std::size_t n) -> std::optional<std::string> {
       try {
@@ -342,36 +307,48 @@ class Validator {
       fail(pick(l.device, l.table),
            "unknown device '" + e.device + "' (devices: " + device_list() + ")");
     }
-    const DeviceKind kind = k != nullptr ? k->config->kind : DeviceKind::mc6000;
     const std::string who = "device '" + e.device + "'";
-    const auto& layout = k != nullptr ? k->layout : std::optional<mc::Layout>{};
-    const std::string supi_text = layout ? " (405-SUPI " + std::to_string(layout->supi) : "";
-
+    // What the device lacks for this entry, in the drive's words ("has no PCP channel (405-SUPI
+    // 12)"); bus-wide entries need nothing.
+    const auto lacks = [&](devices::Capability c) -> std::optional<std::string> {
+      return k != nullptr ? k->kind->lacks(c, k->configuration) : std::nullopt;
+    };
     const auto need_control_word = [&] {
-      if (layout && (!layout->exchanges_data || layout->pd_words < 1)) {
-        fail(action_line, who + " has no control word" + supi_text +
-                              (layout->exchanges_data ? ": PCP only)" : ": no data exchange)") +
-                              ", so " + what + " cannot reach it");
+      if (const auto why = lacks(devices::Capability::control_word)) {
+        fail(action_line, who + " " + *why + ", so " + what + " cannot reach it");
       }
     };
     const auto need_parameter_channel = [&] {
-      if (layout && layout->pcp_words == 0) {
-        fail(action_line,
-             who + " has no PCP channel" + supi_text + "), so " + what + " cannot reach it");
+      if (const auto why = lacks(devices::Capability::parameter_channel)) {
+        fail(action_line, who + " " + *why + ", so " + what + " cannot reach it");
       }
-      const int max = kind == DeviceKind::vf1000 ? kVf1000MaxParameter : kMc6000MaxParameter;
-      if (e.parameter > max) {
+      const devices::DriveFacts& f = k->kind->facts();
+      if (e.parameter > f.max_parameter) {
         fail(pick(l.parameter, action_line),
              "parameter " + std::to_string(e.parameter) + " is out of range for the " +
-                 kind_text(kind) + " " + who + " (0.." + std::to_string(max) +
-                 (kind == DeviceKind::vf1000 ? ", 10-bit PNR, seed 001 4.1.2.1)"
-                                             : ", seed 000 2.4.2)"));
+                 kind_text(*k->kind) + " " + who + " (0.." + std::to_string(f.max_parameter) +
+                 std::string(f.parameter_range) + ")");
       }
     };
-    const auto only_for = [&](DeviceKind wanted, std::string_view instead) {
-      if (kind != wanted) {
-        fail(action_line, what + " is " + a_kind(wanted) + " action, but " + who + " is " +
-                              a_kind(kind) + " (use '" + std::string(instead) + "')");
+    // A reference action (speed, frequency) is the one of the drives whose reference it is.
+    const auto reference = [&] {
+      const devices::DriveDescriptor& kind = *k->kind;
+      const std::string_view action = to_string(e.action);
+      if (kind.facts().reference_action != action) {
+        const devices::DriveDescriptor* wanted = nullptr;
+        for (const devices::DriveKind& d : devices::drive_kinds()) {
+          if (d->facts().reference_action == action) wanted = d.descriptor;
+        }
+        fail(action_line, what + " is " + (wanted != nullptr ? a_kind(*wanted) : std::string("another drive's")) +
+                              " action, but " + who + " is " + a_kind(kind) + " (use '" +
+                              std::string(kind.facts().reference_action) + "')");
+      }
+      if (!std::isfinite(e.number)) fail(action_line, what + " needs a finite number");
+      if (const auto why = lacks(devices::Capability::reference)) fail(action_line, who + " " + *why);
+      const devices::DriveFacts& f = kind.facts();
+      if (e.number < f.reference_min || e.number > f.reference_max) {
+        fail(action_line, "'" + std::string(action) + "' = " + number_text(e.number) + " " +
+                              std::string(f.unit) + " is out of range (" + std::string(f.reference_range) + ")");
       }
     };
     const auto finite = [&](double v, std::size_t line) {
@@ -401,25 +378,8 @@ class Validator {
         need_control_word();
         break;
       case Action::speed:
-        only_for(DeviceKind::mc6000, "frequency");
-        finite(e.number, action_line);
-        if (layout && (!layout->exchanges_data || layout->reference_words == 0)) {
-          fail(action_line, who + " carries no speed reference (406-IBCNF " +
-                                std::to_string(static_cast<int>(layout->ibcnf)) + ", 405-SUPI " +
-                                std::to_string(layout->supi) + ")");
-        }
-        if (e.number < kMinSpeedRpm || e.number > kMaxSpeedRpm) {
-          fail(action_line,
-               "'speed' = " + number_text(e.number) + " rpm is out of range (-32768..32767 rpm)");
-        }
-        break;
       case Action::frequency:
-        only_for(DeviceKind::vf1000, "speed");
-        finite(e.number, action_line);
-        if (std::abs(e.number) > kMaxFrequencyHz) {
-          fail(action_line, "'frequency' = " + number_text(e.number) +
-                                " Hz is out of range (-3276.75..3276.75 Hz, 0.05 Hz per bit)");
-        }
+        reference();
         break;
       case Action::read:
       case Action::describe:
@@ -429,17 +389,14 @@ class Validator {
         need_parameter_channel();
         const std::size_t value_line = pick(l.value, action_line);
         finite(e.number, value_line);
-        const bool vf = kind == DeviceKind::vf1000;
-        const double min = vf ? -32768.0 : -2147483648.0;
-        const double max = vf ? 65535.0 : 4294967295.0;
+        const devices::DriveFacts& f = k->kind->facts();
         if (e.number != std::trunc(e.number)) {
           fail(value_line, "write's 'value' = " + number_text(e.number) +
                                " must be an integer (the raw value)");
         }
-        if (e.number < min || e.number > max) {
+        if (e.number < f.write_min || e.number > f.write_max) {
           fail(value_line, "write's 'value' = " + number_text(e.number) +
-                               " is out of range for the " + kind_text(kind) +
-                               (vf ? " (-32768..65535, 16 bits)" : " (-2^31..2^32-1, 32 bits)"));
+                               " is out of range for the " + kind_text(*k->kind) + std::string(f.write_range));
         }
         break;
       }

@@ -53,12 +53,12 @@ std::vector<OutField> bus_fields(const BusSettings& b) {
 }
 
 std::vector<OutField> device_fields(const DeviceConfig& d) {
-  std::vector<OutField> f{text("name", d.name), text("type", to_string(d.kind))};
-  if (d.kind == DeviceKind::mc6000) {
-    f.push_back(integer("supi", d.supi));
-    f.push_back(integer("ibcnf", d.ibcnf));
-  }
-  f.push_back(text("bus", to_string(d.bus)));
+  std::vector<OutField> f{text("name", d.name), text("type", d.kind)};
+  // The settings the kind takes (a VF1000 has no 405-SUPI / 406-IBCNF).
+  const devices::DriveKind* k = devices::find_drive_kind(d.kind);
+  if (k == nullptr || !(*k)->refused_setting("supi")) f.push_back(integer("supi", d.supi));
+  if (k == nullptr || !(*k)->refused_setting("ibcnf")) f.push_back(integer("ibcnf", d.ibcnf));
+  f.push_back(text("bus", bus_text(d.bus)));
   if (d.phase != Duration::zero()) f.push_back(time("phase", d.phase));
   if (d.jitter != Duration::zero()) f.push_back(time("jitter", d.jitter));
   f.push_back({"initialised", d.initialised ? "true" : "false", {}});

@@ -18,7 +18,6 @@ namespace ibs::sim {
 
 namespace {
 
-using devices::DeviceStart;
 using drivecom::State;
 
 // The state names of scenario files (docs/scenarios.md), every DRIVECOM state.
@@ -52,7 +51,6 @@ double wall_now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-interbus::IdCode vf1000_id() { return interbus::IdCode{0x033B}; }  // seed 001, 3.1.2
 
 // The processor cores this process may run on (its affinity mask: `taskset` and container CPU
 // sets count, not only the machine's cores).
@@ -100,8 +98,9 @@ struct Simulator::Recording {
 struct Simulator::Device {
   DeviceConfig cfg;
   std::size_t index = 0;
-  std::unique_ptr<devices::Vf1000Device> vf;
-  std::unique_ptr<devices::Mc6000Device> mc;
+  const devices::DriveKind* kind = nullptr;
+  devices::Configuration configuration;
+  std::unique_ptr<devices::DeviceEmulator> emu;
   Duration period{0};
   std::size_t pd_words = 0;
   std::size_t pcp_words = 0;
@@ -130,7 +129,7 @@ struct Simulator::Device {
   std::vector<Recording> recordings;
   bool recording = false;
   bool power_cycled = false;
-  std::uint32_t recalculations = 0;
+  std::uint32_t notices = 0;  // the emulator's notices already in the records
   // Summary records the device's sampling made (15-PLRDY), moved into the summary at the next
   // cycle end: the sampling may run on another thread than the summary's.
   std::vector<StateRecord> records;
@@ -149,9 +148,9 @@ struct Simulator::Device {
 
   [[nodiscard]] bool lost(Time t) const { return t < lost_until; }
   [[nodiscard]] bool module_error(Time t) const {
-    return lost(t) || (vf ? vf->module_error(t) : mc->module_error(t));
+    return lost(t) || emu->module_error(t);
   }
-  [[nodiscard]] State state() const { return vf ? vf->state() : mc->state(); }
+  [[nodiscard]] State state() const { return emu->state(); }
   [[nodiscard]] std::span<Word> pd_m2s() { return {m2s.data(), pd_words}; }
   [[nodiscard]] std::span<Word> pd_s2m() { return {s2m.data(), pd_words}; }
 };
@@ -167,42 +166,24 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
     d->index = i;
     d->jitter_state = scenario_.random.seed ^ (0xD1B54A32D192ED03ULL * (i + 1));
     const DeviceStart start = c.initialised ? DeviceStart::initialised : DeviceStart::power_on;
-    if (c.kind == DeviceKind::vf1000) {
-      if (c.bus == BusSide::local) {
-        throw std::invalid_argument("device '" + c.name + "': the VF1000 is a remote bus user (seed 001, 1.3)");
-      }
-      d->vf = std::make_unique<devices::Vf1000Device>(devices::Vf1000DeviceConfig{}, start, Time{0});
-      if (c.watchdog_ms) d->vf->channel().set_value(906, static_cast<Word>(*c.watchdog_ms));
-      if (c.watchdog_reaction) d->vf->channel().set_value(907, static_cast<Word>(*c.watchdog_reaction));
-      d->period = kVf1000SamplePeriod;
-      d->pd_words = devices::Vf1000Device::kWords;
-      devices::Vf1000Device(devices::Vf1000DeviceConfig{}, DeviceStart::initialised, Time{0})
-          .output({d->fresh_initialised.data(), d->pd_words});
-      devices::Vf1000Device(devices::Vf1000DeviceConfig{}, DeviceStart::operational, Time{0})
-          .output({d->fresh_operational.data(), d->pd_words});
-      specs.push_back({c.name, vf1000_id(), interbus::BusKind::remote});
-      drivers.push_back(std::make_unique<devices::Vf1000Driver>());
-    } else {
-      devices::Mc6000DeviceConfig mc;
-      mc.supi = c.supi;
-      mc.ibcnf = c.ibcnf;
-      mc.bus = c.bus == BusSide::local ? interbus::mc6000::BusKind::local : interbus::mc6000::BusKind::remote;
-      if (c.watchdog_ms) mc.bus_watchdog = std::chrono::milliseconds(*c.watchdog_ms);
-      try {
-        d->mc = std::make_unique<devices::Mc6000Device>(mc6000_prototype(mc, start));
-      } catch (const interbus::mc6000::LayoutError& e) {
-        throw std::invalid_argument("device '" + c.name + "': " + e.what());
-      }
-      const auto& l = d->mc->layout();
-      d->period = kMc6000SamplePeriod;
-      d->pd_words = static_cast<std::size_t>(l.exchanges_data ? l.pd_words : 0);
-      d->pcp_words = static_cast<std::size_t>(l.pcp_words);
-      mc6000_prototype(mc, DeviceStart::initialised).output({d->fresh_initialised.data(), d->pd_words});
-      d->fresh_operational = d->fresh_initialised;
-      specs.push_back({c.name, interbus::IdCode{l.id_code},
-                       c.bus == BusSide::local ? interbus::BusKind::local : interbus::BusKind::remote});
-      drivers.push_back(std::make_unique<devices::Mc6000Driver>(l));
+    // The drive kind the scenario names, and where its settings place it on the bus.
+    const devices::DriveKind* kind = devices::find_drive_kind(c.kind);
+    if (kind == nullptr) {
+      throw std::invalid_argument("device '" + c.name + "': unknown type '" + c.kind + "' (" +
+                                  devices::drive_kind_names(", ", " or ", "\"") + ")");
     }
+    try {
+      d->configuration = (*kind)->configure(device_settings(c));
+    } catch (const devices::SettingsError& e) {
+      throw std::invalid_argument("device '" + c.name + "': " + e.what());
+    }
+    d->kind = kind;
+    d->emu = prototype(*kind, d->configuration, start).clone();
+    d->period = (*kind)->facts().sample_period;
+    d->pd_words = d->configuration.exchanged_pd_words();
+    d->pcp_words = d->configuration.pcp_words;
+    specs.push_back({c.name, d->configuration.id_code, d->configuration.bus});
+    drivers.push_back((*kind)->make_driver(d->configuration));
     devices_.push_back(std::move(d));
   }
   interbus::BusConfig config;
@@ -228,7 +209,7 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
   }
   if (cycle_time_ <= Duration{0}) throw std::invalid_argument("bus cycle time must be positive");
   for (auto& d : devices_) {
-    if (d->mc && d->pd_words > 0 && config.devices[d->index].pd_in_words != d->pd_words) {
+    if (d->pd_words > 0 && config.devices[d->index].pd_in_words != d->pd_words) {
       throw std::invalid_argument("device '" + d->cfg.name + "': the ring gives it " +
                                   std::to_string(config.devices[d->index].pd_in_words) +
                                   " process-data words, its layout " + std::to_string(d->pd_words));
@@ -252,24 +233,19 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
   summary_.devices.resize(devices_.size());
   summary_.scenario = scenario_.name;
   summary_.cycle_time = cycle_time_;
-  prototypes_.clear();
 }
 
 Simulator::~Simulator() = default;
 
-const devices::Mc6000Device& Simulator::mc6000_prototype(const devices::Mc6000DeviceConfig& c, DeviceStart start) {
-  // Servos of the same configuration start out identical: one is built (its plant discretised)
-  // and the others are copies of it. The key is what the scenario sets; the rest is default.
+const devices::DeviceEmulator& Simulator::prototype(const devices::DriveKind& kind,
+                                                   const devices::Configuration& config, DeviceStart start) {
+  // Devices of the same kind and settings start out identical: one is built (a servo's plant
+  // discretised) and the others are copies of it.
   for (const auto& p : prototypes_) {
-    const auto& k = p.config;
-    if (p.start == start && k.supi == c.supi && k.ibcnf == c.ibcnf && k.bus == c.bus &&
-        k.bus_watchdog == c.bus_watchdog) {
-      return *p.device;
-    }
+    if (p.kind == &kind && p.start == start && p.settings == config.settings) return *p.emulator;
   }
-  auto device = std::make_unique<devices::Mc6000Device>(c, start, Time{0});
-  prototypes_.push_back({c, start, std::move(device)});
-  return *prototypes_.back().device;
+  prototypes_.push_back({&kind, config.settings, start, kind.make_emulator(config, start, Time{0})});
+  return *prototypes_.back().emulator;
 }
 
 std::optional<std::size_t> Simulator::index_of(const std::string& name) const {
@@ -286,11 +262,9 @@ void Simulator::inject_fault(Action kind, std::size_t i, Duration duration, int 
   if (!bus_wide && i >= devices_.size()) return;
   fault(now_, bus_wide ? devices_.size() : i, kind, duration, count);
 }
-double Simulator::device_actual(std::size_t i) const {
-  return devices_[i]->vf ? devices_[i]->vf->frequency_hz() : devices_[i]->mc->actual_rpm();
-}
-devices::Vf1000Device* Simulator::vf1000(std::size_t i) { return devices_[i]->vf.get(); }
-devices::Mc6000Device* Simulator::mc6000(std::size_t i) { return devices_[i]->mc.get(); }
+double Simulator::device_actual(std::size_t i) const { return devices_[i]->emu->actual(); }
+devices::DeviceEmulator& Simulator::emulator(std::size_t i) { return *devices_[i]->emu; }
+const devices::DeviceEmulator& Simulator::emulator(std::size_t i) const { return *devices_[i]->emu; }
 
 Time Simulator::next_sample_time(Device& d) {
   // Nominal phase + k * period, moved by up to +-jitter, never before the previous sample. Each
@@ -310,24 +284,20 @@ void Simulator::start(const SimOptions& options) {
   wall_start_ = wall_now();
   loop_->initial(image_);
   for (auto& d : devices_) {
-    if (d->vf) d->vf->output(d->pd_s2m());
-    if (d->mc) {
-      d->mc->output(d->pd_s2m());
-      d->mc->output_pcp(Time{0}, {d->pcp_s2m.data(), d->pcp_words});
-    }
+    d->emu->output(d->pd_s2m());
+    d->emu->output_pcp(Time{0}, {d->pcp_s2m.data(), d->pcp_words});
     d->next_sample = next_sample_time(*d);
     // A device without process data (MC6000 SUPI 0..3) has no `words: pd` rows to record.
     if (options_.record_traces && d->pd_words > 0) {
       Recording r;
       r.trace.file = d->cfg.name;
-      r.trace.header.device = d->vf ? trace::DeviceType::vf1000 : trace::DeviceType::mc6000;
+      r.trace.header.device = std::string((*d->kind)->name());
       r.trace.header.words = trace::WordsKind::pd;
-      if (d->mc) {
-        r.trace.header.supi = d->cfg.supi;
-        r.trace.header.ibcnf = d->cfg.ibcnf;
-        r.trace.header.supi_given = r.trace.header.ibcnf_given = true;
-      }
-      r.trace.header.init = trace::InitState::power_on;
+      (*d->kind)->write_trace_settings(d->configuration, r.trace.header);
+      // What a freshly started device of a trace `init` shows (record_sample starts on it).
+      prototype(*d->kind, d->configuration, DeviceStart::initialised).output({d->fresh_initialised.data(), d->pd_words});
+      prototype(*d->kind, d->configuration, DeviceStart::operational).output({d->fresh_operational.data(), d->pd_words});
+      r.trace.header.init = DeviceStart::initialised;
       r.trace.header.init_given = true;
       r.file_name = d->cfg.name + ".trace";
       d->recordings.push_back(std::move(r));
@@ -335,6 +305,7 @@ void Simulator::start(const SimOptions& options) {
       d->recording = d->cfg.initialised;
     }
   }
+  prototypes_.clear();
   if (observers_.empty()) start_threads(options_.threads);
   master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
   samples_.reserve(devices_.size());
@@ -442,7 +413,7 @@ void Simulator::start_threads(unsigned requested) {
 
 void Simulator::step_device(Device& d, Time limit) {
   if (d.next_sample >= limit) return;
-  if (d.vf || d.pcp_words > 0 || !d.recordings.empty()) {
+  if (!d.emu->defers_output() || !d.recordings.empty()) {
     while (d.next_sample < limit) handle_sample(d.index, d.next_sample);
     return;
   }
@@ -451,19 +422,19 @@ void Simulator::step_device(Device& d, Time limit) {
   // samples up to the cycle end are known at once and it takes them in one go.
   if (d.cfg.jitter == Duration{0}) {
     const auto count = static_cast<std::uint64_t>((limit - d.next_sample + d.period - Duration{1}) / d.period);
-    d.mc->step_held(d.pd_m2s(), d.next_sample, d.period, static_cast<std::uint32_t>(count));
+    d.emu->sample_held(d.pd_m2s(), d.next_sample, d.period, static_cast<std::uint32_t>(count));
     d.k += count;
     d.last_sample = d.next_sample + static_cast<std::int64_t>(count - 1) * d.period;
     d.next_sample = next_sample_time(d);
   } else {
     do {
       d.last_sample = d.next_sample;
-      d.mc->step(d.pd_m2s(), d.next_sample);
+      d.emu->sample_deferred(d.pd_m2s(), d.next_sample);
       ++d.k;
       d.next_sample = next_sample_time(d);
     } while (d.next_sample < limit);
   }
-  d.mc->output(d.pd_s2m());
+  d.emu->output(d.pd_s2m());
 }
 
 void Simulator::run_time_ordered(Time end) {
@@ -626,8 +597,7 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
       Device& d = *devices_[i];
       f.kind = "power-cycle";
       f.detail = "switched off and on: initialising again";
-      if (d.vf) d.vf->power_cycle(t);
-      if (d.mc) d.mc->power_cycle(t);
+      d.emu->power_cycle(t);
       if (d.recording) {
         // A power cycle is not in the trace format: this recording ends, a new one starts once the
         // device has initialised again.
@@ -648,8 +618,7 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
       f.kind = "device-fault";
       f.detail = "fault present for " + fmt_value(to_ms(duration)) + " ms";
       d.fault_until = t + std::max(duration, d.period);
-      if (d.vf) d.vf->set_fault(true);
-      if (d.mc) d.mc->set_fault(true);
+      d.emu->set_fault(true);
       note(d, "device fault injected");
       event(d, trace::Event::Kind::fault, "injected at " + fmt_value(to_ms(t)) + " ms");
       break;
@@ -713,8 +682,7 @@ void Simulator::cycle_exchange(Time t) {
   for (auto& d : devices_) {
     if (d->fault_until >= Time{0} && t >= d->fault_until) {
       d->fault_until = Time{-1};
-      if (d->vf) d->vf->set_fault(false);
-      if (d->mc) d->mc->set_fault(false);
+      d->emu->set_fault(false);
       summary_.faults.push_back({t, d->cfg.name, "fault-cleared", "the fault's cause has gone"});
       if (!d->recordings.empty() && d->recording) {
         d->recordings.back().events_pending.push_back(
@@ -747,19 +715,18 @@ void Simulator::cycle_exchange(Time t) {
       std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
       // A device that is on the ring but initialising (6.1) still takes the master's words into
       // its bus interface: it acts on the newest ones once it is ready, not on words from before.
-      if (!d->lost(t) && d->vf) copy_words(d->out, d->m2s.data());
+      if (!d->lost(t) && d->emu->takes_words_in_module_error()) copy_words(d->out, d->m2s.data());
       continue;
     }
     copy_words(d->out, d->m2s.data());
     copy_words({d->s2m.data(), d->in.size()}, d->in.data());
     copy_words(d->pcp_out, d->pcp_m2s.data());
     copy_words({d->pcp_s2m.data(), d->pcp_in.size()}, d->pcp_in.data());
-    if (d->vf) d->vf->bus_cycle(t);
-    if (d->mc) d->mc->bus_cycle(t);
+    d->emu->bus_cycle(t);
   }
   // What the master's side reports of the devices, as they are at this cycle end (the devices
   // may be sampling again while the master's cycle runs).
-  for (auto& d : devices_) d->error_at_cycle = d->vf ? d->vf->error_number() : d->mc->error_number();
+  for (auto& d : devices_) d->error_at_cycle = d->emu->error_number();
   last_cycle_valid_ = valid;
 }
 
@@ -820,8 +787,7 @@ void Simulator::observe_master(Time t) {
     }
     const auto err = d->error_at_cycle;
     if (err && err != d->reported_error) {
-      const std::string what = d->vf ? "error 12 (E-IBS): process-data watchdog 906-IB-WD ran out"
-                                     : "error 16 (E-OP1), location 1: bus watchdog 409-BUTWD ran out";
+      const std::string what((*d->kind)->facts().watchdog_error);
       summary_.faults.push_back({t, d->cfg.name, "watchdog", what});
       summary_.devices[d->index].errors.push_back(fmt_value(to_ms(t)) + " ms: " + what);
     }
@@ -849,17 +815,13 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   const bool recording = !d.recordings.empty();  // only with SimOptions::record_traces
   std::array<Word, 4> before{};
   if (recording) before = d.s2m;
-  if (d.mc) {
-    d.mc->sample(d.pd_m2s(), d.pd_s2m(), t, {d.pcp_m2s.data(), d.pcp_words}, {d.pcp_s2m.data(), d.pcp_words});
-  } else {
-    d.vf->sample(d.pd_m2s(), d.pd_s2m(), t);
-  }
+  d.emu->sample({d.pd_m2s(), d.pd_s2m(), {d.pcp_m2s.data(), d.pcp_words}, {d.pcp_s2m.data(), d.pcp_words}}, t);
   ++d.k;
   d.next_sample = next_sample_time(d);
-  if (d.pcp_words > 0 && d.mc->recalculations() != d.recalculations) {
-    // 4.2: 15-PLRDY = 1 makes the servo recalculate its controller parameters.
-    d.recalculations = d.mc->recalculations();
-    d.records.push_back({t, "15-PLRDY = 1: controller parameters recalculated"});
+  if (const devices::Notices n = d.emu->notices(); n.count != d.notices) {
+    // E.g. 15-PLRDY = 1 makes the servo recalculate its controller parameters (seed 001, 4.2).
+    d.notices = n.count;
+    d.records.push_back({t, std::string(n.what)});
   }
   if (recording) record_sample(d, before, t);
   for (Observer* o : observers_) o->on_sample(t, i, d.pd_m2s(), d.pd_s2m());
@@ -871,11 +833,11 @@ void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time
   if (!d.recording && !d.module_error(t)) {
     // Start (again) once the device shows exactly what a freshly started device of a trace
     // `init` shows: initialised, START-UP INHIBIT after BLOCK POWER, channel at rest.
-    const bool siof_clear = d.vf && d.vf->channel().siof() == 0;
-    const std::array<Word, 4>& fresh = siof_clear ? d.fresh_operational : d.fresh_initialised;
+    const DeviceStart init = d.emu->trace_start();
+    const std::array<Word, 4>& fresh = init == DeviceStart::operational ? d.fresh_operational : d.fresh_initialised;
     if (std::equal(before.begin(), before.begin() + static_cast<std::ptrdiff_t>(d.pd_words), fresh.begin())) {
       d.recording = true;
-      d.recordings.back().trace.header.init = siof_clear ? trace::InitState::operational : trace::InitState::power_on;
+      d.recordings.back().trace.header.init = init;
     }
   }
   if (d.recording) {

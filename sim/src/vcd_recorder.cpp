@@ -89,6 +89,31 @@ void VcdRecorder::finish(Time end) {
   writer_.finish();
 }
 
+std::string VcdRecorder::save_file(const std::string& dump_file, const std::string& filter_file,
+                                   const std::string& save_file, Time end) const {
+  vcd::GtkwSave g(writer_, dump_file, save_file, end);
+  const interbus::BusConfig& cfg = sim_.bus();
+  g.open_scope("bus");
+  g.comment("bus");
+  g.add(valid_);
+  g.add(cycles_);
+  for (std::size_t i = 0; i < devices_.size(); ++i) {
+    const DeviceSignals& s = devices_[i];
+    const interbus::Device& d = cfg.devices[i];
+    g.open_scope(signal_name(d.name));
+    g.comment(d.name + " (ID code " + interbus::to_hex(d.id) + ")");
+    g.add(s.state, filter_file);
+    g.add(s.reference);
+    g.add(s.actual);
+    g.add(s.control);
+    g.add(s.status);
+    g.add(s.module_error);
+    for (const auto& w : s.device_in) g.add(w);
+    for (const auto& w : s.device_out) g.add(w);
+  }
+  return g.text();
+}
+
 std::string VcdRecorder::state_filter() const {
   return devices_.empty() ? std::string() : writer_.translate_filter(devices_.front().state);
 }

@@ -7,7 +7,6 @@
 
 #include <map>
 
-#include "ibs/interbus/mc6000_layout.hpp"
 
 namespace ibs::interbus {
 namespace {
@@ -72,49 +71,6 @@ TEST(IdCode, Vf1000RemoteBusThreeWordsWithoutPcp) {
   EXPECT_EQ(vf.group(), 0x3B);
   EXPECT_EQ(describe(vf),
             "33BH: remote bus device, class 3H, type 2, in/out, 3 words process data, no PCP");
-}
-
-TEST(IdCode, EverySupiRowDecodesToItsWordsPcpWidthAndBus) {
-  for (const mc6000::SupiRow& row : mc6000::kSupiTable) {
-    for (const auto& [raw, bus] :
-         {std::pair{row.id_local, BusKind::local}, std::pair{row.id_remote, BusKind::remote}}) {
-      const IdCode id{raw};
-      SCOPED_TRACE("SUPI " + std::to_string(row.supi) + " " + to_hex(id));
-      ASSERT_TRUE(id.decodable());
-      EXPECT_EQ(id.ring_words(), row.pd_words + row.pcp_words);
-      EXPECT_EQ(id.pcp_words(), row.pcp_words);
-      EXPECT_EQ(id.pd_words(), row.pd_words);
-      EXPECT_EQ(id.has_pcp(), row.pcp_words > 0);
-      EXPECT_EQ(id.bus(), bus);
-      EXPECT_EQ(id.direction(), Direction::in_out);
-    }
-  }
-}
-
-TEST(IdCode, EverySupiRowIsRebuiltFromItsWordCounts) {
-  for (const mc6000::SupiRow& row : mc6000::kSupiTable) {
-    SCOPED_TRACE("SUPI " + std::to_string(row.supi));
-    if (row.pcp_words > 0) {
-      // Class DH, type 0 on the local bus, type 2 on the remote bus.
-      EXPECT_EQ(make_pcp_id_code(0xD, 0, row.pd_words, row.pcp_words), IdCode{row.id_local});
-      EXPECT_EQ(make_pcp_id_code(0xD, 2, row.pd_words, row.pcp_words), IdCode{row.id_remote});
-    } else {
-      EXPECT_EQ(make_id_code(0x93, row.pd_words), IdCode{row.id_local});
-      EXPECT_EQ(make_id_code(0x7B, row.pd_words), IdCode{row.id_remote});
-    }
-  }
-}
-
-TEST(IdCode, SupiLayoutsCarryCodesThatDecodeToTheLayout) {
-  for (int supi = 1; supi <= mc6000::kSupiMax; ++supi) {
-    for (const auto bus : {mc6000::BusKind::local, mc6000::BusKind::remote}) {
-      const mc6000::Layout l = mc6000::make_layout(supi, 0, bus);
-      const IdCode id{l.id_code};
-      EXPECT_EQ(id.pd_words(), l.pd_words) << supi;
-      EXPECT_EQ(id.pcp_words(), l.pcp_words) << supi;
-      EXPECT_EQ(id.bus() == BusKind::local, bus == mc6000::BusKind::local) << supi;
-    }
-  }
 }
 
 TEST(IdCode, PcpWidthFromTheTwoLowBits) {

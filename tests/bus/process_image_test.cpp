@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "ibs/interbus/bus_config.hpp"
-#include "ibs/interbus/mc6000_layout.hpp"
 
 namespace ibs::interbus {
 namespace {
@@ -89,20 +88,6 @@ TEST(ProcessImage, ByteWritesChangeOnlyTheirHalfOfAWord) {
   ASSERT_TRUE(p.write_bytes(Area::out, 21, b));  // low byte of word 10, high byte of word 11
   EXPECT_EQ(p.out[10], 0x11AA);
   EXPECT_EQ(p.out[11], 0xBB44);
-}
-
-TEST(ProcessImage, Mc6000ReferenceOfExample534ReadsAsBigEndianBytes) {
-  // Seed 001 5.3.4: control word 000FH, reference 2500.25 rpm = 09C44000H, Q16 high word first.
-  const BusConfig c = default_bus();
-  ProcessImage p;
-  const Device& mc = *c.find("mc6000");
-  const mc6000::Layout l = mc6000::make_layout(11, 2);
-  const std::span<Word> out = out_slice(p, mc);
-  out[0] = 0x000F;
-  mc6000::encode_reference(l, 2500.25, out.subspan(1, 2));
-  std::array<std::uint8_t, 6> b{};
-  ASSERT_TRUE(p.read_bytes(Area::out, mc.out.byte_offset(), b));
-  EXPECT_EQ(b, (std::array<std::uint8_t, 6>{0x00, 0x0F, 0x09, 0xC4, 0x40, 0x00}));
 }
 
 TEST(ProcessImage, ByteAccessLeavingTheAreaFailsWithoutSideEffects) {

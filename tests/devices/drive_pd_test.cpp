@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdint>
 
-#include "ibs/devices/drive_pd.hpp"
+#include "ibs/devices/mc6000/pd_device.hpp"
+#include "ibs/devices/mc6000/pd_master.hpp"
+#include "ibs/devices/vf1000/pd_device.hpp"
+#include "ibs/devices/vf1000/pd_master.hpp"
 
 namespace ibs::devices {
 namespace {
@@ -16,7 +19,7 @@ struct Vf {
   Vf1000PdDevice dev;
   std::array<Word, 3> out{}, in{};
   void samples(int n) {
-    for (int i = 0; i < n; ++i) dev.sample(out, in, kVf1000SamplePeriod);
+    for (int i = 0; i < n; ++i) dev.sample(out, in, ibs::devices::vf1000::kSamplePeriod);
   }
 };
 
@@ -92,10 +95,10 @@ TEST(Vf1000Pd, EmergencyStopWithoutStopRampSwitchesOffAtOnce) {
 }
 
 TEST(Vf1000Pd, ReferenceWordIsAnAbsoluteValueIn005Hz) {
-  EXPECT_EQ(vf1000_reference_word(50.0), 1000);
-  EXPECT_EQ(vf1000_reference_word(-50.0), 1000);
-  EXPECT_DOUBLE_EQ(vf1000_reference_hz(0x03E8), 50.0);
-  EXPECT_EQ(vf1000_reference_word(1e9), 0xFFFF);
+  EXPECT_EQ(ibs::devices::vf1000::reference_word(50.0), 1000);
+  EXPECT_EQ(ibs::devices::vf1000::reference_word(-50.0), 1000);
+  EXPECT_DOUBLE_EQ(ibs::devices::vf1000::reference_hz(0x03E8), 50.0);
+  EXPECT_EQ(ibs::devices::vf1000::reference_word(1e9), 0xFFFF);
 }
 
 TEST(Mc6000Pd, EmergencyStopBrakesAndStaysUntilBlockPower) {
@@ -145,9 +148,9 @@ TEST(Mc6000Pd, Ibcnf3SendsSpeedAndTorqueInTheirOwnWords) {
   // 3.2.3: IBCNF 3 answers with a 16-bit speed (1st word) and a 16-bit torque (2nd word); the
   // torque reads in % of the rated torque (docs/bus.md).
   Mc6000PdConfig c;
-  c.layout = interbus::mc6000::make_layout(10, 3);
+  c.layout = devices::mc6000::make_layout(10, 3);
   Mc6000PdDevice dev(c);
-  const auto q16 = static_cast<std::uint32_t>(interbus::mc6000::to_q16(2500.25));
+  const auto q16 = static_cast<std::uint32_t>(devices::mc6000::to_q16(2500.25));
   std::array<Word, 3> out{0x0006, high_word(q16), low_word(q16)}, in{};
   dev.sample(out, in, 1ms);
   out[0] = 0x000F;
@@ -159,14 +162,14 @@ TEST(Mc6000Pd, Ibcnf3SendsSpeedAndTorqueInTheirOwnWords) {
   // At speed the torque only covers friction: 0.1 Nm + 2e-4 Nm s/rad * 261.8 rad/s = 0.152 Nm, 4 %.
   EXPECT_EQ(static_cast<std::int16_t>(in[1]), 2500);
   EXPECT_EQ(static_cast<std::int16_t>(in[2]), 4);
-  const auto a = interbus::mc6000::decode_actual(c.layout, std::span<const Word>(in).subspan(1));
+  const auto a = devices::mc6000::decode_actual(c.layout, std::span<const Word>(in).subspan(1));
   EXPECT_EQ(a.value, 2500.0);
   EXPECT_EQ(a.torque, 4.0);
 }
 
 TEST(Mc6000Pd, Supi0ExchangesNoData) {
   Mc6000PdConfig c;
-  c.layout = interbus::mc6000::make_layout(0, 0);
+  c.layout = devices::mc6000::make_layout(0, 0);
   Mc6000PdDevice dev(c);
   std::array<Word, 1> out{0x000F}, in{0xFFFF};
   dev.sample(out, in, 1ms);
@@ -174,7 +177,7 @@ TEST(Mc6000Pd, Supi0ExchangesNoData) {
 }
 
 TEST(PdMasters, Mc6000MasterWritesQ16AndReadsActual) {
-  Mc6000PdMaster m(interbus::mc6000::make_layout(11, 2));
+  Mc6000PdMaster m(devices::mc6000::make_layout(11, 2));
   m.set_reference_rpm(2500.25);
   std::array<Word, 3> s2m{0x0637, 0x09C4, 0x4000}, m2s{};
   m.sequencer().request(drivecom::Target::enabled, 0ms);

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <random>
 
-#include "ibs/devices/mc6000_device.hpp"
+#include "ibs/devices/mc6000/device.hpp"
 
 namespace ibs::devices {
 namespace {
@@ -66,7 +66,7 @@ TEST(Mc6000HeldSteps, EqualOneStepPerSampleThroughAWholeRun) {
       if (rng() % 5 == 0) m2s[0] = commands[rng() % commands.size()];
       if (w % 40 < 25 && m2s[0] != 0x0080) m2s[0] = 0x000F;  // mostly running
       if (rng() % 6 == 0) {
-        const auto q16 = static_cast<std::uint32_t>(interbus::mc6000::to_q16(static_cast<double>(rng() % 7000) - 3500.0));
+        const auto q16 = static_cast<std::uint32_t>(devices::mc6000::to_q16(static_cast<double>(rng() % 7000) - 3500.0));
         m2s[1] = high_word(q16);
         m2s[2] = low_word(q16);
       }
@@ -112,7 +112,45 @@ TEST(Mc6000HeldSteps, TheWatchdogRunsOutAtTheFirstSampleLaterThanItsTime) {
   EXPECT_EQ(d.state(), State::ready);
   d.step_held(m2s, 21ms, 1ms, 1);
   EXPECT_TRUE(d.watchdog_tripped());
-  EXPECT_EQ(d.error_number(), kMc6000WatchdogError);
+  EXPECT_EQ(d.error_number(), ibs::devices::mc6000::kWatchdogError);
+}
+
+TEST(Mc6000Watchdog, ErrorSixteenAtLocationOneOf324UntilTheMasterResetsIt) {
+  // Seed 001, 3.2.4: "The watchdog error number is 16 ('E-OP1'), with error location 1."
+  Mc6000DeviceConfig c;
+  c.supi = 12;
+  c.bus_watchdog = 20ms;
+  Mc6000Device d(c, DeviceStart::operational, Time{0});
+  std::array<Word, 4> m2s{0x0006, 0, 0, 0};
+  std::array<Word, 4> s2m{};
+  d.bus_cycle(Time{0});
+  d.sample(m2s, s2m, 1ms);
+  EXPECT_EQ(d.error_number(), std::nullopt);
+  EXPECT_EQ(d.error_location(), std::nullopt);
+  // No cycle for more than 20 ms: the fault.
+  Time t = 1ms;
+  while (t <= Time{25ms}) {
+    t += 1ms;
+    d.sample(m2s, s2m, t);
+  }
+  EXPECT_EQ(d.error_number(), 16);
+  EXPECT_EQ(d.error_location(), 1);
+  EXPECT_EQ(d.error_location(), ibs::devices::mc6000::kWatchdogLocation);
+  EXPECT_EQ(d.state(), State::fault);
+  // Data flows again: the error stays latched until the master resets it (5.1.2, RESET FAULT).
+  for (int k = 0; k < 5; ++k) {
+    t += 1ms;
+    d.bus_cycle(t);
+    d.sample(m2s, s2m, t);
+  }
+  EXPECT_EQ(d.error_location(), 1);
+  m2s[0] = 0x0080;
+  t += 1ms;
+  d.bus_cycle(t);
+  d.sample(m2s, s2m, t);
+  EXPECT_EQ(d.state(), State::start_up_inhibit);
+  EXPECT_EQ(d.error_number(), std::nullopt);
+  EXPECT_EQ(d.error_location(), std::nullopt);
 }
 
 }  // namespace

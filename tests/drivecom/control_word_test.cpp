@@ -56,36 +56,5 @@ TEST(ControlWord, ResetFaultIsTheRisingEdgeOfBit7NotItsLevel) {
   EXPECT_FALSE(reset_fault_edge(0x0000, 0x0000));
 }
 
-TEST(ControlWord, Vf1000BitsOf521) {
-  const auto b = decode_vf1000_bits(0x8070);
-  EXPECT_TRUE(b.ramp_enable);
-  EXPECT_TRUE(b.ramp_run);
-  EXPECT_TRUE(b.ramp_follow);
-  EXPECT_TRUE(b.str);
-  EXPECT_FALSE(b.stl);
-  EXPECT_FALSE(b.s1ind);
-  EXPECT_FALSE(b.s2ind);
-  EXPECT_TRUE(decode_vf1000_bits(0x4000).stl);
-  EXPECT_TRUE(decode_vf1000_bits(0x2000).s1ind);
-  EXPECT_TRUE(decode_vf1000_bits(0x1000).s2ind);
-  for (unsigned w = 0; w <= 0xFFFF; w += 0x10) {
-    const auto masked = static_cast<Word>(w & 0xF070U);
-    EXPECT_EQ(encode_vf1000_bits(decode_vf1000_bits(masked)), masked);
-  }
-}
-
-TEST(ControlWord, Mc6000BitsOf531) {
-  EXPECT_TRUE(decode_mc6000_bits(0x4000).os00);
-  EXPECT_FALSE(decode_mc6000_bits(0x4000).os01);
-  EXPECT_TRUE(decode_mc6000_bits(0x8000).os01);
-}
-
-TEST(ControlWord, ExplanationNamesCommandEdgeAndDeviceBits) {
-  EXPECT_EQ(explain_control_word(DeviceType::mc6000, 0x000F, 0x0006), "000F POWER-ON/ENABLE");
-  EXPECT_EQ(explain_control_word(DeviceType::mc6000, 0x0080, 0x0000), "0080 BLOCK POWER, RESET FAULT edge");
-  EXPECT_EQ(explain_control_word(DeviceType::vf1000, 0x807F, 0x807F), "807F POWER-ON/ENABLE, STR");
-  EXPECT_NE(explain_control_word(DeviceType::vf1000, 0x0106, 0).find("reserved bits 8-10"), std::string::npos);
-}
-
 }  // namespace
 }  // namespace ibs::drivecom

@@ -4,7 +4,10 @@
 
 #include <array>
 
-#include "ibs/devices/drive_pd.hpp"
+#include "ibs/devices/mc6000/pd_device.hpp"
+#include "ibs/devices/mc6000/pd_master.hpp"
+#include "ibs/devices/vf1000/pd_device.hpp"
+#include "ibs/devices/vf1000/pd_master.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/sequencer.hpp"
 
@@ -66,7 +69,7 @@ TEST(CyclePath, DriveModelsAndMasterDriversAllocateNothing) {
       vf_master.sequencer().request_emergency_stop(now);
     }
     mc.sample(mc_out, mc_in, 1ms);
-    if (i % 8 == 0) vf.sample(vf_out, vf_in, kVf1000SamplePeriod);
+    if (i % 8 == 0) vf.sample(vf_out, vf_in, ibs::devices::vf1000::kSamplePeriod);
     mc_master.cycle(mc_in, mc_out, now);
     vf_master.cycle(vf_in, vf_out, now, 0);
     now += 1ms;

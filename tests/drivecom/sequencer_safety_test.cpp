@@ -93,6 +93,23 @@ TEST(SequencerSafety, ADriveThatRestartsOnTheWayEndsTheRequest) {
   EXPECT_EQ(words_text(up), "0006 0006 0006 000F 000F");
 }
 
+// Issue 14: RESET FAULT makes the VF1000 boot (seed 001, 5.2.1, "a software reset"): NOT READY
+// right after the request's own reset edge is the drive coming up again, not a restart.
+TEST(SequencerSafety, NotReadyAfterTheRequestsOwnResetEdgeIsTheDriveBooting) {
+  Failure f = Failure::none;
+  const auto sent = run(Target::enabled, {0x0208, 0x0000, 0x0000, 0x0240, 0x0231, 0x0237}, &f);
+  EXPECT_EQ(words_text(sent), "0080 0006 0006 0006 000F 000F");
+  EXPECT_EQ(f, Failure::none);
+  // The fault back after the boot ends the request: the master never resets it a second time.
+  const auto again = run(Target::enabled, {0x0208, 0x0000, 0x0240, 0x0208, 0x0208, 0x0208}, &f);
+  EXPECT_EQ(words_text(again), "0080 0006 0006 0000 0000 0000");
+  EXPECT_EQ(f, Failure::fault);
+  // A restart after the drive came up from the boot is a restart again.
+  const auto restart = run(Target::enabled, {0x0208, 0x0000, 0x0240, 0x0231, 0x0000, 0x0000}, &f);
+  EXPECT_EQ(words_text(restart), "0080 0006 0006 000F 0000 0000");
+  EXPECT_EQ(f, Failure::restarted);
+}
+
 TEST(SequencerSafety, FaultPresentAtTheRequestIsResetOnTheWay) {
   // The request covers a fault the drive is in when it is made (or shows first).
   const auto sent = run(Target::enabled, {0x0208, 0x0208, 0x0240, 0x0231, 0x0237});

@@ -330,5 +330,14 @@ TEST(Sequencer, RestartForgetsEverything) {
   EXPECT_EQ(seq.step(0x0240, 1ms), 0x0000);
 }
 
+TEST(Sequencer, TargetsAreNamedByTheirStatesKeys) {
+  for (const Target t : kTargets) {
+    EXPECT_EQ(key(t), key(target_state(t)));
+    EXPECT_EQ(target_named(key(t)), t);
+  }
+  EXPECT_EQ(kTargetKeys, (std::array<std::string_view, 4>{"start-up-inhibit", "ready", "on", "enabled"}));
+  EXPECT_EQ(target_named("fault"), std::nullopt) << "a state, but no target";
+}
+
 }  // namespace
 }  // namespace ibs::drivecom

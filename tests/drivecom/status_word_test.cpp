@@ -74,19 +74,16 @@ TEST(StatusWord, TheLookupAgreesWithTheStateBitsForEveryStateAndControlWord) {
   }
 }
 
-TEST(StatusWord, DeviceBitsOf522And532) {
-  StatusExtras e{};
-  e.remote = false;
-  e.alarm = true;
-  e.limit_value = true;
-  e.bit14 = true;
-  e.bit15 = true;
-  EXPECT_EQ(extras_bits(e), 0xC880);
-  EXPECT_EQ(explain_status_word(DeviceType::vf1000, 0xC231), "C231 READY, remote, S2OUT, S1OUT");
-  EXPECT_EQ(explain_status_word(DeviceType::mc6000, 0xC231), "C231 READY, remote, IS00, IS01");
-  EXPECT_EQ(explain_status_word(DeviceType::mc6000, 0x0240),
-            "0240 START-UP INHIBIT, block-power request, e-stop request, remote");
-  EXPECT_EQ(explain_status_word(DeviceType::mc6000, 0x0001), "0001 no DRIVECOM state, block-power request, e-stop request");
+TEST(StatusWord, StateNamesAndKeysComeFromTheStateTableAlone) {
+  for (const auto& row : kStateTable) {
+    EXPECT_EQ(to_string(row.state), row.name);
+    EXPECT_EQ(key(row.state), row.key);
+    EXPECT_EQ(state_named(row.key), row.state);
+  }
+  EXPECT_EQ(kStateKeys.front(), "not-ready");
+  EXPECT_EQ(kStateKeys.back(), "emergency-stop-active");
+  EXPECT_EQ(state_named("running"), std::nullopt);
+  EXPECT_EQ(state_named("START-UP INHIBIT"), std::nullopt) << "files spell the key, reports the name";
 }
 
 }  // namespace

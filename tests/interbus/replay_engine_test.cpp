@@ -188,5 +188,16 @@ TEST(ReplayEngine, DecodeExplainsEveryRowAndKeepsTheRemark) {
   EXPECT_EQ(again.rows.size(), t.rows.size());
 }
 
+TEST(ReplayEngine, DecodingADecodedTraceChangesNothing) {
+  const Trace t = make("", "0, 0005, 0000, first\n1, 0007, 00??\n2, 0009, 0001\n");
+  const std::string once = write(decode(t, HexExplainer{}));
+  const std::string twice = write(decode(parse(once, "once"), HexExplainer{}));
+  EXPECT_EQ(twice, once);
+  // A remark that only looks like a reading of other words is kept after the new one.
+  const Trace other = make("", "0, 0005, 0000, m2s: m0006; s2m: s0000\n");
+  EXPECT_EQ(decode(other, HexExplainer{}).rows[0].remark,
+            "m2s: m0005; s2m: s0000 | m2s: m0006; s2m: s0000");
+}
+
 }  // namespace
 }  // namespace ibs::trace

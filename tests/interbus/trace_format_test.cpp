@@ -9,6 +9,11 @@
 namespace ibs::trace {
 namespace {
 
+// The names the layers above give the format (the drive registry's kinds, DRIVECOM's targets).
+constexpr std::string_view kDevices[] = {"vf1000", "mc6000"};
+constexpr std::string_view kTargets[] = {"start-up-inhibit", "ready", "on", "enabled"};
+const Vocabulary kVocabulary{kDevices, kTargets};
+
 constexpr const char* kInquiry = R"(# format: ibs-trace 1
 # device: vf1000
 # words: comm
@@ -24,7 +29,7 @@ constexpr const char* kInquiry = R"(# format: ibs-trace 1
 
 TEST(TraceFormat, ReadsTheSpecExample) {
   const Trace t = parse(kInquiry, "inq.trace");
-  EXPECT_EQ(t.header.device, DeviceType::vf1000);
+  EXPECT_EQ(t.header.device, "vf1000");
   EXPECT_EQ(t.header.words, WordsKind::comm);
   ASSERT_TRUE(t.header.request.has_value());
   EXPECT_EQ(t.header.request->kind, Request::Kind::read);
@@ -67,7 +72,7 @@ TEST(TraceFormat, PatternsQuestionMarksAndMasks) {
 TEST(TraceFormat, WriteThenParseRoundTrips) {
   const std::string text = std::string(kInquiry) + "...\n7, 0000, 8000, after a gap\n";
   Trace t = parse(text, "a");
-  t.header.init = InitState::power_on;
+  t.header.init = DeviceStart::initialised;
   t.header.init_given = true;
   t.header.outcome = Outcome{Outcome::Kind::ok, 1000};
   t.header.max_gap = 12;
@@ -84,15 +89,15 @@ TEST(TraceFormat, WriteThenParseRoundTrips) {
     EXPECT_EQ(back.rows[i].remark, t.rows[i].remark);
   }
   EXPECT_EQ(back.header.outcome, t.header.outcome);
-  EXPECT_EQ(back.header.init, InitState::power_on);
+  EXPECT_EQ(back.header.init, DeviceStart::initialised);
   EXPECT_EQ(back.header.max_gap, 12U);
 }
 
 TEST(TraceFormat, RequestsAndOutcomes) {
   EXPECT_EQ(parse_request("write 0x15 500", "x", 1),
-            (Request{Request::Kind::write, 0x15, 500, StateTarget::enabled}));
+            (Request{Request::Kind::write, 0x15, 500, ""}));
   EXPECT_EQ(parse_request("describe 45", "x", 1).kind, Request::Kind::describe);
-  EXPECT_EQ(parse_request("state start-up-inhibit", "x", 1).target, StateTarget::start_up_inhibit);
+  EXPECT_EQ(parse_request("state start-up-inhibit", "x", 1, kVocabulary).target, "start-up-inhibit");
   EXPECT_EQ(parse_outcome("ok 0x3E8", "x", 1), (Outcome{Outcome::Kind::ok, 1000}));
   EXPECT_EQ(parse_outcome("timeout", "x", 1).kind, Outcome::Kind::timeout);
 }
@@ -122,7 +127,7 @@ TEST(TraceFormat, MalformedFilesSayFileLineAndWhat) {
   };
   for (const auto& c : cases) {
     try {
-      parse(c.text, "f.trace");
+      parse(c.text, "f.trace", kVocabulary);
       ADD_FAILURE() << "accepted: " << c.text;
     } catch (const TraceError& e) {
       EXPECT_EQ(e.line(), c.line) << e.what();
@@ -148,7 +153,7 @@ TEST(TraceFormat, MalformedFilesSayFileLineAndWhat) {
   };
   for (const auto& c : rows) {
     try {
-      const Trace t = parse(h + c.text, "f.trace");
+      const Trace t = parse(h + c.text, "f.trace", kVocabulary);
       if (std::string(c.message) == "no data rows") continue;  // a '#' line after rows is a comment
       ADD_FAILURE() << "accepted: " << c.text;
     } catch (const TraceError& e) {
@@ -162,7 +167,7 @@ TEST(TraceFormat, HeaderLikeLineAfterTheFirstRowIsAComment) {
   const Trace t = parse("# format: ibs-trace 1\n# device: vf1000\n# words: comm\n0, 0000, 8000\n"
                         "# device: mc6000\n1, 0000, 8000\n",
                         "x");
-  EXPECT_EQ(t.header.device, DeviceType::vf1000);
+  EXPECT_EQ(t.header.device, "vf1000");
   ASSERT_EQ(t.rows[1].comments_before.size(), 1U);
 }
 
@@ -284,6 +289,15 @@ TEST(TraceFormat, OnlyRegularFilesAreRead) {
   } catch (const TraceError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("/proc/self/mem:0: read error: ", 0), 0U) << e.what();
   }
+}
+
+TEST(TraceFormat, WithoutAVocabularyAnyWordNamesADeviceAndATarget) {
+  const Trace t = parse("# format: ibs-trace 1\n# device: cda3000\n# words: pd\n# request: state running\n"
+                        "0, 0000, 0240\n",
+                        "f.trace");
+  EXPECT_EQ(t.header.device, "cda3000");
+  EXPECT_EQ(t.header.request->target, "running");
+  EXPECT_THROW(parse("# format: ibs-trace 1\n# device: cda3000\n", "f.trace", kVocabulary), TraceError);
 }
 
 }  // namespace

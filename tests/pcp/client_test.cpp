@@ -1,5 +1,7 @@
 // The PCP client: submissions, the KBL check, timeouts, aborts, restarts of either side.
 #include "ibs/pcp/client.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +10,8 @@
 
 namespace ibs::pcp {
 namespace {
+
+using namespace ibs::devices::mc6000;
 
 using test::FakeServer;
 using test::pdu_bytes;
@@ -67,7 +71,7 @@ TEST(Client, ServerRefusesAnIncompatibleKbl) {
   Result r = a.initiate();
   EXPECT_EQ(r.kind, ResultKind::negative);
   EXPECT_EQ(r.error, errors::kServiceNotExecutable);
-  EXPECT_EQ(r.peer_kbl, kMc6000Kbl) << "the negative confirmation tells why";
+  EXPECT_EQ(r.peer_kbl, ibs::devices::mc6000::kKbl) << "the negative confirmation tells why";
   EXPECT_FALSE(a.client.associated());
 
   ClientConfig put;

@@ -13,9 +13,13 @@
 #include <vector>
 
 #include "pcp_harness.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 
 namespace ibs::pcp {
 namespace {
+
+using namespace ibs::devices::mc6000;
 
 using test::Bus;
 using test::FaultRates;
@@ -87,11 +91,11 @@ class Campaign {
         rng_(seed),
         client_(test::client_config(words)),
         server_([&] {
-          ServerConfig c;
+          ServerConfig c = ibs::devices::mc6000::server_config(1);
           c.channel_words = words;
           c.start = StartMode::power_on;
           return c;
-        }()),
+        }(), ibs::devices::mc6000::parameters()),
         bus_(client_, server_, cycle, 1ms),
         oracle_(server_.parameters()),
         restart_rate_(restart_rate) {

@@ -7,9 +7,13 @@
 #include <string>
 
 #include "pcp_harness.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 
 namespace ibs::pcp {
 namespace {
+
+using namespace ibs::devices::mc6000;
 
 struct Span {
   Duration min = Duration::max();
@@ -25,11 +29,11 @@ Span measure(int words, double workload, Duration cycle = 567us) {
   Span s;
   for (int phase = 0; phase < 40; ++phase) {
     Client client(test::client_config(words));
-    ServerConfig sc;
+    ServerConfig sc = ibs::devices::mc6000::server_config(1);
     sc.channel_words = words;
     sc.workload = workload;
     sc.start = StartMode::running;
-    Server server(sc);
+    Server server(sc, ibs::devices::mc6000::parameters());
     test::Bus bus(client, server, cycle, 1ms);
     for (int k = 0; k < phase; ++k) bus.cycle();
     EXPECT_EQ(client.initiate(bus.now()), SubmitStatus::accepted);
@@ -98,11 +102,11 @@ TEST(LatencyModel, ErrataOneWordChannelIsBoundBySegmentation) {
   Span transfer;
   for (int phase = 0; phase < 20; ++phase) {
     Client client(test::client_config(1));
-    ServerConfig sc;
+    ServerConfig sc = ibs::devices::mc6000::server_config(1);
     sc.channel_words = 1;
     sc.latency = none;
     sc.start = StartMode::running;
-    Server server(sc);
+    Server server(sc, ibs::devices::mc6000::parameters());
     test::Bus bus(client, server, 567us, 1ms);
     for (int k = 0; k < phase; ++k) bus.cycle();
     client.initiate(bus.now());

@@ -8,6 +8,8 @@
 #include <new>
 
 #include "ibs/pcp/client.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace {
@@ -29,6 +31,8 @@ void operator delete(void* p, std::size_t) noexcept {
 namespace ibs::pcp {
 namespace {
 
+using namespace ibs::devices::mc6000;
+
 struct Rig {
   explicit Rig(int words)
       : client([&] {
@@ -37,10 +41,10 @@ struct Rig {
           return c;
         }()),
         server([&] {
-          ServerConfig c;
+          ServerConfig c = ibs::devices::mc6000::server_config(1);
           c.channel_words = words;
           return c;
-        }()) {}
+        }(), ibs::devices::mc6000::parameters()) {}
 
   // Lock-step with a deterministic fault every 7th cycle (the servo's word is not delivered).
   void cycle() {

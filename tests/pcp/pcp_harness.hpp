@@ -18,9 +18,14 @@
 #include <random>
 
 #include "ibs/pcp/client.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace ibs::pcp::test {
+
+// The server under test serves the MC6000's table; its numbers (85-SERR, 4-PROG, ...) read unqualified.
+using namespace ibs::devices::mc6000;
 
 struct FaultRates {
   double corrupted = 0.0;
@@ -135,7 +140,7 @@ inline ClientConfig client_config(int words) {
 }
 
 inline ServerConfig server_config(int words, std::optional<LatencyModel> latency = std::nullopt) {
-  ServerConfig c;
+  ServerConfig c = ibs::devices::mc6000::server_config(1);
   c.channel_words = words;
   c.latency = latency;
   return c;
@@ -151,12 +156,12 @@ struct Session {
         server([&] {
           sc.channel_words = words;
           return sc;
-        }()),
+        }(), ibs::devices::mc6000::parameters()),
         bus(client, server) {}
   explicit Session(int words) : Session(words, running_server()) {}
 
   static ServerConfig running_server() {
-    ServerConfig s;
+    ServerConfig s = ibs::devices::mc6000::server_config(1);
     s.start = StartMode::running;
     return s;
   }

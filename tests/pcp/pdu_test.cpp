@@ -1,5 +1,7 @@
 // PMS message layouts (public-facts.md, PCP; docs/pcp.md, "Messages"): word-exact vectors.
 #include "ibs/pcp/pdu.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,6 +9,8 @@
 
 namespace ibs::pcp {
 namespace {
+
+using namespace ibs::devices::mc6000;
 
 std::vector<Word> words_of(const Pdu& p) {
   std::vector<Word> w;
@@ -118,7 +122,7 @@ TEST(Pdu, InitiateCarriesPasswordAccessGroupsAndTheKbl) {
                                             0x0403, 0x0000, 0x0000}));
   ResponsePdu c = confirmation(ServiceCode::initiate);
   c.invoke_id = 0;
-  c.kbl = kMc6000Kbl;
+  c.kbl = ibs::devices::mc6000::kKbl;
   ASSERT_TRUE(encode(c, p));
   // Seed 001 4.2.2: server for Get-OV long (byte 4), Read and Write (byte 5), Info Report (6).
   EXPECT_EQ(words_of(p), (std::vector<Word>{0x808B, 0x0007, 0x0002, 0x0000, 0x0086, 0x0086, 0x0000,
@@ -131,7 +135,7 @@ TEST(Pdu, InitiateCarriesPasswordAccessGroupsAndTheKbl) {
   ResponsePdu back;
   ASSERT_EQ(decode(p.view(), back), PduError::none);
   EXPECT_FALSE(back.positive);
-  EXPECT_EQ(back.kbl, kMc6000Kbl) << "the negative confirmation reports sizes and services";
+  EXPECT_EQ(back.kbl, ibs::devices::mc6000::kKbl) << "the negative confirmation reports sizes and services";
 }
 
 TEST(Pdu, AbortIsUnconfirmedAndCarriesItsReason) {
@@ -174,7 +178,7 @@ TEST(Pdu, GetOvIdentifyStatusLayouts) {
 }
 
 TEST(Pdu, ObjectDescriptionRoundTrips) {
-  const ParameterInfo* p = find_parameter(kMc6000Parameters, kIbstu);
+  const ParameterInfo* p = find_parameter(ibs::devices::mc6000::kParameters, kIbstu);
   ASSERT_NE(p, nullptr);
   const ObjectDescription d = describe(*p);
   std::array<std::uint8_t, kObjectDescriptionSize> b{};
@@ -228,19 +232,19 @@ TEST(Pdu, WriteDataUpToThePduLimit) {
 }
 
 TEST(Kbl, CheckNamesTheMismatch) {
-  EXPECT_EQ(check_kbl(kDefaultClientKbl, kMc6000Kbl), KblMismatch::none);
+  EXPECT_EQ(check_kbl(kDefaultClientKbl, ibs::devices::mc6000::kKbl), KblMismatch::none);
   Kbl small = kDefaultClientKbl;
   small.max_pdu_receiving = 64;  // a Lenze-sized buffer (public-facts.md)
-  EXPECT_EQ(check_kbl(small, kMc6000Kbl), KblMismatch::server_sends_too_much);
-  Kbl server = kMc6000Kbl;
+  EXPECT_EQ(check_kbl(small, ibs::devices::mc6000::kKbl), KblMismatch::server_sends_too_much);
+  Kbl server = ibs::devices::mc6000::kKbl;
   server.max_pdu_receiving = 64;
   EXPECT_EQ(check_kbl(kDefaultClientKbl, server), KblMismatch::client_sends_too_much);
   Kbl put = kDefaultClientKbl;
   put.services.client(kSvcPutOv);
-  EXPECT_EQ(check_kbl(put, kMc6000Kbl), KblMismatch::service_not_supported);
+  EXPECT_EQ(check_kbl(put, ibs::devices::mc6000::kKbl), KblMismatch::service_not_supported);
   Kbl tiny = kDefaultClientKbl;
   tiny.max_pdu_sending = 4;
-  EXPECT_EQ(check_kbl(tiny, kMc6000Kbl), KblMismatch::pdu_size_out_of_range);
+  EXPECT_EQ(check_kbl(tiny, ibs::devices::mc6000::kKbl), KblMismatch::pdu_size_out_of_range);
 }
 
 TEST(Pdu, ExplainNamesServiceAndParameter) {

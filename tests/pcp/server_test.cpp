@@ -1,6 +1,8 @@
 // The MC6000 PCP server: services, negative confirmations, SERR, EEPROM timing, special
 // parameters, protocol violations.
 #include "ibs/pcp/server.hpp"
+#include "ibs/devices/mc6000/channel.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,8 @@
 
 namespace ibs::pcp {
 namespace {
+
+using namespace ibs::devices::mc6000;
 
 using test::pdu_bytes;
 using test::RawMaster;
@@ -32,7 +36,7 @@ TEST(Server, InitiateOpensTheAssociationWithTheKblOf4_2_2) {
   Session s(1);
   const Result r = s.initiate();
   ASSERT_TRUE(r.ok()) << to_string(r.kind);
-  EXPECT_EQ(r.peer_kbl, kMc6000Kbl);
+  EXPECT_EQ(r.peer_kbl, ibs::devices::mc6000::kKbl);
   EXPECT_TRUE(s.server.associated());
   EXPECT_TRUE(s.client.associated());
 }
@@ -153,7 +157,7 @@ TEST(Server, WrongDataLengthIsClass6Code5) {
 TEST(Server, PowerOnBitRefusesWritesUntil85IsRead) {
   // Seed 000 6: "As long as an error bit in SIOF/SERR is set, no parameter in the device can be
   // changed"; the trace format's `init: power-on`. Errata (docs/pcp.md): it holds for PCP too.
-  ServerConfig sc;
+  ServerConfig sc = ibs::devices::mc6000::server_config(1);
   sc.start = StartMode::power_on;
   Session s(1, sc);
   ASSERT_TRUE(s.initiate().ok());
@@ -347,15 +351,15 @@ TEST(Server, LatencyFollowsTheWorkload) {
     EXPECT_GE(took, m.processing(w) + 6ms) << w;
     EXPECT_LE(took, m.processing(w) + 12ms) << w;
   }
-  ServerConfig bad;
+  ServerConfig bad = ibs::devices::mc6000::server_config(1);
   bad.workload = 1.5;
-  EXPECT_THROW(Server{bad}, std::invalid_argument);
+  EXPECT_THROW((Server{bad, parameters()}), std::invalid_argument);
   LatencyModel inverted;
   inverted.processing_min = 9ms;
   inverted.processing_max = 1ms;
   bad.workload = 0;
   bad.latency = inverted;
-  EXPECT_THROW(Server{bad}, std::invalid_argument);
+  EXPECT_THROW((Server{bad, parameters()}), std::invalid_argument);
 }
 
 // A table with the three types the MC6000 table lacks (FLOAT_IEEE, MC_ERROR, PASSWORD).
@@ -407,7 +411,7 @@ TEST(Server, FloatMcErrorAndPasswordTravelBothWays) {
 }
 
 TEST(Server, ARequestBeforeInitiateIsAborted) {
-  Server server(Session::running_server());
+  Server server(Session::running_server(), ibs::devices::mc6000::parameters());
   RawMaster m(server);
   const auto reply = m.exchange(pdu_bytes({0x0081, 0x0003, 0x0102, 0x5D97, 0x0000}));
   ASSERT_TRUE(reply.has_value());
@@ -416,7 +420,7 @@ TEST(Server, ARequestBeforeInitiateIsAborted) {
 }
 
 TEST(Server, MalformedOrUnknownMessagesAbortTheAssociation) {
-  Server server(Session::running_server());
+  Server server(Session::running_server(), ibs::devices::mc6000::parameters());
   RawMaster m(server);
   const auto init = m.exchange(pdu_bytes({0x008B, 0x0008, 0x0002, 0, 0, 134, 134, 0x0403, 0, 0}));
   ASSERT_TRUE(init.has_value());
@@ -439,7 +443,7 @@ TEST(Server, ASecondRequestWhileOneIsProcessedBreaksTheProtocol) {
   slow.processing_min = slow.processing_max = 50ms;
   sc.latency = slow;
   sc.channel_words = 4;
-  Server server(sc);
+  Server server(sc, ibs::devices::mc6000::parameters());
   RawMaster m(server);
   ASSERT_TRUE(
       m.exchange(pdu_bytes({0x008B, 0x0008, 0x0002, 0, 0, 134, 134, 0x0403, 0, 0})).has_value());
@@ -454,7 +458,7 @@ TEST(Server, ASecondRequestWhileOneIsProcessedBreaksTheProtocol) {
 }
 
 TEST(Server, AbortMessageEndsTheAssociation) {
-  Server server(Session::running_server());
+  Server server(Session::running_server(), ibs::devices::mc6000::parameters());
   RawMaster m(server);
   ASSERT_TRUE(
       m.exchange(pdu_bytes({0x008B, 0x0008, 0x0002, 0, 0, 134, 134, 0x0403, 0, 0})).has_value());
@@ -493,7 +497,8 @@ TEST(Server, AFrozenMasterEndsInTheServosTimeoutAndAbort) {
   EXPECT_GE(t - hung, 99ms);  // the link's ack timeout, 100 ms by default
   EXPECT_EQ(s.server.link().stats().ack_timeouts, 1U);
   EXPECT_FALSE(s.server.associated());
-  EXPECT_EQ(high_byte(out[0]), 0x8F) << "the servo shows ABORT until a master answers";
+  // ABORT with abort number 0 (the first after the one of the start, 3).
+  EXPECT_EQ(high_byte(out[0]), 0x89) << "the servo shows ABORT until a master answers";
 }
 
 }  // namespace

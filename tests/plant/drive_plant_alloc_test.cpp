@@ -2,7 +2,7 @@
 // operator new counts the allocations made while a counter is alive.
 #include <gtest/gtest.h>
 
-#include "ibs/devices/drive_plant.hpp"
+#include "ibs/devices/mc6000/plant.hpp"
 
 #include "../support/counting_new.hpp"
 

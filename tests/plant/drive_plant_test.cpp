@@ -1,6 +1,6 @@
 // MC6000 drive plant: speed loop behaviour, status flags (seed 001 5.3.2 bits 10 and 11), and the
 // exact discretisation against a fine-step Euler integration of the equations in drive_plant.hpp.
-#include "ibs/devices/drive_plant.hpp"
+#include "ibs/devices/mc6000/plant.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The reference ramp helper of drive_plant.hpp.
 #include <gtest/gtest.h>
 
-#include "ibs/devices/drive_plant.hpp"
+#include "ibs/devices/mc6000/plant.hpp"
 
 namespace ibs::devices {
 namespace {

@@ -38,23 +38,24 @@ Scenario everything() {
   s.bus.recovery_cycles = 0;
   DeviceConfig a;
   a.name = "axis_1";
-  a.kind = DeviceKind::mc6000;
+  a.kind = "mc6000";
   a.supi = 9;
   a.ibcnf = 1;
-  a.bus = BusSide::local;
+  a.bus = interbus::BusKind::local;
   a.phase = 999999ns;
   a.jitter = 499999ns;
   a.initialised = false;
   a.watchdog_ms = 0;
   DeviceConfig b;
   b.name = "Conveyor-2";
-  b.kind = DeviceKind::vf1000;
+  b.kind = "vf1000";
   b.phase = 8199999ns;
   b.jitter = 4099999ns;
   b.watchdog_ms = 65535;
   b.watchdog_reaction = 3;
   DeviceConfig c;
   c.name = "pcp-only";
+  c.kind = "mc6000";
   c.supi = 3;
   c.ibcnf = 0;
   s.devices = {a, b, c};
@@ -127,7 +128,7 @@ TEST(ScenarioRoundTrip, DefaultScenarioMatchesTheBrief) {
   EXPECT_EQ(s.devices[0].name, "mc6000");
   EXPECT_EQ(s.devices[0].supi, 11);
   EXPECT_EQ(s.devices[0].ibcnf, 2);
-  EXPECT_EQ(s.devices[1].kind, DeviceKind::vf1000);
+  EXPECT_EQ(s.devices[1].kind, "vf1000");
   ASSERT_EQ(s.timeline.size(), 16U);
   EXPECT_EQ(s.timeline[10].action, Action::speed);
   EXPECT_EQ(s.timeline[10].number, 2500.25);
@@ -184,13 +185,14 @@ TEST(ScenarioRoundTrip, EmptyTimelineAndDefaultRandomFaults) {
 TEST(ScenarioEquality, ComparesMeaningNotUnusedFields) {
   DeviceConfig vf;
   vf.name = "v";
-  vf.kind = DeviceKind::vf1000;
+  vf.kind = "vf1000";
   DeviceConfig vf2 = vf;
   vf2.supi = 3;  // a VF1000 has no SUPI: not compared
   vf2.ibcnf = 0;
   EXPECT_EQ(vf, vf2);
   DeviceConfig mc;
   mc.name = "m";
+  mc.kind = "mc6000";
   DeviceConfig mc2 = mc;
   mc2.supi = 12;
   EXPECT_NE(mc, mc2);
@@ -255,13 +257,13 @@ TEST(ScenarioRoundTrip, DefaultsOfOmittedKeys) {
   const DeviceConfig& m = s.devices[0];
   EXPECT_EQ(m.supi, 11);
   EXPECT_EQ(m.ibcnf, 2);
-  EXPECT_EQ(m.bus, BusSide::remote);
+  EXPECT_EQ(m.bus, interbus::BusKind::remote);
   EXPECT_EQ(m.phase, 0ns);
   EXPECT_EQ(m.jitter, 0ns);
   EXPECT_TRUE(m.initialised);
   EXPECT_FALSE(m.watchdog_ms.has_value());
   EXPECT_FALSE(m.watchdog_reaction.has_value());
-  EXPECT_EQ(s.devices[1].bus, BusSide::remote);
+  EXPECT_EQ(s.devices[1].bus, interbus::BusKind::remote);
   EXPECT_EQ(s.timeline[0].count, 1);
   EXPECT_EQ(s.timeline[1].duration, 0ns);  // wait up to the end of the run
   EXPECT_EQ(s.timeline[2].duration, 0ns);  // the cause clears at once
@@ -313,6 +315,18 @@ TEST(ScenarioRoundTrip, ValidateScenarioNamesTheEntrysSourceLine) {
   EXPECT_NO_THROW(validate_scenario(s));
   s.devices[0].name = "mc 6000";
   EXPECT_THROW(validate_scenario(s), ScenarioError);
+}
+
+// A scenario built in code may name any kind; the validator asks the drive registry.
+TEST(ScenarioRoundTrip, ValidateScenarioNamesAnUnknownDriveKind) {
+  Scenario s = default_scenario();
+  s.devices[1].kind = "vf2000";
+  try {
+    validate_scenario(s, "built-in");
+    FAIL() << "accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_STREQ(e.what(), "built-in:0: device 'vf1000': unknown type 'vf2000' (\"mc6000\" or \"vf1000\")");
+  }
 }
 
 }  // namespace

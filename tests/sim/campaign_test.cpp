@@ -16,7 +16,7 @@ using drivecom::State;
 CheckerDeviceSpec small_device() {
   CheckerDeviceSpec d;
   d.name = "dev";
-  d.kind = DeviceKind::mc6000;
+  d.kind = "mc6000";
   d.period = 1ms;
   d.params = {
       {10, ParamRole::normal, false, false, 5, 5, 0, 100, Duration{0}},

@@ -5,8 +5,8 @@
 
 #include <array>
 
-#include "ibs/devices/mc6000_device.hpp"
-#include "ibs/devices/vf1000_device.hpp"
+#include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/vf1000/device.hpp"
 #include "ibs/sim/master_loop.hpp"
 
 #include "../support/counting_new.hpp"
@@ -17,7 +17,7 @@ namespace {
 TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
   std::vector<interbus::DeviceSpec> specs;
   std::vector<std::unique_ptr<devices::DeviceDriver>> drivers;
-  const auto layout = interbus::mc6000::make_layout(12, 2);  // 4 process-data words, no PCP
+  const auto layout = devices::mc6000::make_layout(12, 2);  // 4 process-data words, no PCP
   for (int i = 0; i < 64; ++i) {
     specs.push_back({"mc" + std::to_string(i), interbus::IdCode{layout.id_code}, std::nullopt});
     drivers.push_back(std::make_unique<devices::Mc6000Driver>(layout));
@@ -50,8 +50,8 @@ TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
 
 TEST(MasterLoop, DeviceModelsAndDriversWithParameterTrafficAllocateNothing) {
   // Both device models with their parameter channels, both drivers, requests on both channels.
-  devices::Mc6000Device mc({}, devices::DeviceStart::initialised, 0ns);
-  devices::Vf1000Device vf({}, devices::DeviceStart::initialised, 0ns);
+  devices::Mc6000Device mc({}, DeviceStart::initialised, 0ns);
+  devices::Vf1000Device vf({}, DeviceStart::initialised, 0ns);
   devices::Mc6000Driver mc_driver(mc.layout());
   devices::Vf1000Driver vf_driver;
   std::array<Word, 3> mc_out{}, mc_in{}, vf_out{}, vf_in{};

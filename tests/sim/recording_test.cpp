@@ -29,12 +29,12 @@ Scenario busy_run() {
   s.duration = 3s;
   DeviceConfig mc;
   mc.name = "servo";
-  mc.kind = DeviceKind::mc6000;
+  mc.kind = "mc6000";
   mc.phase = 300us;
   mc.jitter = 50us;
   DeviceConfig vf;
   vf.name = "inverter";
-  vf.kind = DeviceKind::vf1000;
+  vf.kind = "vf1000";
   vf.phase = 5ms;
   vf.jitter = 1ms;
   s.devices = {mc, vf};
@@ -139,7 +139,7 @@ TEST(Recording, APowerCycleStartsANewRecordingOnceTheDeviceLooksFreshlyStarted) 
   const auto traces = sim.traces();
   ASSERT_EQ(traces.size(), 3U);
   EXPECT_EQ(traces[2].file_name, "inverter.2.trace");
-  EXPECT_EQ(traces[2].trace.header.init, trace::InitState::power_on);
+  EXPECT_EQ(traces[2].trace.header.init, DeviceStart::initialised);
   EXPECT_NE(traces[1].trace.trailing_comments.at(0).find("recording ends: power cycle"), std::string::npos);
   for (const auto& r : traces) {
     const trace::Trace t = trace::parse(trace::write(r.trace), r.file_name);
@@ -159,12 +159,12 @@ TEST(Recording, ADeviceWithoutProcessDataIsNotRecorded) {
   s.duration = 500ms;
   DeviceConfig pcp_only;
   pcp_only.name = "parameters";
-  pcp_only.kind = DeviceKind::mc6000;
+  pcp_only.kind = "mc6000";
   pcp_only.supi = 3;  // 4 PCP words, no process data
   pcp_only.ibcnf = 0;
   DeviceConfig vf;
   vf.name = "inverter";
-  vf.kind = DeviceKind::vf1000;
+  vf.kind = "vf1000";
   s.devices = {pcp_only, vf};
   s.timeline = {entry(0s, "parameters", Action::read, "", 0, 85)};
   Simulator sim(s);
@@ -242,7 +242,7 @@ Scenario big_ring() {
   for (int i = 0; i < 20; ++i) {
     DeviceConfig d;
     d.name = "d" + std::to_string(i);
-    d.kind = i % 10 == 9 ? DeviceKind::vf1000 : DeviceKind::mc6000;
+    d.kind = i % 10 == 9 ? "vf1000" : "mc6000";
     d.supi = i % 10 == 8 ? 11 : 12;
     d.ibcnf = 2;
     // Every third servo samples exactly at the cycle ends (4 ms, a whole number of periods):
@@ -252,8 +252,8 @@ Scenario big_ring() {
     if (i % 5 == 2) d.watchdog_ms = 15;
     s.devices.push_back(d);
     s.timeline.push_back(entry(0s, d.name, Action::state, "enabled"));
-    s.timeline.push_back(entry(50ms, d.name, d.kind == DeviceKind::vf1000 ? Action::frequency : Action::speed, "",
-                               d.kind == DeviceKind::vf1000 ? 30.0 : 400.0 + 150.0 * i));
+    s.timeline.push_back(entry(50ms, d.name, d.kind == "vf1000" ? Action::frequency : Action::speed, "",
+                               d.kind == "vf1000" ? 30.0 : 400.0 + 150.0 * i));
     if (i % 6 == 3) s.timeline.push_back(entry(900ms, d.name, Action::emergency_stop));
   }
   s.timeline.push_back(entry(300ms, "d8", Action::read, "", 0, 77));

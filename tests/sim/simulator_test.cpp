@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/vf1000/device.hpp"
 #include "ibs/sim/simulator.hpp"
 
 namespace ibs::sim {
@@ -11,16 +13,21 @@ namespace {
 
 using drivecom::State;
 
+// The VF1000 emulator at ring position i (the tests below reach its keypad and reset counter).
+devices::Vf1000Device& vf1000_at(Simulator& sim, std::size_t i) {
+  return dynamic_cast<devices::Vf1000Device&>(sim.emulator(i));
+}
+
 DeviceConfig mc6000(const std::string& name = "mc") {
   DeviceConfig d;
   d.name = name;
-  d.kind = DeviceKind::mc6000;
+  d.kind = "mc6000";
   return d;
 }
 DeviceConfig vf1000(const std::string& name = "vf") {
   DeviceConfig d;
   d.name = name;
-  d.kind = DeviceKind::vf1000;
+  d.kind = "vf1000";
   return d;
 }
 TimelineEntry at(Time t, const std::string& dev, Action a, const std::string& value = "", double number = 0,
@@ -104,13 +111,53 @@ TEST(Simulator, Vf1000ChannelTransferTimesOfSection71) {
     EXPECT_EQ(t[3].kind, devices::ParamKind::written) << t[3].result;
     EXPECT_EQ(t[4].kind, devices::ParamKind::description) << t[4].result;
     EXPECT_EQ(t[5].kind, devices::ParamKind::written) << t[5].result;
+    // Row "without KEYPAD, motor stopped": 124 ms, (250) when an EEPROM value changes.
     EXPECT_NEAR(ms(1), 100.0, 10.0) << "phase " << phase.count();
-    EXPECT_GE(ms(2), 124.0 * 0.9);
-    EXPECT_LE(ms(2), 131.0 * 1.1);
-    EXPECT_GE(ms(3), 124.0 * 0.9);
-    EXPECT_LE(ms(3), 131.0 * 1.1);
+    EXPECT_NEAR(ms(2), 124.0, 12.4) << "phase " << phase.count();
+    EXPECT_NEAR(ms(3), 124.0, 12.4) << "phase " << phase.count();
     EXPECT_NEAR(ms(4), 490.0, 49.0);
     EXPECT_NEAR(ms(5), 250.0, 25.0);
+  }
+}
+
+TEST(Simulator, Vf1000ChannelTransferTimesOfSection71MotorRunningAndKeypad) {
+  // Seed 001, 7.1: "with KEYPAD, motor running" 192 / 115 / 490 ms, "without KEYPAD, motor
+  // running" 131 / 100 / 490 ms (value transfer / value inquiry / description); each within 10 %.
+  struct Row {
+    bool keypad;
+    double transfer, inquiry, description;
+  };
+  for (const Row row : {Row{false, 131, 100, 490}, Row{true, 192, 115, 490}}) {
+    for (const Duration phase : {0ms, 3ms, 7ms}) {
+      Scenario s;
+      s.duration = 4s;
+      DeviceConfig v = vf1000();
+      v.phase = phase;
+      s.devices = {v};
+      s.timeline = {at(0s, "vf", Action::read, "", 0, 85),  // clears the power-on bit
+                    at(0s, "vf", Action::state, "enabled"), at(0s, "vf", Action::frequency, "", 20),
+                    at(1000ms, "vf", Action::read, "", 0, 22),       // inquiry
+                    at(1500ms, "vf", Action::write, "", 0, 905),     // transfer to a RAM variable
+                    at(2000ms, "vf", Action::describe, "", 0, 45)};  // description
+      Simulator sim(s);
+      vf1000_at(sim, 0).set_keypad(row.keypad);
+      sim.run_until(999ms);
+      ASSERT_EQ(sim.device_state(0), State::enabled);
+      ASSERT_NE(vf1000_at(sim, 0).frequency_hz(), 0.0) << "the motor runs";
+      sim.run();
+      const auto& t = sim.summary().transactions;
+      ASSERT_EQ(t.size(), 4U);
+      for (const auto& x : t) ASSERT_TRUE(x.finished.has_value()) << x.result;
+      auto ms = [&](std::size_t i) { return to_ms(*t[i].finished - t[i].submitted); };
+      EXPECT_EQ(t[1].kind, devices::ParamKind::value) << t[1].result;
+      EXPECT_EQ(t[2].kind, devices::ParamKind::written) << t[2].result;
+      EXPECT_EQ(t[3].kind, devices::ParamKind::description) << t[3].result;
+      const std::string where = std::string(row.keypad ? "KEYPAD" : "no KEYPAD") + ", phase " +
+                                std::to_string(phase.count() / 1000000) + " ms";
+      EXPECT_NEAR(ms(1), row.inquiry, row.inquiry * 0.1) << where;
+      EXPECT_NEAR(ms(2), row.transfer, row.transfer * 0.1) << where;
+      EXPECT_NEAR(ms(3), row.description, row.description * 0.1) << where;
+    }
   }
 }
 
@@ -144,13 +191,13 @@ TEST(Simulator, Mc6000BusWatchdogTripsWithinOneSampleOfItsTime) {
   Time tripped{0};
   for (Time t = 1000ms; t < 1100ms; t += 100us) {
     sim.run_until(t);
-    if (sim.mc6000(0)->error_number()) {
+    if (sim.emulator(0).error_number()) {
       tripped = t;
       break;
     }
   }
   ASSERT_GT(tripped, 0ns);
-  EXPECT_EQ(*sim.mc6000(0)->error_number(), 16);
+  EXPECT_EQ(*sim.emulator(0).error_number(), 16);
   // The last valid cycle was at most one cycle before 1000 ms; the watchdog runs out 20 ms after
   // it and the servo notices at its next 1 ms sample.
   EXPECT_GE(tripped, last_valid + 20ms);
@@ -184,15 +231,15 @@ TEST(Simulator, Vf1000WatchdogReactionsOf907) {
     Time reacted{0};
     for (Time t = 1000ms; t < 1200ms && reacted == 0ns; t += 100us) {
       sim.run_until(t);
-      if (sim.vf1000(0)->watchdog_tripped()) reacted = t;
+      if (sim.emulator(0).watchdog_tripped()) reacted = t;
     }
     ASSERT_GT(reacted, 0ns) << "reaction " << reaction;
     // Not before 100 ms without data, and within one 8.2 ms sample after it.
     EXPECT_GT(reacted, last_valid + 100ms) << "reaction " << reaction;
-    EXPECT_LE(reacted, last_valid + 100ms + kVf1000SamplePeriod + 726us + 100us) << "reaction " << reaction;
+    EXPECT_LE(reacted, last_valid + 100ms + ibs::devices::vf1000::kSamplePeriod + 726us + 100us) << "reaction " << reaction;
     EXPECT_EQ(sim.device_state(0), expected[static_cast<std::size_t>(reaction)]) << "reaction " << reaction;
     if (reaction == 1) {
-      EXPECT_EQ(sim.vf1000(0)->error_number(), 12);
+      EXPECT_EQ(sim.emulator(0).error_number(), 12);
     }
   }
 }
@@ -206,9 +253,9 @@ TEST(Simulator, PowerCycleReinitialisesTheVf1000AndTheMasterBringsItBack) {
   Simulator sim(s);
   sim.run_until(600ms);
   EXPECT_EQ(sim.device_state(0), State::not_ready);
-  EXPECT_TRUE(sim.vf1000(0)->module_error(sim.now()));
+  EXPECT_TRUE(sim.emulator(0).module_error(sim.now()));
   sim.run_until(4600ms);
-  EXPECT_FALSE(sim.vf1000(0)->module_error(sim.now()));
+  EXPECT_FALSE(sim.emulator(0).module_error(sim.now()));
   sim.run();
   EXPECT_EQ(sim.device_state(0), State::enabled);
   const auto& f = sim.summary().faults;
@@ -320,6 +367,31 @@ TEST(Simulator, DeviceFaultIsReportedAndResetByANewRequest) {
   EXPECT_GE(states.size(), 5U);
 }
 
+TEST(Simulator, Vf1000FaultResetByANewRequestBootsTheInverterOnce) {
+  // Seed 001, 5.2.1: RESET FAULT makes the VF1000 perform a software reset; seed 000, 8.1.1: no
+  // link during the self-test. The master resets only because a new request asks for it, once,
+  // and brings the inverter up after its boot.
+  Scenario s;
+  s.duration = 6s;
+  s.devices = {vf1000()};
+  s.timeline = {at(0s, "vf", Action::state, "enabled"), at(300ms, "vf", Action::frequency, "", 20),
+                at(500ms, "vf", Action::fault_device, "", 0, 0, 100ms),
+                at(1000ms, "vf", Action::state, "enabled")};
+  Simulator sim(s);
+  sim.run_until(900ms);
+  EXPECT_EQ(sim.device_state(0), State::fault);
+  EXPECT_EQ(vf1000_at(sim, 0).software_resets(), 0U) << "no reset before the new request";
+  sim.run_until(1200ms);
+  EXPECT_EQ(vf1000_at(sim, 0).software_resets(), 1U);
+  EXPECT_EQ(sim.device_state(0), State::not_ready);
+  EXPECT_TRUE(vf1000_at(sim, 0).module_error(sim.now()));
+  sim.run();
+  EXPECT_EQ(vf1000_at(sim, 0).software_resets(), 1U);
+  EXPECT_EQ(sim.device_state(0), State::enabled);
+  EXPECT_TRUE(sim.summary().devices[0].failures.size() == 1U)
+      << "only the fault itself ends a request; the boot does not";
+}
+
 TEST(Simulator, LostDeviceShowsAModuleErrorToTheMaster) {
   Scenario s;
   s.duration = 1s;
@@ -408,7 +480,7 @@ TEST(Simulator, Mc6000SwitchedOnWithAnotherSupiNoLongerFitsTheRing) {
   EXPECT_EQ(t[2].result_value, 0);
   EXPECT_FALSE(sim.module_error(0, sim.now()));
   sim.run();
-  EXPECT_TRUE(sim.mc6000(0)->configuration_mismatch());
+  EXPECT_TRUE(dynamic_cast<const devices::Mc6000Device&>(sim.emulator(0)).configuration_mismatch());
   EXPECT_TRUE(sim.module_error(0, sim.now()));
   EXPECT_EQ(sim.driver(0).sequencer().report().status_seen, 0x0000);
 }
@@ -471,6 +543,28 @@ TEST(Simulator, RefusesAConfigurationTheBusOrTheDeviceRefuses) {
   Scenario many;
   for (int i = 0; i < 65; ++i) many.devices.push_back(mc6000("m" + std::to_string(i)));  // 65 x 4 words
   EXPECT_THROW(Simulator{many}, std::invalid_argument);
+}
+
+// The simulator builds every device through the drive registry: a kind it does not know is named.
+TEST(Simulator, RefusesADriveKindTheRegistryDoesNotKnow) {
+  Scenario s;
+  DeviceConfig d = mc6000();
+  d.kind = "mc7000";
+  s.devices = {d};
+  try {
+    Simulator sim(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "device 'mc': unknown type 'mc7000' (\"mc6000\" or \"vf1000\")");
+  }
+  s.devices[0] = vf1000();
+  s.devices[0].bus = interbus::BusKind::local;
+  try {
+    Simulator sim(s);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "device 'vf': a VF1000 is always a remote bus device (seed 001, 1.3)");
+  }
 }
 
 }  // namespace

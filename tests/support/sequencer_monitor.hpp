@@ -29,6 +29,7 @@ class Monitor {
     covered_ = !known_ || is_fault(*known_);
     target_seen_ = false;
     up_seen_ = false;
+    reset_sent_ = false;
     must_block_ = false;
   }
   void on_emergency_stop() { ask_ = Ask::emergency_stop; must_block_ = false; }
@@ -48,12 +49,21 @@ class Monitor {
       if (!is_fault(*st)) covered_ = false;
       if (target_seen_ && *st != target_state(target_)) must_block_ = true;  // left the target
       if (*st == target_state(target_)) target_seen_ = true;
-      // NOT READY after any other state since the request: the drive restarted.
-      if (*st == State::not_ready && up_seen_) must_block_ = true;
+      // NOT READY after any other state since the request: the drive restarted -- unless the
+      // request's own reset edge, sent in FAULT, made it boot (the VF1000's software reset, seed
+      // 001 5.2.1); then it comes up again as after power-on.
+      const bool booting = known_ == State::fault && reset_sent_;
+      if (*st == State::not_ready && up_seen_ && !booting) must_block_ = true;
+      if (*st == State::not_ready) up_seen_ = false;
       if (*st != State::not_ready) up_seen_ = true;
+      if (*st != State::fault) reset_sent_ = false;
     }
     if (st) known_ = st;
     std::string why = judge(word, report);
+    if (ask_ == Ask::target && known_ == State::fault && covered_ && (word & 0x0080U) != 0 &&
+        (prev_word_ & 0x0080U) == 0) {
+      reset_sent_ = true;
+    }
     prev_word_ = word;
     return why;
   }
@@ -100,6 +110,7 @@ class Monitor {
   bool covered_ = false;
   bool target_seen_ = false;
   bool up_seen_ = false;
+  bool reset_sent_ = false;  // the request's reset edge was sent while the drive showed FAULT
   bool must_block_ = false;
   Word prev_word_ = 0;
 };

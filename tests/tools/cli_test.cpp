@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "ibs/interbus/trace.hpp"
 
 namespace {
@@ -37,6 +39,90 @@ std::string temp_file(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
   return path;
+}
+
+TEST(Cli, VersionPrintsTheProjectVersionAndExitsZero) {
+  const Result r = run("--version");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, std::string("ibs ") + IBS_VERSION + "\n");
+}
+
+TEST(Cli, ReplayAndDecodeReadStandardInputForDash) {
+  const Result r = run_shell(std::string(IBS_CLI) + " replay --emulate master - < " +
+                             data("mc6000_pd_startup_5_3_4.trace") + " 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, "replay: 6 steps matched\n");
+  const Result d = run_shell(std::string(IBS_CLI) + " decode - < " + data("vf1000_pd_startup.trace") + " 2>&1");
+  EXPECT_EQ(d.exit_code, 0) << d.out;
+  EXPECT_NE(d.out.find("m2s: control"), std::string::npos) << d.out;
+  // Errors in standard input name it.
+  const Result bad = run_shell("printf '# format: ibs-trace 1\\n# device: toaster\\n' | " + std::string(IBS_CLI) +
+                               " decode - 2>&1");
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  EXPECT_EQ(bad.out.rfind("<stdin>:2: ", 0), 0U) << bad.out;
+  const Result twice = run("decode - -");
+  EXPECT_EQ(twice.exit_code, 2) << twice.out;
+  EXPECT_NE(twice.out.find("standard input"), std::string::npos) << twice.out;
+}
+
+TEST(Cli, SeveralFilesEachWithItsResultAndTheWorstExitCode) {
+  const Result ok = run("replay --emulate device " + data("vf1000_pd_startup.trace") + " " +
+                        data("mc6000_pd_startup_5_3_4.trace"));
+  EXPECT_EQ(ok.exit_code, 0) << ok.out;
+  EXPECT_EQ(ok.out, "==> " + data("vf1000_pd_startup.trace") + " <==\nreplay: 6 steps matched\n==> " +
+                        data("mc6000_pd_startup_5_3_4.trace") + " <==\nreplay: 6 steps matched\n");
+  // A mismatch (1) and a missing file (2): every file is still tried, the exit code is the worst.
+  std::ifstream in(data("mc6000_pd_startup_5_3_4.trace"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("2, 0006 09C4 4000, 0231"), 23, "2, 0006 09C4 4000, 0237");
+  const std::string mismatch = temp_file("several_mismatch.trace", text);
+  const Result one = run("replay --emulate device " + mismatch + " " + data("vf1000_pd_startup.trace"));
+  EXPECT_EQ(one.exit_code, 1) << one.out;
+  EXPECT_NE(one.out.find("replay: 6 steps matched"), std::string::npos) << one.out;
+  const Result two = run("replay --emulate device " + mismatch + " /nonexistent/x.trace " +
+                         data("vf1000_pd_startup.trace"));
+  EXPECT_EQ(two.exit_code, 2) << two.out;
+  EXPECT_NE(two.out.find("/nonexistent/x.trace:0: "), std::string::npos) << two.out;
+  const Result pcap = run("replay --emulate device --pcap /tmp/x.pcap " + mismatch + " " + mismatch);
+  EXPECT_EQ(pcap.exit_code, 2) << pcap.out;
+}
+
+TEST(Cli, MasterReplayOfATraceWithoutRequestSaysSo) {
+  const Result r = run("replay --emulate master " + data("vf1000_pd_emergency_stop.trace"));
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("vf1000_pd_emergency_stop.trace: no `request` header"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("mismatch"), std::string::npos) << r.out;
+}
+
+TEST(Cli, DecodingADecodedFileChangesNothing) {
+  const Result once = run("decode " + data("mc6000_pcp_read_1word.trace"));
+  ASSERT_EQ(once.exit_code, 0) << once.out;
+  const Result twice = run("decode " + temp_file("decoded_once.trace", once.out));
+  EXPECT_EQ(twice.exit_code, 0) << twice.out;
+  EXPECT_EQ(twice.out, once.out);
+}
+
+TEST(Cli, DecodeJsonGivesEachRowItsWordsAndReadings) {
+  const Result r = run("decode --json " + data("mc6000_pd_startup_5_3_4.trace") + " " +
+                       data("vf1000_comm_value_inquiry.trace"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::vector<nlohmann::json> docs;
+  std::size_t start = 0;
+  while (start < r.out.size()) {
+    const std::size_t end = r.out.find('\n', start);
+    docs.push_back(nlohmann::json::parse(r.out.substr(start, end - start)));
+    start = end + 1;
+  }
+  ASSERT_EQ(docs.size(), 2U);
+  const nlohmann::json& pd = docs[0];
+  EXPECT_EQ(pd["header"]["device"], "mc6000");
+  EXPECT_EQ(pd["header"]["request"], "state enabled");
+  const nlohmann::json& row2 = pd["rows"][2];
+  EXPECT_EQ(row2["step"], 2);
+  EXPECT_EQ(row2["m2s"], nlohmann::json::array({"0006", "09C4", "4000"}));
+  EXPECT_NE(row2["s2m_decoded"].get<std::string>().find("READY"), std::string::npos) << row2;
+  EXPECT_EQ(docs[1]["header"]["words"], "comm");
+  EXPECT_GT(docs[1]["rows"].size(), 3U);
 }
 
 TEST(Cli, ReplayTheStartUpTableBothWays) {
@@ -292,6 +378,7 @@ TEST(Cli, RunLeavesNoHalfWrittenOutputWhenAWriteFails) {
   EXPECT_EQ(ok.exit_code, 0) << ok.out;
   EXPECT_TRUE(std::filesystem::exists(vcd));
   EXPECT_TRUE(std::filesystem::exists(vcd + ".states.txt"));
+  EXPECT_TRUE(std::filesystem::exists(vcd + ".gtkw"));
   EXPECT_FALSE(std::filesystem::is_empty(traces));
   for (const auto& e : std::filesystem::recursive_directory_iterator(base)) {
     EXPECT_EQ(e.path().string().find("ibs-partial"), std::string::npos) << e.path();

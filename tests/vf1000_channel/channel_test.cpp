@@ -12,11 +12,15 @@
 #include <vector>
 
 #include "ibs/vf1000_channel/client.hpp"
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 namespace {
 
 using namespace ibs::vf1000_channel;
+using namespace ibs::drive;
+using namespace ibs::devices::vf1000;
 using ibs::Duration;
 using ibs::Time;
 using ibs::Word;
@@ -28,13 +32,13 @@ using namespace std::chrono_literals;
 struct Channel {
   explicit Channel(const ClientConfig& cc, int inverter_every_cycles = 1,
                    ServerStart start = ServerStart::operational)
-      : inverter(config(), start, Time{0}),
+      : inverter(config(), start, Time{0}, parameters()),
         master(std::make_unique<Client>(cc)),
         inverter_every(inverter_every_cycles) {
     s2m = inverter.output();
   }
   static ServerConfig config() {
-    ServerConfig c;
+    ServerConfig c = server_config();
     c.init_duration = 200ms;  // shorter than the VF1000's 4 s: the behaviour is the same
     return c;
   }
@@ -211,7 +215,7 @@ Request random_request(std::mt19937& rng, std::span<const ParameterInfo> table) 
     std::uniform_int_distribution<std::size_t> pick(0, table.size() - 1);
     r.number = table[pick(rng)].number;
   } else {
-    std::uniform_int_distribution<int> any(0, kMaxParameterNumber);
+    std::uniform_int_distribution<int> any(0, ibs::vf1000_channel::kMaxParameterNumber);
     r.number = static_cast<std::uint16_t>(any(rng));
   }
   if (r.kind == RequestKind::value_transfer) {
@@ -243,7 +247,7 @@ void run_random_transactions(int count, int inverter_every, unsigned seed) {
   ClientConfig cc = lockstep_client();
   cc.resync_hold = 50ms;
   Channel ch(cc, inverter_every);
-  Model model(vf1000_parameters());
+  Model model(parameters());
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> pct(0, 99);
   int naks = 0;
@@ -254,7 +258,7 @@ void run_random_transactions(int count, int inverter_every, unsigned seed) {
       ch.inverter.raise_siof(siof_mask(SiofBit::watchdog));
       model.siof |= siof_mask(SiofBit::watchdog);
     }
-    const Request r = random_request(rng, vf1000_parameters());
+    const Request r = random_request(rng, parameters());
     const Outcome expected = model.expect(r, ch.power_stage_enabled);
     const std::string what = "transaction " + std::to_string(i) + " (" +
                              std::string(to_string(r.kind)) + " " + std::to_string(r.number) +

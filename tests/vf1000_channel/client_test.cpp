@@ -11,6 +11,7 @@
 namespace {
 
 using namespace ibs::vf1000_channel;
+using namespace ibs::drive;
 using ibs::Time;
 using ibs::Word;
 using namespace std::chrono_literals;

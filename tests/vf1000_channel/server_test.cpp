@@ -1,6 +1,8 @@
 // The inverter side of the parameter channel: the cycle tables of seed 001, 4.1.3 fed word by
 // word, every NAK path of 4.1.4 with its 85-SIOF bit and the clearing read, power-on (6.1), the
 // EEPROM rule (4.1.3.2), parameter numbers above FFH, and values never half-written.
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +14,8 @@
 namespace {
 
 using namespace ibs::vf1000_channel;
+using namespace ibs::drive;
+using namespace ibs::devices::vf1000;
 using ibs::Time;
 using ibs::Word;
 using namespace std::chrono_literals;
@@ -25,7 +29,7 @@ struct Answer {
 // The inverter with a clock; each step is one processing step.
 struct Inverter {
   explicit Inverter(ServerStart start = ServerStart::operational)
-      : s(ServerConfig{}, start, Time{0}) {}
+      : s(server_config(), start, Time{0}, parameters()) {}
   Server s;
   Time now{0};
   bool power_stage_enabled = false;
@@ -429,7 +433,7 @@ TEST(ServerProg, WritingOneTo71LoadsTheFactorySettings) {
   Inverter inv;
   EXPECT_EQ(transfer(inv, pnr::kFmax1, 0x01F4).to_master, 0xA800);
   EXPECT_EQ(transfer(inv, pnr::kMode, 0).to_master, 0xA800);
-  EXPECT_EQ(transfer(inv, pnr::kProg, kProgLoadDefaults).to_master, 0xA800);
+  EXPECT_EQ(transfer(inv, pnr::kProg, kLoadDefaults).to_master, 0xA800);
   EXPECT_EQ(inv.s.value(pnr::kFmax1), 0x03E8);
   EXPECT_EQ(inv.s.value(pnr::kMode), 4);
   EXPECT_EQ(inv.s.value(pnr::kProg), 0);

@@ -2,6 +2,9 @@
 // the adapters' mapping between trace requests/outcomes and the channel's.
 #include "ibs/vf1000_channel/trace_adapters.hpp"
 
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,7 +39,7 @@ class CommTrace : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CommTrace, DeviceSideAnswersEveryRowAsTheFileSays) {
   const tr::Trace t = tr::load(data_path(GetParam()));
-  auto device = ch::make_comm_device_side(t.header);
+  auto device = ch::make_comm_device_side(t.header, ibs::devices::vf1000::parameters(), ibs::devices::vf1000::server_config());
   auto explain = ch::make_comm_explainer();
   const tr::ReplayResult r = tr::replay_device(t, *device, *explain);
   EXPECT_TRUE(r.matched) << r.message;
@@ -75,7 +78,7 @@ TEST(CommTraceFiles, EveryCycleTableOfSection413IsThere) {
 TEST(CommTraceReplay, DeviceMismatchIsReportedAtItsStep) {
   tr::Trace t = tr::load(data_path("vf1000_comm_value_inquiry.trace"));
   t.rows[4].s2m[0] = tr::WordPattern::exact(0x88E9);  // the manual's value is 3E8H
-  auto device = ch::make_comm_device_side(t.header);
+  auto device = ch::make_comm_device_side(t.header, ibs::devices::vf1000::parameters(), ibs::devices::vf1000::server_config());
   const tr::ReplayResult r = tr::replay_device(t, *device, *ch::make_comm_explainer());
   EXPECT_FALSE(r.matched);
   EXPECT_EQ(r.steps_matched, 4U);
@@ -92,27 +95,28 @@ TEST(CommTraceReplay, MasterWithAnotherOutcomeFails) {
 
 TEST(CommTraceReplay, PowerOnInitRefusesWhatOperationalAccepts) {
   tr::Trace t = tr::load(data_path("vf1000_comm_value_transfer.trace"));
-  t.header.init = tr::InitState::power_on;
-  auto device = ch::make_comm_device_side(t.header);
+  t.header.init = ibs::DeviceStart::initialised;
+  auto device = ch::make_comm_device_side(t.header, ibs::devices::vf1000::parameters(), ibs::devices::vf1000::server_config());
   const tr::ReplayResult r = tr::replay_device(t, *device, *ch::make_comm_explainer());
   EXPECT_FALSE(r.matched);
   EXPECT_EQ(r.steps_matched, 2U);  // row 2 shows A000, the power-on inverter B000
 }
 
-TEST(CommTraceAdapters, RefuseOtherDevicesAndWordKinds) {
+// Which drive has this channel is the registry's: a `device: mc6000` trace with `words: comm` is
+// refused there (PdReplay.RefusedConfigurationsAndRequestsNameTheirHeaderLine).
+TEST(CommTraceAdapters, RefuseOtherWordKinds) {
   tr::Header h;
-  h.device = tr::DeviceType::vf1000;
-  h.words = tr::WordsKind::pd;
-  EXPECT_THROW((void)ch::make_comm_device_side(h), std::invalid_argument);
-  EXPECT_THROW((void)ch::make_comm_master_side(h), std::invalid_argument);
-  h.device = tr::DeviceType::mc6000;
-  h.words = tr::WordsKind::comm;
-  EXPECT_THROW((void)ch::make_comm_device_side(h), std::invalid_argument);
+  h.device = "vf1000";
+  for (const auto w : {tr::WordsKind::pd, tr::WordsKind::pcp}) {
+    h.words = w;
+    EXPECT_THROW((void)ch::make_comm_device_side(h, ibs::devices::vf1000::parameters(), ibs::devices::vf1000::server_config()), std::invalid_argument);
+    EXPECT_THROW((void)ch::make_comm_master_side(h), std::invalid_argument);
+  }
 }
 
 TEST(CommTraceAdapters, RefuseStateRequestsAndNumbersAbove3FF) {
   tr::Header h;
-  h.device = tr::DeviceType::vf1000;
+  h.device = "vf1000";
   h.words = tr::WordsKind::comm;
   tr::Request state;
   state.kind = tr::Request::Kind::state;
@@ -132,7 +136,7 @@ TEST(CommTraceAdapters, RefuseStateRequestsAndNumbersAbove3FF) {
 TEST(CommTraceAdapters, NegativeWriteValuesAreTwosComplement) {
   tr::Request w;
   w.kind = tr::Request::Kind::write;
-  w.parameter = ch::pnr::kFdriv;
+  w.parameter = ibs::devices::vf1000::pnr::kFdriv;
   w.value = -20;
   const ch::Request r = ch::to_channel_request(w);
   EXPECT_EQ(r.kind, ch::RequestKind::value_transfer);

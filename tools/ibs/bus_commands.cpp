@@ -1,6 +1,8 @@
 // The CLI11 wiring of `ibs layout` and `ibs timing`, and the number formatting both share.
 #include "bus_commands.hpp"
 
+#include "ibs/devices/registry.hpp"
+
 #include <CLI/CLI.hpp>
 #include <array>
 #include <charconv>
@@ -42,28 +44,52 @@ std::string format_number(double v) {
   return {buf.data(), r.ptr};
 }
 
+namespace {
+
+// The drive kinds whose layout the options set (descriptor.hpp: check_layout_options).
+std::string kinds_with_layout_options() {
+  std::string s;
+  for (const devices::DriveKind& k : devices::drive_kinds()) {
+    if (!k->check_layout_options(true, true, true)) s += (s.empty() ? "" : ", ") + std::string(k->name());
+  }
+  return s;
+}
+
+std::string timing_help() {
+  std::string s;
+  const auto kinds = devices::drive_kinds();
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    if (i > 0) s += i + 1 == kinds.size() ? " or " : ", ";
+    s += std::string(kinds[i]->facts().timing_syntax);
+  }
+  std::string ring;
+  for (const std::string& d : default_timing_ring()) ring += (ring.empty() ? "" : " ") + d;
+  return s + ", in ring order (default: " + ring + ")";
+}
+
+}  // namespace
+
 void add_bus_commands(CLI::App& app, BusCommandState& state) {
+  const std::string layout_kinds = kinds_with_layout_options();
   LayoutOptions& lo = state.layout_options;
   state.layout = app.add_subcommand(
       "layout", "print a drive's ID code and the meaning of each process-data word");
-  state.layout->add_option("DEVICE", lo.device, "mc6000 or vf1000")->required();
+  state.layout->add_option("DEVICE", lo.device, devices::drive_kind_names(", ", " or "))->required();
   state.layout->add_option_function<int>(
       "--supi", [&lo](const int& v) { lo.supi = v; },
-      "405-SUPI, 0..12: process data / PCP split (mc6000)");
+      "405-SUPI, 0..12: process data / PCP split (" + layout_kinds + ")");
   state.layout->add_option_function<int>(
       "--ibcnf", [&lo](const int& v) { lo.ibcnf = v; },
-      "406-IBCNF, 0..4: reference and actual format (mc6000)");
+      "406-IBCNF, 0..4: reference and actual format (" + layout_kinds + ")");
   state.layout->add_option_function<std::string>(
       "--bus", [&lo](const std::string& v) { lo.bus = v; },
-      "local or remote (mc6000; default remote)");
+      "local or remote (" + layout_kinds + "; default remote)");
   state.layout->add_flag("--json", lo.json, "print JSON");
 
   TimingOptions& to = state.timing_options;
   state.timing = app.add_subcommand(
       "timing", "cycle time of a ring with every term, worst-case reaction and recovery time");
-  state.timing->add_option(
-      "DEVICE", to.devices,
-      "mc6000:SUPI[:local|remote] or vf1000, in ring order (default: mc6000:11 vf1000)");
+  state.timing->add_option("DEVICE", to.devices, timing_help());
   state.timing->add_option("--baud", to.baud, "500k (default) or 2M");
   state.timing->add_option_function<double>(
       "--sw-us", [&to](const double& v) { to.software_time_us = v; },

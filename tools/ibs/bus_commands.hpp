@@ -16,24 +16,29 @@ class App;
 
 namespace ibs::cli {
 
-// `ibs layout mc6000 --supi S --ibcnf C [--bus local|remote] [--json]`, `ibs layout vf1000
-// [--json]`.
+// `ibs layout DEVICE [--supi S --ibcnf C] [--bus local|remote] [--json]`, DEVICE a drive kind's
+// name; which options it takes is its descriptor's (the MC6000 needs --supi and --ibcnf, the
+// VF1000 takes none).
 struct LayoutOptions {
-  std::string device;              // "mc6000" or "vf1000"
-  std::optional<int> supi;         // 405-SUPI, mc6000 only (required there)
-  std::optional<int> ibcnf;        // 406-IBCNF, mc6000 only (required there)
-  std::optional<std::string> bus;  // "local" or "remote" (default), mc6000 only
+  std::string device;              // the drive kind's name
+  std::optional<int> supi;         // 405-SUPI
+  std::optional<int> ibcnf;        // 406-IBCNF
+  std::optional<std::string> bus;  // "local" or "remote" (default)
   bool json = false;
 };
 
-// `ibs timing [DEVICE...] [--baud 500k|2M] [--sw-us N] [--json]`, DEVICE = `mc6000:SUPI[:local|
-// remote]` or `vf1000`, in ring order; none = the default bus `mc6000:11 vf1000`.
+// `ibs timing [DEVICE...] [--baud 500k|2M] [--sw-us N] [--json]`, DEVICE = NAME[:FIELD...] as the
+// drive kind takes it (`mc6000:SUPI[:local|remote]`, `vf1000`), in ring order; none = the default
+// bus of `ibs run`.
 struct TimingOptions {
   std::vector<std::string> devices;
   std::string baud = "500k";
   std::optional<double> software_time_us;  // SW; the formula's default 200 us when not given
   bool json = false;
 };
+
+// The ring `ibs timing` measures when no device is named: the default bus of `ibs run`.
+std::vector<std::string> default_timing_ring();
 
 int layout_command(const LayoutOptions& options, std::ostream& out, std::ostream& err);
 int layout_command(const LayoutOptions& options);

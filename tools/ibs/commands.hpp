@@ -15,7 +15,9 @@ struct RunOptions {
   std::string scenario;   // empty: the built-in default scenario
   bool json = false;
   std::string trace_dir;  // empty: no traces
-  std::string vcd_file;   // empty: no VCD
+  std::string vcd_file;   // empty: no VCD (else also FILE.states.txt and FILE.gtkw)
+  std::string pcap_file;  // empty: no capture for Wireshark (docs/pcap.md)
+  std::string plot_file;  // empty: no plot; FILE.svg or FILE.png through gnuplot
   unsigned threads = 1;   // device-stepping threads (sim::SimOptions::threads): 0 = automatic
 };
 
@@ -26,8 +28,10 @@ struct CampaignOptions {
   bool enable_during_download = false;
 };
 
-int replay(const std::string& emulate, const std::string& file);
-int decode(const std::string& file);
+// `pcap_file` (may be empty): the replay as a capture for Wireshark, a ring of one (docs/pcap.md).
+int replay(const std::string& emulate, const std::string& file, const std::string& pcap_file = "");
+// `json`: one JSON object per file on one line (trace_input.hpp) instead of the decoded trace.
+int decode(const std::string& file, bool json = false);
 int run(const RunOptions& options);
 // The fault campaign (sim/campaign.hpp): exit 1 when a check failed.
 int campaign(const CampaignOptions& options);

@@ -2,10 +2,6 @@
 // over a serial port.
 #include "dfs1_cmd.hpp"
 
-#include <signal.h>
-#include <sys/signalfd.h>
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
@@ -20,6 +16,7 @@
 #include "ibs/devices/dfs1/parameters.hpp"
 #include "ibs/serial/byte_log.hpp"
 #include "ibs/serial/pty.hpp"
+#include "stop_signals.hpp"
 
 namespace ibs::cli {
 
@@ -61,35 +58,6 @@ std::uint8_t parse_device(const std::string& spec) {
   }
   return static_cast<std::uint8_t>(v);
 }
-
-// SIGINT and SIGTERM as a descriptor, blocked for the process while it lives (no global flag).
-class StopSignals {
- public:
-  StopSignals() {
-    sigemptyset(&mask_);
-    sigaddset(&mask_, SIGINT);
-    sigaddset(&mask_, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &mask_, &old_);
-    fd_ = signalfd(-1, &mask_, SFD_NONBLOCK | SFD_CLOEXEC);
-    if (fd_ < 0) throw std::runtime_error("signalfd failed");
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-  ~StopSignals() {
-    ::close(fd_);
-    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
-  }
-  // Takes the signal (so that unblocking it later does not deliver it again).
-  bool raised() {
-    signalfd_siginfo info{};
-    return ::read(fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info);
-  }
-
- private:
-  sigset_t mask_{};
-  sigset_t old_{};
-  int fd_ = -1;
-};
 
 std::string hex2(unsigned v) {
   static constexpr char kHex[] = "0123456789ABCDEF";

@@ -1,15 +1,21 @@
 // ibs: the command line of the INTERBUS-S stack and simulator.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 
 #include "bus_commands.hpp"
+#include "canlust_cmd.hpp"
 #include "dfs1_cmd.hpp"
+#include "lustbus_cmd.hpp"
 #include "commands.hpp"
+#include "trace_input.hpp"
 
 namespace {
 
 int run_ibs(int argc, char** argv) {
   CLI::App app{"ibs: INTERBUS-S stack and cycle simulator for LUST VF1000 and MC6000 drives"};
+  // `ibs --version`: the project's version from CMake (project(ibs VERSION ...)).
+  app.set_version_flag("--version", std::string("ibs ") + IBS_VERSION);
   app.require_subcommand(1);
 
   ibs::cli::RunOptions run_options;
@@ -18,7 +24,13 @@ int run_ibs(int argc, char** argv) {
   run->add_option("SCENARIO", run_options.scenario, "a scenario file (.toml or .json, docs/scenarios.md)");
   run->add_flag("--json", run_options.json, "print the summary as JSON");
   run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory");
-  run->add_option("--vcd", run_options.vcd_file, "write the run as a VCD file for gtkwave");
+  run->add_option("--vcd", run_options.vcd_file,
+                  "write the run as a VCD file for gtkwave, with FILE.gtkw to open it ready to read");
+  run->add_option("--pcap", run_options.pcap_file,
+                  "write every bus cycle to a pcap file for Wireshark (tools/wireshark/interbus.lua)");
+  run->add_option("--plot", run_options.plot_file,
+                  "draw each drive's reference, actual value and state over time, faults and parameter "
+                  "transactions marked, as FILE.svg or FILE.png (needs gnuplot)");
   run->add_option("--threads", run_options.threads,
                   "threads that step the devices (the run is the same for any number; 0: one per core "
                   "as far as the ring has work for them)")
@@ -26,17 +38,27 @@ int run_ibs(int argc, char** argv) {
       ->default_val(1U);
 
   std::string emulate;
-  std::string replay_file;
+  std::vector<std::string> replay_files;
   auto* replay = app.add_subcommand(
       "replay", "replay an ibs-trace 1 file against the emulated device or master side");
   replay->add_option("--emulate", emulate, "which side the project emulates")
       ->required()
       ->check(CLI::IsMember({"device", "master"}));
-  replay->add_option("FILE", replay_file, "the trace file")->required();
+  replay->add_option("FILE", replay_files, "the trace files; - reads one from standard input")->required();
+  std::string replay_pcap;
+  replay->add_option("--pcap", replay_pcap, "write every replayed step to a pcap file for Wireshark");
 
-  std::string decode_file;
-  auto* decode = app.add_subcommand("decode", "print a trace with every word explained in the remark");
-  decode->add_option("FILE", decode_file, "the trace file")->required();
+  std::vector<std::string> decode_files;
+  bool decode_json = false;
+  unsigned decode_id_step = 2;
+  unsigned decode_cacnf = 2;
+  auto* decode = app.add_subcommand(
+      "decode", "print a trace with every word explained in the remark, or a CANLust candump log with every frame explained");
+  decode->add_option("FILE", decode_files, "trace files or candump -l logs; - reads a trace from standard input")
+      ->required();
+  decode->add_flag("--json", decode_json, "traces: one JSON object per file, each on one line (docs/replay.md)");
+  decode->add_option("--id-step", decode_id_step, "candump log: CANLust identifier step (default 2)");
+  decode->add_option("--cacnf", decode_cacnf, "candump log: the drives' 492-CACNF (default 2)");
 
   ibs::cli::CampaignOptions campaign_options;
   auto* campaign = app.add_subcommand(
@@ -53,6 +75,10 @@ int run_ibs(int argc, char** argv) {
   ibs::cli::add_bus_commands(app, bus_state);
   ibs::cli::Dfs1CommandState dfs1_state;
   ibs::cli::add_dfs1_commands(app, dfs1_state);
+  ibs::cli::LustbusCommandState lustbus_state;
+  ibs::cli::add_lustbus_commands(app, lustbus_state);
+  ibs::cli::CanlustCommandState canlust_state;
+  ibs::cli::add_canlust_commands(app, canlust_state);
 
   try {
     app.parse(argc, argv);
@@ -60,15 +86,50 @@ int run_ibs(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return ibs::cli::kExitBadInput;
   }
   if (const auto rc = ibs::cli::run_bus_commands(bus_state)) return *rc;
   if (const auto rc = ibs::cli::run_dfs1_commands(dfs1_state)) return *rc;
+  if (const auto rc = ibs::cli::run_lustbus_commands(lustbus_state)) return *rc;
+  if (const auto rc = ibs::cli::run_canlust_commands(canlust_state)) return *rc;
   if (run->parsed()) return ibs::cli::run(run_options);
-  if (replay->parsed()) return ibs::cli::replay(emulate, replay_file);
-  if (decode->parsed()) return ibs::cli::decode(decode_file);
+  if (replay->parsed() || decode->parsed()) {
+    const auto& files = replay->parsed() ? replay_files : decode_files;
+    if (const std::string problem = ibs::cli::check_inputs(files); !problem.empty()) {
+      std::cerr << problem << "\n";
+      return ibs::cli::kExitBadInput;
+    }
+    if (replay->parsed() && !replay_pcap.empty() && files.size() > 1) {
+      std::cerr << "--pcap writes the capture of one replay: give one FILE\n";
+      return ibs::cli::kExitBadInput;
+    }
+    // Several files: each result after a line `==> FILE <==` (not with --json, whose objects name
+    // their file); the exit code is the worst: bad input (2) before a mismatch (1) before 0.
+    int worst = ibs::cli::kExitOk;
+    for (const std::string& file : files) {
+      if (files.size() > 1 && !(decode->parsed() && decode_json)) std::cout << "==> " << file << " <==\n" << std::flush;
+      int rc = ibs::cli::kExitOk;
+      if (replay->parsed()) {
+        rc = ibs::cli::replay(emulate, file, replay_pcap);
+      } else if (const auto candump = file == "-" ? std::nullopt
+                                                  : ibs::cli::decode_candump_log(file, decode_id_step, decode_cacnf,
+                                                                                 std::cout, std::cerr)) {
+        rc = *candump;
+        if (decode_json && rc == ibs::cli::kExitOk) {
+          std::cerr << file << ": --json is for traces; a candump log is explained as text\n";
+          rc = ibs::cli::kExitBadInput;
+        }
+      } else {
+        rc = ibs::cli::decode(file, decode_json);
+      }
+      worst = std::max(worst, rc);
+    }
+    return worst;
+  }
   if (campaign->parsed()) return ibs::cli::campaign(campaign_options);
   return ibs::cli::kExitBadInput;
 }

@@ -1,14 +1,20 @@
-// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--threads N]`: the main job.
+// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--pcap FILE] [--plot FILE] [--threads N]`:
+// the main job.
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
+#include "gnuplot.hpp"
 #include "output_files.hpp"
+#include "ibs/sim/pcap_recorder.hpp"
+#include "ibs/sim/plot_recorder.hpp"
 #include "ibs/sim/report.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
@@ -16,7 +22,34 @@
 
 namespace ibs::cli {
 
+namespace {
+
+// The image format a --plot file asks for by its extension.
+std::optional<sim::PlotFormat> plot_format(const std::string& file) {
+  std::string ext = std::filesystem::path(file).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".svg") return sim::PlotFormat::svg;
+  if (ext == ".png") return sim::PlotFormat::png;
+  return std::nullopt;
+}
+
+}  // namespace
+
 int run(const RunOptions& o) {
+  // A plot that cannot be drawn fails before the run.
+  std::optional<sim::PlotFormat> format;
+  if (!o.plot_file.empty()) {
+    format = plot_format(o.plot_file);
+    if (!format) {
+      std::cerr << o.plot_file << ": --plot draws FILE.svg or FILE.png; say which by the extension\n";
+      return kExitBadInput;
+    }
+    if (!gnuplot_available()) {
+      std::cerr << o.plot_file << ": --plot needs gnuplot, which is not installed (Debian package gnuplot-nox); "
+                   "nothing was run or written\n";
+      return kExitBadInput;
+    }
+  }
   sim::Scenario scenario;
   try {
     scenario = o.scenario.empty() ? sim::default_scenario() : sim::load_scenario(o.scenario);
@@ -49,6 +82,32 @@ int run(const RunOptions& o) {
     vcd = std::make_unique<sim::VcdRecorder>(*simulator, *vcd_stream);
     simulator->add_observer(vcd.get());
   }
+  std::unique_ptr<sim::PcapRecorder> pcap;
+  if (!o.pcap_file.empty()) {
+    std::ostream* pcap_stream = outputs.open(o.pcap_file, error);
+    if (pcap_stream == nullptr) {
+      std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+    try {
+      pcap = std::make_unique<sim::PcapRecorder>(*simulator, scenario, *pcap_stream);
+    } catch (const std::exception& e) {
+      std::cerr << o.pcap_file << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
+    simulator->add_observer(pcap.get());
+  }
+  std::unique_ptr<sim::PlotRecorder> plot;
+  std::ostream* plot_stream = nullptr;
+  if (format) {
+    plot_stream = outputs.open(o.plot_file, error);
+    if (plot_stream == nullptr) {
+      std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+    plot = std::make_unique<sim::PlotRecorder>(*simulator, scenario.duration);
+    simulator->add_observer(plot.get());
+  }
 
   sim::SimOptions options;
   options.record_traces = !o.trace_dir.empty();
@@ -77,9 +136,32 @@ int run(const RunOptions& o) {
       std::cerr << o.vcd_file << ": " << e.what() << "\n";
       return kExitBadInput;
     }
-    // The state names for gtkwave's translate filter (docs/vcd.md), beside the VCD file.
-    if (!outputs.write(o.vcd_file + ".states.txt", vcd->state_filter(), error)) {
+    // The state names for gtkwave's translate filter and the save file that opens the dump ready
+    // to read (docs/vcd.md), beside the VCD file; the save file names both by absolute path.
+    const std::string filter_file = o.vcd_file + ".states.txt";
+    const std::string save_file = o.vcd_file + ".gtkw";
+    const auto absolute = [](const std::string& p) { return std::filesystem::absolute(p).lexically_normal().string(); };
+    if (!outputs.write(filter_file, vcd->state_filter(), error) ||
+        !outputs.write(save_file,
+                       vcd->save_file(absolute(o.vcd_file), absolute(filter_file), absolute(save_file),
+                                      scenario.duration),
+                       error)) {
       std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+  }
+  if (pcap) {
+    try {
+      pcap->finish();
+    } catch (const std::exception& e) {
+      std::cerr << o.pcap_file << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
+  if (plot) {
+    plot->finish(scenario.duration);
+    if (!run_gnuplot(plot->script(simulator->summary(), *format), *plot_stream, error)) {
+      std::cerr << o.plot_file << ": " << error << "\n";
       return kExitBadInput;
     }
   }
@@ -105,8 +187,11 @@ int run(const RunOptions& o) {
   if (!o.json) {
     for (const auto& path : written) std::cout << "trace written: " << path << "\n";
     if (vcd) {
-      std::cout << "VCD written: " << o.vcd_file << " (state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
+      std::cout << "VCD written: " << o.vcd_file << " (open it with: gtkwave " << o.vcd_file
+                << ".gtkw; state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
     }
+    if (pcap) std::cout << "capture written: " << o.pcap_file << " (" << pcap->packets() << " packets)\n";
+    if (plot) std::cout << "plot written: " << o.plot_file << "\n";
   }
   return kExitOk;
 }

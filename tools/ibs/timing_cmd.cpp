@@ -19,17 +19,15 @@
 #include "ibs/interbus/bus_config.hpp"
 #include "ibs/interbus/cycle_time.hpp"
 #include "ibs/interbus/id_code.hpp"
-#include "ibs/interbus/mc6000_layout.hpp"
+#include "ibs/devices/registry.hpp"
+#include "ibs/sim/scenario.hpp"
 
 namespace ibs::cli {
 
 namespace {
 
-namespace mc = interbus::mc6000;
 using Json = nlohmann::ordered_json;
 
-// The ring `ibs timing` measures when no device is named: docs/bus.md's worked example.
-const std::vector<std::string> kDefaultRing{"mc6000:11", "vf1000"};
 
 // A device argument that does not parse; the message names it.
 class SpecError : public std::invalid_argument {
@@ -40,7 +38,7 @@ class SpecError : public std::invalid_argument {
 struct RingEntry {
   std::string spec;  // as given
   interbus::DeviceSpec device;
-  std::optional<int> supi;  // mc6000 only
+  devices::RingEntry entry;  // the drive's settings and note
 };
 
 std::vector<std::string_view> split(std::string_view s, char sep) {
@@ -53,58 +51,37 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
   }
 }
 
-// "mc6000:SUPI[:local|remote]" or "vf1000".
+// NAME[:FIELD...], the fields as the drive kind takes them (DriveFacts::timing_syntax).
 RingEntry parse_device(const std::string& spec) {
   const auto fail = [&spec](const std::string& why) {
     return SpecError("ibs timing: device '" + spec + "': " + why);
   };
   const std::vector<std::string_view> f = split(spec, ':');
+  const devices::DriveKind* kind = devices::find_drive_kind(f[0]);
+  if (kind == nullptr) {
+    std::string syntaxes;
+    const auto kinds = devices::drive_kinds();
+    for (std::size_t i = 0; i < kinds.size(); ++i) {
+      if (i > 0) syntaxes += i + 1 == kinds.size() ? " or " : ", ";
+      syntaxes += std::string(kinds[i]->facts().timing_syntax);
+    }
+    throw fail("unknown device, expected " + syntaxes);
+  }
   RingEntry e;
   e.spec = spec;
-  if (f[0] == "vf1000") {
-    if (f.size() != 1) {
-      throw fail(
-          "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote "
-          "bus, seed 001 3.1.2)");
-    }
-    e.device = {"vf1000", interbus::IdCode{0x33B}, interbus::BusKind::remote};
-    return e;
+  try {
+    e.entry = (*kind)->ring_entry(std::span(f).subspan(1));
+  } catch (const devices::SettingsError& x) {
+    throw fail(x.what());
   }
-  if (f[0] != "mc6000") {
-    throw fail("unknown device, expected mc6000:SUPI[:local|remote] or vf1000");
-  }
-  if (f.size() < 2 || f[1].empty()) {
-    throw fail("the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]");
-  }
-  if (f.size() > 3) throw fail("too many fields, expected mc6000:SUPI[:local|remote]");
-  int supi = -1;
-  const auto r = std::from_chars(f[1].data(), f[1].data() + f[1].size(), supi);
-  if (r.ec != std::errc{} || r.ptr != f[1].data() + f[1].size()) {
-    throw fail("405-SUPI '" + std::string(f[1]) + "' is not a number");
-  }
-  if (supi < 0 || supi > mc::kSupiMax) {
-    throw fail("405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)");
-  }
-  interbus::BusKind bus = interbus::BusKind::remote;
-  if (f.size() == 3) {
-    if (f[2] == "local") {
-      bus = interbus::BusKind::local;
-    } else if (f[2] != "remote") {
-      throw fail("bus '" + std::string(f[2]) + "' is neither local nor remote");
-    }
-  }
-  const mc::SupiRow& row = mc::kSupiTable[static_cast<std::size_t>(supi)];
-  e.supi = supi;
-  e.device = {"mc6000",
-              interbus::IdCode{bus == interbus::BusKind::local ? row.id_local : row.id_remote},
-              bus};
+  e.device = {std::string((*kind)->name()), e.entry.id_code, e.entry.bus};
   return e;
 }
 
 std::vector<RingEntry> parse_ring(const std::vector<std::string>& specs) {
   std::vector<RingEntry> ring;
   std::map<std::string, int> seen;
-  for (const std::string& s : specs.empty() ? kDefaultRing : specs) {
+  for (const std::string& s : specs.empty() ? default_timing_ring() : specs) {
     RingEntry e = parse_device(s);
     // Unique names in ring order: mc6000, mc6000_2, ...
     const int n = ++seen[e.device.name];
@@ -154,7 +131,7 @@ void print_text(const Timing& t, std::ostream& out) {
         << interbus::to_hex(d.id) << "  " << interbus::to_string(d.bus) << "  "
         << words(d.ring_words) << " (" << d.ring_words - d.pcp_words << " process data + "
         << d.pcp_words << " PCP)";
-    if (t.ring[i].supi == 0) out << ", 405-SUPI = 0: no data exchange";
+    if (!t.ring[i].entry.note.empty()) out << ", " << t.ring[i].entry.note;
     out << "\n";
   }
   out << "T_cycle = SW + (" << format_number(p.line_bits_per_byte) << " * ("
@@ -191,7 +168,13 @@ void print_json(const Timing& t, std::ostream& out) {
            {"ring_words", d.ring_words},
            {"pd_words", d.ring_words - d.pcp_words},
            {"pcp_words", d.pcp_words}};
-    if (t.ring[i].supi) j["supi"] = *t.ring[i].supi;
+    for (const devices::ReportedSetting& r : t.ring[i].entry.settings) {
+      if (r.number) {
+        j[r.key] = *r.number;
+      } else {
+        j[r.key] = r.text;
+      }
+    }
     devices.push_back(j);
   }
   const Json j{
@@ -217,6 +200,15 @@ void print_json(const Timing& t, std::ostream& out) {
 }
 
 }  // namespace
+
+// docs/bus.md's worked example, `mc6000:11 vf1000`.
+std::vector<std::string> default_timing_ring() {
+  std::vector<std::string> ring;
+  for (const sim::DeviceConfig& d : sim::default_scenario().devices) {
+    ring.push_back((*devices::find_drive_kind(d.kind))->ring_spec(sim::device_settings(d)));
+  }
+  return ring;
+}
 
 int timing_command(const TimingOptions& o, std::ostream& out, std::ostream& err) {
   Timing t;

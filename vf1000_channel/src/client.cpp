@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "ibs/vf1000_channel/siof.hpp"
+#include "ibs/drive/siof.hpp"
 
 namespace ibs::vf1000_channel {
 
@@ -124,7 +124,7 @@ std::string describe(const Outcome& o) {
              " default " + hex4(d.default_value);
     }
     case OutcomeKind::nak:
-      if (o.nak_cause == NakCause::siof) return "NAK: 85-SIOF " + describe_siof(o.siof);
+      if (o.nak_cause == NakCause::siof) return "NAK: 85-SIOF " + drive::describe_siof(o.siof);
       return "NAK: " + std::string(to_string(o.nak_cause));
     case OutcomeKind::timeout:
     case OutcomeKind::inverter_restarted:
@@ -315,7 +315,7 @@ Word Client::start_exchange(Exchange e) {
   toggle_ = true;  // a change from the starting position's toggle 0 (4.1.3.1.1 row 1)
   const bool main = e == Exchange::main;
   code_ = main ? code_of(current().request.kind) : Code::value_inquiry;
-  const std::uint16_t number = main ? current().request.number : pnr::kSiof;
+  const std::uint16_t number = main ? current().request.number : drive::kSiofNumber;
   state_ = ClientState::exchanging;
   out_ = master_start_word(toggle_, code_, number);
   return out_;
@@ -377,8 +377,8 @@ Word Client::answer(Word in, Time now) {
       }
       const Word value = make_word(high_, data);
       const std::uint16_t number =
-          exchange_ == Exchange::main ? current().request.number : pnr::kSiof;
-      if (number == pnr::kSiof) {
+          exchange_ == Exchange::main ? current().request.number : drive::kSiofNumber;
+      if (number == drive::kSiofNumber) {
         last_siof_ = low_byte(value);
         siof_unread_ = false;
       }

@@ -6,6 +6,10 @@ namespace ibs::vf1000_channel {
 
 namespace {
 
+using drive::siof_mask;
+using drive::SiofBit;
+using drive::WriteCheck;
+
 constexpr NakReason reason_for(WriteCheck c) {
   switch (c) {
     case WriteCheck::no_parameter:
@@ -19,8 +23,8 @@ constexpr NakReason reason_for(WriteCheck c) {
   return NakReason::invalid_value;
 }
 
-std::size_t checked_siof_slot(const ParameterTable& t) {
-  const int s = t.slot(pnr::kSiof);
+std::size_t checked_siof_slot(const drive::ParameterTable& t) {
+  const int s = t.slot(drive::kSiofNumber);
   if (s < 0) {
     throw std::invalid_argument(
         "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer "
@@ -70,12 +74,12 @@ std::string_view to_string(NakReason r) {
 }
 
 Server::Server(const ServerConfig& config, ServerStart start, Time now,
-               std::span<const ParameterInfo> params)
+               std::span<const drive::ParameterInfo> params)
     : config_(config),
       table_(params),
       store_(params),
       siof_slot_(checked_siof_slot(table_)),
-      prog_slot_(table_.slot(pnr::kProg)) {
+      prog_slot_(config.load_defaults_parameter ? table_.slot(*config.load_defaults_parameter) : -1) {
   power_on(now);
   if (start == ServerStart::power_on) return;
   state_ = ServerState::wait;
@@ -84,9 +88,9 @@ Server::Server(const ServerConfig& config, ServerStart start, Time now,
   if (start == ServerStart::operational) store_.set(siof_slot_, 0);
 }
 
-void Server::power_on(Time now) {
+void Server::power_on(Time now, Duration init) {
   state_ = ServerState::initialising;
-  ready_at_ = now + config_.init_duration;
+  ready_at_ = now + init;
   out_ = 0;  // RESET distinction 0 (4.1.2.2)
   toggle_ = false;
   code_ = Code::reset;
@@ -201,9 +205,9 @@ Word Server::start_telegram(Word m, bool power_stage_enabled) {
     case Code::value_transfer: {
       // 85-SIOF <> 0 refuses every value transfer (4.1.4; power-on bit, 6.1).
       if (siof() != 0) return nak(NakReason::siof_pending, 0);
-      const WriteCheck access = check_access(
+      const WriteCheck access = drive::check_access(
           s < 0 ? nullptr : &table_.params()[static_cast<std::size_t>(s)], power_stage_enabled);
-      if (access != WriteCheck::ok) return nak(reason_for(access), siof_bits_for(access));
+      if (access != WriteCheck::ok) return nak(reason_for(access), drive::siof_bits_for(access));
       slot_ = static_cast<std::int16_t>(s);
       state_ = ServerState::transfer_high;
       return send(0, Flag::none);  // 4.1.3.2.1 row 2: PNR read, waiting for DAT1
@@ -243,19 +247,19 @@ Word Server::take_high(Word m) {
 Word Server::take_low(Word m, bool power_stage_enabled) {
   const Word value = make_word(high_, low_byte(m));
   const auto slot = static_cast<std::size_t>(slot_);
-  const ParameterInfo& p = table_.params()[slot];
+  const drive::ParameterInfo& p = table_.params()[slot];
   // 85-SIOF <> 0 refuses every value transfer (4.1.4): a bit set since the PNR arrived (a
   // watchdog, the device) refuses it here, where the value is taken.
   if (siof() != 0) return nak(NakReason::siof_pending, 0);
   // The power stage may have been enabled since the PNR arrived: checked again here.
-  const WriteCheck c = check_write(&p, value, power_stage_enabled);
-  if (c != WriteCheck::ok) return nak(reason_for(c), siof_bits_for(c));
+  const WriteCheck c = drive::check_write(&p, value, power_stage_enabled);
+  if (c != WriteCheck::ok) return nak(reason_for(c), drive::siof_bits_for(c));
 
   // The value takes effect whole, now, after its last byte (4.1.3.2.1 row 6).
   const Word eeprom_before = store_.eeprom_value(slot);
   store_.write(slot, value, power_stage_enabled);
   const bool eeprom_changed = store_.eeprom_value(slot) != eeprom_before;
-  if (static_cast<int>(slot) == prog_slot_ && value == kProgLoadDefaults) {
+  if (static_cast<int>(slot) == prog_slot_ && value == drive::kLoadDefaults) {
     const std::uint8_t keep = siof();
     store_.load_defaults();
     store_.set(siof_slot_, keep);

@@ -11,22 +11,23 @@ namespace {
 
 namespace tr = ibs::trace;
 
+// Which drive the trace is for is the registry's business (devices/registry.hpp): it hands
+// `words: comm` traces of the drives that have this channel here.
 void check_header(const tr::Header& h, const char* who) {
-  if (h.device != tr::DeviceType::vf1000 || h.words != tr::WordsKind::comm) {
-    throw std::invalid_argument(std::string(who) +
-                                ": serves `device: vf1000` with `words: comm`, "
-                                "not `device: " +
-                                std::string(tr::to_string(h.device)) +
-                                "` with `words: " + std::string(tr::to_string(h.words)) + "`");
+  if (h.words != tr::WordsKind::comm) {
+    throw std::invalid_argument(std::string(who) + ": serves `words: comm`, not `words: " +
+                                std::string(tr::to_string(h.words)) + "`");
   }
 }
 
-ServerStart start_of(tr::InitState s) {
+ServerStart start_of(DeviceStart s) {
   switch (s) {
-    case tr::InitState::operational:
-    case tr::InitState::fault:
+    case DeviceStart::operational:
+    case DeviceStart::fault:
       return ServerStart::operational;
-    case tr::InitState::power_on:
+    case DeviceStart::power_on:
+      return ServerStart::power_on;
+    case DeviceStart::initialised:
       return ServerStart::initialised;
   }
   return ServerStart::operational;
@@ -34,8 +35,8 @@ ServerStart start_of(tr::InitState s) {
 
 class CommDeviceSide final : public tr::DeviceSide {
  public:
-  explicit CommDeviceSide(const tr::Header& h)
-      : server_(ServerConfig{}, start_of(h.init), Time{0}) {}
+  CommDeviceSide(const tr::Header& h, std::span<const drive::ParameterInfo> params, const ServerConfig& config)
+      : server_(config, start_of(h.init), Time{0}, params) {}
 
   [[nodiscard]] std::size_t m2s_words() const override { return 1; }
   [[nodiscard]] std::size_t s2m_words() const override { return 1; }
@@ -155,9 +156,11 @@ tr::Outcome to_trace_outcome(const Outcome& o) {
   return t;
 }
 
-std::unique_ptr<tr::DeviceSide> make_comm_device_side(const tr::Header& header) {
+std::unique_ptr<tr::DeviceSide> make_comm_device_side(const tr::Header& header,
+                                                      std::span<const drive::ParameterInfo> params,
+                                                      const ServerConfig& config) {
   check_header(header, "vf1000 comm device");
-  return std::make_unique<CommDeviceSide>(header);
+  return std::make_unique<CommDeviceSide>(header, params, config);
 }
 
 std::unique_ptr<tr::MasterSide> make_comm_master_side(const tr::Header& header) {

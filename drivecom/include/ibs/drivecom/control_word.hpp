@@ -1,5 +1,5 @@
-// DRIVECOM Profile 20 control word (seed 001, 5.1.2) and the device-specific bits of the VF1000
-// (5.2.1) and the MC6000 (5.3.1).
+// DRIVECOM Profile 20 control word (seed 001, 5.1.2). The device-specific bits belong to the
+// drives (devices/vf1000/descriptor.hpp: 5.2.1, devices/mc6000/descriptor.hpp: 5.3.1).
 #pragma once
 
 #include <array>
@@ -93,46 +93,9 @@ constexpr bool reset_fault_edge(Word previous, Word current) {
   return !bit(previous, cw::kResetFault) && bit(current, cw::kResetFault);
 }
 
-// Which drive a word is meant for: the bits above 3 (other than 7) differ.
-enum class DeviceType : std::uint8_t { vf1000, mc6000 };
-std::string_view to_string(DeviceType d);
-
-// VF1000 control-word bits 4-6 and 11-15 (5.2.1).
-struct Vf1000ControlBits {
-  bool ramp_enable = false;  // bit 4: 0 = stop function of 36-RSTOP
-  bool ramp_run = false;     // bit 5: 0 = ramp held at its current value
-  bool ramp_follow = false;  // bit 6: 0 = ramp to 0 Hz
-  bool s2ind = false;        // bit 12
-  bool s1ind = false;        // bit 13
-  bool stl = false;          // bit 14: start counter-clockwise
-  bool str = false;          // bit 15: start clockwise
-};
-constexpr Vf1000ControlBits decode_vf1000_bits(Word w) {
-  return {bit(w, 4), bit(w, 5), bit(w, 6), bit(w, 12), bit(w, 13), bit(w, 14), bit(w, 15)};
-}
-constexpr Word encode_vf1000_bits(const Vf1000ControlBits& b) {
-  Word w = 0;
-  w = with_bit(w, 4, b.ramp_enable);
-  w = with_bit(w, 5, b.ramp_run);
-  w = with_bit(w, 6, b.ramp_follow);
-  w = with_bit(w, 12, b.s2ind);
-  w = with_bit(w, 13, b.s1ind);
-  w = with_bit(w, 14, b.stl);
-  w = with_bit(w, 15, b.str);
-  return w;
-}
-// Ramp generator running freely (bits 4, 5, 6 set): what a master sends to let the drive run.
-inline constexpr Word kVf1000RampRun = 0x0070;
-
-// MC6000 control-word bits 14 and 15 (5.3.1); bits 4-6 and 11-13 have no function.
-struct Mc6000ControlBits {
-  bool os00 = false;  // bit 14: reference state of output OS00 (445-FOS00 = ROPT1)
-  bool os01 = false;  // bit 15: reference state of output OS01 (446-FOS01 = ROPT1)
-};
-constexpr Mc6000ControlBits decode_mc6000_bits(Word w) { return {bit(w, 14), bit(w, 15)}; }
-
-// A control word in words: the command, the reset-fault bit and the device bits, e.g.
-// "000F POWER-ON/ENABLE" or "80F7 POWER-ON/DISABLE, ramp run, STR". `previous` tells the edge.
-std::string explain_control_word(DeviceType d, Word control, Word previous);
+// A control word in words as far as the profile defines it: the command, the reset-fault bit and
+// reserved bits, e.g. "000F POWER-ON/ENABLE" or "0080 BLOCK POWER, RESET FAULT edge". `previous`
+// tells the edge. The device bits (4-6, 11-15) are the drive's: its descriptor appends them.
+std::string explain_control_word(Word control, Word previous);
 
 }  // namespace ibs::drivecom

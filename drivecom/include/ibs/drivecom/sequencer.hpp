@@ -16,7 +16,10 @@
 
 namespace ibs::drivecom {
 
+// The states a master may ask for; names and keys are their states' (kStateTable).
 enum class Target : std::uint8_t { start_up_inhibit, ready, on, enabled };
+inline constexpr std::array<Target, 4> kTargets{Target::start_up_inhibit, Target::ready, Target::on,
+                                                Target::enabled};
 std::string_view to_string(Target t);
 constexpr State target_state(Target t) {
   switch (t) {
@@ -27,6 +30,20 @@ constexpr State target_state(Target t) {
   }
   return State::start_up_inhibit;
 }
+constexpr std::string_view key(Target t) { return key(target_state(t)); }
+// The target a file names by its state's key ("enabled"); nullopt for a state that is no target.
+constexpr std::optional<Target> target_named(std::string_view key) {
+  for (const Target t : kTargets) {
+    if (drivecom::key(t) == key) return t;
+  }
+  return std::nullopt;
+}
+// Every target's key, in kTargets' order.
+inline constexpr std::array<std::string_view, kTargets.size()> kTargetKeys = [] {
+  std::array<std::string_view, kTargets.size()> keys{};
+  for (std::size_t i = 0; i < kTargets.size(); ++i) keys[i] = key(kTargets[i]);
+  return keys;
+}();
 
 // What the sequencer is doing.
 enum class Goal : std::uint8_t {
@@ -135,6 +152,9 @@ class Sequencer {
   // A state other than NOT READY has been seen since the request: NOT READY now means the drive
   // restarted (only power-on leads there, 5.1.1), and the request does not carry across that.
   bool up_since_request_ = false;
+  // This request sent a rising edge of bit 7 while the drive showed FAULT: NOT READY next is the
+  // drive booting from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart.
+  bool reset_edge_sent_ = false;
   Time pulse_edge_{0};
   bool pulse_started_ = false;
 };

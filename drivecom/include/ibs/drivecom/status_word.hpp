@@ -1,5 +1,5 @@
-// DRIVECOM Profile 20 status word (seed 001, 5.1.3) and the device-specific bits of the VF1000
-// (5.2.2) and the MC6000 (5.3.2).
+// DRIVECOM Profile 20 status word (seed 001, 5.1.3). What the manufacturer-specific bits 8, 14
+// and 15 mean is the drive's (its descriptor: VF1000 5.2.2, MC6000 5.3.2).
 #pragma once
 
 #include <array>
@@ -40,27 +40,44 @@ inline constexpr unsigned kReferenceReached = 10;
 inline constexpr unsigned kLimitValue = 11;
 }  // namespace sw
 
-// One row of the device-state table of 5.1.3: `(status & mask) == value`.
+// One row of the device-state table of 5.1.3: `(status & mask) == value`. `name` is the manual's
+// ("START-UP INHIBIT", reports and VCD files), `key` the one scenario files and traces write
+// ("start-up-inhibit"): the only place either is spelled.
 struct StateRow {
   State state;
   Word mask;
   Word value;
   std::string_view name;
+  std::string_view key;
 };
 
 inline constexpr std::array<StateRow, kStateCount> kStateTable{{
-    {State::not_ready, 0x004F, 0x0000, "NOT READY"},
-    {State::start_up_inhibit, 0x004F, 0x0040, "START-UP INHIBIT"},
-    {State::ready, 0x006F, 0x0021, "READY"},
-    {State::on, 0x006F, 0x0023, "ON"},
-    {State::enabled, 0x006F, 0x0027, "ENABLED"},
-    {State::fault, 0x004F, 0x0008, "FAULT"},
-    {State::fault_response_active, 0x004F, 0x000F, "FAULT RESPONSE ACTIVE"},
-    {State::emergency_stop_active, 0x006F, 0x0007, "EMERGENCY STOP ACTIVE"},
+    {State::not_ready, 0x004F, 0x0000, "NOT READY", "not-ready"},
+    {State::start_up_inhibit, 0x004F, 0x0040, "START-UP INHIBIT", "start-up-inhibit"},
+    {State::ready, 0x006F, 0x0021, "READY", "ready"},
+    {State::on, 0x006F, 0x0023, "ON", "on"},
+    {State::enabled, 0x006F, 0x0027, "ENABLED", "enabled"},
+    {State::fault, 0x004F, 0x0008, "FAULT", "fault"},
+    {State::fault_response_active, 0x004F, 0x000F, "FAULT RESPONSE ACTIVE", "fault-response-active"},
+    {State::emergency_stop_active, 0x006F, 0x0007, "EMERGENCY STOP ACTIVE", "emergency-stop-active"},
 }};
 
 constexpr const StateRow& state_row(State s) { return kStateTable[static_cast<std::size_t>(s)]; }
 constexpr std::string_view to_string(State s) { return state_row(s).name; }
+constexpr std::string_view key(State s) { return state_row(s).key; }
+// The state a file names by its key; nullopt for no state.
+constexpr std::optional<State> state_named(std::string_view key) {
+  for (const auto& row : kStateTable) {
+    if (row.key == key) return row.state;
+  }
+  return std::nullopt;
+}
+// Every state's key, in the table's order.
+inline constexpr std::array<std::string_view, kStateCount> kStateKeys = [] {
+  std::array<std::string_view, kStateCount> keys{};
+  for (std::size_t i = 0; i < kStateCount; ++i) keys[i] = kStateTable[i].key;
+  return keys;
+}();
 
 namespace detail {
 // Bits 0-6 -> state (or none), derived once from kStateTable; every row's mask lies in 0x7F.
@@ -106,12 +123,12 @@ constexpr Word state_bits(State s, Word last_control) {
 // The bits 7-15 a device adds to the state bits.
 struct StatusExtras {
   bool alarm = false;               // bit 7
-  bool message = false;             // bit 8 (MC6000, VF1000: not implemented)
+  bool message = false;             // bit 8 (manufacturer-specific)
   bool remote = true;               // bit 9: parameters can be changed over the bus
   bool reference_reached = false;   // bit 10
   bool limit_value = false;         // bit 11
-  bool bit14 = false;               // VF1000 S2OUT, MC6000 IS00
-  bool bit15 = false;               // VF1000 S1OUT, MC6000 IS01
+  bool bit14 = false;               // manufacturer-specific (a drive's descriptor names it)
+  bool bit15 = false;
 };
 constexpr Word extras_bits(const StatusExtras& e) {
   const auto at = [](bool on, unsigned n) { return static_cast<unsigned>(on) << n; };
@@ -140,7 +157,15 @@ constexpr Word status_word(State s, Word last_control, const StatusExtras& e) {
   return static_cast<Word>(bits | extras_bits(e));
 }
 
+// What a drive calls its manufacturer-specific status bits, as explain_status_word writes them
+// when set ("IS00", "bit 8 (not implemented) set").
+struct StatusBitNames {
+  std::string_view bit8;
+  std::string_view bit14;
+  std::string_view bit15;
+};
+
 // A status word in words, e.g. "0231 READY, remote" or "0637 ENABLED, remote, reference reached".
-std::string explain_status_word(DeviceType d, Word status);
+std::string explain_status_word(Word status, const StatusBitNames& names);
 
 }  // namespace ibs::drivecom

@@ -76,7 +76,8 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
 ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& explain);
 
 // The trace with every row's remark replaced by the explainer's reading of its words
-// (the original remark kept after ` | `), ready for write(). Throws TraceError (FILE:LINE) for a
+// (the original remark kept after ` | `), ready for write(). A row that already carries this
+// reading is left as it is, so decode(decode(t)) == decode(t). Throws TraceError (FILE:LINE) for a
 // row whose word counts are not the explainer's.
 Trace decode(const Trace& t, const Explainer& explain);
 

@@ -13,10 +13,6 @@ using Time = std::chrono::nanoseconds;
 
 using namespace std::chrono_literals;
 
-// Processing periods of the devices' process-data handling (seed 001, 7.1 and 7.2).
-inline constexpr Duration kVf1000SamplePeriod = 8200us;
-inline constexpr Duration kMc6000SamplePeriod = 1ms;
-
 // Milliseconds as a double, for reports.
 constexpr double to_ms(Duration d) { return static_cast<double>(d.count()) / 1e6; }
 

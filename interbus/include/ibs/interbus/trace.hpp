@@ -11,27 +11,23 @@
 #include <string_view>
 #include <vector>
 
+#include "ibs/interbus/device_start.hpp"
 #include "ibs/interbus/words.hpp"
 
 namespace ibs::trace {
 
-enum class DeviceType { vf1000, mc6000 };
 enum class WordsKind { comm, pd, pcp };
-enum class InitState { operational, power_on, fault };
-// DRIVECOM targets a `request: state TARGET` may name.
-enum class StateTarget { start_up_inhibit, ready, on, enabled };
-
-std::string_view to_string(DeviceType d);
 std::string_view to_string(WordsKind w);
-std::string_view to_string(InitState s);
-std::string_view to_string(StateTarget t);
+// The `init` header's spelling: operational, power-on (DeviceStart::initialised), fault; "?" for
+// DeviceStart::power_on, which no trace starts in.
+std::string_view to_string(DeviceStart s);
 
 struct Request {
   enum class Kind { read, write, describe, state };
   Kind kind = Kind::read;
   std::uint16_t parameter = 0;  // read, write, describe
   std::int64_t value = 0;       // write: the raw value
-  StateTarget target = StateTarget::enabled;  // state
+  std::string target;           // state: the DRIVECOM target's name ("enabled")
 
   friend bool operator==(const Request&, const Request&) = default;
 };
@@ -91,13 +87,13 @@ struct Row {
 inline constexpr std::uint64_t kMaxGapLimit = 10'000'000;
 
 struct Header {
-  DeviceType device = DeviceType::vf1000;
+  std::string device;  // the drive kind's name ("vf1000", "mc6000")
   WordsKind words = WordsKind::pd;
   int supi = 11;
   int ibcnf = 2;
   bool supi_given = false;
   bool ibcnf_given = false;
-  InitState init = InitState::operational;
+  DeviceStart init = DeviceStart::operational;
   bool init_given = false;
   std::optional<Request> request;
   std::uint64_t request_at = 1;
@@ -131,10 +127,19 @@ class TraceError : public std::runtime_error {
   std::size_t line_;
 };
 
+// The names the layers above the format give meaning to: the drive kinds a `device` header may
+// name (devices/registry.hpp) and the DRIVECOM targets of `request: state TARGET`
+// (drivecom/status_word.hpp). An empty list accepts any single word; the layer that serves the
+// trace then refuses what it does not know. The spans must outlive the call.
+struct Vocabulary {
+  std::span<const std::string_view> devices;
+  std::span<const std::string_view> targets;
+};
+
 // Parses a whole trace; `file` names it in errors.
-Trace parse(std::string_view text, const std::string& file);
+Trace parse(std::string_view text, const std::string& file, const Vocabulary& vocabulary = {});
 // Reads and parses a file; a file that cannot be read is a TraceError at line 0.
-Trace load(const std::string& path);
+Trace load(const std::string& path, const Vocabulary& vocabulary = {});
 // Writes a trace in the format `parse` reads (round trip: parse(write(t)) == t, less line numbers).
 std::string write(const Trace& t);
 
@@ -142,7 +147,8 @@ std::string write(const Trace& t);
 std::vector<WordPattern> parse_words(std::string_view field, const std::string& file,
                                      std::size_t line);
 // Parses `read 22`, `write 0x15 500`, `describe 45`, `state enabled`.
-Request parse_request(std::string_view text, const std::string& file, std::size_t line);
+Request parse_request(std::string_view text, const std::string& file, std::size_t line,
+                      const Vocabulary& vocabulary = {});
 Outcome parse_outcome(std::string_view text, const std::string& file, std::size_t line);
 
 }  // namespace ibs::trace

@@ -1,6 +1,6 @@
 // 85-SIOF (VF1000) / 85-SERR (MC6000), the serial-interface error bits (seed 000, 9.2). The bit
-// meanings are the ones the VF1000 INTERBUS channel already uses (vf1000_channel/siof.hpp: the
-// same parameter); this header reuses them and adds the LUSTBUS rules the host acts on: the
+// meanings are the drive-neutral ones every parameter channel shares (drive/siof.hpp: the same
+// parameter); this header reuses them and adds the LUSTBUS rules the host acts on: the
 // "what to do" column of 9.2. Keeping the bits (the latch) is the drive's business (Responder).
 #pragma once
 
@@ -9,14 +9,14 @@
 #include <string_view>
 
 #include "ibs/interbus/time.hpp"
-#include "ibs/vf1000_channel/siof.hpp"
+#include "ibs/drive/siof.hpp"
 
 namespace ibs::lustbus {
 
-using vf1000_channel::kSiofBits;
-using vf1000_channel::siof_has;
-using vf1000_channel::siof_mask;
-using vf1000_channel::SiofBit;
+using drive::kSiofBits;
+using drive::siof_has;
+using drive::siof_mask;
+using drive::SiofBit;
 
 // 9.2, "What to do".
 enum class SiofRemedy : std::uint8_t {
@@ -68,7 +68,7 @@ constexpr bool select_needs_eeprom_wait(std::uint8_t siof) {
   return siof_has(siof, SiofBit::eeprom_busy);
 }
 
-// "80H: invalid value", as vf1000_channel::describe_siof (configuration-time text, allocates).
+// "80H: invalid value", as drive::describe_siof (configuration-time text, allocates).
 std::string describe_siof(std::uint8_t siof);
 
 }  // namespace ibs::lustbus

@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "ibs/lustbus/chars.hpp"
-#include "ibs/vf1000_channel/data_types.hpp"
+#include "ibs/drive/data_types.hpp"
 
 namespace ibs::lustbus {
 
@@ -149,14 +149,15 @@ Result<std::uint32_t> from_engineering(DataType t, double value);
 Result<double> decode(Family f, DataType t, std::string_view value);
 Result<Value> encode(Family f, DataType t, double value);
 
-// PT_VF_ERROR (2.3.1): the INTERBUS channel's coding, shared (seed 001, 4.1.3.3; VF-E6).
-using VfError = vf1000_channel::VfError;
-// (Named apart from vf1000_channel's, which argument-dependent lookup also finds.)
+// PT_VF_ERROR (2.3.1): the coding the INTERBUS channel shares (drive/data_types.hpp; seed 001,
+// 4.1.3.3; VF-E6).
+using VfError = drive::VfError;
+// (Named apart from drive's, which argument-dependent lookup also finds.)
 constexpr VfError vf_error_of(std::uint32_t bits) {
-  return vf1000_channel::decode_vf_error(static_cast<std::uint16_t>(bits));
+  return drive::decode_vf_error(static_cast<std::uint16_t>(bits));
 }
 constexpr std::optional<std::uint32_t> vf_error_bits(const VfError& e) {
-  const auto w = vf1000_channel::encode_vf_error(e);
+  const auto w = drive::encode_vf_error(e);
   if (!w) return std::nullopt;
   return *w;
 }

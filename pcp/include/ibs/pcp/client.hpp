@@ -18,7 +18,7 @@
 #include "ibs/interbus/words.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/link.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/pcp/parameters.hpp"
 #include "ibs/pcp/pdu.hpp"
 
 namespace ibs::pcp {

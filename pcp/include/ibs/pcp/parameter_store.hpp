@@ -1,4 +1,4 @@
-// The MC6000's parameter memory behind the PCP server: a RAM value per parameter and an EEPROM
+// A drive's parameter memory behind the PCP server: a RAM value per parameter and an EEPROM
 // copy per EEPROM parameter (seed 000, 11.2.1: "each have an EEPROM address and a RAM address").
 // Fixed size; the table is checked once at construction (configuration time).
 #pragma once
@@ -10,7 +10,7 @@
 #include <span>
 
 #include "ibs/pcp/data_types.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/pcp/parameters.hpp"
 
 namespace ibs::pcp {
 

@@ -15,7 +15,7 @@
 
 #include "ibs/interbus/words.hpp"
 #include "ibs/pcp/data_types.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/pcp/parameters.hpp"
 
 namespace ibs::pcp {
 
@@ -105,8 +105,9 @@ struct Kbl {
   friend bool operator==(const Kbl&, const Kbl&) = default;
 };
 
-// Seed 001, 4.2.2: 134 bytes each way; server for Get-OV long, Read, Write, Information Report.
-inline constexpr Kbl kMc6000Kbl{kMaxPduSize, kMaxPduSize,
+// A parameter server's entry: 134 bytes each way; server for Get-OV long, Read, Write,
+// Information Report (the MC6000's of seed 001, 4.2.2).
+inline constexpr Kbl kDefaultServerKbl{kMaxPduSize, kMaxPduSize,
                                 Services{}
                                     .server(kSvcGetOvLong)
                                     .server(kSvcRead)

@@ -1,7 +1,10 @@
-// The MC6000's PCP server: the servo side of the parameter channel (seed 001, 4.2). The device
-// model steps it once per 1 ms sample (seed 001, 7.2) with the channel words and the time; the
-// server answers Initiate, Read, Write, Get-OV long, Identify and Status from its parameter
-// model and may send Information Reports (the KBL of 4.2.2).
+// The PCP server: the drive side of the parameter channel (seed 001, 4.2, as the MC6000 has it).
+// The device model steps it once per sample (the MC6000: 1 ms, seed 001, 7.2) with the channel
+// words and the time; the server answers Initiate, Read, Write, Get-OV long, Identify and Status
+// from the drive's parameter table (its wing's, devices/mc6000/parameters.hpp) and may send
+// Information Reports (the KBL of 4.2.2). The parameters with behaviour beyond storing a value
+// (85-SERR, a PROG command, a controller-recalculation request, the SLOAD download handshake) are
+// named by the drive in ServerConfig::roles.
 //
 // Latency model (docs/pcp.md, "Latency model"): a complete request is executed
 // `processing(workload)` after it arrived, processing = min + workload * (max - min), then the
@@ -16,10 +19,12 @@
 #include <optional>
 #include <span>
 
+#include "ibs/drive/parameters.hpp"
+#include "ibs/drive/siof.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/pcp/link.hpp"
-#include "ibs/pcp/mc6000_parameters.hpp"
+#include "ibs/pcp/parameters.hpp"
 #include "ibs/pcp/parameter_store.hpp"
 #include "ibs/pcp/pdu.hpp"
 
@@ -53,15 +58,30 @@ enum class StartMode : std::uint8_t {
   running,   // running for a while: SERR read and clear, link ready (trace `init: operational`)
 };
 
+// The drive's parameters the server acts on (0: the drive has none).
+struct ParameterRoles {
+  // The serial-interface error flags (seed 000, 9.2): every refused write sets its bit, any bit
+  // refuses further writes, reading it clears it.
+  std::uint16_t serr = drive::kSiofNumber;
+  // Writing drive::kLoadDefaults loads every factory default, confirmed after
+  // LatencyModel::factory_defaults_time (seed 000, 10); reads back 0 (a command).
+  std::uint16_t prog = 0;
+  // Writing 1 asks the drive to recalculate its controller (counted: plrdy_requests()).
+  std::uint16_t plrdy = 0;
+  // The download handshake (seed 000, 11.4): drive::kDownloadBegin / kDownloadEnd.
+  std::uint16_t sload = 0;
+};
+
 struct ServerConfig {
   int channel_words = 1;  // 1, 2 or 4 (405-SUPI)
-  Kbl kbl = kMc6000Kbl;
+  Kbl kbl = kDefaultServerKbl;
   std::uint16_t password = 0;           // an Initiate must carry it
   std::optional<LatencyModel> latency;  // empty: LatencyModel::for_channel(channel_words)
   double workload = 0.0;                // 0..1
   Duration link_ack_timeout = 100ms;
-  IdentifyInfo identity{Name::from("Lust"), Name::from("MC6000"), Name::from("PCP 2.0")};
+  IdentifyInfo identity{Name::from("Lust"), Name{}, Name::from("PCP 2.0")};  // model: the drive's
   StartMode start = StartMode::power_on;
+  ParameterRoles roles{};
 };
 
 struct ServerStats {
@@ -76,9 +96,9 @@ struct ServerStats {
 
 class Server {
  public:
-  // Throws std::invalid_argument for a bad width, workload or table (configuration time).
-  explicit Server(const ServerConfig& cfg, std::span<const ParameterInfo> table =
-                                               std::span<const ParameterInfo>(kMc6000Parameters));
+  // Serves the drive's table. Throws std::invalid_argument for a bad width, workload or table
+  // (configuration time).
+  Server(const ServerConfig& cfg, std::span<const ParameterInfo> table);
 
   // Switches the servo off and on: RAM from EEPROM, an EEPROM save in progress is lost, SERR
   // power-on bit, association gone, the link announces the restart with ABORT.

@@ -28,7 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "ibs/devices/drivers.hpp"
+#include "ibs/devices/driver.hpp"
+#include "ibs/devices/mc6000/driver.hpp"
+#include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/sim/scenario.hpp"
@@ -65,7 +67,7 @@ struct ParamModelSpec {
 
 struct CheckerDeviceSpec {
   std::string name;
-  DeviceKind kind = DeviceKind::mc6000;
+  std::string kind;  // the drive kind's name ("mc6000", "vf1000")
   Duration period{0};  // sample period
   Duration jitter{0};
   bool has_pd = true;  // DRIVECOM through process data
@@ -116,6 +118,8 @@ class CampaignChecker {
   // the master already sees; nullopt: unknown, counts as a new power cycle).
   void power_cycle(std::size_t dev, Time now, std::optional<drivecom::State> state_then = std::nullopt);
   void device_fault(std::size_t dev, Time now, std::optional<drivecom::State> state_then);
+  // A VF1000 booted from RESET FAULT (seed 001, 5.2.1): its parameters as after a power cycle.
+  void software_reset(std::size_t dev, Time now);
   void master_restart(Time now);
   void state_command(std::size_t dev, StateCommand c, Time now);
   // The master's cycle at `t` ran (its words go out at the next exchange).
@@ -192,6 +196,7 @@ class CampaignChecker {
   void withdraw(Dev& d, Time t, const std::string& why, bool via_master);
   void factory_reset(Dev& d, bool certain);
   void settle(Dev& d, Time now);
+  void reboot_store(Dev& d, Time now);  // a boot: RAM from EEPROM or factory values
   [[nodiscard]] std::pair<std::int64_t, std::int64_t> watchdog_window(const Dev& d) const;  // ms: min, max; -1 off
 
   std::vector<Dev> devices_;

@@ -7,7 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "ibs/devices/drivers.hpp"
+#include "ibs/devices/driver.hpp"
+#include "ibs/devices/mc6000/driver.hpp"
+#include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/interbus/bus_config.hpp"
 #include "ibs/interbus/process_image.hpp"
 

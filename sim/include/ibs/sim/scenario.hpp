@@ -11,19 +11,18 @@
 #include <string_view>
 #include <vector>
 
+#include "ibs/devices/descriptor.hpp"
+#include "ibs/interbus/id_code.hpp"
 #include "ibs/interbus/time.hpp"
 
 namespace ibs::sim {
 
-enum class DeviceKind : std::uint8_t { mc6000, vf1000 };
-enum class BusSide : std::uint8_t { local, remote };
-
 struct DeviceConfig {
   std::string name;                 // unique in the scenario, 1..32 of [A-Za-z0-9_-]
-  DeviceKind kind = DeviceKind::mc6000;
+  std::string kind;                 // the drive kind's name, the files' `type` (devices/registry.hpp)
   int supi = 11;                    // MC6000 405-SUPI (read at power-on)
   int ibcnf = 2;                    // MC6000 406-IBCNF
-  BusSide bus = BusSide::remote;    // the VF1000 is always a remote-bus device (seed 001, 1.3)
+  interbus::BusKind bus = interbus::BusKind::remote;  // the VF1000 is always a remote-bus device
   Duration phase{0};                // first sample after start (0 <= phase < sample period)
   Duration jitter{0};               // each sample happens up to +-jitter from its nominal time
   bool initialised = true;          // false: the run starts at the device's power-on (NOT READY,
@@ -32,6 +31,9 @@ struct DeviceConfig {
   std::optional<int> watchdog_ms;   // MC6000 409-BUTWD (ms, 0 = off); VF1000 906-IB-WD (ms)
   std::optional<int> watchdog_reaction;  // VF1000 907-IBCOD (0..3)
 };
+
+// The settings the device's drive kind reads (devices/descriptor.hpp).
+devices::DeviceSettings device_settings(const DeviceConfig& d);
 
 struct BusSettings {
   std::optional<Duration> cycle_time;  // fixed bus cycle time; default: the cycle-time formula
@@ -127,10 +129,9 @@ void validate_scenario(const Scenario& s, const std::string& file = "scenario");
 Duration parse_time(std::string_view text);
 std::string format_time(Duration d);
 
-// Names for reports: kinds and sides as the files spell them ("mc6000", "remote"), actions as
-// their enumerators ("fault_corrupt"; the files write fault = "corrupt").
-std::string_view to_string(DeviceKind k);
-std::string_view to_string(BusSide b);
+// Names for reports: bus sides as the files spell them ("remote"), actions as their enumerators
+// ("fault_corrupt"; the files write fault = "corrupt").
+std::string_view bus_text(interbus::BusKind b);
 std::string_view to_string(Action a);
 
 // Reads a scenario from a .toml or .json file (by extension), checks it whole (unknown keys,
@@ -144,8 +145,9 @@ Scenario parse_scenario_json(const std::string& text, const std::string& file);
 std::string write_scenario_toml(const Scenario& s);
 std::string write_scenario_json(const Scenario& s);
 
-// Equality of meaning: fields that do not apply are not compared (a VF1000's supi/ibcnf; of an
-// entry only the fields its action uses, never source_line), so every valid scenario survives
+// Equality of meaning: fields that do not apply are not compared (settings the device's kind
+// refuses, e.g. a VF1000's supi/ibcnf; of an entry only the fields its action uses, never
+// source_line), so every valid scenario survives
 // a write/parse round trip equal.
 bool operator==(const DeviceConfig& a, const DeviceConfig& b);
 bool operator==(const TimelineEntry& a, const TimelineEntry& b);

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "ibs/devices/drivers.hpp"
-#include "ibs/devices/mc6000_device.hpp"
-#include "ibs/devices/vf1000_device.hpp"
+#include "ibs/devices/driver.hpp"
+#include "ibs/devices/emulator.hpp"
+#include "ibs/devices/registry.hpp"
 #include "ibs/interbus/process_image.hpp"
 #include "ibs/interbus/trace.hpp"
 #include "ibs/sim/fork_join.hpp"
@@ -63,7 +63,7 @@ struct FailureRecord {
 
 struct DeviceReport {
   std::string name;
-  DeviceKind kind = DeviceKind::mc6000;
+  std::string kind;     // the drive kind's name, as the scenario's `type`
   std::string id_code;  // e.g. "4DBH: remote bus device, ..."
   std::string unit;     // rpm / Hz
   std::vector<StateRecord> states;
@@ -152,8 +152,8 @@ class Simulator {
   devices::DeviceDriver& driver(std::size_t i) { return loop_->driver(i); }
   [[nodiscard]] drivecom::State device_state(std::size_t i) const;
   [[nodiscard]] double device_actual(std::size_t i) const;
-  devices::Vf1000Device* vf1000(std::size_t i);
-  devices::Mc6000Device* mc6000(std::size_t i);
+  devices::DeviceEmulator& emulator(std::size_t i);
+  [[nodiscard]] const devices::DeviceEmulator& emulator(std::size_t i) const;
   [[nodiscard]] std::optional<std::size_t> index_of(const std::string& name) const;
   // The bus reports a module error for the device (lost, or initialising).
   [[nodiscard]] bool module_error(std::size_t i, Time t) const;
@@ -167,7 +167,8 @@ class Simulator {
   struct Device;
   struct Recording;
 
-  const devices::Mc6000Device& mc6000_prototype(const devices::Mc6000DeviceConfig& c, devices::DeviceStart start);
+  const devices::DeviceEmulator& prototype(const devices::DriveKind& kind, const devices::Configuration& config,
+                                           DeviceStart start);
   void start(const SimOptions& options);
   void run_device_major(Time end);
   void step_devices(Time limit);
@@ -193,12 +194,13 @@ class Simulator {
   void finish();
 
   Scenario scenario_;
-  struct Mc6000Prototype {
-    devices::Mc6000DeviceConfig config;
-    devices::DeviceStart start;
-    std::unique_ptr<devices::Mc6000Device> device;
+  struct Prototype {
+    const devices::DriveKind* kind;
+    devices::DeviceSettings settings;
+    DeviceStart start;
+    std::unique_ptr<devices::DeviceEmulator> emulator;
   };
-  std::vector<Mc6000Prototype> prototypes_;  // while the ring is built (constructor only)
+  std::vector<Prototype> prototypes_;  // while the ring is built, until the run starts
   std::unique_ptr<MasterLoop> loop_;
   std::vector<std::unique_ptr<Device>> devices_;
   interbus::ProcessImage image_;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ibs/sim/simulator.hpp"
+#include "ibs/vcd/gtkw_writer.hpp"
 #include "ibs/vcd/vcd_writer.hpp"
 
 namespace ibs::sim {
@@ -22,6 +23,12 @@ class VcdRecorder final : public Observer {
   void finish(Time end);
   // The gtkwave translate filter for the state signals (docs/vcd.md).
   [[nodiscard]] std::string state_filter() const;
+  // The gtkwave save file (docs/vcd.md, "The save file"): the bus, then per device its state by
+  // name (through `filter_file`, the state_filter() text), reference and actual value as analog
+  // traces, the master's control and status words and the device's words in hex; zoomed to the
+  // whole run, 0..`end`. The paths are written as given.
+  [[nodiscard]] std::string save_file(const std::string& dump_file, const std::string& filter_file,
+                                      const std::string& save_file, Time end) const;
 
  private:
   struct DeviceSignals {

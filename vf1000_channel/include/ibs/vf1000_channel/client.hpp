@@ -14,7 +14,7 @@
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
-#include "ibs/vf1000_channel/parameters.hpp"
+#include "ibs/vf1000_channel/description.hpp"
 
 namespace ibs::vf1000_channel {
 

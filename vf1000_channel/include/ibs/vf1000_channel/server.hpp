@@ -12,7 +12,8 @@
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
-#include "ibs/vf1000_channel/parameters.hpp"
+#include "ibs/drive/parameters.hpp"
+#include "ibs/vf1000_channel/description.hpp"
 
 namespace ibs::vf1000_channel {
 
@@ -20,6 +21,9 @@ struct ServerConfig {
   // After power-on the inverter initialises and runs its self-test for about 4 s (6.1); its word
   // carries RESET distinction bit 0 meanwhile (4.1.2.2).
   Duration init_duration = 4s;
+  // The parameter whose value 1 loads every parameter's factory default (seed 000, 10, exception
+  // 1: the VF1000's 71-PROG); none: the table has no such command.
+  std::optional<std::uint16_t> load_defaults_parameter;
 };
 
 // How the inverter is found when the server is made.
@@ -74,10 +78,11 @@ struct ServerEvent {
 
 class Server {
  public:
-  // The table must hold 85-SIOF (the channel's error register); throws std::invalid_argument
-  // otherwise, or when the table itself is malformed (see ParameterTable).
+  // Serves the drive's parameter table (devices/vf1000/parameters.hpp for the VF1000). The table
+  // must hold 85-SIOF (the channel's error register); throws std::invalid_argument otherwise, or
+  // when the table itself is malformed (see drive::ParameterTable).
   Server(const ServerConfig& config, ServerStart start, Time now,
-         std::span<const ParameterInfo> params = vf1000_parameters());
+         std::span<const drive::ParameterInfo> params);
 
   // One inverter processing step: reads the master's word, returns the inverter's. What the step
   // did is in last_event() until the next step. `power_stage_enabled` is the drive's state now
@@ -87,7 +92,10 @@ class Server {
 
   // Power cycle: an unfinished telegram is lost (never half-applied), RAM values return to their
   // defaults, EEPROM values stay; RESET distinction 0 until now + init_duration; power-on bit set.
-  void power_on(Time now);
+  void power_on(Time now) { power_on(now, config_.init_duration); }
+  // The same start with another self-test time: the software reset that RESET FAULT performs
+  // (seed 001, 5.2.1; seed 000, 8.1.1: the link is gone during the self-test, 9.2: power-on bit).
+  void power_on(Time now, Duration init);
 
   [[nodiscard]] ServerState state() const { return state_; }
   // True while the inverter initialises (its word has RESET distinction bit 0).
@@ -110,8 +118,8 @@ class Server {
   [[nodiscard]] std::optional<Word> value(std::uint16_t number) const;
   bool set_value(std::uint16_t number, Word raw);
 
-  [[nodiscard]] const ParameterTable& table() const { return table_; }
-  [[nodiscard]] const ParameterStore& store() const { return store_; }
+  [[nodiscard]] const drive::ParameterTable& table() const { return table_; }
+  [[nodiscard]] const drive::ParameterStore& store() const { return store_; }
 
  private:
   Word process(Word m, bool power_stage_enabled);
@@ -123,8 +131,8 @@ class Server {
   Word send(std::uint8_t data, Flag flag);
 
   ServerConfig config_;
-  ParameterTable table_;
-  ParameterStore store_;
+  drive::ParameterTable table_;
+  drive::ParameterStore store_;
   std::size_t siof_slot_ = 0;
   int prog_slot_ = -1;
 

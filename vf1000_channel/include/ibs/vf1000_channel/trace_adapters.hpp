@@ -1,5 +1,5 @@
 // The VF1000 parameter channel in `ibs-trace 1` files with `words: comm`
-// (../shared/specs/trace-format.md): the inverter (Server with the VF1000 parameter table) and the
+// (../shared/specs/trace-format.md): the inverter (Server with the drive's parameter table) and the
 // master (Client) as replay sides, and an explainer for communication words. One trace row is one
 // inverter step and one master step, as the cycle tables of seed 001, 4.1.3 read.
 #pragma once
@@ -14,22 +14,25 @@
 
 namespace ibs::vf1000_channel {
 
-// Simulated time per trace row: two VF1000 samples. With it the manual's tables take the times of
+// Simulated time per trace row: two VF1000 samples of 8.2 ms. With it the manual's tables take the times of
 // seed 001, 7.1 (a value inquiry's 6 rows ~100 ms, a value transfer's 8 rows ~131 ms).
-inline constexpr Duration kTraceStepPeriod = 2 * kVf1000SamplePeriod;
+inline constexpr Duration kTraceStepPeriod = 16400us;
 
-// The inverter, for `--emulate device`. header.init: `operational` (85-SIOF clear), `power-on`
+// The inverter, for `--emulate device`, serving `params` with `config` (the drive's wing gives
+// both: devices/vf1000/channel.hpp). header.init: `operational` (85-SIOF clear), `power-on`
 // (initialised, power-on bit set), `fault` (the channel as in `operational`; the fault belongs to
 // the DRIVECOM state machine). The power stage is disabled throughout (START-UP INHIBIT / FAULT).
-// Throws std::invalid_argument unless the header says `device: vf1000` and `words: comm`.
-std::unique_ptr<ibs::trace::DeviceSide> make_comm_device_side(const ibs::trace::Header& header);
+// Throws std::invalid_argument unless the header says `words: comm`.
+std::unique_ptr<ibs::trace::DeviceSide> make_comm_device_side(const ibs::trace::Header& header,
+                                                             std::span<const drive::ParameterInfo> params,
+                                                             const ServerConfig& config);
 
 // The master, for `--emulate master`: a Client that starts synchronised (row 0 of every table is
 // the channel at rest) with ClientConfig's timeouts. Requests `read`, `write` (value 0..65535, or
 // -32768..-1 for the two's complement) and `describe`; outcome `ok VALUE` for reads, `ok` for
 // writes and descriptions, `nak`, and `timeout` for every transaction that ended without an answer
 // (timeout, inverter restart, master restart, protocol error). Throws std::invalid_argument for a
-// header that is not `vf1000`/`comm` or whose request is `state ...`; submit() throws for a request
+// header that is not `words: comm` or whose request is `state ...`; submit() throws for a request
 // the channel cannot carry.
 std::unique_ptr<ibs::trace::MasterSide> make_comm_master_side(const ibs::trace::Header& header);
 

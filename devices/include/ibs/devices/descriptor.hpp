@@ -1,0 +1,184 @@
+// What a drive kind is, as the project's drive-neutral parts need to know it: its descriptor.
+// Each drive's wing implements one (devices/<drive>/descriptor.hpp) and the registry lists them
+// (registry.hpp); the simulator, the scenario reader, the command line and the replay adapters ask
+// the descriptor and never name a concrete drive. Everything here is configuration-time work: it
+// may allocate and reports refused settings by exception.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibs/devices/driver.hpp"
+#include "ibs/interbus/id_code.hpp"
+#include "ibs/interbus/replay.hpp"
+#include "ibs/interbus/time.hpp"
+#include "ibs/interbus/trace.hpp"
+#include "ibs/interbus/words.hpp"
+
+namespace ibs::devices {
+
+// The settings a scenario, a trace header or the command line gives one device. Which of them a
+// drive takes, and what they mean for it, is its descriptor's business (the MC6000 reads
+// 405-SUPI / 406-IBCNF at power-on; watchdog_ms is the VF1000's 906-IB-WD and the MC6000's
+// 409-BUTWD).
+struct DeviceSettings {
+  int supi = 11;
+  int ibcnf = 2;
+  interbus::BusKind bus = interbus::BusKind::remote;
+  std::optional<int> watchdog_ms;
+  std::optional<int> watchdog_reaction;
+
+  friend bool operator==(const DeviceSettings&, const DeviceSettings&) = default;
+};
+
+// A setting the drive refuses. setting() names it as the files do ("supi", "ibcnf", "bus",
+// "watchdog_ms", "watchdog_reaction"), fallback() the one to point at when the first is not in
+// the file, so that a reader can name the line.
+class SettingsError : public std::invalid_argument {
+ public:
+  SettingsError(const std::string& what, std::string_view setting, std::string_view fallback = {})
+      : std::invalid_argument(what), setting_(setting), fallback_(fallback) {}
+  [[nodiscard]] std::string_view setting() const { return setting_; }
+  [[nodiscard]] std::string_view fallback() const { return fallback_; }
+
+ private:
+  std::string_view setting_;
+  std::string_view fallback_;
+};
+
+// One device as its settings place it on the bus.
+struct Configuration {
+  DeviceSettings settings;
+  interbus::IdCode id_code{};
+  interbus::BusKind bus = interbus::BusKind::remote;
+  bool exchanges_data = true;  // false: on the ring, but no data reach the drive (MC6000 SUPI 0)
+  std::size_t pd_words = 0;    // process-data words of its slot each way
+  std::size_t pcp_words = 0;   // PCP channel words each way
+
+  // The process-data words the drive really exchanges.
+  [[nodiscard]] std::size_t exchanged_pd_words() const { return exchanges_data ? pd_words : 0; }
+};
+
+// What a timeline or a request needs of a device, and may find missing.
+enum class Capability : std::uint8_t { control_word, parameter_channel, reference };
+
+// One word of a device's process data as `ibs layout` describes it.
+struct WordMeaning {
+  int word = 1;      // 1-based, as the manuals count
+  std::string role;  // machine-readable: control_word, reference_q16_high, ...
+  std::string meaning;
+};
+// A setting as a report shows it: a number or a text.
+struct ReportedSetting {
+  std::string key;
+  std::optional<int> number;
+  std::string text;
+};
+struct LayoutDescription {
+  std::string title;
+  std::vector<ReportedSetting> settings;  // in the order a report lists them
+  bool exchanges_data = true;
+  std::vector<WordMeaning> out_words;  // master -> device
+  std::vector<WordMeaning> in_words;   // device -> master
+  std::string pcp;
+};
+// One ring position of `ibs timing`.
+struct RingEntry {
+  interbus::IdCode id_code{};
+  interbus::BusKind bus = interbus::BusKind::remote;
+  std::vector<ReportedSetting> settings;
+  std::string note;  // appended to the ring's line, e.g. "405-SUPI = 0: no data exchange"
+};
+
+// The plain facts of a drive kind; the words quoted in messages are the manuals'.
+struct DriveFacts {
+  std::string_view name;     // "vf1000": scenario `type`, trace `device`, command-line name
+  std::string_view title;    // "VF1000"
+  std::string_view article;  // "a" ("a VF1000") or "an" ("an MC6000")
+  std::string_view unit;     // of the reference and the actual value: "Hz", "rpm"
+  Duration sample_period{0};
+  // The scenario timeline's reference action ("speed", "frequency") and its range.
+  std::string_view reference_action;
+  double reference_min = 0.0;
+  double reference_max = 0.0;
+  std::string_view reference_range;  // "-32768..32767 rpm"
+  // Parameter numbers a request may name: 0..max_parameter.
+  int max_parameter = 0;
+  std::string_view parameter_range;  // ", seed 000 2.4.2" (after "0..999")
+  // Raw values a parameter write may carry.
+  double write_min = 0.0;
+  double write_max = 0.0;
+  std::string_view write_range;  // " (-32768..65535, 16 bits)"
+  // What the run summary says when the drive's watchdog error appears.
+  std::string_view watchdog_error;
+  // How `ibs timing` takes the drive: "vf1000", "mc6000:SUPI[:local|remote]".
+  std::string_view timing_syntax;
+  // The parameter channel's trace words besides `words: pd` (comm, pcp), if the drive has one,
+  // and how a message names it ("the communication word", "PCP").
+  std::optional<trace::WordsKind> channel_words;
+  std::string_view channel_name;
+};
+
+class DriveDescriptor {
+ public:
+  explicit DriveDescriptor(const DriveFacts& facts) : facts_(facts) {}
+  virtual ~DriveDescriptor() = default;
+  DriveDescriptor(const DriveDescriptor&) = delete;
+  DriveDescriptor& operator=(const DriveDescriptor&) = delete;
+
+  [[nodiscard]] const DriveFacts& facts() const { return facts_; }
+  [[nodiscard]] std::string_view name() const { return facts_.name; }
+
+  // --- configuration -------------------------------------------------------------------------
+  // Where the settings place the device on the bus; throws SettingsError for a bus side or a
+  // layout the drive refuses.
+  [[nodiscard]] virtual Configuration configure(const DeviceSettings& s) const = 0;
+  // Throws SettingsError for a watchdog setting out of the drive's range.
+  virtual void check_watchdog(const DeviceSettings& s) const = 0;
+  // The message for a setting the drive does not have at all ("'supi' is an MC6000 setting; a
+  // VF1000 has no 405-SUPI"), nullopt for one it takes.
+  [[nodiscard]] virtual std::optional<std::string_view> refused_setting(std::string_view key) const = 0;
+  // Why the configured device lacks a capability ("has no PCP channel (405-SUPI 12)"), nullopt
+  // when it has it.
+  [[nodiscard]] virtual std::optional<std::string> lacks(Capability c, const Configuration& config) const = 0;
+
+  // --- the master side -----------------------------------------------------------------------
+  [[nodiscard]] virtual std::unique_ptr<DeviceDriver> make_driver(const Configuration& config) const = 0;
+  // Control and status words in words, the drive's own bits included.
+  [[nodiscard]] virtual std::string explain_control(Word control, Word previous) const = 0;
+  [[nodiscard]] virtual std::string explain_status(Word status) const = 0;
+
+  // --- traces (../shared/specs/trace-format.md) -------------------------------------------------
+  // The settings a trace header gives (supi, ibcnf); the headers a recording of the device writes.
+  [[nodiscard]] virtual DeviceSettings trace_settings(const trace::Header& h) const = 0;
+  virtual void write_trace_settings(const Configuration& config, trace::Header& h) const = 0;
+  // `words: pd`: the master side and the explainer for the configured device.
+  [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config) const = 0;
+  [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_pd_explainer(const Configuration& config) const = 0;
+  // The parameter channel's words (facts().channel_words): both sides and the explainer. They
+  // throw std::invalid_argument for a header the channel cannot serve.
+  [[nodiscard]] virtual std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const = 0;
+  [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const = 0;
+  [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const = 0;
+
+  // --- the command line ------------------------------------------------------------------------
+  // `ibs layout`: a refusal of the options given (nullopt: they suit the drive), then the words.
+  [[nodiscard]] virtual std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const = 0;
+  [[nodiscard]] virtual LayoutDescription layout(const Configuration& config) const = 0;
+  // `ibs timing`: the fields after the name in NAME[:FIELD...]; throws SettingsError. ring_spec
+  // writes the argument that stands for a device of these settings ("mc6000:11").
+  [[nodiscard]] virtual RingEntry ring_entry(std::span<const std::string_view> fields) const = 0;
+  [[nodiscard]] virtual std::string ring_spec(const DeviceSettings& s) const = 0;
+
+ private:
+  DriveFacts facts_;
+};
+
+}  // namespace ibs::devices

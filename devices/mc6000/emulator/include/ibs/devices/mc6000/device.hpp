@@ -1,0 +1,123 @@
+// The MC6000 as the simulator runs it (seed 001, 3.2, 4.2, 5.3, 7.2): the process-data layout
+// 405-SUPI / 406-IBCNF read at power-on, DRIVECOM sampled every 1 ms with the servo plant behind
+// it, the 409-BUTWD bus watchdog (error 16 E-OP1, location 1), and the PCP channel words.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+
+#include "ibs/devices/descriptor.hpp"
+#include "ibs/devices/emulator.hpp"
+#include "ibs/devices/mc6000/descriptor.hpp"
+#include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/pd_device.hpp"
+#include "ibs/interbus/device_start.hpp"
+#include "ibs/interbus/time.hpp"
+#include "ibs/pcp/server.hpp"
+
+namespace ibs::devices {
+
+struct Mc6000DeviceConfig {
+  int supi = 11;   // 405-SUPI as stored in the servo (read at power-on, 3.2.2)
+  int ibcnf = 2;   // 406-IBCNF (3.2.3)
+  interbus::BusKind bus = interbus::BusKind::remote;
+  Duration bus_watchdog{0};  // 409-BUTWD in ms; 0 = off (3.2.4)
+  Mc6000PdConfig pd{};       // plant and limits; its layout is replaced by supi/ibcnf
+  // The PCP server's latency model (pcp/server.hpp); empty: calibrated for the channel width.
+  std::optional<pcp::LatencyModel> pcp_latency;
+  double workload = 0.0;  // processor workload 0..1: PCP answers take longer as it grows (7.2)
+};
+
+class Mc6000Device final : public DeviceEmulator {
+ public:
+  // Throws devices::mc6000::LayoutError for a SUPI/IBCNF pair the servo refuses.
+  Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time now);
+  [[nodiscard]] std::unique_ptr<DeviceEmulator> clone() const override {
+    return std::make_unique<Mc6000Device>(*this);
+  }
+
+  [[nodiscard]] const devices::mc6000::Layout& layout() const { return pd_.layout(); }
+
+  // One 1 ms sample: the process-data words (control word first) and the PCP channel words
+  // (layout().pcp_words each; empty spans without PCP).
+  void sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now,
+              std::span<const Word> pcp_m2s = {}, std::span<Word> pcp_s2m = {}) {
+    step(pd_m2s, now, pcp_m2s, pcp_s2m);
+    output(pd_s2m);
+  }
+  void sample(const EmulatorIo& io, Time now) override { sample(io.pd_in, io.pd_out, now, io.pcp_in, io.pcp_out); }
+  // Without PCP words nobody reads the process-data words between two cycle ends.
+  [[nodiscard]] bool defers_output() const override { return !pcp_; }
+  void sample_deferred(std::span<const Word> pd_m2s, Time now) override { step(pd_m2s, now); }
+  void sample_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) override {
+    step_held(pd_m2s, first, period, count);
+  }
+  // The same sample without writing the process-data words; output() writes them as they stand
+  // after the last sample (Mc6000PdDevice::step). The PCP words are written in every sample.
+  void step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s = {},
+            std::span<Word> pcp_s2m = {});
+  // `count` samples at first, first + period, ... with the same process-data words (between two
+  // bus cycles they do not change): exactly what as many calls of step() do. A servo with PCP
+  // words steps its channel sample by sample (use step() for those words).
+  void step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
+  void output(std::span<Word> pd_s2m) const override { pd_.output(pd_s2m); }
+  void output_pcp(Time now, std::span<Word> pcp_s2m) override;
+
+  // A valid data cycle reached the device: "the watchdog is triggered with every INTERBUS cycle".
+  void bus_cycle(Time now) override;
+  void power_cycle(Time now) override;
+  void set_fault(bool present) override { external_fault_ = present; }
+  void set_load_torque(double nm) { pd_.set_load_torque(nm); }
+  void set_bus_watchdog(Duration d) { config_.bus_watchdog = d; }
+
+  // A servo switched on with other 405-SUPI / 406-IBCNF values than the ring was configured for
+  // shows another ID code: the master's configuration no longer fits it and the bus reports a
+  // module error until the ring is configured again (a new run).
+  [[nodiscard]] bool module_error(Time /*now*/) const override { return configuration_mismatch_; }
+  [[nodiscard]] bool configuration_mismatch() const { return configuration_mismatch_; }
+  [[nodiscard]] drivecom::State state() const override { return pd_.state(); }
+  [[nodiscard]] double actual_rpm() const { return pd_.actual_rpm(); }
+  [[nodiscard]] double actual() const override { return pd_.actual_rpm(); }
+  [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
+  [[nodiscard]] double torque_nm() const { return pd_.torque_nm(); }
+  [[nodiscard]] Word status_word() const { return pd_.status_word(); }
+  [[nodiscard]] bool watchdog_tripped() const override { return watchdog_fault_; }
+  // The error the servo shows: 16 (E-OP1) at location 1 after the bus watchdog ran out.
+  [[nodiscard]] std::optional<int> error_number() const override {
+    return watchdog_fault_ ? std::optional<int>(mc6000::kWatchdogError) : std::nullopt;
+  }
+  // Its error location (3.2.4: "The watchdog error number is 16 ('E-OP1'), with error location 1").
+  [[nodiscard]] std::optional<int> error_location() const {
+    return watchdog_fault_ ? std::optional<int>(mc6000::kWatchdogLocation) : std::nullopt;
+  }
+  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
+  // The PCP server and its parameters (nullptr for a layout without PCP words).
+  [[nodiscard]] pcp::Server* pcp() { return pcp_ ? &*pcp_ : nullptr; }
+  [[nodiscard]] const pcp::Server* pcp() const { return pcp_ ? &*pcp_ : nullptr; }
+  // How many times 15-PLRDY = 1 recalculated the controller (4.2).
+  [[nodiscard]] std::uint32_t recalculations() const { return pcp_ ? pcp_->plrdy_requests() : 0; }
+  [[nodiscard]] Notices notices() const override {
+    return {recalculations(), "15-PLRDY = 1: controller parameters recalculated"};
+  }
+
+ private:
+  static Mc6000PdConfig pd_config(const Mc6000DeviceConfig& c);
+
+  Mc6000DeviceConfig config_;
+  Mc6000PdDevice pd_;
+  std::optional<pcp::Server> pcp_;
+  bool armed_ = false;
+  Time last_cycle_{0};
+  bool watchdog_fault_ = false;
+  bool external_fault_ = false;
+  bool configuration_mismatch_ = false;
+};
+
+namespace mc6000 {
+// The servo its configuration describes (descriptor.hpp), started as `start` at `now`.
+std::unique_ptr<DeviceEmulator> make_emulator(const Configuration& config, DeviceStart start, Time now);
+}  // namespace mc6000
+
+}  // namespace ibs::devices

@@ -1,0 +1,80 @@
+// The MC6000's master driver: the DRIVECOM sequencer, the reference and actual in the words of
+// its 405-SUPI / 406-IBCNF layout, and parameter access through PCP (pcp/client.hpp, seed 001 4.2).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "ibs/devices/driver.hpp"
+#include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/pd_master.hpp"
+#include "ibs/pcp/client.hpp"
+
+namespace ibs::devices {
+
+// The MC6000's parameters go through PCP (pcp/client.hpp): the driver queues requests, opens the
+// association with Initiate when it has none, and works the queue one request at a time, since
+// PCP allows one outstanding request per communication reference.
+class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
+ public:
+  static constexpr std::size_t kQueueCapacity = 16;
+  static constexpr std::size_t kCompletedCapacity = 16;
+  // A write of 4-PROG = 1 (factory defaults) is confirmed after up to 10 s (seed 000, 10).
+  static constexpr Duration kFactoryDefaultsTimeout = 10500ms;
+
+  explicit Mc6000Driver(const mc6000::Layout& layout,
+                        const drivecom::SequencerConfig& config = drivecom::SequencerConfig::defaults());
+  void cycle(const DriverIo& io, Time now) override;
+  void initial(const DriverIo& io) override;
+  void restart(Time now) override;
+  drivecom::Sequencer& sequencer() override { return master_.sequencer(); }
+  ParameterAccess& parameters() override { return *this; }
+  void set_reference(double rpm) override { master_.set_reference_rpm(rpm); }
+  [[nodiscard]] double reference() const override { return master_.reference_rpm(); }
+  [[nodiscard]] double actual() const override { return master_.actual_rpm(); }
+  [[nodiscard]] std::string_view unit() const override { return "rpm"; }
+  [[nodiscard]] const pcp::Client* pcp() const { return client_ ? &*client_ : nullptr; }
+
+ private:
+  struct Pending {
+    ParamId id = 0;
+    ParamOp op = ParamOp::read;
+    std::uint16_t number = 0;
+    std::int64_t value = 0;
+  };
+  struct Completed {
+    ParamId id = 0;
+    ParamKind kind = ParamKind::pending;
+    std::int64_t value = 0;
+    pcp::Result result{};
+  };
+  enum class Refusal : std::uint8_t { none, no_channel, queue_full, bad_value };
+
+  ParamId submit(ParamOp op, std::uint16_t number, std::int64_t value) override;
+  [[nodiscard]] ParamStatus status(ParamId id) const override;
+  [[nodiscard]] std::string describe(ParamId id) const override;
+
+  void take_results(Time now);
+  void start_next(Time now);
+  void complete(const Pending& p, ParamKind kind, std::int64_t value, const pcp::Result& r);
+  [[nodiscard]] const Completed* find_completed(ParamId id) const;
+
+  Mc6000PdMaster master_;
+  pcp::ClientConfig pcp_config_{};
+  std::optional<pcp::Client> client_;
+  std::array<Pending, kQueueCapacity> queue_{};
+  std::size_t queue_head_ = 0;
+  std::size_t queue_count_ = 0;
+  bool active_ = false;      // the queue head has been sent
+  bool initiating_ = false;  // an Initiate is outstanding for the queue head
+  std::array<Completed, kCompletedCapacity> completed_{};
+  std::size_t completed_next_ = 0;
+  ParamId next_id_ = 1;
+  Refusal refusal_ = Refusal::none;
+};
+
+}  // namespace ibs::devices

@@ -1,0 +1,112 @@
+// The MC6000's parameters as the seeds name them (seed 001, 3.2, 4.2; seed 000 for the family's
+// numbers): the table with numbers, names, types, categories, ranges and defaults that the servo's
+// PCP server serves (index = number + 5C00H, pcp/parameters.hpp), and the numbers and values the
+// drive acts on. Categories are seed 000's parameter kinds (11.2.1: RAM actual value '0', RAM
+// control value '1', EEPROM value '2'). Where a seed gives a parameter's name but not its type,
+// range or default, the table says so in its comment and docs/pcp.md lists the choice ("MC6000
+// parameter model").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "ibs/drive/parameters.hpp"
+#include "ibs/drive/siof.hpp"
+#include "ibs/pcp/parameters.hpp"
+
+namespace ibs::devices::mc6000 {
+
+
+// Numbers with behaviour beyond storing a value (server.hpp says what they do).
+inline constexpr std::uint16_t kProg = 4;     // seed 000, 10 and 11.5
+inline constexpr std::uint16_t kPlrdy = 15;   // seed 001, 4.2
+inline constexpr std::uint16_t kSpeed = 77;   // seed 000, 6.1.1.2
+inline constexpr std::uint16_t kSload = 80;   // seed 000, 11.4
+inline constexpr std::uint16_t kSdmmy = 83;   // seed 000, 5.2
+inline constexpr std::uint16_t kSwdgt = 84;   // seed 000, 5.2
+inline constexpr std::uint16_t kSerr = drive::kSiofNumber;  // seed 000, 9.2
+inline constexpr std::uint16_t kType = 91;    // seed 000, 5.2
+inline constexpr std::uint16_t kSupi = 405;   // seed 001, 3.2.2
+inline constexpr std::uint16_t kIbcnf = 406;  // seed 001, 3.2.3
+inline constexpr std::uint16_t kIbstu = 407;  // seed 001, 4.2.1
+inline constexpr std::uint16_t kIbsta = 408;  // seed 001, 4.2.1
+inline constexpr std::uint16_t kSctl1 = 416;  // seed 000, 7.2, 8.1.2
+inline constexpr std::uint16_t kRsio = 428;   // seed 000, 7.2.1
+
+// 85-SERR bits (seed 000, 9.2): the family's 85-SIOF bits (drive/siof.hpp).
+inline constexpr std::uint8_t kSerrPowerOn = drive::siof_mask(drive::SiofBit::power_on);
+inline constexpr std::uint8_t kSerrWatchdog = drive::siof_mask(drive::SiofBit::watchdog);
+inline constexpr std::uint8_t kSerrEepromBusy = drive::siof_mask(drive::SiofBit::eeprom_busy);
+inline constexpr std::uint8_t kSerrChecksum = drive::siof_mask(drive::SiofBit::checksum);
+inline constexpr std::uint8_t kSerrNoParameter = drive::siof_mask(drive::SiofBit::no_parameter);
+inline constexpr std::uint8_t kSerrNoChange = drive::siof_mask(drive::SiofBit::no_change);
+inline constexpr std::uint8_t kSerrInvalidValue = drive::siof_mask(drive::SiofBit::invalid_value);
+
+// 4-PROG commands (seed 000, 10 exception 1; 11.5).
+inline constexpr std::int64_t kProgFactoryDefaults = drive::kLoadDefaults;
+inline constexpr std::int64_t kProgActivateBaudrate = 111;
+// 80-SLOAD handshake values (seed 000, 11.4).
+inline constexpr std::int64_t kSloadBegin = drive::kDownloadBegin;
+inline constexpr std::int64_t kSloadEnd = drive::kDownloadEnd;
+
+// Selector values the seeds name. RCON 0, RSIO 3, OPT1 6 (reference selectors: seed 000 7.2,
+// seed 001 5.3.4), SIO 2, OPT1 4 (402-CLSEL: same places), SCON 2 (300-CFCON: seed 000 7.2.1).
+// The function selectors' codes (OFF, ROPT1) are not in the seeds: chosen, docs/pcp.md.
+inline constexpr std::int64_t kRsslRcon = 0;
+inline constexpr std::int64_t kRsslRsio = 3;
+inline constexpr std::int64_t kRsslOpt1 = 6;
+inline constexpr std::int64_t kClselSio = 2;
+inline constexpr std::int64_t kClselOpt1 = 4;
+inline constexpr std::int64_t kCfconScon = 2;
+inline constexpr std::int64_t kFunctionOff = 0;
+inline constexpr std::int64_t kFunctionRopt1 = 6;
+// 91-TYPE: the seeds name the parameter, not the MC6000's code: chosen.
+inline constexpr std::int64_t kMc6000TypeCode = 6000;
+
+inline constexpr std::int64_t kQ16Min = -2147483648LL;
+inline constexpr std::int64_t kQ16Max = 2147483647LL;
+
+// clang-format off
+inline constexpr std::array<pcp::ParameterInfo, 31> kParameters{{
+  // number name     type                 category               min     max      default          attributes
+  {4,   "PROG",  pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               0},  // type, range chosen
+  {15,  "PLRDY", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      1,       0,               pcp::kAttrInitControl},  // type chosen
+  {77,  "SPEED", pcp::DataType::int32q16,  pcp::Category::ram_actual,   kQ16Min, kQ16Max, 0,              0},  // seed 000 6.1.1.2: Q16 rpm
+  {80,  "SLOAD", pcp::DataType::integer16, pcp::Category::ram_control,  -2,     999,     0,               0},  // seed 000 11.4: -2, -1, 0, parameter number
+  {81,  "SBAUD", pcp::DataType::usign16,   pcp::Category::eeprom,       2400,   57600,   9600,            0},  // seed 000 4: 2400..57600, factory 9600
+  {82,  "SADDR", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      30,      1,               0},  // seed 000 4.2: addresses 1..30; default chosen
+  {83,  "SDMMY", pcp::DataType::usign16,   pcp::Category::ram_control,  0,      65535,   0,               0},  // seed 000 5.2: free RAM word
+  {84,  "SWDGT", pcp::DataType::usign16,   pcp::Category::eeprom,       0,      65535,   0,               0},  // seed 000 1, 5.2: 0 = no watchdog (factory)
+  {85,  "SERR",  pcp::DataType::usign8,    pcp::Category::ram_actual,   0,      255,     0,               pcp::kAttrShowHex},  // seed 000 9.2 bits
+  {91,  "TYPE",  pcp::DataType::usign16,   pcp::Category::ram_actual,   0,      65535,   kMc6000TypeCode, 0},  // value chosen
+  {107, "UNIT",  pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               pcp::kAttrShowText},  // seed 000 11.2.1
+  {108, "STEXT", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               0},  // seed 000 11.3
+  {300, "CFCON", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      6,       kCfconScon,      pcp::kAttrShowText | pcp::kAttrInitControl},  // codes follow the structure filter
+  {402, "CLSEL", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      5,       kClselOpt1,      pcp::kAttrShowText},  // seed 001 3.2.1: OPT1
+  {405, "SUPI",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      12,      11,              0},  // seed 001 3.2.2; effective at power-on
+  {406, "IBCNF", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      4,       2,               0},  // seed 001 3.2.3, 5.3.3: Q16 is the default
+  {407, "IBSTU", pcp::DataType::usign16,   pcp::Category::ram_control,  0,      65535,   0,               pcp::kAttrShowHex},  // seed 001 4.2.1 (the control word)
+  {408, "IBSTA", pcp::DataType::usign16,   pcp::Category::ram_actual,   0,      65535,   0,               pcp::kAttrShowHex},  // seed 001 4.2.1
+  {409, "BUTWD", pcp::DataType::usign16,   pcp::Category::eeprom,       0,      65535,   0,               0},  // seed 001 3.2.4: ms, 0 = off; rest chosen
+  {416, "SCTL1", pcp::DataType::usign16,   pcp::Category::ram_control,  0,      65535,   0,               pcp::kAttrShowHex},  // seed 000 7.2, 8.1.2
+  {417, "RSSL1", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      7,       kRsslRcon,       pcp::kAttrShowText},  // seed 001 3.2.1
+  {418, "RSSL2", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      7,       kRsslRcon,       pcp::kAttrShowText},
+  {419, "RSSL3", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      7,       kRsslOpt1,       pcp::kAttrShowText},
+  {420, "RSSL4", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      7,       kRsslRcon,       pcp::kAttrShowText},
+  {428, "RSIO",  pcp::DataType::int32q16,  pcp::Category::ram_control,  kQ16Min, kQ16Max, 0,              0},  // seed 000 7.2.1
+  {439, "FIS00", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},  // seed 001 3.2.1, 5.3.2
+  {440, "FIS01", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},
+  {443, "FIF0",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
+  {444, "FIF1",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
+  {445, "FOS00", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},  // seed 001 3.2.1, 5.3.1
+  {446, "FOS01", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},
+}};
+// clang-format on
+// The table has no FLOAT_IEEE, MC_ERROR or PASSWORD parameter because the seeds name none; the
+// server takes any table, and the tests give it one with those types.
+
+// The table as a span (what the server and the drivers take).
+std::span<const pcp::ParameterInfo> parameters();
+
+}  // namespace ibs::devices::mc6000

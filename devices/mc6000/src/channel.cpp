@@ -1,0 +1,19 @@
+#include "ibs/devices/mc6000/channel.hpp"
+
+#include "ibs/devices/mc6000/parameters.hpp"
+
+namespace ibs::devices::mc6000 {
+
+pcp::ServerConfig server_config(int channel_words) {
+  pcp::ServerConfig c;
+  c.channel_words = channel_words;
+  c.kbl = kKbl;
+  c.identity.model = pcp::Name::from("MC6000");
+  c.roles.serr = kSerr;
+  c.roles.prog = kProg;
+  c.roles.plrdy = kPlrdy;
+  c.roles.sload = kSload;
+  return c;
+}
+
+}  // namespace ibs::devices::mc6000

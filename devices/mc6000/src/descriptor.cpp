@@ -1,0 +1,288 @@
+#include "ibs/devices/mc6000/descriptor.hpp"
+
+#include <charconv>
+
+#include "ibs/devices/mc6000/driver.hpp"
+#include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/pcp_trace.hpp"
+#include "ibs/devices/mc6000/pd_trace.hpp"
+#include "ibs/drivecom/control_word.hpp"
+#include "ibs/pcp/parameters.hpp"
+
+namespace ibs::devices::mc6000 {
+
+std::string explain_control_word(Word control, Word previous) {
+  std::string s = drivecom::explain_control_word(control, previous);
+  const auto b = decode_control_bits(control);
+  if (b.os00) s += ", OS00";
+  if (b.os01) s += ", OS01";
+  if ((control & kControlBitsWithoutFunction) != 0) s += ", bits without function set";
+  return s;
+}
+
+std::string explain_status_word(Word status) { return drivecom::explain_status_word(status, kStatusBits); }
+
+namespace {
+
+// 409-BUTWD in ms, 0 = off (3.2.4), an Unsigned 16.
+constexpr int kMaxWatchdogMs = 0xFFFF;
+
+constexpr DriveFacts kFacts{
+    .name = kName,
+    .title = "MC6000",
+    .article = "an",
+    .unit = "rpm",
+    .sample_period = kSamplePeriod,
+    // The reference: rpm, a signed 16-bit word or Q16 in 32 bits (3.2.3, 5.3.4).
+    .reference_action = "speed",
+    .reference_min = -32768.0,
+    .reference_max = 32767.0,
+    .reference_range = "-32768..32767 rpm",
+    // Parameter numbers: 0..999 (seed 000, 2.4.2); PCP index = number + 5C00H (seed 001, 4.2).
+    .max_parameter = pcp::kMaxParameterNumber,
+    .parameter_range = ", seed 000 2.4.2",
+    // A PCP value is up to 32 bits, written as a signed or unsigned number.
+    .write_min = -2147483648.0,
+    .write_max = 4294967295.0,
+    .write_range = " (-2^31..2^32-1, 32 bits)",
+    .watchdog_error = "error 16 (E-OP1), location 1: bus watchdog 409-BUTWD ran out",
+    .timing_syntax = "mc6000:SUPI[:local|remote]",
+    .channel_words = trace::WordsKind::pcp,
+    .channel_name = "PCP",
+};
+
+// The layout of the settings; throws SettingsError naming 405-SUPI or 406-IBCNF.
+Layout layout_of(const DeviceSettings& s) {
+  try {
+    return make_layout(s.supi, s.ibcnf, s.bus);
+  } catch (const LayoutError& e) {
+    const std::string msg = e.what();
+    const bool about_supi = msg.rfind("405-SUPI", 0) == 0;
+    throw SettingsError(msg, about_supi ? "supi" : "ibcnf", about_supi ? "ibcnf" : "supi");
+  }
+}
+
+const char* ibcnf_meaning(Ibcnf c) {
+  switch (c) {
+    case Ibcnf::none:
+      return "no reference transfer, all actual words 0";
+    case Ibcnf::word16:
+      return "16-bit reference and actual";
+    case Ibcnf::q16:
+      return "32-bit Q16 reference and actual, high word first";
+    case Ibcnf::speed_torque:
+      return "32-bit Q16 speed reference; actual 16-bit speed and 16-bit torque";
+    case Ibcnf::lisim:
+      return "modified LISIM software";
+  }
+  return "?";
+}
+
+const char* bus_name(interbus::BusKind b) { return b == interbus::BusKind::local ? "local" : "remote"; }
+
+class Descriptor final : public DriveDescriptor {
+ public:
+  Descriptor() : DriveDescriptor(kFacts) {}
+
+  Configuration configure(const DeviceSettings& s) const override {
+    const Layout l = layout_of(s);
+    return {s,
+            interbus::IdCode{l.id_code},
+            s.bus,
+            l.exchanges_data,
+            static_cast<std::size_t>(l.pd_words),
+            static_cast<std::size_t>(l.pcp_words)};
+  }
+
+  void check_watchdog(const DeviceSettings& s) const override {
+    if (s.watchdog_ms && (*s.watchdog_ms < 0 || *s.watchdog_ms > kMaxWatchdogMs)) {
+      throw SettingsError("'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (0.." +
+                              std::to_string(kMaxWatchdogMs) + ", 409-BUTWD, 0 = off)",
+                          "watchdog_ms");
+    }
+    if (s.watchdog_reaction) {
+      throw SettingsError(
+          "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 always reports E-OP1 (seed "
+          "001, 3.2.4)",
+          "watchdog_reaction");
+    }
+  }
+
+  std::optional<std::string_view> refused_setting(std::string_view) const override { return std::nullopt; }
+
+  std::optional<std::string> lacks(Capability c, const Configuration& config) const override {
+    const Layout l = layout_of(config.settings);
+    const std::string supi = " (405-SUPI " + std::to_string(l.supi);
+    switch (c) {
+      case Capability::control_word:
+        if (l.exchanges_data && l.pd_words >= 1) return std::nullopt;
+        return "has no control word" + supi + (l.exchanges_data ? ": PCP only)" : ": no data exchange)");
+      case Capability::parameter_channel:
+        if (l.pcp_words > 0) return std::nullopt;
+        return "has no PCP channel" + supi + ")";
+      case Capability::reference:
+        if (l.exchanges_data && l.reference_words > 0) return std::nullopt;
+        return "carries no speed reference (406-IBCNF " + std::to_string(static_cast<int>(l.ibcnf)) +
+               ", 405-SUPI " + std::to_string(l.supi) + ")";
+    }
+    return std::nullopt;
+  }
+
+  std::unique_ptr<DeviceDriver> make_driver(const Configuration& config) const override {
+    return std::make_unique<Mc6000Driver>(layout_of(config.settings));
+  }
+  std::string explain_control(Word control, Word previous) const override {
+    return explain_control_word(control, previous);
+  }
+  std::string explain_status(Word status) const override { return explain_status_word(status); }
+
+  DeviceSettings trace_settings(const trace::Header& h) const override {
+    DeviceSettings s;
+    s.supi = h.supi;
+    s.ibcnf = h.ibcnf;
+    return s;
+  }
+  void write_trace_settings(const Configuration& config, trace::Header& h) const override {
+    h.supi = config.settings.supi;
+    h.ibcnf = config.settings.ibcnf;
+    h.supi_given = h.ibcnf_given = true;
+  }
+  std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config) const override {
+    return mc6000::make_pd_master(layout_of(config.settings));
+  }
+  std::unique_ptr<trace::Explainer> make_pd_explainer(const Configuration& config) const override {
+    return mc6000::make_pd_explainer(layout_of(config.settings));
+  }
+  std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const override {
+    return make_pcp_device_side(h);
+  }
+  std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const override {
+    return make_pcp_master_side(h);
+  }
+  std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const override {
+    return make_pcp_explainer(h);
+  }
+
+  std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool) const override {
+    if (supi && ibcnf) return std::nullopt;
+    return "mc6000 needs --supi (405-SUPI, 0..12) and --ibcnf (406-IBCNF, 0..4)";
+  }
+
+  LayoutDescription layout(const Configuration& config) const override;
+  RingEntry ring_entry(std::span<const std::string_view> fields) const override;
+  std::string ring_spec(const DeviceSettings& s) const override {
+    return std::string(kName) + ":" + std::to_string(s.supi) + (s.bus == interbus::BusKind::local ? ":local" : "");
+  }
+};
+
+LayoutDescription Descriptor::layout(const Configuration& config) const {
+  const Layout l = layout_of(config.settings);
+  LayoutDescription r;
+  const std::string meaning = ibcnf_meaning(l.ibcnf);
+  r.settings = {{"supi", l.supi, ""}, {"ibcnf", static_cast<int>(l.ibcnf), ""}, {"ibcnf_meaning", std::nullopt, meaning}};
+  r.exchanges_data = l.exchanges_data;
+  r.title = "MC6000 servo: 405-SUPI = " + std::to_string(l.supi) + ", 406-IBCNF = " +
+            std::to_string(static_cast<int>(l.ibcnf)) + " (" +
+            (l.exchanges_data ? meaning : std::string("no effect without data exchange")) + "), " +
+            bus_name(l.bus) + " bus";
+
+  if (!l.exchanges_data) {
+    const std::string none =
+        "no data exchange: 405-SUPI = 0 reports configuration 4 and the INTERBUS card loops "
+        "without exchanging data with the servo (seed 001 3.2.2)";
+    r.out_words.push_back({1, "no_data", none});
+    r.in_words.push_back({1, "no_data", none});
+    r.pcp = "none (405-SUPI = 0)";
+    return r;
+  }
+
+  const std::string unit = "torque, speed or position by the control mode (rpm in speed control)";
+  const std::string q16 = "as value x 65536, signed 32-bit, high word first (seed 001 5.3.3, 5.3.4)";
+  if (l.pd_words >= 1) {
+    r.out_words.push_back({1, "control_word", "control word, DRIVECOM Profile 20 (seed 001 5.3.1)"});
+    r.in_words.push_back({1, "status_word", "status word, DRIVECOM Profile 20 (seed 001 5.3.2)"});
+  }
+  switch (l.ibcnf) {
+    case Ibcnf::word16:
+      r.out_words.push_back({2, "reference",
+                             "reference, 16-bit signed, " + unit +
+                                 "; integer units (modelling choice: the manual "
+                                 "gives no 16-bit scaling)"});
+      r.in_words.push_back(
+          {2, "actual", "actual value, 16-bit signed, " + unit + "; integer units (modelling choice)"});
+      break;
+    case Ibcnf::q16:
+      r.out_words.push_back({2, "reference_q16_high", "reference, Q16 high word: " + unit + ", " + q16});
+      r.out_words.push_back({3, "reference_q16_low", "reference, Q16 low word"});
+      r.in_words.push_back({2, "actual_q16_high", "actual value, Q16 high word: " + unit + ", " + q16});
+      r.in_words.push_back({3, "actual_q16_low", "actual value, Q16 low word"});
+      break;
+    case Ibcnf::speed_torque:
+      r.out_words.push_back({2, "speed_reference_q16_high",
+                             "speed reference, Q16 high word: rpm x 65536, signed 32-bit, high "
+                             "word first (seed 001 3.2.3, 5.3.4)"});
+      r.out_words.push_back({3, "speed_reference_q16_low", "speed reference, Q16 low word"});
+      r.in_words.push_back({2, "actual_speed", "actual speed, 16-bit signed, rpm (seed 001 3.2.3)"});
+      r.in_words.push_back({3, "actual_torque", "actual torque, 16-bit signed (seed 001 3.2.3)"});
+      break;
+    case Ibcnf::none:
+    case Ibcnf::lisim:
+      break;
+  }
+  // The process-data words 406-IBCNF leaves without a meaning.
+  for (int w = 2 + l.reference_words; w <= l.pd_words; ++w) {
+    r.out_words.push_back({w, "unused",
+                           l.ibcnf == Ibcnf::none
+                               ? "not used (406-IBCNF = 0: no reference transfer)"
+                               : "not used by 406-IBCNF = " + std::to_string(static_cast<int>(l.ibcnf))});
+  }
+  for (int w = 2 + l.actual_words; w <= l.pd_words; ++w) {
+    r.in_words.push_back({w, l.ibcnf == Ibcnf::none ? "zero" : "unused",
+                          l.ibcnf == Ibcnf::none
+                              ? "always 0 (406-IBCNF = 0, seed 001 3.2.3)"
+                              : "not used by 406-IBCNF = " + std::to_string(static_cast<int>(l.ibcnf))});
+  }
+  r.pcp = l.pcp_words == 0 ? "none"
+                           : std::to_string(l.pcp_words) + (l.pcp_words == 1 ? " word" : " words") +
+                                 " each way, PCP 2.0 parameter channel (seed 001 3.2.2)";
+  return r;
+}
+
+RingEntry Descriptor::ring_entry(std::span<const std::string_view> f) const {
+  // SUPI[:local|remote]
+  if (f.empty() || f[0].empty()) throw SettingsError("the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]", "supi");
+  if (f.size() > 2) throw SettingsError("too many fields, expected mc6000:SUPI[:local|remote]", "");
+  int supi = -1;
+  const auto r = std::from_chars(f[0].data(), f[0].data() + f[0].size(), supi);
+  if (r.ec != std::errc{} || r.ptr != f[0].data() + f[0].size()) {
+    throw SettingsError("405-SUPI '" + std::string(f[0]) + "' is not a number", "supi");
+  }
+  if (supi < 0 || supi > kSupiMax) {
+    throw SettingsError("405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)", "supi");
+  }
+  interbus::BusKind bus = interbus::BusKind::remote;
+  if (f.size() == 2) {
+    if (f[1] == "local") {
+      bus = interbus::BusKind::local;
+    } else if (f[1] != "remote") {
+      throw SettingsError("bus '" + std::string(f[1]) + "' is neither local nor remote", "bus");
+    }
+  }
+  // The ID code follows from 405-SUPI alone (3.2.2); 406-IBCNF changes no word count.
+  const SupiRow& row = kSupiTable[static_cast<std::size_t>(supi)];
+  RingEntry e;
+  e.id_code = interbus::IdCode{bus == interbus::BusKind::local ? row.id_local : row.id_remote};
+  e.bus = bus;
+  e.settings = {{"supi", supi, ""}};
+  if (supi == 0) e.note = "405-SUPI = 0: no data exchange";
+  return e;
+}
+
+}  // namespace
+
+const DriveDescriptor& descriptor() {
+  static const Descriptor d;
+  return d;
+}
+
+}  // namespace ibs::devices::mc6000

@@ -1,0 +1,210 @@
+#include "ibs/devices/mc6000/driver.hpp"
+
+#include <algorithm>
+
+#include "ibs/devices/mc6000/parameters.hpp"
+
+namespace ibs::devices {
+
+namespace {
+
+ParamKind kind_of(const pcp::Result& r, ParamOp op) {
+  switch (r.kind) {
+    case pcp::ResultKind::ok:
+      return op == ParamOp::read ? ParamKind::value : op == ParamOp::write ? ParamKind::written
+                                                                           : ParamKind::description;
+    case pcp::ResultKind::negative:
+    case pcp::ResultKind::incompatible:
+    case pcp::ResultKind::type_mismatch: return ParamKind::nak;
+    case pcp::ResultKind::timeout:
+    case pcp::ResultKind::protocol_error: return ParamKind::timeout;
+    case pcp::ResultKind::aborted:
+    case pcp::ResultKind::link_reset: return ParamKind::aborted;
+  }
+  return ParamKind::timeout;
+}
+
+}  // namespace
+
+Mc6000Driver::Mc6000Driver(const mc6000::Layout& layout, const drivecom::SequencerConfig& config)
+    : master_(layout, config) {
+  if (layout.pcp_words > 0) {
+    pcp_config_.channel_words = layout.pcp_words;
+    client_.emplace(pcp_config_);
+  }
+}
+
+void Mc6000Driver::initial(const DriverIo& io) {
+  master_.initial(io.pd_out);
+  std::fill(io.pcp_out.begin(), io.pcp_out.end(), Word{0});
+  if (client_ && !io.pcp_out.empty()) client_->show(Time{0}, io.pcp_out);
+}
+
+void Mc6000Driver::cycle(const DriverIo& io, Time now) {
+  if (!io.pd_out.empty()) master_.cycle(io.pd_in, io.pd_out, now);
+  if (!client_ || io.pcp_out.empty()) return;
+  take_results(now);
+  start_next(now);
+  client_->step(now, io.pcp_in, io.pcp_out);
+  take_results(now);
+}
+
+void Mc6000Driver::restart(Time now) {
+  master_.sequencer().restart();
+  master_.set_reference_rpm(0.0);
+  if (!client_) return;
+  // Everything queued ends aborted; the new client starts without an association.
+  pcp::Result r;
+  r.kind = pcp::ResultKind::aborted;
+  r.completed_at = now;
+  while (queue_count_ > 0) {
+    complete(queue_[queue_head_], ParamKind::aborted, 0, r);
+    queue_head_ = (queue_head_ + 1) % kQueueCapacity;
+    --queue_count_;
+  }
+  active_ = initiating_ = false;
+  client_.emplace(pcp_config_);
+}
+
+void Mc6000Driver::complete(const Pending& p, ParamKind kind, std::int64_t value, const pcp::Result& r) {
+  Completed& c = completed_[completed_next_];
+  completed_next_ = (completed_next_ + 1) % kCompletedCapacity;
+  c.id = p.id;
+  c.kind = kind;
+  c.value = value;
+  c.result = r;
+}
+
+void Mc6000Driver::take_results(Time) {
+  while (auto r = client_->take_result()) {
+    if (!active_ || queue_count_ == 0) continue;  // nobody waits for it (e.g. after a restart)
+    const Pending head = queue_[queue_head_];
+    active_ = false;
+    if (initiating_) {
+      initiating_ = false;
+      if (r->ok()) continue;  // associated: the request itself goes out next
+      complete(head, r->kind == pcp::ResultKind::timeout ? ParamKind::timeout : ParamKind::aborted, 0, *r);
+    } else {
+      std::int64_t value = 0;
+      if (r->ok() && head.op == ParamOp::read) {
+        if (r->value) {
+          value = pcp::signed_raw(*r->value);
+        } else {
+          for (const std::uint8_t b : r->data.view()) value = (value << 8) | b;
+        }
+      }
+      complete(head, kind_of(*r, head.op), value, *r);
+    }
+    queue_head_ = (queue_head_ + 1) % kQueueCapacity;
+    --queue_count_;
+  }
+}
+
+void Mc6000Driver::start_next(Time now) {
+  if (active_ || queue_count_ == 0 || client_->busy()) return;
+  const Pending& p = queue_[queue_head_];
+  if (!client_->associated()) {
+    if (client_->initiate(now) == pcp::SubmitStatus::accepted) active_ = initiating_ = true;
+    return;
+  }
+  const pcp::ParameterRef ref = pcp::ParameterRef::number(p.number);
+  const pcp::ParameterInfo* info = pcp::find_parameter(mc6000::kParameters, p.number);
+  pcp::SubmitStatus s = pcp::SubmitStatus::invalid_argument;
+  switch (p.op) {
+    case ParamOp::read: s = info != nullptr ? client_->read(now, ref, info->type) : client_->read(now, ref); break;
+    case ParamOp::write: {
+      // The value's type is the parameter's; for a number the table does not know, 16 bits (the
+      // servo refuses it as a missing object anyway).
+      const pcp::DataType t = info != nullptr ? info->type : pcp::DataType::usign16;
+      // 4-PROG = 1 loads the factory defaults; the servo confirms after up to 10 s (seed 000,
+      // 10): that write gets the time it needs, plus the usual confirmation time.
+      const Duration timeout = p.number == mc6000::kProg && p.value == mc6000::kProgFactoryDefaults
+                                   ? kFactoryDefaultsTimeout
+                                   : Duration::zero();
+      if (const auto v = pcp::value_from_signed_raw(t, p.value)) s = client_->write(now, ref, *v, timeout);
+      break;
+    }
+    case ParamOp::describe: s = client_->get_ov(now, ref); break;
+  }
+  if (s == pcp::SubmitStatus::accepted) {
+    active_ = true;
+    return;
+  }
+  pcp::Result r;
+  r.kind = pcp::ResultKind::negative;
+  r.submitted_at = r.completed_at = now;
+  complete(p, ParamKind::refused, 0, r);
+  queue_head_ = (queue_head_ + 1) % kQueueCapacity;
+  --queue_count_;
+}
+
+ParamId Mc6000Driver::submit(ParamOp op, std::uint16_t number, std::int64_t value) {
+  if (!client_) {
+    refusal_ = Refusal::no_channel;
+    return 0;
+  }
+  if (queue_count_ == kQueueCapacity) {
+    refusal_ = Refusal::queue_full;
+    return 0;
+  }
+  const ParamId id = next_id_++;
+  if (next_id_ == 0) next_id_ = 1;
+  queue_[(queue_head_ + queue_count_) % kQueueCapacity] = {id, op, number, value};
+  ++queue_count_;
+  return id;
+}
+
+const Mc6000Driver::Completed* Mc6000Driver::find_completed(ParamId id) const {
+  for (const Completed& c : completed_) {
+    if (c.id == id && id != 0) return &c;
+  }
+  return nullptr;
+}
+
+ParamStatus Mc6000Driver::status(ParamId id) const {
+  if (id == 0) return {ParamKind::refused, 0};
+  if (const Completed* c = find_completed(id)) return {c->kind, c->value};
+  for (std::size_t i = 0; i < queue_count_; ++i) {
+    if (queue_[(queue_head_ + i) % kQueueCapacity].id == id) return {ParamKind::pending, 0};
+  }
+  return {ParamKind::refused, 0};  // unknown, or pushed out of the completed ring
+}
+
+std::string Mc6000Driver::describe(ParamId id) const {
+  if (id == 0) {
+    switch (refusal_) {
+      case Refusal::no_channel: return "refused: this layout (405-SUPI) has no PCP channel";
+      case Refusal::queue_full: return "refused: the request queue is full";
+      case Refusal::bad_value:
+      case Refusal::none: break;
+    }
+    return "refused";
+  }
+  const Completed* c = find_completed(id);
+  if (c == nullptr) return status(id).kind == ParamKind::pending ? "pending" : "unknown request";
+  const pcp::Result& r = c->result;
+  switch (c->kind) {
+    case ParamKind::value: {
+      std::string s = "value " + std::to_string(c->value);
+      if (r.value) s += " (" + std::string(pcp::to_string(r.value->type)) + ")";
+      return s;
+    }
+    case ParamKind::written: return "written (PCP Write confirmed)";
+    case ParamKind::description: {
+      const pcp::ObjectDescription& d = r.description;
+      return "description " + std::string(d.name.view()) + ", " + std::string(pcp::to_string(d.type)) + ", " +
+             std::string(pcp::to_string(d.category)) + ", " + std::to_string(d.min) + ".." +
+             std::to_string(d.max) + ", default " + std::to_string(d.default_value);
+    }
+    case ParamKind::nak:
+      if (r.kind == pcp::ResultKind::negative) return "negative confirmation: " + pcp::to_string(r.error);
+      return "refused: " + std::string(pcp::to_string(r.kind));
+    case ParamKind::refused: return "refused: the value does not fit the parameter's type";
+    case ParamKind::timeout:
+    case ParamKind::aborted:
+    case ParamKind::pending: break;
+  }
+  return std::string(to_string(c->kind)) + " (" + std::string(pcp::to_string(r.kind)) + ")";
+}
+
+}  // namespace ibs::devices

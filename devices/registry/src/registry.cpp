@@ -1,0 +1,57 @@
+#include "ibs/devices/registry.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "ibs/devices/mc6000/descriptor.hpp"
+#include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/vf1000/descriptor.hpp"
+#include "ibs/devices/vf1000/device.hpp"
+#include "ibs/drivecom/sequencer.hpp"
+
+namespace ibs::devices {
+
+namespace {
+
+// The one list of drive kinds, sorted by name. A new drive adds its line here.
+const std::array<DriveKind, 2>& kinds() {
+  static const std::array<DriveKind, 2> k{{
+      {&mc6000::descriptor(), &mc6000::make_emulator},
+      {&vf1000::descriptor(), &vf1000::make_emulator},
+  }};
+  return k;
+}
+
+const std::array<std::string_view, 2>& names() {
+  static const std::array<std::string_view, 2> n = [] {
+    std::array<std::string_view, 2> a{};
+    std::transform(kinds().begin(), kinds().end(), a.begin(), [](const DriveKind& k) { return k->name(); });
+    return a;
+  }();
+  return n;
+}
+
+}  // namespace
+
+std::span<const DriveKind> drive_kinds() { return kinds(); }
+
+const DriveKind* find_drive_kind(std::string_view name) {
+  for (const DriveKind& k : kinds()) {
+    if (k->name() == name) return &k;
+  }
+  return nullptr;
+}
+
+std::string drive_kind_names(std::string_view separator, std::string_view last, std::string_view quote) {
+  std::string s;
+  const auto n = names().size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0) s += i + 1 == n ? last : separator;
+    s += std::string(quote) + std::string(names()[i]) + std::string(quote);
+  }
+  return s;
+}
+
+trace::Vocabulary trace_vocabulary() { return {names(), drivecom::kTargetKeys}; }
+
+}  // namespace ibs::devices

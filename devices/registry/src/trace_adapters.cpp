@@ -1,0 +1,156 @@
+#include "ibs/devices/trace_adapters.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "ibs/devices/registry.hpp"
+#include "ibs/drivecom/sequencer.hpp"
+
+namespace ibs::devices {
+
+namespace {
+
+using trace::Header;
+using trace::Request;
+using trace::TraceError;
+using trace::WordsKind;
+
+// The drive the header names, its target checked: what every adapter starts from.
+const DriveKind& kind_of(const trace::Trace& t) {
+  const Header& h = t.header;
+  const DriveKind* k = find_drive_kind(h.device);
+  if (k == nullptr) {
+    throw TraceError(t.file, h.lines.device,
+                     "device: '" + h.device + "' is not one of " + drive_kind_names(", ", ", "));
+  }
+  if (h.request && h.request->kind == Request::Kind::state && !drivecom::target_named(h.request->target)) {
+    std::string targets;
+    for (const std::string_view key : drivecom::kTargetKeys) targets += (targets.empty() ? "" : ", ") + std::string(key);
+    throw TraceError(t.file, h.lines.request,
+                     "request: state target '" + h.request->target + "' is not one of " + targets);
+  }
+  return *k;
+}
+
+// The header's line a setting was given on; a refused setting is reported there, falling back to
+// the other setting's line and then to the device line.
+std::size_t line_of(const Header& h, std::string_view setting) {
+  if (setting == "supi") return h.lines.supi;
+  if (setting == "ibcnf") return h.lines.ibcnf;
+  return 0;
+}
+
+Configuration configuration_of(const trace::Trace& t, const DriveKind& k) {
+  const Header& h = t.header;
+  try {
+    return k->configure(k->trace_settings(h));
+  } catch (const SettingsError& e) {
+    const std::size_t first = line_of(h, e.setting());
+    const std::size_t second = line_of(h, e.fallback());
+    throw TraceError(t.file, first != 0 ? first : (second != 0 ? second : h.lines.device), e.what());
+  }
+}
+
+void require_state_request(const trace::Trace& t) {
+  const Header& h = t.header;
+  if (h.request && h.request->kind != Request::Kind::state) {
+    throw TraceError(t.file, h.lines.request,
+                     "request: '" + to_string(*h.request) +
+                         "' is a parameter request; a words: pd trace takes 'state TARGET' "
+                         "(parameter requests go in words: comm or words: pcp traces)");
+  }
+}
+
+// A device as the simulator runs it, one sample of its period per row and every row a valid bus
+// cycle: recorded simulator traces replay unchanged.
+class EmulatedDeviceSide final : public trace::DeviceSide {
+ public:
+  EmulatedDeviceSide(std::size_t words, Duration period, std::unique_ptr<DeviceEmulator> device)
+      : words_(words), period_(period), device_(std::move(device)) {}
+  std::size_t m2s_words() const override { return words_; }
+  std::size_t s2m_words() const override { return words_; }
+  void initial(std::span<Word> s2m) override { device_->output(s2m); }
+  void step(std::span<const Word> m2s, std::span<Word> s2m) override {
+    now_ += period_;
+    device_->bus_cycle(now_);
+    device_->sample({m2s, s2m, {}, {}}, now_);
+  }
+  // The device faults a recording injects (trace-format.md, "Events").
+  bool supports(trace::Event::Kind) const override { return true; }
+  void apply(const trace::Event& e) override { device_->set_fault(e.kind == trace::Event::Kind::fault); }
+
+ private:
+  std::size_t words_;
+  Duration period_;
+  std::unique_ptr<DeviceEmulator> device_;
+  Time now_{0};
+};
+
+// The drive's parameter channel, if the header's words are its.
+bool is_channel(const Header& h, const DriveKind& k) { return k->facts().channel_words == h.words; }
+
+[[noreturn]] void unsupported(const trace::Trace& t) {
+  const Header& h = t.header;
+  std::string why;
+  for (const DriveKind& other : drive_kinds()) {
+    if (other->name() != h.device && other->facts().channel_words == h.words) {
+      why = " (" + std::string(other->facts().channel_name) + " is the " + std::string(other->facts().title) + "'s)";
+      break;
+    }
+  }
+  throw TraceError(t.file, h.lines.words,
+                   "words: " + std::string(to_string(h.words)) + " is not served for device " + h.device + why);
+}
+
+// The channel adapters report a header they cannot serve with std::invalid_argument; the user
+// gets it as FILE:LINE naming the request (or the words header).
+template <typename F>
+auto channel_adapter(const trace::Trace& t, F make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    const auto& l = t.header.lines;
+    throw TraceError(t.file, l.request != 0 ? l.request : l.words, e.what());
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
+  const Header& h = t.header;
+  const DriveKind& k = kind_of(t);
+  if (h.words == WordsKind::pd) {
+    const Configuration c = configuration_of(t, k);
+    return std::make_unique<EmulatedDeviceSide>(c.pd_words, k->facts().sample_period,
+                                                k.make_emulator(c, h.init, Time{0}));
+  }
+  if (is_channel(h, k)) return channel_adapter(t, [&] { return k->make_channel_device(h); });
+  unsupported(t);
+}
+
+std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t) {
+  const Header& h = t.header;
+  const DriveKind& k = kind_of(t);
+  if (h.words == WordsKind::pd) {
+    require_state_request(t);
+    return k->make_pd_master(configuration_of(t, k));
+  }
+  if (is_channel(h, k)) return channel_adapter(t, [&] { return k->make_channel_master(h); });
+  unsupported(t);
+}
+
+std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t) {
+  const Header& h = t.header;
+  const DriveKind& k = kind_of(t);
+  if (h.words == WordsKind::pd) return k->make_pd_explainer(configuration_of(t, k));
+  if (is_channel(h, k)) return channel_adapter(t, [&] { return k->make_channel_explainer(h); });
+  unsupported(t);
+}
+
+trace::Trace parse_trace(std::string_view text, const std::string& file) {
+  return trace::parse(text, file, trace_vocabulary());
+}
+
+trace::Trace load_trace(const std::string& path) { return trace::load(path, trace_vocabulary()); }
+
+}  // namespace ibs::devices

@@ -1,0 +1,65 @@
+// The VF1000's parameters (seed 001, 3.1.1, 4.1.1, 4.1.3; seed 000 for the family's numbers): the
+// table with the manuals' numbers, names, units, categories, types, ranges and defaults, the
+// numbers the drive acts on, and the process-data watchdog's settings 906/907. The table belongs
+// to the drive: the communication-word server serves it (vf1000_channel/server.hpp) through the
+// drive-neutral table and store of drive/parameters.hpp.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/drive/parameters.hpp"
+#include "ibs/interbus/words.hpp"
+
+namespace ibs::devices::vf1000 {
+
+// Numbers of the parameters the manuals name.
+namespace pnr {
+inline constexpr std::uint16_t kMode = 1;     // 1-MODE
+inline constexpr std::uint16_t kCsel = 2;     // 2-CSEL
+inline constexpr std::uint16_t kCntl = 3;     // 3-CNTL
+inline constexpr std::uint16_t kFssel = 4;    // 4-FSSEL
+inline constexpr std::uint16_t kFssio = 5;    // 5-FSSIO
+inline constexpr std::uint16_t kStat = 11;    // 11-STAT
+inline constexpr std::uint16_t kFout = 12;    // 12: rotary-field frequency (seed 000, 6.1.1.1)
+inline constexpr std::uint16_t kFmax1 = 22;   // FMAX1: 16H in the examples of 4.1.3.1.1 / 4.1.3.2.1
+inline constexpr std::uint16_t kRstop = 36;   // 36-RSTOP
+inline constexpr std::uint16_t kVb2 = 45;     // 45-VB2
+inline constexpr std::uint16_t kSouta = 61;   // 61-SOUTA
+inline constexpr std::uint16_t kProg = 71;    // 71-PROG
+inline constexpr std::uint16_t kSioc = 81;    // 81-SIOC
+inline constexpr std::uint16_t kSioa = 82;    // 82-SIOA
+inline constexpr std::uint16_t kSiow = 83;    // 83-SIOW
+inline constexpr std::uint16_t kSiot = 84;    // 84-SIOT
+inline constexpr std::uint16_t kSiof = drive::kSiofNumber;  // 85-SIOF
+inline constexpr std::uint16_t kType = 91;    // 91-TYPE
+inline constexpr std::uint16_t kIcntl = 901;  // 901-ICNTL
+inline constexpr std::uint16_t kFdriv = 905;  // 905-FDRIV
+inline constexpr std::uint16_t kIbWd = 906;   // 906-IB-WD
+inline constexpr std::uint16_t kIbcod = 907;  // 907-IBCOD
+inline constexpr std::uint16_t kIbsta = 911;  // 911-IBSTA
+inline constexpr std::uint16_t kFist = 912;   // 912-FIST
+}  // namespace pnr
+
+// The VF1000 parameter table with the INTERBUS factory defaults (sorted by number; static data).
+std::span<const drive::ParameterInfo> parameters();
+
+// 907-IBCOD: the reaction to the process-data watchdog (seed 001, 4.1.1).
+enum class IbCod : std::uint8_t {
+  no_action = 0,
+  shutdown_e_ibs = 1,  // shutdown with error E-IBS (no. 12)
+  block_power = 2,     // device control command "Block power"
+  emergency_stop = 3,  // device control command "Emergency Stop"
+};
+inline constexpr std::uint8_t kErrorEIbs = 12;
+// 906-IB-WD: the monitoring time the inverter actually uses. It counts in 50 ms steps, rounding
+// up (IB-WD = 65 -> 100 ms); the maximum value 65535 switches the monitoring off (nullopt).
+constexpr std::optional<std::chrono::milliseconds> ib_wd_monitoring_time(Word ib_wd) {
+  if (ib_wd == 0xFFFF) return std::nullopt;
+  const unsigned steps = (static_cast<unsigned>(ib_wd) + 49U) / 50U;
+  return std::chrono::milliseconds(50U * steps);
+}
+
+}  // namespace ibs::devices::vf1000

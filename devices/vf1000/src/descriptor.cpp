@@ -1,0 +1,183 @@
+#include "ibs/devices/vf1000/descriptor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/driver.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
+#include "ibs/devices/vf1000/pd_trace.hpp"
+#include "ibs/drivecom/control_word.hpp"
+#include "ibs/vf1000_channel/comm_word.hpp"
+#include "ibs/vf1000_channel/trace_adapters.hpp"
+
+namespace ibs::devices::vf1000 {
+
+Word reference_word(double hz) {
+  const double bits = std::clamp(std::round(std::fabs(hz) / kHzPerBit), 0.0, 65535.0);
+  return static_cast<Word>(bits);
+}
+double reference_hz(Word w) { return static_cast<double>(w) * kHzPerBit; }
+Word actual_word(double hz) {
+  const double bits = std::clamp(std::round(hz / kHzPerBit), -32768.0, 32767.0);
+  return static_cast<Word>(static_cast<std::int16_t>(bits));
+}
+double actual_hz(Word w) { return static_cast<double>(static_cast<std::int16_t>(w)) * kHzPerBit; }
+
+std::string explain_control_word(Word control, Word previous) {
+  std::string s = drivecom::explain_control_word(control, previous);
+  const auto b = decode_control_bits(control);
+  if (!b.ramp_enable) s += ", ramp disabled (stop function)";
+  if (b.ramp_enable && !b.ramp_run) s += ", ramp held";
+  if (b.ramp_enable && !b.ramp_follow) s += ", ramp to 0 Hz";
+  if (b.s2ind) s += ", S2IND";
+  if (b.s1ind) s += ", S1IND";
+  if (b.stl) s += ", STL";
+  if (b.str) s += ", STR";
+  if (bit(control, 11)) s += ", bit 11 (unoccupied) set";
+  return s;
+}
+
+std::string explain_status_word(Word status) { return drivecom::explain_status_word(status, kStatusBits); }
+
+namespace {
+
+// 906-IB-WD runs 8..65535 ms, the maximum switching monitoring off; 907-IBCOD 0..3 (4.1.1).
+constexpr int kMinWatchdogMs = 8;
+constexpr int kMaxWatchdogMs = 0xFFFF;
+constexpr int kMaxWatchdogReaction = 3;
+// The reference word: 0.05 Hz per bit, an absolute value (5.2.3).
+constexpr double kMaxFrequencyHz = 65535 * kHzPerBit;
+
+constexpr DriveFacts kFacts{
+    .name = kName,
+    .title = "VF1000",
+    .article = "a",
+    .unit = "Hz",
+    .sample_period = kSamplePeriod,
+    .reference_action = "frequency",
+    .reference_min = -kMaxFrequencyHz,
+    .reference_max = kMaxFrequencyHz,
+    .reference_range = "-3276.75..3276.75 Hz, 0.05 Hz per bit",
+    // Parameter numbers: 10 bits, the low byte and bits 0-1 of the control byte (4.1.2.1).
+    .max_parameter = vf1000_channel::kMaxParameterNumber,
+    .parameter_range = ", 10-bit PNR, seed 001 4.1.2.1",
+    // A parameter is one 16-bit word, written as -32768..65535 (two's complement or unsigned).
+    .write_min = -32768.0,
+    .write_max = 65535.0,
+    .write_range = " (-32768..65535, 16 bits)",
+    .watchdog_error = "error 12 (E-IBS): process-data watchdog 906-IB-WD ran out",
+    .timing_syntax = kName,
+    .channel_words = trace::WordsKind::comm,
+    .channel_name = "the communication word",
+};
+
+class Descriptor final : public DriveDescriptor {
+ public:
+  Descriptor() : DriveDescriptor(kFacts) {}
+
+  Configuration configure(const DeviceSettings& s) const override {
+    if (s.bus == interbus::BusKind::local) {
+      throw SettingsError("a VF1000 is always a remote bus device (seed 001, 1.3)", "bus");
+    }
+    return {s, interbus::IdCode{kIdCode}, interbus::BusKind::remote, true, kWords, 0};
+  }
+
+  void check_watchdog(const DeviceSettings& s) const override {
+    if (s.watchdog_ms && (*s.watchdog_ms < kMinWatchdogMs || *s.watchdog_ms > kMaxWatchdogMs)) {
+      throw SettingsError("'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (" +
+                              std::to_string(kMinWatchdogMs) + ".." + std::to_string(kMaxWatchdogMs) +
+                              ", 906-IB-WD)",
+                          "watchdog_ms");
+    }
+    if (s.watchdog_reaction && (*s.watchdog_reaction < 0 || *s.watchdog_reaction > kMaxWatchdogReaction)) {
+      throw SettingsError("'watchdog_reaction' = " + std::to_string(*s.watchdog_reaction) +
+                              " is out of range (0..3, 907-IBCOD)",
+                          "watchdog_reaction");
+    }
+  }
+
+  std::optional<std::string_view> refused_setting(std::string_view key) const override {
+    // The VF1000 has neither (seed 001, 3.1.2).
+    if (key == "supi") return "'supi' is an MC6000 setting; a VF1000 has no 405-SUPI";
+    if (key == "ibcnf") return "'ibcnf' is an MC6000 setting; a VF1000 has no 406-IBCNF";
+    return std::nullopt;
+  }
+
+  std::optional<std::string> lacks(Capability, const Configuration&) const override { return std::nullopt; }
+
+  std::unique_ptr<DeviceDriver> make_driver(const Configuration&) const override {
+    return std::make_unique<Vf1000Driver>();
+  }
+  std::string explain_control(Word control, Word previous) const override {
+    return explain_control_word(control, previous);
+  }
+  std::string explain_status(Word status) const override { return explain_status_word(status); }
+
+  DeviceSettings trace_settings(const trace::Header&) const override { return {}; }
+  void write_trace_settings(const Configuration&, trace::Header&) const override {}
+  std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration&) const override {
+    return vf1000::make_pd_master();
+  }
+  std::unique_ptr<trace::Explainer> make_pd_explainer(const Configuration&) const override {
+    return vf1000::make_pd_explainer();
+  }
+  std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const override {
+    return vf1000_channel::make_comm_device_side(h, parameters(), server_config());
+  }
+  std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const override {
+    return vf1000_channel::make_comm_master_side(h);
+  }
+  std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header&) const override {
+    return vf1000_channel::make_comm_explainer();
+  }
+
+  std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const override {
+    if (!supi && !ibcnf && !bus) return std::nullopt;
+    return "--supi, --ibcnf and --bus apply to the mc6000 only; the VF1000 always reports 33BH on the "
+           "remote bus (seed 001 3.1.2)";
+  }
+
+  LayoutDescription layout(const Configuration&) const override {
+    LayoutDescription r;
+    r.title = "VF1000 frequency inverter: three words, ID code 33BH (seed 001 3.1.2)";
+    r.out_words = {
+        {1, "control_word", "control word, DRIVECOM Profile 20 (seed 001 5.2.1)"},
+        {2, "frequency_reference",
+         "frequency reference, 0.05 Hz per bit, absolute value; the direction comes from control "
+         "word bits 14 STL / 15 STR (seed 001 5.2.3)"},
+        {3, "communication_word",
+         "communication word to the inverter: the parameter channel (seed 001 4.1.2.1)"},
+    };
+    r.in_words = {
+        {1, "status_word", "status word, DRIVECOM Profile 20 (seed 001 5.2.2)"},
+        {2, "actual_frequency",
+         "actual frequency, 0.05 Hz per bit, signed (modelling choice: the manual does not define "
+         "this word)"},
+        {3, "communication_word", "communication word from the inverter (seed 001 4.1.2.2)"},
+    };
+    r.pcp = "none: parameters travel in the communication word (word 3)";
+    return r;
+  }
+
+  RingEntry ring_entry(std::span<const std::string_view> fields) const override {
+    if (!fields.empty()) {
+      throw SettingsError(
+          "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, seed 001 "
+          "3.1.2)",
+          "");
+    }
+    return {interbus::IdCode{kIdCode}, interbus::BusKind::remote, {}, ""};
+  }
+  std::string ring_spec(const DeviceSettings&) const override { return std::string(kName); }
+};
+
+}  // namespace
+
+const DriveDescriptor& descriptor() {
+  static const Descriptor d;
+  return d;
+}
+
+}  // namespace ibs::devices::vf1000

@@ -1,0 +1,122 @@
+#include "ibs/drive/parameters.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace ibs::drive {
+
+namespace {
+
+bool printable(std::string_view s) {
+  for (const char c : s) {
+    if (c < 0x20 || c > 0x7E) return false;
+  }
+  return true;
+}
+
+std::string label(const ParameterInfo& p) {
+  return "parameter " + std::to_string(p.number) + "-" + std::string(p.name);
+}
+
+}  // namespace
+
+std::optional<double> to_engineering(const ParameterInfo& p, Word raw) {
+  return to_engineering(p.type, raw, p.scale);
+}
+
+std::optional<Word> from_engineering(const ParameterInfo& p, double value) {
+  return from_engineering(p.type, value, p.scale);
+}
+
+std::string_view to_string(WriteCheck c) {
+  switch (c) {
+    case WriteCheck::ok:
+      return "ok";
+    case WriteCheck::no_parameter:
+      return "no parameter";
+    case WriteCheck::no_change:
+      return "no change permitted";
+    case WriteCheck::invalid_value:
+      return "invalid value";
+  }
+  return "?";
+}
+
+ParameterTable::ParameterTable(std::span<const ParameterInfo> params) : params_(params) {
+  index_.fill(-1);
+  if (params.size() > static_cast<std::size_t>(kMaxParameterNumber) + 1) {
+    throw std::invalid_argument("parameter table: " + std::to_string(params.size()) +
+                                " entries, but numbers only run from 0 to 3FFH");
+  }
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    const ParameterInfo& p = params[i];
+    const std::string where =
+        "parameter table entry " + std::to_string(i) + " (" + label(p) + "): ";
+    if (p.number > kMaxParameterNumber) {
+      throw std::invalid_argument(where + "number above 3FFH (seed 001, 4.1.3)");
+    }
+    if (index_[p.number] >= 0) throw std::invalid_argument(where + "number used twice");
+    if (p.name.empty() || p.name.size() > 5 || !printable(p.name)) {
+      throw std::invalid_argument(where + "name must be 1 to 5 printable characters (4.1.3.3)");
+    }
+    if (p.unit.size() > 5 || !printable(p.unit)) {
+      throw std::invalid_argument(where + "unit must be at most 5 printable characters (4.1.3.3)");
+    }
+    const auto n = [&p](Word w) { return raw_as_number(p.type, w); };
+    if (n(p.min) < n(type_min_raw(p.type)) || n(p.max) > n(type_max_raw(p.type))) {
+      throw std::invalid_argument(where + "min/max outside the range of " +
+                                  std::string(to_string(p.type)));
+    }
+    if (n(p.min) > n(p.max)) throw std::invalid_argument(where + "min above max");
+    if (!in_range(p, p.default_value)) {
+      throw std::invalid_argument(where + "default outside min/max");
+    }
+    if (!(p.scale > 0.0)) throw std::invalid_argument(where + "scale must be positive");
+    index_[p.number] = static_cast<std::int16_t>(i);
+  }
+}
+
+ParameterStore::ParameterStore(std::span<const ParameterInfo> params)
+    : params_(params), cells_(params.size()) {
+  load_defaults();
+}
+
+void ParameterStore::write(std::size_t slot, Word raw, bool power_stage_enabled) {
+  Cell& c = cells_[slot];
+  c.ram = raw;
+  switch (storage(params_[slot].category)) {
+    case Storage::eeprom:
+      c.eeprom = raw;
+      break;
+    case Storage::eeprom_ram:
+      if (!power_stage_enabled) c.eeprom = raw;
+      break;
+    case Storage::ram_control:
+    case Storage::ram_actual:
+      break;
+  }
+}
+
+void ParameterStore::set(std::size_t slot, Word raw) {
+  Cell& c = cells_[slot];
+  c.ram = raw;
+  const Storage s = storage(params_[slot].category);
+  if (s == Storage::eeprom || s == Storage::eeprom_ram) c.eeprom = raw;
+}
+
+void ParameterStore::power_up() {
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    const Storage s = storage(params_[i].category);
+    cells_[i].ram = (s == Storage::eeprom || s == Storage::eeprom_ram) ? cells_[i].eeprom
+                                                                       : params_[i].default_value;
+  }
+}
+
+void ParameterStore::load_defaults() {
+  for (std::size_t i = 0; i < cells_.size(); ++i) {
+    cells_[i].ram = params_[i].default_value;
+    cells_[i].eeprom = params_[i].default_value;
+  }
+}
+
+}  // namespace ibs::drive
