@@ -1,0 +1,236 @@
+// `ibs lustbus ...`: `emulate --pty` as a process (prints `pty: PATH` first, serves, exits 0 on
+// SIGTERM and SIGINT), read / write / describe / scan in process against it, JSON, a NAK exiting 1
+// with its cause, bad input exiting 2 with the parameter, value and limit, and the byte log.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lustbus_cmd.hpp"
+
+namespace ibs::cli {
+namespace {
+
+struct CliRun {
+  int rc = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run_cli(std::vector<std::string> args) {
+  CLI::App app{"test"};
+  app.require_subcommand(1);
+  LustbusCommandState state;
+  add_lustbus_commands(app, state);
+  CliRun r;
+  std::reverse(args.begin(), args.end());
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    r.rc = kExitLustbusBadInput;
+    r.err = e.what();
+    return r;
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  r.rc = run_lustbus_commands(state, out, err).value_or(-1);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+class Emulator {
+ public:
+  explicit Emulator(std::vector<std::string> devices) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error("pipe");
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(fds[1], STDOUT_FILENO);
+      ::close(fds[0]);
+      ::close(fds[1]);
+      std::vector<std::string> args = {IBS_CLI, "lustbus", "emulate", "--pty"};
+      args.insert(args.end(), devices.begin(), devices.end());
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(fds[1]);
+    out_ = ::fdopen(fds[0], "r");
+    char line[512] = {};
+    if (std::fgets(line, sizeof line, out_) != nullptr) first_line_ = line;
+    if (!first_line_.empty() && first_line_.back() == '\n') first_line_.pop_back();
+  }
+  Emulator(const Emulator&) = delete;
+  Emulator& operator=(const Emulator&) = delete;
+  ~Emulator() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    if (out_ != nullptr) std::fclose(out_);
+  }
+  const std::string& first_line() const { return first_line_; }
+  std::string pty() const { return first_line_.substr(first_line_.find(' ') + 1); }
+  int stop(int sig) {
+    ::kill(pid_, sig);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* out_ = nullptr;
+  std::string first_line_;
+};
+
+std::vector<std::string> cmd(std::vector<std::string> a, const std::string& port) {
+  std::vector<std::string> v = {"lustbus"};
+  v.insert(v.end(), a.begin(), a.end());
+  v.insert(v.end(), {"--port", port, "--timeout-ms", "2000"});
+  return v;
+}
+
+TEST(LustbusCli, EmulatePrintsThePtyFirstAndExitsZeroOnSignals) {
+  Emulator a({"vf1000@1"});
+  ASSERT_EQ(a.first_line().rfind("pty: /dev/pts/", 0), 0U) << a.first_line();
+  EXPECT_EQ(a.stop(SIGTERM), 0);
+  Emulator b({"mc6000@2"});
+  ASSERT_EQ(b.first_line().rfind("pty: ", 0), 0U);
+  EXPECT_EQ(b.stop(SIGINT), 0);
+}
+
+TEST(LustbusCli, ReadWriteDescribeScanWithJsonAndLog) {
+  Emulator emu({"vf1000@1", "mc6000@3"});
+  const std::string port = emu.pty();
+  const std::string log = ::testing::TempDir() + "lustbus_cli.log";
+  CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "23.15", "--log", log}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "vf1000@1 5-FSSIO := 23.15 Hz (01CFH)\n");
+  r = run_cli(cmd({"read", "--addr", "1", "--device", "vf1000", "5", "--json"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["raw"], 463);
+  EXPECT_DOUBLE_EQ(j["value"].get<double>(), 23.15);
+  EXPECT_EQ(j["unit"], "Hz");
+  r = run_cli(cmd({"write", "--addr", "3", "--device", "mc6000", "RSIO", "0x842666", "--json"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["raw"], 0x842666);
+  r = run_cli(cmd({"describe", "--addr", "1", "--device", "vf1000", "VB2"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "vf1000@1 45-VB2: VB2, kind 2, PT_FIXPOINT16, min 0.00, max 25.00, default 8.00\n");
+  r = run_cli(cmd({"describe", "--addr", "3", "--device", "mc6000", "417", "--json"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["value"]["name"], "RSSL1");
+  EXPECT_EQ(j["value"]["max"], "7");
+  r = run_cli({"lustbus", "scan", "--port", port});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "address 1: VF1000 (inverter), 91-TYPE 1000\n"
+            "address 3: MC6000 (servo), 91-TYPE 6000\n");
+  std::ifstream in(log);
+  std::string first;
+  std::getline(in, first);
+  EXPECT_EQ(first, "ibs-serial-log 1");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_NE(line.find(" tx "), std::string::npos) << line;
+  EXPECT_NE(line.find("04 41 02 30 30 31 30 35 3D 30 31 43 46 03"), std::string::npos) << line;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+TEST(LustbusCli, NakExitsOneWithTheCause) {
+  Emulator emu({"vf1000@1"});
+  const std::string port = emu.pty();
+  ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CNTL", "0x80"}, port)).rc, 0);
+  // 3: an EEPROM parameter while the power stage runs: NAK, 40H.
+  const CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "0"}, port));
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("vf1000@1 1-MODE: nak, 85-SIOF 40H: no change permitted"), std::string::npos)
+      << r.err;
+  const CliRun none = run_cli({"lustbus", "read", "--addr", "9", "--device", "vf1000", "5", "--port", port, "--timeout-ms", "200"});
+  EXPECT_EQ(none.rc, 1);
+  EXPECT_NE(none.err.find("no answer"), std::string::npos) << none.err;
+}
+
+TEST(LustbusCli, BadInputExitsTwoWithAClearMessage) {
+  const std::string port = "/dev/null-no-such-port";
+  CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSEL", "26"}, port));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs lustbus write: 4-FSSEL: value 26 is above the maximum 25\n");
+  r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "-1"}, port));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("5-FSSIO: value -1 does not fit PT_FIXPOINT16"), std::string::npos) << r.err;
+  r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "TYPE", "1"}, port));
+  EXPECT_EQ(r.err, "ibs lustbus write: 91-TYPE is read-only\n");
+  r = run_cli(cmd({"read", "--addr", "1", "--device", "vf1000", "FOO"}, port));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("parameter 'FOO'"), std::string::npos) << r.err;
+  r = run_cli(cmd({"read", "--addr", "1", "--device", "mc7000", "5"}, port));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("--device 'mc7000'"), std::string::npos) << r.err;
+  r = run_cli(cmd({"write", "--addr", "3", "--device", "mc6000", "RSSL1", "0x1FF"}, port));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("not a 8-bit hex number"), std::string::npos) << r.err;
+  r = run_cli(cmd({"read", "--addr", "31", "--device", "vf1000", "5"}, port));
+  EXPECT_EQ(r.rc, 2);
+  r = run_cli(cmd({"read", "--addr", "1", "--device", "vf1000", "5"}, port));
+  EXPECT_EQ(r.rc, 2);  // the port does not open
+  r = run_cli({"lustbus", "emulate", "--pty", "vf1000@31"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("device 'vf1000@31'"), std::string::npos) << r.err;
+  r = run_cli({"lustbus", "emulate", "--pty", "vf1000@2", "mc6000@2"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("address 2 is given twice"), std::string::npos) << r.err;
+}
+
+// 11.4: a dataset file through the 80-SLOAD handshake; a dataset the servo rejects exits 1 with
+// the first invalid parameter; a malformed line exits 2 naming it.
+TEST(LustbusCli, DownloadADatasetFile) {
+  Emulator emu({"mc6000@3"});
+  const std::string port = emu.pty();
+  const std::string good = ::testing::TempDir() + "lustbus_good.txt";
+  std::ofstream(good) << "# speed control on the serial interface (7.2.1)\n"
+                         "CFCON 2\nCLSEL 2\nRSSL1 3   # RSIO\n420 0\nRSIO 132.15\n";
+  CliRun r = run_cli(cmd({"download", "--addr", "3", good}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "mc6000@3: 5 parameters downloaded, 80-SLOAD = 0\n");
+  r = run_cli(cmd({"read", "--addr", "3", "--device", "mc6000", "RSSL1"}, port));
+  EXPECT_EQ(r.out, "mc6000@3 417-RSSL1 = 3 (03H)\n");
+
+  const std::string bad = ::testing::TempDir() + "lustbus_bad.txt";
+  std::ofstream(bad) << "RSSL2 3\nRSSL3 9\n";
+  r = run_cli(cmd({"download", "--addr", "3", bad, "--json"}, port));
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("first invalid parameter 419"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["rejected_parameter"], 419);
+  r = run_cli(cmd({"read", "--addr", "3", "--device", "mc6000", "RSSL2"}, port));
+  EXPECT_EQ(r.out, "mc6000@3 418-RSSL2 = 0 (00H)\n");
+
+  const std::string broken = ::testing::TempDir() + "lustbus_broken.txt";
+  std::ofstream(broken) << "RSSL2 3\nSPEED 1\n";
+  r = run_cli(cmd({"download", "--addr", "3", broken}, port));
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("lustbus_broken.txt:2: 77-SPEED cannot be part of a dataset"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+}  // namespace
+}  // namespace ibs::cli

@@ -1,0 +1,201 @@
+// The VF1000 wing as a LUSTBUS device (seed 000): the seed's telegrams byte-exact against it, the
+// 85-SIOF latch (6, 9.2), EEPROM timing (3, 10 exception 4), the description (11.1), 71-PROG,
+// 11-STAT's reset (8.1.1) and the watchdog (5.2), with the host on the simulated line.
+#include "ibs/devices/vf1000/lustbus_device.hpp"
+
+#include <gtest/gtest.h>
+
+#include "ibs/lustbus/description.hpp"
+#include "support.hpp"
+
+namespace {
+
+using namespace ibs::lustbus;
+using namespace ibs::lustbus::devtest;
+using ibs::Time;
+using Vf = ibs::devices::vf1000::LustbusDevice;
+namespace pnr = ibs::devices::vf1000::pnr;
+
+// A telegram's bytes with the BCC by the rule of 2.2.
+std::vector<std::uint8_t> sel(Address a, std::uint32_t code, std::string_view v) {
+  return bytes(encode_select(a, make_code(code), make_value(v)).span());
+}
+std::vector<std::uint8_t> enq(Address a, std::uint32_t code) {
+  return bytes(encode_enquiry(a, make_code(code)).span());
+}
+
+// A VF1000 whose power-on bit has been read (6).
+struct Fresh {
+  Vf dev;
+  Receiver rx{dev, 5};
+  Time t{0};
+  Fed send(const std::vector<std::uint8_t>& b) {
+    t += 1s;
+    return feed(rx, b, t);
+  }
+  Fresh() { send(enq(0, 85)); }
+};
+
+TEST(Vf1000Lustbus, PowerOnBitRefusesTheFirstSelectUntil85IsRead) {
+  Vf dev;
+  Receiver rx(dev, 5);
+  EXPECT_EQ(dev.siof(), 0x01);  // 6: after every new start
+  EXPECT_EQ(feed(rx, sel(5, 105, "03E8"), Time{1s}).answer, (Bytes{}(0x45)(0x15).v));
+  EXPECT_EQ(dev.value(pnr::kFssio), 0);
+  // 9.2: the refused SELECT enters no further cause while the latch holds.
+  EXPECT_EQ(feed(rx, enq(5, 85), Time{2s}).answer, bytes(encode_text_answer(5, make_code(85), make_value("0001")).span()));
+  EXPECT_EQ(dev.siof(), 0);
+  EXPECT_EQ(feed(rx, sel(5, 105, "03E8"), Time{3s}).answer, (Bytes{}(0x45)(6).v));
+}
+
+// 6.2.2: 05-FSSIO = 50.00 Hz via address 0, byte-exact (BCC 74H); 6.1.1.1 (LB-E1, LB-E3): the
+// rotary-field frequency 12 read via address 0, answer "@ STX 00112=03E8 ETX 72H" once running.
+TEST(Vf1000Lustbus, SeedExamples622And6111ByteExact) {
+  Fresh f;
+  const auto s622 = Bytes{}(4)(64)(2)("00105=03E8")(3)(0x74).v;
+  EXPECT_EQ(f.send(s622).answer, (Bytes{}(64)(6).v));
+  EXPECT_EQ(f.dev.value(pnr::kFssio), 0x03E8);
+  EXPECT_EQ(f.send(sel(0, 103, "0080")).answer, (Bytes{}(64)(6).v));  // CNTL: start clockwise
+  const auto e6111 = Bytes{}(4)(64)(48)(48)(49)(49)(50)(5).v;
+  EXPECT_EQ(f.send(e6111).answer, (Bytes{}(64)(2)("00112=03E8")(3)(0x72).v));
+}
+
+// 7.1.1 as corrected (LB-E11) through the host: MODE 0, CSEL 3, FSSEL 8, FSSIO 463, CNTL 128 last.
+TEST(Vf1000Lustbus, ControlSequence711ThroughTheHost) {
+  Vf dev;
+  Bus bus;
+  bus.add(dev, 1);
+  EXPECT_EQ(bus.read(1, 85).value.view(), "0001");
+  const std::pair<std::uint32_t, std::string_view> seq[] = {
+      {1, "0000"}, {2, "0003"}, {4, "0008"}, {5, "01CF"}, {3, "0080"}};
+  for (const auto& [code, v] : seq) {
+    EXPECT_EQ(bus.write(1, code, v).kind, OutcomeKind::acknowledged) << code;
+  }
+  EXPECT_EQ(dev.value(pnr::kMode), 0);
+  EXPECT_EQ(dev.value(pnr::kCsel), 3);
+  EXPECT_EQ(dev.value(pnr::kFssel), 8);
+  EXPECT_EQ(dev.value(pnr::kFssio), 463);
+  EXPECT_TRUE(dev.power_stage_enabled());
+  EXPECT_EQ(bus.read(1, 112).value.view(), "01CF");  // 23.15 Hz
+}
+
+// 9.2: 20H, 40H, 80H through the host (it reads 85 after the NAK); 3: an EEPROM parameter is not
+// writable while the power stage runs, whatever the value.
+TEST(Vf1000Lustbus, RefusalsCarryTheirCause) {
+  Vf dev;
+  Bus bus;
+  bus.add(dev, 1);
+  bus.read(1, 85);
+  auto o = bus.write(1, 199, "0000");  // no parameter 99
+  EXPECT_EQ(o.kind, OutcomeKind::nak);
+  EXPECT_EQ(o.siof, 0x20);
+  o = bus.write(1, 104, "001A");  // FSSEL 26 > 25
+  EXPECT_EQ(o.kind, OutcomeKind::nak);
+  EXPECT_EQ(o.siof, 0x80);
+  o = bus.write(1, 191, "0001");  // TYPE is read-only
+  EXPECT_EQ(o.kind, OutcomeKind::nak);
+  EXPECT_EQ(o.siof, 0x40);
+  ASSERT_EQ(bus.write(1, 103, "0080").kind, OutcomeKind::acknowledged);  // running
+  o = bus.write(1, 101, "0000");  // MODE, an EEPROM parameter
+  EXPECT_EQ(o.kind, OutcomeKind::nak);
+  EXPECT_EQ(o.siof, 0x40);
+  EXPECT_EQ(dev.value(pnr::kMode), 4);
+  EXPECT_EQ(bus.write(1, 105, "0100").kind, OutcomeKind::acknowledged);  // EEPROM/RAM: RAM
+}
+
+// 6.1 note: an ENQUIRY answered NAK enters no cause; 9.2: further SELECTs refused while a bit is
+// set, reading 85 returns the bits and clears them.
+TEST(Vf1000Lustbus, LatchHoldsUntilReadAndEnquiriesSetNothing) {
+  Fresh f;
+  EXPECT_EQ(f.send(enq(5, 199)).answer, (Bytes{}(0x45)(0x15).v));
+  EXPECT_EQ(f.dev.siof(), 0);
+  EXPECT_EQ(f.send(sel(5, 104, "0063")).answer, (Bytes{}(0x45)(0x15).v));  // 99 > 25
+  EXPECT_EQ(f.dev.siof(), 0x80);
+  EXPECT_EQ(f.send(sel(5, 104, "0008")).answer, (Bytes{}(0x45)(0x15).v));  // valid, refused
+  EXPECT_EQ(f.dev.value(pnr::kFssel), 25);
+  EXPECT_EQ(f.send(enq(5, 85)).answer, bytes(encode_text_answer(5, make_code(85), make_value("0080")).span()));
+  EXPECT_EQ(f.dev.siof(), 0);
+  EXPECT_EQ(f.send(sel(5, 104, "0008")).answer, (Bytes{}(0x45)(6).v));
+  // A wrong BCC: NAK by the receiver and 08H.
+  auto bad = sel(5, 104, "0007");
+  bad.back() ^= 0x01;
+  EXPECT_EQ(f.send(bad).answer, (Bytes{}(0x45)(0x15).v));
+  EXPECT_EQ(f.dev.siof(), 0x08);
+  EXPECT_EQ(f.dev.value(pnr::kFssel), 8);
+}
+
+// 3 and 10 exception 4: the ACK comes once the EEPROM holds the value; a changed two-byte value
+// costs about 120 ms more, one byte 60 ms, an unchanged value nothing; RAM parameters nothing.
+TEST(Vf1000Lustbus, EepromAnswersOnlyOnceStored) {
+  Fresh f;
+  EXPECT_EQ(f.send(sel(5, 122, "01F4")).due, 122ms);  // FMAX1, PT_FIXPOINT16
+  EXPECT_EQ(f.dev.eeprom_value(pnr::kFmax1), 0x01F4);
+  EXPECT_EQ(f.send(sel(5, 122, "01F4")).due, 2ms);  // unchanged
+  EXPECT_EQ(f.send(sel(5, 101, "0000")).due, 62ms);  // MODE, PT_USIGN8
+  EXPECT_EQ(f.send(sel(5, 183, "1234")).due, 2ms);   // SIOW, RAM
+  EXPECT_EQ(f.send(sel(5, 105, "0010")).due, 122ms);  // FSSIO, stopped: into EEPROM too
+}
+
+// 11.1: specifier 1, 26 characters; 45-VB2 as seed 001's 4.1.3.3.1 gives it completely.
+TEST(Vf1000Lustbus, DescriptionOf111) {
+  Vf dev;
+  Bus bus;
+  bus.add(dev, 1);
+  const auto o = bus.read(1, 10145);
+  ASSERT_EQ(o.kind, OutcomeKind::value);
+  EXPECT_EQ(o.value.size(), kVfDescriptionLength);
+  EXPECT_EQ(o.value.view(), "   VB2     %22000001F400A0");
+  const auto d = parse_vf_description(o.value.view());
+  ASSERT_TRUE(d.ok());
+  EXPECT_EQ(d.value.name_view(), "VB2");
+  EXPECT_EQ(d.value.max, 0x01F4);
+  EXPECT_EQ(bus.read(1, 10112).kind, OutcomeKind::value);  // 12 exists
+  EXPECT_EQ(bus.read(1, 10199).kind, OutcomeKind::nak);
+}
+
+// 10 exception 1: 71-PROG = 1 loads every factory setting; the ACK comes when done.
+TEST(Vf1000Lustbus, Prog1LoadsFactoryDefaults) {
+  Vf dev;
+  Bus bus;
+  bus.add(dev, 1);
+  bus.read(1, 85);
+  ASSERT_EQ(bus.write(1, 101, "0000").kind, OutcomeKind::acknowledged);
+  Request r = select(1, make_code(171), make_value("0001"));
+  EXPECT_EQ(bus.run(r).kind, OutcomeKind::no_answer);  // the default 250 ms is too short
+  bus.read(1, 85);
+  r.response_timeout = 10s;
+  const auto o = bus.run(r);
+  EXPECT_EQ(o.kind, OutcomeKind::acknowledged);
+  EXPECT_GT(o.finished - o.started, 1500ms);
+  EXPECT_EQ(dev.value(pnr::kMode), 4);
+  EXPECT_EQ(dev.value(pnr::kProg), 0);
+}
+
+// 5.2: 84-SIOT in ms; any valid telegram (the dummy on 83-SIOW) resets it; running out sets 02H and
+// stops the inverter; 8.1.1: 11-STAT = 000F restarts it (power-on bit).
+TEST(Vf1000Lustbus, WatchdogAndStatReset) {
+  Fresh f;
+  Time t = f.t + 1s;
+  // SIOT is an EEPROM parameter: set before the start (40H while running).
+  ASSERT_EQ(feed(f.rx, sel(5, 184, "0064"), t).answer, (Bytes{}(0x45)(6).v));  // 100 ms
+  t += 80ms;
+  ASSERT_EQ(feed(f.rx, sel(5, 103, "0080"), t).answer, (Bytes{}(0x45)(6).v));
+  for (int i = 0; i < 10; ++i) {
+    t += 80ms;
+    EXPECT_EQ(feed(f.rx, sel(5, 183, "0000"), t).answer, (Bytes{}(0x45)(6).v)) << i;
+  }
+  EXPECT_FALSE(f.dev.watchdog_fault());
+  f.dev.advance(t + 150ms);
+  EXPECT_TRUE(f.dev.watchdog_fault());
+  EXPECT_FALSE(f.dev.power_stage_enabled());
+  t += 200ms;
+  EXPECT_EQ(feed(f.rx, enq(5, 85), t).answer,
+            bytes(encode_text_answer(5, make_code(85), make_value("0002")).span()));
+  t += 50ms;
+  EXPECT_EQ(feed(f.rx, sel(5, 111, "000F"), t).answer, (Bytes{}(0x45)(6).v));
+  EXPECT_FALSE(f.dev.watchdog_fault());
+  EXPECT_EQ(f.dev.siof(), 0x01);
+  EXPECT_EQ(f.dev.value(pnr::kCntl), 0);
+}
+
+}  // namespace

@@ -1,0 +1,687 @@
+// The CLI11 wiring of `ibs lustbus ...`, the emulator's serving loop and the host's loop over a
+// serial port.
+#include "lustbus_cmd.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <fstream>
+#include <stdexcept>
+
+#include "ibs/devices/mc6000/lustbus_device.hpp"
+#include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/lustbus/code.hpp"
+#include "ibs/lustbus/description.hpp"
+#include "ibs/lustbus/value.hpp"
+#include "ibs/serial/byte_log.hpp"
+#include "ibs/serial/pty.hpp"
+#include "stop_signals.hpp"
+
+namespace ibs::cli {
+
+namespace lb = ::ibs::lustbus;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr Duration kServePoll = 20ms;
+
+Time since(Clock::time_point t0) {
+  return std::chrono::duration_cast<Duration>(Clock::now() - t0);
+}
+
+// 2.1: 7 data bits, even parity, one stop bit; RS-485 direction by the driver where it can.
+serial::PortOptions port_options(const LustbusPortOptions& o) {
+  serial::PortOptions p;
+  p.baud = o.baud;
+  p.framing = serial::k7E1;
+  p.rs485 = true;
+  return p;
+}
+
+struct BadInput : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// A parameter as the command line needs it, from either wing's table.
+struct Param {
+  lb::Family family = lb::Family::vf1000;
+  std::uint16_t number = 0;
+  std::string name;
+  std::string unit;
+  lb::DataType type = lb::DataType::usign16;
+  std::int64_t min = 0;  // as numbers of the type (signed where the type is)
+  std::int64_t max = 0;
+  bool writable = true;
+  bool prog = false;  // PROG: 1 takes up to 10 s (10 exception 1)
+};
+
+lb::DataType type_of(drive::DataType t) {
+  switch (t) {
+    case drive::DataType::binary8:
+      return lb::DataType::binary8;
+    case drive::DataType::fixpoint16:
+      return lb::DataType::fixpoint16;
+    case drive::DataType::usign16:
+      return lb::DataType::usign16;
+    case drive::DataType::usign8:
+      return lb::DataType::usign8;
+    case drive::DataType::vf_error:
+      return lb::DataType::vf_error;
+    case drive::DataType::password:
+      return lb::DataType::password;
+    case drive::DataType::integer16:
+      return lb::DataType::integer16;
+  }
+  return lb::DataType::usign16;
+}
+
+lb::DataType type_of(pcp::DataType t) {
+  switch (t) {
+    case pcp::DataType::usign8:
+      return lb::DataType::usign8;
+    case pcp::DataType::usign16:
+      return lb::DataType::usign16;
+    case pcp::DataType::fixpoint16:
+      return lb::DataType::fixpoint16;
+    case pcp::DataType::integer16:
+      return lb::DataType::integer16;
+    case pcp::DataType::int32q16:
+      return lb::DataType::int32q16;
+    case pcp::DataType::float_ieee:
+      return lb::DataType::float_ieee;
+    case pcp::DataType::mc_error:
+      return lb::DataType::mc_error;
+    case pcp::DataType::password:
+      return lb::DataType::password;
+  }
+  return lb::DataType::usign16;
+}
+
+std::int64_t number_of(lb::DataType t, std::uint32_t bits) {
+  switch (t) {
+    case lb::DataType::integer16:
+      return static_cast<std::int16_t>(bits);
+    case lb::DataType::int32q16:
+    case lb::DataType::float_ieee:
+    case lb::DataType::mc_error:
+      return static_cast<std::int32_t>(bits);
+    default:
+      return bits;
+  }
+}
+
+std::uint32_t bits_of(lb::DataType t, std::int64_t n) {
+  const unsigned w = lb::width_bits(t);
+  const auto u = static_cast<std::uint64_t>(n);
+  return static_cast<std::uint32_t>(w == 32 ? (u & 0xFFFFFFFFULL) : (u & ((1ULL << w) - 1ULL)));
+}
+
+lb::Family parse_family(const std::string& s) {
+  if (s == "vf1000") return lb::Family::vf1000;
+  if (s == "mc6000") return lb::Family::mc6000;
+  throw BadInput("--device '" + s + "': expected vf1000 or mc6000");
+}
+
+bool parse_uint(const std::string& s, unsigned& v) {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return !s.empty() && r.ec == std::errc{} && r.ptr == s.data() + s.size();
+}
+
+// PARAM by number or by name (case-sensitive, as the tables spell it).
+Param find_param(lb::Family f, const std::string& text) {
+  unsigned n = 0;
+  const bool numeric = parse_uint(text, n);
+  if (f == lb::Family::vf1000) {
+    for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
+      if (p.number > 99) continue;  // 2.4.1: two digits
+      if (numeric ? p.number == n : p.name == text) {
+        return {f,  p.number, std::string(p.name), std::string(p.unit), type_of(p.type),
+                p.min, p.max, drive::writable(p.category), p.number == devices::vf1000::pnr::kProg};
+      }
+    }
+  } else {
+    for (const pcp::ParameterInfo& p : devices::mc6000::parameters()) {
+      if (numeric ? p.number == n : p.name == text) {
+        return {f,   p.number, std::string(p.name), "", type_of(p.type),
+                p.min, p.max, p.writable(), p.number == devices::mc6000::kProg};
+      }
+    }
+  }
+  throw BadInput("parameter '" + text + "': the " + std::string(lb::to_string(f)) +
+                 " has no such parameter" + (f == lb::Family::vf1000 ? " (1..99)" : ""));
+}
+
+std::string label(const Param& p) { return std::to_string(p.number) + "-" + p.name; }
+
+std::string engineering_text(lb::DataType t, std::uint32_t bits) {
+  const auto e = lb::to_engineering(t, bits);
+  if (!e.ok()) return "";
+  std::ostringstream s;
+  if (t == lb::DataType::fixpoint16) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2f", e.value);
+    return b;
+  }
+  s << e.value;
+  return s.str();
+}
+
+lb::Code value_code(const Param& p, bool description) {
+  const auto c = p.family == lb::Family::vf1000
+                     ? lb::vf_code(p.number, description ? lb::VfSpecifier::description
+                                                         : lb::VfSpecifier::value)
+                     : lb::mc_code(description ? lb::McCodeKind::description
+                                               : lb::McCodeKind::value,
+                                   p.number);
+  if (!c) throw BadInput("parameter " + label(p) + " has no CODE");
+  return *c;
+}
+
+// VALUE text -> the type's bit pattern, checked against the parameter's limits.
+std::uint32_t parse_value(const Param& p, const std::string& text, bool check_limits = true) {
+  std::uint32_t bits = 0;
+  if (text.rfind("0x", 0) == 0 || text.rfind("0X", 0) == 0) {
+    const std::string hex = text.substr(2);
+    std::uint64_t v = 0;
+    const auto r = std::from_chars(hex.data(), hex.data() + hex.size(), v, 16);
+    if (hex.empty() || r.ec != std::errc{} || r.ptr != hex.data() + hex.size() ||
+        v >> lb::width_bits(p.type) != 0) {
+      throw BadInput(label(p) + ": raw value '" + text + "' is not a " +
+                     std::to_string(lb::width_bits(p.type)) + "-bit hex number");
+    }
+    bits = static_cast<std::uint32_t>(v);
+  } else {
+    double v = 0;
+    const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || r.ec != std::errc{} || r.ptr != text.data() + text.size()) {
+      throw BadInput(label(p) + ": value '" + text + "' is not a number (raw values take 0x)");
+    }
+    const auto b = lb::from_engineering(p.type, v);
+    if (!b.ok()) {
+      throw BadInput(label(p) + ": value " + text + " does not fit " +
+                     std::string(lb::to_string(p.type)) + " (" +
+                     std::string(lb::to_string(b.error)) + ")");
+    }
+    bits = b.value;
+  }
+  if (check_limits && p.type != lb::DataType::float_ieee) {
+    const std::int64_t n = number_of(p.type, bits);
+    if (n < p.min) {
+      throw BadInput(label(p) + ": value " + text + " is below the minimum " +
+                     engineering_text(p.type, bits_of(p.type, p.min)));
+    }
+    if (n > p.max) {
+      throw BadInput(label(p) + ": value " + text + " is above the maximum " +
+                     engineering_text(p.type, bits_of(p.type, p.max)));
+    }
+  }
+  return bits;
+}
+
+lb::Value format_value(const Param& p, std::uint32_t bits) {
+  const auto v = lb::format_typed(p.family, p.type, bits);
+  if (!v.ok()) throw BadInput(label(p) + ": the value cannot be sent as a VALUE");
+  return v.value;
+}
+
+std::string hex_text(std::uint32_t v, unsigned digits) {
+  char b[16];
+  std::snprintf(b, sizeof b, "%0*X", static_cast<int>(digits), v);
+  return b;
+}
+
+// "vf1000@3" -> (family, 3); throws naming the text.
+std::pair<lb::Family, lb::Address> parse_device(const std::string& spec) {
+  const auto at = spec.find('@');
+  const auto bad = [&]() {
+    return BadInput("device '" + spec + "': expected vf1000@ADDR or mc6000@ADDR, ADDR 1..30");
+  };
+  if (at == std::string::npos) throw bad();
+  const std::string kind = spec.substr(0, at);
+  unsigned a = 0;
+  if ((kind != "vf1000" && kind != "mc6000") || !parse_uint(spec.substr(at + 1), a) || a < 1 ||
+      a > 30) {
+    throw bad();
+  }
+  return {kind == "vf1000" ? lb::Family::vf1000 : lb::Family::mc6000,
+          static_cast<lb::Address>(a)};
+}
+
+int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err) {
+  const auto bad = [&](const std::string& what) {
+    err << "ibs lustbus emulate: " << what << "\n";
+    return kExitLustbusBadInput;
+  };
+  if (o.pty == !o.port.port.empty()) return bad("give either --port PATH or --pty");
+  if (o.devices.empty()) return bad("no device: give vf1000@ADDR or mc6000@ADDR (one or more)");
+  std::vector<std::unique_ptr<devices::vf1000::LustbusDevice>> vfs;
+  std::vector<std::unique_ptr<devices::mc6000::LustbusDevice>> mcs;
+  std::vector<std::unique_ptr<lb::Receiver>> receivers;
+  std::vector<LustbusServed> served;
+  std::set<lb::Address> used;
+  try {
+    for (const std::string& spec : o.devices) {
+      const auto [family, addr] = parse_device(spec);
+      if (!used.insert(addr).second) {
+        throw BadInput("device '" + spec + "': address " + std::to_string(addr) +
+                       " is given twice (9.1: both would answer at once)");
+      }
+      if (family == lb::Family::vf1000) {
+        auto& d = vfs.emplace_back(std::make_unique<devices::vf1000::LustbusDevice>());
+        receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
+        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); }});
+      } else {
+        auto& d = mcs.emplace_back(std::make_unique<devices::mc6000::LustbusDevice>());
+        receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
+        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); }});
+      }
+    }
+  } catch (const BadInput& e) {
+    return bad(e.what());
+  }
+
+  // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
+  StopSignals signals;
+  std::optional<serial::PtyPair> pair;
+  std::optional<serial::SerialPort> opened;
+  std::unique_ptr<serial::ByteLog> log;
+  try {
+    if (o.pty) {
+      pair.emplace(serial::PtyPair::open(port_options(o.port)));
+    } else {
+      opened.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
+    }
+    if (!o.port.log.empty()) log = std::make_unique<serial::ByteLog>(o.port.log);
+  } catch (const std::exception& e) {
+    return bad(e.what());
+  }
+  serial::SerialPort& port = pair ? pair->master() : *opened;
+  if (pair) out << "pty: " << pair->slave_path() << "\n" << std::flush;
+  for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
+  port.set_log(log.get());
+  serve_lustbus(port, served, [&signals]() { return signals.raised(); });
+  return kExitLustbusOk;
+}
+
+// Opens the port and the log for a host command.
+struct HostPort {
+  std::optional<serial::SerialPort> port;
+  std::unique_ptr<serial::ByteLog> log;
+};
+HostPort open_host_port(const LustbusPortOptions& o) {
+  if (o.port.empty()) throw BadInput("--port PATH is required");
+  HostPort h;
+  try {
+    h.port.emplace(serial::SerialPort::open(o.port, port_options(o)));
+    if (!o.log.empty()) h.log = std::make_unique<serial::ByteLog>(o.log);
+  } catch (const std::exception& e) {
+    throw BadInput(e.what());
+  }
+  h.port->set_log(h.log.get());
+  return h;
+}
+
+int device_failure(const std::string& cmd, const std::string& who, const lb::Outcome& o,
+                   nlohmann::json& j, bool json, std::ostream& out, std::ostream& err) {
+  j["outcome"] = std::string(lb::to_string(o.kind));
+  if (o.siof) {
+    j["siof"] = *o.siof;
+    j["cause"] = drive::describe_siof(*o.siof);
+  }
+  if (json) out << j.dump() << "\n";
+  err << "ibs lustbus " << cmd << ": " << who << ": " << lb::describe(o) << "\n";
+  return kExitLustbusDevice;
+}
+
+// 11.4: a parameter dataset file, one `PARAM VALUE` a line ('#' starts a comment), sent with the
+// 80-SLOAD handshake as one host request. The values are checked for their type only: the servo
+// tests the whole dataset (11.4, "without individual testing").
+int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream& err) {
+  const std::string name = "download";
+  try {
+    if (o.addr < 0 || o.addr > 30) throw BadInput("--addr must be 0..30 (31 is broadcast)");
+    std::ifstream in(o.parameter);
+    if (!in) throw BadInput("cannot read '" + o.parameter + "'");
+    std::vector<lb::Assignment> records;
+    std::vector<std::string> labels;
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+      std::istringstream ls(line);
+      std::string param;
+      std::string value;
+      std::string extra;
+      if (!(ls >> param)) continue;
+      if (!(ls >> value) || (ls >> extra)) {
+        throw BadInput(o.parameter + ":" + std::to_string(n) + ": expected `PARAM VALUE`");
+      }
+      try {
+        const Param p = find_param(lb::Family::mc6000, param);
+        if (!p.writable || p.number == devices::mc6000::kSload) {
+          throw BadInput(label(p) + " cannot be part of a dataset");
+        }
+        records.push_back({value_code(p, false), format_value(p, parse_value(p, value, false))});
+        labels.push_back(label(p));
+      } catch (const BadInput& e) {
+        throw BadInput(o.parameter + ":" + std::to_string(n) + ": " + e.what());
+      }
+    }
+    if (records.empty()) throw BadInput("'" + o.parameter + "' holds no parameter");
+    lb::HostConfig cfg;
+    cfg.response_timeout = std::chrono::milliseconds(o.timeout_ms);
+    HostPort hp = open_host_port(o.port);
+    lb::Host host(cfg);
+    const lb::Outcome r =
+        transact_lustbus(*hp.port, host, lb::download(static_cast<lb::Address>(o.addr), records));
+    nlohmann::json j;
+    j["address"] = o.addr;
+    j["records"] = records.size();
+    j["outcome"] = std::string(lb::to_string(r.kind));
+    const std::string who = "mc6000@" + std::to_string(o.addr);
+    if (r.kind == lb::OutcomeKind::downloaded) {
+      if (o.json) {
+        out << j.dump() << "\n";
+      } else {
+        out << who << ": " << records.size() << " parameters downloaded, 80-SLOAD = 0\n";
+      }
+      return kExitLustbusOk;
+    }
+    std::string why = lb::describe(r);
+    if (r.kind == lb::OutcomeKind::download_rejected) {
+      j["rejected_parameter"] = r.rejected_parameter;
+      why = "the servo rejected the dataset: first invalid parameter " +
+            std::to_string(r.rejected_parameter) + " (80-SLOAD); the old dataset is back";
+    } else if (r.kind == lb::OutcomeKind::download_refused) {
+      j["failed_step"] = r.failed_step;
+      const auto step = r.failed_step;
+      why = "refused at " +
+            (step == lb::kDownloadStartStep                       ? std::string("80-SLOAD = -1")
+             : step >= static_cast<std::int32_t>(labels.size()) ? std::string("80-SLOAD = -2")
+                                                                 : labels[static_cast<std::size_t>(step)]) +
+            ": " + why;
+    }
+    if (r.siof) j["siof"] = *r.siof;
+    if (o.json) out << j.dump() << "\n";
+    err << "ibs lustbus download: " << who << ": " << why << "\n";
+    return kExitLustbusDevice;
+  } catch (const BadInput& e) {
+    err << "ibs lustbus " << name << ": " << e.what() << "\n";
+    return kExitLustbusBadInput;
+  }
+}
+
+int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& out,
+           std::ostream& err) {
+  const std::string name = which.get_name();
+  try {
+    if (o.timeout_ms <= 0) throw BadInput("--timeout-ms must be positive");
+    lb::HostConfig cfg;
+    cfg.response_timeout = std::chrono::milliseconds(o.timeout_ms);
+    nlohmann::json j;
+
+    if (name == "scan") {
+      HostPort hp = open_host_port(o.port);
+      lb::Host host(cfg);
+      const lb::Outcome r = transact_lustbus(*hp.port, host, lb::network_scan());
+      if (r.kind != lb::OutcomeKind::scan) return device_failure(name, "scan", r, j, o.json, out, err);
+      j["devices"] = nlohmann::json::array();
+      for (const lb::ScanEntry& e : r.scan.found()) {
+        const std::string fam = e.family ? std::string(lb::to_string(*e.family)) : "unknown";
+        const std::string kind = !e.family                          ? "unknown"
+                                 : *e.family == lb::Family::vf1000 ? "inverter"
+                                                                    : "servo";
+        j["devices"].push_back({{"address", e.address}, {"family", fam}, {"kind", kind},
+                                {"type", e.type}});
+        if (!o.json) {
+          out << "address " << int(e.address) << ": " << fam << " (" << kind << "), 91-TYPE "
+              << e.type << "\n";
+        }
+      }
+      if (o.json) out << j.dump() << "\n";
+      if (!o.json && r.scan.count == 0) out << "no device answered at 1..30\n";
+      return kExitLustbusOk;
+    }
+
+    if (o.addr < 0 || o.addr > 30) throw BadInput("--addr must be 0..30 (31 is broadcast)");
+    const lb::Family family = parse_family(o.device);
+    const Param p = find_param(family, o.parameter);
+    const auto addr = static_cast<lb::Address>(o.addr);
+    const std::string who = o.device + "@" + std::to_string(o.addr) + " " + label(p);
+    j["device"] = o.device;
+    j["address"] = o.addr;
+    j["parameter"] = p.number;
+    j["name"] = p.name;
+    if (!p.unit.empty()) j["unit"] = p.unit;
+
+    lb::Request req;
+    std::uint32_t written = 0;
+    if (name == "write") {
+      if (!o.value) throw BadInput("VALUE is required");
+      if (!p.writable) throw BadInput(label(p) + " is read-only");
+      written = parse_value(p, *o.value);
+      req = lb::select(addr, value_code(p, false), format_value(p, written));
+      if (p.prog) req.response_timeout = std::chrono::seconds(10);  // 10 exception 1
+    } else {
+      if (o.value) throw BadInput(name + " takes no VALUE");
+      req = lb::enquiry(addr, value_code(p, name == "describe"));
+    }
+    HostPort hp = open_host_port(o.port);
+    lb::Host host(cfg);
+    const lb::Outcome r = transact_lustbus(*hp.port, host, req);
+    const bool ok = name == "write" ? r.kind == lb::OutcomeKind::acknowledged
+                                    : r.kind == lb::OutcomeKind::value;
+    if (!ok) return device_failure(name, who, r, j, o.json, out, err);
+    j["outcome"] = std::string(lb::to_string(r.kind));
+
+    if (name == "describe") {
+      j["raw"] = std::string(r.value.view());
+      if (family == lb::Family::vf1000) {
+        const auto d = lb::parse_vf_description(r.value.view());
+        if (!d.ok()) throw std::runtime_error("description: " + std::string(lb::to_string(d.error)));
+        const auto t = lb::vf_type_from_char(d.value.type);
+        const lb::DataType dt = t.value_or(p.type);
+        j["value"] = {{"name", d.value.name_view()},
+                      {"unit", d.value.unit_view()},
+                      {"kind", std::string(1, d.value.kind)},
+                      {"type", std::string(lb::to_string(dt))},
+                      {"min", engineering_text(dt, d.value.min)},
+                      {"max", engineering_text(dt, d.value.max)},
+                      {"default", engineering_text(dt, d.value.basis)}};
+      } else {
+        const auto d = lb::parse_mc_description(r.value.view());
+        if (!d.ok()) throw std::runtime_error("description: " + std::string(lb::to_string(d.error)));
+        j["value"] = {{"name", d.value.name_view()},
+                      {"unit", d.value.unit},
+                      {"kind", std::string(1, d.value.kind)},
+                      {"type", std::string(lb::to_string(p.type))},
+                      {"min", engineering_text(p.type, d.value.min)},
+                      {"max", engineering_text(p.type, d.value.max)},
+                      {"default", engineering_text(p.type, d.value.reference)},
+                      {"attribute", d.value.attribute}};
+      }
+      if (o.json) {
+        out << j.dump() << "\n";
+      } else {
+        const auto& v = j["value"];
+        out << who << ": " << v["name"].get<std::string>() << ", kind "
+            << v["kind"].get<std::string>() << ", " << v["type"].get<std::string>() << ", min "
+            << v["min"].get<std::string>() << ", max " << v["max"].get<std::string>()
+            << ", default " << v["default"].get<std::string>() << "\n";
+      }
+      return kExitLustbusOk;
+    }
+
+    std::uint32_t bits = written;
+    if (name == "read") {
+      const auto b = lb::parse_typed(family, p.type, r.value.view());
+      if (!b.ok()) throw std::runtime_error("answer '" + std::string(r.value.view()) + "' is no " +
+                                            std::string(lb::to_string(p.type)));
+      bits = b.value;
+    }
+    const unsigned digits = lb::width_bits(p.type) / 4;
+    j["raw"] = bits;
+    j["raw_hex"] = hex_text(bits, digits);
+    const auto e = lb::to_engineering(p.type, bits);
+    if (e.ok()) {
+      j["value"] = e.value;
+    } else {
+      j["value"] = nullptr;
+    }
+    if (o.json) {
+      out << j.dump() << "\n";
+    } else {
+      out << who << (name == "write" ? " := " : " = ") << engineering_text(p.type, bits)
+          << (p.unit.empty() ? "" : " " + p.unit) << " (" << hex_text(bits, digits) << "H)\n";
+    }
+    return kExitLustbusOk;
+  } catch (const BadInput& e) {
+    err << "ibs lustbus " << name << ": " << e.what() << "\n";
+    return kExitLustbusBadInput;
+  } catch (const std::runtime_error& e) {
+    err << "ibs lustbus " << name << ": " << e.what() << "\n";
+    return kExitLustbusDevice;
+  }
+}
+
+void add_port_options(CLI::App* cmd, LustbusPortOptions& p) {
+  cmd->add_option("--baud", p.baud, "baud rate (default 9600; a pty ignores it); 7E1 always");
+  cmd->add_option("--log", p.log, "write every byte with time and direction to FILE");
+}
+
+void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) {
+  cmd->add_option("--port", o.port.port, "the serial port (e.g. /dev/ttyUSB0 or a pty)")
+      ->required();
+  if (parameter) {
+    cmd->add_option("--addr", o.addr, "the device's address, 1..30 (0: the only device)")
+        ->required();
+    cmd->add_option("--device", o.device, "vf1000 or mc6000: the parameter table to use")
+        ->required();
+    cmd->add_option("PARAM", o.parameter, "parameter number or name")->required();
+  }
+  cmd->add_option("--timeout-ms", o.timeout_ms, "response timeout in ms (default 250)");
+  cmd->add_flag("--json", o.json, "print JSON");
+  add_port_options(cmd, o.port);
+}
+
+}  // namespace
+
+void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
+                   const std::function<bool()>& stop) {
+  const Clock::time_point t0 = Clock::now();
+  std::array<std::uint8_t, 256> buf{};
+  while (!stop()) {
+    Time now = since(t0);
+    Duration wait = kServePoll;
+    for (const LustbusServed& d : devices) {
+      if (auto due = d.receiver->answer_due()) wait = std::min(wait, std::max(*due - now, Duration(0)));
+    }
+    const std::size_t n = port.read(buf, std::max(wait, Duration(100us)));
+    now = since(t0);
+    for (const LustbusServed& d : devices) {
+      d.advance(now);
+      for (std::size_t i = 0; i < n; ++i) d.receiver->receive(buf[i], now);
+    }
+    now = since(t0);
+    for (const LustbusServed& d : devices) {
+      const auto due = d.receiver->answer_due();
+      if (!due || *due > now) continue;
+      const auto a = d.receiver->take_answer(now);
+      if (!a.empty()) port.write(a);
+    }
+  }
+}
+
+lb::Outcome transact_lustbus(serial::SerialPort& port, lb::Host& host, const lb::Request& request) {
+  const Clock::time_point t0 = Clock::now();
+  port.discard_input();  // stale bytes are no answer to this request
+  const lb::Submitted s = host.submit(request);
+  if (!s) throw BadInput("request refused: " + std::string(lb::to_string(s.error)));
+  std::array<std::uint8_t, 256> buf{};
+  while (!host.idle() || host.output_pending()) {
+    host.step(since(t0));
+    const auto tx = host.take_output();
+    if (!tx.empty()) {
+      port.write(tx);
+      host.output_done(since(t0));
+      continue;
+    }
+    const Time now = since(t0);
+    const Time next = host.next_deadline();
+    const Duration wait =
+        next == Time::max() ? kServePoll : std::clamp(next - now, Duration(100us), kServePoll);
+    const std::size_t n = port.read(buf, wait);
+    for (std::size_t i = 0; i < n; ++i) host.receive(buf[i], since(t0));
+  }
+  const lb::Outcome* o = host.outcome(s.id);
+  return o != nullptr ? *o : lb::Outcome{};
+}
+
+void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
+  state.lustbus = app.add_subcommand(
+      "lustbus", "LUSTBUS (seed 000) over a serial port: emulate VF1000/MC6000 drives, or ask one "
+                 "(docs/lustbus.md)");
+  state.lustbus->require_subcommand(1);
+
+  LustbusEmulateOptions& eo = state.emulate_options;
+  state.emulate = state.lustbus->add_subcommand(
+      "emulate", "emulate drives on a port or a new pty until SIGINT/SIGTERM");
+  state.emulate->add_option("DEVICE", eo.devices, "vf1000@ADDR or mc6000@ADDR, one per drive")
+      ->required();
+  state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
+  state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
+  add_port_options(state.emulate, eo.port);
+
+  LustbusClientOptions& co = state.client_options;
+  state.read = state.lustbus->add_subcommand("read", "ENQUIRY: read a parameter's value");
+  add_client_options(state.read, co, true);
+  state.write = state.lustbus->add_subcommand("write", "SELECT: write a parameter's value");
+  add_client_options(state.write, co, true);
+  state.write
+      ->add_option_function<std::string>(
+          "VALUE", [&co](const std::string& v) { co.value = v; },
+          "in the parameter's unit, or raw with 0x")
+      ->required();
+  state.describe = state.lustbus->add_subcommand(
+      "describe", "ENQUIRY of the description (11.1 specifier 1, 11.2 specifier 3)");
+  add_client_options(state.describe, co, true);
+  state.download = state.lustbus->add_subcommand(
+      "download", "11.4: send a parameter dataset file (PARAM VALUE lines) to an MC6000 through "
+                  "the 80-SLOAD handshake");
+  state.download->add_option("--port", co.port.port, "the serial port")->required();
+  state.download->add_option("--addr", co.addr, "the servo's address, 1..30")->required();
+  state.download->add_option("FILE", co.parameter, "the dataset: `PARAM VALUE` per line")
+      ->required();
+  state.download->add_option("--timeout-ms", co.timeout_ms, "response timeout in ms (default 250)");
+  state.download->add_flag("--json", co.json, "print JSON");
+  add_port_options(state.download, co.port);
+  state.scan = state.lustbus->add_subcommand(
+      "scan", "ENQUIRY of 91-TYPE at 1..30, telling inverters from servos (5.2)");
+  add_client_options(state.scan, co, false);
+}
+
+std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::ostream& out,
+                                        std::ostream& err) {
+  if (state.lustbus == nullptr || !state.lustbus->parsed()) return std::nullopt;
+  if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
+  if (state.download->parsed()) return download_file(state.client_options, out, err);
+  for (const CLI::App* c : {state.read, state.write, state.describe, state.scan}) {
+    if (c->parsed()) return client(*c, state.client_options, out, err);
+  }
+  return kExitLustbusBadInput;
+}
+
+std::optional<int> run_lustbus_commands(const LustbusCommandState& state) {
+  return run_lustbus_commands(state, std::cout, std::cerr);
+}
+
+}  // namespace ibs::cli

@@ -1,0 +1,96 @@
+// `ibs lustbus ...`: LUSTBUS (seed 000) over a serial port (docs/lustbus.md, "Command line").
+//
+//   ibs lustbus emulate (--port PATH | --pty) [--baud N] DEVICE...     vf1000@ADDR, mc6000@ADDR
+//   ibs lustbus read     --port PATH --addr N --device vf1000|mc6000 PARAM
+//   ibs lustbus write    --port PATH --addr N --device vf1000|mc6000 PARAM VALUE
+//   ibs lustbus describe --port PATH --addr N --device vf1000|mc6000 PARAM
+//   ibs lustbus scan     --port PATH
+//   ibs lustbus download --port PATH --addr N FILE                      (MC6000, 11.4)
+//
+// with [--baud N] [--timeout-ms N] [--json] [--log FILE]. 7E1 (2.1); RS-485 direction control
+// (TIOCSRS485) is asked for and used where the port has it. PARAM is a number or a name; VALUE is
+// in the parameter's engineering unit, or raw with a 0x prefix. Exit codes: 0 ok, 1 the device
+// answered NAK (the 85-SIOF/SERR cause is printed) or not at all, 2 bad input. Floor 4: the
+// steady clock and real ports around the sans-I/O Host, Receiver and the wings' Responders.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "ibs/lustbus/host.hpp"
+#include "ibs/lustbus/receiver.hpp"
+#include "ibs/serial/serial_port.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace ibs::cli {
+
+inline constexpr int kExitLustbusOk = 0;
+inline constexpr int kExitLustbusDevice = 1;    // NAK, no answer, a broken answer
+inline constexpr int kExitLustbusBadInput = 2;  // bad options or values, a port that does not open
+
+struct LustbusPortOptions {
+  std::string port;
+  std::uint32_t baud = 9600;
+  std::string log;  // empty: no byte log
+};
+
+struct LustbusEmulateOptions {
+  LustbusPortOptions port;
+  bool pty = false;
+  std::vector<std::string> devices;  // vf1000@ADDR, mc6000@ADDR
+};
+
+struct LustbusClientOptions {
+  LustbusPortOptions port;
+  int addr = -1;
+  std::string device;  // vf1000 | mc6000
+  std::string parameter;  // PARAM; download: FILE
+  std::optional<std::string> value;
+  int timeout_ms = 250;
+  bool json = false;
+};
+
+struct LustbusCommandState {
+  CLI::App* lustbus = nullptr;
+  CLI::App* emulate = nullptr;
+  CLI::App* read = nullptr;
+  CLI::App* write = nullptr;
+  CLI::App* describe = nullptr;
+  CLI::App* scan = nullptr;
+  CLI::App* download = nullptr;
+  LustbusEmulateOptions emulate_options;
+  LustbusClientOptions client_options;
+};
+
+void add_lustbus_commands(CLI::App& app, LustbusCommandState& state);
+// After app.parse(): runs the chosen one; nullopt when `lustbus` was not chosen. `emulate` serves
+// until SIGINT or SIGTERM and then returns 0.
+std::optional<int> run_lustbus_commands(const LustbusCommandState& state);
+std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::ostream& out,
+                                        std::ostream& err);
+
+// The I/O loops, also for tests.
+//
+// A device on the line: the receiver and a hook that lets time pass for its drive.
+struct LustbusServed {
+  lustbus::Receiver* receiver = nullptr;
+  std::function<void(Time)> advance;
+};
+// Serves the devices on one port: every byte read goes to every receiver with the time since the
+// loop began; an answer is written when its reaction time has passed. Returns when stop() is true
+// (asked at least every 20 ms).
+void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
+                   const std::function<bool()>& stop);
+// Runs one request of the host in real time until the host is idle (its closing EOT written).
+lustbus::Outcome transact_lustbus(serial::SerialPort& port, lustbus::Host& host,
+                                  const lustbus::Request& request);
+
+}  // namespace ibs::cli
