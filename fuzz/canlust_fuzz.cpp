@@ -13,15 +13,25 @@
 //   to List_End, write_string() called) when its checksum is the XOR of the blocks echoed;
 // - client: every accepted request ends with exactly one documented outcome, and within its
 //   timeout (active since T with timeout D -> done once now >= T + D); a string read never ends
-//   `done` unless List_End's checksum is the XOR of the data blocks the client took.
+//   `done` unless List_End's checksum is the XOR of the data blocks the client took;
+// - the CDA3000 drive (devices/cda3000, the drive side through the wing), fed arbitrary frames,
+//   well-formed requests, control and system telegrams, time steps and mains resets: every status
+//   word it sends or shows is one of the eight DRIVECOM states; every request gets one reply;
+//   its parameters change only through a complete, checked transfer - a write answered 0 whose
+//   value passes the table (04-PROG: to the factory settings; 151-ASTPR: its data set), a string
+//   write closed with List_End answered 0 whose checksum is the XOR of the blocks echoed and whose
+//   text is theirs, a mains reset (the flash copy) - and the flash copy only through 150-SAVE;
+//   every setting always passes the table.
 //
-// Input: byte 0 selects the part (0: decoders, 1: cannelloni, 2: server, 3: client); the rest is
-// that part's input, read front to back.
+// Input: byte 0 selects the part (0: decoders, 1: cannelloni, 2: server, 3: client, 4: the
+// CDA3000 drive); the rest is that part's input, read front to back.
 #include <array>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +40,8 @@
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
+#include "ibs/devices/cda3000/device.hpp"
+#include "ibs/drivecom/status_word.hpp"
 
 namespace {
 
@@ -322,15 +334,192 @@ void client_part(Input& in) {
   for (const auto& t : tracked) IBS_FUZZ_REQUIRE(t.done, "request never ended");
 }
 
+namespace cda = ibs::devices::cda3000;
+
+struct Snapshot {
+  std::array<std::uint32_t, cda::kParameters.size()> current{};
+  std::array<std::uint32_t, cda::kParameters.size()> saved{};
+  std::string text;
+  std::string saved_text;
+};
+
+Snapshot snapshot(const cda::Cda3000& d) {
+  Snapshot s;
+  for (std::size_t i = 0; i < cda::kParameters.size(); ++i) {
+    const auto n = cda::kParameters[i].number;
+    if (n == cda::kReff) continue;  // the reference the drive follows, not a setting
+    s.current[i] = d.value(n).value_or(0);
+    s.saved[i] = d.saved_value(n).value_or(0);
+  }
+  s.text = std::string(d.text(cda::kName));
+  s.saved_text = std::string(d.saved_text(cda::kName));
+  return s;
+}
+
+// Numbers whose settings may change with a write of `number`.
+bool may_change(std::uint16_t written, std::uint32_t value, std::uint16_t changed) {
+  if (written == cda::kProg && value == 1) return true;
+  if (written == cda::kAstpr) {
+    return changed == cda::kAstpr || changed == cda::kAster || changed == cda::kFisa0 ||
+           changed == cda::kClsel || changed == cda::kRssl1;
+  }
+  return changed == written;
+}
+
+void check_settings(const cda::Cda3000& d) {
+  for (const auto& p : cda::kParameters) {
+    if (p.is_string() || p.number == cda::kReff) continue;
+    IBS_FUZZ_REQUIRE(cda::check_value(p, *d.value(p.number)) == cda::ValueCheck::ok, "a setting outside the table");
+    IBS_FUZZ_REQUIRE(cda::check_value(p, *d.saved_value(p.number)) == cda::ValueCheck::ok,
+                     "a saved setting outside the table");
+  }
+  IBS_FUZZ_REQUIRE(drivecom::decode_state(d.status_word()).has_value(), "status word matches no DRIVECOM state");
+}
+
+void drive_part(Input& in) {
+  cda::DeviceConfig c;
+  c.saved = cda::commissioned_for_bus(1, static_cast<std::uint8_t>(1 + in.ConsumeIntegral<std::uint8_t>() % 3));
+  c.saved.emplace_back(cda::kCawdg, in.ConsumeIntegral<std::uint8_t>() % 64);
+  c.saved.emplace_back(cda::kCascy, 1 + in.ConsumeIntegral<std::uint8_t>() % 64);
+  c.watchdog_reaction = static_cast<ErrorReaction>(in.ConsumeIntegral<std::uint8_t>() % 4);
+  c.save_time = 0ms;  // every reply at once: each request is matched with its reply below
+  c.prog_time = 0ms;
+  cda::Cda3000 d(c);
+  const IdentifierMap ids;
+  Time now{0};
+  d.power_on(now);
+  // The string write as the drive echoed it.
+  bool open = false;
+  std::uint16_t open_param = 0;
+  std::uint32_t xor_echoed = 0;
+  std::string blocks;
+  static constexpr std::uint16_t kNumbers[] = {cda::kProg, cda::kName, cda::kSave, cda::kAstpr, cda::kAster,
+                                               cda::kClsel, cda::kRssl1, cda::kDisp, cda::kReff, cda::kCacnf,
+                                               cda::kCamod, cda::kCladr, cda::kCawdg, cda::kCascy, cda::kOptn2,
+                                               999};
+  static constexpr std::uint8_t kModes[] = {kModeRead, kModeWrite, kModeDescribe, kModeStringRead,
+                                            kModeStringWrite, kModeListEnd, 0x33};
+  // Frames out: status words are DRIVECOM states; returns the replies.
+  const auto drain = [&](std::vector<ParameterTelegram>& replies) {
+    while (auto f = d.take_frame()) {
+      const auto k = ids.classify(f->id);
+      IBS_FUZZ_REQUIRE(k.has_value(), "the drive sent a foreign identifier");
+      if (k->kind == TelegramKind::status) {
+        const auto st = decode_status(*f, d.layout());
+        IBS_FUZZ_REQUIRE(st && drivecom::decode_state(st.value.word).has_value(),
+                         "status telegram matches no DRIVECOM state");
+      } else if (k->kind == TelegramKind::parameter_reply) {
+        replies.push_back(decode_parameter(*f).value);
+      }
+    }
+  };
+  while (in.remaining_bytes() > 0) {
+    const auto action = in.ConsumeIntegral<std::uint8_t>();
+    const Snapshot before = snapshot(d);
+    std::vector<ParameterTelegram> replies;
+    std::optional<ParameterTelegram> request;
+    if (action < 0x40) {
+      now += std::chrono::milliseconds(action);
+      d.step(now);
+    } else if (action < 0x48) {
+      d.power_on(now);  // a mains reset: the flash copy becomes the settings
+      const Snapshot after = snapshot(d);
+      IBS_FUZZ_REQUIRE(after.saved == before.saved && after.saved_text == before.saved_text, "mains reset changed the flash");
+      for (std::size_t i = 0; i < cda::kParameters.size(); ++i) {
+        if (cda::kParameters[i].number != cda::kReff && cda::kParameters[i].writable()) {
+          IBS_FUZZ_REQUIRE(after.current[i] == after.saved[i], "mains reset did not load the flash");
+        }
+      }
+      IBS_FUZZ_REQUIRE(after.text == after.saved_text, "mains reset did not load the text");
+      open = false;
+      drain(replies);
+      check_settings(d);
+      continue;
+    } else {
+      CanFrame f;
+      const Address a = d.address();
+      switch (action % 4) {
+        case 0: f = read_frame(in); break;
+        case 1: {
+          ParameterTelegram t;
+          t.parameter = kNumbers[in.ConsumeIntegral<std::uint8_t>() % std::size(kNumbers)];
+          t.code = kModes[in.ConsumeIntegral<std::uint8_t>() % std::size(kModes)];
+          const auto how = in.ConsumeIntegral<std::uint8_t>();
+          t.data = (how & 1U) != 0 ? xor_echoed : ((how & 2U) != 0 ? in.ConsumeIntegral<std::uint8_t>() % 8U
+                                                                     : in.ConsumeIntegral<std::uint32_t>());
+          t.block = in.ConsumeIntegral<std::uint8_t>() % 8;
+          f = *encode_parameter_request(ids, a, t);
+          break;
+        }
+        case 2:
+          f = *encode_control(ids, a, d.layout(),
+                              {in.ConsumeIntegral<std::uint16_t>(), in.ConsumeIntegral<std::int32_t>()});
+          break;
+        default: f = encode_system(in.ConsumeBool() ? SystemCommand::start : SystemCommand::stop); break;
+      }
+      const auto k = ids.classify(f.id);
+      if (k && k->kind == TelegramKind::parameter_request && k->address == a && !f.rtr && f.dlc >= 8) {
+        request = decode_parameter(f).value;
+      }
+      d.receive(f, now);
+    }
+    drain(replies);
+    const Snapshot after = snapshot(d);
+    check_settings(d);
+    if (request) {
+      IBS_FUZZ_REQUIRE(replies.size() == 1 && replies[0].parameter == request->parameter &&
+                           replies[0].block == request->block, "a request without exactly one reply");
+    }
+    const ParameterTelegram* rep = replies.empty() ? nullptr : &replies.back();
+    const bool accepted = request && rep != nullptr && rep->code == kStatusOk;
+    // The string machine as the drive echoed it (4.5.x writing).
+    if (request && request->code == kModeStringWrite && request->block == 0) {
+      open = accepted;
+      open_param = request->parameter;
+      xor_echoed = 0;
+      blocks.clear();
+    } else if (request && request->code == kModeStringWrite && open && accepted) {
+      xor_echoed ^= request->data;
+      for (unsigned i = 0; i < 4; ++i) blocks += static_cast<char>((request->data >> (8U * i)) & 0xFFU);
+    } else if (request && request->code != kModeListEnd) {
+      open = false;
+    }
+    // Settings: only a write answered 0, with a value the table takes.
+    for (std::size_t i = 0; i < cda::kParameters.size(); ++i) {
+      const auto n = cda::kParameters[i].number;
+      if (n == cda::kReff || before.current[i] == after.current[i]) continue;
+      IBS_FUZZ_REQUIRE(accepted && request->code == kModeWrite, "a setting changed without an accepted write");
+      IBS_FUZZ_REQUIRE(may_change(request->parameter, request->data, n), "a write changed another setting");
+      if (n == request->parameter) IBS_FUZZ_REQUIRE(after.current[i] == request->data, "a write stored another value");
+    }
+    if (before.saved != after.saved || before.saved_text != after.saved_text) {
+      IBS_FUZZ_REQUIRE(accepted && request->code == kModeWrite && request->parameter == cda::kSave &&
+                           request->data == 1 && after.saved == after.current && after.saved_text == after.text,
+                       "the flash changed without 150-SAVE");
+    }
+    if (before.text != after.text) {
+      const bool prog = accepted && request->code == kModeWrite && request->parameter == cda::kProg && request->data == 1;
+      if (!prog) {
+        IBS_FUZZ_REQUIRE(accepted && request->code == kModeListEnd && open && open_param == request->parameter &&
+                             request->data == xor_echoed,
+                         "a text changed without a complete string write with the right checksum");
+        IBS_FUZZ_REQUIRE(after.text == std::string(blocks.c_str()), "the text is not the blocks'");
+      }
+    }
+    if (request && request->code == kModeListEnd) open = false;
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Input in(data, size);
-  switch (in.ConsumeIntegral<std::uint8_t>() % 4) {
+  switch (in.ConsumeIntegral<std::uint8_t>() % 5) {
     case 0: decoders(in); break;
     case 1: cannelloni_part(in); break;
     case 2: server_part(in); break;
-    default: client_part(in); break;
+    case 3: client_part(in); break;
+    default: drive_part(in); break;
   }
   return 0;
 }

@@ -1,5 +1,6 @@
 // CANLust speed: telegram coding, one parameter read both sides in memory (client -> frame ->
-// server -> drive -> frame -> client), a string read, and the exact frame length with stuffing.
+// server -> drive -> frame -> client), a string read, the exact frame length with stuffing, and
+// the CDA3000 master driver's cycle for 100 drives (issue 12: under 2 us).
 #include <benchmark/benchmark.h>
 
 #include <span>
@@ -9,6 +10,7 @@
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
+#include "ibs/devices/cda3000/driver.hpp"
 
 namespace {
 
@@ -121,5 +123,73 @@ void BM_FrameBitsWithStuffing(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_FrameBitsWithStuffing);
+
+// The CDA3000 master driver's cycle for 100 drives (addresses 0..99), all held in ENABLED with
+// a reference: the sequencers on the drives' last status words, the control telegrams due, and
+// the frames taken out of the outbox (not put on a bus).
+struct HundredDrives {
+  devices::cda3000::Driver driver;
+  IdentifierMap ids;
+  ProcessLayout layout = *process_layout_for_cacnf(2);
+  Time now{0};
+
+  static devices::cda3000::DriverConfig config() {
+    devices::cda3000::DriverConfig c;
+    for (unsigned a = 0; a < 100; ++a) c.drives.push_back({static_cast<Address>(a), 2, 400.0});
+    return c;
+  }
+  HundredDrives() : driver(config()) {
+    driver.system_start(now);
+    for (unsigned a = 0; a < 100; ++a) {
+      const auto ad = static_cast<Address>(a);
+      driver.request(ad, drivecom::Target::enabled, now);
+      driver.set_reference_hz(ad, 10.0 + 0.25 * a);
+      status(ad);
+    }
+    for (int i = 0; i < 3; ++i) cycle(1ms);  // every sequencer reached ENABLED
+  }
+  void status(Address a) {
+    driver.receive(*encode_status(ids, a, layout, {0x0637, q16_from_double(10.0 + 0.25 * a)}), now);
+  }
+  std::size_t cycle(Duration dt) {
+    now += dt;
+    driver.cycle(now);
+    std::size_t n = 0;
+    while (auto f = driver.take_frame()) {
+      benchmark::DoNotOptimize(f);
+      ++n;
+    }
+    return n;
+  }
+};
+
+// A 1 ms master cycle: the status telegrams of that millisecond (575-CASCY 80 ms: 100 drives
+// spread over it, about 1.25 each cycle) taken in, the cycle, the control telegrams that fall due
+// (control period 50 ms: 2 each cycle).
+void BM_Cda3000MasterCycle100Drives(benchmark::State& state) {
+  HundredDrives h;
+  std::size_t frames = 0;
+  std::uint64_t tick = 0;
+  for (auto _ : state) {
+    // Drive a sends its status at a x 0.8 ms in every 80 ms.
+    const std::uint64_t ms = tick % 80;
+    for (unsigned a = 0; a < 100; ++a) {
+      if ((a * 8U) / 10U == ms) h.status(static_cast<Address>(a));
+    }
+    frames += h.cycle(1ms);
+    ++tick;
+  }
+  state.counters["frames/cycle"] = benchmark::Counter(static_cast<double>(frames) / static_cast<double>(state.iterations()));
+}
+BENCHMARK(BM_Cda3000MasterCycle100Drives);
+
+// The worst cycle: every drive's control telegram due at once (100 frames encoded and queued).
+void BM_Cda3000MasterCycle100DrivesAllDue(benchmark::State& state) {
+  HundredDrives h;
+  std::size_t frames = 0;
+  for (auto _ : state) frames += h.cycle(50ms);
+  state.counters["frames/cycle"] = benchmark::Counter(static_cast<double>(frames) / static_cast<double>(state.iterations()));
+}
+BENCHMARK(BM_Cda3000MasterCycle100DrivesAllDue);
 
 }  // namespace

@@ -44,9 +44,37 @@ f.err_location = ProtoField.uint8("canlust.error.location", "Error location", ba
 f.err_reaction = ProtoField.uint8("canlust.error.reaction", "Error reaction", base.DEC,
   { [0] = "WRN", [1] = "STOP", [2] = "quick stop", [3] = "disable power" })
 
+f.state = ProtoField.string("canlust.drivecom_state", "DRIVECOM state")
+f.command = ProtoField.string("canlust.drivecom_command", "DRIVECOM command")
+f.pname = ProtoField.string("canlust.parameter_name", "CDA3000 parameter")
+
+-- DRIVECOM (the CDA3000 with 492-CACNF 1..3): the state table of the status word and the command
+-- table of the control word (seed 001, 5.1.2 / 5.1.3; drivecom/), rows as mask, value, name.
+local states = { {0x4F, 0x00, "NOT READY"}, {0x4F, 0x40, "START-UP INHIBIT"}, {0x6F, 0x21, "READY"},
+                 {0x6F, 0x23, "ON"}, {0x6F, 0x27, "ENABLED"}, {0x4F, 0x08, "FAULT"},
+                 {0x4F, 0x0F, "FAULT RESPONSE ACTIVE"}, {0x6F, 0x07, "EMERGENCY STOP ACTIVE"} }
+local commands = { {0x02, 0x00, "BLOCK POWER"}, {0x06, 0x02, "EMERGENCY STOP"}, {0x07, 0x06, "SHUTDOWN"},
+                   {0x0F, 0x07, "POWER-ON/DISABLE"}, {0x0F, 0x0F, "POWER-ON/ENABLE"} }
+local function lookup(rows, word)
+  for _, r in ipairs(rows) do
+    if bit32.band(word, r[1]) == r[2] then return r[3] end
+  end
+  return "no DRIVECOM state"
+end
+
+-- The CDA3000's parameter names (devices/cda3000/parameters.hpp; the test
+-- CanlustDissector.ParameterNamesAreTheWings keeps the two equal).
+local cda3000 = {
+  [4] = "04-PROG", [90] = "90-NAME", [150] = "150-SAVE", [151] = "151-ASTPR", [152] = "152-ASTER",
+  [180] = "180-FISA0", [260] = "260-CLSEL", [280] = "280-RSSL1", [360] = "360-DISP", [406] = "406-REFF",
+  [489] = "489-CLBDR", [492] = "492-CACNF", [570] = "570-CAMOD", [571] = "571-CLADR", [574] = "574-CAWDG",
+  [575] = "575-CASCY", [578] = "578-OPTN2", [651] = "651-CDSSL",
+}
+
 p.prefs.step = Pref.uint("Identifier step", 2, "identifier = base + step x address (1: the text, 2: the examples)")
 p.prefs.max_address = Pref.uint("Highest address", 99, "addresses 0..N")
 p.prefs.value32 = Pref.bool("32-bit values", true, "control/status carry a Q16 32-bit value (492-CACNF 2..4)")
+p.prefs.drivecom = Pref.bool("DRIVECOM words", true, "control/status words are DRIVECOM (492-CACNF 1..3), not EasyDrive")
 
 local table_ids = {}
 
@@ -78,15 +106,23 @@ function p.dissector(tvb, pinfo, tree)
   elseif (kind == 2 or kind == 3) and n >= 2 then
     t:add_le(kind == 2 and f.control or f.status_word, tvb(0, 2))
     local word = tvb(0, 2):le_uint()
+    local meaning = ""
+    if p.prefs.drivecom then
+      meaning = (kind == 2) and lookup(commands, word) or lookup(states, word)
+      t:add(kind == 2 and f.command or f.state, meaning):set_generated()
+      meaning = " " .. meaning
+    end
     if p.prefs.value32 and n >= 6 then
       t:add_le(f.value32, tvb(2, 4))
       t:add(f.q16, tvb(2, 4):le_int() / 65536.0):set_generated()
     elseif n >= 4 then
       t:add_le(f.value16, tvb(2, 2))
     end
-    info = string.format("%s %d: word %04X", kinds[kind], address, word)
+    info = string.format("%s %d: word %04X%s", kinds[kind], address, word, meaning)
   elseif (kind == 4 or kind == 5) and n >= 8 then
     t:add_le(f.param, tvb(0, 2))
+    local name = cda3000[tvb(0, 2):le_uint()]
+    if name then t:add(f.pname, name):set_generated() end
     if kind == 4 then
       t:add(f.mode, tvb(2, 1))
     else

@@ -1,0 +1,149 @@
+// The emulated CDA3000 inverter with its CM-CAN1 module (seed 003): the CANLust node of the core
+// (system states, logon, stored command, cyclic status, watchdog, parameter channel), the DRIVECOM
+// device state machine of drivecom/ (5.4.2: "the DRIVECOM state machine", the same as the
+// INTERBUS drives'), the parameters of parameters.hpp with their flash copy (150-SAVE, mains
+// reset), and a first-order speed plant.
+//
+//   Cda3000 drive({.connector_address = 1});
+//   drive.power_on(now);
+//   drive.receive(frame, now);    // every frame from the bus
+//   drive.step(now);              // cyclic telegrams, watchdog, delayed replies, the plant
+//   while (auto f = drive.take_frame()) bus.send(*f);
+//   drive.next_deadline();        // when step() next has something to do
+//
+// Time is passed in; nothing inside reads a clock or starts a thread. receive, step, take_frame
+// and next_deadline allocate nothing and throw nothing; power_on (re)builds the node from the
+// parameters (address, layout), which allocates its outbox - a mains reset is not the frame path.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "ibs/canlust/node.hpp"
+#include "ibs/canlust/parameter_channel.hpp"
+#include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/devices/cda3000/plant.hpp"
+#include "ibs/drivecom/device_state_machine.hpp"
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::devices::cda3000 {
+
+struct DeviceConfig {
+  // 2.1: the address coded on the connector, 0..7; used when 571-CLADR is 0.
+  std::uint8_t connector_address = 0;
+  canlust::IdentifierMap ids{};
+  PlantConfig plant{};
+  // 4.3.3: "data backup takes a few hundred milliseconds": the reply to 150-SAVE = 1 comes then.
+  Duration save_time = 300ms;
+  // p. 13: the reply to 04-PROG = 1 comes "only when the command is complete" (time invented).
+  Duration prog_time = 500ms;
+  // 6.1: the error reaction programmed for the bus watchdog (574-CAWDG); D15: disable power.
+  canlust::ErrorReaction watchdog_reaction = canlust::ErrorReaction::disable_power;
+  // Flash values other than the factory settings (a commissioned drive), e.g. {571, 1}; checked
+  // by the constructor like a write.
+  std::vector<std::pair<std::uint16_t, std::uint32_t>> saved{};
+  std::size_t outbox_capacity = 32;
+};
+
+// The parameters of a drive commissioned for the bus as 7.1.2 does it: 151-ASTPR / 152-ASTER
+// BUS_1 (which selects 260-CLSEL, 280-RSSL1 and 180-FISA0 = OPTN2), 571-CLADR and 492-CACNF.
+std::vector<std::pair<std::uint16_t, std::uint32_t>> commissioned_for_bus(std::uint8_t address,
+                                                                          std::uint8_t cacnf = 2);
+
+struct DeviceCounters {
+  std::uint32_t controls_executed = 0;  // control telegrams executed (at once or at the Start)
+  std::uint32_t controls_ignored = 0;   // 260-CLSEL is not OPTN2: the bus is not the control location
+  std::uint32_t watchdog_trips = 0;
+  std::uint32_t writes = 0;             // accepted value and string writes
+};
+
+class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAccess {
+ public:
+  // Throws std::invalid_argument for a connector address above 7 or a saved value the table
+  // refuses (naming the parameter, the value and the limit).
+  explicit Cda3000(const DeviceConfig& config);
+
+  // Mains on (or a mains reset): flash -> settings, the node rebuilt with 571-CLADR (or the
+  // connector's address), 492-CACNF, 574-CAWDG and 575-CASCY; DRIVECOM from NOT READY.
+  void power_on(Time now);
+  void power_off();
+  void receive(const canlust::CanFrame& f, Time now);
+  void step(Time now);
+  std::optional<canlust::CanFrame> take_frame();
+  [[nodiscard]] Time next_deadline() const;
+
+  // ---- observation --------------------------------------------------------------------------
+  [[nodiscard]] bool powered() const { return node_.has_value(); }
+  [[nodiscard]] canlust::Address address() const { return address_; }
+  [[nodiscard]] const canlust::ProcessLayout& layout() const { return layout_; }
+  // 489-CLBDR in bit/s as the node runs (from the last power-on).
+  [[nodiscard]] std::uint32_t bitrate() const { return bitrate_; }
+  [[nodiscard]] canlust::SystemState system_state() const;
+  [[nodiscard]] drivecom::State state() const { return sm_.state(); }
+  // When the DRIVECOM state last changed.
+  [[nodiscard]] Time state_since() const { return state_since_; }
+  [[nodiscard]] ibs::Word status_word() const;
+  [[nodiscard]] double actual_hz(Time now) const { return plant_.hz(now); }
+  // The reference the drive follows (0 unless 280-RSSL1 = OPTN2), limited to +-fmax.
+  [[nodiscard]] double reference_hz() const;
+  [[nodiscard]] bool warning() const { return warning_; }
+  [[nodiscard]] std::optional<canlust::ErrorReaction> fault() const { return fault_; }
+  // A parameter's setting (the wire image) / text; nullopt for numbers the table lacks.
+  [[nodiscard]] std::optional<std::uint32_t> value(std::uint16_t number) const;
+  [[nodiscard]] std::optional<std::uint32_t> saved_value(std::uint16_t number) const;
+  [[nodiscard]] std::string_view text(std::uint16_t number) const;
+  [[nodiscard]] std::string_view saved_text(std::uint16_t number) const;
+  [[nodiscard]] const canlust::Node* node() const { return node_ ? &*node_ : nullptr; }
+  [[nodiscard]] const DeviceCounters& counters() const { return counters_; }
+  [[nodiscard]] const DeviceConfig& config() const { return config_; }
+
+  // ---- canlust::DriveProcess -------------------------------------------------------------------
+  void execute(const canlust::ControlTelegram& t, Time now) override;
+  canlust::StatusTelegram status(Time now) override;
+  std::optional<canlust::ErrorTelegram> watchdog_expired(const canlust::WatchdogEvent& e) override;
+  void system_state_changed(canlust::SystemState s, Time now) override;
+
+  // ---- canlust::ParameterAccess ----------------------------------------------------------------
+  canlust::ValueResult read(std::uint16_t number, std::uint8_t index, Time now) override;
+  canlust::AccessResult write(std::uint16_t number, std::uint8_t index, std::uint32_t value, Time now) override;
+  canlust::ValueResult describe(std::uint16_t number, std::uint8_t item, Time now) override;
+  canlust::StringResult read_string(std::uint16_t number, std::span<char> out, Time now) override;
+  canlust::AccessResult begin_string_write(std::uint16_t number, Time now) override;
+  canlust::AccessResult write_string(std::uint16_t number, std::string_view text, Time now) override;
+
+ private:
+  using Values = std::array<std::uint32_t, kParameters.size()>;
+  [[nodiscard]] std::uint32_t get(std::uint16_t number) const;
+  void set(std::uint16_t number, std::uint32_t value);
+  void apply_live(std::uint16_t number, Time now);
+  void load_preset(std::uint32_t data_set, Time now);
+  void advance(Time now);
+  void sample(Time now);
+  void drive_plant(Time now);
+  [[nodiscard]] bool awaiting_stop() const;
+  [[nodiscard]] bool bus_controls() const;
+
+  DeviceConfig config_;
+  Values current_{};
+  Values saved_{};
+  canlust::FixedString name_{};
+  canlust::FixedString name_saved_{};
+  std::optional<canlust::Node> node_;
+  canlust::Address address_ = 0;
+  canlust::ProcessLayout layout_{};
+  std::uint32_t bitrate_ = 500'000;
+  drivecom::DeviceStateMachine sm_{drivecom::EmergencyStopExit::automatic_when_stopped};
+  ibs::Word control_ = 0;
+  Time state_since_{};
+  double reference_hz_ = 0.0;  // as received, before the +-fmax limit
+  SpeedPlant plant_{};
+  bool warning_ = false;
+  std::optional<canlust::ErrorReaction> fault_;
+  DeviceCounters counters_{};
+};
+
+}  // namespace ibs::devices::cda3000

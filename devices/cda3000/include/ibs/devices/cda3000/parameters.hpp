@@ -1,0 +1,239 @@
+// The CDA3000 parameters that seed 003 (CM-CAN1 manual, fragments) and the notes name, as the
+// drive serves them over the CANLust parameter channel and as the master checks them before it
+// sends a write. Values are the 32-bit wire images of 4.1.1 (INT32Q16: the raw Q16 number).
+//
+// Where the seed prints a range, a factory setting, a unit, a data type or a substitution-text
+// code, the row uses it and `source` cites it; everything else is a modelling choice marked
+// `invented` with what was invented (docs/canlust.md, "The CDA3000 wing", decisions D21-D33).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "ibs/canlust/data_types.hpp"
+
+namespace ibs::devices::cda3000 {
+
+using canlust::DataType;
+
+// Seed 003, 4.3 tables: "Memory type FLASH" (saved by 150-SAVE, loaded at power-on) or RAM.
+enum class Memory : std::uint8_t { flash, ram };
+enum class Access : std::uint8_t { read_write, read_only };
+// 7.1.1 / 7.1.2 step 4-5: "Back up settings in device (150-SAVE), mains reset to reinitialize":
+// the bus settings act after a mains reset; the others at once.
+enum class Effect : std::uint8_t { at_once, after_mains_reset };
+
+// A substitution text of a selector parameter (4.1: "numerical value = substitution text").
+struct Choice {
+  std::uint32_t code;
+  std::string_view name;
+  std::string_view text;
+};
+
+struct ParameterInfo {
+  std::uint16_t number;
+  std::string_view name;        // the manual's short name, e.g. "CAWDG" (shown as 574-CAWDG)
+  std::string_view text;
+  DataType type;
+  std::int64_t min;             // limits and factory setting as numbers of the wire image's type
+  std::int64_t max;             //   (INT32Q16: raw Q16; STRING: length 0..99)
+  std::int64_t factory;
+  std::string_view unit;
+  Memory memory;
+  Access access;
+  Effect effect;
+  std::span<const Choice> choices;  // empty: any number in min..max
+  bool invented;                // some of type / range / factory / unit / codes is a choice
+  std::string_view source;      // where the row comes from, and what is invented
+
+  [[nodiscard]] constexpr bool writable() const { return access == Access::read_write; }
+  [[nodiscard]] constexpr bool is_string() const { return type == DataType::string; }
+};
+
+// Numbers with behaviour beyond storing a value.
+inline constexpr std::uint16_t kProg = 4;      // 1.x exceptions: 1 = factory settings
+inline constexpr std::uint16_t kName = 90;     // invented: a user text (a writable string)
+inline constexpr std::uint16_t kFisa0 = 180;
+inline constexpr std::uint16_t kSave = 150;    // 3.5.1 / 4.3.3
+inline constexpr std::uint16_t kAstpr = 151;   // 4.2 table: original application data set
+inline constexpr std::uint16_t kAster = 152;   // current application data set
+inline constexpr std::uint16_t kClsel = 260;   // 4.3.2 control location
+inline constexpr std::uint16_t kRssl1 = 280;   // 4.3.2 reference selector 1
+inline constexpr std::uint16_t kDisp = 360;    // 7.1.3 continuous actual value
+inline constexpr std::uint16_t kReff = 406;    // 7.1.3 current reference frequency
+inline constexpr std::uint16_t kClbdr = 489;   // 4.3.1
+inline constexpr std::uint16_t kCacnf = 492;   // 4.3.2
+inline constexpr std::uint16_t kCamod = 570;   // 4.3.1
+inline constexpr std::uint16_t kCladr = 571;   // 2.1, 4.3.1
+inline constexpr std::uint16_t kCawdg = 574;   // 4.3.1
+inline constexpr std::uint16_t kCascy = 575;   // 4.3.1
+inline constexpr std::uint16_t kOptn2 = 578;   // 3.3: the module found at option slot 2
+inline constexpr std::uint16_t kCdssl = 651;   // 5.4.1 footnote 2
+
+// Substitution-text codes. Seed 003 prints three: 280-RSSL1 "7 TBSEL" (5.4.1 footnote 1), the
+// range "0 FCON .. 11 FMAX" with 1 FA0, 2 FA1, 4 FPOT (4.3.2), and 651-CDSSL "6 OPTN2" (footnote
+// 2). OPTN2 is 6 in every selector (the one code the seed gives for it, decision D22).
+inline constexpr std::uint32_t kOptn2Code = 6;
+inline constexpr std::uint32_t kClselTerm = 0;      // invented
+inline constexpr std::uint32_t kRsslFcon = 0;
+inline constexpr std::uint32_t kRsslFa0 = 1;
+inline constexpr std::uint32_t kRsslTbsel = 7;
+inline constexpr std::uint32_t kRsslFmax = 11;
+inline constexpr std::uint32_t kDataSetDrv1 = 0;    // invented codes of the application data sets
+inline constexpr std::uint32_t kDataSetBus1 = 1;
+inline constexpr std::uint32_t kCamodSlave = 0;     // invented
+inline constexpr std::uint32_t kCamodMaster = 1;    // invented; the emulator refuses it (D26)
+inline constexpr std::uint32_t kFunctionOff = 0;    // invented
+
+inline constexpr std::array<Choice, 2> kChoicesProg{{
+    {0, "-", "no action"}, {1, "DEF", "overwrite every setting with its factory value"}}};
+inline constexpr std::array<Choice, 2> kChoicesSave{{
+    {0, "READY", "nothing to do / backup finished"}, {1, "START", "back up the settings (BUSY meanwhile)"}}};
+inline constexpr std::array<Choice, 2> kChoicesDataSet{{
+    {kDataSetDrv1, "DRV_1", "drive data set 1 (terminal operation)"},
+    {kDataSetBus1, "BUS_1", "bus data set 1 (control and reference over the bus)"}}};
+inline constexpr std::array<Choice, 2> kChoicesFisa0{{
+    {kFunctionOff, "OFF", "no function"}, {kOptn2Code, "OPTN2", "module at option slot 2"}}};
+inline constexpr std::array<Choice, 2> kChoicesClsel{{
+    {kClselTerm, "TERM", "control terminals"},
+    {kOptn2Code, "OPTN2", "module at option slot 2: bytes 0-1 of the control telegram"}}};
+inline constexpr std::array<Choice, 7> kChoicesRssl1{{
+    {kRsslFcon, "FCON", "constant frequency"},
+    {kRsslFa0, "FA0", "analog input 0"},
+    {2, "FA1", "analog input 1"},
+    {4, "FPOT", "MOP function"},
+    {kOptn2Code, "OPTN2", "module at option slot 2: bytes 2-5 of the control telegram"},
+    {kRsslTbsel, "TBSEL", "table references selected by control bits"},
+    {kRsslFmax, "FMAX", "maximum frequency"}}};
+inline constexpr std::array<Choice, 4> kChoicesCacnf{{
+    {1, "DC16", "DRIVECOM, 16-bit reference and actual value"},
+    {2, "DCQ16", "DRIVECOM, Q16 reference and actual value"},
+    {3, "DCQ16I16", "DRIVECOM, Q16 reference, 16-bit actual value"},
+    {4, "EASY", "EasyDrive direct control, Q16 values"}}};
+inline constexpr std::array<Choice, 2> kChoicesCamod{{
+    {kCamodSlave, "SLAVE", "CANLust slave"}, {kCamodMaster, "MASTER", "CANLust master"}}};
+inline constexpr std::array<Choice, 3> kChoicesCdssl{{
+    {0, "CDS1", "characteristic data set 1"},
+    {1, "CDS2", "characteristic data set 2"},
+    {kOptn2Code, "OPTN2", "selected by the CUSEL bit over the bus"}}};
+
+// Q16 limits of 406-REFF (the drive's +-fmax is a setting of the emulator).
+inline constexpr std::int64_t kQ16Min = -2147483648LL;
+inline constexpr std::int64_t kQ16Max = 2147483647LL;
+
+// clang-format off
+inline constexpr std::array<ParameterInfo, 18> kParameters{{
+  {kProg, "PROG", "reset to factory settings", DataType::usign8, 0, 1, 0, "",
+   Memory::ram, Access::read_write, Effect::at_once, kChoicesProg, true,
+   "seed 003 p. 13: 1 makes the drive overwrite all settings with their defaults, the reply "
+   "comes when that is done; type, range, names invented"},
+  {kName, "NAME", "device name (user text)", DataType::string, 0, 99, 0, "",
+   Memory::flash, Access::read_write, Effect::at_once, {}, true,
+   "invented: seed 003 names no string parameter that can be written (D24)"},
+  {kSave, "SAVE", "back up the settings in the device", DataType::usign8, 0, 1, 0, "",
+   Memory::ram, Access::read_write, Effect::at_once, kChoicesSave, true,
+   "seed 003 3.5.1: '150-SAVE = 1 START', 'takes a few hundred milliseconds', 7.1.1 step 4 "
+   "'1 BUSY'; READY and the codes invented"},
+  {kAstpr, "ASTPR", "original application data set", DataType::usign8, 0, 1, kDataSetDrv1, "",
+   Memory::flash, Access::read_write, Effect::at_once, kChoicesDataSet, true,
+   "seed 003 4.2 table: factory DRV_1, changed value BUS_1; codes and the preset it loads "
+   "invented (D23)"},
+  {kAster, "ASTER", "current application data set", DataType::usign8, 0, 1, kDataSetDrv1, "",
+   Memory::flash, Access::read_write, Effect::at_once, kChoicesDataSet, true,
+   "seed 003 4.2 table: factory DRV_1, changed value BUS_1; codes invented"},
+  {kFisa0, "FISA0", "function selector analog standard input 0", DataType::usign8, 0, 6,
+   kFunctionOff, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesFisa0, true,
+   "seed 003 4.2 table: factory OFF, changed value OPTN2; codes invented"},
+  {kClsel, "CLSEL", "control location", DataType::usign8, 0, 6, kClselTerm, "",
+   Memory::flash, Access::read_write, Effect::at_once, kChoicesClsel, true,
+   "seed 003 4.3.2: 'with CLSEL = OPTN2 the control word is formed from bytes 0 and 1 of the "
+   "control identifier'; TERM, the codes and the factory setting invented"},
+  {kRssl1, "RSSL1", "reference selector 1", DataType::usign8, 0, 11, kRsslFmax, "",
+   Memory::flash, Access::read_write, Effect::at_once, kChoicesRssl1, true,
+   "seed 003 4.3.2 row '_28RS 0 FCON 11 FMAX 11 FMAX USIGN8 FLASH', 1 FA0, 2 FA1, 4 FPOT; 5.4.1 "
+   "'7 TBSEL'; OPTN2 = 6 invented (D22)"},
+  {kDisp, "DISP", "parameter shown as the continuous actual value", DataType::usign16, 0, 999,
+   kReff, "", Memory::flash, Access::read_write, Effect::at_once, {}, true,
+   "seed 003 7.1.3: reads 406 (406-REFF), the example writes 14; type and range 0..999 "
+   "(a parameter number, 4.4) invented"},
+  {kReff, "REFF", "current reference frequency", DataType::int32q16, kQ16Min, kQ16Max, 0, "Hz",
+   Memory::ram, Access::read_only, Effect::at_once, {}, true,
+   "seed 003 7.1.3: '406-REFF current reference frequency'; type INT32Q16 in Hz invented"},
+  {kClbdr, "CLBDR", "CAN bus baud rate", DataType::usign16, 25, 500, 500, "kBaud",
+   Memory::flash, Access::read_write, Effect::after_mains_reset, {}, false,
+   "seed 003 4.3.1: 25..500, factory 500; 7.1.1: save, then mains reset"},
+  {kCacnf, "CACNF", "control and reference configuration", DataType::usign8, 1, 4, 2, "",
+   Memory::flash, Access::read_write, Effect::after_mains_reset, kChoicesCacnf, true,
+   "seed 003 4.3.2, 5.5.5, 7.1: 2 DRIVECOM (7.1.2), 4 EasyDrive (7.1.1); map D5; factory 2 "
+   "invented"},
+  {kCamod, "CAMOD", "function selection of the option module", DataType::usign8, 0, 1,
+   kCamodSlave, "", Memory::flash, Access::read_write, Effect::after_mains_reset, kChoicesCamod,
+   true, "seed 003 4.3.1: 'Function selection option module CANLUST Slave Ma...'; codes invented"},
+  {kCladr, "CLADR", "CAN address (0: the connector's)", DataType::usign8, 0, 99, 0, "",
+   Memory::flash, Access::read_write, Effect::after_mains_reset, {}, true,
+   "seed 003 2.1: the connector's address 0..7 is used when CLADR = 0; 4.3.1; 7.1: mains reset; "
+   "range 0..99 from the notes' addresses, factory 0 invented"},
+  {kCawdg, "CAWDG", "CAN bus watchdog time", DataType::usign8, 0, 255, 0, "ms",
+   Memory::flash, Access::read_write, Effect::at_once, {}, false,
+   "seed 003 4.3.1: 0..255 ms, factory 0, 0 deactivates the watchdog"},
+  {kCascy, "CASCY", "sampling time of the status message", DataType::usign16, 1, 32000, 80, "ms",
+   Memory::flash, Access::read_write, Effect::at_once, {}, false,
+   "seed 003 4.3.1: 1..32000 ms, factory 80"},
+  {kOptn2, "OPTN2", "module found at option slot 2", DataType::string, 0, 99, 0, "",
+   Memory::ram, Access::read_only, Effect::at_once, {}, true,
+   "seed 003 3.3: 'verify the value in parameter 578-OPTN2 (LCAN)'; a read-only STRING 'LCAN' "
+   "invented (D24)"},
+  {kCdssl, "CDSSL", "characteristic data set selection", DataType::usign8, 0, 6, 0, "",
+   Memory::flash, Access::read_write, Effect::at_once, kChoicesCdssl, true,
+   "seed 003 5.4.1 footnote 2: '651-CDSSL = 6 OPTN2' lets the CUSEL bit switch data sets 1 and "
+   "2; CDS1, CDS2 and the factory setting invented"},
+}};
+// clang-format on
+
+// The factory text of 90-NAME and the constant of 578-OPTN2 (3.3: the CM-CAN1 shows as LCAN).
+inline constexpr std::string_view kNameFactory = "CDA3000";
+inline constexpr std::string_view kOptn2Module = "LCAN";
+
+// The row of a parameter; nullptr when the CDA3000 has none here (reply status 20H).
+const ParameterInfo* find_parameter(std::uint16_t number);
+// By "574", "CAWDG" or "574-CAWDG" (case-insensitive names); nullptr when none matches.
+const ParameterInfo* find_parameter(std::string_view text);
+// The row's position in kParameters (for per-parameter storage); nullopt when none.
+std::optional<std::size_t> parameter_index(std::uint16_t number);
+// "574-CAWDG".
+std::string display_name(const ParameterInfo& p);
+
+const Choice* find_choice(const ParameterInfo& p, std::uint32_t code);
+const Choice* find_choice(const ParameterInfo& p, std::string_view name);
+
+// The number a wire image stands for: sign-extended for the signed types (INT32Q16: raw Q16).
+std::int64_t number_of(const ParameterInfo& p, std::uint32_t wire);
+// The wire image of a number (the inverse of number_of for numbers of the type).
+std::uint32_t wire_of(const ParameterInfo& p, std::int64_t number);
+
+// Why a value is refused (4.5 reply status 80H "impermissible value"): it does not fit the data
+// type, lies outside min..max, or is no substitution-text code of a selector.
+enum class ValueCheck : std::uint8_t { ok, wrong_type, below_min, above_max, not_a_choice };
+std::string_view to_string(ValueCheck c);
+// No allocation: the drive checks every write with it, the master before it sends one.
+ValueCheck check_value(const ParameterInfo& p, std::uint32_t wire);
+
+// "20.5 Hz", "6 (OPTN2)", "80 ms" (allocates: for reports).
+std::string format_value(const ParameterInfo& p, std::uint32_t wire);
+// "574-CAWDG: 300 ms is above the maximum 255 ms" for a refused value.
+std::string describe_refusal(const ParameterInfo& p, std::uint32_t wire, ValueCheck c);
+
+// A value given as text (command line, scenario): a number, a substitution text ("OPTN2"), or for
+// INT32Q16 a decimal number of the unit ("20.5"). Checked against the row: `error` says which
+// parameter, which value and which limit when it is refused.
+struct ParsedValue {
+  std::optional<std::uint32_t> wire;
+  std::string error;
+};
+ParsedValue parse_value(const ParameterInfo& p, std::string_view text);
+
+}  // namespace ibs::devices::cda3000

@@ -1,0 +1,412 @@
+#include "ibs/devices/cda3000/device.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "ibs/devices/cda3000/descriptor.hpp"
+
+namespace ibs::devices::cda3000 {
+
+namespace {
+
+using namespace ibs::canlust;
+
+std::size_t index_or_throw(std::uint16_t number) {
+  const auto i = parameter_index(number);
+  if (!i) throw std::invalid_argument("CDA3000: parameter " + std::to_string(number) + " is not in the table");
+  return *i;
+}
+
+// Description items of mode 04 (decision D10 leaves them to the drive; D29): 0 the data type,
+// 1 the minimum, 2 the maximum, 3 the factory setting, 4 attribute bits, 5 and 6 the name's
+// characters 1-4 and 5-8, 7 the unit's first 4 characters, each in Intel order.
+constexpr std::uint32_t kAttrWritable = 0x01;
+constexpr std::uint32_t kAttrFlash = 0x02;
+constexpr std::uint32_t kAttrAfterMainsReset = 0x04;
+constexpr std::uint32_t kAttrChoices = 0x08;
+
+std::uint32_t pack4(std::string_view s) {
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < std::min<std::size_t>(4, s.size()); ++i) {
+    v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[i])) << (8U * i);
+  }
+  return v;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::uint16_t, std::uint32_t>> commissioned_for_bus(std::uint8_t address,
+                                                                          std::uint8_t cacnf) {
+  return {{kAstpr, kDataSetBus1}, {kAster, kDataSetBus1}, {kFisa0, kOptn2Code},
+          {kClsel, kOptn2Code},   {kRssl1, kOptn2Code},   {kCladr, address},
+          {kCacnf, cacnf}};
+}
+
+Cda3000::Cda3000(const DeviceConfig& config) : config_(config) {
+  if (config_.connector_address > 7) {
+    throw std::invalid_argument("CDA3000: connector address " + std::to_string(config_.connector_address) +
+                                " is outside 0..7 (2.1)");
+  }
+  for (std::size_t i = 0; i < kParameters.size(); ++i) {
+    saved_[i] = wire_of(kParameters[i], kParameters[i].factory);
+  }
+  name_saved_ = FixedString::from(kNameFactory);
+  for (const auto& [number, v] : config_.saved) {
+    const ParameterInfo* p = find_parameter(number);
+    if (p == nullptr) {
+      throw std::invalid_argument("CDA3000: saved parameter " + std::to_string(number) + " does not exist");
+    }
+    if (!p->writable() || p->is_string() || p->memory != Memory::flash) {
+      throw std::invalid_argument("CDA3000: " + display_name(*p) + " is not a saved setting");
+    }
+    const ValueCheck c = check_value(*p, v);
+    if (c != ValueCheck::ok) throw std::invalid_argument("CDA3000: " + describe_refusal(*p, v, c));
+    if (number == kCacnf && v == 4) {
+      throw std::invalid_argument("CDA3000: 492-CACNF = 4 (EasyDrive) is not emulated (decision D26)");
+    }
+    if (number == kCamod && v != kCamodSlave) {
+      throw std::invalid_argument("CDA3000: 570-CAMOD: only the CANLust slave (0) is emulated (decision D26)");
+    }
+    saved_[index_or_throw(number)] = v;
+  }
+  current_ = saved_;
+  name_ = name_saved_;
+}
+
+std::uint32_t Cda3000::get(std::uint16_t number) const {
+  const auto i = parameter_index(number);
+  return i ? current_[*i] : 0U;
+}
+
+void Cda3000::set(std::uint16_t number, std::uint32_t value) {
+  if (const auto i = parameter_index(number)) current_[*i] = value;
+}
+
+std::optional<std::uint32_t> Cda3000::value(std::uint16_t number) const {
+  const auto i = parameter_index(number);
+  if (!i || kParameters[*i].is_string()) return std::nullopt;
+  if (number == kReff) return static_cast<std::uint32_t>(q16_from_double(reference_hz()));
+  return current_[*i];
+}
+
+std::optional<std::uint32_t> Cda3000::saved_value(std::uint16_t number) const {
+  const auto i = parameter_index(number);
+  if (!i || kParameters[*i].is_string()) return std::nullopt;
+  return saved_[*i];
+}
+
+std::string_view Cda3000::text(std::uint16_t number) const {
+  if (number == kName) return name_.view();
+  if (number == kOptn2) return kOptn2Module;
+  return {};
+}
+
+std::string_view Cda3000::saved_text(std::uint16_t number) const {
+  if (number == kName) return name_saved_.view();
+  return text(number);
+}
+
+bool Cda3000::bus_controls() const { return get(kClsel) == kOptn2Code; }
+
+double Cda3000::reference_hz() const {
+  if (get(kRssl1) != kOptn2Code) return 0.0;  // the emulator has no terminals, MOP or tables
+  return std::clamp(reference_hz_, -config_.plant.fmax_hz, config_.plant.fmax_hz);
+}
+
+canlust::SystemState Cda3000::system_state() const {
+  return node_ ? node_->state() : canlust::SystemState::logon;
+}
+
+void Cda3000::power_on(Time now) {
+  current_ = saved_;
+  name_ = name_saved_;
+  const std::uint32_t cladr = get(kCladr);
+  address_ = static_cast<Address>(cladr != 0 ? cladr : config_.connector_address);
+  layout_ = process_layout_for_cacnf(static_cast<std::uint8_t>(get(kCacnf))).value_or(ProcessLayout{});
+  bitrate_ = get(kClbdr) * 1000U;
+  NodeConfig nc;
+  nc.address = address_;
+  nc.ids = config_.ids;
+  nc.layout = layout_;
+  nc.status_period = std::chrono::milliseconds(get(kCascy));
+  nc.watchdog = std::chrono::milliseconds(get(kCawdg));
+  nc.watchdog_reaction = config_.watchdog_reaction;
+  nc.outbox_capacity = config_.outbox_capacity;
+  node_.reset();
+  node_.emplace(nc, *this, *this);
+  sm_.power_on();
+  state_since_ = now;
+  control_ = 0;
+  reference_hz_ = 0.0;
+  warning_ = false;
+  fault_.reset();
+  plant_.reset(now);
+  sample(now);  // the self-test is instantaneous here: NOT READY -> START-UP INHIBIT (1)
+  node_->power_on(now);
+}
+
+void Cda3000::power_off() { node_.reset(); }
+
+bool Cda3000::awaiting_stop() const {
+  const auto s = sm_.state();
+  if (s == drivecom::State::emergency_stop_active) return true;
+  return s == drivecom::State::fault_response_active && fault_ &&
+         *fault_ != ErrorReaction::disable_power;
+}
+
+void Cda3000::advance(Time now) {
+  if (awaiting_stop() && now >= plant_.stopped_at(config_.plant.stop_threshold_hz)) sample(now);
+}
+
+void Cda3000::sample(Time now) {
+  const bool stopped = plant_.target() == 0.0
+                           ? now >= plant_.stopped_at(config_.plant.stop_threshold_hz)
+                           : std::fabs(plant_.hz(now)) <= config_.plant.stop_threshold_hz;
+  drivecom::DeviceInputs in;
+  in.control = control_;
+  in.fault_present = fault_.has_value();
+  in.fault_reaction_done = !fault_ || *fault_ == ErrorReaction::disable_power || stopped;
+  in.stopped = stopped;
+  const drivecom::State before = sm_.state();
+  sm_.sample(in);
+  if (sm_.state() != before) state_since_ = now;
+  drive_plant(now);
+}
+
+void Cda3000::drive_plant(Time now) {
+  const auto& pc = config_.plant;
+  double target = 0.0;
+  Duration tau = pc.coast_time_constant;
+  switch (sm_.state()) {
+    case drivecom::State::enabled:
+      target = reference_hz();
+      tau = pc.time_constant;
+      break;
+    case drivecom::State::emergency_stop_active: tau = pc.quick_stop_time_constant; break;
+    case drivecom::State::fault_response_active:
+      if (fault_ == ErrorReaction::stop) tau = pc.time_constant;
+      if (fault_ == ErrorReaction::quick_stop) tau = pc.quick_stop_time_constant;
+      break;
+    default: break;
+  }
+  plant_.set(target, tau, now);
+}
+
+void Cda3000::receive(const CanFrame& f, Time now) {
+  if (!node_) return;
+  advance(now);
+  node_->receive(f, now);
+}
+
+void Cda3000::step(Time now) {
+  if (!node_) return;
+  advance(now);
+  node_->step(now);
+}
+
+std::optional<CanFrame> Cda3000::take_frame() {
+  if (!node_) return std::nullopt;
+  return node_->take_frame();
+}
+
+Time Cda3000::next_deadline() const {
+  if (!node_) return Time::max();
+  Time t = node_->next_deadline();
+  if (awaiting_stop()) t = std::min(t, plant_.stopped_at(config_.plant.stop_threshold_hz));
+  return t;
+}
+
+ibs::Word Cda3000::status_word() const {
+  drivecom::StatusExtras x;
+  x.alarm = warning_;
+  x.remote = bus_controls();
+  x.limit_value = get(kRssl1) == kOptn2Code && std::fabs(reference_hz_) > config_.plant.fmax_hz;
+  // Bit 10 needs the actual frequency at the time of asking: status(now) adds it.
+  return drivecom::status_word(sm_.state(), sm_.last_control(), x);
+}
+
+// ---- DriveProcess ----------------------------------------------------------------------------
+
+void Cda3000::execute(const ControlTelegram& t, Time now) {
+  advance(now);
+  if (!bus_controls()) {
+    // 4.3.2: only with 260-CLSEL = OPTN2 is the control word formed from the control telegram.
+    ++counters_.controls_ignored;
+    return;
+  }
+  ++counters_.controls_executed;
+  if (get(kRssl1) == kOptn2Code) reference_hz_ = hz_from_wire(layout_.reference, t.reference);
+  warning_ = false;  // a control telegram again: the watchdog's warning is over
+  // 6.5: the error reset bit acknowledges the error; the cause (no control telegram) is gone.
+  if (fault_ && sm_.state() == drivecom::State::fault && drivecom::reset_fault_edge(sm_.last_control(), t.word)) {
+    fault_.reset();
+  }
+  control_ = t.word;
+  sample(now);
+}
+
+StatusTelegram Cda3000::status(Time now) {
+  advance(now);
+  const double f = plant_.hz(now);
+  ibs::Word w = status_word();
+  const bool reached = sm_.state() == drivecom::State::enabled &&
+                       std::fabs(f - reference_hz()) <= config_.plant.reached_window_hz;
+  w = with_bit(w, status_bits::kReferenceReached, reached);
+  const double clamped = std::clamp(f, -32767.0, 32767.0);
+  return {w, wire_from_hz(layout_.actual, clamped).value_or(0)};
+}
+
+std::optional<ErrorTelegram> Cda3000::watchdog_expired(const WatchdogEvent& e) {
+  advance(e.now);
+  ++counters_.watchdog_trips;
+  if (e.reaction == ErrorReaction::warning) {
+    warning_ = true;  // 6.1 WRN: a warning, the drive keeps running
+  } else {
+    fault_ = e.reaction;
+    sample(e.now);
+  }
+  return e.error;
+}
+
+void Cda3000::system_state_changed(SystemState s, Time now) {
+  advance(now);
+  if (s != SystemState::stop) return;
+  // 6.5: the transition SYSTEM START -> SYSTEM STOP acknowledges the error: transition 15.
+  warning_ = false;
+  if (fault_) {
+    fault_.reset();
+    if (sm_.state() == drivecom::State::fault) {
+      sm_.force(drivecom::State::start_up_inhibit, sm_.last_control());
+      state_since_ = now;
+    }
+    drive_plant(now);
+  }
+}
+
+// ---- ParameterAccess -------------------------------------------------------------------------
+
+ValueResult Cda3000::read(std::uint16_t number, std::uint8_t index, Time now) {
+  (void)now;
+  const ParameterInfo* p = find_parameter(number);
+  if (p == nullptr) return {kStatusUnknownParameter, DataType::usign32, 0, {}};
+  // A STRING goes by mode 11 (D24); no CDA3000 parameter here is a field (index 0 only).
+  if (p->is_string()) return {kStatusReadNotPermitted, DataType::usign32, 0, {}};
+  if (index != 0) return {kStatusImpermissibleValue, p->type, 0, {}};
+  return {kStatusOk, p->type, *value(number), {}};
+}
+
+AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint32_t v, Time now) {
+  const ParameterInfo* p = find_parameter(number);
+  if (p == nullptr) return {kStatusUnknownParameter, {}};
+  if (!p->writable() || p->is_string()) return {kStatusChangeNotPermitted, {}};
+  if (index != 0) return {kStatusImpermissibleValue, {}};
+  if (check_value(*p, v) != ValueCheck::ok) return {kStatusImpermissibleValue, {}};
+  // D26: what the emulator does not model it refuses, rather than pretend.
+  if (number == kCacnf && v == 4) return {kStatusChangeNotPermitted, {}};
+  if (number == kCamod && v != kCamodSlave) return {kStatusChangeNotPermitted, {}};
+  ++counters_.writes;
+  switch (number) {
+    case kProg:
+      if (v == 1) {
+        // p. 13: every setting back to its factory value; the reply once that is done.
+        for (std::size_t i = 0; i < kParameters.size(); ++i) {
+          if (kParameters[i].writable()) current_[i] = wire_of(kParameters[i], kParameters[i].factory);
+        }
+        name_ = FixedString::from(kNameFactory);
+        apply_live(kCawdg, now);
+        apply_live(kCascy, now);
+        return {kStatusOk, config_.prog_time};
+      }
+      return {};
+    case kSave:
+      if (v == 1) {
+        // 3.5.1 / 4.3.3: the settings into flash; "takes a few hundred milliseconds".
+        saved_ = current_;
+        name_saved_ = name_;
+        return {kStatusOk, config_.save_time};
+      }
+      return {};
+    case kAstpr:
+      load_preset(v, now);
+      return {};
+    default:
+      set(number, v);
+      apply_live(number, now);
+      return {};
+  }
+}
+
+void Cda3000::load_preset(std::uint32_t data_set, Time now) {
+  // D23: the application data set BUS_1 puts control location, reference and the analog input's
+  // function on the bus module (4.2 table: FISA0 OFF -> OPTN2); DRV_1 back to the factory's.
+  const bool bus = data_set == kDataSetBus1;
+  set(kAstpr, data_set);
+  set(kAster, data_set);
+  set(kFisa0, bus ? kOptn2Code : kFunctionOff);
+  set(kClsel, bus ? kOptn2Code : kClselTerm);
+  set(kRssl1, bus ? kOptn2Code : static_cast<std::uint32_t>(find_parameter(kRssl1)->factory));
+  (void)now;
+}
+
+void Cda3000::apply_live(std::uint16_t number, Time now) {
+  if (!node_) return;
+  // 574-CAWDG and 575-CASCY act at once (decision D21); the address, layout and baud rate after a
+  // mains reset (7.1.1 steps 4-5).
+  if (number == kCawdg) node_->set_watchdog(std::chrono::milliseconds(get(kCawdg)), now);
+  if (number == kCascy) node_->set_status_period(std::chrono::milliseconds(get(kCascy)));
+}
+
+ValueResult Cda3000::describe(std::uint16_t number, std::uint8_t item, Time now) {
+  (void)now;
+  const ParameterInfo* p = find_parameter(number);
+  if (p == nullptr) return {kStatusUnknownParameter, DataType::usign32, 0, {}};
+  std::uint32_t v = 0;
+  switch (item) {
+    case 0: v = static_cast<std::uint32_t>(p->type); break;
+    case 1: v = wire_of(*p, p->min); break;
+    case 2: v = wire_of(*p, p->max); break;
+    case 3: v = wire_of(*p, p->factory); break;
+    case 4:
+      v = (p->writable() ? kAttrWritable : 0U) | (p->memory == Memory::flash ? kAttrFlash : 0U) |
+          (p->effect == Effect::after_mains_reset ? kAttrAfterMainsReset : 0U) |
+          (p->choices.empty() ? 0U : kAttrChoices);
+      break;
+    case 5: v = pack4(p->name); break;
+    case 6: v = pack4(p->name.size() > 4 ? p->name.substr(4) : std::string_view{}); break;
+    case 7: v = pack4(p->unit); break;
+    default: return {kStatusListEnd, DataType::usign32, 0, {}};
+  }
+  return {kStatusOk, DataType::usign32, v, {}};
+}
+
+StringResult Cda3000::read_string(std::uint16_t number, std::span<char> out, Time now) {
+  (void)now;
+  const ParameterInfo* p = find_parameter(number);
+  if (p == nullptr) return {kStatusUnknownParameter, 0, {}};
+  if (!p->is_string()) return {kStatusReadNotPermitted, 0, {}};
+  const std::string_view s = text(number);
+  const std::size_t n = std::min(s.size(), out.size());
+  std::copy_n(s.data(), n, out.data());
+  return {kStatusOk, static_cast<std::uint8_t>(n), {}};
+}
+
+AccessResult Cda3000::begin_string_write(std::uint16_t number, Time now) {
+  (void)now;
+  const ParameterInfo* p = find_parameter(number);
+  if (p == nullptr) return {kStatusUnknownParameter, {}};
+  if (!p->is_string() || !p->writable()) return {kStatusChangeNotPermitted, {}};
+  return {};
+}
+
+AccessResult Cda3000::write_string(std::uint16_t number, std::string_view s, Time now) {
+  const AccessResult a = begin_string_write(number, now);
+  if (a.status != kStatusOk) return a;
+  if (s.size() > kMaxStringChars || s.find('\0') != std::string_view::npos) return {kStatusImpermissibleValue, {}};
+  name_ = FixedString::from(s);
+  ++counters_.writes;
+  return {};
+}
+
+}  // namespace ibs::devices::cda3000

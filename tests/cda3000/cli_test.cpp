@@ -1,0 +1,369 @@
+// `ibs canlust ...` over CAN over UDP on loopback: `emulate` as its own process (fork/exec of the
+// built ibs), the master driver in this process driving its drives to ENABLED, the client
+// commands against it with their JSON, exit codes and messages, the candump log read back by
+// `ibs decode`, and the pcap decoded by tshark with the Lua dissector (skipped without tshark).
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "canlust_cmd.hpp"
+#include "ibs/can/udp.hpp"
+#include "ibs/devices/cda3000/driver.hpp"
+
+namespace ibs::cli {
+namespace {
+
+namespace dev = ::ibs::devices::cda3000;
+namespace cl = ::ibs::canlust;
+
+struct CliRun {
+  int rc = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run_cli(std::vector<std::string> args) {
+  CLI::App app{"test"};
+  app.require_subcommand(1);
+  CanlustCommandState state;
+  add_canlust_commands(app, state);
+  CliRun r;
+  std::reverse(args.begin(), args.end());
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    r.rc = kExitCanBadInput;
+    r.err = e.what();
+    return r;
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  r.rc = run_canlust_commands(state, out, err).value_or(-1);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+// A UDP port free at the moment of asking.
+std::uint16_t free_udp_port() {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(fd);
+  return ntohs(a.sin_port);
+}
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "/" + name + "_" + std::to_string(::getpid());
+}
+
+// `ibs canlust emulate ARGS...` as a child process; its first line is "bus: ...".
+class Emulator {
+ public:
+  explicit Emulator(std::vector<std::string> args) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error("pipe");
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::dup2(fds[1], STDOUT_FILENO);
+      ::close(fds[0]);
+      ::close(fds[1]);
+      std::vector<std::string> all = {IBS_CLI, "canlust", "emulate"};
+      all.insert(all.end(), args.begin(), args.end());
+      std::vector<char*> argv;
+      for (auto& a : all) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      ::execv(argv[0], argv.data());
+      ::_exit(127);
+    }
+    ::close(fds[1]);
+    out_ = ::fdopen(fds[0], "r");
+    char line[512] = {};
+    if (std::fgets(line, sizeof line, out_) != nullptr) first_line_ = line;
+  }
+  Emulator(const Emulator&) = delete;
+  Emulator& operator=(const Emulator&) = delete;
+  ~Emulator() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    if (out_ != nullptr) std::fclose(out_);
+  }
+  const std::string& first_line() const { return first_line_; }
+  int stop(int sig) {
+    ::kill(pid_, sig);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* out_ = nullptr;
+  std::string first_line_;
+};
+
+struct Ports {
+  std::uint16_t emulator = free_udp_port();
+  std::uint16_t client = free_udp_port();
+  std::string emulator_bus() const {
+    return "udp:" + std::to_string(emulator) + ":127.0.0.1:" + std::to_string(client);
+  }
+  std::string client_bus() const { return "udp:" + std::to_string(client) + ":127.0.0.1:" + std::to_string(emulator); }
+};
+
+// The issue's two processes: `ibs canlust emulate` with two drives, the master driver here, over
+// CAN over UDP; real time from the steady clock.
+TEST(CanlustCli, MasterDriverDrivesTheEmulatorInAnotherProcessOverUdp) {
+  auto opened = can::UdpCanTransport::open({"127.0.0.1", 0, "127.0.0.1", 0});
+  ASSERT_TRUE(opened) << opened.error;
+  can::UdpCanTransport& bus = *opened.transport;
+  Emulator emu({"--bus", "udp:0:127.0.0.1:" + std::to_string(bus.local_port()), "cda3000@1", "cda3000@2"});
+  ASSERT_EQ(emu.first_line().rfind("bus: udp:127.0.0.1:", 0), 0U) << emu.first_line();
+
+  dev::DriverConfig cfg;
+  cfg.drives = {{1, 2, 400.0}, {2, 2, 400.0}};
+  dev::Driver d(cfg);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto now = [&] { return std::chrono::duration_cast<Duration>(std::chrono::steady_clock::now() - t0); };
+  const auto run_until = [&](auto done, Duration limit) {
+    while (now() < limit) {
+      d.cycle(now());
+      while (auto f = d.take_frame()) bus.send(*f);
+      if (done()) return true;
+      const auto r = bus.receive(2ms);
+      if (r.status == can::IoStatus::ok) d.receive(r.frame, now());
+    }
+    return done();
+  };
+  ASSERT_TRUE(run_until([&] { return d.all_logged_on(); }, 3s));
+  d.system_start(now());
+  d.request(1, drivecom::Target::enabled, now());
+  d.request(2, drivecom::Target::enabled, now());
+  d.set_reference_hz(1, 20.5);
+  d.set_reference_hz(2, -10.0);
+  const bool running = run_until(
+      [&] {
+        return std::abs(d.drive(1).actual_hz - 20.5) < 0.1 && std::abs(d.drive(2).actual_hz + 10.0) < 0.1;
+      },
+      now() + 8s);
+  EXPECT_TRUE(running) << drivecom::describe(d.drive(1).sequencer) << " / " << drivecom::describe(d.drive(2).sequencer);
+  EXPECT_EQ(d.drive(1).state, drivecom::State::enabled);
+  EXPECT_EQ(d.drive(1).status_word & 0x0400U, 0x0400U);  // reference reached
+  // Parameters through the driver: 406-REFF shows the reference, 578-OPTN2 is "LCAN".
+  const auto reff = d.read(1, dev::kReff);
+  const auto optn2 = d.read(2, dev::kOptn2);
+  ASSERT_TRUE(reff && optn2);
+  ASSERT_TRUE(run_until([&] { return d.parameters().idle(); }, now() + 3s));
+  EXPECT_EQ(d.parameters().poll(reff.id).outcome->value, 0x00148000U);
+  EXPECT_EQ(d.parameters().poll(optn2.id).outcome->text.view(), "LCAN");
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+TEST(CanlustCli, EmulateExitsZeroOnSigint) {
+  const Ports p;
+  Emulator emu({"--bus", p.emulator_bus(), "cda3000@3"});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U);
+  EXPECT_EQ(emu.stop(SIGINT), 0);
+}
+
+TEST(CanlustCli, ParameterCommandsWithJsonAndExitCodes) {
+  const Ports p;
+  const std::string pcap = temp_path("canlust_cli") + ".pcap";
+  Emulator emu({"--bus", p.emulator_bus(), "--pcap", pcap, "cda3000@1", "cda3000@4"});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U);
+  const std::string bus = p.client_bus();
+  const auto cli = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"canlust"});
+    args.insert(args.end(), {"--bus", bus});
+    return run_cli(args);
+  };
+
+  auto r = cli({"read", "--address", "1", "360"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "CDA 1 360-DISP: 406\n");
+
+  r = cli({"write", "--address", "4", "CAWDG", "120", "--json"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("\"command\":\"write\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"name\":\"574-CAWDG\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"outcome\":\"done\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"text\":\"120 ms\""), std::string::npos) << r.out;
+
+  r = cli({"read", "--address", "4", "574-CAWDG", "--json"});
+  EXPECT_NE(r.out.find("\"value\":120"), std::string::npos) << r.out;
+  EXPECT_EQ(cli({"write", "--address", "4", "CAWDG", "0"}).rc, 0);  // no watchdog trip after the start below
+
+  r = cli({"write", "--address", "1", "RSSL1", "OPTN2"});
+  EXPECT_EQ(r.out, "CDA 1 280-RSSL1 = 6 (OPTN2): done\n") << r.err;
+
+  r = cli({"write", "--address", "1", "90-NAME", "Line 3 / pump"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  r = cli({"read", "--address", "1", "NAME", "--json"});
+  EXPECT_NE(r.out.find("\"value\":\"Line 3 / pump\""), std::string::npos) << r.out;
+
+  r = cli({"describe", "--address", "1", "575"});
+  EXPECT_EQ(r.out, "CDA 1 575-CASCY: CASCY, USIGN16, 1..32000 ms, factory 80 ms, writable, flash\n") << r.err;
+
+  // Bad input: exit 2 with where and what; nothing is sent.
+  r = cli({"write", "--address", "1", "CAWDG", "300"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust write: 574-CAWDG: 300 ms is above the maximum 255 ms\n");
+  r = cli({"write", "--address", "1", "CLSEL", "SIO"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust write: 260-CLSEL: 'SIO' is not a number or one of TERM, OPTN2\n");
+  r = cli({"write", "--address", "1", "406", "1"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust write: 406-REFF is read-only\n");
+  r = cli({"read", "--address", "1", "CAWDX"});
+  EXPECT_EQ(r.rc, 2);
+  r = cli({"read", "--address", "100", "360"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust read: --address must be 0..99\n");
+
+  // The drive refuses, or nobody answers: exit 1 with the decoded reason.
+  r = cli({"read", "--address", "1", "999", "--json"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.out.find("\"status_text\":\"unknown parameter\""), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "ibs canlust read: CDA 1 parameter 999: refused, status unknown parameter\n");
+  r = cli({"write", "--address", "1", "492", "4"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("change not permitted"), std::string::npos) << r.err;
+  r = cli({"read", "--address", "9", "360", "--timeout-ms", "100"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("timeout"), std::string::npos) << r.err;
+
+  // System Start: the drives' first status telegrams.
+  r = cli({"start", "--listen-ms", "200"});
+  EXPECT_EQ(r.rc, 0);
+  EXPECT_NE(r.out.find("CDA 1: status 0240 START-UP INHIBIT"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("CDA 4: status 0240 START-UP INHIBIT"), std::string::npos) << r.out;
+
+  // The monitor sees the cyclic status and writes the candump log that `ibs decode` explains.
+  const std::string log = temp_path("canlust_monitor") + ".log";
+  r = cli({"monitor", "--duration-ms", "250", "--log", log});
+  EXPECT_EQ(r.rc, 0);
+  EXPECT_NE(r.out.find("883  [6]  40 02 00 00 00 00        status CDA 1: 0240 START-UP INHIBIT"), std::string::npos)
+      << r.out;
+  std::ostringstream dout;
+  std::ostringstream derr;
+  EXPECT_EQ(decode_candump_log(log, 2, 2, dout, derr), 0) << derr.str();
+  EXPECT_TRUE(std::regex_search(dout.str(), std::regex(R"(\(\d+\.\d{6}\) udp\d+ 373#400200000000 +status CDA 1: 0240)")))
+      << dout.str();
+  r = cli({"stop", "--json", "--listen-ms", "100"});
+  EXPECT_NE(r.out.find("\"command\":\"stop\""), std::string::npos);
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+
+  // The emulator's capture through tshark and the Lua dissector.
+  if (std::system("command -v tshark >/dev/null 2>&1") != 0) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
+  const std::string cmd = "tshark -X lua_script:" + std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua -r " +
+                          pcap + " -T fields -E separator=';' -e can.id -e canlust.parameter_name -e canlust.data"
+                          " -e canlust.drivecom_state 2>/dev/null";
+  std::string out;
+  if (FILE* pipe = ::popen(cmd.c_str(), "r")) {
+    char buf[4096];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+    ::pclose(pipe);
+  }
+  EXPECT_NE(out.find("1545;;;\n"), std::string::npos) << out;                   // logon CDA 1
+  EXPECT_NE(out.find("1323;360-DISP;0x00000196;\n"), std::string::npos) << out;  // 7.1.3's reply
+  EXPECT_NE(out.find("1329;574-CAWDG;0x00000078;\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("883;;;START-UP INHIBIT\n"), std::string::npos) << out;
+  std::remove(pcap.c_str());
+  std::remove(log.c_str());
+}
+
+TEST(CanlustCli, BadBusAndDevicesAreRefused) {
+  auto r = run_cli({"canlust", "emulate", "--bus", "udp:70000:127.0.0.1:1", "cda3000@1"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust emulate: --bus 'udp:70000:127.0.0.1:1': LOCALPORT '70000' is not a port number "
+                   "(0..65535) (expected udp:LOCALPORT:HOST:PORT or socketcan:IFACE)\n");
+  r = run_cli({"canlust", "emulate", "--bus", "udp:0:127.0.0.1:1", "cda3000@1", "cda3000@1"});
+  EXPECT_EQ(r.err, "ibs canlust emulate: device 'cda3000@1': address given twice\n");
+  r = run_cli({"canlust", "emulate", "--bus", "udp:0:127.0.0.1:1", "vf1000@1"});
+  EXPECT_EQ(r.rc, 2);
+  r = run_cli({"canlust", "emulate", "--factory", "--bus", "udp:0:127.0.0.1:1", "cda3000@9"});
+  EXPECT_EQ(r.err, "ibs canlust emulate: device 'cda3000@9': expected cda3000@ADDR with ADDR 0..7 (the connector's address, 2.1)\n");
+  r = run_cli({"canlust", "emulate", "--cacnf", "4", "--bus", "udp:0:127.0.0.1:1", "cda3000@1"});
+  EXPECT_EQ(r.err, "ibs canlust emulate: --cacnf 4 (EasyDrive) is not emulated (decision D26); use 1..3\n");
+  r = run_cli({"canlust", "read", "--bus", "carrier-pigeon", "--address", "1", "360"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("unknown bus type 'carrier-pigeon'"), std::string::npos);
+  r = run_cli({"canlust", "read", "--bus", "socketcan:vcan9", "--address", "1", "360"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("--bus 'socketcan:vcan9': "), std::string::npos) << r.err;
+}
+
+// The dissector's copy of the CDA3000 parameter names is the wing's table.
+TEST(CanlustDissector, ParameterNamesAreTheWings) {
+  std::ifstream in(std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua");
+  const std::string lua((std::istreambuf_iterator<char>(in)), {});
+  const auto start = lua.find("local cda3000 = {");
+  ASSERT_NE(start, std::string::npos);
+  const std::string table = lua.substr(start, lua.find('}', start) - start);
+  std::map<int, std::string> names;
+  const std::regex row(R"re(\[(\d+)\] = "([^"]+)")re");
+  for (auto it = std::sregex_iterator(table.begin(), table.end(), row); it != std::sregex_iterator(); ++it) {
+    names[std::stoi((*it)[1])] = (*it)[2];
+  }
+  ASSERT_EQ(names.size(), dev::kParameters.size());
+  for (const auto& p : dev::kParameters) EXPECT_EQ(names[p.number], dev::display_name(p)) << p.number;
+}
+
+// candump's log format, both ways.
+TEST(Candump, LinesBothWays) {
+  const auto t = std::chrono::system_clock::time_point(std::chrono::microseconds(1795431275322679LL));
+  const auto f = cl::CanFrame::make(663, {0x0F, 0x00, 0x00, 0x80, 0x14, 0x00});
+  EXPECT_EQ(candump_line(f, t, "can0"), "(1795431275.322679) can0 297#0F0000801400");
+  const auto r = parse_candump_line("(1795431275.322679) can0 297#0F0000801400");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->frame, f);
+  EXPECT_EQ(r->interface_name, "can0");
+  EXPECT_EQ(candump_line(cl::CanFrame::make(1545, {}), t, "udp1"), "(1795431275.322679) udp1 609#");
+  cl::CanFrame rtr;
+  rtr.id = 0x123;
+  rtr.rtr = true;
+  rtr.dlc = 2;
+  EXPECT_EQ(parse_candump_line(candump_line(rtr, t, "c"))->frame, rtr);
+  EXPECT_FALSE(parse_candump_line("(1.5) can0 12345678#00")->classic);
+  EXPECT_FALSE(parse_candump_line("not a line"));
+  EXPECT_FALSE(parse_candump_line("(1.5) can0 297#0F0"));
+}
+
+TEST(Candump, DecodeSaysWhereALineIsBad) {
+  const std::string path = temp_path("bad_candump") + ".log";
+  {
+    std::ofstream o(path);
+    o << "(1.000001) can0 297#0F0000801400\n(2.000000) can0 zz#00\n";
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  EXPECT_EQ(decode_candump_log(path, 2, 2, out, err), 2);
+  EXPECT_EQ(err.str(), path + ":2: not a candump log line: '(2.000000) can0 zz#00'\n");
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace ibs::cli

@@ -1,0 +1,785 @@
+// The CLI11 wiring of `ibs canlust ...`, the emulator's serving loop, the client loops in real
+// time, the frame recorder (candump log, pcap) and the candump-log decoder of `ibs decode`.
+#include "canlust_cmd.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+
+#include "ibs/can/socketcan.hpp"
+#include "ibs/can/udp.hpp"
+#include "ibs/canlust/parameter_client.hpp"
+#include "ibs/devices/cda3000/descriptor.hpp"
+#include "ibs/devices/cda3000/parameters.hpp"
+#include "stop_signals.hpp"
+#ifdef IBS_HAVE_PCAP
+#include "ibs/can/pcap_writer.hpp"
+#endif
+
+namespace ibs::cli {
+
+namespace cl = ::ibs::canlust;
+namespace dev = ::ibs::devices::cda3000;
+using Clock = std::chrono::steady_clock;
+using Wall = std::chrono::system_clock;
+
+namespace {
+
+constexpr Duration kPoll = 20ms;
+
+Time since(Clock::time_point t0) { return std::chrono::duration_cast<Duration>(Clock::now() - t0); }
+
+std::string hex(unsigned v, int digits) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%0*X", digits, v);
+  return buf;
+}
+
+std::optional<long long> parse_int(std::string_view s) {
+  long long v = 0;
+  const char* first = s.data();
+  const char* last = s.data() + s.size();
+  const auto r = std::from_chars(first, last, v);
+  if (first == last || r.ec != std::errc{} || r.ptr != last) return std::nullopt;
+  return v;
+}
+
+struct BusSpec {
+  bool udp = false;
+  can::UdpConfig udp_config{};
+  std::string iface;
+};
+
+BusSpec parse_bus(const std::string& spec) {
+  const auto bad = [&](const std::string& why) {
+    return std::invalid_argument("--bus '" + spec + "': " + why +
+                                 " (expected udp:LOCALPORT:HOST:PORT or socketcan:IFACE)");
+  };
+  std::vector<std::string> parts;
+  std::size_t pos = 0;
+  for (;;) {
+    const auto c = spec.find(':', pos);
+    parts.push_back(spec.substr(pos, c == std::string::npos ? std::string::npos : c - pos));
+    if (c == std::string::npos) break;
+    pos = c + 1;
+  }
+  BusSpec b;
+  if (parts[0] == "socketcan") {
+    if (parts.size() != 2 || parts[1].empty()) throw bad("socketcan needs an interface name");
+    b.iface = parts[1];
+    return b;
+  }
+  if (parts[0] != "udp") throw bad("unknown bus type '" + parts[0] + "'");
+  if (parts.size() != 4) throw bad("udp needs LOCALPORT, HOST and PORT");
+  const auto port = [&](const std::string& text, const char* what) {
+    const auto v = parse_int(text);
+    if (!v || *v < 0 || *v > 65535) throw bad(std::string(what) + " '" + text + "' is not a port number (0..65535)");
+    return static_cast<std::uint16_t>(*v);
+  };
+  b.udp = true;
+  b.udp_config.local_host = parts[2] == "localhost" ? "127.0.0.1" : parts[2];
+  b.udp_config.remote_host = b.udp_config.local_host;
+  b.udp_config.local_port = port(parts[1], "LOCALPORT");
+  b.udp_config.remote_port = port(parts[3], "PORT");
+  return b;
+}
+
+std::string interface_name(const std::string& spec) {
+  const BusSpec b = parse_bus(spec);
+  return b.udp ? "udp" + std::to_string(b.udp_config.local_port) : b.iface;
+}
+
+cl::IdentifierMap ids_for(const CanBusOptions& o) {
+  if (o.id_step < 1 || o.id_step > 2) throw std::invalid_argument("--id-step must be 1 or 2");
+  cl::IdentifierMap ids;
+  ids.step = static_cast<std::uint8_t>(o.id_step);
+  return ids;
+}
+
+cl::ProcessLayout layout_for(const CanBusOptions& o) {
+  const auto l = cl::process_layout_for_cacnf(static_cast<std::uint8_t>(o.cacnf));
+  if (o.cacnf > 4 || !l) throw std::invalid_argument("--cacnf must be 1..4 (492-CACNF)");
+  return *l;
+}
+
+std::optional<cl::ErrorReaction> parse_reaction(std::string_view s) {
+  if (s == "wrn" || s == "warning") return cl::ErrorReaction::warning;
+  if (s == "stop") return cl::ErrorReaction::stop;
+  if (s == "quick-stop") return cl::ErrorReaction::quick_stop;
+  if (s == "disable-power") return cl::ErrorReaction::disable_power;
+  return std::nullopt;
+}
+
+// A bus with its recorder: every frame sent or received goes through here.
+struct Session {
+  std::unique_ptr<can::CanTransport> bus;
+  std::unique_ptr<FrameRecorder> recorder;
+  std::string name;
+
+  explicit Session(const CanBusOptions& o) : bus(open_bus(o.bus)), name(interface_name(o.bus)) {
+    if (!o.log.empty() || !o.pcap.empty()) recorder = std::make_unique<FrameRecorder>(o.log, o.pcap, name);
+  }
+  bool send(const cl::CanFrame& f) {
+    if (recorder) recorder->record(f);
+    return bus->send(f) == can::IoStatus::ok;
+  }
+  std::optional<cl::CanFrame> receive(Duration wait) {
+    const can::Received r = bus->receive(std::max<Duration>(wait, Duration::zero()));
+    if (r.status != can::IoStatus::ok) return std::nullopt;
+    if (recorder) recorder->record(r.frame);
+    return r.frame;
+  }
+};
+
+// ---- emulate --------------------------------------------------------------------------------
+
+int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err) {
+  const auto bad = [&](const std::string& what) {
+    err << "ibs canlust emulate: " << what << "\n";
+    return kExitCanBadInput;
+  };
+  if (o.devices.empty()) return bad("no device: give cda3000@ADDR (one or more)");
+  std::vector<std::unique_ptr<dev::Cda3000>> drives;
+  std::vector<dev::Cda3000*> raw;
+  try {
+    const cl::IdentifierMap ids = ids_for(o.bus);
+    layout_for(o.bus);
+    if (o.bus.cacnf == 4) return bad("--cacnf 4 (EasyDrive) is not emulated (decision D26); use 1..3");
+    const auto reaction = parse_reaction(o.watchdog_reaction);
+    if (!reaction) {
+      return bad("--watchdog-reaction '" + o.watchdog_reaction + "': expected wrn, stop, quick-stop or disable-power");
+    }
+    std::set<unsigned> seen;
+    for (const std::string& spec : o.devices) {
+      const std::string prefix = "cda3000@";
+      const unsigned max = o.factory ? 7U : ids.max_address;
+      const auto a = spec.rfind(prefix, 0) == 0 ? parse_int(std::string_view(spec).substr(prefix.size())) : std::nullopt;
+      if (!a || *a < (o.factory ? 0 : 1) || *a > static_cast<long long>(max)) {
+        return bad("device '" + spec + "': expected cda3000@ADDR with ADDR " + (o.factory ? "0..7 (the connector's address, 2.1)" : "1..99 (571-CLADR)"));
+      }
+      if (!seen.insert(static_cast<unsigned>(*a)).second) return bad("device '" + spec + "': address given twice");
+      dev::DeviceConfig c;
+      c.ids = ids;
+      c.watchdog_reaction = *reaction;
+      if (o.factory) {
+        c.connector_address = static_cast<std::uint8_t>(*a);
+      } else {
+        c.saved = dev::commissioned_for_bus(static_cast<std::uint8_t>(*a), static_cast<std::uint8_t>(o.bus.cacnf));
+      }
+      drives.push_back(std::make_unique<dev::Cda3000>(c));
+      raw.push_back(drives.back().get());
+    }
+  } catch (const std::invalid_argument& e) {
+    return bad(e.what());
+  }
+  // Blocked before the first line is printed: whoever reads it may signal at once.
+  StopSignals signals;
+  std::unique_ptr<Session> s;
+  try {
+    s = std::make_unique<Session>(o.bus);
+  } catch (const std::invalid_argument& e) {
+    return bad(e.what());
+  }
+  out << "bus: " << s->bus->name() << "\n" << std::flush;
+  serve_canlust(*s->bus, raw, s->recorder.get(), [&signals]() { return signals.raised(); });
+  return kExitCanOk;
+}
+
+// ---- the client commands --------------------------------------------------------------------
+
+struct Target {
+  std::uint16_t number = 0;
+  const dev::ParameterInfo* info = nullptr;  // nullptr: not in the table; asked as a raw number
+};
+
+Target resolve(const std::string& text) {
+  if (const dev::ParameterInfo* p = dev::find_parameter(text)) return {p->number, p};
+  const auto n = parse_int(text);
+  if (n && *n >= 0 && *n <= 0xFFFF) return {static_cast<std::uint16_t>(*n), nullptr};
+  throw std::invalid_argument("PARAM '" + text +
+                              "' is not a CDA3000 parameter (give NUMBER, NAME or NUMBER-NAME, e.g. 574-CAWDG)");
+}
+
+std::string target_name(const Target& t) {
+  return t.info != nullptr ? dev::display_name(*t.info) : "parameter " + std::to_string(t.number);
+}
+
+// One parameter request in real time: submit, then frames out and in until its outcome.
+cl::Outcome transact(Session& s, cl::ParameterClient& client, const cl::Request& r) {
+  const Clock::time_point t0 = Clock::now();
+  const auto sub = client.submit(r);
+  if (!sub) throw std::invalid_argument("request refused: " + std::string(cl::to_string(sub.error)));
+  for (;;) {
+    Time now = since(t0);
+    client.step(now);
+    while (auto f = client.take_frame()) s.send(*f);
+    const auto p = client.poll(sub.id);
+    if (p.state == cl::RequestState::done) return *p.outcome;
+    const Time next = client.next_deadline();
+    const Duration wait = next <= now ? Duration::zero() : std::min<Duration>(next - now, 10ms);
+    if (auto f = s.receive(wait)) client.receive(*f, since(t0));
+  }
+}
+
+std::string value_text(const Target& t, std::uint32_t v) {
+  return t.info != nullptr ? dev::format_value(*t.info, v) : std::to_string(v);
+}
+
+int report_outcome(const std::string& cmd, int address, const Target& t, const cl::Outcome& o,
+                   nlohmann::json& j, bool json, std::ostream& out, std::ostream& err) {
+  j["outcome"] = std::string(cl::to_string(o.kind));
+  j["elapsed_ms"] = to_ms(o.finished - o.started);
+  if (o.kind == cl::OutcomeKind::done) return -1;  // the caller prints the result
+  if (o.kind == cl::OutcomeKind::refused) {
+    j["status"] = o.status;
+    j["status_text"] = o.status == cl::kStatusListEnd ? std::string("List_End") : cl::describe_status(o.status);
+  }
+  if (json) out << j.dump() << "\n";
+  err << "ibs canlust " << cmd << ": CDA " << address << " " << target_name(t) << ": " << cl::describe(o) << "\n";
+  return kExitCanDevice;
+}
+
+cl::ParameterClient make_client(const CanBusOptions& o) {
+  cl::ClientConfig c;
+  c.ids = ids_for(o);
+  return cl::ParameterClient(c);
+}
+
+int read_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const Target t = resolve(o.parameter);
+  Session s(o.bus);
+  cl::ParameterClient client = make_client(o.bus);
+  const auto a = static_cast<cl::Address>(o.address);
+  cl::Request r = (t.info != nullptr && t.info->is_string()) ? cl::read_string(a, t.number) : cl::read(a, t.number);
+  if (o.timeout_ms > 0) r.timeout = std::chrono::milliseconds(o.timeout_ms);
+  const cl::Outcome res = transact(s, client, r);
+  nlohmann::json j;
+  j["address"] = o.address;
+  j["command"] = "read";
+  j["parameter"] = t.number;
+  if (t.info != nullptr) j["name"] = dev::display_name(*t.info);
+  if (const int rc = report_outcome("read", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
+  std::string text;
+  if (r.kind == cl::RequestKind::read_string) {
+    text = std::string(res.text.view());
+    j["value"] = text;
+  } else {
+    text = value_text(t, res.value);
+    j["value"] = t.info != nullptr ? nlohmann::json(dev::number_of(*t.info, res.value)) : nlohmann::json(res.value);
+    if (t.info != nullptr && t.info->type == cl::DataType::int32q16) j["value"] = cl::double_from_q16(static_cast<std::int32_t>(res.value));
+  }
+  j["text"] = text;
+  if (o.bus.json) {
+    out << j.dump() << "\n";
+  } else {
+    out << "CDA " << o.address << " " << target_name(t) << ": " << text << "\n";
+  }
+  return kExitCanOk;
+}
+
+int write_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const Target t = resolve(o.parameter);
+  const auto a = static_cast<cl::Address>(o.address);
+  cl::Request r;
+  std::string shown;
+  if (t.info != nullptr && t.info->is_string()) {
+    if (!t.info->writable()) throw std::invalid_argument(dev::display_name(*t.info) + " is read-only");
+    if (o.value.size() > cl::kMaxStringChars) {
+      throw std::invalid_argument(dev::display_name(*t.info) + ": the text has " + std::to_string(o.value.size()) +
+                                  " characters, at most 99 fit (4.1.1: 100 bytes with the terminator)");
+    }
+    r = cl::write_string(a, t.number, o.value);
+    shown = o.value;
+  } else if (t.info != nullptr) {
+    if (!t.info->writable()) throw std::invalid_argument(dev::display_name(*t.info) + " is read-only");
+    const dev::ParsedValue v = dev::parse_value(*t.info, o.value);
+    if (!v.wire) throw std::invalid_argument(v.error);
+    r = cl::write(a, t.number, *v.wire);
+    shown = dev::format_value(*t.info, *v.wire);
+    if (t.number == dev::kSave || t.number == dev::kProg) r.timeout = 2s;
+  } else {
+    const auto v = parse_int(o.value);
+    if (!v || *v < -2147483648LL || *v > 4294967295LL) {
+      throw std::invalid_argument("parameter " + std::to_string(t.number) + ": VALUE '" + o.value +
+                                  "' is not a 32-bit number (the parameter is not in the CDA3000 table)");
+    }
+    r = cl::write(a, t.number, static_cast<std::uint32_t>(static_cast<std::uint64_t>(*v) & 0xFFFFFFFFULL));
+    shown = o.value;
+  }
+  if (o.timeout_ms > 0) r.timeout = std::chrono::milliseconds(o.timeout_ms);
+  Session s(o.bus);
+  cl::ParameterClient client = make_client(o.bus);
+  const cl::Outcome res = transact(s, client, r);
+  nlohmann::json j;
+  j["address"] = o.address;
+  j["command"] = "write";
+  j["parameter"] = t.number;
+  if (t.info != nullptr) j["name"] = dev::display_name(*t.info);
+  j["text"] = shown;
+  if (r.kind == cl::RequestKind::write_string) {
+    j["value"] = o.value;
+  } else {
+    j["value"] = r.value;
+  }
+  if (const int rc = report_outcome("write", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
+  if (o.bus.json) {
+    out << j.dump() << "\n";
+  } else {
+    out << "CDA " << o.address << " " << target_name(t) << " = " << shown << ": done\n";
+  }
+  return kExitCanOk;
+}
+
+std::string unpack4(std::uint32_t v) {
+  std::string s;
+  for (unsigned i = 0; i < 4; ++i) {
+    const auto c = static_cast<char>((v >> (8U * i)) & 0xFFU);
+    if (c == '\0') break;
+    s += c;
+  }
+  return s;
+}
+
+int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const Target t = resolve(o.parameter);
+  Session s(o.bus);
+  cl::ParameterClient client = make_client(o.bus);
+  const auto a = static_cast<cl::Address>(o.address);
+  std::vector<std::uint32_t> items;
+  nlohmann::json j;
+  j["address"] = o.address;
+  j["command"] = "describe";
+  j["parameter"] = t.number;
+  if (t.info != nullptr) j["name"] = dev::display_name(*t.info);
+  // D10: one item per request until the drive answers List_End.
+  for (std::uint8_t item = 0; item < 32; ++item) {
+    cl::Request r = cl::describe(a, t.number, item);
+    if (o.timeout_ms > 0) r.timeout = std::chrono::milliseconds(o.timeout_ms);
+    const cl::Outcome res = transact(s, client, r);
+    if (res.kind == cl::OutcomeKind::refused && res.status == cl::kStatusListEnd && item > 0) break;
+    if (const int rc = report_outcome("describe", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
+    items.push_back(res.value);
+  }
+  j["items"] = items;
+  // D29: the CDA3000's items.
+  std::string text = "CDA " + std::to_string(o.address) + " " + target_name(t) + ":";
+  if (items.size() >= 8 && items[0] <= static_cast<std::uint32_t>(cl::DataType::string)) {
+    const auto type = static_cast<cl::DataType>(items[0]);
+    const bool is_signed = type == cl::DataType::int8 || type == cl::DataType::int16 ||
+                           type == cl::DataType::int32 || type == cl::DataType::int32q16;
+    const auto num = [&](std::uint32_t v) -> nlohmann::json {
+      if (type == cl::DataType::int32q16) return cl::double_from_q16(static_cast<std::int32_t>(v));
+      if (is_signed) return static_cast<std::int32_t>(v);
+      return v;
+    };
+    j["type"] = std::string(cl::to_string(type));
+    j["min"] = num(items[1]);
+    j["max"] = num(items[2]);
+    j["factory"] = num(items[3]);
+    j["writable"] = (items[4] & 1U) != 0;
+    j["flash"] = (items[4] & 2U) != 0;
+    j["after_mains_reset"] = (items[4] & 4U) != 0;
+    j["short_name"] = unpack4(items[5]) + unpack4(items[6]);
+    j["unit"] = unpack4(items[7]);
+    const std::string unit = unpack4(items[7]).empty() ? "" : " " + unpack4(items[7]);
+    text += " " + j["short_name"].get<std::string>() + ", " + j["type"].get<std::string>() + ", " +
+            j["min"].dump() + ".." + j["max"].dump() + unit + ", factory " + j["factory"].dump() + unit + ", " +
+            ((items[4] & 1U) != 0 ? "writable" : "read-only") + ((items[4] & 2U) != 0 ? ", flash" : ", RAM") +
+            ((items[4] & 4U) != 0 ? ", acts after a mains reset" : "");
+  } else {
+    for (std::size_t i = 0; i < items.size(); ++i) text += " item " + std::to_string(i) + " = " + hex(items[i], 8) + "H";
+  }
+  if (o.bus.json) {
+    out << j.dump() << "\n";
+  } else {
+    out << text << "\n";
+  }
+  return kExitCanOk;
+}
+
+int system_cmd(bool start, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  (void)err;
+  const cl::IdentifierMap ids = ids_for(o.bus);
+  const cl::ProcessLayout layout = layout_for(o.bus);
+  if (o.listen_ms < 0) throw std::invalid_argument("--listen-ms must be 0 or more");
+  Session s(o.bus);
+  s.send(cl::encode_system(start ? cl::SystemCommand::start : cl::SystemCommand::stop));
+  const Clock::time_point t0 = Clock::now();
+  const Duration listen = std::chrono::milliseconds(o.listen_ms);
+  std::map<unsigned, cl::StatusTelegram> last;
+  std::set<unsigned> logons;
+  while (since(t0) < listen) {
+    const auto f = s.receive(std::min<Duration>(listen - since(t0), kPoll));
+    if (!f) continue;
+    const auto c = ids.classify(f->id);
+    if (!c) continue;
+    if (c->kind == cl::TelegramKind::status) {
+      if (const auto d = cl::decode_status(*f, layout)) last[c->address] = d.value;
+    } else if (c->kind == cl::TelegramKind::logon) {
+      logons.insert(c->address);
+    }
+  }
+  nlohmann::json j;
+  j["command"] = start ? "start" : "stop";
+  j["drives"] = nlohmann::json::array();
+  j["logons"] = logons;
+  if (!o.bus.json) out << (start ? "System Start" : "System Stop") << " sent\n";
+  for (const auto& [a, st] : last) {
+    const std::string words = layout.mode == cl::WordMode::drivecom ? dev::explain_status_word(st.word)
+                                                                    : "EasyDrive word " + hex(st.word, 4);
+    const double hz = dev::hz_from_wire(layout.actual, st.actual);
+    j["drives"].push_back({{"address", a}, {"status_word", st.word}, {"status", words}, {"actual_hz", hz}});
+    if (!o.bus.json) out << "CDA " << a << ": status " << words << "; actual " << hz << " Hz\n";
+  }
+  if (!o.bus.json) {
+    for (const unsigned a : logons) out << "CDA " << a << ": logging on (System Logon)\n";
+    if (last.empty() && logons.empty()) out << "no drive answered within " << o.listen_ms << " ms\n";
+  }
+  if (o.bus.json) out << j.dump() << "\n";
+  return kExitCanOk;
+}
+
+std::string data_hex(const cl::CanFrame& f) {
+  std::string s;
+  for (std::size_t i = 0; i < f.payload().size(); ++i) s += (i == 0 ? "" : " ") + hex(f.data[i], 2);
+  return s;
+}
+
+int monitor_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  (void)err;
+  const cl::IdentifierMap ids = ids_for(o.bus);
+  const cl::ProcessLayout layout = layout_for(o.bus);
+  if (o.duration_ms < 0) throw std::invalid_argument("--duration-ms must be 0 (until a signal) or more");
+  StopSignals signals;
+  Session s(o.bus);
+  if (!o.bus.json) out << "monitoring " << s.bus->name() << "\n" << std::flush;
+  const Clock::time_point t0 = Clock::now();
+  const Duration limit = o.duration_ms > 0 ? Duration(std::chrono::milliseconds(o.duration_ms)) : Duration::max();
+  while (since(t0) < limit && !signals.raised()) {
+    const Duration left = limit == Duration::max() ? kPoll : std::min<Duration>(limit - since(t0), kPoll);
+    const auto f = s.receive(left);
+    if (!f) continue;
+    const double t = to_ms(since(t0)) / 1000.0;
+    const auto e = dev::explain_frame(*f, ids, layout);
+    if (o.bus.json) {
+      nlohmann::json j;
+      j["time"] = t;
+      j["id"] = f->id;
+      j["dlc"] = f->dlc;
+      j["rtr"] = f->rtr;
+      j["data"] = data_hex(*f);
+      if (e.id) {
+        j["kind"] = std::string(cl::to_string(e.id->kind));
+        if (e.id->kind != cl::TelegramKind::system) j["address"] = e.id->address;
+      }
+      j["text"] = e.text;
+      out << j.dump() << "\n" << std::flush;
+    } else {
+      char head[64];
+      std::snprintf(head, sizeof head, "%12.6f  %4u  [%u]  ", t, static_cast<unsigned>(f->id), static_cast<unsigned>(f->dlc));
+      std::string d = f->rtr ? "remote" : data_hex(*f);
+      d.resize(std::max<std::size_t>(d.size(), 23), ' ');
+      out << head << d << "  " << e.text << "\n" << std::flush;
+    }
+  }
+  return kExitCanOk;
+}
+
+int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const std::string name = which.get_name();
+  try {
+    const cl::IdentifierMap ids = ids_for(o.bus);
+    layout_for(o.bus);
+    if (name == "read" || name == "write" || name == "describe") {
+      if (o.address < 0 || o.address > ids.max_address) {
+        throw std::invalid_argument("--address must be 0.." + std::to_string(ids.max_address));
+      }
+      if (o.timeout_ms < 0) throw std::invalid_argument("--timeout-ms must be positive");
+    }
+    if (name == "read") return read_cmd(o, out, err);
+    if (name == "write") return write_cmd(o, out, err);
+    if (name == "describe") return describe_cmd(o, out, err);
+    if (name == "start") return system_cmd(true, o, out, err);
+    if (name == "stop") return system_cmd(false, o, out, err);
+    return monitor_cmd(o, out, err);
+  } catch (const std::invalid_argument& e) {
+    err << "ibs canlust " << name << ": " << e.what() << "\n";
+    return kExitCanBadInput;
+  }
+}
+
+void add_bus_options(CLI::App* cmd, CanBusOptions& b) {
+  cmd->add_option("--bus", b.bus, "udp:LOCALPORT:HOST:PORT (CAN over UDP, cannelloni format) or socketcan:IFACE")
+      ->required();
+  cmd->add_option("--id-step", b.id_step, "identifier = base + STEP x address: 2 (the examples, default) or 1 (the text)");
+  cmd->add_option("--cacnf", b.cacnf, "the drives' 492-CACNF (1..3 DRIVECOM, 4 EasyDrive; default 2): the telegram layout");
+  cmd->add_flag("--json", b.json, "print JSON");
+  cmd->add_option("--log", b.log, "write every frame sent and received to FILE in candump -l format");
+  cmd->add_option("--pcap", b.pcap, "write every frame sent and received to FILE as pcap (LINKTYPE_CAN_SOCKETCAN)");
+}
+
+void add_parameter_options(CLI::App* cmd, CanlustClientOptions& o) {
+  cmd->add_option("--address", o.address, "the drive's CAN address (571-CLADR)")->required();
+  cmd->add_option("--timeout-ms", o.timeout_ms, "the request's timeout (default 250 ms, strings 2 s)");
+}
+
+}  // namespace
+
+// ---- recorder ---------------------------------------------------------------------------------
+
+struct FrameRecorder::Files {
+  std::ofstream log;
+  bool has_log = false;
+#ifdef IBS_HAVE_PCAP
+  std::unique_ptr<can::PcapWriter> pcap;
+#endif
+  std::string iface;
+};
+
+FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, std::string iface)
+    : files_(std::make_unique<Files>()) {
+  files_->iface = std::move(iface);
+  if (!log.empty()) {
+    files_->log.open(log, std::ios::out | std::ios::trunc);
+    if (!files_->log) throw std::invalid_argument("--log " + log + ": cannot open the file for writing");
+    files_->has_log = true;
+  }
+  if (!pcap.empty()) {
+#ifdef IBS_HAVE_PCAP
+    auto w = can::PcapWriter::open(pcap);
+    if (!w) throw std::invalid_argument("--pcap " + pcap + ": " + w.error);
+    files_->pcap = std::move(w.transport);
+#else
+    throw std::invalid_argument("--pcap: this ibs was built without libpcap (apt-get install libpcap-dev)");
+#endif
+  }
+}
+
+FrameRecorder::~FrameRecorder() = default;
+
+void FrameRecorder::record(const cl::CanFrame& f, Wall::time_point at) {
+  if (files_->has_log) files_->log << candump_line(f, at, files_->iface) << "\n" << std::flush;
+#ifdef IBS_HAVE_PCAP
+  if (files_->pcap) {
+    files_->pcap->write(f, std::chrono::duration_cast<Duration>(at.time_since_epoch()));
+    files_->pcap->flush();
+  }
+#endif
+}
+
+std::string candump_line(const cl::CanFrame& f, Wall::time_point at, std::string_view iface) {
+  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at.time_since_epoch()).count();
+  char head[64];
+  std::snprintf(head, sizeof head, "(%lld.%06lld) ", static_cast<long long>(us / 1000000),
+                static_cast<long long>(us % 1000000));
+  std::string s = head + std::string(iface) + " " + hex(f.id, 3) + "#";
+  if (f.rtr) {
+    s += "R";
+    if (f.dlc > 0) s += std::to_string(f.dlc);
+    return s;
+  }
+  for (const auto b : f.payload()) s += hex(b, 2);
+  return s;
+}
+
+std::optional<CandumpRecord> parse_candump_line(std::string_view line) {
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
+  if (line.size() < 4 || line[0] != '(') return std::nullopt;
+  const auto close = line.find(')');
+  if (close == std::string_view::npos) return std::nullopt;
+  CandumpRecord r;
+  r.time = std::string(line.substr(1, close - 1));
+  const auto dot = r.time.find('.');
+  if (dot == std::string::npos || !parse_int(std::string_view(r.time).substr(0, dot)) ||
+      !parse_int(std::string_view(r.time).substr(dot + 1))) {
+    return std::nullopt;
+  }
+  std::string_view rest = line.substr(close + 1);
+  if (rest.empty() || rest[0] != ' ') return std::nullopt;
+  rest.remove_prefix(1);
+  const auto sp = rest.find(' ');
+  if (sp == std::string_view::npos || sp == 0) return std::nullopt;
+  r.interface_name = std::string(rest.substr(0, sp));
+  const std::string_view frame = rest.substr(sp + 1);
+  const auto hash = frame.find('#');
+  if (hash == std::string_view::npos || hash == 0) return std::nullopt;
+  const std::string_view id = frame.substr(0, hash);
+  std::string_view data = frame.substr(hash + 1);
+  unsigned idv = 0;
+  const auto rid = std::from_chars(id.data(), id.data() + id.size(), idv, 16);
+  if (rid.ec != std::errc{} || rid.ptr != id.data() + id.size()) return std::nullopt;
+  if (id.size() > 3 || (!data.empty() && data[0] == '#')) {
+    r.classic = false;  // an extended identifier or a CAN FD frame
+    return r;
+  }
+  if (idv > cl::kMaxStandardId) return std::nullopt;
+  r.frame.id = static_cast<std::uint16_t>(idv);
+  if (!data.empty() && (data[0] == 'R' || data[0] == 'r')) {
+    r.frame.rtr = true;
+    if (data.size() == 2 && data[1] >= '0' && data[1] <= '8') r.frame.dlc = static_cast<std::uint8_t>(data[1] - '0');
+    else if (data.size() != 1) return std::nullopt;
+    return r;
+  }
+  if (data.size() % 2 != 0 || data.size() > 16) return std::nullopt;
+  for (std::size_t i = 0; i < data.size(); i += 2) {
+    unsigned b = 0;
+    const auto rb = std::from_chars(data.data() + i, data.data() + i + 2, b, 16);
+    if (rb.ec != std::errc{} || rb.ptr != data.data() + i + 2) return std::nullopt;
+    r.frame.data[i / 2] = static_cast<std::uint8_t>(b);
+  }
+  r.frame.dlc = static_cast<std::uint8_t>(data.size() / 2);
+  return r;
+}
+
+std::optional<int> decode_candump_log(const std::string& file, unsigned id_step, unsigned cacnf,
+                                      std::ostream& out, std::ostream& err) {
+  // Only a regular file is looked at (a FIFO would block the open); everything else, and every
+  // file error, is the trace reader's to report.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  const auto first = std::find_if(lines.begin(), lines.end(), [](const std::string& l) {
+    return l.find_first_not_of(" \t\r") != std::string::npos;
+  });
+  if (first == lines.end() || !parse_candump_line(*first)) return std::nullopt;
+  CanBusOptions o;
+  o.id_step = id_step;
+  o.cacnf = cacnf;
+  cl::IdentifierMap ids;
+  cl::ProcessLayout layout;
+  try {
+    ids = ids_for(o);
+    layout = layout_for(o);
+  } catch (const std::invalid_argument& e) {
+    err << "ibs decode: " << e.what() << "\n";
+    return kExitCanBadInput;
+  }
+  std::string text;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string& l = lines[i];
+    if (l.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto r = parse_candump_line(l);
+    if (!r) {
+      err << file << ":" << (i + 1) << ": not a candump log line: '" << l << "'\n";
+      return kExitCanBadInput;
+    }
+    std::string line = l;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    line.resize(std::max<std::size_t>(line.size(), 44), ' ');
+    text += line + "  " +
+            (r->classic ? dev::explain_frame(r->frame, ids, layout).text
+                        : std::string("extended or CAN FD frame: not CANLust")) + "\n";
+  }
+  out << text;
+  return kExitCanOk;
+}
+
+std::unique_ptr<can::CanTransport> open_bus(const std::string& spec) {
+  const BusSpec b = parse_bus(spec);
+  if (b.udp) {
+    auto t = can::UdpCanTransport::open(b.udp_config);
+    if (!t) throw std::invalid_argument("--bus '" + spec + "': " + t.error);
+    return std::move(t.transport);
+  }
+  auto t = can::SocketCan::open(b.iface);
+  if (!t) throw std::invalid_argument("--bus '" + spec + "': " + t.error);
+  return std::move(t.transport);
+}
+
+void serve_canlust(can::CanTransport& bus, std::span<dev::Cda3000* const> drives, FrameRecorder* recorder,
+                   const std::function<bool()>& stop) {
+  const Clock::time_point t0 = Clock::now();
+  for (dev::Cda3000* d : drives) d->power_on(Time{0});
+  while (!stop()) {
+    Time now = since(t0);
+    for (std::size_t i = 0; i < drives.size(); ++i) {
+      drives[i]->step(now);
+      while (auto f = drives[i]->take_frame()) {
+        if (recorder != nullptr) recorder->record(*f);
+        (void)bus.send(*f);  // UDP with PORT 0 has no peer until one sends: the frame is lost
+        for (std::size_t k = 0; k < drives.size(); ++k) {
+          if (k != i) drives[k]->receive(*f, now);
+        }
+      }
+    }
+    Time next = Time::max();
+    for (const dev::Cda3000* d : drives) next = std::min(next, d->next_deadline());
+    now = since(t0);
+    const Duration wait = next <= now ? Duration::zero() : std::min<Duration>(next - now, kPoll);
+    const can::Received r = bus.receive(wait);
+    if (r.status != can::IoStatus::ok) continue;
+    if (recorder != nullptr) recorder->record(r.frame);
+    now = since(t0);
+    for (dev::Cda3000* d : drives) d->receive(r.frame, now);
+  }
+}
+
+void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
+  state.canlust = app.add_subcommand(
+      "canlust", "CDA3000 drives on a CANLust bus (CM-CAN1): emulate drives, start/stop, parameters, monitor (docs/canlust.md)");
+  state.canlust->require_subcommand(1);
+
+  CanlustEmulateOptions& eo = state.emulate_options;
+  state.emulate = state.canlust->add_subcommand("emulate", "emulate CDA3000 drives on the bus until SIGINT/SIGTERM");
+  state.emulate->add_option("DEVICE", eo.devices, "cda3000@ADDR, one per drive")->required();
+  state.emulate->add_option("--watchdog-reaction", eo.watchdog_reaction,
+                            "the drives' reaction when 574-CAWDG runs out: wrn, stop, quick-stop, disable-power (default)");
+  state.emulate->add_flag("--factory", eo.factory,
+                          "factory settings (CLSEL TERM, CLADR 0): ADDR is the connector's address 0..7");
+  add_bus_options(state.emulate, eo.bus);
+
+  CanlustClientOptions& co = state.client_options;
+  state.start = state.canlust->add_subcommand("start", "broadcast System Start (221, 01H) and show the drives' status");
+  state.start->add_option("--listen-ms", co.listen_ms, "listen this long for status telegrams (default 300)");
+  add_bus_options(state.start, co.bus);
+  state.stop = state.canlust->add_subcommand("stop", "broadcast System Stop (221, 00H) and show the drives' status");
+  state.stop->add_option("--listen-ms", co.listen_ms, "listen this long for status telegrams (default 300)");
+  add_bus_options(state.stop, co.bus);
+
+  state.read = state.canlust->add_subcommand("read", "read a parameter (mode 05, strings mode 11)");
+  state.read->add_option("PARAM", co.parameter, "NUMBER, NAME or NUMBER-NAME, e.g. 360, DISP, 360-DISP")->required();
+  add_parameter_options(state.read, co);
+  add_bus_options(state.read, co.bus);
+
+  state.write = state.canlust->add_subcommand("write", "write a parameter (mode 02, strings mode 08)");
+  state.write->add_option("PARAM", co.parameter, "NUMBER, NAME or NUMBER-NAME")->required();
+  state.write->add_option("VALUE", co.value, "a number, a substitution text (OPTN2), Hz (20.5) or a text")->required();
+  add_parameter_options(state.write, co);
+  add_bus_options(state.write, co.bus);
+
+  state.describe = state.canlust->add_subcommand("describe", "read a parameter's description (mode 04, item by item)");
+  state.describe->add_option("PARAM", co.parameter, "NUMBER, NAME or NUMBER-NAME")->required();
+  add_parameter_options(state.describe, co);
+  add_bus_options(state.describe, co.bus);
+
+  state.monitor = state.canlust->add_subcommand("monitor", "print every frame decoded until SIGINT/SIGTERM");
+  state.monitor->add_option("--duration-ms", co.duration_ms, "stop after this long (default: until a signal)");
+  add_bus_options(state.monitor, co.bus);
+}
+
+std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::ostream& out, std::ostream& err) {
+  if (state.canlust == nullptr || !state.canlust->parsed()) return std::nullopt;
+  if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
+  for (const CLI::App* c : {state.start, state.stop, state.read, state.write, state.describe, state.monitor}) {
+    if (c->parsed()) return client(*c, state.client_options, out, err);
+  }
+  return kExitCanBadInput;
+}
+
+std::optional<int> run_canlust_commands(const CanlustCommandState& state) {
+  return run_canlust_commands(state, std::cout, std::cerr);
+}
+
+}  // namespace ibs::cli

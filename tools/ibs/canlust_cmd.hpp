@@ -1,0 +1,133 @@
+// `ibs canlust ...`: CDA3000 drives on a CANLust bus (docs/canlust.md, "Command line").
+//
+//   ibs canlust emulate  --bus BUS [--cacnf N] [--watchdog-reaction R] [--factory] cda3000@ADDR...
+//   ibs canlust start    --bus BUS [--listen-ms N]
+//   ibs canlust stop     --bus BUS [--listen-ms N]
+//   ibs canlust read     --bus BUS --address A PARAM
+//   ibs canlust write    --bus BUS --address A PARAM VALUE
+//   ibs canlust describe --bus BUS --address A PARAM
+//   ibs canlust monitor  --bus BUS [--duration-ms N]
+//
+// BUS is udp:LOCALPORT:HOST:PORT (CAN over UDP in cannelloni's format; LOCALPORT 0: any, PORT 0:
+// whoever sends first) or socketcan:IFACE. Every command takes [--id-step N] [--cacnf N]
+// [--json] [--log FILE] (candump -l format) [--pcap FILE] (LINKTYPE_CAN_SOCKETCAN). Exit codes:
+// 0 ok, 1 the drive refused or did not answer (the decoded reason is printed), 2 bad input.
+// Floor 4: real time from the steady clock and real sockets around the sans-I/O machines of
+// canlust/ and devices/cda3000/.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibs/can/transport.hpp"
+#include "ibs/canlust/frame.hpp"
+#include "ibs/devices/cda3000/device.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace ibs::cli {
+
+inline constexpr int kExitCanOk = 0;
+inline constexpr int kExitCanDevice = 1;    // refused, timeout, bad reply
+inline constexpr int kExitCanBadInput = 2;  // bad options, a bus that does not open
+
+struct CanBusOptions {
+  std::string bus;
+  unsigned id_step = 2;  // decision D1
+  unsigned cacnf = 2;    // the drives' 492-CACNF: how control and status telegrams are laid out
+  bool json = false;
+  std::string log;   // candump -l log of every frame sent and received
+  std::string pcap;  // the same frames as a pcap file
+};
+
+struct CanlustEmulateOptions {
+  CanBusOptions bus;
+  std::vector<std::string> devices;  // cda3000@ADDR
+  std::string watchdog_reaction = "disable-power";
+  bool factory = false;  // factory settings (CLADR 0, CLSEL TERM): ADDR is the connector's, 0..7
+};
+
+struct CanlustClientOptions {
+  CanBusOptions bus;
+  int address = -1;
+  std::string parameter;
+  std::string value;
+  int timeout_ms = 0;     // 0: 250 ms, strings 2 s, 150-SAVE / 04-PROG 2 s
+  int listen_ms = 300;    // start / stop: how long to listen for the drives' answers
+  int duration_ms = 0;    // monitor: 0 = until SIGINT / SIGTERM
+};
+
+struct CanlustCommandState {
+  CLI::App* canlust = nullptr;
+  CLI::App* emulate = nullptr;
+  CLI::App* start = nullptr;
+  CLI::App* stop = nullptr;
+  CLI::App* read = nullptr;
+  CLI::App* write = nullptr;
+  CLI::App* describe = nullptr;
+  CLI::App* monitor = nullptr;
+  CanlustEmulateOptions emulate_options;
+  CanlustClientOptions client_options;
+};
+
+void add_canlust_commands(CLI::App& app, CanlustCommandState& state);
+// After app.parse(): runs the chosen one; nullopt when `canlust` was not chosen.
+std::optional<int> run_canlust_commands(const CanlustCommandState& state);
+std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::ostream& out,
+                                        std::ostream& err);
+
+// ---- pieces, also for tests -----------------------------------------------------------------
+
+// Opens BUS; throws std::invalid_argument saying what is wrong with it (or why it did not open).
+std::unique_ptr<can::CanTransport> open_bus(const std::string& spec);
+
+// Every frame sent or received, with the wall-clock time: a candump -l log and/or a pcap file.
+class FrameRecorder {
+ public:
+  // Throws std::invalid_argument when a file does not open (or pcap is not built in).
+  FrameRecorder(const std::string& log, const std::string& pcap, std::string interface_name);
+  ~FrameRecorder();
+  FrameRecorder(const FrameRecorder&) = delete;
+  FrameRecorder& operator=(const FrameRecorder&) = delete;
+  void record(const canlust::CanFrame& f, std::chrono::system_clock::time_point at);
+  void record(const canlust::CanFrame& f) { record(f, std::chrono::system_clock::now()); }
+
+ private:
+  struct Files;
+  std::unique_ptr<Files> files_;
+};
+
+// candump's log line: "(1700000000.123456) can0 297#0F00008014000".
+std::string candump_line(const canlust::CanFrame& f, std::chrono::system_clock::time_point at,
+                         std::string_view interface_name);
+// One line of a candump log, or nullopt when the line is not one. Extended-identifier and CAN FD
+// frames are lines of the log but no CANLust frames: `classic` is false and `frame` empty.
+struct CandumpRecord {
+  std::string time;  // as written, seconds.microseconds
+  std::string interface_name;
+  bool classic = true;
+  canlust::CanFrame frame{};
+};
+std::optional<CandumpRecord> parse_candump_line(std::string_view line);
+
+// `ibs decode FILE` for a candump log: every frame explained; nullopt when FILE is not a candump
+// log (the caller then reads it as a trace).
+std::optional<int> decode_candump_log(const std::string& file, unsigned id_step, unsigned cacnf,
+                                      std::ostream& out, std::ostream& err);
+
+// The emulator's loop: `drives` on `bus`, each frame one drive sends delivered to the others as
+// well (they share the bus); returns when stop() is true (asked at least every 20 ms).
+void serve_canlust(can::CanTransport& bus, std::span<devices::cda3000::Cda3000* const> drives,
+                   FrameRecorder* recorder, const std::function<bool()>& stop);
+
+}  // namespace ibs::cli
