@@ -14,6 +14,12 @@ cd "$(dirname "$0")"
 
 packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libcli11-dev
           nlohmann-json3-dev libtomlplusplus-dev libasio-dev libpcap-dev)
+# The tests only: tshark runs the Wireshark dissectors (CANLust and INTERBUS) over the captures the
+# tests write (WiresharkDissector.*, CanlustCli.*, the capture tests; installed
+# without its setuid question: DEBIAN_FRONTEND=noninteractive keeps the default, no setuid);
+# gtkwave opens a run's save file headless under Xvfb (xvfb-run needs xauth); gnuplot draws the
+# plots of `ibs run --plot`.
+test_packages=(tshark gtkwave xvfb xauth gnuplot-nox)
 # The fuzz targets only: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 
@@ -67,6 +73,7 @@ case "$cmd" in
   test)
     preset=${2:-debug}
     ensure_packages
+    ensure_packages "${test_packages[@]}"
     build "$preset"
     ctest --preset "$preset" -j "$jobs"
     ;;

@@ -1,0 +1,137 @@
+// Captures of the bus for Wireshark (docs/pcap.md): every bus cycle as one packet of a pcap file
+// written through libpcap, under the user link type LINKTYPE_USER0 (147), with the ring's
+// configuration in a first packet so that the dissector (tools/wireshark/interbus.lua) knows
+// each device's slices, kind and value format. The packet layouts are this project's own and
+// docs/pcap.md specifies them; encode_configuration() and encode_cycle() are their one
+// implementation. Recording is not the cycle path: it allocates and throws.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ibs/interbus/process_image.hpp"
+#include "ibs/interbus/time.hpp"
+#include "ibs/interbus/words.hpp"
+#include "ibs/sim/scenario.hpp"
+#include "ibs/sim/simulator.hpp"
+
+namespace ibs::sim {
+
+// LINKTYPE_USER0 / DLT_USER0: the link-layer type the captures are written under.
+inline constexpr int kLinktypeInterbus = 147;
+
+namespace capture {
+
+inline constexpr std::uint8_t kMagic0 = 0x49;  // 'I'
+inline constexpr std::uint8_t kMagic1 = 0x42;  // 'B'
+inline constexpr std::uint8_t kVersion = 1;
+inline constexpr std::uint8_t kTypeConfiguration = 1;
+inline constexpr std::uint8_t kTypeCycle = 2;
+inline constexpr std::size_t kConfigurationHeaderSize = 20;
+inline constexpr std::size_t kCycleHeaderSize = 16;
+
+// What wrote the capture.
+enum class Source : std::uint8_t { run = 0, replay_device = 1, replay_master = 2 };
+enum class Kind : std::uint8_t { other = 0, vf1000 = 1, mc6000 = 2 };
+// How a device's reference and actual value read (docs/pcap.md, "Values").
+enum class Values : std::uint8_t {
+  none = 0,          // no values (MC6000 IBCNF 0, a trace of PCP or communication words only)
+  word16 = 1,        // MC6000 IBCNF 1: one signed word each, whole units
+  q16 = 2,           // MC6000 IBCNF 2: 32-bit Q16 each, high word first
+  speed_torque = 3,  // MC6000 IBCNF 3: Q16 reference; actual speed and torque as signed words
+  vf1000 = 4,        // VF1000: reference 0.05 Hz per bit (absolute), actual 0.05 Hz signed
+};
+
+struct Device {
+  std::string name;
+  Kind kind = Kind::other;
+  Word id_code = 0;
+  std::uint8_t first_word = 1;  // the device's process-data word number the slices start with
+  interbus::Slice in;           // in the IN area (what the device sends)
+  interbus::Slice out;          // in the OUT area (what the master sends)
+  interbus::Slice pcp;          // in both PCP areas
+  Values values = Values::none;
+  std::uint8_t supi = 0;   // MC6000
+  std::uint8_t ibcnf = 0;  // MC6000
+  std::string unit;        // of the reference and actual value: "rpm", "Hz"
+};
+
+struct Configuration {
+  Source source = Source::run;
+  Duration cycle_time{0};
+  std::size_t in_words = 0;   // the used parts of the areas every cycle packet carries
+  std::size_t out_words = 0;
+  std::size_t pcp_words = 0;
+  std::vector<Device> devices;
+};
+
+// The configuration packet; throws std::invalid_argument for a name or unit longer than 255
+// bytes, more than 65535 devices or words, or a slice outside the areas.
+std::vector<std::uint8_t> encode_configuration(const Configuration& c);
+// One cycle packet into `out` (cleared first): the used OUT, IN and both PCP areas of `image`.
+void encode_cycle(const Configuration& c, std::uint32_t cycle, bool valid, const interbus::ProcessImage& image,
+                  std::vector<std::uint8_t>& out);
+
+// The configuration of a simulated ring: the bus configuration of `sim`, kinds and MC6000 layouts
+// from `scenario` (the one `sim` was built from).
+Configuration configuration_of(const Simulator& sim, const Scenario& scenario);
+
+}  // namespace capture
+
+class PcapError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Whether this build writes pcap files (libpcap was found at configuration time).
+bool pcap_available();
+
+// A pcap file with nanosecond timestamps under `linktype`, written through libpcap to `out`
+// (an OutputFiles stream, so that the file appears all or nothing). Throws PcapError when
+// libpcap refuses or this build has no libpcap.
+class PcapFile {
+ public:
+  PcapFile(std::ostream& out, int linktype);
+  ~PcapFile();
+  PcapFile(const PcapFile&) = delete;
+  PcapFile& operator=(const PcapFile&) = delete;
+
+  void write(Time at, std::span<const std::uint8_t> packet);
+  // Flushes and closes the file; throws PcapError when the stream failed.
+  void close();
+  [[nodiscard]] std::uint64_t packets() const { return packets_; }
+
+ private:
+  struct Handles;
+  std::unique_ptr<Handles> h_;
+  std::ostream& out_;
+  std::uint64_t packets_ = 0;
+};
+
+// Records a simulated run as a capture: the configuration at time 0, then one packet per bus
+// cycle with the master's process image after its cycle (IN as received in that cycle, OUT as
+// the master wrote it for the next one) and the cycle's validity.
+class PcapRecorder final : public Observer {
+ public:
+  PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out);
+
+  void on_cycle(Time at, bool valid, const interbus::ProcessImage& image) override;
+  void on_sample(Time /*at*/, std::size_t /*device*/, std::span<const Word> /*m2s*/,
+                 std::span<const Word> /*s2m*/) override {}
+  // Closes the file at the end of the run (throws PcapError when the stream failed).
+  void finish();
+  [[nodiscard]] std::uint64_t packets() const { return file_.packets(); }
+
+ private:
+  capture::Configuration config_;
+  PcapFile file_;
+  std::vector<std::uint8_t> buffer_;
+  std::uint32_t cycle_ = 0;
+};
+
+}  // namespace ibs::sim

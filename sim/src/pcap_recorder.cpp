@@ -1,0 +1,252 @@
+#include "ibs/sim/pcap_recorder.hpp"
+
+#include <cstdio>
+#include <limits>
+
+#include "ibs/devices/mc6000/layout.hpp"
+
+#ifdef IBS_SIM_HAVE_PCAP
+#include <pcap/pcap.h>
+#endif
+
+namespace ibs::sim {
+
+namespace capture {
+
+namespace {
+
+void put8(std::vector<std::uint8_t>& b, std::size_t v) { b.push_back(static_cast<std::uint8_t>(v)); }
+void put16(std::vector<std::uint8_t>& b, std::size_t v) {
+  b.push_back(static_cast<std::uint8_t>(v >> 8U));
+  b.push_back(static_cast<std::uint8_t>(v));
+}
+void put32(std::vector<std::uint8_t>& b, std::uint64_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8) b.push_back(static_cast<std::uint8_t>(v >> static_cast<unsigned>(shift)));
+}
+void put_words(std::vector<std::uint8_t>& b, std::span<const Word> words) {
+  for (const Word w : words) {
+    b.push_back(high_byte(w));
+    b.push_back(low_byte(w));
+  }
+}
+void put_text(std::vector<std::uint8_t>& b, const std::string& text, const char* what, const std::string& device) {
+  if (text.size() > 255) {
+    throw std::invalid_argument("capture: device '" + device + "': " + what + " longer than 255 bytes");
+  }
+  put8(b, text.size());
+  b.insert(b.end(), text.begin(), text.end());
+}
+void check16(std::size_t v, const std::string& what) {
+  if (v > 0xFFFF) throw std::invalid_argument("capture: " + what + " = " + std::to_string(v) + " exceeds 65535");
+}
+void check_slice(const interbus::Slice& s, std::size_t area, const std::string& device, const char* name) {
+  if (s.end() > area) {
+    throw std::invalid_argument("capture: device '" + device + "': " + name + " slice " + std::to_string(s.offset) +
+                                "+" + std::to_string(s.length) + " lies outside the area of " +
+                                std::to_string(area) + " words");
+  }
+}
+
+void put_header(std::vector<std::uint8_t>& b, std::uint8_t type) {
+  b.push_back(kMagic0);
+  b.push_back(kMagic1);
+  b.push_back(kVersion);
+  b.push_back(type);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_configuration(const Configuration& c) {
+  check16(c.devices.size(), "devices");
+  check16(c.in_words, "IN words");
+  check16(c.out_words, "OUT words");
+  check16(c.pcp_words, "PCP words");
+  std::vector<std::uint8_t> b;
+  put_header(b, kTypeConfiguration);
+  put16(b, c.devices.size());
+  put16(b, c.in_words);
+  put16(b, c.out_words);
+  put16(b, c.pcp_words);
+  const auto ns = c.cycle_time.count();
+  put32(b, ns < 0 ? 0U : static_cast<std::uint64_t>(std::min<std::int64_t>(ns, 0xFFFFFFFF)));
+  put8(b, static_cast<std::size_t>(c.source));
+  put8(b, 0);
+  put16(b, 0);
+  for (const Device& d : c.devices) {
+    check_slice(d.in, c.in_words, d.name, "IN");
+    check_slice(d.out, c.out_words, d.name, "OUT");
+    check_slice(d.pcp, c.pcp_words, d.name, "PCP");
+    put8(b, static_cast<std::size_t>(d.kind));
+    put8(b, d.first_word);
+    put16(b, d.id_code);
+    put16(b, d.in.offset);
+    put16(b, d.in.length);
+    put16(b, d.out.offset);
+    put16(b, d.out.length);
+    put16(b, d.pcp.offset);
+    put16(b, d.pcp.length);
+    put8(b, static_cast<std::size_t>(d.values));
+    put8(b, d.supi);
+    put8(b, d.ibcnf);
+    put_text(b, d.name, "the name is", d.name);
+    put_text(b, d.unit, "the unit is", d.name);
+  }
+  return b;
+}
+
+void encode_cycle(const Configuration& c, std::uint32_t cycle, bool valid, const interbus::ProcessImage& image,
+                  std::vector<std::uint8_t>& out) {
+  out.clear();
+  put_header(out, kTypeCycle);
+  put32(out, cycle);
+  put8(out, valid ? 1U : 0U);
+  put8(out, 0);
+  put16(out, c.out_words);
+  put16(out, c.in_words);
+  put16(out, c.pcp_words);
+  put_words(out, std::span<const Word>(image.out).first(c.out_words));
+  put_words(out, std::span<const Word>(image.in).first(c.in_words));
+  put_words(out, std::span<const Word>(image.pcp_out).first(c.pcp_words));
+  put_words(out, std::span<const Word>(image.pcp_in).first(c.pcp_words));
+}
+
+Configuration configuration_of(const Simulator& sim, const Scenario& scenario) {
+  const interbus::BusConfig& bus = sim.bus();
+  if (bus.devices.size() != scenario.devices.size()) {
+    throw std::invalid_argument("capture: the scenario does not describe the simulator's ring");
+  }
+  Configuration c;
+  c.source = Source::run;
+  c.cycle_time = sim.cycle_time();
+  c.in_words = bus.in_words;
+  c.out_words = bus.out_words;
+  c.pcp_words = bus.pcp_words;
+  for (std::size_t i = 0; i < bus.devices.size(); ++i) {
+    const interbus::Device& placed = bus.devices[i];
+    const DeviceConfig& dc = scenario.devices[i];
+    Device d;
+    d.name = placed.name;
+    d.id_code = placed.id.raw;
+    d.in = placed.in;
+    d.out = placed.out;
+    d.pcp = placed.pcp;
+    if (dc.kind == "vf1000") {
+      d.kind = Kind::vf1000;
+      d.values = Values::vf1000;
+      d.unit = "Hz";
+    } else {
+      d.kind = Kind::mc6000;
+      d.unit = "rpm";
+      d.supi = static_cast<std::uint8_t>(dc.supi);
+      d.ibcnf = static_cast<std::uint8_t>(dc.ibcnf);
+      const auto layout = devices::mc6000::make_layout(dc.supi, dc.ibcnf);
+      switch (layout.exchanges_data ? layout.ibcnf : devices::mc6000::Ibcnf::none) {
+        case devices::mc6000::Ibcnf::word16: d.values = Values::word16; break;
+        case devices::mc6000::Ibcnf::q16: d.values = Values::q16; break;
+        case devices::mc6000::Ibcnf::speed_torque: d.values = Values::speed_torque; break;
+        case devices::mc6000::Ibcnf::none:
+        case devices::mc6000::Ibcnf::lisim: d.values = Values::none; break;
+      }
+    }
+    c.devices.push_back(std::move(d));
+  }
+  return c;
+}
+
+}  // namespace capture
+
+#ifdef IBS_SIM_HAVE_PCAP
+
+bool pcap_available() { return true; }
+
+namespace {
+
+// libpcap writes to a FILE*; this one passes every byte on to the std::ostream.
+ssize_t cookie_write(void* cookie, const char* data, std::size_t size) {
+  auto* out = static_cast<std::ostream*>(cookie);
+  out->write(data, static_cast<std::streamsize>(size));
+  return *out ? static_cast<ssize_t>(size) : -1;
+}
+int cookie_close(void* cookie) {
+  auto* out = static_cast<std::ostream*>(cookie);
+  out->flush();
+  return *out ? 0 : -1;
+}
+
+}  // namespace
+
+struct PcapFile::Handles {
+  pcap_t* pcap = nullptr;
+  pcap_dumper_t* dumper = nullptr;
+  ~Handles() {
+    if (dumper) pcap_dump_close(dumper);
+    if (pcap) pcap_close(pcap);
+  }
+};
+
+PcapFile::PcapFile(std::ostream& out, int linktype) : h_(std::make_unique<Handles>()), out_(out) {
+  h_->pcap = pcap_open_dead_with_tstamp_precision(linktype, 65535, PCAP_TSTAMP_PRECISION_NANO);
+  if (h_->pcap == nullptr) throw PcapError("libpcap: pcap_open_dead(" + std::to_string(linktype) + ") failed");
+  cookie_io_functions_t io{};
+  io.write = cookie_write;
+  io.close = cookie_close;
+  FILE* f = fopencookie(&out_, "w", io);
+  if (f == nullptr) throw PcapError("cannot open a stream for libpcap");
+  h_->dumper = pcap_dump_fopen(h_->pcap, f);
+  if (h_->dumper == nullptr) {
+    std::fclose(f);
+    throw PcapError(std::string("libpcap: ") + pcap_geterr(h_->pcap));
+  }
+}
+
+PcapFile::~PcapFile() = default;
+
+void PcapFile::write(Time at, std::span<const std::uint8_t> packet) {
+  if (h_->dumper == nullptr) throw PcapError("the capture was closed already");
+  pcap_pkthdr hdr{};
+  const auto ns = at.count() < 0 ? 0 : at.count();
+  hdr.ts.tv_sec = ns / 1'000'000'000;
+  hdr.ts.tv_usec = ns % 1'000'000'000;  // nanoseconds in this precision
+  hdr.caplen = static_cast<bpf_u_int32>(packet.size());
+  hdr.len = static_cast<bpf_u_int32>(packet.size());
+  pcap_dump(reinterpret_cast<u_char*>(h_->dumper), &hdr, packet.data());
+  ++packets_;
+}
+
+void PcapFile::close() {
+  if (h_->dumper == nullptr) return;
+  const bool flushed = pcap_dump_flush(h_->dumper) == 0;
+  pcap_dump_close(h_->dumper);  // closes the FILE*, which flushes into the stream
+  h_->dumper = nullptr;
+  if (!flushed || !out_) throw PcapError("cannot write the capture (disk full?)");
+}
+
+#else
+
+bool pcap_available() { return false; }
+
+struct PcapFile::Handles {};
+
+PcapFile::PcapFile(std::ostream& out, int /*linktype*/) : out_(out) {
+  throw PcapError("this ibs was built without libpcap (Debian package libpcap-dev): no captures");
+}
+PcapFile::~PcapFile() = default;
+void PcapFile::write(Time /*at*/, std::span<const std::uint8_t> /*packet*/) {}
+void PcapFile::close() {}
+
+#endif
+
+PcapRecorder::PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out)
+    : config_(capture::configuration_of(sim, scenario)), file_(out, kLinktypeInterbus) {
+  file_.write(Time{0}, capture::encode_configuration(config_));
+}
+
+void PcapRecorder::on_cycle(Time at, bool valid, const interbus::ProcessImage& image) {
+  ++cycle_;
+  capture::encode_cycle(config_, cycle_, valid, image, buffer_);
+  file_.write(at, buffer_);
+}
+
+void PcapRecorder::finish() { file_.close(); }
+
+}  // namespace ibs::sim

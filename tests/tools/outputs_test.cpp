@@ -1,0 +1,321 @@
+// The `ibs` command's pictures and captures as a user gets them: `run --pcap`, `replay --pcap`
+// (docs/pcap.md), `run --vcd` with its gtkwave save file (docs/vcd.md), `run --plot`
+// (docs/simulator.md, "Plots"): what is written, what is printed, that gtkwave opens the save file
+// ready to read, what the picture shows, and that bad paths fail cleanly.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code;
+  std::string out;  // stdout and stderr together
+};
+
+Result run_shell(const std::string& cmd) {
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (const std::size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+Result run(const std::string& args) { return run_shell(std::string(IBS_CLI) + " " + args + " 2>&1"); }
+
+std::string data(const std::string& name) { return std::string(IBS_TEST_DATA_DIR) + "/" + name; }
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+// A fresh directory for one test.
+std::string fresh_dir(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "ibs_outputs_" + name + "_" + std::to_string(::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+bool have(const char* program) {
+  return std::system((std::string("command -v ") + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+std::string tshark(const std::string& capture) {
+  return "tshark -X lua_script:" + std::string(IBS_SOURCE_DIR) + "/tools/wireshark/interbus.lua -r " + capture;
+}
+
+TEST(Captures, RunWritesOnePacketPerCycleAndSaysSo) {
+  const std::string dir = fresh_dir("run_pcap");
+  const std::string pcap = dir + "/run.pcap";
+  const Result r = run("run --pcap " + pcap);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // 8 s of 0.726 ms cycles: 11019 cycles and the configuration.
+  EXPECT_TRUE(contains(r.out, "capture written: " + pcap + " (11020 packets)")) << r.out;
+  const std::string f = slurp(pcap);
+  ASSERT_GE(f.size(), 24U);
+  EXPECT_EQ(f.substr(0, 4), std::string("\x4D\x3C\xB2\xA1", 4));  // nanosecond pcap, little-endian
+  EXPECT_EQ(static_cast<unsigned char>(f[20]), 147U);           // LINKTYPE_USER0
+  fs::remove_all(dir);
+}
+
+TEST(Captures, ABadPathFailsBeforeTheRunAndLeavesNothing) {
+  const std::string dir = fresh_dir("bad_pcap");
+  const Result r = run("run --vcd " + dir + "/run.vcd --pcap " + dir + "/missing/run.pcap");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind(dir + "/missing/run.pcap: cannot create the file", 0), 0U) << r.out;
+  EXPECT_TRUE(fs::is_empty(dir)) << "nothing is left behind";
+  const Result rp = run("replay --emulate device " + data("vf1000_comm_value_inquiry.trace") + " --pcap " + dir +
+                        "/missing/replay.pcap");
+  EXPECT_EQ(rp.exit_code, 2) << rp.out;
+  EXPECT_TRUE(contains(rp.out, dir + "/missing/replay.pcap: cannot create the file")) << rp.out;
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+TEST(Captures, AFullDiskLeavesNoHalfWrittenCapture) {
+  const std::string dir = fresh_dir("full_pcap");
+  const std::string pcap = dir + "/run.pcap";
+  // The file-size limit stands for a full disk: a write past 16 KiB fails (SIGXFSZ ignored).
+  const Result r = run_shell("bash -c 'trap \"\" XFSZ; ulimit -f 16; exec " + std::string(IBS_CLI) + " run --pcap " +
+                             pcap + "' 2>&1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.out.rfind(pcap + ": ", 0), 0U) << r.out;
+  EXPECT_FALSE(contains(r.out, "ibs run:")) << "no summary for a run that could not be saved";
+  EXPECT_TRUE(fs::is_empty(dir)) << "nothing is left behind";
+  fs::remove_all(dir);
+}
+
+TEST(Captures, ReplayWritesARingOfOneRowByRow) {
+  const std::string dir = fresh_dir("replay_pcap");
+  const std::string pcap = dir + "/inquiry.pcap";
+  const Result r = run("replay --emulate device " + data("vf1000_comm_value_inquiry.trace") + " --pcap " + pcap);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, "replay: 7 steps matched\n");
+  ASSERT_TRUE(fs::exists(pcap));
+  if (!have("tshark")) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
+  // Exactly the rows of the table (seed 001, 4.1.3.1.1), one per packet, 16.4 ms apart.
+  const auto rows = lines_of(run_shell(tshark(pcap) + " -T fields -E separator=';' -e frame.time_relative"
+                                                      " -e interbus.comm.master -e interbus.comm.inverter 2>/dev/null")
+                                 .out);
+  const std::vector<std::string> want{
+      "0.000000000;;",
+      "0.000000000;0x0000;0x8000",
+      "0.016400000;0x2416;0x8000",
+      "0.032800000;0x2416;0xa003",
+      "0.049200000;0x0400;0xa003",
+      "0.065600000;0x0400;0x88e8",
+      "0.082000000;0x0000;0x88e8",
+      "0.098400000;0x0000;0x8000",
+  };
+  EXPECT_EQ(rows, want);
+  const std::string verbose = run_shell(tshark(pcap) + " -V 2>/dev/null").out;
+  EXPECT_TRUE(contains(verbose, "Written by: ibs replay --emulate device (1)")) << verbose.substr(0, 2000);
+  EXPECT_TRUE(contains(verbose, "First word: 3"));
+  EXPECT_TRUE(contains(verbose, "Communication word (master): 0x2416 (toggle 1, CODE 1 value inquiry, byte 16H)"));
+  EXPECT_TRUE(contains(verbose, "[As a parameter number: 22]"));
+  EXPECT_TRUE(contains(verbose, "Communication word (inverter): 0x88e8 (ready, toggle 0, ACK, data E8H)"));
+  fs::remove_all(dir);
+}
+
+TEST(Captures, AMismatchingReplayStillWritesItsCaptureUpToTheMismatch) {
+  const std::string dir = fresh_dir("mismatch_pcap");
+  std::string text = slurp(data("mc6000_pd_startup_5_3_4.trace"));
+  const auto pos = text.find("2, 0006 09C4 4000, 0231");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 23, "2, 0006 09C4 4000, 0237");
+  const std::string trace = dir + "/mismatch.trace";
+  std::ofstream(trace) << text;
+  const std::string pcap = dir + "/mismatch.pcap";
+  const Result r = run("replay --emulate device " + trace + " --pcap " + pcap);
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  ASSERT_TRUE(fs::exists(pcap));
+  if (!have("tshark")) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
+  // Rows 0 and 1 matched; row 2 shows the device's actual answer (READY), not the file's.
+  const auto rows = lines_of(
+      run_shell(tshark(pcap) + " -T fields -E separator=';' -e interbus.control -e interbus.state 2>/dev/null").out);
+  const std::vector<std::string> want{";", "0x0000;START-UP INHIBIT", "0x0006;START-UP INHIBIT", "0x0006;READY"};
+  EXPECT_EQ(rows, want);
+  fs::remove_all(dir);
+}
+
+TEST(Captures, AMasterReplayCapturesThePcpChannel) {
+  const std::string dir = fresh_dir("master_pcap");
+  const std::string pcap = dir + "/read.pcap";
+  const Result r = run("replay --emulate master " + data("mc6000_pcp_read_4words.trace") + " --pcap " + pcap);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  if (!have("tshark")) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
+  const auto msgs = lines_of(run_shell(tshark(pcap) + " -Y interbus.pcp.message -T fields -E separator=';'"
+                                                      " -e interbus.pcp.message.direction"
+                                                      " -e interbus.pcp.message.service 2>/dev/null")
+                                 .out);
+  const std::vector<std::string> want{"master -> servo;Initiate.req", "servo -> master;Initiate.conf",
+                                      "master -> servo;Read.req", "servo -> master;Read.conf"};
+  EXPECT_EQ(msgs, want);
+  fs::remove_all(dir);
+}
+
+TEST(Pictures, RunVcdWritesASaveFileBesideIt) {
+  const std::string dir = fresh_dir("gtkw");
+  const std::string vcd = dir + "/run.vcd";
+  const Result r = run("run --vcd " + vcd);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "VCD written: " + vcd + " (open it with: gtkwave " + vcd + ".gtkw;")) << r.out;
+  const std::string g = slurp(vcd + ".gtkw");
+  for (const std::string& what : std::vector<std::string>{"[dumpfile] \"" + vcd + "\"\n", "[savefile] \"" + vcd + ".gtkw\"\n", "[timestart] 0\n",
+        "@2022\n^1 " + vcd + ".states.txt\nmc6000.state[3:0]\n", "@8420\nmc6000.reference_rpm\n@20000\n-\n-\n",
+        "@8420\nmc6000.actual_rpm\n", "vf1000.reference_Hz\n", "vf1000.actual_Hz\n",
+        "@22\nvf1000.master_control[15:0]\nvf1000.master_status[15:0]\n", "@28\nbus.cycle_valid\n",
+        "-mc6000 (ID code 4DBH)\n", "-vf1000 (ID code 33BH)\n"}) {
+    EXPECT_TRUE(contains(g, what)) << what << "\n" << g;
+  }
+  fs::remove_all(dir);
+}
+
+// gtkwave itself, headless under Xvfb: it opens the save file alone, finds the dump, shows the
+// signals in their formats, names the states through the filter and shows the whole run.
+TEST(Pictures, GtkwaveOpensTheRunReadyToRead) {
+  if (!have("gtkwave")) GTEST_SKIP() << "gtkwave is not installed (Debian package gtkwave)";
+  if (!have("xvfb-run")) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): gtkwave needs a display";
+  const std::string dir = fresh_dir("gtkwave");
+  const std::string vcd = dir + "/run.vcd";
+  ASSERT_EQ(run("run --vcd " + vcd).exit_code, 0);
+  const std::string out = dir + "/probe.out";
+  std::ofstream(dir + "/probe.tcl")
+      << "set f [open \"" << out << "\" w]\n"
+      << "puts $f \"window [gtkwave::getWindowStartTime] [gtkwave::getWindowEndTime]\"\n"
+      << "gtkwave::setMarker 3000000000\n"
+      << "foreach s [gtkwave::getDisplayedSignals] {\n"
+      << "  puts $f \"$s|[gtkwave::getTraceFlagsFromName $s]|[gtkwave::getTraceValueAtMarkerFromName $s]\"\n"
+      << "}\n"
+      << "close $f\n"
+      << "gtkwave::/File/Quit\n";
+  const Result g = run_shell("cd " + dir + " && timeout 120 xvfb-run -a -s '-screen 0 1600x1000x24' gtkwave -S probe.tcl " +
+                             vcd + ".gtkw 2>&1");
+  const auto lines = lines_of(slurp(out));
+  ASSERT_FALSE(lines.empty()) << "gtkwave wrote nothing (exit " << g.exit_code << "):\n" << g.out;
+  // Zoomed to the whole run (8 s), not beyond twice that.
+  long long start = -1, end = -1;
+  ASSERT_EQ(std::sscanf(lines[0].c_str(), "window %lld %lld", &start, &end), 2) << lines[0];
+  EXPECT_EQ(start, 0);
+  EXPECT_GE(end, 8'000'000'000LL);
+  EXPECT_LE(end, 16'000'000'000LL);
+  const std::vector<std::string> want{
+      "bus.cycle_valid|40|1",                        // flags 28H: binary
+      "mc6000.state[3:0]|8226|ENABLED",              // 2022H: hex through the filter, by name
+      "mc6000.reference_rpm|33824|2500.25",          // 8420H: analog step
+      "mc6000.master_control[15:0]|34|000F",         // 22H: hex
+      "mc6000.master_status[15:0]|34|0637",
+      "vf1000.state[3:0]|8226|ENABLED",
+      "vf1000.reference_Hz|33824|50",
+  };
+  for (const auto& w : want) EXPECT_NE(std::find(lines.begin(), lines.end(), w), lines.end()) << w << "\n" << slurp(out);
+  fs::remove_all(dir);
+}
+
+// The texts of an SVG: every <text> element's content (gnuplot writes titles, labels and tic
+// labels as text, series as paths in groups with ids).
+std::vector<std::string> svg_texts(const std::string& svg) {
+  std::vector<std::string> texts;
+  std::size_t pos = 0;
+  while ((pos = svg.find("<text", pos)) != std::string::npos) {
+    const auto end = svg.find("</text>", pos);
+    if (end == std::string::npos) break;
+    std::string t;
+    bool in_tag = false;
+    for (std::size_t i = svg.find('>', pos) + 1; i < end; ++i) {
+      if (svg[i] == '<') in_tag = true;
+      else if (svg[i] == '>') in_tag = false;
+      else if (!in_tag) t += svg[i];
+    }
+    texts.push_back(t);
+    pos = end;
+  }
+  return texts;
+}
+
+TEST(Pictures, PlotDrawsEachDrivesSeriesAxesAndEvents) {
+  if (!have("gnuplot")) GTEST_SKIP() << "gnuplot is not installed (Debian package gnuplot-nox)";
+  const std::string dir = fresh_dir("plot_svg");
+  const std::string svg = dir + "/faults.svg";
+  const Result r = run("run " + std::string(IBS_SOURCE_DIR) + "/examples/faults.toml --plot " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "plot written: " + svg + "\n")) << r.out;
+  const std::string text = slurp(svg);
+  ASSERT_EQ(text.rfind("<?xml", 0), 0U) << text.substr(0, 200);
+  EXPECT_TRUE(contains(text, "</svg>"));
+  const auto texts = svg_texts(text);
+  const auto has = [&](const std::string& t) { return std::find(texts.begin(), texts.end(), t) != texts.end(); };
+  // Per drive: its title, the series in the key, the axes labelled, the states named.
+  for (const char* what : {"servo (ID code 4DBH)", "fan (ID code 33BH)", "pump (ID code 33BH)", "reference (rpm)",
+                           "actual (rpm)", "reference (Hz)", "actual (Hz)", "reference, actual (rpm)",
+                           "reference, actual (Hz)", "DRIVECOM state", "time (s)", "ENABLED", "FAULT",
+                           "EMERGENCY STOP ACTIVE", "fault events", "power-cycle", "device-fault",
+                           "parameter transactions", "read 85", "ibs run: faults, 12 s simulated"}) {
+    EXPECT_TRUE(has(what)) << what;
+  }
+  // Every series is drawn: two value curves, the state steps and the transaction bars or the
+  // fault key of each of the three drives.
+  EXPECT_TRUE(contains(text, "<g id=\"gnuplot_plot_1a\""));
+  EXPECT_TRUE(contains(text, "<g id=\"gnuplot_plot_2a\""));
+  EXPECT_TRUE(contains(text, "<g id=\"gnuplot_plot_1f\""));
+  fs::remove_all(dir);
+}
+
+TEST(Pictures, PlotDrawsAPngToo) {
+  if (!have("gnuplot")) GTEST_SKIP() << "gnuplot is not installed (Debian package gnuplot-nox)";
+  const std::string dir = fresh_dir("plot_png");
+  const std::string png = dir + "/run.PNG";
+  const Result r = run("run --plot " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::string image = slurp(png);
+  EXPECT_EQ(image.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_GT(image.size(), 20000U);
+  fs::remove_all(dir);
+}
+
+TEST(Pictures, PlotRefusesWhatItCannotDrawBeforeTheRun) {
+  const std::string dir = fresh_dir("plot_bad");
+  const Result ext = run("run --vcd " + dir + "/run.vcd --plot " + dir + "/run.pdf");
+  EXPECT_EQ(ext.exit_code, 2) << ext.out;
+  EXPECT_EQ(ext.out, dir + "/run.pdf: --plot draws FILE.svg or FILE.png; say which by the extension\n");
+  // Without gnuplot on the PATH: said clearly, nothing run, nothing written.
+  const Result none = run_shell("env PATH=" + dir + " " + std::string(IBS_CLI) + " run --vcd " + dir +
+                                "/run.vcd --plot " + dir + "/run.svg 2>&1");
+  EXPECT_EQ(none.exit_code, 2) << none.out;
+  EXPECT_EQ(none.out, dir + "/run.svg: --plot needs gnuplot, which is not installed (Debian package gnuplot-nox); "
+                            "nothing was run or written\n");
+  const Result missing = run("run --plot " + dir + "/missing/run.svg");
+  EXPECT_EQ(missing.exit_code, 2) << missing.out;
+  if (have("gnuplot")) {
+    EXPECT_TRUE(contains(missing.out, dir + "/missing/run.svg: cannot create the file")) << missing.out;
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "nothing is left behind";
+  fs::remove_all(dir);
+}
+
+}  // namespace
