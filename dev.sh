@@ -18,8 +18,9 @@ packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-de
 # tests write (WiresharkDissector.*, CanlustCli.*, the capture tests; installed
 # without its setuid question: DEBIAN_FRONTEND=noninteractive keeps the default, no setuid);
 # gtkwave opens a run's save file headless under Xvfb (xvfb-run needs xauth); gnuplot draws the
-# plots of `ibs run --plot`.
-test_packages=(tshark gtkwave xvfb xauth gnuplot-nox)
+# plots of `ibs run --plot`; pkgconf links a program against the installed master
+# (tools/check_install.sh).
+test_packages=(tshark gtkwave xvfb xauth gnuplot-nox pkgconf)
 # The fuzz targets only: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 

@@ -4,7 +4,7 @@ add_library(ibs_interbus_bus
   ${CMAKE_CURRENT_SOURCE_DIR}/src/bus_config.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/src/process_image.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/src/cycle_time.cpp)
-target_include_directories(ibs_interbus_bus PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+ibs_export(ibs_interbus_bus interbus_bus HEADERS ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(ibs_interbus_bus PUBLIC ibs::interbus_core)
 target_compile_features(ibs_interbus_bus PUBLIC cxx_std_20)
 ibs_set_warnings(ibs_interbus_bus)

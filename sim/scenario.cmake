@@ -12,7 +12,7 @@ add_library(ibs_scenario
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scenario_write.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scenario_toml.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/src/scenario_json.cpp)
-target_include_directories(ibs_scenario PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+ibs_export(ibs_scenario scenario HEADERS ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(ibs_scenario
   PUBLIC ibs::devices_api ibs::interbus_core ibs::interbus_bus
   PRIVATE ibs::devices tomlplusplus::tomlplusplus nlohmann_json::nlohmann_json)

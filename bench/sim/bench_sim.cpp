@@ -3,13 +3,15 @@
 // real time.
 #include <benchmark/benchmark.h>
 
-#include "ibs/sim/master_loop.hpp"
+#include "ibs/devices/mc6000/driver.hpp"
+#include "ibs/master/master_loop.hpp"
 #include "ibs/sim/simulator.hpp"
 
 namespace {
 
 using namespace ibs;
 using namespace ibs::sim;
+using master::MasterLoop;
 
 void BM_MasterCycleFullBus(benchmark::State& st) {
   std::vector<interbus::DeviceSpec> specs;
@@ -22,7 +24,7 @@ void BM_MasterCycleFullBus(benchmark::State& st) {
   MasterLoop loop(interbus::make_bus_config(specs), std::move(drivers));
   interbus::ProcessImage image;
   loop.initial(image);
-  std::vector<LinkState> links(64);
+  std::vector<master::LinkState> links(64);
   for (std::size_t i = 0; i < 64; ++i) {
     loop.driver(i).sequencer().request(drivecom::Target::enabled, 0ns);
     loop.driver(i).set_reference(1000.0 + static_cast<double>(i));
@@ -30,7 +32,7 @@ void BM_MasterCycleFullBus(benchmark::State& st) {
   }
   Time now{0};
   for (auto _ : st) {
-    loop.cycle(image, now, links);
+    loop.cycle(image, now, master::Exchange{true, links});
     benchmark::DoNotOptimize(image.out.data());
     now += 1ms;
   }

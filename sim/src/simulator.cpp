@@ -215,7 +215,7 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
                                   " process-data words, its layout " + std::to_string(d->pd_words));
     }
   }
-  loop_ = std::make_unique<MasterLoop>(std::move(config), std::move(drivers));
+  loop_ = std::make_unique<master::MasterLoop>(std::move(config), std::move(drivers));
   for (auto& d : devices_) {
     // The device's slices, cut to the words it exchanges (an MC6000 with SUPI 0 has a slot on
     // the ring but exchanges nothing, 3.2.2).
@@ -707,7 +707,7 @@ void Simulator::cycle_exchange(Time t) {
   ++summary_.cycles;
   if (valid) ++summary_.valid_cycles;
   for (auto& d : devices_) {
-    LinkState& link = links_[d->index];
+    master::LinkState& link = links_[d->index];
     link.data_valid = valid;
     link.module_error = d->module_error(t);
     if (!valid) continue;
@@ -733,7 +733,7 @@ void Simulator::cycle_exchange(Time t) {
 void Simulator::cycle_master(Time t) {
   const auto t0 = options_.measure_master_time ? std::chrono::steady_clock::now()
                                                : std::chrono::steady_clock::time_point{};
-  loop_->cycle(image_, t, links_);
+  loop_->cycle(image_, t, master::Exchange{last_cycle_valid_, links_});
   if (options_.measure_master_time) {
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0);
     master_ns_.push_back(static_cast<std::uint32_t>(std::min<std::int64_t>(ns.count(), 0xFFFFFFFF)));

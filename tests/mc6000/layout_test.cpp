@@ -49,7 +49,9 @@ TEST(Mc6000Layout, ErratumPd6Ibcnf4LisimIsRefusedEvenWithItsSupi9) {
         make_layout(supi, 4, bus);
         ADD_FAILURE() << "SUPI " << supi << " with IBCNF 4 accepted";
       } catch (const LayoutError& e) {
-        if (supi == 9) EXPECT_STREQ(e.what(), "406-IBCNF = 4 (modified LISIM software) is not supported");
+        if (supi == 9) {
+          EXPECT_STREQ(e.what(), "406-IBCNF = 4 (modified LISIM software) is not supported");
+        }
       }
     }
   }

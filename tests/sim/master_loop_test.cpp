@@ -6,13 +6,17 @@
 #include <array>
 
 #include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/mc6000/driver.hpp"
 #include "ibs/devices/vf1000/device.hpp"
-#include "ibs/sim/master_loop.hpp"
+#include "ibs/devices/vf1000/driver.hpp"
+#include "ibs/master/master_loop.hpp"
 
 #include "../support/counting_new.hpp"
 
 namespace ibs::sim {
 namespace {
+
+using master::MasterLoop;
 
 TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
   std::vector<interbus::DeviceSpec> specs;
@@ -26,7 +30,7 @@ TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
   EXPECT_EQ(loop.config().in_words, 256U);
   interbus::ProcessImage image;
   loop.initial(image);
-  std::vector<LinkState> links(64);
+  std::vector<master::LinkState> links(64);
   for (std::size_t i = 0; i < 64; ++i) {
     loop.driver(i).sequencer().request(drivecom::Target::enabled, 0ns);
     loop.driver(i).set_reference(100.0 * static_cast<double>(i));
@@ -35,7 +39,7 @@ TEST(MasterLoop, FullBusOf64ServosCyclesWithoutAllocating) {
   long allocations = 0;
   {
     test::AllocationCounter counter;
-    for (int c = 0; c < 100; ++c) loop.cycle(image, std::chrono::milliseconds(c), links);
+    for (int c = 0; c < 100; ++c) loop.cycle(image, std::chrono::milliseconds(c), master::Exchange{true, links});
     allocations = counter.count();
   }
   EXPECT_EQ(allocations, 0);

@@ -20,7 +20,7 @@
 #include "ibs/interbus/process_image.hpp"
 #include "ibs/interbus/trace.hpp"
 #include "ibs/sim/fork_join.hpp"
-#include "ibs/sim/master_loop.hpp"
+#include "ibs/master/master_loop.hpp"
 #include "ibs/sim/scenario.hpp"
 
 namespace ibs::sim {
@@ -201,10 +201,10 @@ class Simulator {
     std::unique_ptr<devices::DeviceEmulator> emulator;
   };
   std::vector<Prototype> prototypes_;  // while the ring is built, until the run starts
-  std::unique_ptr<MasterLoop> loop_;
+  std::unique_ptr<master::MasterLoop> loop_;
   std::vector<std::unique_ptr<Device>> devices_;
   interbus::ProcessImage image_;
-  std::vector<LinkState> links_;
+  std::vector<master::LinkState> links_;  // the exchange of the cycle end (master/bus.hpp)
   Duration cycle_time_{0};
   Time now_{0};
   Time next_cycle_{0};

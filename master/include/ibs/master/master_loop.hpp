@@ -1,6 +1,7 @@
-// The master's cycle loop (design.md floor 4): per cycle, read the input image, step every
-// device driver, write the output image, with time passed in. Everything is placed at
-// construction; cycle() allocates nothing, throws nothing and takes no lock.
+// The master's cycle loop (design.md floor 4): per cycle, the bus exchanges the process images
+// (bus.hpp), then every device driver steps on what came back and writes its output words for
+// the next exchange, with time passed in. Everything is placed at construction; the cycle
+// allocates nothing, throws nothing and takes no lock. docs/embedding.md shows the loop in use.
 #pragma once
 
 #include <memory>
@@ -8,29 +9,26 @@
 #include <vector>
 
 #include "ibs/devices/driver.hpp"
-#include "ibs/devices/mc6000/driver.hpp"
-#include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/interbus/bus_config.hpp"
 #include "ibs/interbus/process_image.hpp"
+#include "ibs/master/bus.hpp"
 
-namespace ibs::sim {
-
-// What the bus says about one device for the cycle just finished.
-struct LinkState {
-  bool data_valid = true;     // the cycle delivered valid data (not corrupted, not recovering)
-  bool module_error = false;  // the device reports a module error or is missing
-};
+namespace ibs::master {
 
 class MasterLoop {
  public:
   // One driver per device of the configuration, in ring order; throws std::invalid_argument when
-  // the counts differ.
+  // the counts differ or a device lies outside the process image.
   MasterLoop(interbus::BusConfig config, std::vector<std::unique_ptr<devices::DeviceDriver>> drivers);
 
-  // Writes every driver's initial output words into the image.
+  // Writes every driver's initial output words into the image (before the first exchange).
   void initial(interbus::ProcessImage& image);
-  // One master cycle over the image; `links` has one entry per device.
-  void cycle(interbus::ProcessImage& image, Time now, std::span<const LinkState> links);
+  // One whole master cycle: bus.exchange(image, now), then the drivers on its result. Returns
+  // what the bus said.
+  Exchange cycle(Bus& bus, interbus::ProcessImage& image, Time now) noexcept;
+  // The drivers' half of a cycle, for a caller that has exchanged the image itself (the cycle
+  // simulator is the bus and runs this half alongside its devices' next samples).
+  void cycle(interbus::ProcessImage& image, Time now, const Exchange& exchange) noexcept;
   // The master restarts: every driver starts over.
   void restart(Time now);
 
@@ -51,4 +49,4 @@ class MasterLoop {
   std::vector<Place> places_;
 };
 
-}  // namespace ibs::sim
+}  // namespace ibs::master

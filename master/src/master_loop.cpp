@@ -1,9 +1,9 @@
-#include "ibs/sim/master_loop.hpp"
+#include "ibs/master/master_loop.hpp"
 
 #include <stdexcept>
 #include <string>
 
-namespace ibs::sim {
+namespace ibs::master {
 
 MasterLoop::MasterLoop(interbus::BusConfig config,
                        std::vector<std::unique_ptr<devices::DeviceDriver>> drivers)
@@ -36,13 +36,18 @@ void MasterLoop::initial(interbus::ProcessImage& image) {
   for (std::size_t i = 0; i < drivers_.size(); ++i) drivers_[i]->initial(io(image, i));
 }
 
-void MasterLoop::cycle(interbus::ProcessImage& image, Time now, std::span<const LinkState> links) {
+Exchange MasterLoop::cycle(Bus& bus, interbus::ProcessImage& image, Time now) noexcept {
+  const Exchange ex = bus.exchange(image, now);
+  cycle(image, now, ex);
+  return ex;
+}
+
+void MasterLoop::cycle(interbus::ProcessImage& image, Time now, const Exchange& exchange) noexcept {
   for (std::size_t i = 0; i < drivers_.size(); ++i) {
     devices::DriverIo x = io(image, i);
-    if (i < links.size()) {
-      x.data_valid = links[i].data_valid;
-      x.module_error = links[i].module_error;
-    }
+    const LinkState link = exchange.link(i);
+    x.data_valid = link.data_valid;
+    x.module_error = link.module_error;
     drivers_[i]->cycle(x, now);
   }
 }
@@ -51,4 +56,4 @@ void MasterLoop::restart(Time now) {
   for (auto& d : drivers_) d->restart(now);
 }
 
-}  // namespace ibs::sim
+}  // namespace ibs::master

@@ -1,0 +1,59 @@
+# What `cmake --install` puts in place (docs/embedding.md): headers, the libraries of the master
+# (ibs::master) and, unless IBS_MASTER_ONLY, of the simulator and emulators (ibs::sim), the `ibs`
+# tool, a CMake package (find_package(ibs)) and a pkg-config file for the master (ibs-master).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+# ibs_export(target EXPORT_NAME [INTERFACE] HEADERS dir...): `target` goes into the package as
+# ibs::EXPORT_NAME, with `dir`s as its include directories in the build tree and the installed
+# include directory afterwards; the headers under each dir are installed.
+function(ibs_export target export_name)
+  cmake_parse_arguments(arg "INTERFACE" "" "HEADERS" ${ARGN})
+  set(scope PUBLIC)
+  if(arg_INTERFACE)
+    set(scope INTERFACE)
+  endif()
+  foreach(dir IN LISTS arg_HEADERS)
+    target_include_directories(${target} ${scope} $<BUILD_INTERFACE:${dir}>)
+    set_property(GLOBAL APPEND PROPERTY IBS_HEADER_DIRS ${dir})
+  endforeach()
+  target_include_directories(${target} ${scope} $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+  set_property(GLOBAL APPEND PROPERTY IBS_EXPORTED_TARGETS ${target})
+endfunction()
+
+# Called once at the end of the top-level CMakeLists.txt, when every target exists.
+function(ibs_install)
+  get_property(targets GLOBAL PROPERTY IBS_EXPORTED_TARGETS)
+  get_property(header_dirs GLOBAL PROPERTY IBS_HEADER_DIRS)
+  install(TARGETS ${targets} EXPORT ibs-targets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  foreach(dir IN LISTS header_dirs)
+    install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp")
+  endforeach()
+  set(cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/ibs)
+  install(EXPORT ibs-targets NAMESPACE ibs:: DESTINATION ${cmake_dir})
+  # The package's dependencies: none for the master; the simulator's when it was built.
+  set(IBS_PACKAGE_HAS_SIM OFF)
+  if(NOT IBS_MASTER_ONLY)
+    set(IBS_PACKAGE_HAS_SIM ON)
+  endif()
+  configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/ibs-config.cmake.in
+                                ${PROJECT_BINARY_DIR}/ibs-config.cmake INSTALL_DESTINATION ${cmake_dir})
+  write_basic_package_version_file(${PROJECT_BINARY_DIR}/ibs-config-version.cmake
+                                   COMPATIBILITY SameMinorVersion)
+  install(FILES ${PROJECT_BINARY_DIR}/ibs-config.cmake ${PROJECT_BINARY_DIR}/ibs-config-version.cmake
+          DESTINATION ${cmake_dir})
+  # pkg-config: the master's libraries in link order (each after the ones that need it).
+  set(IBS_MASTER_PKG_LIBS "")
+  foreach(lib ibs_master ibs_vf1000_master ibs_mc6000_master ibs_devices_api ibs_vf1000_channel ibs_pcp
+              ibs_drive ibs_drivecom ibs_interbus_bus ibs_interbus_core)
+    string(APPEND IBS_MASTER_PKG_LIBS " -l${lib}")
+  endforeach()
+  # The prefix relative to the .pc file, so that `cmake --install --prefix DIR` works too.
+  file(RELATIVE_PATH IBS_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/ibs-master.pc.in ${PROJECT_BINARY_DIR}/ibs-master.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/ibs-master.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endfunction()
