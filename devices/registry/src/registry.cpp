@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <tuple>
+#include <type_traits>
 
 #include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/mc6000/device.hpp"
@@ -14,17 +16,19 @@ namespace ibs::devices {
 namespace {
 
 // The one list of drive kinds, sorted by name. A new drive adds its line here.
-const std::array<DriveKind, 2>& kinds() {
-  static const std::array<DriveKind, 2> k{{
+const auto& kinds() {
+  static const auto k = std::to_array<DriveKind>({
       {&mc6000::descriptor(), &mc6000::make_emulator},
       {&vf1000::descriptor(), &vf1000::make_emulator},
-  }};
+  });
   return k;
 }
 
-const std::array<std::string_view, 2>& names() {
-  static const std::array<std::string_view, 2> n = [] {
-    std::array<std::string_view, 2> a{};
+constexpr std::size_t kKindCount = std::tuple_size_v<std::remove_cvref_t<decltype(kinds())>>;
+
+const std::array<std::string_view, kKindCount>& names() {
+  static const std::array<std::string_view, kKindCount> n = [] {
+    std::array<std::string_view, kKindCount> a{};
     std::transform(kinds().begin(), kinds().end(), a.begin(), [](const DriveKind& k) { return k->name(); });
     return a;
   }();
