@@ -1,0 +1,149 @@
+// The cycle end: the bus exchange with the emulated devices (the far side of the master's bus seam,
+// master/bus.hpp), then the master's half of the cycle and what the summary takes from it.
+#include "simulator_internal.hpp"
+
+namespace ibs::sim {
+
+using detail::fmt_value;
+using detail::copy_words;
+
+void Simulator::handle_cycle(Time t) {
+  cycle_exchange(t);
+  cycle_master(t);
+}
+
+void Simulator::cycle_exchange(Time t) {
+  merge_device_records();
+  apply_timeline(t);
+  apply_random_faults(t);
+  for (auto& d : devices_) {
+    if (d->fault_until >= Time{0} && t >= d->fault_until) {
+      d->fault_until = Time{-1};
+      d->emu->set_fault(false);
+      summary_.faults.push_back({t, d->cfg.name, "fault-cleared", "the fault's cause has gone"});
+      if (!d->recordings.empty() && d->recording) {
+        d->recordings.back().events_pending.push_back(
+            {trace::Event::Kind::fault_cleared, "at " + fmt_value(to_ms(t)) + " ms", 0});
+      }
+    }
+    if (d->lost_until >= Time{0} && d->lost_until != Time::max() && t >= d->lost_until) {
+      d->lost_until = Time{-1};
+      summary_.faults.push_back({t, d->cfg.name, "back", "back on the bus"});
+    }
+  }
+  // The cycle just ended: a corrupted one and the recovery cycles after it deliver nothing.
+  bool valid = true;
+  if (corrupt_left_ > 0) {
+    --corrupt_left_;
+    valid = false;
+    if (corrupt_left_ == 0) recovery_left_ = scenario_.bus.recovery_cycles;
+  } else if (recovery_left_ > 0) {
+    --recovery_left_;
+    valid = false;
+  }
+  ++summary_.cycles;
+  if (valid) ++summary_.valid_cycles;
+  for (auto& d : devices_) {
+    master::LinkState& link = links_[d->index];
+    link.data_valid = valid;
+    link.module_error = d->module_error(t);
+    if (!valid) continue;
+    if (link.module_error) {
+      std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
+      // A device that is on the ring but initialising (6.1) still takes the master's words into
+      // its bus interface: it acts on the newest ones once it is ready, not on words from before.
+      if (!d->lost(t) && d->emu->takes_words_in_module_error()) copy_words(d->out, d->m2s.data());
+      continue;
+    }
+    copy_words(d->out, d->m2s.data());
+    copy_words({d->s2m.data(), d->in.size()}, d->in.data());
+    copy_words(d->pcp_out, d->pcp_m2s.data());
+    copy_words({d->pcp_s2m.data(), d->pcp_in.size()}, d->pcp_in.data());
+    d->emu->bus_cycle(t);
+  }
+  // What the master's side reports of the devices, as they are at this cycle end (the devices
+  // may be sampling again while the master's cycle runs).
+  for (auto& d : devices_) d->error_at_cycle = d->emu->error_number();
+  last_cycle_valid_ = valid;
+}
+
+void Simulator::cycle_master(Time t) {
+  const auto t0 = options_.measure_master_time ? std::chrono::steady_clock::now()
+                                               : std::chrono::steady_clock::time_point{};
+  loop_->cycle(image_, t, master::Exchange{last_cycle_valid_, links_});
+  if (options_.measure_master_time) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0);
+    master_ns_.push_back(static_cast<std::uint32_t>(std::min<std::int64_t>(ns.count(), 0xFFFFFFFF)));
+  }
+  for (Observer* o : observers_) o->on_cycle(t, last_cycle_valid_, image_);
+  observe_master(t);
+}
+
+void Simulator::observe_master(Time t) {
+  for (auto& d : devices_) {
+    devices::DeviceDriver& drv = loop_->driver(d->index);
+    const auto seen = drv.sequencer().report().state_seen;
+    auto& states = summary_.devices[d->index].states;
+    if (seen && seen != d->last_seen) {
+      states.push_back({t, std::string(drivecom::to_string(*seen))});
+      d->last_seen = seen;
+    }
+    // A reference the master sees reached (status bit 10 while ENABLED, the actual at it).
+    const std::span<const Word> in = d->in_slot;
+    // (the actual must be at the new reference too: the status word may still show the old one)
+    const bool at_reference = std::fabs(drv.actual() - d->reached_for) <= 0.01 * std::fabs(d->reached_for) + 0.1;
+    if (!d->reached_reported && !in.empty() && seen == State::enabled &&
+        bit(in[0], drivecom::sw::kReferenceReached) && at_reference) {
+      d->reached_reported = true;
+      states.push_back({t, "reference " + fmt_value(d->reached_for) + " " + std::string(drv.unit()) +
+                               " reached (actual " + fmt_value(drv.actual()) + ")"});
+    }
+    if (d->waiting_for && (seen == d->waiting_for || t >= d->wait_deadline)) {
+      if (seen != d->waiting_for) {
+        states.push_back({t, "wait for " + std::string(drivecom::to_string(*d->waiting_for)) + " timed out"});
+      }
+      d->waiting_for.reset();
+    }
+    const drivecom::Report& rep = drv.sequencer().report();
+    if (rep.phase != drivecom::Phase::failed) {
+      d->failure_reported = false;
+    } else if (!d->failure_reported) {
+      d->failure_reported = true;
+      const std::string why = drivecom::describe(rep);
+      states.push_back({t, "master: request failed (" + std::string(drivecom::to_string(rep.failure)) + ")"});
+      summary_.devices[d->index].failures.push_back({t, std::string(drivecom::to_string(rep.failure)), why});
+    }
+    const auto err = d->error_at_cycle;
+    if (err && err != d->reported_error) {
+      const std::string what((*d->kind)->facts().watchdog_error);
+      summary_.faults.push_back({t, d->cfg.name, "watchdog", what});
+      summary_.devices[d->index].errors.push_back(fmt_value(to_ms(t)) + " ms: " + what);
+    }
+    d->reported_error = err;
+  }
+  for (auto& r : summary_.transactions) {
+    if (r.finished) continue;
+    const auto i = index_of(r.device);
+    const devices::ParameterAccess& pa = loop_->driver(*i).parameters();
+    if (!r.answered) {
+      const devices::ParamStatus s = pa.status(r.id);
+      if (!s.done()) continue;
+      r.answered = t;
+      r.kind = s.kind;
+      r.result_value = s.value;
+      r.result = pa.describe(r.id);
+    }
+    if (!pa.closing()) r.finished = t;
+  }
+}
+
+void Simulator::merge_device_records() {
+  for (auto& d : devices_) {
+    if (d->records.empty()) continue;
+    auto& states = summary_.devices[d->index].states;
+    states.insert(states.end(), d->records.begin(), d->records.end());
+    d->records.clear();
+  }
+}
+
+}  // namespace ibs::sim

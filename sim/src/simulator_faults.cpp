@@ -1,0 +1,202 @@
+// The scenario's timeline and the faults: injected by the timeline or the campaign, and random ones.
+#include "simulator_internal.hpp"
+
+namespace ibs::sim {
+
+using detail::fmt_value;
+using detail::next_random;
+
+void Simulator::inject_fault(Action kind, std::size_t i, Duration duration, int count) {
+  const bool bus_wide = kind == Action::fault_corrupt || kind == Action::master_restart;
+  if (!bus_wide && i >= devices_.size()) return;
+  fault(now_, bus_wide ? devices_.size() : i, kind, duration, count);
+}
+
+void Simulator::apply_timeline(Time t) {
+  // Entries of a device that waits for a state stay deferred until the wait ends.
+  auto waiting = [&](const TimelineEntry& e) {
+    if (e.device.empty()) return false;
+    const auto i = index_of(e.device);
+    return i && devices_[*i]->waiting_for.has_value();
+  };
+  for (auto it = deferred_.begin(); it != deferred_.end();) {
+    if (!waiting(**it)) {
+      apply(**it, t);
+      it = deferred_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  while (timeline_next_ < scenario_.timeline.size() && scenario_.timeline[timeline_next_].at <= t) {
+    const TimelineEntry& e = scenario_.timeline[timeline_next_++];
+    if (waiting(e)) {
+      deferred_.push_back(&e);
+    } else {
+      apply(e, t);
+    }
+  }
+}
+
+void Simulator::apply(const TimelineEntry& e, Time t) {
+  std::optional<std::size_t> idx;
+  if (!e.device.empty()) {
+    idx = index_of(e.device);
+    if (!idx) return;  // checked when the scenario was read
+  }
+  switch (e.action) {
+    case Action::state: {
+      const auto target = drivecom::target_named(e.value);
+      if (idx && target) loop_->driver(*idx).sequencer().request(*target, t);
+      break;
+    }
+    case Action::emergency_stop:
+      if (idx) loop_->driver(*idx).sequencer().request_emergency_stop(t);
+      break;
+    case Action::block_power:
+      if (idx) loop_->driver(*idx).sequencer().request_block_power(t);
+      break;
+    case Action::speed:
+    case Action::frequency:
+      if (idx) {
+        loop_->driver(*idx).set_reference(e.number);
+        devices_[*idx]->reached_reported = false;
+        devices_[*idx]->reached_for = e.number;
+      }
+      break;
+    case Action::read:
+    case Action::write:
+    case Action::describe: {
+      if (!idx) break;
+      const devices::ParamOp op = e.action == Action::read    ? devices::ParamOp::read
+                                  : e.action == Action::write ? devices::ParamOp::write
+                                                              : devices::ParamOp::describe;
+      TransactionRecord r;
+      r.device = e.device;
+      r.op = op;
+      r.number = e.parameter;
+      r.value = static_cast<std::int64_t>(e.number);
+      r.submitted = t;
+      r.source_line = e.source_line;
+      r.id = loop_->driver(*idx).parameters().submit(op, e.parameter, r.value);
+      if (r.id == 0) {
+        r.answered = r.finished = t;
+        r.kind = devices::ParamKind::refused;
+        r.result = loop_->driver(*idx).parameters().describe(0);
+      }
+      summary_.transactions.push_back(std::move(r));
+      break;
+    }
+    case Action::wait_state:
+      if (idx) {
+        devices_[*idx]->waiting_for = drivecom::state_named(e.value);
+        devices_[*idx]->wait_deadline = e.duration > Duration{0} ? t + e.duration : Time::max();
+      }
+      break;
+    case Action::fault_corrupt:
+    case Action::fault_power_cycle:
+    case Action::fault_device:
+    case Action::fault_lost:
+    case Action::master_restart:
+      fault(t, idx.value_or(devices_.size()), e.action, e.duration, e.count);
+      break;
+  }
+}
+
+void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int count) {
+  FaultRecord f;
+  f.at = t;
+  if (i < devices_.size()) f.device = devices_[i]->cfg.name;
+  auto note = [&](Device& d, const std::string& what) {
+    if (!d.recordings.empty() && d.recording) {
+      auto& r = d.recordings.back().remark;
+      r += (r.empty() ? "" : "; ") + what;
+    }
+  };
+  auto event = [&](Device& d, trace::Event::Kind what, const std::string& text) {
+    if (!d.recordings.empty() && d.recording) d.recordings.back().events_pending.push_back({what, text, 0});
+  };
+  switch (kind) {
+    case Action::fault_corrupt:
+      f.kind = "corrupt";
+      f.detail = std::to_string(count) + " corrupted cycle(s), then " +
+                 std::to_string(scenario_.bus.recovery_cycles) + " recovery cycles";
+      corrupt_left_ += std::max(count, 1);
+      break;
+    case Action::fault_power_cycle: {
+      Device& d = *devices_[i];
+      f.kind = "power-cycle";
+      f.detail = "switched off and on: initialising again";
+      d.emu->power_cycle(t);
+      if (d.recording) {
+        // A power cycle is not in the trace format: this recording ends, a new one starts once the
+        // device has initialised again.
+        d.recordings.back().trace.trailing_comments.push_back("# recording ends: power cycle at " +
+                                                              fmt_value(to_ms(t)) + " ms");
+        Recording next;
+        next.trace.file = d.cfg.name;
+        next.trace.header = d.recordings.back().trace.header;
+        next.file_name = d.cfg.name + "." + std::to_string(d.recordings.size() + 1) + ".trace";
+        d.recordings.push_back(std::move(next));
+        d.recording = false;
+      }
+      d.power_cycled = true;
+      break;
+    }
+    case Action::fault_device: {
+      Device& d = *devices_[i];
+      f.kind = "device-fault";
+      f.detail = "fault present for " + fmt_value(to_ms(duration)) + " ms";
+      d.fault_until = t + std::max(duration, d.period);
+      d.emu->set_fault(true);
+      note(d, "device fault injected");
+      event(d, trace::Event::Kind::fault, "injected at " + fmt_value(to_ms(t)) + " ms");
+      break;
+    }
+    case Action::fault_lost: {
+      Device& d = *devices_[i];
+      f.kind = "lost";
+      f.detail = duration > Duration{0} ? "off the bus for " + fmt_value(to_ms(duration)) + " ms"
+                                        : "off the bus until the end";
+      d.lost_until = duration > Duration{0} ? t + duration : Time::max();
+      note(d, "device lost from the bus");
+      break;
+    }
+    case Action::master_restart:
+      f.kind = "master-restart";
+      f.detail = "drivers and channels start over";
+      loop_->restart(t);
+      break;
+    default: return;
+  }
+  summary_.faults.push_back(std::move(f));
+}
+
+void Simulator::apply_random_faults(Time t) {
+  const auto& r = scenario_.random;
+  auto pick = [&]() {
+    std::uniform_int_distribution<std::size_t> u(0, devices_.size() - 1);
+    return u(rng_);
+  };
+  if (t >= random_next_.corrupt) {
+    fault(t, devices_.size(), Action::fault_corrupt, Duration{0}, 1);
+    random_next_.corrupt = next_random(rng_, t, r.corrupt_per_s);
+  }
+  if (t >= random_next_.power_cycle) {
+    fault(t, pick(), Action::fault_power_cycle, Duration{0}, 1);
+    random_next_.power_cycle = next_random(rng_, t, r.power_cycle_per_s);
+  }
+  if (t >= random_next_.device_fault) {
+    fault(t, pick(), Action::fault_device, 50ms, 1);
+    random_next_.device_fault = next_random(rng_, t, r.device_fault_per_s);
+  }
+  if (t >= random_next_.lost) {
+    fault(t, pick(), Action::fault_lost, 100ms, 1);
+    random_next_.lost = next_random(rng_, t, r.lost_per_s);
+  }
+  if (t >= random_next_.master_restart) {
+    fault(t, devices_.size(), Action::master_restart, Duration{0}, 1);
+    random_next_.master_restart = next_random(rng_, t, r.master_restart_per_s);
+  }
+}
+
+}  // namespace ibs::sim
