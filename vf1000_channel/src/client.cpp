@@ -150,18 +150,17 @@ Client::Client(const ClientConfig& config)
 
 Submitted Client::submit(const Request& r) {
   if (r.number > kMaxParameterNumber) return {0, SubmitError::invalid_number};
-  if (queue_count_ == queue_.size()) return {0, SubmitError::queue_full};
+  if (queue_.full()) return {0, SubmitError::queue_full};
   const RequestId id = next_id_++;
-  queue_[wrap(queue_head_ + queue_count_, queue_.size())] = {id, r};
-  ++queue_count_;
+  queue_.push({id, r});
   return {id, SubmitError::none};
 }
 
 Poll Client::poll(RequestId id) const {
   if (id == 0 || id >= next_id_) return {};
   if (active_ && current().id == id) return {RequestState::active, {}};
-  for (std::size_t i = active_ ? 1 : 0; i < queue_count_; ++i) {
-    if (queue_[wrap(queue_head_ + i, queue_.size())].id == id) return {RequestState::queued, {}};
+  for (std::size_t i = active_ ? 1 : 0; i < queue_.size(); ++i) {
+    if (queue_[i].id == id) return {RequestState::queued, {}};
   }
   const Outcome* o = outcome(id);
   if (o == nullptr) return {};
@@ -180,7 +179,7 @@ const Outcome* Client::outcome(RequestId id) const {
 
 void Client::restart(Time now) {
   if (active_) fail(OutcomeKind::aborted, answers_so_far());
-  while (queue_count_ > 0) {
+  while (!queue_.empty()) {
     activate_next(now);
     fail(OutcomeKind::aborted, 0);
   }
@@ -204,8 +203,7 @@ Outcome& Client::complete(OutcomeKind k, std::uint8_t answers) {
   Completed& c = completed_[completed_next_];
   completed_next_ = wrap(completed_next_ + 1, completed_.size());
   c.id = current().id;
-  queue_head_ = wrap(queue_head_ + 1, queue_.size());
-  --queue_count_;
+  queue_.pop();
   Outcome& o = c.outcome;
   o.kind = k;
   o.nak_cause = NakCause::none;
@@ -245,7 +243,7 @@ Word Client::enter_closing() {
 }
 
 Word Client::step(Word in, Time now, bool data_valid) {
-  if (!active_ && queue_count_ > 0) activate_next(now);
+  if (!active_ && !queue_.empty()) activate_next(now);
   if (!data_valid) {
     // The bus delivered nothing this cycle: `in` is an old word and the master's word did not
     // reach the inverter either. Only time runs: a transaction's deadline still ends it, and a

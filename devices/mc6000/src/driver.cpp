@@ -57,11 +57,7 @@ void Mc6000Driver::restart(Time now) {
   pcp::Result r;
   r.kind = pcp::ResultKind::aborted;
   r.completed_at = now;
-  while (queue_count_ > 0) {
-    complete(queue_[queue_head_], ParamKind::aborted, 0, r);
-    queue_head_ = (queue_head_ + 1) % kQueueCapacity;
-    --queue_count_;
-  }
+  for (; !queue_.empty(); queue_.pop()) complete(queue_.front(), ParamKind::aborted, 0, r);
   active_ = initiating_ = false;
   client_.emplace(pcp_config_);
 }
@@ -77,8 +73,8 @@ void Mc6000Driver::complete(const Pending& p, ParamKind kind, std::int64_t value
 
 void Mc6000Driver::take_results(Time) {
   while (auto r = client_->take_result()) {
-    if (!active_ || queue_count_ == 0) continue;  // nobody waits for it (e.g. after a restart)
-    const Pending head = queue_[queue_head_];
+    if (!active_ || queue_.empty()) continue;  // nobody waits for it (e.g. after a restart)
+    const Pending head = queue_.front();
     active_ = false;
     if (initiating_) {
       initiating_ = false;
@@ -95,14 +91,13 @@ void Mc6000Driver::take_results(Time) {
       }
       complete(head, kind_of(*r, head.op), value, *r);
     }
-    queue_head_ = (queue_head_ + 1) % kQueueCapacity;
-    --queue_count_;
+    queue_.pop();
   }
 }
 
 void Mc6000Driver::start_next(Time now) {
-  if (active_ || queue_count_ == 0 || client_->busy()) return;
-  const Pending& p = queue_[queue_head_];
+  if (active_ || queue_.empty() || client_->busy()) return;
+  const Pending& p = queue_.front();
   if (!client_->associated()) {
     if (client_->initiate(now) == pcp::SubmitStatus::accepted) active_ = initiating_ = true;
     return;
@@ -134,8 +129,7 @@ void Mc6000Driver::start_next(Time now) {
   r.kind = pcp::ResultKind::negative;
   r.submitted_at = r.completed_at = now;
   complete(p, ParamKind::refused, 0, r);
-  queue_head_ = (queue_head_ + 1) % kQueueCapacity;
-  --queue_count_;
+  queue_.pop();
 }
 
 ParamId Mc6000Driver::submit(ParamOp op, std::uint16_t number, std::int64_t value) {
@@ -143,14 +137,13 @@ ParamId Mc6000Driver::submit(ParamOp op, std::uint16_t number, std::int64_t valu
     refusal_ = Refusal::no_channel;
     return 0;
   }
-  if (queue_count_ == kQueueCapacity) {
+  if (queue_.full()) {
     refusal_ = Refusal::queue_full;
     return 0;
   }
   const ParamId id = next_id_++;
   if (next_id_ == 0) next_id_ = 1;
-  queue_[(queue_head_ + queue_count_) % kQueueCapacity] = {id, op, number, value};
-  ++queue_count_;
+  queue_.push({id, op, number, value});
   return id;
 }
 
@@ -164,8 +157,8 @@ const Mc6000Driver::Completed* Mc6000Driver::find_completed(ParamId id) const {
 ParamStatus Mc6000Driver::status(ParamId id) const {
   if (id == 0) return {ParamKind::refused, 0};
   if (const Completed* c = find_completed(id)) return {c->kind, c->value};
-  for (std::size_t i = 0; i < queue_count_; ++i) {
-    if (queue_[(queue_head_ + i) % kQueueCapacity].id == id) return {ParamKind::pending, 0};
+  for (std::size_t i = 0; i < queue_.size(); ++i) {
+    if (queue_[i].id == id) return {ParamKind::pending, 0};
   }
   return {ParamKind::refused, 0};  // unknown, or pushed out of the completed ring
 }

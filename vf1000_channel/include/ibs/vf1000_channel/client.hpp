@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ibs/interbus/bounded_queue.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
@@ -146,8 +147,8 @@ class Client {
 
   [[nodiscard]] ClientState state() const { return state_; }
   // Requests waiting behind the active one.
-  [[nodiscard]] std::size_t queued() const { return queue_count_ - (active_ ? 1U : 0U); }
-  [[nodiscard]] bool busy() const { return queue_count_ > 0; }
+  [[nodiscard]] std::size_t queued() const { return queue_.size() - (active_ ? 1U : 0U); }
+  [[nodiscard]] bool busy() const { return !queue_.empty(); }
   // 85-SIOF as last read by the client (its own reads and the application's).
   [[nodiscard]] std::optional<std::uint8_t> last_siof() const { return last_siof_; }
   // True when 85-SIOF may hold bits the master has not read (after it saw the inverter restart or
@@ -183,12 +184,10 @@ class Client {
   void fail(OutcomeKind k, std::uint8_t answers);
   [[nodiscard]] std::uint8_t answers_so_far() const;
   void activate_next(Time now);
-  [[nodiscard]] const Pending& current() const { return queue_[queue_head_]; }
+  [[nodiscard]] const Pending& current() const { return queue_.front(); }
 
   ClientConfig config_;
-  std::vector<Pending> queue_;
-  std::size_t queue_head_ = 0;
-  std::size_t queue_count_ = 0;
+  BoundedQueue<Pending> queue_;  // the active request stays at the front until it completes
   std::vector<Completed> completed_;
   std::size_t completed_next_ = 0;
   RequestId next_id_ = 1;

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "ibs/devices/driver.hpp"
+#include "ibs/interbus/bounded_queue.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/mc6000/pd_master.hpp"
 #include "ibs/pcp/client.hpp"
@@ -66,9 +67,7 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   Mc6000PdMaster master_;
   pcp::ClientConfig pcp_config_{};
   std::optional<pcp::Client> client_;
-  std::array<Pending, kQueueCapacity> queue_{};
-  std::size_t queue_head_ = 0;
-  std::size_t queue_count_ = 0;
+  BoundedQueue<Pending> queue_{kQueueCapacity};  // the active request stays at the front until it completes
   bool active_ = false;      // the queue head has been sent
   bool initiating_ = false;  // an Initiate is outstanding for the queue head
   std::array<Completed, kCompletedCapacity> completed_{};

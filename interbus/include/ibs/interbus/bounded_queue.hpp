@@ -1,0 +1,51 @@
+// A first-in first-out queue of fixed capacity, storage placed at construction: the request queue
+// of every parameter channel's master side (the VF1000 communication-word client, the MC6000
+// driver's PCP requests). push, pop and the accessors allocate nothing and throw nothing.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace ibs {
+
+template <typename T>
+class BoundedQueue {
+ public:
+  explicit BoundedQueue(std::size_t capacity) : items_(capacity) {}
+
+  // Appends `v`; false, and nothing changed, when the queue is full.
+  bool push(const T& v) noexcept {
+    if (full()) return false;
+    items_[slot(count_)] = v;
+    ++count_;
+    return true;
+  }
+  // The oldest entry; the queue must not be empty.
+  [[nodiscard]] T& front() noexcept { return items_[head_]; }
+  [[nodiscard]] const T& front() const noexcept { return items_[head_]; }
+  // Drops the oldest entry (nothing when empty).
+  void pop() noexcept {
+    if (count_ == 0) return;
+    head_ = slot(1);
+    --count_;
+  }
+  // The i-th entry from the front (i < size()).
+  [[nodiscard]] const T& operator[](std::size_t i) const noexcept { return items_[slot(i)]; }
+
+  [[nodiscard]] std::size_t size() const noexcept { return count_; }
+  [[nodiscard]] bool empty() const noexcept { return count_ == 0; }
+  [[nodiscard]] bool full() const noexcept { return count_ == items_.size(); }
+  [[nodiscard]] std::size_t capacity() const noexcept { return items_.size(); }
+
+ private:
+  [[nodiscard]] std::size_t slot(std::size_t i) const noexcept {
+    const std::size_t s = head_ + i;
+    return s >= items_.size() ? s - items_.size() : s;
+  }
+
+  std::vector<T> items_;
+  std::size_t head_ = 0;
+  std::size_t count_ = 0;
+};
+
+}  // namespace ibs
