@@ -1,5 +1,6 @@
 #include "ibs/master/master_loop.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,7 @@ MasterLoop::MasterLoop(interbus::BusConfig config,
     }
     places_.push_back({d.in, d.out, d.pcp});
   }
+  ios_.resize(drivers_.size());
 }
 
 devices::DriverIo MasterLoop::io(interbus::ProcessImage& image, std::size_t i) const {
@@ -32,8 +34,15 @@ devices::DriverIo MasterLoop::io(interbus::ProcessImage& image, std::size_t i) c
   return io;
 }
 
+void MasterLoop::bind(interbus::ProcessImage& image) noexcept {
+  if (bound_ == &image) return;
+  for (std::size_t i = 0; i < drivers_.size(); ++i) ios_[i] = io(image, i);
+  bound_ = &image;
+}
+
 void MasterLoop::initial(interbus::ProcessImage& image) {
-  for (std::size_t i = 0; i < drivers_.size(); ++i) drivers_[i]->initial(io(image, i));
+  bind(image);
+  for (std::size_t i = 0; i < drivers_.size(); ++i) drivers_[i]->initial(ios_[i]);
 }
 
 Exchange MasterLoop::cycle(Bus& bus, interbus::ProcessImage& image, Time now) noexcept {
@@ -43,11 +52,20 @@ Exchange MasterLoop::cycle(Bus& bus, interbus::ProcessImage& image, Time now) no
 }
 
 void MasterLoop::cycle(interbus::ProcessImage& image, Time now, const Exchange& exchange) noexcept {
-  for (std::size_t i = 0; i < drivers_.size(); ++i) {
-    devices::DriverIo x = io(image, i);
-    const LinkState link = exchange.link(i);
-    x.data_valid = link.data_valid;
-    x.module_error = link.module_error;
+  bind(image);
+  const std::size_t n = drivers_.size();
+  const std::size_t listed = std::min(n, exchange.links.size());
+  std::size_t i = 0;
+  for (; i < listed; ++i) {  // Exchange::link(i), without its range check per device
+    devices::DriverIo& x = ios_[i];
+    x.data_valid = exchange.data_valid && exchange.links[i].data_valid;
+    x.module_error = exchange.links[i].module_error;
+    drivers_[i]->cycle(x, now);
+  }
+  for (; i < n; ++i) {  // a bus that lists no (or not every) device: valid as the whole cycle
+    devices::DriverIo& x = ios_[i];
+    x.data_valid = exchange.data_valid;
+    x.module_error = false;
     drivers_[i]->cycle(x, now);
   }
 }

@@ -22,10 +22,15 @@ void Mc6000PdMaster::cycle(std::span<const Word> s2m, std::span<Word> m2s, Time 
     mc6000::encode_reference(layout_, reference_, std::span<Word>(reference_words_.data(), ref_words));
     encoded_reference_ = reference_;
   }
-  // Control word, reference, and 0 in any word the layout leaves unused (SUPI 12 with IBCNF 2).
-  std::size_t w = 1;
-  for (; w <= ref_words && w < m2s.size(); ++w) m2s[w] = reference_words_[w - 1];
-  for (; w < m2s.size(); ++w) m2s[w] = 0;
+  // Control word, reference, and 0 in any word the layout leaves unused (SUPI 12 with IBCNF 2),
+  // word by word: a loop here became a call of memset and memcpy for one or two words.
+  switch (m2s.size()) {
+    case 4: m2s[3] = reference_words_[2]; [[fallthrough]];
+    case 3: m2s[2] = reference_words_[1]; [[fallthrough]];
+    case 2: m2s[1] = reference_words_[0]; [[fallthrough]];
+    default: break;
+  }
+  for (std::size_t w = reference_words_.size() + 1; w < m2s.size(); ++w) m2s[w] = 0;  // never: 4 words at most
 }
 
 }  // namespace ibs::devices

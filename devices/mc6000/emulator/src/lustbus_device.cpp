@@ -245,7 +245,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
     for (std::size_t i = 0; i < table_.size(); ++i) {
       ram_[i] = eeprom_[i] = bits_of(table_[i].type, table_[i].default_value);
     }
-    return lb::SelectAnswer::ack(timing_.reaction + timing_.load_defaults);
+    return lb::SelectAnswer::ack(timing_.reaction + timing_.factory_defaults);
   }
   if (p->category == pcp::Category::eeprom && !receiving) {
     // 3: RAM at once, ACK at once, EEPROM in the background at 15 ms per byte (10.2.2); a new

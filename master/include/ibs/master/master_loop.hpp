@@ -39,6 +39,9 @@ class MasterLoop {
 
  private:
   devices::DriverIo io(interbus::ProcessImage& image, std::size_t i) const;
+  // Points each driver's DriverIo at its slices of `image`, when that is another image than the
+  // last one: the slices stay put from cycle to cycle, only the link flags change.
+  void bind(interbus::ProcessImage& image) noexcept;
 
   // Where each device's words lie in the image, from the checked configuration.
   struct Place {
@@ -47,6 +50,8 @@ class MasterLoop {
   interbus::BusConfig config_;
   std::vector<std::unique_ptr<devices::DeviceDriver>> drivers_;
   std::vector<Place> places_;
+  std::vector<devices::DriverIo> ios_;  // one per driver, bound to *bound_
+  const interbus::ProcessImage* bound_ = nullptr;
 };
 
 }  // namespace ibs::master

@@ -36,7 +36,8 @@ class Mc6000PdMaster {
   drivecom::Sequencer sequencer_;
   double reference_ = 0.0;
   // The reference as bus words, encoded again only when it changes.
-  std::array<Word, 2> reference_words_{};
+  // Words 2..4 of the slot: the encoded reference, then 0 in any word the layout leaves unused.
+  std::array<Word, 3> reference_words_{};
   double encoded_reference_ = 0.0;
   mc6000::Actual actual_{};
 };

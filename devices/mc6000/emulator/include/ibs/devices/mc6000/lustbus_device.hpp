@@ -23,7 +23,7 @@ struct LustbusTiming {
   // 3, 10.2.2: "every byte is saved three times", 15 ms per byte.
   Duration eeprom_per_byte = std::chrono::milliseconds(15);
   // 10 exception 1: "up to 10 seconds" for 4-PROG = 1; 2 s here (LB-D18).
-  Duration load_defaults = std::chrono::milliseconds(2000);
+  Duration factory_defaults = std::chrono::milliseconds(2000);
   // 11.4 step 4: the plausibility test after SLOAD = -2; 200 ms here (LB-D18).
   Duration download_check = std::chrono::milliseconds(200);
 };
