@@ -78,7 +78,7 @@ ParameterTable::ParameterTable(std::span<const ParameterInfo> params) : params_(
 
 ParameterStore::ParameterStore(std::span<const ParameterInfo> params)
     : params_(params), cells_(params.size()) {
-  load_defaults();
+  factory_defaults();
 }
 
 void ParameterStore::write(std::size_t slot, Word raw, bool power_stage_enabled) {
@@ -104,7 +104,7 @@ void ParameterStore::set(std::size_t slot, Word raw) {
   if (s == Storage::eeprom || s == Storage::eeprom_ram) c.eeprom = raw;
 }
 
-void ParameterStore::power_up() {
+void ParameterStore::power_on() {
   for (std::size_t i = 0; i < cells_.size(); ++i) {
     const Storage s = storage(params_[i].category);
     cells_[i].ram = (s == Storage::eeprom || s == Storage::eeprom_ram) ? cells_[i].eeprom
@@ -112,7 +112,7 @@ void ParameterStore::power_up() {
   }
 }
 
-void ParameterStore::load_defaults() {
+void ParameterStore::factory_defaults() {
   for (std::size_t i = 0; i < cells_.size(); ++i) {
     cells_[i].ram = params_[i].default_value;
     cells_[i].eeprom = params_[i].default_value;

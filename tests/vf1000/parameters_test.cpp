@@ -213,14 +213,14 @@ TEST(ParameterStore, StartsAtDefaultsAndKeepsOnlyEepromAcrossPowerUp) {
   s.write(slot(pnr::kFssio), 0x0100, true);   // EEPROM/RAM, power stage on: RAM only
   EXPECT_EQ(s.value(slot(pnr::kFssio)), 0x0100);
   EXPECT_EQ(s.eeprom_value(slot(pnr::kFssio)), 0);
-  s.power_up();
+  s.power_on();
   EXPECT_EQ(s.value(slot(pnr::kFmax1)), 0x01F4);
   EXPECT_EQ(s.value(slot(pnr::kIcntl)), 0);
   EXPECT_EQ(s.value(slot(pnr::kFssio)), 0);
   s.write(slot(pnr::kFssio), 0x0200, false);  // power stage off: RAM and EEPROM
-  s.power_up();
+  s.power_on();
   EXPECT_EQ(s.value(slot(pnr::kFssio)), 0x0200);
-  s.load_defaults();
+  s.factory_defaults();
   EXPECT_EQ(s.value(slot(pnr::kFmax1)), 0x03E8);
   EXPECT_EQ(s.eeprom_value(slot(pnr::kFssio)), 0);
 }

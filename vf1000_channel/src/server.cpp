@@ -79,7 +79,7 @@ Server::Server(const ServerConfig& config, ServerStart start, Time now,
       table_(params),
       store_(params),
       siof_slot_(checked_siof_slot(table_)),
-      prog_slot_(config.load_defaults_parameter ? table_.slot(*config.load_defaults_parameter) : -1) {
+      prog_slot_(config.factory_defaults_parameter ? table_.slot(*config.factory_defaults_parameter) : -1) {
   power_on(now);
   if (start == ServerStart::power_on) return;
   state_ = ServerState::wait;
@@ -95,7 +95,7 @@ void Server::power_on(Time now, Duration init) {
   toggle_ = false;
   code_ = Code::reset;
   slot_ = -1;
-  store_.power_up();
+  store_.power_on();
   store_.set(siof_slot_, siof_mask(SiofBit::power_on));  // 6.1
 }
 
@@ -261,7 +261,7 @@ Word Server::take_low(Word m, bool power_stage_enabled) {
   const bool eeprom_changed = store_.eeprom_value(slot) != eeprom_before;
   if (static_cast<int>(slot) == prog_slot_ && value == drive::kLoadDefaults) {
     const std::uint8_t keep = siof();
-    store_.load_defaults();
+    store_.factory_defaults();
     store_.set(siof_slot_, keep);
   }
   state_ = ServerState::done;

@@ -6,7 +6,7 @@ namespace ibs::devices::vf1000 {
 
 vf1000_channel::ServerConfig server_config() {
   vf1000_channel::ServerConfig c;
-  c.load_defaults_parameter = pnr::kProg;
+  c.factory_defaults_parameter = pnr::kProg;
   return c;
 }
 

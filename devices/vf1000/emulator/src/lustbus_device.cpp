@@ -50,7 +50,7 @@ bool LustbusDevice::power_stage_enabled() const {
 }
 
 void LustbusDevice::restart(Time now) {
-  store_.power_up();
+  store_.power_on();
   siof_.power_on();  // 6: after every new start
   watchdog_.restart(now);
   watchdog_fault_ = false;
@@ -122,8 +122,8 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
   const auto slot = static_cast<std::size_t>(table_.slot(p->number));
   if (p->number == pnr::kProg && w == drive::kLoadDefaults) {
     // 10 exception 1: every parameter back to its factory setting; ACK once done.
-    store_.load_defaults();
-    return lb::SelectAnswer::ack(timing_.reaction + timing_.load_defaults);
+    store_.factory_defaults();
+    return lb::SelectAnswer::ack(timing_.reaction + timing_.factory_defaults);
   }
   if (p->number == pnr::kStat && w == kStatReset) {
     // 8.1.1: the reset restarts the inverter (self test); 85-SIOF shows the power-on bit.

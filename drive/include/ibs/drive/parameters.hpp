@@ -125,9 +125,9 @@ class ParameterStore {
   // The device itself sets a value (actual values, keypad): RAM and, where kept, EEPROM.
   void set(std::size_t slot, Word raw);
   // Power-on: EEPROM-kept values come back from EEPROM, RAM-only values to their defaults.
-  void power_up();
+  void power_on();
   // 71-PROG = 1: every value, RAM and EEPROM, back to its default.
-  void load_defaults();
+  void factory_defaults();
 
  private:
   struct Cell {

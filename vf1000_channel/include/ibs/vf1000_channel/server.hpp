@@ -23,7 +23,7 @@ struct ServerConfig {
   Duration init_duration = 4s;
   // The parameter whose value 1 loads every parameter's factory default (seed 000, 10, exception
   // 1: the VF1000's 71-PROG); none: the table has no such command.
-  std::optional<std::uint16_t> load_defaults_parameter;
+  std::optional<std::uint16_t> factory_defaults_parameter;
 };
 
 // How the inverter is found when the server is made.

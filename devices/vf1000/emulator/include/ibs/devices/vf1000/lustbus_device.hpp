@@ -23,7 +23,7 @@ struct LustbusTiming {
   Duration eeprom_two_bytes = std::chrono::milliseconds(120);
   Duration eeprom_one_byte = std::chrono::milliseconds(60);
   // 10 exception 1: "up to 10 seconds" for 71-PROG = 1; 1.5 s here (LB-D18).
-  Duration load_defaults = std::chrono::milliseconds(1500);
+  Duration factory_defaults = std::chrono::milliseconds(1500);
 };
 
 class LustbusDevice final : public lustbus::Responder {
