@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <limits>
 
+#include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/registry.hpp"
+#include "ibs/devices/vf1000/descriptor.hpp"
 
 #ifdef IBS_SIM_HAVE_PCAP
 #include <pcap/pcap.h>
@@ -110,6 +113,34 @@ void encode_cycle(const Configuration& c, std::uint32_t cycle, bool valid, const
   put_words(out, std::span<const Word>(image.pcp_in).first(c.pcp_words));
 }
 
+Device describe(const std::string& name, const std::string& kind_name, const devices::DeviceSettings& settings) {
+  Device d;
+  d.name = name;
+  const devices::DriveKind* kind = devices::find_drive_kind(kind_name);
+  if (kind == nullptr) return d;
+  const devices::Configuration c = (*kind)->configure(settings);
+  d.id_code = c.id_code.raw;
+  d.unit = std::string((*kind)->facts().unit);
+  // The format's own codes for the drives its dissector decodes (docs/pcap.md, "Configuration").
+  if (kind_name == devices::vf1000::kName) {
+    d.kind = Kind::vf1000;
+    d.values = Values::vf1000;
+  } else if (kind_name == devices::mc6000::kName) {
+    d.kind = Kind::mc6000;
+    d.supi = static_cast<std::uint8_t>(settings.supi);
+    d.ibcnf = static_cast<std::uint8_t>(settings.ibcnf);
+    const auto layout = devices::mc6000::make_layout(settings.supi, settings.ibcnf);
+    switch (layout.exchanges_data ? layout.ibcnf : devices::mc6000::Ibcnf::none) {
+      case devices::mc6000::Ibcnf::word16: d.values = Values::word16; break;
+      case devices::mc6000::Ibcnf::q16: d.values = Values::q16; break;
+      case devices::mc6000::Ibcnf::speed_torque: d.values = Values::speed_torque; break;
+      case devices::mc6000::Ibcnf::none:
+      case devices::mc6000::Ibcnf::lisim: d.values = Values::none; break;
+    }
+  }
+  return d;
+}
+
 Configuration configuration_of(const Simulator& sim, const Scenario& scenario) {
   const interbus::BusConfig& bus = sim.bus();
   if (bus.devices.size() != scenario.devices.size()) {
@@ -124,30 +155,11 @@ Configuration configuration_of(const Simulator& sim, const Scenario& scenario) {
   for (std::size_t i = 0; i < bus.devices.size(); ++i) {
     const interbus::Device& placed = bus.devices[i];
     const DeviceConfig& dc = scenario.devices[i];
-    Device d;
-    d.name = placed.name;
+    Device d = describe(placed.name, dc.kind, device_settings(dc));
     d.id_code = placed.id.raw;
     d.in = placed.in;
     d.out = placed.out;
     d.pcp = placed.pcp;
-    if (dc.kind == "vf1000") {
-      d.kind = Kind::vf1000;
-      d.values = Values::vf1000;
-      d.unit = "Hz";
-    } else {
-      d.kind = Kind::mc6000;
-      d.unit = "rpm";
-      d.supi = static_cast<std::uint8_t>(dc.supi);
-      d.ibcnf = static_cast<std::uint8_t>(dc.ibcnf);
-      const auto layout = devices::mc6000::make_layout(dc.supi, dc.ibcnf);
-      switch (layout.exchanges_data ? layout.ibcnf : devices::mc6000::Ibcnf::none) {
-        case devices::mc6000::Ibcnf::word16: d.values = Values::word16; break;
-        case devices::mc6000::Ibcnf::q16: d.values = Values::q16; break;
-        case devices::mc6000::Ibcnf::speed_torque: d.values = Values::speed_torque; break;
-        case devices::mc6000::Ibcnf::none:
-        case devices::mc6000::Ibcnf::lisim: d.values = Values::none; break;
-      }
-    }
     c.devices.push_back(std::move(d));
   }
   return c;

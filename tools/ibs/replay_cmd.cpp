@@ -5,7 +5,6 @@
 #include "commands.hpp"
 #include "ibs/devices/registry.hpp"
 #include "ibs/devices/trace_adapters.hpp"
-#include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/vf1000_channel/trace_adapters.hpp"
 #include "output_files.hpp"
@@ -38,39 +37,24 @@ capture::Configuration trace_configuration(const trace::Trace& t, capture::Sourc
   capture::Configuration c;
   c.source = source;
   c.cycle_time = step_period(h);
-  capture::Device d;
-  d.name = h.device;
   std::size_t pd = 0;
   std::size_t pcp = 0;
-  if (h.device == "vf1000") {
-    d.kind = capture::Kind::vf1000;
-    d.id_code = 0x33B;  // seed 001, 3.1.2
-    d.unit = "Hz";
-    if (h.words == trace::WordsKind::comm) {
-      pd = 1;
-      d.first_word = 3;
-    } else {
-      pd = 3;
-      d.values = capture::Values::vf1000;
-    }
-  } else {
-    const auto l = devices::mc6000::make_layout(h.supi, h.ibcnf);
-    d.kind = capture::Kind::mc6000;
-    d.id_code = l.id_code;
-    d.unit = "rpm";
-    d.supi = static_cast<std::uint8_t>(h.supi);
-    d.ibcnf = static_cast<std::uint8_t>(h.ibcnf);
-    if (h.words == trace::WordsKind::pcp) {
-      pcp = static_cast<std::size_t>(l.pcp_words);
-    } else {
-      pd = static_cast<std::size_t>(l.pd_words);
-      switch (l.ibcnf) {
-        case devices::mc6000::Ibcnf::word16: d.values = capture::Values::word16; break;
-        case devices::mc6000::Ibcnf::q16: d.values = capture::Values::q16; break;
-        case devices::mc6000::Ibcnf::speed_torque: d.values = capture::Values::speed_torque; break;
-        case devices::mc6000::Ibcnf::none:
-        case devices::mc6000::Ibcnf::lisim: break;
-      }
+  const devices::DriveKind* kind = devices::find_drive_kind(h.device);
+  const devices::DeviceSettings settings = kind != nullptr ? (*kind)->trace_settings(h) : devices::DeviceSettings{};
+  capture::Device d = capture::describe(h.device, h.device, settings);
+  if (kind != nullptr) {
+    const devices::Configuration conf = (*kind)->configure(settings);
+    switch (h.words) {
+      case trace::WordsKind::pd: pd = conf.pd_words; break;
+      case trace::WordsKind::comm:  // the VF1000's communication word, its process-data word 3
+        pd = 1;
+        d.first_word = 3;
+        d.values = capture::Values::none;
+        break;
+      case trace::WordsKind::pcp:
+        pcp = conf.pcp_words;
+        d.values = capture::Values::none;
+        break;
     }
   }
   d.in = {0, pd};

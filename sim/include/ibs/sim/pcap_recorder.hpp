@@ -77,6 +77,11 @@ std::vector<std::uint8_t> encode_configuration(const Configuration& c);
 void encode_cycle(const Configuration& c, std::uint32_t cycle, bool valid, const interbus::ProcessImage& image,
                   std::vector<std::uint8_t>& out);
 
+// What a capture says of one device besides its slices: its kind code, ID code, unit, MC6000
+// settings and how its values read, from the drive's descriptor (no slices; Kind::other for a
+// kind the registry does not know). Throws devices::SettingsError for settings the drive refuses.
+Device describe(const std::string& name, const std::string& kind, const devices::DeviceSettings& settings);
+
 // The configuration of a simulated ring: the bus configuration of `sim`, kinds and MC6000 layouts
 // from `scenario` (the one `sim` was built from).
 Configuration configuration_of(const Simulator& sim, const Scenario& scenario);
