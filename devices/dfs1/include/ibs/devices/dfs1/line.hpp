@@ -5,7 +5,8 @@
 // start at the same instant collide: the first in order (master, then controllers) wins and the
 // collision is counted (the protocol should never cause one).
 //
-// A test fixture that lives with the wing until the serial-line simulator exists in sim/.
+// The wing's own line for its tests and benchmarks (the LUSTBUS line of lustbus/ is the same idea
+// for ISO 1745 telegrams, with its 7E1 characters).
 #pragma once
 
 #include <cstdint>
