@@ -323,9 +323,15 @@ void CampaignChecker::withdraw(Dev& d, Time t, const std::string& why, bool via_
 }
 
 void CampaignChecker::software_reset(std::size_t dev, Time now) {
-  // The VF1000's RESET FAULT (seed 001, 5.2.1): it boots, its store as after a power cycle; the
-  // master asked for it, so neither its request nor the bus watchdog's arming is touched.
-  reboot_store(devices_[dev], now);
+  // The VF1000's RESET FAULT (seed 001, 5.2.1): it boots, its store as after a power cycle, and
+  // its bus watchdog as after one too: monitoring again from the first valid cycle after the
+  // self-test. The master asked for it, so its request is not touched.
+  Dev& d = devices_[dev];
+  reboot_store(d, now);
+  d.armed = false;
+  d.tripped = false;
+  d.last_fed.reset();
+  d.fed_before_slice.reset();
 }
 
 void CampaignChecker::power_cycle(std::size_t dev, Time now, std::optional<State> state_then) {

@@ -6,6 +6,7 @@
 #include <array>
 
 #include "ibs/devices/vf1000/device.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/drive/siof.hpp"
 
 namespace ibs::devices {
@@ -27,6 +28,15 @@ struct Rig {
     }
   }
   void sample(Word control) { run(control, now + kSample); }
+  // Samples without any bus cycle reaching the inverter: what the bus delivers while the inverter
+  // shows its module error (the simulator, as a board, carries no data then).
+  void run_silent(Word control, Time until) {
+    m2s[0] = control;
+    while (now < until) {
+      now += kSample;
+      d.sample(m2s, s2m, now);
+    }
+  }
   Vf1000Device d;
   std::array<Word, 3> m2s{0x0000, 0x0000, 0x0000};
   std::array<Word, 3> s2m{};
@@ -68,6 +78,34 @@ TEST(Vf1000Reset, ResetFaultRebootsTheInverterWithAModuleErrorForItsSelfTest) {
   // transfer (the server refuses transfers until then: vf1000_comm_power_on_refusal.trace).
   EXPECT_TRUE(drive::siof_has(r.d.channel().siof(), drive::SiofBit::power_on));
   EXPECT_EQ(r.d.software_resets(), 1U);
+}
+
+// The reset restarts the inverter's firmware: like a power-on, 906-IB-WD monitors the bus again
+// only from the first data cycle after the self-test. Before, the watchdog went on running through
+// the self-test (no data reach an inverter with a module error), ran out, and the inverter came
+// back in FAULT (E-IBS) after every reset the master sent.
+TEST(Vf1000Reset, TheBusWatchdogStartsAgainAfterTheSelfTestNotDuringIt) {
+  Rig r;
+  ASSERT_TRUE(r.d.channel().set_value(vf1000::pnr::kIbWd, 200));
+  ASSERT_TRUE(r.d.channel().set_value(vf1000::pnr::kIbcod, static_cast<Word>(vf1000::IbCod::shutdown_e_ibs)));
+  r.run(0x0000, 100ms);  // data flows: the watchdog is armed
+  fault_and_clear(r);
+  r.sample(0x0080);
+  ASSERT_EQ(r.d.software_resets(), 1U);
+  const Time reset_at = r.now;
+  r.run_silent(0x0000, reset_at + 4100ms);
+  EXPECT_FALSE(r.d.module_error(r.now));
+  EXPECT_FALSE(r.d.watchdog_tripped()) << "no watchdog during the self-test";
+  EXPECT_EQ(r.d.state(), State::start_up_inhibit) << "back from the reset, not in FAULT again";
+  EXPECT_EQ(r.d.error_number(), std::nullopt);
+  // Data flows again, then stops: the watchdog monitors as before and trips after 200 ms.
+  r.run(0x0000, r.now + 100ms);
+  const Time last_data = r.now;
+  r.run_silent(0x0000, last_data + 150ms);
+  EXPECT_FALSE(r.d.watchdog_tripped());
+  r.run_silent(0x0000, last_data + 300ms);
+  EXPECT_TRUE(r.d.watchdog_tripped());
+  EXPECT_EQ(r.d.state(), State::fault);
 }
 
 TEST(Vf1000Reset, ABitHeldHighRestartsTheInverterOnlyOnce) {

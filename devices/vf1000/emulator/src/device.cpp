@@ -77,9 +77,13 @@ void Vf1000Device::software_reset(Word control, Time now) {
   hold_ = 0;
   taken_ = vc::kMasterIdleWord;
   shown_ = 0x0000;
-  // An E-IBS fault was reset with it; the 906-IB-WD watchdog goes on monitoring the bus (data
-  // flows: the reset came with it).
+  // An E-IBS fault was reset with it. The firmware starts again: as after a power-on, 906-IB-WD
+  // monitors the bus from the first data cycle after the self-test (no data reach an inverter
+  // that shows a module error), not through it.
   watchdog_fault_ = false;
+  armed_ = false;
+  if (tripped_) pd_.override_control(std::nullopt);
+  tripped_ = false;
   ++software_resets_;
   apply_parameters();
 }
