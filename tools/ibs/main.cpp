@@ -13,7 +13,7 @@
 namespace {
 
 int run_ibs(int argc, char** argv) {
-  CLI::App app{"ibs: INTERBUS-S stack and cycle simulator for LUST VF1000 and MC6000 drives"};
+  CLI::App app{"ibs: LUST drives (VF1000, MC6000, CDA3000) and the PowerTec DFS-1 on INTERBUS-S, LUSTBUS, CANLust and the DFS-1 link: masters, emulated drives, the INTERBUS cycle simulator"};
   // `ibs --version`: the project's version from CMake (project(ibs VERSION ...)).
   app.set_version_flag("--version", std::string("ibs ") + IBS_VERSION);
   app.require_subcommand(1);
