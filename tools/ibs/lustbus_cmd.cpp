@@ -65,48 +65,6 @@ struct Param {
   bool prog = false;  // PROG: 1 takes up to 10 s (10 exception 1)
 };
 
-lb::DataType type_of(drive::DataType t) {
-  switch (t) {
-    case drive::DataType::binary8:
-      return lb::DataType::binary8;
-    case drive::DataType::fixpoint16:
-      return lb::DataType::fixpoint16;
-    case drive::DataType::usign16:
-      return lb::DataType::usign16;
-    case drive::DataType::usign8:
-      return lb::DataType::usign8;
-    case drive::DataType::vf_error:
-      return lb::DataType::vf_error;
-    case drive::DataType::password:
-      return lb::DataType::password;
-    case drive::DataType::integer16:
-      return lb::DataType::integer16;
-  }
-  return lb::DataType::usign16;
-}
-
-lb::DataType type_of(pcp::DataType t) {
-  switch (t) {
-    case pcp::DataType::usign8:
-      return lb::DataType::usign8;
-    case pcp::DataType::usign16:
-      return lb::DataType::usign16;
-    case pcp::DataType::fixpoint16:
-      return lb::DataType::fixpoint16;
-    case pcp::DataType::integer16:
-      return lb::DataType::integer16;
-    case pcp::DataType::int32q16:
-      return lb::DataType::int32q16;
-    case pcp::DataType::float_ieee:
-      return lb::DataType::float_ieee;
-    case pcp::DataType::mc_error:
-      return lb::DataType::mc_error;
-    case pcp::DataType::password:
-      return lb::DataType::password;
-  }
-  return lb::DataType::usign16;
-}
-
 std::int64_t number_of(lb::DataType t, std::uint32_t bits) {
   switch (t) {
     case lb::DataType::integer16:
@@ -145,14 +103,14 @@ Param find_param(lb::Family f, const std::string& text) {
     for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
       if (p.number > 99) continue;  // 2.4.1: two digits
       if (numeric ? p.number == n : p.name == text) {
-        return {f,  p.number, std::string(p.name), std::string(p.unit), type_of(p.type),
+        return {f,  p.number, std::string(p.name), std::string(p.unit), devices::vf1000::lustbus_type(p.type),
                 p.min, p.max, drive::writable(p.category), p.number == devices::vf1000::pnr::kProg};
       }
     }
   } else {
     for (const pcp::ParameterInfo& p : devices::mc6000::parameters()) {
       if (numeric ? p.number == n : p.name == text) {
-        return {f,   p.number, std::string(p.name), "", type_of(p.type),
+        return {f,   p.number, std::string(p.name), "", devices::mc6000::lustbus_type(p.type),
                 p.min, p.max, p.writable(), p.number == devices::mc6000::kProg};
       }
     }

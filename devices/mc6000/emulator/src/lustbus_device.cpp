@@ -11,28 +11,6 @@ using drive::SiofBit;
 
 namespace {
 
-lb::DataType lustbus_type(pcp::DataType t) {
-  switch (t) {
-    case pcp::DataType::usign8:
-      return lb::DataType::usign8;
-    case pcp::DataType::usign16:
-      return lb::DataType::usign16;
-    case pcp::DataType::fixpoint16:
-      return lb::DataType::fixpoint16;
-    case pcp::DataType::integer16:
-      return lb::DataType::integer16;
-    case pcp::DataType::int32q16:
-      return lb::DataType::int32q16;
-    case pcp::DataType::float_ieee:
-      return lb::DataType::float_ieee;
-    case pcp::DataType::mc_error:
-      return lb::DataType::mc_error;
-    case pcp::DataType::password:
-      return lb::DataType::password;
-  }
-  return lb::DataType::usign16;
-}
-
 // A table number (signed_raw) as the type's bit pattern.
 std::uint32_t bits_of(pcp::DataType t, std::int64_t n) {
   const unsigned w = lb::width_bits(lustbus_type(t));
@@ -267,6 +245,29 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
 void LustbusDevice::checksum_error(const lb::Context& ctx) {
   (void)ctx;
   serr_.set(SiofBit::checksum);  // 9.2 bit 3
+}
+
+// How the MC6000's table types read on LUSTBUS (seed 000, 2.3.2).
+lb::DataType lustbus_type(pcp::DataType t) {
+  switch (t) {
+    case pcp::DataType::usign8:
+      return lb::DataType::usign8;
+    case pcp::DataType::usign16:
+      return lb::DataType::usign16;
+    case pcp::DataType::fixpoint16:
+      return lb::DataType::fixpoint16;
+    case pcp::DataType::integer16:
+      return lb::DataType::integer16;
+    case pcp::DataType::int32q16:
+      return lb::DataType::int32q16;
+    case pcp::DataType::float_ieee:
+      return lb::DataType::float_ieee;
+    case pcp::DataType::mc_error:
+      return lb::DataType::mc_error;
+    case pcp::DataType::password:
+      return lb::DataType::password;
+  }
+  return lb::DataType::usign16;
 }
 
 }  // namespace ibs::devices::mc6000

@@ -147,4 +147,25 @@ void LustbusDevice::checksum_error(const lb::Context& ctx) {
   siof_.set(SiofBit::checksum);  // 9.2 bit 3
 }
 
+// How the VF1000's table types read on LUSTBUS (seed 000, 2.3.1).
+lustbus::DataType lustbus_type(drive::DataType t) {
+  switch (t) {
+    case drive::DataType::binary8:
+      return lustbus::DataType::binary8;
+    case drive::DataType::fixpoint16:
+      return lustbus::DataType::fixpoint16;
+    case drive::DataType::usign16:
+      return lustbus::DataType::usign16;
+    case drive::DataType::usign8:
+      return lustbus::DataType::usign8;
+    case drive::DataType::vf_error:
+      return lustbus::DataType::vf_error;
+    case drive::DataType::password:
+      return lustbus::DataType::password;
+    case drive::DataType::integer16:
+      return lustbus::DataType::integer16;
+  }
+  return lustbus::DataType::usign16;
+}
+
 }  // namespace ibs::devices::vf1000

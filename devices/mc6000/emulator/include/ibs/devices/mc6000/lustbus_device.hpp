@@ -14,8 +14,13 @@
 #include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/lustbus/device_state.hpp"
 #include "ibs/lustbus/responder.hpp"
+#include "ibs/lustbus/value.hpp"
+#include "ibs/pcp/data_types.hpp"
 
 namespace ibs::devices::mc6000 {
+
+// How a table type of the MC6000 (pcp::DataType) reads as a LUSTBUS VALUE (seed 000, 2.3.2).
+lustbus::DataType lustbus_type(pcp::DataType t);
 
 struct LustbusTiming {
   // Reaction time of 10 ("1...25 ms" without KEYPAD): 2 ms, a modelling choice (LB-D18).

@@ -13,8 +13,13 @@
 #include "ibs/drive/parameters.hpp"
 #include "ibs/lustbus/device_state.hpp"
 #include "ibs/lustbus/responder.hpp"
+#include "ibs/lustbus/value.hpp"
+#include "ibs/drive/data_types.hpp"
 
 namespace ibs::devices::vf1000 {
+
+// How a table type of the VF1000 (drive::DataType) reads as a LUSTBUS VALUE (seed 000, 2.3.1).
+lustbus::DataType lustbus_type(drive::DataType t);
 
 struct LustbusTiming {
   // Reaction time of 10 ("1...30 ms" without KEYPAD): 2 ms, a modelling choice (LB-D18).
