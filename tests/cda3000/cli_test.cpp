@@ -25,38 +25,19 @@
 #include "ibs/can/udp.hpp"
 #include "ibs/devices/cda3000/driver.hpp"
 
+#include "../support/cli_harness.hpp"
+
 namespace ibs::cli {
 namespace {
 
 namespace dev = ::ibs::devices::cda3000;
 namespace cl = ::ibs::canlust;
 
-struct CliRun {
-  int rc = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
 CliRun run_cli(std::vector<std::string> args) {
-  CLI::App app{"test"};
-  app.require_subcommand(1);
-  CanlustCommandState state;
-  add_canlust_commands(app, state);
-  CliRun r;
-  std::reverse(args.begin(), args.end());
-  try {
-    app.parse(args);
-  } catch (const CLI::ParseError& e) {
-    r.rc = kExitCanBadInput;
-    r.err = e.what();
-    return r;
-  }
-  std::ostringstream out;
-  std::ostringstream err;
-  r.rc = run_canlust_commands(state, out, err).value_or(-1);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
+  return test::run_cli_group<CanlustCommandState>(std::move(args), kExitCanBadInput, add_canlust_commands,
+                                                  run_canlust_commands);
 }
 
 // A UDP port free at the moment of asking.
@@ -77,51 +58,16 @@ std::string temp_path(const std::string& name) {
 }
 
 // `ibs canlust emulate ARGS...` as a child process; its first line is "bus: ...".
-class Emulator {
+class Emulator : public test::ChildProcess {
  public:
-  explicit Emulator(std::vector<std::string> args) {
-    int fds[2];
-    if (::pipe(fds) != 0) throw std::runtime_error("pipe");
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(fds[1], STDOUT_FILENO);
-      ::close(fds[0]);
-      ::close(fds[1]);
-      std::vector<std::string> all = {IBS_CLI, "canlust", "emulate"};
-      all.insert(all.end(), args.begin(), args.end());
-      std::vector<char*> argv;
-      for (auto& a : all) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      ::execv(argv[0], argv.data());
-      ::_exit(127);
-    }
-    ::close(fds[1]);
-    out_ = ::fdopen(fds[0], "r");
-    char line[512] = {};
-    if (std::fgets(line, sizeof line, out_) != nullptr) first_line_ = line;
-  }
-  Emulator(const Emulator&) = delete;
-  Emulator& operator=(const Emulator&) = delete;
-  ~Emulator() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    if (out_ != nullptr) std::fclose(out_);
-  }
-  const std::string& first_line() const { return first_line_; }
-  int stop(int sig) {
-    ::kill(pid_, sig);
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  explicit Emulator(const std::vector<std::string>& args) : ChildProcess(argv(args)) {}
 
  private:
-  pid_t pid_ = -1;
-  FILE* out_ = nullptr;
-  std::string first_line_;
+  static std::vector<std::string> argv(const std::vector<std::string>& args) {
+    std::vector<std::string> a = {IBS_CLI, "canlust", "emulate"};
+    a.insert(a.end(), args.begin(), args.end());
+    return a;
+  }
 };
 
 struct Ports {

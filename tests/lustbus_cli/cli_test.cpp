@@ -17,84 +17,29 @@
 
 #include "lustbus_cmd.hpp"
 
+#include "../support/cli_harness.hpp"
+
 namespace ibs::cli {
 namespace {
 
-struct CliRun {
-  int rc = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
 CliRun run_cli(std::vector<std::string> args) {
-  CLI::App app{"test"};
-  app.require_subcommand(1);
-  LustbusCommandState state;
-  add_lustbus_commands(app, state);
-  CliRun r;
-  std::reverse(args.begin(), args.end());
-  try {
-    app.parse(args);
-  } catch (const CLI::ParseError& e) {
-    r.rc = kExitLustbusBadInput;
-    r.err = e.what();
-    return r;
-  }
-  std::ostringstream out;
-  std::ostringstream err;
-  r.rc = run_lustbus_commands(state, out, err).value_or(-1);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
+  return test::run_cli_group<LustbusCommandState>(std::move(args), kExitLustbusBadInput, add_lustbus_commands,
+                                                  run_lustbus_commands);
 }
 
-class Emulator {
+// `lustbus emulate --pty DEVICES...` as a child process; the first line of its output is the pty.
+class Emulator : public test::ChildProcess {
  public:
-  explicit Emulator(std::vector<std::string> devices) {
-    int fds[2];
-    if (::pipe(fds) != 0) throw std::runtime_error("pipe");
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(fds[1], STDOUT_FILENO);
-      ::close(fds[0]);
-      ::close(fds[1]);
-      std::vector<std::string> args = {IBS_CLI, "lustbus", "emulate", "--pty"};
-      args.insert(args.end(), devices.begin(), devices.end());
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      ::execv(argv[0], argv.data());
-      ::_exit(127);
-    }
-    ::close(fds[1]);
-    out_ = ::fdopen(fds[0], "r");
-    char line[512] = {};
-    if (std::fgets(line, sizeof line, out_) != nullptr) first_line_ = line;
-    if (!first_line_.empty() && first_line_.back() == '\n') first_line_.pop_back();
-  }
-  Emulator(const Emulator&) = delete;
-  Emulator& operator=(const Emulator&) = delete;
-  ~Emulator() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    if (out_ != nullptr) std::fclose(out_);
-  }
-  const std::string& first_line() const { return first_line_; }
-  std::string pty() const { return first_line_.substr(first_line_.find(' ') + 1); }
-  int stop(int sig) {
-    ::kill(pid_, sig);
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
+  explicit Emulator(const std::vector<std::string>& devices) : ChildProcess(argv(devices)) {}
 
  private:
-  pid_t pid_ = -1;
-  FILE* out_ = nullptr;
-  std::string first_line_;
+  static std::vector<std::string> argv(const std::vector<std::string>& devices) {
+    std::vector<std::string> a = {IBS_CLI, "lustbus", "emulate", "--pty"};
+    a.insert(a.end(), devices.begin(), devices.end());
+    return a;
+  }
 };
 
 std::vector<std::string> cmd(std::vector<std::string> a, const std::string& port) {
