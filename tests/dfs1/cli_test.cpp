@@ -3,6 +3,8 @@
 // byte log.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <pty.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -106,6 +108,45 @@ TEST(Dfs1Cli, ReadWriteSpeedStatusWithJson) {
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["outcome"], "sent");
   EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+// `emulate --port PATH` serves a port that already exists (here the slave of a pty the test made,
+// as a USB adapter's /dev/ttyUSB0 would be), says so on its first line once the port is open, takes
+// --baud and writes every byte to --log. The test speaks raw bytes on the pty's master side.
+TEST(Dfs1Cli, EmulateServesAGivenPortWithItsBaudAndLog) {
+  int master = -1;
+  int slave = -1;
+  char name[128] = {};
+  ASSERT_EQ(::openpty(&master, &slave, name, nullptr, nullptr), 0);
+  const std::string path = name;
+  const std::string log = ::testing::TempDir() + "dfs1_emulate_port_log.txt";
+  {
+    test::ChildProcess emu({IBS_DFS1_CLI, "dfs1", "emulate", "--port", path, "--baud", "19200", "--log", log,
+                            "dfs1@3"});
+    ASSERT_EQ(emu.first_line(), "port: " + path);
+    // Status (81H) to UID 3: checksum = -(03H + 81H) = 7CH (seed 004's rule).
+    const unsigned char request[] = {0x10, 0x02, 0x03, 0x81, 0x10, 0x03, 0x7C};
+    ASSERT_EQ(::write(master, request, sizeof request), static_cast<ssize_t>(sizeof request));
+    std::string answer;
+    pollfd p{master, POLLIN, 0};
+    while (answer.size() < 6 && ::poll(&p, 1, 3000) > 0) {
+      unsigned char buf[64];
+      const ssize_t n = ::read(master, buf, sizeof buf);
+      if (n <= 0) break;
+      answer.append(reinterpret_cast<const char*>(buf), static_cast<std::size_t>(n));
+    }
+    ASSERT_GE(answer.size(), 4U) << "no answer on the port";
+    EXPECT_EQ(static_cast<unsigned char>(answer[0]), 0x10);
+    EXPECT_EQ(static_cast<unsigned char>(answer[1]), 0x02);
+    EXPECT_EQ(static_cast<unsigned char>(answer[2]), 0x03) << "the answer of UID 3";
+    EXPECT_EQ(emu.stop(SIGTERM), 0);
+  }
+  ::close(slave);
+  ::close(master);
+  std::ifstream in(log);
+  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(all.find(" rx " + path + " 10 02 03 81 10 03 7C"), std::string::npos) << all;
+  EXPECT_NE(all.find(" tx " + path + " 10 02 03"), std::string::npos) << all;
 }
 
 TEST(Dfs1Cli, BadInputIsExitTwo) {

@@ -139,7 +139,8 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
     return kExitDfs1BadInput;
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
-  if (pair) out << "pty: " << pair->slave_path() << "\n" << std::flush;
+  // The first line says where it serves: the new pty, or the port it opened.
+  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n" << std::flush;
   for (const std::string& n : port.notes()) err << "ibs dfs1 emulate: " << n << "\n";
 
   std::unique_ptr<serial::ByteLog> log;

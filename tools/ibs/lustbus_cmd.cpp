@@ -264,7 +264,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
     return bad(e.what());
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
-  if (pair) out << "pty: " << pair->slave_path() << "\n" << std::flush;
+  // The first line says where it serves: the new pty, or the port it opened.
+  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n" << std::flush;
   for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
   port.set_log(log.get());
   serve_lustbus(port, served, [&signals]() { return signals.raised(); });
