@@ -460,6 +460,65 @@ TEST(Simulator, Mc6000ParametersThroughPcpInTheManualsTime) {
   EXPECT_NE(find_event(sim.summary().devices[0], "15-PLRDY = 1"), nullptr);
 }
 
+// The PCP transfer times of docs/simulator.md's table and erratum PCP-E7, per channel width, on a
+// short ring (three MC6000, 0.989 ms cycles) and on a full one (the same three and 61 MC6000 at
+// SUPI 12, 13.86 ms cycles): read 406 and write 409 from the request to the master's
+// confirmation, each within one bus cycle of the documented figure. Seed 001, 7.2 says 10..35 ms:
+// the one-word channel misses it on the short ring, and on the full ring no width meets it (the
+// erratum gives the arithmetic); one word there even ends in the request timeout.
+TEST(Simulator, PcpTransferTimesPerChannelWidthAsDocumented) {
+  struct Row {
+    int supi;
+    int ibcnf;
+    double read_ms, write_ms;             // three servos
+    double full_read_ms, full_write_ms;  // the full ring; < 0: the request times out
+  };
+  const Row rows[] = {{3, 0, 12.857, 12.857, 83.16, 83.16},
+                      {9, 1, 15.824, 15.824, 221.76, 221.76},
+                      {11, 2, 49.45, 45.494, -1, -1}};
+  for (const bool full : {false, true}) {
+    Scenario s;
+    s.duration = 4s;
+    for (const Row& r : rows) {
+      DeviceConfig m = mc6000("mc" + std::to_string(r.supi));
+      m.supi = r.supi;
+      m.ibcnf = r.ibcnf;
+      s.devices.push_back(m);
+    }
+    for (int k = 0; full && k < 61; ++k) {
+      DeviceConfig m = mc6000("fill" + std::to_string(k));
+      m.supi = 12;
+      s.devices.push_back(m);
+    }
+    for (const Row& r : rows) s.timeline.push_back(at(0s, "mc" + std::to_string(r.supi), Action::read, "", 0, 85));
+    for (const Row& r : rows) s.timeline.push_back(at(1s, "mc" + std::to_string(r.supi), Action::read, "", 0, 406));
+    for (const Row& r : rows) {
+      s.timeline.push_back(at(2s, "mc" + std::to_string(r.supi), Action::write, "", 100, 409));
+    }
+    Simulator sim(s);
+    sim.run();
+    const double cycle_ms = to_ms(sim.cycle_time());
+    EXPECT_NEAR(cycle_ms, full ? 13.86 : 0.989, 0.001);
+    const auto& t = sim.summary().transactions;
+    ASSERT_EQ(t.size(), 9U);
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Row& r = rows[i];
+      for (const std::size_t k : {3 + i, 6 + i}) {
+        const bool read = k < 6;
+        const double want = full ? (read ? r.full_read_ms : r.full_write_ms) : (read ? r.read_ms : r.write_ms);
+        ASSERT_TRUE(t[k].finished) << "SUPI " << r.supi;
+        const double ms = to_ms(*t[k].finished - t[k].submitted);
+        if (want < 0) {
+          EXPECT_EQ(t[k].kind, devices::ParamKind::timeout) << "SUPI " << r.supi << ": " << t[k].result;
+          continue;
+        }
+        EXPECT_EQ(t[k].kind, read ? devices::ParamKind::value : devices::ParamKind::written) << t[k].result;
+        EXPECT_NEAR(ms, want, cycle_ms) << "SUPI " << r.supi << (read ? " read" : " write") << (full ? ", full ring" : "");
+      }
+    }
+  }
+}
+
 TEST(Simulator, Mc6000SwitchedOnWithAnotherSupiNoLongerFitsTheRing) {
   // 405-SUPI is read at power-on (3.2.2): written through PCP, it changes the servo's layout and ID
   // code at the next power cycle, and the configured ring reports a module error for it.
