@@ -59,11 +59,11 @@ std::vector<double> turnarounds_us(const std::string& path) {
 
 void BM_PtyEnquiryRoundTrip(benchmark::State& state) {
   ibs::devices::vf1000::LustbusTiming timing;
-  timing.reaction = ibs::Duration(0);
+  timing.reaction = ibs::lustbus::ReactionModel::fixed(ibs::Duration(0));
   ibs::devices::vf1000::LustbusDevice vf(timing);
   lb::Receiver rx(vf, 1);
   auto pair = ibs::serial::PtyPair::open({9600, ibs::serial::k7E1, false});
-  std::vector<LustbusServed> served{{&rx, [&vf](ibs::Time t) { vf.advance(t); }}};
+  std::vector<LustbusServed> served{{&rx, [&vf](ibs::Time t) { vf.advance(t); }, {}}};
   std::atomic<bool> stop{false};
   std::thread server([&] { ibs::cli::serve_lustbus(pair.master(), served, [&] { return stop.load(); }); });
   auto port = ibs::serial::SerialPort::open(pair.slave_path(), {9600, ibs::serial::k7E1, false});

@@ -209,7 +209,9 @@ std::optional<Value> format_mc_description(const McDescription& d) {
   for (const char c : name) v.push_back(static_cast<std::uint8_t>(c));
   for (std::size_t i = name.size(); i < 6; ++i) v.push_back('\0');
   bool ok = true;
-  auto bin = [&v, &ok](std::uint8_t b) { ok = ok && v.push_back(b); };
+  // LB-D10: the binary elements travel as bytes, frame characters included (the host reads them
+  // by their known length); only a byte >= 80H cannot travel on a 7-bit line.
+  auto bin = [&v, &ok](std::uint8_t b) { ok = ok && v.push_binary(b); };
   bin(d.unit);
   bin(static_cast<std::uint8_t>(d.kind));
   bin(d.type);

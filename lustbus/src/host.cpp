@@ -1,5 +1,7 @@
 #include "ibs/lustbus/host.hpp"
 
+#include "ibs/lustbus/description.hpp"
+
 #include <string>
 
 #include "ibs/lustbus/siof.hpp"
@@ -10,6 +12,8 @@ namespace {
 
 constexpr Code kSloadCode = make_code(20000 + kParamSload);  // 20080
 constexpr Code kStextCode = make_code(20000 + kParamStext);  // 20108
+// 11.6: the error read, a request telegram (status byte 31H).
+const Value kPosmodErrorRead = make_value("1%RDF");
 // 11.4: SLOAD = -1 / -2, INTEGER16 sent as its 16-bit two's complement ("%X", 2.3.2).
 constexpr Value kSloadStart = make_value("FFFF");
 constexpr Value kSloadEnd = make_value("FFFE");
@@ -30,6 +34,8 @@ std::string_view to_string(RequestKind k) {
       return "download";
     case RequestKind::substitution_text:
       return "substitution_text";
+    case RequestKind::posmod:
+      return "posmod";
   }
   return "?";
 }
@@ -145,6 +151,18 @@ Request download(Address a, std::span<const Assignment> records) {
   r.records = records;
   return r;
 }
+Request posmod_request(Address a, std::string_view user_data) {
+  Request r;
+  r.kind = RequestKind::posmod;
+  r.address = a;
+  r.code = kPosmodCode;
+  const auto v = Value::from(user_data);
+  r.value = v.value_or(Value{});
+  // A user data the VALUE cannot hold, or longer than 11.6.1's 80 bytes: refused by submit().
+  r.parameter = v && user_data.size() <= kPosmodMaxUserData ? 0 : 1;
+  return r;
+}
+
 Request substitution_text_request(Address a, std::uint16_t parameter, std::uint32_t index) {
   Request r;
   r.kind = RequestKind::substitution_text;
@@ -171,6 +189,7 @@ Submitted Host::submit(const Request& r) {
     case RequestKind::select:
     case RequestKind::download:
     case RequestKind::substitution_text:
+    case RequestKind::posmod:
       // 4.2 / 9.1: nothing answers at 31.
       if (r.address > kLastDeviceAddress) {
         s.error = SubmitError::invalid_address;
@@ -185,6 +204,11 @@ Submitted Host::submit(const Request& r) {
       break;
     case RequestKind::scan:
       break;
+  }
+  if (r.kind == RequestKind::posmod &&
+      (r.parameter != 0 || (!r.value.empty() && !parse_posmod_status(r.value.view()[0])))) {
+    s.error = SubmitError::invalid_request;  // 11.6.3: the status byte first; <= 80 characters
+    return s;
   }
   if (r.kind == RequestKind::substitution_text && r.parameter > 999) {
     s.error = SubmitError::invalid_request;
@@ -328,7 +352,10 @@ void Host::transmit_tx(Time now) {
   (void)now;
   if (tx_.enquiry) {
     out_frame_ = encode_enquiry(tx_.address, tx_.code);
-    decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak);
+    // An 11.2 description (CODE 3xxxx) carries binary elements of known length (LB-D10).
+    const bool mc_description = tx_.code.digit(0) == '3';
+    decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak,
+                   mc_description ? kMcDescriptionElements : 0);
   } else {
     out_frame_ = encode_select(tx_.address, tx_.code, tx_.value);
     if (tx_.address == kAddressBroadcast) out_frame_.push(kEot);
@@ -378,6 +405,13 @@ void Host::start_job(Time now) {
       return;
     case RequestKind::download:
       select_phase(Phase::dl_start, kSloadCode, kSloadStart, now);  // 11.4 step 1
+      return;
+    case RequestKind::posmod:
+      if (r.value.empty()) {
+        enquiry_phase(Phase::pm_enquiry, r.address, kPosmodCode, timeout_of(r), now);
+      } else {
+        select_phase(Phase::pm_select, kPosmodCode, r.value, now);
+      }
       return;
     case RequestKind::substitution_text: {
       // 11.3 step 2: STEXT = the value whose text is wanted (USIGN "%X").
@@ -491,6 +525,54 @@ void Host::tx_done(Time now) {
   const Request& r = request();
   const bool answered = answer_kind_ != AnswerKind::none;
   switch (phase_) {
+    case Phase::pm_select:
+    case Phase::pm_error_select:
+      out_->attempts = tx_attempts_;
+      if (answer_kind_ == AnswerKind::ack) {
+        if (phase_ == Phase::pm_error_select) {
+          enquiry_phase(Phase::pm_error_enquiry, r.address, kPosmodCode, timeout_of(r), now);
+        } else if (const auto st = parse_posmod_status(r.value.view()[0]); st && st->request) {
+          enquiry_phase(Phase::pm_enquiry, r.address, kPosmodCode, timeout_of(r), now);
+        } else {
+          finish(OutcomeKind::acknowledged, now);
+        }
+        return;
+      }
+      if (answer_kind_ == AnswerKind::nak && phase_ == Phase::pm_select) {
+        // 11.6: "the Host computer ascertains the error using the read command %RDF".
+        phase_ = Phase::pm_error_select;
+        tx_attempts_ = 0;
+        send(Tx{r.address, kPosmodCode, kPosmodErrorRead, false, timeout_of(r)}, now);
+        return;
+      }
+      out_->answer_error = answer_error_;
+      finish(answer_kind_ == AnswerKind::nak ? OutcomeKind::nak
+             : answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer
+                                                       : OutcomeKind::bad_answer,
+             now);
+      return;
+    case Phase::pm_enquiry:
+    case Phase::pm_error_enquiry:
+      out_->attempts = tx_attempts_;
+      if (phase_ == Phase::pm_error_enquiry) {
+        if (answer_kind_ == AnswerKind::text) out_->value = decoder_.value();
+        finish(OutcomeKind::nak, now);
+        return;
+      }
+      if (answer_kind_ == AnswerKind::text) {
+        out_->value = decoder_.value();
+        finish(OutcomeKind::value, now);
+      } else if (answer_kind_ == AnswerKind::nak) {
+        phase_ = Phase::pm_error_select;
+        tx_attempts_ = 0;
+        send(Tx{r.address, kPosmodCode, kPosmodErrorRead, false, timeout_of(r)}, now);
+      } else {
+        out_->answer_error = answer_error_;
+        finish(answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer
+                                                       : OutcomeKind::bad_answer,
+               now);
+      }
+      return;
     case Phase::main:
       if (r.kind == RequestKind::broadcast) {
         out_->attempts = tx_attempts_;

@@ -62,6 +62,8 @@ std::string_view to_string(Reply r) {
       return "deferred";
     case Reply::none:
       return "none";
+    case Reply::cut:
+      return "cut";
   }
   return "?";
 }
@@ -187,6 +189,10 @@ void Receiver::finish_enquiry(Time now) {
     drop();
     return;
   }
+  if (!responder_->listening(now)) {  // 8.1: booting, deaf
+    drop();
+    return;
+  }
   code_ = *Code::parse({code_digits_.data(), kCodeLength});
   const Context ctx{address_, now};
   ++counters_.enquiries;
@@ -203,6 +209,10 @@ void Receiver::finish_enquiry(Time now) {
 
 void Receiver::finish_select(std::uint8_t bcc_received, Time now) {
   const Context ctx{address_, now};
+  if (!responder_->listening(now)) {  // 8.1: booting, deaf
+    drop();
+    return;
+  }
   if (bcc_received != bcc_) {
     // 3: "ADR NAK: occurs with wrong BCC"; 9.2 bit 3. None at 31 (4.2).
     ++counters_.checksum_errors;
@@ -247,6 +257,7 @@ void Receiver::prepare(const EnquiryAnswer& a, Time now) {
       answer_ = encode_nak(address_);
       return;
     case Reply::ack:       // not an answer to an ENQUIRY: the drive is wrong; say nothing
+    case Reply::cut:
     case Reply::deferred:  // deferring a deferred answer
     case Reply::none:
       answer_pending_ = false;
@@ -264,6 +275,10 @@ void Receiver::prepare(const SelectAnswer& a, Time now) {
       return;
     case Reply::nak:
       answer_ = encode_nak(address_);
+      return;
+    case Reply::cut:  // 8.1: the ADR goes out, the ACK does not
+      answer_ = encode_ack(address_);
+      answer_.size = 1;
       return;
     case Reply::text:
     case Reply::deferred:

@@ -107,7 +107,8 @@ std::string_view to_string(AnswerError e) {
   return "?";
 }
 
-void AnswerDecoder::start(Address a, const Code& c, Expect e) {
+void AnswerDecoder::start(Address a, const Code& c, Expect e, std::size_t binary_prefix) {
+  binary_prefix_ = binary_prefix;
   address_ = a;
   code_ = c;
   expect_ = e;
@@ -179,6 +180,11 @@ AnswerDecoder::Status AnswerDecoder::feed(std::uint8_t b) {
       step_ = Step::value;
       return status_;
     case Step::value:
+      if (value_.size() < binary_prefix_) {  // LB-D10: a known number of binary bytes first
+        if (!value_.push_binary(b)) return fail(AnswerError::value_too_long);
+        bcc_ ^= b;
+        return status_;
+      }
       if (b == kEtx) {
         bcc_ ^= b;
         step_ = Step::bcc;

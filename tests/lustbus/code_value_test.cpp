@@ -272,15 +272,21 @@ TEST(McDescription, ElementsAtTheTablesOffsetsFortyTwoOrFortyThree) {
   EXPECT_EQ(d.value.activity_area, 8);
   EXPECT_TRUE(parse_mc_description(v->view().substr(0, 42)).ok());
   EXPECT_EQ(parse_mc_description(v->view().substr(0, 41)).error, DescriptionError::wrong_length);
-  // LB-D10: binary elements that a 7-bit line cannot carry are refused, also ETX (a level of 03H).
+  // LB-D10: binary elements travel as bytes, frame characters included (ETX as a level of 03H,
+  // ACK as subject area 6 SCON, EOT as activity area 4 SC_SYS); a byte >= 80H cannot travel.
+  m.level = 0x03;
+  m.subject_area = 6;
+  m.activity_area = 4;
+  const auto framed = format_mc_description(m);
+  ASSERT_TRUE(framed);
+  const auto back = parse_mc_description(framed->view());
+  ASSERT_TRUE(back.ok());
+  EXPECT_EQ(back.value.level, 0x03);
+  EXPECT_EQ(back.value.subject_area, 6);
+  EXPECT_EQ(back.value.activity_area, 4);
   m.hardware_filter = kHwBrake;
   EXPECT_FALSE(format_mc_description(m));
-  m.hardware_filter = 0;
-  m.level = 0x03;
-  EXPECT_FALSE(format_mc_description(m));
-  m.level = 0x21;
-  m.subject_area = 6;  // SCON = 06H = ACK
-  EXPECT_FALSE(format_mc_description(m));
+  EXPECT_FALSE(Value::from("A\x03"));  // an ordinary VALUE still refuses ETX (LB-D12)
   EXPECT_EQ(kHwMptc, 0x4000);  // LB-E8
 }
 

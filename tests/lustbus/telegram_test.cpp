@@ -256,5 +256,27 @@ TEST(Frames, LongestTelegramFits) {
   EXPECT_EQ(f.size, kMaxTelegramLength);
 }
 
+// LB-D10: an 11.2 description's binary elements may be frame characters; the decoder takes a
+// known number of VALUE bytes as they come, and only then looks for ETX.
+TEST(AnswerDecoderBinary, TakesAKnownPrefixWithFrameCharacters) {
+  auto answer = Bytes{}(0x43)(kStx)("30084=")(kEtx)(kEot)(kAck)("AB")(kEtx).v;
+  std::uint8_t sum = 0;
+  for (std::size_t i = 2; i < answer.size(); ++i) sum ^= answer[i];
+  answer.push_back(sum);
+  AnswerDecoder d;
+  d.start(3, make_code(30084), AnswerDecoder::Expect::text_or_nak, 3);
+  for (const auto b : answer) d.feed(b);
+  ASSERT_EQ(d.status(), AnswerDecoder::Status::done) << to_string(d.error());
+  EXPECT_EQ(d.value().view(), std::string_view("\x03\x04\x06" "AB"));
+  // Without the prefix, the first ETX ends the VALUE and the rest is no BCC.
+  const auto plain = decode(3, make_code(30084), AnswerDecoder::Expect::text_or_nak, answer);
+  EXPECT_EQ(plain.status(), AnswerDecoder::Status::error);
+  // A byte >= 80H inside the prefix is still a garbled character.
+  AnswerDecoder g;
+  g.start(3, make_code(30084), AnswerDecoder::Expect::text_or_nak, 3);
+  for (const auto b : Bytes{}(0x43)(kStx)("30084=")(0x83).v) g.feed(b);
+  EXPECT_EQ(g.error(), AnswerError::garbled);
+}
+
 }  // namespace
 }  // namespace ibs::lustbus

@@ -102,9 +102,12 @@ TEST(LustbusCli, ReadWriteDescribeScanWithJsonAndLog) {
 TEST(LustbusCli, NakExitsOneWithTheCause) {
   Emulator emu({"vf1000@1"});
   const std::string port = emu.pty();
+  // 7.1: control on the serial interface, then the start.
+  ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "0"}, port)).rc, 0);
+  ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CSEL", "3"}, port)).rc, 0);
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CNTL", "0x80"}, port)).rc, 0);
   // 3: an EEPROM parameter while the power stage runs: NAK, 40H.
-  const CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "0"}, port));
+  const CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "4"}, port));
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("vf1000@1 1-MODE: nak, 85-SIOF 40H: no change permitted"), std::string::npos)
       << r.err;

@@ -21,8 +21,9 @@ struct PtyBus {
   lb::Receiver rx_vf{vf, 1};
   lb::Receiver rx_mc{mc, 3};
   serial::PtyPair pair = serial::PtyPair::open({9600, serial::k7E1, false});
-  std::vector<LustbusServed> served{{&rx_vf, [this](Time t) { vf.advance(t); }},
-                                    {&rx_mc, [this](Time t) { mc.advance(t); }}};
+  std::vector<LustbusServed> served{
+      {&rx_vf, [this](Time t) { vf.advance(t); }, [this] { return vf.line_baud(); }},
+      {&rx_mc, [this](Time t) { mc.advance(t); }, [this] { return mc.line_baud(); }}};
   std::atomic<bool> stop{false};
   std::thread server{[this] { serve_lustbus(pair.master(), served, [this] { return stop.load(); }); }};
   serial::SerialPort host_port =
@@ -55,6 +56,54 @@ TEST(LustbusPty, ReadWriteAndNakThroughTheHost) {
   o = transact_lustbus(bus.host_port, host, lb::network_scan());
   ASSERT_EQ(o.kind, lb::OutcomeKind::scan);
   EXPECT_EQ(o.scan.count, 2);
+}
+
+// 11.5: 81-SBAUD takes effect at the next start — or at once with 4-PROG = 111. On a bus of two
+// the servo then runs at another rate than the line: it hears nothing the host sends at 9600,
+// the inverter still does.
+TEST(LustbusPty, BaudRateChangeOnlineOf115) {
+  PtyBus bus;
+  lb::HostConfig cfg;
+  cfg.response_timeout = std::chrono::milliseconds(1000);
+  lb::Host host(cfg);
+  transact_lustbus(bus.host_port, host, lb::enquiry(3, lb::make_code(85)));
+  auto o = transact_lustbus(bus.host_port, host, lb::select(3, lb::make_code(20081), lb::make_value("4B00")));
+  ASSERT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);  // 19200, not yet active
+  EXPECT_EQ(bus.mc.line_baud(), 9600U);
+  o = transact_lustbus(bus.host_port, host, lb::enquiry(3, lb::make_code(20091)));
+  EXPECT_EQ(o.kind, lb::OutcomeKind::value);
+  o = transact_lustbus(bus.host_port, host, lb::select(3, lb::make_code(20004), lb::make_value("6F")));
+  ASSERT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);  // 111: the ACK at 9600
+  EXPECT_EQ(bus.mc.line_baud(), 19200U);
+  cfg.response_timeout = std::chrono::milliseconds(150);
+  lb::Host quick(cfg);
+  o = transact_lustbus(bus.host_port, quick, lb::enquiry(3, lb::make_code(20091)));
+  EXPECT_EQ(o.kind, lb::OutcomeKind::no_answer);
+  o = transact_lustbus(bus.host_port, quick, lb::enquiry(1, lb::make_code(91)));
+  EXPECT_EQ(o.kind, lb::OutcomeKind::value);
+}
+
+// 11.5 with a lone servo: the emulator's port follows the servo's new rate once the ACK is out.
+TEST(LustbusPty, LoneServoTakesThePortAlong) {
+  devices::mc6000::LustbusDevice mc;
+  lb::Receiver rx{mc, 3};
+  serial::PtyPair pair = serial::PtyPair::open({9600, serial::k7E1, false});
+  std::vector<LustbusServed> served{{&rx, [&mc](Time t) { mc.advance(t); }, [&mc] { return mc.line_baud(); }}};
+  std::atomic<bool> stop{false};
+  std::thread server{[&] { serve_lustbus(pair.master(), served, [&] { return stop.load(); }); }};
+  serial::SerialPort port = serial::SerialPort::open(pair.slave_path(), {9600, serial::k7E1, false});
+  lb::HostConfig cfg;
+  cfg.response_timeout = std::chrono::milliseconds(1000);
+  lb::Host host(cfg);
+  transact_lustbus(port, host, lb::enquiry(3, lb::make_code(85)));
+  transact_lustbus(port, host, lb::select(3, lb::make_code(20081), lb::make_value("9600")));  // 38400
+  const auto o = transact_lustbus(port, host, lb::select(3, lb::make_code(20004), lb::make_value("6F")));
+  EXPECT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);
+  port.set_baud(38400);  // the host follows (a pty carries the bytes whatever the rate)
+  EXPECT_EQ(transact_lustbus(port, host, lb::enquiry(3, lb::make_code(20081))).value.view(), "9600");
+  stop = true;
+  server.join();
+  EXPECT_EQ(pair.master().baud(), 38400U);
 }
 
 }  // namespace

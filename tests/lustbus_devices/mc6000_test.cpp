@@ -28,23 +28,58 @@ struct Fresh {
   Mc dev;
   Receiver rx{dev, 3};
   Time t{0};
-  Fed send(const std::vector<std::uint8_t>& b) {
-    t += 1s;
+  Fed send(const std::vector<std::uint8_t>& b, ibs::Duration after = 1s) {
+    t += after;
     return feed(rx, b, t);
   }
   Fresh() { send(enq(0, 85)); }
+  // 7.2 steps 2 and 4: the control location on the serial interface, RSSL1 = RSIO.
+  void control_on_sio() {
+    for (const auto& [code, v] : {std::pair{20402U, "2"}, {20417U, "3"}}) {
+      EXPECT_EQ(send(sel(3, code, v)).answer, (Bytes{}(0x43)(6).v)) << code;
+    }
+  }
 };
 
 // 6.1.1.2 (LB-E4): 77-SPEED via address 0 answered "@ STX 20077=04FA4000 ETX 0BH", 18 bytes
-// (10.1.1), the servo running at 1274.25 1/min.
+// (10.1.1), the servo's plant settled at 1274.25 1/min; on the way up it reads less.
 TEST(Mc6000Lustbus, SeedExample6112ByteExact) {
   Fresh f;
+  f.control_on_sio();
   ASSERT_EQ(f.send(sel(3, 20428, "4FA4000")).answer, (Bytes{}(0x43)(6).v));
   ASSERT_EQ(f.send(sel(3, 20416, "1")).answer, (Bytes{}(0x43)(6).v));
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::enabled);
   const auto host = Bytes{}(4)(64)(50)(48)(48)(55)(55)(5).v;
-  const auto a = f.send(host).answer;
+  const auto early = f.send(host, 50ms).answer;
+  EXPECT_NE(early, (Bytes{}(64)(2)("20077=04FA4000")(3)(0x0B).v));
+  EXPECT_GT(f.dev.speed_rpm(), 100.0);
+  EXPECT_LT(f.dev.speed_rpm(), 1274.0);
+  const auto a = f.send(host, 2s).answer;
   EXPECT_EQ(a, (Bytes{}(64)(2)("20077=04FA4000")(3)(0x0B).v));
   EXPECT_EQ(a.size(), 18U);
+  // SCTL1 = 0: SHUTDOWN, the power stage off, the motor coasts down.
+  ASSERT_EQ(f.send(sel(3, 20416, "0")).answer, (Bytes{}(0x43)(6).v));
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::ready);
+  f.send(host, 60s);
+  EXPECT_LT(f.dev.speed_rpm(), 1.0);
+}
+
+// 7.2: 416-SCTL1 commands the servo only with 402-CLSEL = SIO (the factory OPT1 leaves it to
+// the option) and 300-CFCON = SCON (the emulator's speed loop); the reference is what the
+// selectors 417..420 take from 428-RSIO.
+TEST(Mc6000Lustbus, ControlOnlyFromTheSerialInterface) {
+  Fresh f;
+  ASSERT_EQ(f.send(sel(3, 20428, "10000")).answer, (Bytes{}(0x43)(6).v));  // 1 rpm
+  ASSERT_EQ(f.send(sel(3, 20416, "1")).answer, (Bytes{}(0x43)(6).v));
+  EXPECT_FALSE(f.dev.running());
+  EXPECT_EQ(f.dev.reference_rpm(), 0.0);  // RSSL1..4 = RCON, RCON, OPT1, RCON
+  f.control_on_sio();
+  EXPECT_TRUE(f.dev.running());
+  EXPECT_EQ(f.dev.reference_rpm(), 1.0);
+  ASSERT_EQ(f.send(sel(3, 20418, "3")).answer, (Bytes{}(0x43)(6).v));  // RSSL2 = RSIO too
+  EXPECT_EQ(f.dev.reference_rpm(), 2.0);
+  ASSERT_EQ(f.send(sel(3, 20300, "3")).answer, (Bytes{}(0x43)(6).v));  // PCON: not modelled
+  EXPECT_FALSE(f.dev.running());
 }
 
 // 6.2.3 (LB-E5): the printed CODE 00005 is no servo CODE (20H); the corrected 20428 is taken.
@@ -77,6 +112,7 @@ TEST(Mc6000Lustbus, ControlSequence721ThroughTheHost) {
   EXPECT_EQ(dev.value(417), 3U);
   EXPECT_EQ(dev.value(mc::kRsio), 0x842666U);
   EXPECT_TRUE(dev.running());
+  bus.wait(2s);  // the speed loop settles
   const auto speed = bus.read(3, 20077);
   EXPECT_EQ(speed.value.view(), "00842666");
   EXPECT_NEAR(decode(Family::mc6000, DataType::int32q16, speed.value.view()).value, 132.15, 1e-4);
@@ -165,21 +201,50 @@ TEST(Mc6000Lustbus, DownloadHandshakeOn80Sload) {
   EXPECT_EQ(o.kind, OutcomeKind::downloaded) << describe(o);
   EXPECT_EQ(dev.value(417), 3U);
   EXPECT_EQ(dev.eeprom_value(417), 3U);
+  EXPECT_EQ(dev.value(mc::kRsio), 0U);  // not CardWriteable: acknowledged, not taken (11.4)
   const Assignment bad[] = {{make_code(20418), make_value("3")}, {make_code(20419), make_value("9")}};
   o = bus.run(download(3, bad));
   EXPECT_EQ(o.kind, OutcomeKind::download_rejected) << describe(o);
   EXPECT_EQ(o.rejected_parameter, 419U);
   EXPECT_EQ(dev.value(418), 0U);  // the old dataset
   EXPECT_EQ(dev.value(419), 6U);
+  ASSERT_EQ(bus.write(3, 20402, "2").kind, OutcomeKind::acknowledged);  // CLSEL = SIO
   ASSERT_EQ(bus.write(3, 20416, "1").kind, OutcomeKind::acknowledged);  // running
+  ASSERT_TRUE(dev.running());
   o = bus.run(download(3, good));
   EXPECT_EQ(o.kind, OutcomeKind::download_refused);
   EXPECT_EQ(o.siof, 0x40);
 }
 
+// 11.4 "Important": a SELECT of a parameter without CardWriteable during the download is
+// acknowledged and dropped — a start through 416-SCTL1 too, so the servo stays disengaged; a
+// rejected dataset brings back the CardWriteable parameters only.
+TEST(Mc6000Lustbus, DownloadTakesOnlyCardWriteableParameters) {
+  Fresh f;
+  f.control_on_sio();
+  ASSERT_EQ(f.send(sel(3, 20080, "FFFF")).answer, (Bytes{}(0x43)(6).v));
+  EXPECT_TRUE(f.dev.downloading());
+  EXPECT_EQ(f.send(sel(3, 20416, "1")).answer, (Bytes{}(0x43)(6).v));
+  EXPECT_EQ(f.dev.value(mc::kSctl1), 0U);
+  EXPECT_EQ(f.send(sel(3, 20083, "55")).answer, (Bytes{}(0x43)(6).v));  // SDMMY: dropped
+  EXPECT_EQ(f.dev.value(83), 0U);
+  EXPECT_EQ(f.send(sel(3, 20418, "3")).answer, (Bytes{}(0x43)(6).v));
+  EXPECT_EQ(f.send(sel(3, 20300, "9")).answer, (Bytes{}(0x43)(6).v));  // CFCON 9 > 6, untested
+  EXPECT_EQ(f.dev.value(300), 9U);
+  EXPECT_EQ(f.send(sel(3, 20080, "FFFE")).answer, (Bytes{}(0x43)(6).v));
+  f.dev.advance(f.t + 300ms);
+  EXPECT_FALSE(f.dev.downloading());
+  EXPECT_EQ(f.dev.value(mc::kSload), 300U);  // the first invalid one
+  EXPECT_EQ(f.dev.value(300), 2U);
+  EXPECT_EQ(f.dev.value(418), 0U);
+  EXPECT_EQ(f.dev.value(402), 2U);  // from before the download, untouched
+  EXPECT_FALSE(f.dev.running());
+}
+
 // 5.2 with 84-SWDGT; 8.1.2: bit 7 of 416-SCTL1 resets the error.
 TEST(Mc6000Lustbus, WatchdogAndSctl1Reset) {
   Fresh f;
+  f.control_on_sio();
   Time t = f.t + 1s;
   ASSERT_EQ(feed(f.rx, sel(3, 84, "32"), t).answer, (Bytes{}(0x43)(6).v));  // 50 ms, shared CODE
   ASSERT_EQ(feed(f.rx, sel(3, 20416, "1"), t + 40ms).answer, (Bytes{}(0x43)(6).v));

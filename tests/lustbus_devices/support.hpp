@@ -64,6 +64,8 @@ struct Bus {
     return o ? *o : Outcome{};
   }
   Outcome read(Address a, std::uint32_t code) { return run(enquiry(a, make_code(code))); }
+  // Lets time pass on the line without a telegram (a drive's ramp, a self-test).
+  void wait(Duration d) { line.run_until(line.now() + d); }
   Outcome write(Address a, std::uint32_t code, std::string_view v) {
     return run(select(a, make_code(code), make_value(v)));
   }

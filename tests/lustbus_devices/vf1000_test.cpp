@@ -29,11 +29,17 @@ struct Fresh {
   Vf dev;
   Receiver rx{dev, 5};
   Time t{0};
-  Fed send(const std::vector<std::uint8_t>& b) {
-    t += 1s;
+  Fed send(const std::vector<std::uint8_t>& b, ibs::Duration after = 1s) {
+    t += after;
     return feed(rx, b, t);
   }
   Fresh() { send(enq(0, 85)); }
+  // 7.1 steps 1-3: control and reference on the serial interface.
+  void control_on_sio() {
+    for (const auto& [code, v] : {std::pair{101U, "0000"}, {102U, "0003"}, {104U, "0008"}}) {
+      EXPECT_EQ(send(sel(5, code, v)).answer, (Bytes{}(0x45)(6).v)) << code;
+    }
+  }
 };
 
 TEST(Vf1000Lustbus, PowerOnBitRefusesTheFirstSelectUntil85IsRead) {
@@ -49,15 +55,46 @@ TEST(Vf1000Lustbus, PowerOnBitRefusesTheFirstSelectUntil85IsRead) {
 }
 
 // 6.2.2: 05-FSSIO = 50.00 Hz via address 0, byte-exact (BCC 74H); 6.1.1.1 (LB-E1, LB-E3): the
-// rotary-field frequency 12 read via address 0, answer "@ STX 00112=03E8 ETX 72H" once running.
+// rotary-field frequency 12 read via address 0, answer "@ STX 00112=03E8 ETX 72H" once the ramp
+// (20 Hz/s) has brought the inverter up to 50 Hz; on the way it reads less.
 TEST(Vf1000Lustbus, SeedExamples622And6111ByteExact) {
   Fresh f;
+  f.control_on_sio();
   const auto s622 = Bytes{}(4)(64)(2)("00105=03E8")(3)(0x74).v;
   EXPECT_EQ(f.send(s622).answer, (Bytes{}(64)(6).v));
   EXPECT_EQ(f.dev.value(pnr::kFssio), 0x03E8);
   EXPECT_EQ(f.send(sel(0, 103, "0080")).answer, (Bytes{}(64)(6).v));  // CNTL: start clockwise
   const auto e6111 = Bytes{}(4)(64)(48)(48)(49)(49)(50)(5).v;
-  EXPECT_EQ(f.send(e6111).answer, (Bytes{}(64)(2)("00112=03E8")(3)(0x72).v));
+  const auto early = f.send(e6111, 1s).answer;  // about 20 Hz after 1 s
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::enabled);
+  ASSERT_EQ(early.size(), 14U);
+  EXPECT_NE(early, (Bytes{}(64)(2)("00112=03E8")(3)(0x72).v));
+  EXPECT_NEAR(f.dev.frequency_hz(), 20.0, 0.5);
+  EXPECT_EQ(f.send(e6111, 2s).answer, (Bytes{}(64)(2)("00112=03E8")(3)(0x72).v));
+  // Without the start bit the ramp brings it down, then READY TO SWITCH ON.
+  EXPECT_EQ(f.send(sel(0, 103, "0000")).answer, (Bytes{}(64)(6).v));
+  f.send(enq(5, 112), 3s);
+  EXPECT_EQ(f.dev.frequency_hz(), 0.0);
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::ready);
+}
+
+// 7.1: 3-CNTL commands the inverter only with 1-MODE = 0 and 2-CSEL = 3 (the INTERBUS factory
+// values 4 and 5 leave it to the other control location); 40H is the start bit counter-clockwise.
+TEST(Vf1000Lustbus, ControlOnlyFromTheSerialInterface) {
+  Fresh f;
+  EXPECT_EQ(f.send(sel(5, 105, "0064")).answer, (Bytes{}(0x45)(6).v));  // 5 Hz
+  EXPECT_EQ(f.send(sel(5, 103, "0080")).answer, (Bytes{}(0x45)(6).v));
+  f.send(enq(5, 112));
+  EXPECT_FALSE(f.dev.power_stage_enabled());
+  EXPECT_EQ(f.dev.frequency_hz(), 0.0);
+  EXPECT_EQ(f.send(sel(5, 103, "0000")).answer, (Bytes{}(0x45)(6).v));
+  f.control_on_sio();
+  EXPECT_EQ(f.send(sel(5, 103, "0040")).answer, (Bytes{}(0x45)(6).v));
+  f.send(enq(5, 112));
+  EXPECT_TRUE(f.dev.power_stage_enabled());
+  EXPECT_DOUBLE_EQ(f.dev.frequency_hz(), -5.0);
+  EXPECT_EQ(f.dev.status() & 0x07, 0x07);  // ready, running, counter-clockwise
+  EXPECT_EQ(f.send(enq(5, 111)).answer, bytes(encode_text_answer(5, make_code(111), make_value("0007")).span()));
 }
 
 // 7.1.1 as corrected (LB-E11) through the host: MODE 0, CSEL 3, FSSEL 8, FSSIO 463, CNTL 128 last.
@@ -75,8 +112,9 @@ TEST(Vf1000Lustbus, ControlSequence711ThroughTheHost) {
   EXPECT_EQ(dev.value(pnr::kCsel), 3);
   EXPECT_EQ(dev.value(pnr::kFssel), 8);
   EXPECT_EQ(dev.value(pnr::kFssio), 463);
-  EXPECT_TRUE(dev.power_stage_enabled());
+  bus.wait(2s);  // the ramp: 20 Hz/s
   EXPECT_EQ(bus.read(1, 112).value.view(), "01CF");  // 23.15 Hz
+  EXPECT_TRUE(dev.power_stage_enabled());
 }
 
 // 9.2: 20H, 40H, 80H through the host (it reads 85 after the NAK); 3: an EEPROM parameter is not
@@ -95,11 +133,13 @@ TEST(Vf1000Lustbus, RefusalsCarryTheirCause) {
   o = bus.write(1, 191, "0001");  // TYPE is read-only
   EXPECT_EQ(o.kind, OutcomeKind::nak);
   EXPECT_EQ(o.siof, 0x40);
+  ASSERT_EQ(bus.write(1, 101, "0000").kind, OutcomeKind::acknowledged);  // 7.1: MODE, CSEL
+  ASSERT_EQ(bus.write(1, 102, "0003").kind, OutcomeKind::acknowledged);
   ASSERT_EQ(bus.write(1, 103, "0080").kind, OutcomeKind::acknowledged);  // running
-  o = bus.write(1, 101, "0000");  // MODE, an EEPROM parameter
+  o = bus.write(1, 101, "0004");  // MODE, an EEPROM parameter
   EXPECT_EQ(o.kind, OutcomeKind::nak);
   EXPECT_EQ(o.siof, 0x40);
-  EXPECT_EQ(dev.value(pnr::kMode), 4);
+  EXPECT_EQ(dev.value(pnr::kMode), 0);
   EXPECT_EQ(bus.write(1, 105, "0100").kind, OutcomeKind::acknowledged);  // EEPROM/RAM: RAM
 }
 
@@ -172,9 +212,12 @@ TEST(Vf1000Lustbus, Prog1LoadsFactoryDefaults) {
 }
 
 // 5.2: 84-SIOT in ms; any valid telegram (the dummy on 83-SIOW) resets it; running out sets 02H and
-// stops the inverter; 8.1.1: 11-STAT = 000F restarts it (power-on bit).
+// stops the inverter. 8.1.1: with the error bit set in 11-STAT, 000FH resets it: the ACK is cut
+// (ADR only), the inverter is deaf during its self-test, then back with the power-on bit and
+// the start bit cleared.
 TEST(Vf1000Lustbus, WatchdogAndStatReset) {
   Fresh f;
+  f.control_on_sio();
   Time t = f.t + 1s;
   // SIOT is an EEPROM parameter: set before the start (40H while running).
   ASSERT_EQ(feed(f.rx, sel(5, 184, "0064"), t).answer, (Bytes{}(0x45)(6).v));  // 100 ms
@@ -185,17 +228,69 @@ TEST(Vf1000Lustbus, WatchdogAndStatReset) {
     EXPECT_EQ(feed(f.rx, sel(5, 183, "0000"), t).answer, (Bytes{}(0x45)(6).v)) << i;
   }
   EXPECT_FALSE(f.dev.watchdog_fault());
+  EXPECT_TRUE(f.dev.power_stage_enabled());
   f.dev.advance(t + 150ms);
   EXPECT_TRUE(f.dev.watchdog_fault());
   EXPECT_FALSE(f.dev.power_stage_enabled());
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::fault);
   t += 200ms;
   EXPECT_EQ(feed(f.rx, enq(5, 85), t).answer,
             bytes(encode_text_answer(5, make_code(85), make_value("0002")).span()));
   t += 50ms;
-  EXPECT_EQ(feed(f.rx, sel(5, 111, "000F"), t).answer, (Bytes{}(0x45)(6).v));
+  EXPECT_EQ(feed(f.rx, enq(5, 111), t).answer,
+            bytes(encode_text_answer(5, make_code(111), make_value("0081")).span()));  // ready, error
+  t += 50ms;
+  EXPECT_EQ(feed(f.rx, sel(5, 111, "000F"), t).answer, (Bytes{}(0x45).v));  // cut
   EXPECT_FALSE(f.dev.watchdog_fault());
-  EXPECT_EQ(f.dev.siof(), 0x01);
+  EXPECT_FALSE(f.dev.listening(t + 3s));
+  EXPECT_TRUE(feed(f.rx, enq(5, 85), t + 3s).answer.empty());  // the self-test: no answer
+  EXPECT_TRUE(feed(f.rx, sel(5, 105, "0000"), t + 3500ms).answer.empty());
+  EXPECT_EQ(feed(f.rx, enq(5, 85), t + 4100ms).answer,
+            bytes(encode_text_answer(5, make_code(85), make_value("0001")).span()));
   EXPECT_EQ(f.dev.value(pnr::kCntl), 0);
+  // Without an error 000FH is acknowledged and resets nothing.
+  EXPECT_EQ(feed(f.rx, sel(5, 111, "000F"), t + 4200ms).answer, (Bytes{}(0x45)(6).v));
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::ready);  // not started again
+  EXPECT_EQ(f.dev.siof(), 0);
+  EXPECT_TRUE(f.dev.listening(t + 4300ms));
+  // Any other value is no command: 80H.
+  EXPECT_EQ(feed(f.rx, sel(5, 111, "0001"), t + 4300ms).answer, (Bytes{}(0x45)(0x15).v));
+  EXPECT_EQ(f.dev.siof(), 0x80);
+}
+
+// 8.1.1 through the host, with each of the reset's answers: the outcome, and the power-on bit
+// the host must read (8.1.1: "before the next SELECT") once the inverter is back.
+TEST(Vf1000Lustbus, StatResetThroughTheHost) {
+  for (const auto answer : {Reply::ack, Reply::cut, Reply::none}) {
+    ibs::devices::vf1000::LustbusTiming timing;
+    timing.reset_answer = answer;
+    Vf dev(timing);
+    Bus bus;
+    bus.add(dev, 1);
+    bus.read(1, 85);
+    dev.set_fault(true, bus.line.now());
+    bus.wait(50ms);
+    dev.set_fault(false, bus.line.now());  // a fault that has gone, still to be acknowledged
+    EXPECT_EQ(bus.read(1, 111).value.view(), "0081");
+    const auto o = bus.write(1, 111, "000F");
+    switch (answer) {
+      case Reply::ack:
+        EXPECT_EQ(o.kind, OutcomeKind::acknowledged);
+        break;
+      case Reply::cut:
+        EXPECT_EQ(o.kind, OutcomeKind::bad_answer) << describe(o);
+        EXPECT_EQ(o.answer_error, AnswerError::incomplete);
+        EXPECT_FALSE(o.siof);  // the host's read of 85 after it found nobody
+        break;
+      default:
+        EXPECT_EQ(o.kind, OutcomeKind::no_answer);
+        break;
+    }
+    EXPECT_EQ(bus.read(1, 85).kind, OutcomeKind::no_answer);  // still in its self-test
+    bus.wait(4s);
+    EXPECT_EQ(bus.read(1, 85).value.view(), "0001");
+    EXPECT_EQ(bus.read(1, 111).value.view(), "0001");  // ready, no error
+  }
 }
 
 }  // namespace

@@ -234,14 +234,33 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
         throw BadInput("device '" + spec + "': address " + std::to_string(addr) +
                        " is given twice (9.1: both would answer at once)");
       }
+      const std::uint64_t seed = o.seed + addr;
       if (family == lb::Family::vf1000) {
-        auto& d = vfs.emplace_back(std::make_unique<devices::vf1000::LustbusDevice>());
+        devices::vf1000::LustbusTiming timing;
+        timing.reaction = o.reaction_ms >= 0
+                              ? lb::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
+                              : lb::ReactionModel::inverter(o.keypad, seed);
+        auto& d = vfs.emplace_back(std::make_unique<devices::vf1000::LustbusDevice>(timing));
+        if (!d->set_line_baud(o.port.baud)) {
+          throw BadInput("device '" + spec + "': a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not " +
+                         std::to_string(o.port.baud));
+        }
         receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); }});
+        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
+                          [p = d.get()]() { return p->line_baud(); }});
       } else {
-        auto& d = mcs.emplace_back(std::make_unique<devices::mc6000::LustbusDevice>());
+        devices::mc6000::LustbusTiming timing;
+        timing.reaction = o.reaction_ms >= 0
+                              ? lb::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
+                              : lb::ReactionModel::servo(o.keypad, seed);
+        auto& d = mcs.emplace_back(std::make_unique<devices::mc6000::LustbusDevice>(timing));
+        if (!d->set_line_baud(o.port.baud)) {
+          throw BadInput("device '" + spec + "': an MC6000 runs at 2400..57600 baud (seed 000, 4), not " +
+                         std::to_string(o.port.baud));
+        }
         receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); }});
+        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
+                          [p = d.get()]() { return p->line_baud(); }});
       }
     }
   } catch (const BadInput& e) {
@@ -548,6 +567,7 @@ void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devi
     now = since(t0);
     for (const LustbusServed& d : devices) {
       d.advance(now);
+      if (d.baud && d.baud() != port.baud()) continue;  // another rate: nothing it can read
       for (std::size_t i = 0; i < n; ++i) d.receiver->receive(buf[i], now);
     }
     now = since(t0);
@@ -556,6 +576,11 @@ void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devi
       if (!due || *due > now) continue;
       const auto a = d.receiver->take_answer(now);
       if (!a.empty()) port.write(a);
+    }
+    // 11.5: a lone drive's new rate (4-PROG = 111, or a restart) takes the port along, after its
+    // answer has gone out at the old one.
+    if (devices.size() == 1 && devices[0].baud && !devices[0].receiver->answer_due()) {
+      port.set_baud(devices[0].baud());
     }
   }
 }
@@ -598,6 +623,12 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
       ->required();
   state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
+  state.emulate->add_flag("--keypad", eo.keypad,
+                          "reaction times as with a KEYPAD attached (10: up to 30 ms servo, 60 ms "
+                          "inverter; without: 25 / 30 ms)");
+  state.emulate->add_option("--seed", eo.seed, "seed of the reaction times (default 1; + address)");
+  state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time in ms instead")
+      ->check(CLI::Range(0, 10000));
   add_port_options(state.emulate, eo.port);
 
   LustbusClientOptions& co = state.client_options;

@@ -46,6 +46,11 @@ struct LustbusEmulateOptions {
   LustbusPortOptions port;
   bool pty = false;
   std::vector<std::string> devices;  // vf1000@ADDR, mc6000@ADDR
+  // 10: reaction times drawn from the table with or without KEYPAD, seeded (seed + address per
+  // drive); reaction_ms >= 0 fixes them instead.
+  bool keypad = false;
+  std::uint64_t seed = 1;
+  int reaction_ms = -1;
 };
 
 struct LustbusClientOptions {
@@ -83,10 +88,14 @@ std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::o
 struct LustbusServed {
   lustbus::Receiver* receiver = nullptr;
   std::function<void(Time)> advance;
+  // The rate the drive's line runs at (11.5); empty: always the port's.
+  std::function<std::uint32_t()> baud;
 };
 // Serves the devices on one port: every byte read goes to every receiver with the time since the
 // loop began; an answer is written when its reaction time has passed. Returns when stop() is true
-// (asked at least every 20 ms).
+// (asked at least every 20 ms). A drive whose line rate is not the port's hears nothing (on a
+// real line it would see garbage); a single drive that changes its rate takes the port with it
+// once its answer is out (11.5).
 void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
                    const std::function<bool()>& stop);
 // Runs one request of the host in real time until the host is idle (its closing EOT written).

@@ -63,6 +63,7 @@ struct SerialPort::Impl {
   Rs485Status rs485 = Rs485Status::not_requested;
   std::vector<std::string> notes;
   ByteLog* log = nullptr;
+  std::uint32_t baud = 0;
 };
 
 namespace {
@@ -98,6 +99,7 @@ void apply(SerialPort::Impl& p, const Option& option, const std::string& what) {
 void configure(SerialPort::Impl& p, const PortOptions& o) {
   using B = asio::serial_port_base;
   p.pty = detect_pty(p.port.native_handle());
+  p.baud = o.baud;
   apply(p, B::baud_rate(o.baud), std::to_string(o.baud) + " baud");
   apply(p, B::character_size(static_cast<unsigned>(o.framing.data_bits)),
         std::to_string(o.framing.data_bits) + " data bits");
@@ -149,6 +151,18 @@ SerialPort SerialPort::adopt(int fd, const std::string& name, const PortOptions&
   configure(*impl, options);
   return SerialPort(std::move(impl));
 }
+
+void SerialPort::set_baud(std::uint32_t baud) {
+  Impl& p = *impl_;
+  if (baud == p.baud) return;
+  ::tcdrain(p.port.native_handle());
+  p.baud = baud;
+  const std::size_t notes = p.notes.size();
+  apply(p, asio::serial_port_base::baud_rate(baud), std::to_string(baud) + " baud");
+  p.notes.resize(notes);  // a pty's "not supported" was said at open already
+}
+
+std::uint32_t SerialPort::baud() const { return impl_->baud; }
 
 std::size_t SerialPort::read(std::span<std::uint8_t> buf, std::chrono::nanoseconds timeout) {
   Impl& p = *impl_;

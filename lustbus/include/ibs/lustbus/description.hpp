@@ -36,7 +36,7 @@ enum class DescriptionError : std::uint8_t {
   bad_kind,   // VF: not '0'..'7'; MC: not '0'..'2'
   bad_type,   // VF: not '1'..'6'
   bad_value,  // min / max / default not capital hex
-  not_7bit,   // an MC binary element that a 7-bit line cannot carry, or a frame character
+  not_7bit,   // an MC binary element that a 7-bit line cannot carry (>= 80H)
 };
 std::string_view to_string(DescriptionError e);
 
@@ -99,8 +99,8 @@ inline constexpr std::uint16_t kHwMptc = 0x4000;
 inline constexpr std::uint16_t kHwBrake = 0x8000;
 
 Parsed<McDescription> parse_mc_description(std::string_view value);
-// nullopt when an element cannot travel: a binary byte >= 80H or a frame control character
-// (LB-D10), or a name longer than 5 / with characters 11.2.1 does not allow.
+// nullopt when an element cannot travel: a binary byte >= 80H (LB-D10; frame characters do, read
+// by length), or a name longer than 5 / with characters 11.2.1 does not allow.
 std::optional<Value> format_mc_description(const McDescription& d);
 
 // ---- 11.3: value substitution text --------------------------------------------------------------

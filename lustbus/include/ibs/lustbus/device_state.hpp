@@ -56,4 +56,45 @@ class SerialWatchdog {
   Time last_{};
 };
 
+// 10: "the time to react to a telegram depends on the individual device and its load", with and
+// without a KEYPAD: servos 1...30 / 1...25 ms, inverters 1...60 / 1...30 ms. The emulated drives
+// draw each reaction from a seeded generator, uniformly between `min` and `max` in whole
+// microseconds (LB-D18): the same seed gives the same times. min == max is a fixed time.
+struct ReactionModel {
+  Duration min = std::chrono::milliseconds(2);
+  Duration max = std::chrono::milliseconds(2);
+  std::uint64_t seed = 0;
+
+  static constexpr ReactionModel fixed(Duration d) { return {d, d, 0}; }
+  // 10's table.
+  static constexpr ReactionModel servo(bool keypad, std::uint64_t seed) {
+    return {std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 30 : 25), seed};
+  }
+  static constexpr ReactionModel inverter(bool keypad, std::uint64_t seed) {
+    return {std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 60 : 30), seed};
+  }
+};
+
+class ReactionTimes {
+ public:
+  constexpr explicit ReactionTimes(ReactionModel m = {}) : model_(m), state_(m.seed) {}
+  // The next reaction time (splitmix64; allocation-free).
+  constexpr Duration next() {
+    if (model_.max <= model_.min) return model_.min;
+    state_ += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = state_;
+    z = (z ^ (z >> 30U)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27U)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31U;
+    const auto span_us = static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(model_.max - model_.min).count());
+    return model_.min + std::chrono::microseconds(static_cast<std::int64_t>(z % (span_us + 1)));
+  }
+  [[nodiscard]] constexpr const ReactionModel& model() const { return model_; }
+
+ private:
+  ReactionModel model_;
+  std::uint64_t state_;
+};
+
 }  // namespace ibs::lustbus

@@ -57,6 +57,7 @@ enum class RequestKind : std::uint8_t {
   scan,               // 5.2: ENQUIRY 00091 at 1..30, then 20091 to tell servos from inverters
   download,           // 11.4: SLOAD = -1, the records, SLOAD = -2, poll SLOAD
   substitution_text,  // 11.3: SELECT 20108 = index, ENQUIRY 61xxx
+  posmod,             // 11.6: SELECT 49999 = status byte + data, ENQUIRY 49999 for a request
 };
 std::string_view to_string(RequestKind k);
 
@@ -69,6 +70,8 @@ struct Assignment {
 // 11.4 and 11.3 name the servo's parameters 80-SLOAD and 108-STEXT.
 inline constexpr unsigned kParamSload = 80;
 inline constexpr unsigned kParamStext = 108;
+// 11.6.1: "0 ... 80 Byte ASCII-Data (use-data)".
+inline constexpr std::size_t kPosmodMaxUserData = 80;
 
 struct Request {
   RequestKind kind = RequestKind::enquiry;
@@ -80,6 +83,8 @@ struct Request {
   // download: the records, kept alive by the caller until the request is done.
   std::span<const Assignment> records;
   // substitution_text: the parameter and the value whose text is wanted.
+  // posmod: `value` holds the user data (empty: ENQUIRY only); `parameter` 1 marks user data
+  // posmod_request() could not take (submit() answers invalid_request).
   std::uint16_t parameter = 0;
   std::uint32_t text_index = 0;
 };
@@ -89,6 +94,14 @@ Request broadcast(const Code& c, const Value& v);
 Request network_scan();
 Request download(Address a, std::span<const Assignment> records);
 Request substitution_text_request(Address a, std::uint16_t parameter, std::uint32_t index);
+// 11.6: one PosMOD1 exchange at a servo. With `user_data` (the status byte of 11.6.3 and the
+// telegram data, <= 80 characters): SELECT 49999; when the status byte asks for data (bit 0),
+// then the ENQUIRY 49999 whose answer is the outcome's `value`. Without: the ENQUIRY alone (the
+// next block of a multiblock answer). A NAK is followed by the error read of 11.6, SELECT
+// "1%RDF" and ENQUIRY: the outcome is `nak` with the PosMOD1's error answer in `value` (empty
+// when that read failed too). No telegram of it is repeated: a PosMOD1 ENQUIRY moves on to the
+// next block, and a repeated SELECT would be a second command.
+Request posmod_request(Address a, std::string_view user_data);
 
 enum class OutcomeKind : std::uint8_t {
   value,              // text answer: `value`
@@ -195,6 +208,10 @@ class Host {
     dl_poll,      // ENQUIRY 20080
     st_select,    // SELECT 20108 = index
     st_enquiry,   // ENQUIRY 61xxx
+    pm_select,    // SELECT 49999 = user data
+    pm_enquiry,   // ENQUIRY 49999
+    pm_error_select,   // SELECT 49999 = "1%RDF" after a NAK
+    pm_error_enquiry,  // ENQUIRY 49999: the error
   };
   struct Tx {
     Address address = 0;

@@ -26,7 +26,9 @@ enum class Reply : std::uint8_t {
   ack,       // SELECT: ADR ACK
   nak,       // ADR NAK
   deferred,  // the drive answers later through Receiver::deliver_* (10.2, EEPROM)
-  none,      // no answer at all (e.g. a drive resetting itself, 8.1: "not sent in full")
+  none,      // no answer at all
+  cut,       // SELECT: only ADR goes out, the ACK is lost (a drive resetting itself at once,
+             // 8.1: "the ACK-answer telegram, under certain circumstances, is not sent in full")
 };
 std::string_view to_string(Reply r);
 
@@ -49,6 +51,7 @@ struct SelectAnswer {
   static constexpr SelectAnswer ack(Duration r = {}) { return {Reply::ack, r}; }
   static constexpr SelectAnswer nak(Duration r = {}) { return {Reply::nak, r}; }
   static constexpr SelectAnswer deferred() { return {Reply::deferred, {}}; }
+  static constexpr SelectAnswer cut(Duration r = {}) { return {Reply::cut, r}; }
 };
 
 class Responder {
@@ -73,6 +76,14 @@ class Responder {
   // 5.2: a valid ENQUIRY or SELECT arrived, which resets the drive's 84-SIOT watchdog. Called
   // before enquiry() / select(). Default: nothing.
   virtual void telegram_received(const Context& ctx) { (void)ctx; }
+
+  // False while the drive cannot communicate at all (8.1: "the connection is broken for the
+  // duration of the boot-up"; 10 exception 2): a telegram completed at `now` gets no answer and
+  // reaches none of the calls above, a wrong BCC included. Default: always listening.
+  [[nodiscard]] virtual bool listening(Time now) const {
+    (void)now;
+    return true;
+  }
 };
 
 }  // namespace ibs::lustbus

@@ -73,8 +73,10 @@ class AnswerDecoder {
   enum class Status : std::uint8_t { need_more, done, error };
   enum class Expect : std::uint8_t { text_or_nak, ack_or_nak };
 
-  // Starts a new answer: the device at `a` (as addressed, 0 included) answering `c`.
-  void start(Address a, const Code& c, Expect e);
+  // Starts a new answer: the device at `a` (as addressed, 0 included) answering `c`. The first
+  // `binary_prefix` VALUE characters are taken as they come, frame characters included: the
+  // binary elements of an 11.2 description, whose length is known (LB-D10).
+  void start(Address a, const Code& c, Expect e, std::size_t binary_prefix = 0);
   Status feed(std::uint8_t b);
 
   [[nodiscard]] Status status() const { return status_; }
@@ -97,6 +99,7 @@ class AnswerDecoder {
   Value value_{};
   std::uint8_t code_pos_ = 0;
   std::uint8_t bcc_ = 0;
+  std::size_t binary_prefix_ = 0;
   std::size_t count_ = 0;
 };
 

@@ -35,6 +35,13 @@ class Value {
     chars_[size_++] = static_cast<char>(c);
     return true;
   }
+  // A binary element of an 11.2 description (LB-D10): any 7-bit byte, frame characters included.
+  // false when full or `c` >= 80H (a 7-bit line cannot carry it).
+  constexpr bool push_binary(std::uint8_t c) {
+    if (size_ >= kMaxValueLength || c >= 0x80U) return false;
+    chars_[size_++] = static_cast<char>(c);
+    return true;
+  }
   constexpr void clear() { size_ = 0; }
   [[nodiscard]] constexpr std::size_t size() const { return size_; }
   [[nodiscard]] constexpr bool empty() const { return size_ == 0; }

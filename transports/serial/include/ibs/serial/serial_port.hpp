@@ -63,6 +63,10 @@ class SerialPort {
   void write(std::span<const std::uint8_t> bytes);
   // Discards what was received and not yet read.
   void discard_input();
+  // Changes the rate after open (LUSTBUS 11.5: a servo's 4-PROG = 111). Output already written
+  // is drained first (tcdrain), so it still goes out at the old rate. A pty ignores rates.
+  void set_baud(std::uint32_t baud);
+  [[nodiscard]] std::uint32_t baud() const;
 
   const std::string& name() const;
   bool is_pty() const;

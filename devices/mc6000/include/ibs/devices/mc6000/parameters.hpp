@@ -25,13 +25,21 @@ inline constexpr std::uint16_t kSpeed = 77;   // seed 000, 6.1.1.2
 inline constexpr std::uint16_t kSload = 80;   // seed 000, 11.4
 inline constexpr std::uint16_t kSdmmy = 83;   // seed 000, 5.2
 inline constexpr std::uint16_t kSwdgt = 84;   // seed 000, 5.2
+inline constexpr std::uint16_t kParamSbaud = 81;  // seed 000, 4, 11.5
 inline constexpr std::uint16_t kSerr = drive::kSiofNumber;  // seed 000, 9.2
 inline constexpr std::uint16_t kType = 91;    // seed 000, 5.2
+inline constexpr std::uint16_t kStext = 108;  // seed 000, 11.3
+inline constexpr std::uint16_t kCfcon = 300;  // seed 000, 7.2.1
+inline constexpr std::uint16_t kClsel = 402;  // seed 000, 7.2.1
 inline constexpr std::uint16_t kSupi = 405;   // seed 001, 3.2.2
 inline constexpr std::uint16_t kIbcnf = 406;  // seed 001, 3.2.3
 inline constexpr std::uint16_t kIbstu = 407;  // seed 001, 4.2.1
 inline constexpr std::uint16_t kIbsta = 408;  // seed 001, 4.2.1
 inline constexpr std::uint16_t kSctl1 = 416;  // seed 000, 7.2, 8.1.2
+inline constexpr std::uint16_t kRssl1 = 417;  // seed 000, 7.2.1
+inline constexpr std::uint16_t kRssl2 = 418;
+inline constexpr std::uint16_t kRssl3 = 419;
+inline constexpr std::uint16_t kRssl4 = 420;
 inline constexpr std::uint16_t kRsio = 428;   // seed 000, 7.2.1
 
 // 85-SERR bits (seed 000, 9.2): the family's 85-SIOF bits (drive/siof.hpp).
