@@ -7,7 +7,10 @@
 //   the one exception, the MC6000's end of a download (11.4), only while one is open;
 // - a select() answered NAK leaves a bit in 85 (its cause, or the one that refused it);
 // - while a bit is set, every select() is refused and changes nothing;
-// - an enquiry() never adds a bit; the ENQUIRY of 85 returns the bits and leaves none.
+// - an enquiry() never adds a bit; the ENQUIRY of 85 returns the bits and leaves none;
+// - the PosMOD1 channel (49999, 11.6) changes no parameter and is not held by the latch (its
+//   refusals are read with %RDF, LB-D22); the VF1000's reset (11-STAT = 000FH with an error,
+//   8.1.1) may answer a cut ACK or nothing, and the inverter is deaf while it boots.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -41,7 +44,10 @@ std::vector<std::uint32_t> values_of(const devices::mc6000::LustbusDevice& d) {
 }
 std::uint8_t bits_of(const devices::vf1000::LustbusDevice& d) { return d.siof(); }
 std::uint8_t bits_of(const devices::mc6000::LustbusDevice& d) { return d.serr(); }
-bool may_change_alone(const devices::vf1000::LustbusDevice&) { return false; }
+bool may_change_alone(const devices::vf1000::LustbusDevice& d) { return d.booting(); }
+// Only the servo has the PosMOD1 channel; to the inverter 49999 is no CODE (20H).
+bool has_posmod(const devices::vf1000::LustbusDevice&) { return false; }
+bool has_posmod(const devices::mc6000::LustbusDevice&) { return true; }
 bool may_change_alone(const devices::mc6000::LustbusDevice& d) { return d.downloading(); }
 
 template <typename Drive>
@@ -73,6 +79,17 @@ class Checker final : public Responder {
     const auto before = values_of(d_);
     const std::uint8_t bits = bits_of(d_);
     const SelectAnswer a = d_.select(code, value, ctx);
+    if (code == kPosmodCode && has_posmod(d_)) {
+      if (values_of(d_) != before) fail("a PosMOD1 telegram changed a parameter");
+      if (bits_of(d_) != bits) fail("a PosMOD1 telegram changed 85");
+      if (a.reply != Reply::ack && a.reply != Reply::nak) fail("PosMOD1 answered neither ACK nor NAK");
+      return a;
+    }
+    const bool reset = (code.number() % 100) == 11 && value.view() == "000F";
+    if (reset && (a.reply == Reply::cut || a.reply == Reply::none)) {
+      if (bits != 0) fail("a reset taken while 85 held a bit");
+      return a;
+    }
     if (a.reply == Reply::nak) {
       if (bits_of(d_) == 0) fail("a NAK without a bit in 85");
       if (values_of(d_) != before) fail("a refused SELECT changed a value");
@@ -91,6 +108,8 @@ class Checker final : public Responder {
     if ((bits_of(d_) & 0x08) == 0) fail("a wrong BCC without 08H");
     if (values_of(d_) != before) fail("a wrong BCC changed a value");
   }
+
+  [[nodiscard]] bool listening(Time now) const override { return d_.listening(now); }
 
   void telegram_received(const Context& ctx) override {
     d_.advance(ctx.now);
@@ -115,7 +134,7 @@ void run(In& in) {
     const auto before = values_of(drive);
     const bool alone = may_change_alone(drive);
     const int acks_before = checker.acks;
-    switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+    switch (in.ConsumeIntegralInRange<int>(0, 4)) {
       case 0: {  // raw bytes
         const auto bytes = in.ConsumeBytes<std::uint8_t>(in.ConsumeIntegralInRange<std::size_t>(0, 24));
         for (const auto b : bytes) rx.receive(b, now);
@@ -137,6 +156,17 @@ void run(In& in) {
         const std::uint32_t code =
             in.ConsumeBool() ? 85 : in.ConsumeIntegralInRange<std::uint32_t>(0, 99999);
         const auto t = encode_enquiry(in.ConsumeBool() ? own : 0, make_code(code));
+        for (const auto b : t.span()) rx.receive(b, now);
+        break;
+      }
+      case 3: {  // a PosMOD1 telegram (11.6), from the commands docs/lustbus.md lists
+        static constexpr const char* kUser[] = {"8GOA100",  "8GOR-5V10", "8ST",   "8HOME", "<%P1 (X)",
+                                                "<N1 GO 0", "8END",      "1?",    "1%RDP1", "1%RDF",
+                                                "1%RDP9",   "8GOA",      "\x7F?"};
+        const auto pick = in.ConsumeIntegralInRange<std::size_t>(0, std::size(kUser));
+        const auto t = pick == std::size(kUser)
+                           ? encode_enquiry(own, kPosmodCode)
+                           : encode_select(own, kPosmodCode, make_value(kUser[pick]));
         for (const auto b : t.span()) rx.receive(b, now);
         break;
       }

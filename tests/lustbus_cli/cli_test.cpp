@@ -180,5 +180,78 @@ TEST(LustbusCli, DownloadADatasetFile) {
   EXPECT_EQ(emu.stop(SIGTERM), 0);
 }
 
+// `ibs decode` of a byte log (docs/lustbus.md, "Reading a byte log"): every telegram and answer
+// explained, the host's side found by its EOT, BCCs checked, descriptions read by length.
+TEST(LustbusLogDecode, ExplainsTelegramByTelegram) {
+  const std::string file = ::testing::TempDir() + "lustbus-decode.log";
+  {
+    std::ofstream f(file);
+    f << "ibs-serial-log 1\n"
+         // 6.1.1.2: ENQUIRY 20077 via address 0, the answer 04FA4000 (BCC 0BH), EOT.
+         "0.000100 tx /dev/pts/9 04 40 32 30 30 37 37 05\n"
+         "0.030000 rx /dev/pts/9 40 02 32 30 30 37 37 3D 30 34 46 41 34 30 30 30 03 0B\n"
+         "0.032000 tx /dev/pts/9 04\n"
+         // 7.2.1's last: SELECT 20416=1 (BCC 3EH), ACK.
+         "0.040000 tx /dev/pts/9 04 43 02 32 30 34 31 36 3D 31 03 3E\n"
+         "0.050000 rx /dev/pts/9 43 06\n"
+         "0.051000 tx /dev/pts/9 04\n"
+         // A SELECT with a wrong BCC, answered NAK.
+         "0.060000 tx /dev/pts/9 04 41 02 30 30 31 30 35 3D 30 33 45 38 03 75\n"
+         "0.070000 rx /dev/pts/9 41 15\n"
+         "0.071000 tx /dev/pts/9 04 41 30 30 31\n"
+         "0.072000 tx /dev/pts/9 04\n";
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  const auto rc = decode_lustbus_log(file, out, err);
+  ASSERT_TRUE(rc);
+  EXPECT_EQ(*rc, 0) << err.str();
+  const std::string text = out.str();
+  EXPECT_NE(text.find("host = tx (/dev/pts/9)"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.000100 host  ENQUIRY @ (address 0) 20077: MC6000 77-SPEED"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.030000 drive @ 20077=04FA4000 BCC ok: MC6000 77-SPEED = 1274.25"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.040000 host  SELECT C (address 3) 20416=1 BCC ok: MC6000 416-SCTL1 := 1"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.050000 drive C ACK"), std::string::npos) << text;
+  EXPECT_NE(text.find("BCC WRONG (75, should be 74)"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.070000 drive A NAK (the cause is in 85-SIOF/SERR, 9.2)"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.071000 host  broken telegram (EOT before its end): A001"), std::string::npos) << text;
+}
+
+TEST(LustbusLogDecode, BadLinesAndOtherFiles) {
+  const std::string dir = ::testing::TempDir();
+  std::ostringstream out;
+  std::ostringstream err;
+  {
+    std::ofstream f(dir + "lb-bad.log");
+    f << "ibs-serial-log 1\n0.1 tx /dev/pts/1 04 40\n0.2 up /dev/pts/1 06\n";
+  }
+  auto rc = decode_lustbus_log(dir + "lb-bad.log", out, err);
+  ASSERT_TRUE(rc);
+  EXPECT_EQ(*rc, 2);
+  EXPECT_NE(err.str().find("lb-bad.log:3: 'up' is neither tx nor rx"), std::string::npos) << err.str();
+  {
+    std::ofstream f(dir + "lb-hex.log");
+    f << "ibs-serial-log 1\n0.1 tx /dev/pts/1 04 4G\n";
+  }
+  rc = decode_lustbus_log(dir + "lb-hex.log", out, err);
+  ASSERT_TRUE(rc);
+  EXPECT_EQ(*rc, 2);
+  EXPECT_NE(err.str().find("lb-hex.log:2: '4G' is not a byte in two hex digits"), std::string::npos) << err.str();
+  {
+    std::ofstream f(dir + "lb-dfs1.log");
+    f << "ibs-serial-log 1\n0.1 tx /dev/pts/1 10 02 01 81 10 03 7E\n";
+  }
+  rc = decode_lustbus_log(dir + "lb-dfs1.log", out, err);
+  ASSERT_TRUE(rc);
+  EXPECT_EQ(*rc, 2);
+  EXPECT_NE(err.str().find("not a LUSTBUS byte log"), std::string::npos) << err.str();
+  {
+    std::ofstream f(dir + "lb-trace.txt");
+    f << "# a trace\n";
+  }
+  EXPECT_FALSE(decode_lustbus_log(dir + "lb-trace.txt", out, err));
+  EXPECT_FALSE(decode_lustbus_log(dir + "no-such-file", out, err));
+}
+
 }  // namespace
 }  // namespace ibs::cli

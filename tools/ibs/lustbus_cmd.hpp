@@ -98,6 +98,10 @@ struct LustbusServed {
 // once its answer is out (11.5).
 void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
                    const std::function<bool()>& stop);
+// `ibs decode FILE` for a byte log of `--log` (docs/lustbus.md, "Reading a byte log"): nullopt
+// when FILE is no byte log (the caller tries the other formats); otherwise every telegram and
+// answer explained, one per line, and the exit code (2: a malformed line, named file:line).
+std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out, std::ostream& err);
 // Runs one request of the host in real time until the host is idle (its closing EOT written).
 lustbus::Outcome transact_lustbus(serial::SerialPort& port, lustbus::Host& host,
                                   const lustbus::Request& request);

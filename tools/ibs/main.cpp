@@ -53,8 +53,8 @@ int run_ibs(int argc, char** argv) {
   unsigned decode_id_step = 2;
   unsigned decode_cacnf = 2;
   auto* decode = app.add_subcommand(
-      "decode", "print a trace with every word explained in the remark, or a CANLust candump log with every frame explained");
-  decode->add_option("FILE", decode_files, "trace files or candump -l logs; - reads a trace from standard input")
+      "decode", "print a trace with every word explained in the remark, a CANLust candump log with every frame explained, or a LUSTBUS byte log (--log) telegram by telegram");
+  decode->add_option("FILE", decode_files, "trace files, candump -l logs or byte logs of --log; - reads a trace from standard input")
       ->required();
   decode->add_flag("--json", decode_json, "traces: one JSON object per file, each on one line (docs/replay.md)");
   decode->add_option("--id-step", decode_id_step, "candump log: CANLust identifier step (default 2)");
@@ -115,6 +115,13 @@ int run_ibs(int argc, char** argv) {
       int rc = ibs::cli::kExitOk;
       if (replay->parsed()) {
         rc = ibs::cli::replay(emulate, file, replay_pcap);
+      } else if (const auto log = file == "-" ? std::nullopt
+                                              : ibs::cli::decode_lustbus_log(file, std::cout, std::cerr)) {
+        rc = *log;
+        if (decode_json && rc == ibs::cli::kExitOk) {
+          std::cerr << file << ": --json is for traces; a byte log is explained as text\n";
+          rc = ibs::cli::kExitBadInput;
+        }
       } else if (const auto candump = file == "-" ? std::nullopt
                                                   : ibs::cli::decode_candump_log(file, decode_id_step, decode_cacnf,
                                                                                  std::cout, std::cerr)) {

@@ -58,6 +58,8 @@ class LustbusDevice final : public lustbus::Responder {
   void restart(Time now);
   // 8.1.1: deaf while booting after a reset.
   [[nodiscard]] bool listening(Time now) const override { return now >= boot_until_; }
+  // In the self-test after a reset; at its end the RAM values go back to their defaults.
+  [[nodiscard]] bool booting() const { return booting_; }
   // A fault of the inverter (tests, the emulator): the power stage blocks (8), 11-STAT shows it.
   void set_fault(bool present, Time now);
 
