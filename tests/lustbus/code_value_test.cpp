@@ -337,6 +337,10 @@ TEST(Timing, CharacterIsTenBits) {
   const auto seq = select_time(8, 9600, 1ms, 2ms).total();
   EXPECT_NEAR(to_ms(eeprom_wait(4, 5ms, seq)), 60.0 - to_ms(seq), 1e-9);
   EXPECT_EQ(eeprom_wait(1, 5ms, 100ms), Duration{0});
+  // 10.2.2's numbers as printed: 4 bytes x 3 x 5 ms = 60 ms of memory time; with its minimum
+  // telegram duration of 22 ms the wait is 38 ms.
+  EXPECT_EQ(eeprom_wait(4, 5ms, 0ms), 60ms);
+  EXPECT_EQ(eeprom_wait(4, 5ms, 22ms), 38ms);
 }
 
 }  // namespace

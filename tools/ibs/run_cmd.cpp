@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
+#include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
 #include "ibs/sim/report.hpp"
@@ -33,9 +34,38 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
   return std::nullopt;
 }
 
+// A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation.
+int run_canlust(const RunOptions& o) {
+  for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
+                                    {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1}}) {
+    if (given) {
+      std::cerr << o.scenario << ": " << flag << " is for INTERBUS scenarios; a CANLust run has --json and --pcap\n";
+      return kExitBadInput;
+    }
+  }
+  sim::canlust::Scenario scenario;
+  try {
+    scenario = sim::canlust::load_scenario(o.scenario);
+  } catch (const sim::ScenarioError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  sim::canlust::Report report;
+  try {
+    report = sim::canlust::run(scenario, o.pcap_file);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  std::cout << (o.json ? sim::canlust::format_json(report) + "\n" : sim::canlust::format_text(report));
+  if (!o.json && !o.pcap_file.empty()) std::cout << "capture written: " << o.pcap_file << "\n";
+  return kExitOk;
+}
+
 }  // namespace
 
 int run(const RunOptions& o) {
+  if (!o.scenario.empty() && sim::canlust::is_canlust_scenario(o.scenario)) return run_canlust(o);
   // A plot that cannot be drawn fails before the run.
   std::optional<sim::PlotFormat> format;
   if (!o.plot_file.empty()) {

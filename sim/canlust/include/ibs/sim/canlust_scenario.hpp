@@ -1,0 +1,136 @@
+// `ibs run` with a CANLust bus (seed 003; docs/scenarios.md, "A CANLust bus"): CDA3000 drives on
+// the in-process virtual CAN bus (bit timing, arbitration, bus load) under the wing's master
+// driver, in simulated time. A scenario file says `protocol = "canlust"` in its [bus] table; the
+// same document reader as the INTERBUS scenarios reads it (TOML or JSON, every key and value with
+// its line), so errors name file:line the same way.
+//
+//   name = "two conveyors"
+//   duration = "3 s"
+//   [bus]
+//   protocol = "canlust"
+//   bitrate = 500000            # 489-CLBDR, 25000..500000
+//   id_step = 2                 # CAN-E1 / D1
+//   control_period = "50 ms"    # the driver's least control telegram rate (D30)
+//   [[device]]
+//   name = "left"
+//   type = "cda3000"
+//   address = 1                 # 571-CLADR
+//   cacnf = 2                   # 492-CACNF, 1..3
+//   watchdog_ms = 100           # 574-CAWDG, 0 = off
+//   status_ms = 80              # 575-CASCY
+//   power_on = "0 s"
+//   [[timeline]]
+//   at = "0.2 s"
+//   system = "start"            # or "stop"
+//   [[timeline]] at / device / state = "enabled"      (a DRIVECOM target)
+//   [[timeline]] at / device / reference_hz = 20.5
+//   [[timeline]] at / device / read = 575   |  write = 575 + value = "10"
+//   [[timeline]] at / device / fault = "mains_reset" | "mains_off" | "mains_on"
+//   [[timeline]] at / fault = "master_silent" + duration = "300 ms"   (no master frame: the
+//                                                watchdogs of 574-CAWDG trip)
+//
+// The run allocates as it records (a simulation, not the cycle path); the driver's cycle and the
+// drives stay allocation-free as they are.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ibs/drivecom/sequencer.hpp"
+#include "ibs/interbus/time.hpp"
+
+namespace ibs::sim::canlust {
+
+struct DriveSpec {
+  std::string name;
+  std::uint8_t address = 1;
+  std::uint8_t cacnf = 2;
+  std::uint16_t watchdog_ms = 0;
+  std::uint16_t status_ms = 80;
+  Time power_on{};
+  std::size_t line = 0;
+};
+
+enum class Action : std::uint8_t {
+  start, stop, state, reference, read, write, mains_reset, mains_off, mains_on, master_silent,
+};
+std::string_view to_string(Action a);
+
+struct Entry {
+  Time at{};
+  Action action = Action::start;
+  std::string device;  // empty for start, stop, master_silent
+  drivecom::Target target = drivecom::Target::enabled;
+  double hz = 0.0;
+  std::uint16_t parameter = 0;
+  std::string value;    // write: as `ibs canlust write` takes it ("10", "OPTN2", "20.5")
+  Duration duration{};  // master_silent
+  std::size_t line = 0;
+};
+
+struct Scenario {
+  std::string name;
+  Duration duration = std::chrono::seconds(2);
+  std::uint32_t bitrate = 500'000;
+  std::uint16_t id_step = 2;
+  Duration control_period = std::chrono::milliseconds(50);
+  std::vector<DriveSpec> drives;
+  std::vector<Entry> timeline;
+};
+
+// True when the file's [bus] says protocol = "canlust" (a cheap look: syntax errors are left to
+// the reader that follows).
+bool is_canlust_scenario(const std::string& path);
+// Reads and checks a CANLust scenario; throws sim::ScenarioError naming file:line.
+Scenario load_scenario(const std::string& path);
+Scenario parse_scenario(const std::string& text, const std::string& file, bool json);
+
+// What a run shows.
+struct StateChange {
+  Time at{};
+  std::string state;  // DRIVECOM state name
+};
+struct DriveResult {
+  std::string name;
+  std::uint8_t address = 0;
+  std::optional<Time> logon;         // the first logon frame
+  std::optional<Time> started;       // when the drive executed System Start
+  std::string system_state;          // at the end
+  std::string state;                 // DRIVECOM, at the end
+  double actual_hz = 0.0;
+  double reference_hz = 0.0;
+  std::uint32_t watchdog_trips = 0;
+  std::uint32_t errors = 0;          // error telegrams the master received from it
+  std::vector<StateChange> states;   // every DRIVECOM state change
+};
+struct EntryResult {
+  Time at{};
+  std::string what;     // "left: read 575-CASCY"
+  std::string outcome;  // "80 ms", "refused: ...", "ok"
+  bool ok = true;
+};
+struct Report {
+  std::string name;
+  Duration duration{};
+  std::uint32_t bitrate = 0;
+  std::uint64_t frames = 0;
+  std::uint64_t bits = 0;
+  std::uint64_t stuff_bits = 0;
+  std::uint64_t arbitration_losses = 0;
+  std::uint64_t overflows = 0;
+  double load = 0.0;       // over the whole run
+  double peak_load = 0.0;  // the busiest 100 ms window
+  std::optional<Duration> start_spread;  // last minus first drive executing System Start
+  std::vector<DriveResult> drives;
+  std::vector<EntryResult> entries;
+};
+
+// Runs the scenario; with `pcap_path`, every frame on the bus goes to that capture
+// (LINKTYPE_CAN_SOCKETCAN, docs/canlust.md) — throws std::runtime_error when it cannot be written.
+Report run(const Scenario& s, const std::string& pcap_path = "");
+std::string format_text(const Report& r);
+std::string format_json(const Report& r);  // one JSON object, one line
+
+}  // namespace ibs::sim::canlust

@@ -1,0 +1,287 @@
+#include "ibs/sim/canlust_scenario.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/sim/scenario.hpp"
+#include "scenario_internal.hpp"
+
+namespace ibs::sim::canlust {
+
+namespace {
+
+using detail::Node;
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ScenarioError(path, 0, "cannot read the file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool json_path(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }
+
+const Node* child(const Node& table, std::string_view key, std::size_t* key_line = nullptr) {
+  for (std::size_t i = 0; i < table.keys.size(); ++i) {
+    if (table.keys[i] == key) {
+      if (key_line != nullptr) *key_line = table.key_lines[i];
+      return &table.children[i];
+    }
+  }
+  return nullptr;
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(std::size_t line, const std::string& what) const { throw ScenarioError(file_, line, what); }
+
+  void only(const Node& table, const std::vector<std::string_view>& known, const std::string& where) const {
+    for (std::size_t i = 0; i < table.keys.size(); ++i) {
+      bool ok = false;
+      for (const auto k : known) ok = ok || table.keys[i] == k;
+      if (ok) continue;
+      const auto near = detail::closest_name(table.keys[i], known);
+      fail(table.key_lines[i], "unknown key '" + table.keys[i] + "' in " + where +
+                                   (near.empty() ? "" : " (did you mean '" + std::string(near) + "'?)"));
+    }
+  }
+  std::string text(const Node& n, const std::string& key) const {
+    if (n.kind != Node::Kind::string) fail(n.line, key + ": expected a string");
+    return n.text;
+  }
+  std::int64_t integer(const Node& n, const std::string& key, std::int64_t lo, std::int64_t hi) const {
+    if (n.kind != Node::Kind::integer) fail(n.line, key + ": expected a whole number");
+    if (n.integer < lo || n.integer > hi) {
+      fail(n.line, key + " = " + std::to_string(n.integer) + " is outside " + std::to_string(lo) + ".." +
+                       std::to_string(hi));
+    }
+    return n.integer;
+  }
+  double number(const Node& n, const std::string& key) const {
+    if (n.kind == Node::Kind::integer) return static_cast<double>(n.integer);
+    if (n.kind != Node::Kind::floating) fail(n.line, key + ": expected a number");
+    return n.floating;
+  }
+  Duration time(const Node& n, const std::string& key) const {
+    try {
+      return parse_time(text(n, key));
+    } catch (const std::invalid_argument& e) {
+      fail(n.line, key + ": " + e.what());
+    }
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+std::string_view to_string(Action a) {
+  switch (a) {
+    case Action::start: return "system start";
+    case Action::stop: return "system stop";
+    case Action::state: return "state";
+    case Action::reference: return "reference";
+    case Action::read: return "read";
+    case Action::write: return "write";
+    case Action::mains_reset: return "mains reset";
+    case Action::mains_off: return "mains off";
+    case Action::mains_on: return "mains on";
+    case Action::master_silent: return "master silent";
+  }
+  return "?";
+}
+
+bool is_canlust_scenario(const std::string& path) {
+  try {
+    const std::string t = read_file(path);
+    const Node root = json_path(path) ? detail::json_tree(t, path) : detail::toml_tree(t, path);
+    const Node* bus = child(root, "bus");
+    if (bus == nullptr || bus->kind != Node::Kind::table) return false;
+    const Node* p = child(*bus, "protocol");
+    return p != nullptr && p->kind == Node::Kind::string && p->text == "canlust";
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+Scenario load_scenario(const std::string& path) {
+  Scenario s = parse_scenario(read_file(path), path, json_path(path));
+  if (s.name.empty()) s.name = std::filesystem::path(path).stem().string();
+  return s;
+}
+
+Scenario parse_scenario(const std::string& text, const std::string& file, bool json) {
+  const Node root = json ? detail::json_tree(text, file) : detail::toml_tree(text, file);
+  const Reader r(file);
+  Scenario s;
+  r.only(root, {"name", "duration", "bus", "device", "timeline"}, "the scenario");
+  if (const Node* n = child(root, "name")) s.name = r.text(*n, "name");
+  std::size_t duration_line = root.line;
+  if (const Node* n = child(root, "duration", &duration_line)) {
+    s.duration = r.time(*n, "duration");
+    if (s.duration <= Duration::zero()) r.fail(n->line, "duration must be above 0");
+    if (s.duration > std::chrono::hours(1)) r.fail(n->line, "duration: a CANLust run is at most 1 h");
+  }
+  const Node* bus = child(root, "bus");
+  if (bus == nullptr || bus->kind != Node::Kind::table) r.fail(root.line, "a CANLust scenario needs [bus] with protocol = \"canlust\"");
+  r.only(*bus, {"protocol", "bitrate", "id_step", "control_period"}, "[bus]");
+  const Node* proto = child(*bus, "protocol");
+  if (proto == nullptr || r.text(*proto, "protocol") != "canlust") r.fail(bus->line, "[bus] protocol must be \"canlust\" here");
+  if (const Node* n = child(*bus, "bitrate")) s.bitrate = static_cast<std::uint32_t>(r.integer(*n, "bitrate", 25'000, 500'000));
+  if (s.bitrate % 1000 != 0) r.fail(child(*bus, "bitrate")->line, "bitrate: 489-CLBDR is in whole kbit/s");
+  if (const Node* n = child(*bus, "id_step")) s.id_step = static_cast<std::uint16_t>(r.integer(*n, "id_step", 1, 2));
+  if (const Node* n = child(*bus, "control_period")) {
+    s.control_period = r.time(*n, "control_period");
+    if (s.control_period < std::chrono::milliseconds(1) || s.control_period > std::chrono::seconds(1)) {
+      r.fail(n->line, "control_period must be 1 ms .. 1 s");
+    }
+  }
+
+  const Node* devices = child(root, "device");
+  if (devices == nullptr || devices->kind != Node::Kind::array || devices->children.empty()) {
+    r.fail(root.line, "no [[device]]: a CANLust scenario needs at least one cda3000");
+  }
+  std::set<std::string> names;
+  std::set<int> addresses;
+  const unsigned max_address = s.id_step == 2 ? 99U : 99U;
+  for (const Node& d : devices->children) {
+    if (d.kind != Node::Kind::table) r.fail(d.line, "[[device]] must be a table");
+    r.only(d, {"name", "type", "address", "cacnf", "watchdog_ms", "status_ms", "power_on"}, "[[device]]");
+    DriveSpec spec;
+    spec.line = d.line;
+    const Node* name = child(d, "name");
+    if (name == nullptr) r.fail(d.line, "[[device]] needs a name");
+    spec.name = r.text(*name, "name");
+    if (!names.insert(spec.name).second) r.fail(name->line, "device name '" + spec.name + "' is given twice");
+    const Node* type = child(d, "type");
+    if (type == nullptr || r.text(*type, "type") != "cda3000") {
+      r.fail(type != nullptr ? type->line : d.line, "device '" + spec.name + "': type must be \"cda3000\" on a CANLust bus");
+    }
+    const Node* addr = child(d, "address");
+    if (addr == nullptr) r.fail(d.line, "device '" + spec.name + "' needs an address (571-CLADR)");
+    spec.address = static_cast<std::uint8_t>(r.integer(*addr, "address", 0, max_address));
+    if (!addresses.insert(spec.address).second) {
+      r.fail(addr->line, "address " + std::to_string(spec.address) + " is given twice (both drives would answer)");
+    }
+    if (const Node* n = child(d, "cacnf")) spec.cacnf = static_cast<std::uint8_t>(r.integer(*n, "cacnf", 1, 3));
+    if (const Node* n = child(d, "watchdog_ms")) spec.watchdog_ms = static_cast<std::uint16_t>(r.integer(*n, "watchdog_ms", 0, 255));
+    if (const Node* n = child(d, "status_ms")) spec.status_ms = static_cast<std::uint16_t>(r.integer(*n, "status_ms", 1, 32000));
+    if (const Node* n = child(d, "power_on")) {
+      spec.power_on = r.time(*n, "power_on");
+      if (spec.power_on >= s.duration) r.fail(n->line, "power_on is not inside the duration");
+    }
+    s.drives.push_back(spec);
+  }
+
+  if (const Node* tl = child(root, "timeline")) {
+    if (tl->kind != Node::Kind::array) r.fail(tl->line, "timeline must be an array of tables");
+    for (const Node& t : tl->children) {
+      if (t.kind != Node::Kind::table) r.fail(t.line, "[[timeline]] must be a table");
+      r.only(t, {"at", "device", "system", "state", "reference_hz", "read", "write", "value", "fault", "duration"},
+             "[[timeline]]");
+      Entry e;
+      e.line = t.line;
+      const Node* at = child(t, "at");
+      if (at == nullptr) r.fail(t.line, "[[timeline]] needs at");
+      e.at = r.time(*at, "at");
+      if (e.at >= s.duration) r.fail(at->line, "at = " + format_time(e.at) + " is not inside the duration " + format_time(s.duration));
+      int actions = 0;
+      const Node* device = child(t, "device");
+      if (device != nullptr) e.device = r.text(*device, "device");
+      if (const Node* n = child(t, "system")) {
+        ++actions;
+        const std::string v = r.text(*n, "system");
+        if (v != "start" && v != "stop") r.fail(n->line, "system = \"" + v + "\": expected \"start\" or \"stop\"");
+        e.action = v == "start" ? Action::start : Action::stop;
+      }
+      if (const Node* n = child(t, "state")) {
+        ++actions;
+        e.action = Action::state;
+        const std::string v = r.text(*n, "state");
+        bool found = false;
+        for (std::size_t i = 0; i < drivecom::kTargetKeys.size(); ++i) {
+          if (drivecom::kTargetKeys[i] == v) {
+            e.target = drivecom::kTargets[i];
+            found = true;
+          }
+        }
+        if (!found) r.fail(n->line, "state = \"" + v + "\": expected start_up_inhibit, ready, on or enabled");
+      }
+      if (const Node* n = child(t, "reference_hz")) {
+        ++actions;
+        e.action = Action::reference;
+        e.hz = r.number(*n, "reference_hz");
+      }
+      const auto parameter = [&](const Node& n, const std::string& key) {
+        const auto* p = n.kind == Node::Kind::string ? devices::cda3000::find_parameter(n.text)
+                        : n.kind == Node::Kind::integer && n.integer >= 0 && n.integer <= 65535
+                            ? devices::cda3000::find_parameter(static_cast<std::uint16_t>(n.integer))
+                            : nullptr;
+        if (p == nullptr) r.fail(n.line, key + ": the CDA3000 has no such parameter");
+        return p;
+      };
+      if (const Node* n = child(t, "read")) {
+        ++actions;
+        e.action = Action::read;
+        e.parameter = parameter(*n, "read")->number;
+      }
+      if (const Node* n = child(t, "write")) {
+        ++actions;
+        e.action = Action::write;
+        const auto* p = parameter(*n, "write");
+        e.parameter = p->number;
+        const Node* v = child(t, "value");
+        if (v == nullptr) r.fail(t.line, "write needs a value");
+        e.value = v->kind == Node::Kind::string ? v->text
+                  : v->kind == Node::Kind::integer ? std::to_string(v->integer)
+                  : v->kind == Node::Kind::floating ? detail::format_number(v->floating)
+                                                    : (r.fail(v->line, "value: expected a number or a string"), "");
+        if (!p->writable()) r.fail(n->line, "write: " + devices::cda3000::display_name(*p) + " is read-only");
+        if (!p->is_string()) {
+          const auto parsed = devices::cda3000::parse_value(*p, e.value);
+          if (!parsed.wire) r.fail(v->line, parsed.error);
+        }
+      } else if (child(t, "value") != nullptr) {
+        r.fail(t.line, "value belongs to a write");
+      }
+      if (const Node* n = child(t, "fault")) {
+        ++actions;
+        const std::string v = r.text(*n, "fault");
+        if (v == "mains_reset") e.action = Action::mains_reset;
+        else if (v == "mains_off") e.action = Action::mains_off;
+        else if (v == "mains_on") e.action = Action::mains_on;
+        else if (v == "master_silent") e.action = Action::master_silent;
+        else r.fail(n->line, "fault = \"" + v + "\": expected mains_reset, mains_off, mains_on or master_silent");
+      }
+      if (actions != 1) r.fail(t.line, "[[timeline]] needs exactly one of system, state, reference_hz, read, write, fault");
+      const bool global = e.action == Action::start || e.action == Action::stop || e.action == Action::master_silent;
+      if (global && device != nullptr) r.fail(device->line, std::string(to_string(e.action)) + " concerns the whole bus: no device");
+      if (!global) {
+        if (device == nullptr) r.fail(t.line, std::string(to_string(e.action)) + " needs a device");
+        bool known = false;
+        for (const auto& d : s.drives) known = known || d.name == e.device;
+        if (!known) r.fail(device->line, "device '" + e.device + "' is not among the [[device]] tables");
+      }
+      if (const Node* n = child(t, "duration")) {
+        if (e.action != Action::master_silent) r.fail(n->line, "duration belongs to fault = \"master_silent\"");
+        e.duration = r.time(*n, "duration");
+      } else if (e.action == Action::master_silent) {
+        r.fail(t.line, "master_silent needs a duration");
+      }
+      s.timeline.push_back(e);
+    }
+  }
+  std::stable_sort(s.timeline.begin(), s.timeline.end(), [](const Entry& a, const Entry& b) { return a.at < b.at; });
+  (void)duration_line;
+  return s;
+}
+
+}  // namespace ibs::sim::canlust
