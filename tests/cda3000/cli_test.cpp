@@ -193,7 +193,7 @@ TEST(CanlustCli, ParameterCommandsWithJsonAndExitCodes) {
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.out.find("\"status_text\":\"unknown parameter\""), std::string::npos) << r.out;
   EXPECT_EQ(r.err, "ibs canlust read: CDA 1 parameter 999: refused, status unknown parameter\n");
-  r = cli({"write", "--address", "1", "492", "4"});
+  r = cli({"write", "--address", "1", "570", "1"});  // CAMOD: no CAN master emulated (D26)
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("change not permitted"), std::string::npos) << r.err;
   r = cli({"read", "--address", "9", "360", "--timeout-ms", "100"});
@@ -252,8 +252,9 @@ TEST(CanlustCli, BadBusAndDevicesAreRefused) {
   EXPECT_EQ(r.rc, 2);
   r = run_cli({"canlust", "emulate", "--factory", "--bus", "udp:0:127.0.0.1:1", "cda3000@9"});
   EXPECT_EQ(r.err, "ibs canlust emulate: device 'cda3000@9': expected cda3000@ADDR with ADDR 0..7 (the connector's address, 2.1)\n");
-  r = run_cli({"canlust", "emulate", "--cacnf", "4", "--bus", "udp:0:127.0.0.1:1", "cda3000@1"});
-  EXPECT_EQ(r.err, "ibs canlust emulate: --cacnf 4 (EasyDrive) is not emulated (decision D26); use 1..3\n");
+  r = run_cli({"canlust", "emulate", "--cacnf", "5", "--bus", "udp:0:127.0.0.1:1", "cda3000@1"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("--cacnf must be 1..4 (492-CACNF)"), std::string::npos) << r.err;
   r = run_cli({"canlust", "read", "--bus", "carrier-pigeon", "--address", "1", "360"});
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("unknown bus type 'carrier-pigeon'"), std::string::npos);

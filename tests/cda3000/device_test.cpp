@@ -250,7 +250,8 @@ TEST(Cda3000Parameters, RefusalsCarryTheStatusBitsOf45) {
   EXPECT_EQ(refused(write(1, kCawdg, 256)).status, kStatusImpermissibleValue);  // USIGN8
   EXPECT_EQ(refused(write(1, kCascy, 0)).status, kStatusImpermissibleValue);    // below 1
   EXPECT_EQ(refused(write(1, kClsel, 3)).status, kStatusImpermissibleValue);    // no such code
-  EXPECT_EQ(refused(write(1, kCacnf, 4)).status, kStatusChangeNotPermitted);    // EasyDrive (D26)
+  EXPECT_EQ(refused(write(1, kCamod, 1)).status, kStatusChangeNotPermitted);    // no CAN master (D26)
+  EXPECT_EQ(refused(write(1, kCacnf, 5)).status, kStatusImpermissibleValue);    // 1..4
   EXPECT_EQ(refused(read(1, kOptn2)).status, kStatusReadNotPermitted);          // a STRING (D24)
   EXPECT_EQ(refused(read(1, kDisp, 1)).status, kStatusImpermissibleValue);      // no field
   EXPECT_EQ(*b.drive(0).value(kCawdg), 0U);
@@ -485,8 +486,10 @@ TEST(Cda3000Config, BadSettingsAreRefusedWithWhereAndWhat) {
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "CDA3000: 575-CASCY: 0 ms is below the minimum 1 ms");
   }
-  c.saved = {{kCacnf, 4}};
+  c.saved = {{kCamod, 1}};  // D26: only the CANLust slave is emulated
   EXPECT_THROW({ Cda3000 d(c); }, std::invalid_argument);
+  c.saved = {{kCacnf, 4}};  // EasyDrive is
+  EXPECT_NO_THROW({ Cda3000 d(c); });
 }
 
 }  // namespace

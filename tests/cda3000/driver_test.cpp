@@ -216,8 +216,8 @@ TEST(Cda3000Driver, BadConfigurationsNameTheDrive) {
   };
   EXPECT_EQ(refused(config_for({1, 1})), "CDA3000 driver: drive 1: configured twice");
   EXPECT_EQ(refused(config_for({100})), "CDA3000 driver: drive 100: address above 99");
-  EXPECT_EQ(refused(config_for({4}, 4)),
-            "CDA3000 driver: drive 4: 492-CACNF 4 is not a DRIVECOM layout (1..3; 4 is EasyDrive)");
+  EXPECT_EQ(refused(config_for({4}, 5)),
+            "CDA3000 driver: drive 4: 492-CACNF 5 is not a layout of 4.3.2 (1..3 DRIVECOM, 4 EasyDrive)");
   DriverConfig c = config_for({1});
   c.control_period = 0ms;
   EXPECT_EQ(refused(c), "CDA3000 driver: control_period must be positive");

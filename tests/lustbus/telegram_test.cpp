@@ -274,7 +274,8 @@ TEST(AnswerDecoderBinary, TakesAKnownPrefixWithFrameCharacters) {
   // A byte >= 80H inside the prefix is still a garbled character.
   AnswerDecoder g;
   g.start(3, make_code(30084), AnswerDecoder::Expect::text_or_nak, 3);
-  for (const auto b : Bytes{}(0x43)(kStx)("30084=")(0x83).v) g.feed(b);
+  const auto garbled = Bytes{}(0x43)(kStx)("30084=")(0x83).v;
+  for (const auto b : garbled) g.feed(b);
   EXPECT_EQ(g.error(), AnswerError::garbled);
 }
 

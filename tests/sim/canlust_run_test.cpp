@@ -16,6 +16,15 @@ using namespace std::chrono_literals;
 
 const std::string kExample = std::string(IBS_SOURCE_DIR) + "/examples/canlust/conveyors.toml";
 
+void expect_error_text(const std::string& text, const std::string& what) {
+  try {
+    parse_scenario(text, "t.toml", false);
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
 const DriveResult& drive(const Report& r, const std::string& name) {
   for (const auto& d : r.drives) {
     if (d.name == name) return d;
@@ -108,6 +117,36 @@ TEST(CanlustRun, ReferenceAndLoadScaleWithTheBitRate) {
   EXPECT_NEAR(slow.load / fast.load, 4.0, 0.2);
 }
 
+// EasyDrive (cacnf = 4): STR runs the drive; the master falling silent trips 574-CAWDG into the
+// ERROR bit, which stays until the scenario sends the error reset bit's edge; then STR again.
+TEST(CanlustRun, EasyDriveWatchdogAndErrorReset) {
+  const std::string text =
+      "name = \"easy\"\nduration = \"5 s\"\n[bus]\nprotocol = \"canlust\"\n"
+      "[[device]]\nname = \"e\"\ntype = \"cda3000\"\naddress = 1\ncacnf = 4\nwatchdog_ms = 80\nstatus_ms = 10\n"
+      "[[timeline]]\nat = \"100 ms\"\nsystem = \"start\"\n"
+      "[[timeline]]\nat = \"100 ms\"\ndevice = \"e\"\nreference_hz = 10\n"
+      "[[timeline]]\nat = \"200 ms\"\ndevice = \"e\"\neasydrive = 1\n"       // STR
+      "[[timeline]]\nat = \"1500 ms\"\nfault = \"master_silent\"\nduration = \"200 ms\"\n"
+      "[[timeline]]\nat = \"2500 ms\"\ndevice = \"e\"\neasydrive = 0\n"
+      "[[timeline]]\nat = \"2600 ms\"\ndevice = \"e\"\neasydrive = 128\n"    // error reset
+      "[[timeline]]\nat = \"2700 ms\"\ndevice = \"e\"\neasydrive = 1\n";
+  const Report r = run(parse_scenario(text, "easy.toml", false));
+  const auto& e = r.drives[0];
+  const auto fault = first_state(e, "FAULT", Time{1500ms});
+  ASSERT_TRUE(fault);
+  EXPECT_LE(*fault, Time{1500ms + 80ms + 10ms});  // 574-CAWDG plus one status period
+  const auto reset = first_state(e, "READY", *fault);
+  ASSERT_TRUE(reset);
+  EXPECT_GE(*reset, Time{2600ms});  // not before the reset bit: never by the master itself
+  EXPECT_EQ(e.state, "ENABLED");
+  EXPECT_NEAR(e.actual_hz, 10.0, 0.5);
+  EXPECT_NE(e.status.find("EasyDrive"), std::string::npos) << e.status;
+  EXPECT_NE(e.status.find("ACTIV"), std::string::npos) << e.status;
+  EXPECT_EQ(e.watchdog_trips, 1U);
+  expect_error_text(text + "[[timeline]]\nat = \"1 s\"\ndevice = \"e\"\nstate = \"enabled\"\n",
+                    "runs EasyDrive (cacnf = 4)");
+}
+
 void expect_error(const std::string& text, std::size_t line, const std::string& what) {
   try {
     parse_scenario(text, "bad.toml", false);
@@ -120,6 +159,9 @@ void expect_error(const std::string& text, std::size_t line, const std::string& 
 }
 
 TEST(CanlustRun, ErrorsNameFileAndLine) {
+  expect_error_text("name = \"x\"\n[bus]\nprotocol = \"canlust\"\n[[device]]\nname = \"a\"\ntype = \"cda3000\"\n"
+                    "address = 1\n[[timeline]]\nat = \"0 s\"\ndevice = \"a\"\neasydrive = 1\n",
+                    "easydrive needs cacnf = 4");
   const std::string head = "name = \"x\"\nduration = \"1 s\"\n[bus]\nprotocol = \"canlust\"\n";
   const std::string dev = "[[device]]\nname = \"a\"\ntype = \"cda3000\"\naddress = 1\n";  // lines 5-8
   expect_error(head + "bitrat = 1\n" + dev, 5, "unknown key 'bitrat' in [bus] (did you mean 'bitrate'?)");

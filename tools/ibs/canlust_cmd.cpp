@@ -153,7 +153,6 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   try {
     const cl::IdentifierMap ids = ids_for(o.bus);
     layout_for(o.bus);
-    if (o.bus.cacnf == 4) return bad("--cacnf 4 (EasyDrive) is not emulated (decision D26); use 1..3");
     const auto reaction = parse_reaction(o.watchdog_reaction);
     if (!reaction) {
       return bad("--watchdog-reaction '" + o.watchdog_reaction + "': expected wrn, stop, quick-stop or disable-power");

@@ -86,6 +86,35 @@ std::string explain_status_word(ibs::Word status) {
   return s;
 }
 
+namespace {
+std::string bit_names(ibs::Word w, std::initializer_list<std::pair<unsigned, std::string_view>> names) {
+  std::string s;
+  ibs::Word known = 0;
+  for (const auto& [b, n] : names) {
+    known = static_cast<ibs::Word>(known | (1U << b));
+    if (bit(w, b)) s += std::string(s.empty() ? " " : ", ") + std::string(n);
+  }
+  const ibs::Word other = static_cast<ibs::Word>(w & ~known);
+  if (other != 0) s += std::string(s.empty() ? " " : ", ") + "bits " + hex(other, 4) + " (no function)";
+  return s.empty() ? " (none)" : s;
+}
+}  // namespace
+
+std::string explain_easydrive_control(ibs::Word control) {
+  namespace e = easydrive;
+  return hex(control, 4) + bit_names(control, {{e::kStr, "STR"}, {e::kStl, "STL"}, {e::kFftb1, "FFTB1"},
+                                               {e::kFftb2, "FFTB2"}, {e::kEres, "error reset"},
+                                               {e::kCusel, "CUSEL"}, {e::kUm0, "UM0"}});
+}
+
+std::string explain_easydrive_status(ibs::Word status) {
+  namespace e = easydrive::status;
+  return hex(status, 4) + bit_names(status, {{e::kReady, "READY"}, {e::kError, "ERROR"}, {e::kActiv, "ACTIV"},
+                                             {e::kRot0, "ROT_0"}, {e::kBrk, "BRK"}, {e::kWarning, "warning"},
+                                             {e::kCanStart, "CAN Start"},
+                                             {e::kReferenceReached, "reference reached"}});
+}
+
 std::string explain_control_word(ibs::Word control, std::optional<ibs::Word> previous) {
   std::string s = hex(control, 4) + " " + std::string(drivecom::to_string(drivecom::decode_command(control)));
   if (bit(control, drivecom::cw::kResetFault)) {
@@ -132,7 +161,7 @@ FrameExplanation explain_frame(const CanFrame& f, const IdentifierMap& ids, cons
       }
       e.text = "control " + who(c) + ": " + (layout.mode == WordMode::drivecom
                                                    ? explain_control_word(d.value.word)
-                                                   : "EasyDrive word " + hex(d.value.word, 4)) +
+                                                   : "EasyDrive " + explain_easydrive_control(d.value.word)) +
                "; reference " + hz_text(hz_from_wire(layout.reference, d.value.reference));
       return e;
     }
@@ -144,7 +173,7 @@ FrameExplanation explain_frame(const CanFrame& f, const IdentifierMap& ids, cons
       }
       e.text = "status " + who(c) + ": " + (layout.mode == WordMode::drivecom
                                                   ? explain_status_word(d.value.word)
-                                                  : "EasyDrive word " + hex(d.value.word, 4)) +
+                                                  : "EasyDrive " + explain_easydrive_status(d.value.word)) +
                "; actual " + hz_text(hz_from_wire(layout.actual, d.value.actual));
       return e;
     }

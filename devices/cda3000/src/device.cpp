@@ -63,9 +63,6 @@ Cda3000::Cda3000(const DeviceConfig& config) : config_(config) {
     }
     const ValueCheck c = check_value(*p, v);
     if (c != ValueCheck::ok) throw std::invalid_argument("CDA3000: " + describe_refusal(*p, v, c));
-    if (number == kCacnf && v == 4) {
-      throw std::invalid_argument("CDA3000: 492-CACNF = 4 (EasyDrive) is not emulated (decision D26)");
-    }
     if (number == kCamod && v != kCamodSlave) {
       throw std::invalid_argument("CDA3000: 570-CAMOD: only the CANLust slave (0) is emulated (decision D26)");
     }
@@ -112,7 +109,53 @@ bool Cda3000::bus_controls() const { return get(kClsel) == kOptn2Code; }
 
 double Cda3000::reference_hz() const {
   if (get(kRssl1) != kOptn2Code) return 0.0;  // the emulator has no terminals, MOP or tables
-  return std::clamp(reference_hz_, -config_.plant.fmax_hz, config_.plant.fmax_hz);
+  const double r = std::clamp(reference_hz_, -config_.plant.fmax_hz, config_.plant.fmax_hz);
+  if (layout_.mode != canlust::WordMode::easydrive) return r;
+  // EasyDrive (D26): the start bit gives the direction, the reference its size.
+  const bool str = bit(easy_word_, easydrive::kStr);
+  const bool stl = bit(easy_word_, easydrive::kStl);
+  return str == stl ? 0.0 : (str ? std::fabs(r) : -std::fabs(r));
+}
+
+ibs::Word Cda3000::easydrive_control(bool stopped) const {
+  // EasyDrive's direct control walks the DRIVECOM machine inside the drive (D26): a start bit
+  // enables (SHUTDOWN first from START-UP INHIBIT); without one the drive brings the frequency to
+  // 0 Hz with its ramp and then shuts down (READY); the error reset bit is DRIVECOM's bit 7.
+  const bool str = bit(easy_word_, easydrive::kStr);
+  const bool stl = bit(easy_word_, easydrive::kStl);
+  const drivecom::State st = sm_.state();
+  ibs::Word w = bit(easy_word_, easydrive::kEres) ? ibs::Word{0x0080} : ibs::Word{0};
+  if (str != stl) {
+    w |= st == drivecom::State::start_up_inhibit ? drivecom::command_word(drivecom::Command::shutdown)
+                                                  : drivecom::command_word(drivecom::Command::enable);
+  } else if (st == drivecom::State::enabled && !stopped) {
+    w |= drivecom::command_word(drivecom::Command::enable);
+  } else {
+    w |= drivecom::command_word(drivecom::Command::shutdown);
+  }
+  return w;
+}
+
+ibs::Word Cda3000::easydrive_status(Time now) const {
+  namespace es = easydrive::status;
+  const drivecom::State st = sm_.state();
+  const double f = plant_.hz(now);
+  const bool error = st == drivecom::State::fault || st == drivecom::State::fault_response_active;
+  const bool active = drivecom::power_stage_enabled(st);
+  ibs::Word w = 0;
+  w = with_bit(w, es::kReady, !error && st != drivecom::State::not_ready);
+  w = with_bit(w, es::kError, error);
+  w = with_bit(w, es::kActiv, active);
+  w = with_bit(w, es::kRot0, std::fabs(f) <= config_.plant.stop_threshold_hz);
+  // BRK: the power stage takes the frequency towards 0 Hz (decelerating, or reversing).
+  const double t = plant_.target();
+  const bool braking = std::fabs(f) > config_.plant.stop_threshold_hz && ((f > 0.0 && t < f) || (f < 0.0 && t > f));
+  w = with_bit(w, es::kBrk, active && braking);
+  w = with_bit(w, es::kWarning, warning_);
+  w = with_bit(w, es::kCanStart, system_state() == canlust::SystemState::start);
+  w = with_bit(w, es::kReferenceReached,
+               st == drivecom::State::enabled && std::fabs(f - reference_hz()) <= config_.plant.reached_window_hz);
+  return w;
 }
 
 canlust::SystemState Cda3000::system_state() const {
@@ -121,6 +164,7 @@ canlust::SystemState Cda3000::system_state() const {
 
 void Cda3000::power_on(Time now) {
   current_ = saved_;
+  easy_word_ = 0;
   name_ = name_saved_;
   const std::uint32_t cladr = get(kCladr);
   address_ = static_cast<Address>(cladr != 0 ? cladr : config_.connector_address);
@@ -164,6 +208,7 @@ void Cda3000::sample(Time now) {
   const bool stopped = plant_.target() == 0.0
                            ? now >= plant_.stopped_at(config_.plant.stop_threshold_hz)
                            : std::fabs(plant_.hz(now)) <= config_.plant.stop_threshold_hz;
+  if (layout_.mode == canlust::WordMode::easydrive) control_ = easydrive_control(stopped);
   drivecom::DeviceInputs in;
   in.control = control_;
   in.fault_present = fault_.has_value();
@@ -244,12 +289,16 @@ void Cda3000::execute(const ControlTelegram& t, Time now) {
     fault_.reset();
   }
   control_ = t.word;
+  easy_word_ = t.word;  // EasyDrive: sample() forms the DRIVECOM word from it (D26)
   sample(now);
 }
 
 StatusTelegram Cda3000::status(Time now) {
   advance(now);
   const double f = plant_.hz(now);
+  if (layout_.mode == canlust::WordMode::easydrive) {
+    return {easydrive_status(now), wire_from_hz(layout_.actual, std::clamp(f, -32767.0, 32767.0)).value_or(0)};
+  }
   ibs::Word w = status_word();
   const bool reached = sm_.state() == drivecom::State::enabled &&
                        std::fabs(f - reference_hz()) <= config_.plant.reached_window_hz;
@@ -304,7 +353,6 @@ AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint3
   if (index != 0) return {kStatusImpermissibleValue, {}};
   if (check_value(*p, v) != ValueCheck::ok) return {kStatusImpermissibleValue, {}};
   // D26: what the emulator does not model it refuses, rather than pretend.
-  if (number == kCacnf && v == 4) return {kStatusChangeNotPermitted, {}};
   if (number == kCamod && v != kCamodSlave) return {kStatusChangeNotPermitted, {}};
   ++counters_.writes;
   switch (number) {

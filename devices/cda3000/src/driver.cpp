@@ -98,9 +98,9 @@ Driver::Driver(const DriverConfig& config)
       throw std::invalid_argument(who + "address above " + std::to_string(config_.ids.max_address));
     }
     if (slot_of_[d.address] >= 0) throw std::invalid_argument(who + "configured twice");
-    if (d.cacnf < 1 || d.cacnf > 3) {
+    if (d.cacnf < 1 || d.cacnf > 4) {
       throw std::invalid_argument(who + "492-CACNF " + std::to_string(d.cacnf) +
-                                  " is not a DRIVECOM layout (1..3; 4 is EasyDrive)");
+                                  " is not a layout of 4.3.2 (1..3 DRIVECOM, 4 EasyDrive)");
     }
     if (!(d.max_reference_hz > 0.0) || !std::isfinite(d.max_reference_hz)) {
       throw std::invalid_argument(who + "max_reference_hz must be positive");
@@ -163,7 +163,8 @@ void Driver::cycle(Time now) {
     // Before its own first Start or Stop the driver sends no control telegram: the bus may have
     // been started by another master (D30).
     if (!v.has_status || phase_ == SystemPhase::logon) continue;
-    const ibs::Word w = s.sequencer.step(v.status.word, seq_now_);
+    // EasyDrive (492-CACNF = 4): the caller's direct-control bits, no sequencer (D26).
+    const ibs::Word w = s.layout.mode == WordMode::easydrive ? s.easy_word : s.sequencer.step(v.status.word, seq_now_);
     const bool due = !s.sent || w != s.sent_word || s.reference != s.sent_reference || now >= s.next_send;
     if (!due) continue;
     if (master_.send_control(s.address, {w, s.reference})) {
@@ -200,9 +201,16 @@ bool Driver::all_logged_on() const {
                      [this](const Slot& s) { return master_.drive(s.address).logged_on; });
 }
 
+bool Driver::set_easydrive(Address a, ibs::Word bits) {
+  Slot* s = slot(a);
+  if (s == nullptr || s->layout.mode != WordMode::easydrive) return false;
+  s->easy_word = bits;
+  return true;
+}
+
 bool Driver::request(Address a, drivecom::Target t, Time now) {
   Slot* s = slot(a);
-  if (s == nullptr) return false;
+  if (s == nullptr || s->layout.mode == WordMode::easydrive) return false;
   s->sequencer.request(t, sequencer_time(now));
   return true;
 }
@@ -241,8 +249,10 @@ DriveReport Driver::drive(Address a) const {
   r.has_status = v.has_status;
   r.status_word = v.status.word;
   r.errors = v.errors;
+  const Slot* own = slot(a);
+  r.easydrive = own != nullptr && own->layout.mode == WordMode::easydrive;
   if (v.has_status) {
-    r.state = drivecom::decode_state(v.status.word);
+    if (!r.easydrive) r.state = drivecom::decode_state(v.status.word);
     r.actual_hz = hz_from_wire(v.layout.actual, v.status.actual);
   }
   if (const Slot* s = slot(a)) {

@@ -12,6 +12,7 @@
 #include "ibs/can/pcap_writer.hpp"
 #endif
 #include "ibs/can/virtual_bus.hpp"
+#include "ibs/devices/cda3000/descriptor.hpp"
 #include "ibs/devices/cda3000/device.hpp"
 #include "ibs/devices/cda3000/driver.hpp"
 #include "ibs/devices/cda3000/parameters.hpp"
@@ -164,6 +165,14 @@ Report run(const Scenario& s, const std::string& pcap_path) {
         r.ok = driver.request(d.spec.address, e.target, now);
         r.outcome = r.ok ? "requested" : "refused";
         return;
+      case Action::easydrive: {
+        char b[16];
+        std::snprintf(b, sizeof b, " %04X", static_cast<unsigned>(e.bits));
+        r.what += b;
+        r.ok = driver.set_easydrive(d.spec.address, e.bits);
+        r.outcome = r.ok ? "set" : "refused";
+        return;
+      }
       case Action::reference: {
         char b[48];
         std::snprintf(b, sizeof b, " %.2f Hz", e.hz);
@@ -325,6 +334,10 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     r.actual_hz = d->on ? d->device.actual_hz(now) : 0.0;
     r.reference_hz = d->on ? d->device.reference_hz() : 0.0;
     r.watchdog_trips = d->device.counters().watchdog_trips;
+    const cda::DriveReport seen = driver.drive(d->spec.address);
+    r.status = !seen.has_status ? "none received"
+               : seen.easydrive ? "EasyDrive " + cda::explain_easydrive_status(seen.status_word)
+                                : cda::explain_status_word(seen.status_word);
     if (r.started) {
       first = first ? std::min(*first, *r.started) : *r.started;
       last = last ? std::max(*last, *r.started) : *r.started;
@@ -369,6 +382,7 @@ std::string format_text(const Report& r) {
                   d.reference_hz, d.logon ? seconds(*d.logon).c_str() : "-", d.started ? seconds(*d.started).c_str() : "-",
                   d.watchdog_trips, d.errors);
     o << b;
+    o << "  status " << d.status << "\n";
     o << "  states:";
     for (const auto& c : d.states) o << " " << seconds(c.at) << " " << c.state << ";";
     o << "\n";
@@ -396,6 +410,7 @@ std::string format_json(const Report& r) {
                      {"address", d.address},
                      {"system_state", d.system_state},
                      {"state", d.state},
+                     {"status", d.status},
                      {"actual_hz", d.actual_hz},
                      {"reference_hz", d.reference_hz},
                      {"watchdog_trips", d.watchdog_trips},

@@ -88,6 +88,7 @@ std::string_view to_string(Action a) {
     case Action::start: return "system start";
     case Action::stop: return "system stop";
     case Action::state: return "state";
+    case Action::easydrive: return "easydrive";
     case Action::reference: return "reference";
     case Action::read: return "read";
     case Action::write: return "write";
@@ -171,7 +172,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
     if (!addresses.insert(spec.address).second) {
       r.fail(addr->line, "address " + std::to_string(spec.address) + " is given twice (both drives would answer)");
     }
-    if (const Node* n = child(d, "cacnf")) spec.cacnf = static_cast<std::uint8_t>(r.integer(*n, "cacnf", 1, 3));
+    if (const Node* n = child(d, "cacnf")) spec.cacnf = static_cast<std::uint8_t>(r.integer(*n, "cacnf", 1, 4));
     if (const Node* n = child(d, "watchdog_ms")) spec.watchdog_ms = static_cast<std::uint16_t>(r.integer(*n, "watchdog_ms", 0, 255));
     if (const Node* n = child(d, "status_ms")) spec.status_ms = static_cast<std::uint16_t>(r.integer(*n, "status_ms", 1, 32000));
     if (const Node* n = child(d, "power_on")) {
@@ -185,7 +186,8 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
     if (tl->kind != Node::Kind::array) r.fail(tl->line, "timeline must be an array of tables");
     for (const Node& t : tl->children) {
       if (t.kind != Node::Kind::table) r.fail(t.line, "[[timeline]] must be a table");
-      r.only(t, {"at", "device", "system", "state", "reference_hz", "read", "write", "value", "fault", "duration"},
+      r.only(t, {"at", "device", "system", "state", "easydrive", "reference_hz", "read", "write", "value", "fault",
+                 "duration"},
              "[[timeline]]");
       Entry e;
       e.line = t.line;
@@ -214,6 +216,11 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
           }
         }
         if (!found) r.fail(n->line, "state = \"" + v + "\": expected start_up_inhibit, ready, on or enabled");
+      }
+      if (const Node* n = child(t, "easydrive")) {
+        ++actions;
+        e.action = Action::easydrive;
+        e.bits = static_cast<std::uint16_t>(r.integer(*n, "easydrive", 0, 65535));
       }
       if (const Node* n = child(t, "reference_hz")) {
         ++actions;
@@ -261,7 +268,9 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
         else if (v == "master_silent") e.action = Action::master_silent;
         else r.fail(n->line, "fault = \"" + v + "\": expected mains_reset, mains_off, mains_on or master_silent");
       }
-      if (actions != 1) r.fail(t.line, "[[timeline]] needs exactly one of system, state, reference_hz, read, write, fault");
+      if (actions != 1) {
+        r.fail(t.line, "[[timeline]] needs exactly one of system, state, easydrive, reference_hz, read, write, fault");
+      }
       const bool global = e.action == Action::start || e.action == Action::stop || e.action == Action::master_silent;
       if (global && device != nullptr) r.fail(device->line, std::string(to_string(e.action)) + " concerns the whole bus: no device");
       if (!global) {
@@ -269,6 +278,16 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
         bool known = false;
         for (const auto& d : s.drives) known = known || d.name == e.device;
         if (!known) r.fail(device->line, "device '" + e.device + "' is not among the [[device]] tables");
+        for (const auto& d : s.drives) {
+          if (d.name != e.device) continue;
+          if (e.action == Action::state && d.cacnf == 4) {
+            r.fail(t.line, "device '" + e.device + "' runs EasyDrive (cacnf = 4): give easydrive bits, not a DRIVECOM state");
+          }
+          if (e.action == Action::easydrive && d.cacnf != 4) {
+            r.fail(t.line, "device '" + e.device + "' runs DRIVECOM (cacnf " + std::to_string(d.cacnf) +
+                               "): easydrive needs cacnf = 4");
+          }
+        }
       }
       if (const Node* n = child(t, "duration")) {
         if (e.action != Action::master_silent) r.fail(n->line, "duration belongs to fault = \"master_silent\"");

@@ -23,6 +23,7 @@
 //   at = "0.2 s"
 //   system = "start"            # or "stop"
 //   [[timeline]] at / device / state = "enabled"      (a DRIVECOM target)
+//   [[timeline]] at / device / easydrive = 1          (EasyDrive bits, cacnf = 4)
 //   [[timeline]] at / device / reference_hz = 20.5
 //   [[timeline]] at / device / read = 575   |  write = 575 + value = "10"
 //   [[timeline]] at / device / fault = "mains_reset" | "mains_off" | "mains_on"
@@ -46,7 +47,7 @@ namespace ibs::sim::canlust {
 struct DriveSpec {
   std::string name;
   std::uint8_t address = 1;
-  std::uint8_t cacnf = 2;
+  std::uint8_t cacnf = 2;  // 1..3 DRIVECOM, 4 EasyDrive
   std::uint16_t watchdog_ms = 0;
   std::uint16_t status_ms = 80;
   Time power_on{};
@@ -54,7 +55,7 @@ struct DriveSpec {
 };
 
 enum class Action : std::uint8_t {
-  start, stop, state, reference, read, write, mains_reset, mains_off, mains_on, master_silent,
+  start, stop, state, easydrive, reference, read, write, mains_reset, mains_off, mains_on, master_silent,
 };
 std::string_view to_string(Action a);
 
@@ -63,6 +64,7 @@ struct Entry {
   Action action = Action::start;
   std::string device;  // empty for start, stop, master_silent
   drivecom::Target target = drivecom::Target::enabled;
+  std::uint16_t bits = 0;  // easydrive: the direct-control bits (492-CACNF = 4)
   double hz = 0.0;
   std::uint16_t parameter = 0;
   std::string value;    // write: as `ibs canlust write` takes it ("10", "OPTN2", "20.5")
@@ -98,7 +100,8 @@ struct DriveResult {
   std::optional<Time> logon;         // the first logon frame
   std::optional<Time> started;       // when the drive executed System Start
   std::string system_state;          // at the end
-  std::string state;                 // DRIVECOM, at the end
+  std::string state;                 // DRIVECOM, at the end (inside the drive, EasyDrive too)
+  std::string status;                // the last status word the master received, explained
   double actual_hz = 0.0;
   double reference_hz = 0.0;
   std::uint32_t watchdog_trips = 0;

@@ -32,6 +32,36 @@ inline constexpr unsigned kReferenceReached = 10;  // |actual - reference| withi
 inline constexpr unsigned kLimit = 11;             // the reference was limited to +-fmax
 }  // namespace status_bits
 
+// EasyDrive direct control (492-CACNF = 4, seed 003 5.4.1 and 7.1.1). The seed keeps fragments of
+// the bit tables only: control bits 5 FFTB1, 6 FFTB2 (table reference select, 2^1, 2^2), 8 CUSEL
+// (characteristic data set 1 / 2), 9 UM0 (user mode 2^0), the STR start of 5.4.1's text, and the
+// end of an "... error" function at 7; status bits 4 ACTIV (power stage active), 5 ROT_0 (speed
+// 0 Hz), 6 BRK (the drive brakes), 7 warning, 8 CAN status (0 System Stop, 1 System Start). The
+// other positions are chosen (decision D26, docs/canlust.md): STR 0, STL 1, error reset 7 (edge);
+// status READY 0, ERROR 3, reference reached 10.
+namespace easydrive {
+inline constexpr unsigned kStr = 0;    // start clockwise (5.4.1) - position chosen
+inline constexpr unsigned kStl = 1;    // start counter-clockwise - chosen
+inline constexpr unsigned kFftb1 = 5;  // table reference select 2^1 (seed)
+inline constexpr unsigned kFftb2 = 6;  // table reference select 2^2 (seed)
+inline constexpr unsigned kEres = 7;   // error reset, on its 0 -> 1 edge (seed: "... error" at 7)
+inline constexpr unsigned kCusel = 8;  // characteristic data set 2 (seed)
+inline constexpr unsigned kUm0 = 9;    // user mode 2^0 (seed)
+namespace status {
+inline constexpr unsigned kReady = 0;              // no fault, the power stage may be started - chosen
+inline constexpr unsigned kError = 3;              // a fault - chosen
+inline constexpr unsigned kActiv = 4;              // power stage active (seed)
+inline constexpr unsigned kRot0 = 5;               // speed 0 Hz (seed)
+inline constexpr unsigned kBrk = 6;                // the drive brakes (seed)
+inline constexpr unsigned kWarning = 7;            // a warning (seed)
+inline constexpr unsigned kCanStart = 8;           // 1 System Start, 0 System Stop (seed)
+inline constexpr unsigned kReferenceReached = 10;  // as in DRIVECOM mode - chosen
+}  // namespace status
+}  // namespace easydrive
+// "0001 STR" / "0139 READY, ACTIV, ROT_0, CAN Start".
+std::string explain_easydrive_control(ibs::Word control);
+std::string explain_easydrive_status(ibs::Word status);
+
 // "0237 ENABLED, remote" / "0208 FAULT, remote, warning".
 std::string explain_status_word(ibs::Word status);
 // "000F POWER-ON/ENABLE" / "0086 SHUTDOWN, reset fault (edge)" when `previous` has bit 7 low.

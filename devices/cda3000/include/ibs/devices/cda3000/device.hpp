@@ -124,6 +124,8 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   void advance(Time now);
   void sample(Time now);
   void drive_plant(Time now);
+  [[nodiscard]] ibs::Word easydrive_control(bool stopped) const;
+  [[nodiscard]] ibs::Word easydrive_status(Time now) const;
   [[nodiscard]] bool awaiting_stop() const;
   [[nodiscard]] bool bus_controls() const;
 
@@ -138,6 +140,7 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   std::uint32_t bitrate_ = 500'000;
   drivecom::DeviceStateMachine sm_{drivecom::EmergencyStopExit::automatic_when_stopped};
   ibs::Word control_ = 0;
+  ibs::Word easy_word_ = 0;  // 492-CACNF = 4: the EasyDrive bits as received
   Time state_since_{};
   double reference_hz_ = 0.0;  // as received, before the +-fmax limit
   SpeedPlant plant_{};

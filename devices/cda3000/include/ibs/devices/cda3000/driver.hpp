@@ -36,7 +36,7 @@ namespace ibs::devices::cda3000 {
 
 struct DriveSettings {
   canlust::Address address = 0;
-  std::uint8_t cacnf = 2;           // the drive's 492-CACNF: 1..3 (DRIVECOM; 4 is EasyDrive)
+  std::uint8_t cacnf = 2;           // the drive's 492-CACNF: 1..3 DRIVECOM, 4 EasyDrive (set_easydrive)
   double max_reference_hz = 400.0;  // references beyond +-this are refused
 };
 
@@ -94,7 +94,8 @@ struct DriveReport {
   bool logged_on = false;
   bool has_status = false;
   ibs::Word status_word = 0;
-  std::optional<drivecom::State> state;
+  std::optional<drivecom::State> state;  // nullopt for an EasyDrive drive (its own bits)
+  bool easydrive = false;
   double actual_hz = 0.0;
   double reference_hz = 0.0;
   drivecom::Report sequencer{};
@@ -121,8 +122,12 @@ class Driver {
   [[nodiscard]] std::span<const canlust::Address> logon_order() const { return master_.logon_order(); }
   [[nodiscard]] bool all_logged_on() const;
 
-  // DRIVECOM: false when `a` is not a configured drive.
+  // DRIVECOM: false when `a` is not a configured DRIVECOM drive.
   bool request(canlust::Address a, drivecom::Target t, Time now);
+  // EasyDrive (492-CACNF = 4, descriptor.hpp `easydrive`): the direct-control bits sent from now
+  // on, as given - the driver adds nothing (no start, no reset of its own). False when `a` is not
+  // an EasyDrive drive.
+  bool set_easydrive(canlust::Address a, ibs::Word bits);
   bool emergency_stop(canlust::Address a, Time now);
   bool block_power(canlust::Address a, Time now);
   // The reference in Hz, sent with the next control telegram; checked against max_reference_hz
@@ -155,6 +160,7 @@ class Driver {
     drivecom::Sequencer sequencer;
     std::int32_t reference = 0;   // the wire value for the layout
     ibs::Word sent_word = 0;
+    ibs::Word easy_word = 0;
     std::int32_t sent_reference = 0;
     bool sent = false;
     Time next_send{};
