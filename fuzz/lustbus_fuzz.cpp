@@ -181,7 +181,8 @@ void fuzz_host(In& in) {
         const Code c = make_code(in.ConsumeIntegralInRange<std::uint32_t>(0, 99999));
         const auto v = Value::from(random_string(in, 12)).value_or(Value{});
         Request r;
-        switch (in.ConsumeIntegralInRange<int>(0, 5)) {
+        switch (in.ConsumeIntegralInRange<int>(0, 6)) {
+          case 6: r = posmod_request(a, in.ConsumeBool() ? std::string_view{} : v.view()); break;  // 11.6
           case 0: r = enquiry(a, c); break;
           case 1: r = select(a, c, v); break;
           case 2: r = broadcast(c, v); break;
