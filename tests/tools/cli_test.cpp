@@ -394,4 +394,26 @@ TEST(Cli, ALayoutErrorNamesTheOffendingHeadersLine) {
   EXPECT_EQ(s.out, bad_supi + ":4: 405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)\n");
 }
 
+// `ibs decode` tells the files apart: a candump log of CANLust and a LUSTBUS byte log of --log are
+// explained by their own readers, everything else is a trace; --json is for traces only.
+TEST(Cli, DecodeDispatchesCandumpAndByteLogs) {
+  const std::string candump =
+      temp_file("decode-dispatch.candump", "(1795431275.322679) can0 297#0F0000801400\n(1795431275.330000) can0 0DD#01\n");
+  Result r = run("decode " + candump);
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("control CDA 1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("System Start"), std::string::npos) << r.out;
+  const std::string log = temp_file("decode-dispatch.log",
+                                    "ibs-serial-log 1\n0.000100 tx /dev/pts/9 04 40 32 30 30 37 37 05\n"
+                                    "0.030000 rx /dev/pts/9 40 02 32 30 30 37 37 3D 30 34 46 41 34 30 30 30 03 0B\n");
+  r = run("decode " + log);
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("MC6000 77-SPEED = 1274.25"), std::string::npos) << r.out;
+  r = run("decode --json " + log);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--json is for traces"), std::string::npos) << r.out;
+  r = run("decode --json " + candump);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+}
+
 }  // namespace
