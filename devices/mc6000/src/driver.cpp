@@ -40,7 +40,15 @@ void Mc6000Driver::initial(const DriverIo& io) {
   if (client_ && !io.pcp_out.empty()) client_->show(Time{0}, io.pcp_out);
 }
 
+Duration Mc6000Driver::request_timeout(Duration at_least) const {
+  const Duration base = at_least > Duration::zero() ? at_least : pcp_config_.request_timeout;
+  return std::max(base, period_ * kTimeoutCycles);
+}
+
 void Mc6000Driver::cycle(const DriverIo& io, Time now) {
+  if (cycled_ && now > last_cycle_) period_ = std::max(period_, now - last_cycle_);
+  last_cycle_ = now;
+  cycled_ = true;
   if (!io.pd_out.empty()) master_.cycle(io.pd_in, io.pd_out, now);
   if (!client_ || io.pcp_out.empty()) return;
   take_results(now);
@@ -96,30 +104,36 @@ void Mc6000Driver::take_results(Time) {
 }
 
 void Mc6000Driver::start_next(Time now) {
-  if (active_ || queue_.empty() || client_->busy()) return;
+  // The first request waits for a second cycle: its timeout needs the cycle time.
+  if (active_ || queue_.empty() || client_->busy() || period_ == Duration::zero()) return;
   const Pending& p = queue_.front();
   if (!client_->associated()) {
-    if (client_->initiate(now) == pcp::SubmitStatus::accepted) active_ = initiating_ = true;
+    if (client_->initiate(now, request_timeout(Duration::zero())) == pcp::SubmitStatus::accepted) {
+      active_ = initiating_ = true;
+    }
     return;
   }
   const pcp::ParameterRef ref = pcp::ParameterRef::number(p.number);
   const pcp::ParameterInfo* info = pcp::find_parameter(mc6000::kParameters, p.number);
   pcp::SubmitStatus s = pcp::SubmitStatus::invalid_argument;
   switch (p.op) {
-    case ParamOp::read: s = info != nullptr ? client_->read(now, ref, info->type) : client_->read(now, ref); break;
+    case ParamOp::read:
+      s = info != nullptr ? client_->read(now, ref, info->type, request_timeout(Duration::zero()))
+                          : client_->read(now, ref, request_timeout(Duration::zero()));
+      break;
     case ParamOp::write: {
       // The value's type is the parameter's; for a number the table does not know, 16 bits (the
       // servo refuses it as a missing object anyway).
       const pcp::DataType t = info != nullptr ? info->type : pcp::DataType::usign16;
       // 4-PROG = 1 loads the factory defaults; the servo confirms after up to 10 s (seed 000,
       // 10): that write gets the time it needs, plus the usual confirmation time.
-      const Duration timeout = p.number == mc6000::kProg && p.value == mc6000::kProgFactoryDefaults
-                                   ? kFactoryDefaultsTimeout
-                                   : Duration::zero();
+      const Duration timeout = request_timeout(p.number == mc6000::kProg && p.value == mc6000::kProgFactoryDefaults
+                                                   ? kFactoryDefaultsTimeout
+                                                   : Duration::zero());
       if (const auto v = pcp::value_from_signed_raw(t, p.value)) s = client_->write(now, ref, *v, timeout);
       break;
     }
-    case ParamOp::describe: s = client_->get_ov(now, ref); break;
+    case ParamOp::describe: s = client_->get_ov(now, ref, request_timeout(Duration::zero())); break;
   }
   if (s == pcp::SubmitStatus::accepted) {
     active_ = true;

@@ -26,6 +26,10 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   static constexpr std::size_t kCompletedCapacity = 16;
   // A write of 4-PROG = 1 (factory defaults) is confirmed after up to 10 s (seed 000, 10).
   static constexpr Duration kFactoryDefaultsTimeout = 10500ms;
+  // A request's confirmation time grows with the bus cycle: a Read or Write over a one-word
+  // channel is 24..28 fragments, each a bus cycle or more (PCP-E7). The timeout is the client's
+  // (500 ms) or this many bus cycles, whichever is longer: on the full ring of 13.86 ms, 3.3 s.
+  static constexpr std::uint32_t kTimeoutCycles = 240;
 
   explicit Mc6000Driver(const mc6000::Layout& layout,
                         const drivecom::SequencerConfig& config = drivecom::SequencerConfig::defaults());
@@ -60,6 +64,9 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   [[nodiscard]] std::string describe(ParamId id) const override;
 
   void take_results(Time now);
+  // The timeout for the next request: kTimeoutCycles of the cycle time seen, at least the
+  // client's own.
+  [[nodiscard]] Duration request_timeout(Duration at_least) const;
   void start_next(Time now);
   void complete(const Pending& p, ParamKind kind, std::int64_t value, const pcp::Result& r);
   [[nodiscard]] const Completed* find_completed(ParamId id) const;
@@ -74,6 +81,9 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   std::size_t completed_next_ = 0;
   ParamId next_id_ = 1;
   Refusal refusal_ = Refusal::none;
+  Time last_cycle_{};
+  bool cycled_ = false;
+  Duration period_{};  // the bus cycle, from the times cycle() is called with
 };
 
 }  // namespace ibs::devices
