@@ -58,6 +58,8 @@ devices::DeviceSettings device_settings(const DeviceConfig& d) {
   s.bus = d.bus;
   s.watchdog_ms = d.watchdog_ms;
   s.watchdog_reaction = d.watchdog_reaction;
+  s.keypad = d.keypad;
+  s.reset_time = d.reset_time;
   return s;
 }
 
@@ -68,7 +70,8 @@ bool operator==(const DeviceConfig& a, const DeviceConfig& b) {
   const bool layout_equal = (!applies("supi") || a.supi == b.supi) && (!applies("ibcnf") || a.ibcnf == b.ibcnf);
   return a.name == b.name && a.kind == b.kind && layout_equal && a.bus == b.bus &&
          a.phase == b.phase && a.jitter == b.jitter && a.initialised == b.initialised &&
-         a.watchdog_ms == b.watchdog_ms && a.watchdog_reaction == b.watchdog_reaction;
+         a.watchdog_ms == b.watchdog_ms && a.watchdog_reaction == b.watchdog_reaction && a.keypad == b.keypad &&
+         a.reset_time == b.reset_time;
 }
 
 bool operator==(const TimelineEntry& a, const TimelineEntry& b) {

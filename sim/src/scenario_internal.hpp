@@ -57,6 +57,8 @@ struct DeviceLines {
   std::size_t jitter = 0;
   std::size_t watchdog_ms = 0;
   std::size_t watchdog_reaction = 0;
+  std::size_t keypad = 0;
+  std::size_t reset_time = 0;
 };
 struct EntryLines {
   std::size_t table = 0;

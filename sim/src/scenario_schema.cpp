@@ -23,7 +23,7 @@ const std::vector<std::string_view> kBusKeys = {"cycle_time", "baud", "software_
                                                 "recovery_cycles"};
 const std::vector<std::string_view> kDeviceKeys = {
     "name",  "type",   "supi",        "ibcnf",       "bus",
-    "phase", "jitter", "initialised", "watchdog_ms", "watchdog_reaction"};
+    "phase", "jitter", "initialised", "watchdog_ms", "watchdog_reaction", "keypad", "reset_time"};
 const std::vector<std::string_view> kActionKeys = {
     "state", "emergency_stop", "block_power", "speed", "frequency",     "read",
     "write", "describe",       "wait_state",  "fault", "master_restart"};
@@ -244,6 +244,12 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
     } else if (key == "watchdog_reaction") {
       d.watchdog_reaction = r.int_value(v, key, 0, 3);
       l.watchdog_reaction = v.line;
+    } else if (key == "keypad") {
+      d.keypad = r.boolean(v, key);
+      l.keypad = v.line;
+    } else if (key == "reset_time") {
+      d.reset_time = r.time(v, key);
+      l.reset_time = v.line;
     }
   });
   if (l.name == 0) r.fail(n.line, "a device needs a 'name'");

@@ -176,6 +176,8 @@ class Validator {
       if (setting == "bus") return l.bus;
       if (setting == "watchdog_ms") return l.watchdog_ms;
       if (setting == "watchdog_reaction") return l.watchdog_reaction;
+      if (setting == "keypad") return l.keypad;
+      if (setting == "reset_time") return l.reset_time;
       return 0;
     };
     const auto refuse = [&](const devices::SettingsError& e) {

@@ -64,6 +64,8 @@ std::vector<OutField> device_fields(const DeviceConfig& d) {
   f.push_back({"initialised", d.initialised ? "true" : "false", {}});
   if (d.watchdog_ms) f.push_back(integer("watchdog_ms", *d.watchdog_ms));
   if (d.watchdog_reaction) f.push_back(integer("watchdog_reaction", *d.watchdog_reaction));
+  if (d.keypad) f.push_back({"keypad", *d.keypad ? "true" : "false", {}});
+  if (d.reset_time) f.push_back(time("reset_time", *d.reset_time));
   return f;
 }
 

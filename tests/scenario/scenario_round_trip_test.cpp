@@ -53,6 +53,8 @@ Scenario everything() {
   b.jitter = 4099999ns;
   b.watchdog_ms = 65535;
   b.watchdog_reaction = 3;
+  b.keypad = true;
+  b.reset_time = 2500ms;
   DeviceConfig c;
   c.name = "pcp-only";
   c.kind = "mc6000";
@@ -263,6 +265,8 @@ TEST(ScenarioRoundTrip, DefaultsOfOmittedKeys) {
   EXPECT_TRUE(m.initialised);
   EXPECT_FALSE(m.watchdog_ms.has_value());
   EXPECT_FALSE(m.watchdog_reaction.has_value());
+  EXPECT_FALSE(m.keypad.has_value());
+  EXPECT_FALSE(m.reset_time.has_value());
   EXPECT_EQ(s.devices[1].bus, interbus::BusKind::remote);
   EXPECT_EQ(s.timeline[0].count, 1);
   EXPECT_EQ(s.timeline[1].duration, 0ns);  // wait up to the end of the run

@@ -133,6 +133,7 @@ TEST(Simulator, Vf1000ChannelTransferTimesOfSection71MotorRunningAndKeypad) {
       s.duration = 4s;
       DeviceConfig v = vf1000();
       v.phase = phase;
+      v.keypad = row.keypad;  // the scenario key `keypad`
       s.devices = {v};
       s.timeline = {at(0s, "vf", Action::read, "", 0, 85),  // clears the power-on bit
                     at(0s, "vf", Action::state, "enabled"), at(0s, "vf", Action::frequency, "", 20),
@@ -140,7 +141,7 @@ TEST(Simulator, Vf1000ChannelTransferTimesOfSection71MotorRunningAndKeypad) {
                     at(1500ms, "vf", Action::write, "", 0, 905),     // transfer to a RAM variable
                     at(2000ms, "vf", Action::describe, "", 0, 45)};  // description
       Simulator sim(s);
-      vf1000_at(sim, 0).set_keypad(row.keypad);
+      ASSERT_EQ(vf1000_at(sim, 0).keypad(), row.keypad);
       sim.run_until(999ms);
       ASSERT_EQ(sim.device_state(0), State::enabled);
       ASSERT_NE(vf1000_at(sim, 0).frequency_hz(), 0.0) << "the motor runs";
@@ -390,6 +391,28 @@ TEST(Simulator, Vf1000FaultResetByANewRequestBootsTheInverterOnce) {
   EXPECT_EQ(sim.device_state(0), State::enabled);
   EXPECT_TRUE(sim.summary().devices[0].failures.size() == 1U)
       << "only the fault itself ends a request; the boot does not";
+}
+
+// The scenario key `reset_time` (a VF1000 setting, D13): the self-test after RESET FAULT lasts
+// as long as the scenario says; the module error with it.
+TEST(Simulator, Vf1000ResetTimeFromTheScenario) {
+  Scenario s;
+  s.duration = 4s;
+  DeviceConfig v = vf1000();
+  v.reset_time = 1500ms;
+  s.devices = {v};
+  s.timeline = {at(0s, "vf", Action::state, "enabled"), at(500ms, "vf", Action::fault_device, "", 0, 0, 100ms),
+                at(1000ms, "vf", Action::state, "enabled")};
+  Simulator sim(s);
+  sim.run_until(1100ms);
+  ASSERT_EQ(vf1000_at(sim, 0).software_resets(), 1U);
+  EXPECT_TRUE(vf1000_at(sim, 0).module_error(sim.now()));
+  sim.run_until(2400ms);  // within 1.5 s of the reset
+  EXPECT_TRUE(vf1000_at(sim, 0).module_error(sim.now()));
+  sim.run_until(2700ms);
+  EXPECT_FALSE(vf1000_at(sim, 0).module_error(sim.now()));
+  sim.run();
+  EXPECT_EQ(sim.device_state(0), State::enabled);
 }
 
 TEST(Simulator, LostDeviceShowsAModuleErrorToTheMaster) {

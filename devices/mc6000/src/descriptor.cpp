@@ -106,6 +106,14 @@ class Descriptor final : public DriveDescriptor {
           "001, 3.2.4)",
           "watchdog_reaction");
     }
+    if (s.keypad) {
+      throw SettingsError("'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row",
+                          "keypad");
+    }
+    if (s.reset_time) {
+      throw SettingsError("'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)",
+                          "reset_time");
+    }
   }
 
   std::optional<std::string_view> refused_setting(std::string_view) const override { return std::nullopt; }

@@ -96,6 +96,10 @@ class Descriptor final : public DriveDescriptor {
                               " is out of range (0..3, 907-IBCOD)",
                           "watchdog_reaction");
     }
+    if (s.reset_time && (*s.reset_time <= Duration::zero() || *s.reset_time > std::chrono::seconds(60))) {
+      throw SettingsError("'reset_time' must be above 0 s and at most 60 s (the self-test after RESET FAULT)",
+                          "reset_time");
+    }
   }
 
   std::optional<std::string_view> refused_setting(std::string_view key) const override {

@@ -34,12 +34,14 @@ struct DeviceSettings {
   interbus::BusKind bus = interbus::BusKind::remote;
   std::optional<int> watchdog_ms;
   std::optional<int> watchdog_reaction;
+  std::optional<bool> keypad;           // VF1000: a KEYPAD plugged in (seed 001, 7.1's other rows)
+  std::optional<Duration> reset_time;   // VF1000: the self-test after RESET FAULT (5.2.1, D13)
 
   friend bool operator==(const DeviceSettings&, const DeviceSettings&) = default;
 };
 
 // A setting the drive refuses. setting() names it as the files do ("supi", "ibcnf", "bus",
-// "watchdog_ms", "watchdog_reaction"), fallback() the one to point at when the first is not in
+// "watchdog_ms", "watchdog_reaction", "keypad", "reset_time"), fallback() the one to point at when the first is not in
 // the file, so that a reader can name the line.
 class SettingsError : public std::invalid_argument {
  public:

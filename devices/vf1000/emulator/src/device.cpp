@@ -192,8 +192,11 @@ void Vf1000Device::sample(std::span<const Word> m2s, std::span<Word> s2m, Time n
 namespace vf1000 {
 
 std::unique_ptr<DeviceEmulator> make_emulator(const Configuration& config, DeviceStart start, Time now) {
-  auto d = std::make_unique<Vf1000Device>(Vf1000DeviceConfig{}, start, now);
   const DeviceSettings& s = config.settings;
+  Vf1000DeviceConfig c;
+  if (s.keypad) c.keypad = *s.keypad;
+  if (s.reset_time) c.pd.reset_time = *s.reset_time;
+  auto d = std::make_unique<Vf1000Device>(c, start, now);
   if (s.watchdog_ms) d->channel().set_value(pnr::kIbWd, static_cast<Word>(*s.watchdog_ms));
   if (s.watchdog_reaction) d->channel().set_value(pnr::kIbcod, static_cast<Word>(*s.watchdog_reaction));
   return d;

@@ -30,6 +30,8 @@ struct DeviceConfig {
                                     // power-on bit still set in 85-SIOF/SERR
   std::optional<int> watchdog_ms;   // MC6000 409-BUTWD (ms, 0 = off); VF1000 906-IB-WD (ms)
   std::optional<int> watchdog_reaction;  // VF1000 907-IBCOD (0..3)
+  std::optional<bool> keypad;            // VF1000: a KEYPAD plugged in (seed 001, 7.1)
+  std::optional<Duration> reset_time;    // VF1000: self-test after RESET FAULT (5.2.1; default 4 s)
 };
 
 // The settings the device's drive kind reads (devices/descriptor.hpp).
