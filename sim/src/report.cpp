@@ -33,6 +33,31 @@ std::string op_text(const TransactionRecord& r) {
 
 double budget_percent(double ns, Duration budget) { return 100.0 * ns / static_cast<double>(budget.count()); }
 
+// "; 3 cycles over it, the first at 1.234 ms" / "; no cycle over it".
+std::string over_text(const TimingStats& t, Duration budget) {
+  for (const OverBudget& o : t.over) {
+    if (o.budget != budget) continue;
+    if (o.cycles == 0) return "; no cycle over it";
+    return printf_string("; %llu cycle%s over it, the first at %s", static_cast<unsigned long long>(o.cycles),
+                         o.cycles == 1 ? "" : "s", ms(*o.first).c_str());
+  }
+  return "";
+}
+
+nlohmann::json stats_json(const TimingStats& t) {
+  nlohmann::json j = {{"cycles", t.cycles},         {"median_ns", t.median_ns}, {"p99_ns", t.p99_ns},
+                      {"p999_ns", t.p999_ns},       {"max_ns", t.max_ns},       {"worst_cycle", t.worst_cycle},
+                      {"worst_at_ms", to_ms(t.worst_at)}};
+  nlohmann::json over = nlohmann::json::array();
+  for (const OverBudget& o : t.over) {
+    nlohmann::json x = {{"budget_ms", to_ms(o.budget)}, {"cycles", o.cycles}};
+    if (o.first) x["first_at_ms"] = to_ms(*o.first);
+    over.push_back(x);
+  }
+  j["over_budget"] = over;
+  return j;
+}
+
 // The processing period of every drive kind the project knows, against which the master's time
 // per cycle is set (the MC6000's 1 ms, the VF1000's 8.2 ms), in the registry's order.
 struct Budget {
@@ -100,15 +125,36 @@ std::string format_text(const Summary& s) {
          f.detail + "\n";
   }
   if (s.master.cycles > 0) {
-    o += printf_string("\nmaster processing per cycle (%zu driver(s)): median %.0f ns, p99 %.0f ns, max %.0f ns over %llu cycles\n",
-                       s.devices.size(), s.master.median_ns, s.master.p99_ns, s.master.max_ns,
+    o += printf_string("\nmaster processing per cycle (%zu driver(s)): median %.0f ns, p99 %.0f ns, p99.9 %.0f ns, "
+                       "max %.0f ns (cycle %llu at %s) over %llu cycles\n",
+                       s.devices.size(), s.master.median_ns, s.master.p99_ns, s.master.p999_ns, s.master.max_ns,
+                       static_cast<unsigned long long>(s.master.worst_cycle), ms(s.master.worst_at).c_str(),
                        static_cast<unsigned long long>(s.master.cycles));
     for (const Budget& b : budgets()) {
-      o += printf_string("  %s budget (%s processing): %.*f %% at the median, %.*f %% at the max\n",
+      o += printf_string("  %s budget (%s processing): %.*f %% at the median, %.*f %% at the max",
                          b.period_text.c_str(), b.drives.c_str(), b.decimals,
                          budget_percent(s.master.median_ns, b.period), b.decimals - 1,
                          budget_percent(s.master.max_ns, b.period));
+      o += over_text(s.master, b.period) + "\n";
     }
+  }
+  if (s.realtime) {
+    const RealtimeStats& r = *s.realtime;
+    o += printf_string("\nreal time (cycle %s): %s, %s\n", format_time(r.cycle_time).c_str(),
+                       r.rt_priority > 0 ? printf_string("SCHED_FIFO priority %d", r.rt_priority).c_str()
+                                         : "normal priority",
+                       r.memory_locked ? "memory locked" : "memory not locked");
+    for (const std::string& n : r.notes) o += "  note: " + n + "\n";
+    o += printf_string("  wake-up latency: median %.0f ns, p99 %.0f ns, p99.9 %.0f ns, max %.0f ns (cycle %llu at %s)\n",
+                       r.wake.median_ns, r.wake.p99_ns, r.wake.p999_ns, r.wake.max_ns,
+                       static_cast<unsigned long long>(r.wake.worst_cycle), ms(r.wake.worst_at).c_str());
+    o += printf_string("  overruns (work ended after the next deadline): %llu of %llu cycles",
+                       static_cast<unsigned long long>(r.overruns), static_cast<unsigned long long>(r.wake.cycles));
+    if (r.worst_overrun) {
+      o += printf_string(", first at %s, worst at %s by %.3f ms", ms(*r.first_overrun).c_str(),
+                         ms(*r.worst_overrun).c_str(), to_ms(r.worst_overrun_by));
+    }
+    o += "\n";
   }
   return o;
 }
@@ -169,11 +215,23 @@ std::string format_json(const Summary& s) {
     faults.push_back({{"at_ms", to_ms(f.at)}, {"device", f.device}, {"kind", f.kind}, {"detail", f.detail}});
   }
   j["faults"] = faults;
-  j["master"] = {{"cycles", s.master.cycles},
-                 {"median_ns", s.master.median_ns},
-                 {"p99_ns", s.master.p99_ns},
-                 {"max_ns", s.master.max_ns}};
+  j["master"] = stats_json(s.master);
   for (const Budget& b : budgets()) j["master"][b.key] = budget_percent(s.master.median_ns, b.period);
+  if (s.realtime) {
+    const RealtimeStats& r = *s.realtime;
+    nlohmann::json rt = {{"cycle_time_ms", to_ms(r.cycle_time)},
+                         {"rt_priority", r.rt_priority},
+                         {"memory_locked", r.memory_locked},
+                         {"notes", r.notes},
+                         {"wake_latency", stats_json(r.wake)},
+                         {"overruns", r.overruns}};
+    if (r.first_overrun) rt["first_overrun_at_ms"] = to_ms(*r.first_overrun);
+    if (r.worst_overrun) {
+      rt["worst_overrun_at_ms"] = to_ms(*r.worst_overrun);
+      rt["worst_overrun_by_ms"] = to_ms(r.worst_overrun_by);
+    }
+    j["realtime"] = rt;
+  }
   return j.dump(2) + "\n";
 }
 

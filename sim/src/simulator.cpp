@@ -198,13 +198,50 @@ void Simulator::finish() {
     if (!r.finished) r.result = "still pending at the end of the run";
   }
   if (!master_ns_.empty()) {
-    std::vector<std::uint32_t> v = master_ns_;
-    std::sort(v.begin(), v.end());
-    summary_.master.cycles = v.size();
-    summary_.master.median_ns = v[v.size() / 2];
-    summary_.master.p99_ns = v[std::min(v.size() - 1, v.size() * 99 / 100)];
-    summary_.master.max_ns = v.back();
+    const auto budgets = processing_budgets();
+    summary_.master = timing_stats(master_ns_, cycle_time_, budgets);
   }
+}
+
+std::vector<Duration> processing_budgets() {
+  std::vector<Duration> out;
+  for (const devices::DriveKind& k : devices::drive_kinds()) {
+    const Duration p = k->facts().sample_period;
+    if (std::find(out.begin(), out.end(), p) == out.end()) out.push_back(p);
+  }
+  return out;
+}
+
+TimingStats timing_stats(std::span<const std::uint32_t> ns, Duration cycle_time, std::span<const Duration> budgets) {
+  TimingStats t;
+  if (ns.empty()) return t;
+  std::vector<std::uint32_t> v(ns.begin(), ns.end());
+  std::sort(v.begin(), v.end());
+  // Nearest rank: the smallest value at or below which `per_thousand` of the cycles lie.
+  const auto rank = [&v](std::size_t per_thousand) {
+    const std::size_t r = (v.size() * per_thousand + 999) / 1000;  // ceil, 1-based
+    return static_cast<double>(v[std::clamp<std::size_t>(r, 1, v.size()) - 1]);
+  };
+  t.cycles = v.size();
+  t.median_ns = v[v.size() / 2];
+  t.p99_ns = rank(990);
+  t.p999_ns = rank(999);
+  t.max_ns = v.back();
+  const auto worst = std::max_element(ns.begin(), ns.end());
+  t.worst_cycle = static_cast<std::uint64_t>(worst - ns.begin());
+  // Cycle k ends on the bus at (k + 1) cycle times (the first cycle end is one cycle in).
+  const auto at = [cycle_time](std::size_t k) { return Time{0} + cycle_time * static_cast<std::int64_t>(k + 1); };
+  t.worst_at = at(t.worst_cycle);
+  for (const Duration b : budgets) {
+    OverBudget o;
+    o.budget = b;
+    for (std::size_t k = 0; k < ns.size(); ++k) {
+      if (static_cast<std::int64_t>(ns[k]) <= b.count()) continue;
+      if (o.cycles++ == 0) o.first = at(k);
+    }
+    t.over.push_back(o);
+  }
+  return t;
 }
 
 const Summary& Simulator::summary() { return summary_; }

@@ -19,6 +19,8 @@ struct RunOptions {
   std::string pcap_file;  // empty: no capture for Wireshark (docs/pcap.md)
   std::string plot_file;  // empty: no plot; FILE.svg or FILE.png through gnuplot
   unsigned threads = 1;   // device-stepping threads (sim::SimOptions::threads): 0 = automatic
+  bool realtime = false;  // the master paced at the bus cycle in real time (sim/realtime.hpp)
+  int rt_priority = 0;    // with realtime: SCHED_FIFO priority 1..99 and mlockall
 };
 
 struct CampaignOptions {

@@ -36,6 +36,13 @@ int run_ibs(int argc, char** argv) {
                   "as far as the ring has work for them)")
       ->check(CLI::Range(0U, 256U))
       ->default_val(1U);
+  run->add_flag("--realtime", run_options.realtime,
+                "pace the master cycle at the bus cycle time in real time (clock_nanosleep); report "
+                "wake-up latency, processing time and overruns");
+  run->add_option("--rt-priority", run_options.rt_priority,
+                  "with --realtime: SCHED_FIFO at this priority (1..99) and memory locked (mlockall); "
+                  "refusals are noted and the run goes on")
+      ->check(CLI::Range(1, 99));
 
   std::string emulate;
   std::vector<std::string> replay_files;

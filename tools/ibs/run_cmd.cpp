@@ -16,6 +16,7 @@
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
+#include "ibs/sim/realtime.hpp"
 #include "ibs/sim/report.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
@@ -37,7 +38,8 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
 // A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation.
 int run_canlust(const RunOptions& o) {
   for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
-                                    {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1}}) {
+                                    {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1},
+                                    {"--realtime", o.realtime}}) {
     if (given) {
       std::cerr << o.scenario << ": " << flag << " is for INTERBUS scenarios; a CANLust run has --json and --pcap\n";
       return kExitBadInput;
@@ -65,6 +67,10 @@ int run_canlust(const RunOptions& o) {
 }  // namespace
 
 int run(const RunOptions& o) {
+  if (o.rt_priority != 0 && !o.realtime) {
+    std::cerr << "--rt-priority " << o.rt_priority << " needs --realtime\n";
+    return kExitBadInput;
+  }
   if (!o.scenario.empty() && sim::canlust::is_canlust_scenario(o.scenario)) return run_canlust(o);
   // A plot that cannot be drawn fails before the run.
   std::optional<sim::PlotFormat> format;
@@ -157,7 +163,11 @@ int run(const RunOptions& o) {
       std::fflush(stderr);
     };
   }
-  simulator->run(options);
+  if (o.realtime) {
+    sim::run_realtime(*simulator, sim::RealtimeOptions{o.rt_priority}, options);
+  } else {
+    simulator->run(options);
+  }
   if (shown) std::fprintf(stderr, "\r%60s\r", "");
   if (vcd) {
     try {

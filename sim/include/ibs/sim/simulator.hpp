@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,11 +76,38 @@ struct DeviceReport {
   std::vector<FailureRecord> failures;  // the master's sequencer gave up on a request
 };
 
+// Cycles whose time exceeded one budget (a drive kind's processing period: 1 ms, 8.2 ms).
+struct OverBudget {
+  Duration budget{0};
+  std::uint64_t cycles = 0;
+  std::optional<Time> first;  // the first such cycle's time
+};
+
 struct TimingStats {
   std::uint64_t cycles = 0;
   double median_ns = 0.0;
   double p99_ns = 0.0;
+  double p999_ns = 0.0;
   double max_ns = 0.0;
+  std::uint64_t worst_cycle = 0;  // the index (0 = the first cycle) of the maximum
+  Time worst_at{0};               // its time (the cycle's end on the bus)
+  std::vector<OverBudget> over;   // per budget, the cycles above it
+};
+// The statistics of one value per cycle: `at(k)` is cycle k's time; `budgets` the limits to count.
+TimingStats timing_stats(std::span<const std::uint32_t> ns, Duration cycle_time, std::span<const Duration> budgets);
+
+// `ibs run --realtime` (sim/realtime.hpp): the master paced at the bus cycle in real time.
+struct RealtimeStats {
+  Duration cycle_time{0};
+  TimingStats wake;        // wake-up latency against each cycle's deadline
+  TimingStats processing;  // the master's processing per cycle (as `Summary::master`)
+  std::uint64_t overruns = 0;       // cycles whose work ended after the next deadline
+  std::optional<Time> first_overrun;
+  std::optional<Time> worst_overrun;  // the cycle that ended latest behind its next deadline
+  Duration worst_overrun_by{0};
+  int rt_priority = 0;     // SCHED_FIFO priority in effect (0: none)
+  bool memory_locked = false;
+  std::vector<std::string> notes;  // what the system refused ("SCHED_FIFO priority 50 refused: ...")
 };
 
 struct Summary {
@@ -95,7 +123,11 @@ struct Summary {
   TimingStats master;  // wall-clock processing time of the master's cycle (both drivers)
   double wall_seconds = 0.0;
   unsigned threads = 1;  // that stepped the devices
+  std::optional<RealtimeStats> realtime;  // `ibs run --realtime`
 };
+// The drive kinds' processing periods (the MC6000's 1 ms, the VF1000's 8.2 ms), the budgets the
+// master's time per cycle is set against.
+std::vector<Duration> processing_budgets();
 
 struct SimOptions {
   bool measure_master_time = true;  // wall-clock timing of every master cycle
@@ -135,9 +167,12 @@ class Simulator {
   void add_observer(Observer* o) { observers_.push_back(o); }
 
   [[nodiscard]] const Summary& summary();
+  // The real-time runner's results go into the summary (sim/realtime.hpp).
+  void set_realtime(RealtimeStats r) { summary_.realtime = std::move(r); }
   [[nodiscard]] Time now() const { return now_; }
   [[nodiscard]] const interbus::BusConfig& bus() const { return loop_->config(); }
   [[nodiscard]] Duration cycle_time() const { return cycle_time_; }
+  [[nodiscard]] Duration scenario_duration() const { return scenario_.duration; }
   // The threads stepping the devices (1 until the run has started, or without worker threads).
   [[nodiscard]] unsigned threads() const { return workers_ ? workers_->parts() : 1; }
   // Recorded traces, one or more per device (a power cycle starts a new one), with file names.

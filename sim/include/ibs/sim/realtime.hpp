@@ -1,0 +1,23 @@
+// `ibs run --realtime`: the scenario with the master cycle paced at the bus cycle time in real
+// time. Each cycle has an absolute deadline on CLOCK_MONOTONIC (start + k cycle times); the runner
+// sleeps until it with clock_nanosleep(TIMER_ABSTIME), then lets the ring and the master run up to
+// that cycle (Simulator::run_until), so the simulated devices follow wall-clock time. Per cycle it
+// measures the wake-up latency against the deadline and whether the cycle's work ended before the
+// next deadline (an overrun when not); the master's processing time is the simulator's own
+// measurement. Optionally SCHED_FIFO at a priority and mlockall; when the system refuses either,
+// a note says so once and the run goes on. The results go into `Summary::realtime`.
+#pragma once
+
+#include "ibs/sim/simulator.hpp"
+
+namespace ibs::sim {
+
+struct RealtimeOptions {
+  int rt_priority = 0;  // 1..99: SCHED_FIFO at this priority and memory locked (mlockall); 0: neither
+};
+
+// Runs `sim` from its start to the end of its scenario in real time. Allocates only before the
+// first deadline (the per-cycle records are reserved); throws nothing of its own.
+void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOptions& options = {});
+
+}  // namespace ibs::sim
