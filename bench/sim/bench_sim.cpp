@@ -3,7 +3,6 @@
 // real time.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <chrono>
 
 #include "ibs/devices/mc6000/driver.hpp"
@@ -94,17 +93,12 @@ void BM_MasterCycleFullBusPercentiles(benchmark::State& st) {
     now += 1ms;
     ++k;
   }
-  std::sort(ns.begin(), ns.end());
-  const auto rank = [&ns](std::size_t per_thousand) {
-    const std::size_t r = (ns.size() * per_thousand + 999) / 1000;
-    return static_cast<double>(ns[std::clamp<std::size_t>(r, 1, ns.size()) - 1]);
-  };
-  if (!ns.empty()) {
-    st.counters["p50_ns"] = rank(500);
-    st.counters["p99_ns"] = rank(990);
-    st.counters["p999_ns"] = rank(999);
-    st.counters["max_ns"] = static_cast<double>(ns.back());
-  }
+  // The same percentiles `ibs run` reports (sim::timing_stats).
+  const TimingStats t = timing_stats(ns, 1ms, {});
+  st.counters["p50_ns"] = t.median_ns;
+  st.counters["p99_ns"] = t.p99_ns;
+  st.counters["p999_ns"] = t.p999_ns;
+  st.counters["max_ns"] = t.max_ns;
 }
 BENCHMARK(BM_MasterCycleFullBusPercentiles)->Arg(0)->Arg(1)->Iterations(1'000'000)->Unit(benchmark::kNanosecond);
 

@@ -352,10 +352,7 @@ void Host::transmit_tx(Time now) {
   (void)now;
   if (tx_.enquiry) {
     out_frame_ = encode_enquiry(tx_.address, tx_.code);
-    // An 11.2 description (CODE 3xxxx) carries binary elements of known length (LB-D10).
-    const bool mc_description = tx_.code.digit(0) == '3';
-    decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak,
-                   mc_description ? kMcDescriptionElements : 0);
+    decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak, answer_binary_prefix(tx_.code));
   } else {
     out_frame_ = encode_select(tx_.address, tx_.code, tx_.value);
     if (tx_.address == kAddressBroadcast) out_frame_.push(kEot);
@@ -538,18 +535,13 @@ void Host::tx_done(Time now) {
         }
         return;
       }
-      if (answer_kind_ == AnswerKind::nak && phase_ == Phase::pm_select) {
-        // 11.6: "the Host computer ascertains the error using the read command %RDF".
-        phase_ = Phase::pm_error_select;
-        tx_attempts_ = 0;
-        send(Tx{r.address, kPosmodCode, kPosmodErrorRead, false, timeout_of(r)}, now);
-        return;
+      if (answer_kind_ != AnswerKind::nak) {
+        finish_unanswered(now);
+      } else if (phase_ == Phase::pm_select) {
+        read_posmod_error(now);
+      } else {
+        finish(OutcomeKind::nak, now);  // the %RDF itself refused
       }
-      out_->answer_error = answer_error_;
-      finish(answer_kind_ == AnswerKind::nak ? OutcomeKind::nak
-             : answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer
-                                                       : OutcomeKind::bad_answer,
-             now);
       return;
     case Phase::pm_enquiry:
     case Phase::pm_error_enquiry:
@@ -563,14 +555,9 @@ void Host::tx_done(Time now) {
         out_->value = decoder_.value();
         finish(OutcomeKind::value, now);
       } else if (answer_kind_ == AnswerKind::nak) {
-        phase_ = Phase::pm_error_select;
-        tx_attempts_ = 0;
-        send(Tx{r.address, kPosmodCode, kPosmodErrorRead, false, timeout_of(r)}, now);
+        read_posmod_error(now);
       } else {
-        out_->answer_error = answer_error_;
-        finish(answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer
-                                                       : OutcomeKind::bad_answer,
-               now);
+        finish_unanswered(now);
       }
       return;
     case Phase::main:
@@ -589,10 +576,7 @@ void Host::tx_done(Time now) {
         } else if (tx_attempts_ <= config_.enquiry_retries && !reads_siof(tx_.code)) {
           send(tx_, now);  // reading is harmless to repeat — except 85, which clears (9.2)
         } else {
-          out_->answer_error = answer_error_;
-          finish(answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer
-                                                         : OutcomeKind::bad_answer,
-                 now);
+          finish_unanswered(now);
         }
         return;
       }
@@ -710,13 +694,23 @@ void Host::tx_done(Time now) {
       } else if (tx_attempts_ <= config_.enquiry_retries) {
         send(tx_, now);
       } else {
-        out_->answer_error = answer_error_;
-        finish(answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer
-                                                       : OutcomeKind::bad_answer,
-               now);
+        finish_unanswered(now);
       }
       return;
   }
+}
+
+// The answer did not come, or failed the checks: the request ends with what the decoder found.
+void Host::finish_unanswered(Time now) {
+  out_->answer_error = answer_error_;
+  finish(answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer : OutcomeKind::bad_answer, now);
+}
+
+// 11.6: after a NAK "the Host computer ascertains the error using the read command %RDF".
+void Host::read_posmod_error(Time now) {
+  phase_ = Phase::pm_error_select;
+  tx_attempts_ = 0;
+  send(Tx{request().address, kPosmodCode, kPosmodErrorRead, false, timeout_of(request())}, now);
 }
 
 void Host::restart(Time now) {

@@ -335,12 +335,8 @@ void CampaignChecker::software_reset(std::size_t dev, Time now) {
 }
 
 void CampaignChecker::power_cycle(std::size_t dev, Time now, std::optional<State> state_then) {
+  software_reset(dev, now);  // the drive boots the same way; what differs is the master's request
   Dev& d = devices_[dev];
-  reboot_store(d, now);
-  d.armed = false;
-  d.tripped = false;
-  d.last_fed.reset();
-  d.fed_before_slice.reset();
   // A drive switched off and on while it still initialises (NOT READY) looks the same to the
   // master before and after: a request made then covers it (as a fault joins a latched one).
   if (state_then && *state_then == State::not_ready) return;

@@ -5,12 +5,16 @@
 // a value outcome is always true; the next clean telegram works.
 #include <gtest/gtest.h>
 
+#include "line_faults.hpp"
 #include "test_support.hpp"
 
 namespace ibs::lustbus {
 namespace {
 
+using test::apply;
 using test::Bus;
+using test::Fault;
+using test::kFaults;
 using test::FakeDrive;
 using test::make_mc6000;
 using test::make_vf1000;
@@ -41,28 +45,6 @@ std::vector<Kind> kinds() {
       {"MC PosMOD1", Family::mc6000, select(1, kPosmodCode, make_value("8GOA0V1000")), 0, 0, ""},
       {"MC substitution text", Family::mc6000, substitution_text_request(1, 300, 2), 108, 2, "SCON"},
   };
-}
-
-enum class Fault { lose, eot, garbage, garbled, nul, flip };
-constexpr Fault kFaults[] = {Fault::lose, Fault::eot, Fault::garbage, Fault::garbled, Fault::nul,
-                             Fault::flip};
-
-std::optional<std::uint8_t> apply(Fault f, std::uint8_t b) {
-  switch (f) {
-    case Fault::lose:
-      return std::nullopt;
-    case Fault::eot:
-      return kEot;
-    case Fault::garbage:
-      return 'X';
-    case Fault::garbled:
-      return kGarbled;
-    case Fault::nul:
-      return 0;
-    case Fault::flip:
-      return static_cast<std::uint8_t>(b ^ 0x01);
-  }
-  return b;
 }
 
 FakeDrive make(Family f) {

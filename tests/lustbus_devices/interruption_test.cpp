@@ -10,12 +10,16 @@
 
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "../lustbus/line_faults.hpp"
 #include "support.hpp"
 
 namespace {
 
 using namespace ibs::lustbus;
 using namespace ibs::lustbus::devtest;
+using ibs::lustbus::test::apply;
+using ibs::lustbus::test::Fault;
+using ibs::lustbus::test::kFaults;
 namespace mc = ibs::devices::mc6000;
 namespace vf = ibs::devices::vf1000;
 
@@ -55,28 +59,6 @@ std::vector<Kind> kinds() {
       {"MC ENQUIRY", enquiry(3, make_code(20091)), nullptr, 0, "1770"},
       {"MC substitution text", substitution_text_request(3, 300, 2), mcv(108), 2, "SCON"},
   };
-}
-
-enum class Fault { lose, eot, garbage, garbled, nul, flip };
-constexpr Fault kFaults[] = {Fault::lose, Fault::eot, Fault::garbage, Fault::garbled, Fault::nul,
-                             Fault::flip};
-
-std::optional<std::uint8_t> apply(Fault f, std::uint8_t b) {
-  switch (f) {
-    case Fault::lose:
-      return std::nullopt;
-    case Fault::eot:
-      return kEot;
-    case Fault::garbage:
-      return 'X';
-    case Fault::garbled:
-      return kGarbled;
-    case Fault::nul:
-      return 0;
-    case Fault::flip:
-      return static_cast<std::uint8_t>(b ^ 0x01);
-  }
-  return b;
 }
 
 bool good(const Outcome& o) {

@@ -17,13 +17,6 @@ using ibs::Time;
 using Mc = ibs::devices::mc6000::LustbusDevice;
 namespace mc = ibs::devices::mc6000;
 
-std::vector<std::uint8_t> sel(Address a, std::uint32_t code, std::string_view v) {
-  return bytes(encode_select(a, make_code(code), make_value(v)).span());
-}
-std::vector<std::uint8_t> enq(Address a, std::uint32_t code) {
-  return bytes(encode_enquiry(a, make_code(code)).span());
-}
-
 struct Fresh {
   Mc dev;
   Receiver rx{dev, 3};

@@ -20,10 +20,8 @@ using Mc = ibs::devices::mc6000::LustbusDevice;
 namespace mc = ibs::devices::mc6000;
 
 // A SELECT / ENQUIRY of 49999 as the host sends it, with the BCC by 2.2's rule.
-std::vector<std::uint8_t> pm_select(Address a, std::string_view user) {
-  return bytes(encode_select(a, kPosmodCode, make_value(user)).span());
-}
-std::vector<std::uint8_t> pm_enquiry(Address a) { return bytes(encode_enquiry(a, kPosmodCode).span()); }
+std::vector<std::uint8_t> pm_select(Address a, std::string_view user) { return sel(a, kPosmodCode.number(), user); }
+std::vector<std::uint8_t> pm_enquiry(Address a) { return enq(a, kPosmodCode.number()); }
 std::vector<std::uint8_t> pm_answer(Address a, std::string_view user) {
   return bytes(encode_text_answer(a, kPosmodCode, make_value(user)).span());
 }
@@ -37,10 +35,8 @@ struct Servo {
     return feed(rx, b, t);
   }
   Servo() {
-    send(bytes(encode_enquiry(3, make_code(85)).span()));
-    for (const auto& [code, v] : {std::pair{20402U, "2"}, {20417U, "3"}, {20416U, "1"}}) {
-      send(bytes(encode_select(3, make_code(code), make_value(v)).span()));
-    }
+    send(enq(3, 85));
+    for (const auto& [code, v] : {std::pair{20402U, "2"}, {20417U, "3"}, {20416U, "1"}}) send(sel(3, code, v));
   }
 };
 
@@ -222,7 +218,7 @@ TEST(ReactionTimes, Of10SeededWithinTheTable) {
   Receiver rx(vf, 1);
   ReactionTimes expect(timing.reaction);
   for (int i = 0; i < 5; ++i) {
-    const auto f = feed(rx, bytes(encode_enquiry(1, make_code(191)).span()), Time{1s * (i + 1)});
+    const auto f = feed(rx, enq(1, 191), Time{1s * (i + 1)});
     EXPECT_EQ(f.due, expect.next());
   }
 }

@@ -48,6 +48,13 @@ inline Fed feed(Receiver& r, const std::vector<std::uint8_t>& bytes, Time now) {
   return f;
 }
 inline std::vector<std::uint8_t> bytes(std::span<const std::uint8_t> s) { return {s.begin(), s.end()}; }
+// A SELECT / an ENQUIRY as the host sends it, the BCC by the rule of 2.2.
+inline std::vector<std::uint8_t> sel(Address a, std::uint32_t code, std::string_view v) {
+  return bytes(encode_select(a, make_code(code), make_value(v)).span());
+}
+inline std::vector<std::uint8_t> enq(Address a, std::uint32_t code) {
+  return bytes(encode_enquiry(a, make_code(code)).span());
+}
 
 struct Bus {
   explicit Bus(HostConfig cfg = {}) : host(cfg), line(9600) { line.attach(host); }

@@ -16,14 +16,6 @@ using ibs::Time;
 using Vf = ibs::devices::vf1000::LustbusDevice;
 namespace pnr = ibs::devices::vf1000::pnr;
 
-// A telegram's bytes with the BCC by the rule of 2.2.
-std::vector<std::uint8_t> sel(Address a, std::uint32_t code, std::string_view v) {
-  return bytes(encode_select(a, make_code(code), make_value(v)).span());
-}
-std::vector<std::uint8_t> enq(Address a, std::uint32_t code) {
-  return bytes(encode_enquiry(a, make_code(code)).span());
-}
-
 // A VF1000 whose power-on bit has been read (6).
 struct Fresh {
   Vf dev;

@@ -4,6 +4,8 @@
 // file:line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "ibs/sim/canlust_scenario.hpp"
@@ -16,12 +18,14 @@ using namespace std::chrono_literals;
 
 const std::string kExample = std::string(IBS_SOURCE_DIR) + "/examples/canlust/conveyors.toml";
 
-void expect_error_text(const std::string& text, const std::string& what) {
+void expect_error(const std::string& text, std::size_t line, const std::string& what) {
   try {
-    parse_scenario(text, "t.toml", false);
-    ADD_FAILURE() << "accepted";
+    parse_scenario(text, "bad.toml", false);
+    ADD_FAILURE() << "accepted: " << text;
   } catch (const ScenarioError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
     EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("bad.toml:" + std::to_string(line) + ": ", 0), 0U) << e.what();
   }
 }
 
@@ -143,25 +147,17 @@ TEST(CanlustRun, EasyDriveWatchdogAndErrorReset) {
   EXPECT_NE(e.status.find("EasyDrive"), std::string::npos) << e.status;
   EXPECT_NE(e.status.find("ACTIV"), std::string::npos) << e.status;
   EXPECT_EQ(e.watchdog_trips, 1U);
-  expect_error_text(text + "[[timeline]]\nat = \"1 s\"\ndevice = \"e\"\nstate = \"enabled\"\n",
-                    "runs EasyDrive (cacnf = 4)");
+  // The new [[timeline]] starts on the line after the scenario's last.
+  const auto next_line = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  expect_error(text + "[[timeline]]\nat = \"1 s\"\ndevice = \"e\"\nstate = \"enabled\"\n", next_line,
+               "runs EasyDrive (cacnf = 4)");
 }
 
-void expect_error(const std::string& text, std::size_t line, const std::string& what) {
-  try {
-    parse_scenario(text, "bad.toml", false);
-    ADD_FAILURE() << "accepted: " << text;
-  } catch (const ScenarioError& e) {
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    EXPECT_EQ(std::string(e.what()).rfind("bad.toml:" + std::to_string(line) + ": ", 0), 0U) << e.what();
-  }
-}
 
 TEST(CanlustRun, ErrorsNameFileAndLine) {
-  expect_error_text("name = \"x\"\n[bus]\nprotocol = \"canlust\"\n[[device]]\nname = \"a\"\ntype = \"cda3000\"\n"
-                    "address = 1\n[[timeline]]\nat = \"0 s\"\ndevice = \"a\"\neasydrive = 1\n",
-                    "easydrive needs cacnf = 4");
+  expect_error("name = \"x\"\n[bus]\nprotocol = \"canlust\"\n[[device]]\nname = \"a\"\ntype = \"cda3000\"\n"
+               "address = 1\n[[timeline]]\nat = \"0 s\"\ndevice = \"a\"\neasydrive = 1\n",
+               8, "easydrive needs cacnf = 4");
   const std::string head = "name = \"x\"\nduration = \"1 s\"\n[bus]\nprotocol = \"canlust\"\n";
   const std::string dev = "[[device]]\nname = \"a\"\ntype = \"cda3000\"\naddress = 1\n";  // lines 5-8
   expect_error(head + "bitrat = 1\n" + dev, 5, "unknown key 'bitrat' in [bus] (did you mean 'bitrate'?)");

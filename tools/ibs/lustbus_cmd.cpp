@@ -683,7 +683,7 @@ class LogReader {
     if (!answering_) {
       answer_at_ = at;
       answering_ = true;
-      decoder_.start(addr_, code_, expect_, code_.digit(0) == '3' ? lb::kMcDescriptionElements : 0);
+      decoder_.start(addr_, code_, expect_, lb::answer_binary_prefix(code_));
       raw_.clear();
     }
     raw_.push_back(static_cast<char>(b));

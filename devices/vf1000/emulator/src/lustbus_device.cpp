@@ -72,14 +72,19 @@ void LustbusDevice::run_samples(Time now) {
   if (now <= pd_time_) return;
   if (now - pd_time_ > kCatchUp) pd_time_ = now - kCatchUp;
   pd_.set_fault(fault_ || watchdog_fault_);
-  std::array<Word, Vf1000PdDevice::kWords> m2s{};
-  std::array<Word, Vf1000PdDevice::kWords> s2m{};
   while (now - pd_time_ >= kSamplePeriod) {
     pd_time_ += kSamplePeriod;
-    m2s[0] = control_word();
-    m2s[1] = value(pnr::kFssel) == kFsselFssio ? value(pnr::kFssio) : Word{0};  // 0.05 Hz steps
-    pd_.sample(m2s, s2m, kSamplePeriod);
+    sample(kSamplePeriod);
   }
+}
+
+void LustbusDevice::sample(Duration dt) {
+  // Words 1 and 2 as 7.1 forms them: the control word of 3-CNTL, the reference of 5-FSSIO in
+  // 0.05 Hz steps (with 4-FSSEL = 8); the communication word is not used over LUSTBUS.
+  const std::array<Word, Vf1000PdDevice::kWords> m2s{
+      control_word(), value(pnr::kFssel) == kFsselFssio ? value(pnr::kFssio) : Word{0}, 0};
+  std::array<Word, Vf1000PdDevice::kWords> s2m{};
+  pd_.sample(m2s, s2m, dt);
 }
 
 bool LustbusDevice::set_line_baud(std::uint32_t baud) {
@@ -171,10 +176,7 @@ void LustbusDevice::advance(Time now) {
 
 void LustbusDevice::sample_now() {
   pd_.set_fault(fault_ || watchdog_fault_);
-  std::array<Word, Vf1000PdDevice::kWords> m2s{control_word(), 0, 0};
-  std::array<Word, Vf1000PdDevice::kWords> s2m{};
-  m2s[1] = value(pnr::kFssel) == kFsselFssio ? value(pnr::kFssio) : Word{0};
-  pd_.sample(m2s, s2m, Duration{0});
+  sample(Duration{0});
 }
 
 void LustbusDevice::telegram_received(const lb::Context& ctx) {

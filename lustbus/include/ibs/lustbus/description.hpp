@@ -7,6 +7,7 @@
 #include <optional>
 #include <string_view>
 
+#include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/value.hpp"
 
 namespace ibs::lustbus {
@@ -99,6 +100,11 @@ inline constexpr std::uint16_t kHwMptc = 0x4000;
 inline constexpr std::uint16_t kHwBrake = 0x8000;
 
 Parsed<McDescription> parse_mc_description(std::string_view value);
+// How many VALUE characters of the answer to an ENQUIRY of `c` are binary, to be taken as they
+// come (LB-D10): an MC6000 description (specifier 3, 2.4.2) has its 42 elements; others none.
+constexpr std::size_t answer_binary_prefix(const Code& c) {
+  return c.digit(0) == '3' ? kMcDescriptionElements : 0;
+}
 // nullopt when an element cannot travel: a binary byte >= 80H (LB-D10; frame characters do, read
 // by length), or a name longer than 5 / with characters 11.2.1 does not allow.
 std::optional<Value> format_mc_description(const McDescription& d);

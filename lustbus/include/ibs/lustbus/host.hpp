@@ -241,6 +241,8 @@ class Host {
   void enquiry_phase(Phase p, Address a, const Code& c, Duration timeout, Time now);
   void next_scan_address(Time now);
   void finish(OutcomeKind k, Time now);
+  void finish_unanswered(Time now);
+  void read_posmod_error(Time now);
   Finished& slot_of(RequestId id) { return done_[(id - 1) % done_.size()]; }
   [[nodiscard]] const Request& request() const { return job_->request; }
   [[nodiscard]] Duration timeout_of(const Request& r) const;

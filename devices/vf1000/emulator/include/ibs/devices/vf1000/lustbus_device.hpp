@@ -93,7 +93,8 @@ class LustbusDevice final : public lustbus::Responder {
   // The DRIVECOM control word 3-CNTL stands for, and the reference word of 5-FSSIO (7.1).
   [[nodiscard]] Word control_word() const;
   void run_samples(Time now);
-  void sample_now();  // one sample without time passing: a fault acts at once
+  void sample(Duration dt);  // one sample of the process-data model over `dt`
+  void sample_now();         // one sample without time passing: a fault acts at once
 
   LustbusTiming timing_;
   drive::ParameterTable table_;
