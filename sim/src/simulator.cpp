@@ -111,6 +111,12 @@ State Simulator::device_state(std::size_t i) const { return devices_[i]->state()
 
 bool Simulator::module_error(std::size_t i, Time t) const { return devices_[i]->module_error(t); }
 
+void Simulator::set_switched_off(std::size_t i, bool off) {
+  if (i < devices_.size()) devices_[i]->switched_off = off;
+}
+
+bool Simulator::switched_off(std::size_t i) const { return i < devices_.size() && devices_[i]->switched_off; }
+
 double Simulator::device_actual(std::size_t i) const { return devices_[i]->emu->actual(); }
 
 devices::DeviceEmulator& Simulator::emulator(std::size_t i) { return *devices_[i]->emu; }
@@ -146,7 +152,7 @@ void Simulator::start(const SimOptions& options) {
   }
   prototypes_.clear();
   if (observers_.empty()) start_threads(options_.threads);
-  master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
+  if (options_.measure_master_time) master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
   samples_.reserve(devices_.size());
   next_cycle_ = cycle_time_;
   const auto& r = scenario_.random;

@@ -32,8 +32,10 @@ void Simulator::cycle_exchange(Time t) {
     }
   }
   // The cycle just ended: a corrupted one and the recovery cycles after it deliver nothing.
-  bool valid = true;
-  if (corrupt_left_ > 0) {
+  bool valid = bus_running_;
+  if (!bus_running_) {
+    // A stopped bus: no cycle, nothing delivered; faults of the timeline still take their course.
+  } else if (corrupt_left_ > 0) {
     --corrupt_left_;
     valid = false;
     if (corrupt_left_ == 0) recovery_left_ = scenario_.bus.recovery_cycles;
@@ -45,9 +47,13 @@ void Simulator::cycle_exchange(Time t) {
   if (valid) ++summary_.valid_cycles;
   for (auto& d : devices_) {
     master::LinkState& link = links_[d->index];
-    link.data_valid = valid;
-    link.module_error = d->module_error(t);
+    link.data_valid = valid && !d->switched_off;
+    link.module_error = d->module_error(t) && !d->switched_off;
     if (!valid) continue;
+    if (d->switched_off) {
+      std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});
+      continue;
+    }
     if (link.module_error) {
       std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
       // A device that is on the ring but initialising (6.1) still takes the master's words into
@@ -70,7 +76,11 @@ void Simulator::cycle_exchange(Time t) {
 void Simulator::cycle_master(Time t) {
   const auto t0 = options_.measure_master_time ? std::chrono::steady_clock::now()
                                                : std::chrono::steady_clock::time_point{};
-  loop_->cycle(image_, t, master::Exchange{last_cycle_valid_, links_});
+  if (external_ != nullptr) {
+    external_->cycle(image_, t, master::Exchange{last_cycle_valid_, links_});
+  } else {
+    loop_->cycle(image_, t, master::Exchange{last_cycle_valid_, links_});
+  }
   if (options_.measure_master_time) {
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0);
     master_ns_.push_back(static_cast<std::uint32_t>(std::min<std::int64_t>(ns.count(), 0xFFFFFFFF)));
@@ -80,6 +90,17 @@ void Simulator::cycle_master(Time t) {
 }
 
 void Simulator::observe_master(Time t) {
+  if (external_ != nullptr) {
+    // Another master: what ibs's drivers saw is not there; the devices' watchdog errors are.
+    for (auto& d : devices_) {
+      const auto err = d->error_at_cycle;
+      if (err && err != d->reported_error) {
+        summary_.faults.push_back({t, d->cfg.name, "watchdog", std::string((*d->kind)->facts().watchdog_error)});
+      }
+      d->reported_error = err;
+    }
+    return;
+  }
   for (auto& d : devices_) {
     devices::DeviceDriver& drv = loop_->driver(d->index);
     const auto seen = drv.sequencer().report().state_seen;

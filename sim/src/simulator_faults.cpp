@@ -164,7 +164,11 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
     case Action::master_restart:
       f.kind = "master-restart";
       f.detail = "drivers and channels start over";
-      loop_->restart(t);
+      if (external_ != nullptr) {
+        external_->restart(t);
+      } else {
+        loop_->restart(t);
+      }
       break;
     default: return;
   }

@@ -122,6 +122,7 @@ struct Simulator::Device {
   std::vector<Recording> recordings;
   bool recording = false;
   bool power_cycled = false;
+  bool switched_off = false;  // bypassed by the master (Simulator::set_switched_off)
   std::uint32_t notices = 0;  // the emulator's notices already in the records
   // Summary records the device's sampling made (15-PLRDY), moved into the summary at the next
   // cycle end: the sampling may run on another thread than the summary's.

@@ -151,6 +151,18 @@ class Observer {
                          std::span<const Word> s2m) = 0;
 };
 
+// A master other than ibs's own cycle loop (the virtual DDI board's firmware, ddi/): called at
+// every cycle end after the bus exchange instead of MasterLoop::cycle, with the same image (read
+// `in` and `pcp_in`, write `out` and `pcp_out` for the next exchange). A scenario run under one
+// holds faults only: the commands of its timeline address ibs's master, which then does not run.
+class ExternalMaster {
+ public:
+  virtual ~ExternalMaster() = default;
+  virtual void cycle(interbus::ProcessImage& image, Time now, const master::Exchange& exchange) = 0;
+  // The scenario's master_restart fault (the master's controller starts over).
+  virtual void restart(Time now) = 0;
+};
+
 class Simulator {
  public:
   // Builds the ring, the device models and the master; throws std::invalid_argument with a clear
@@ -165,6 +177,17 @@ class Simulator {
   // has been reached.
   bool run_until(Time until, const SimOptions& options = {});
   void add_observer(Observer* o) { observers_.push_back(o); }
+  // Before the run starts: `m` takes the master's place for the whole run (nullptr: ibs's own).
+  void set_external_master(ExternalMaster* m) { external_ = m; }
+  // The master's data transfer (the bus cycles): while stopped, every cycle end exchanges
+  // nothing and delivers no valid data, as a bus whose master has stopped; the devices see no
+  // bus cycles (their watchdogs run). On from the start.
+  void set_bus_running(bool running) { bus_running_ = running; }
+  [[nodiscard]] bool bus_running() const { return bus_running_; }
+  // Device `i` switched off (bypassed) by the master: nothing is exchanged with it and its input
+  // words read 0, without a module error; it sees no bus cycles. Until switched on again.
+  void set_switched_off(std::size_t i, bool off);
+  [[nodiscard]] bool switched_off(std::size_t i) const;
 
   [[nodiscard]] const Summary& summary();
   // The real-time runner's results go into the summary (sim/realtime.hpp).
@@ -262,6 +285,8 @@ class Simulator {
   std::vector<SampleEvent> samples_;
   std::vector<std::uint32_t> master_ns_;
   std::vector<Observer*> observers_;
+  ExternalMaster* external_ = nullptr;
+  bool bus_running_ = true;
   SimOptions options_;
   Summary summary_;
   double wall_start_ = 0.0;

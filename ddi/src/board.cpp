@@ -1,0 +1,128 @@
+#include "board.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+#include <time.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+namespace ibs::ddi {
+
+namespace {
+
+std::string env(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr ? std::string(v) : std::string();
+}
+
+// A board runs as long as it is open: a simulated time no run reaches.
+constexpr Duration kForever = std::chrono::hours(24 * 365 * 100);
+
+}  // namespace
+
+BoardOptions options_from_environment() {
+  BoardOptions o;
+  const std::string mode = env("IBS_DDI_MODE");
+  if (mode == "stepped") {
+    o.mode = Mode::stepped;
+  } else if (!mode.empty() && mode != "realtime") {
+    throw std::invalid_argument("IBS_DDI_MODE = '" + mode + "': expected realtime or stepped");
+  }
+  o.scenario = env("IBS_DDI_SCENARIO");
+  const std::string prio = env("IBS_DDI_RT_PRIORITY");
+  if (!prio.empty()) {
+    char* end = nullptr;
+    const long p = std::strtol(prio.c_str(), &end, 10);
+    if (*end != '\0' || p < 0 || p > 99) {
+      throw std::invalid_argument("IBS_DDI_RT_PRIORITY = '" + prio + "': expected 0..99");
+    }
+    o.rt_priority = static_cast<int>(p);
+  }
+  return o;
+}
+
+sim::Scenario board_scenario(const std::string& path) {
+  sim::Scenario s;
+  if (path.empty()) {
+    s = sim::default_scenario();
+    s.timeline.clear();  // its commands are for ibs's master; the ring is what the board takes
+  } else {
+    s = sim::load_scenario(path);
+  }
+  for (const sim::TimelineEntry& e : s.timeline) {
+    switch (e.action) {
+      case sim::Action::fault_corrupt:
+      case sim::Action::fault_power_cycle:
+      case sim::Action::fault_device:
+      case sim::Action::fault_lost:
+      case sim::Action::master_restart:
+        break;
+      default:
+        throw sim::ScenarioError(path, e.source_line,
+                                 "'" + std::string(sim::to_string(e.action)) +
+                                     "' is a command of ibs's master; behind the DDI the application is the "
+                                     "master, so a board's timeline holds faults only");
+    }
+  }
+  s.duration = kForever;
+  return s;
+}
+
+Board::Board(const BoardOptions& options) : options_(options), scenario_(board_scenario(options.scenario)) {
+  sim_ = std::make_unique<sim::Simulator>(scenario_);
+  firmware_ = std::make_unique<Firmware>(*sim_, sim_->bus(), sim_->cycle_time());
+  sim_->set_external_master(firmware_.get());
+  if (options_.mode == Mode::realtime) thread_ = std::thread([this] { run_realtime(); });
+}
+
+Board::~Board() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void Board::step() {
+  ++cycle_;
+  sim::SimOptions o;
+  o.measure_master_time = false;
+  sim_->run_until(Time{0} + sim_->cycle_time() * static_cast<std::int64_t>(cycle_), o);
+}
+
+void Board::run_realtime() {
+  if (options_.rt_priority > 0) {
+    sched_param p{};
+    p.sched_priority = options_.rt_priority;
+    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
+      std::fprintf(stderr, "ibs-ddi: SCHED_FIFO priority %d refused (%s); the board runs without it\n",
+                   options_.rt_priority, std::strerror(err));
+    }
+  }
+  timespec start{};
+  clock_gettime(CLOCK_MONOTONIC, &start);
+  const std::int64_t cycle_ns = sim_->cycle_time().count();
+  while (!stop_) {
+    // (time_t and the nanoseconds are 64-bit on the targets: Linux on x86-64 and arm64)
+    const std::int64_t at = start.tv_nsec + cycle_ns * static_cast<std::int64_t>(cycle_ + 1);
+    timespec deadline{};
+    deadline.tv_sec = start.tv_sec + at / 1'000'000'000;
+    deadline.tv_nsec = at % 1'000'000'000;
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (stop_) break;
+    try {
+      step();
+    } catch (const std::exception& e) {
+      // Nothing in a cycle throws; should it, the board fails as a board does: SysFail.
+      std::fprintf(stderr, "ibs-ddi: the board's cycle failed: %s\n", e.what());
+      firmware_->restart(sim_->now());
+      return;
+    }
+  }
+}
+
+}  // namespace ibs::ddi
