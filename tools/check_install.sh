@@ -4,7 +4,10 @@
 #     forbidden to CMake, installed into a fresh prefix; a program linked through pkg-config
 #     (ibs-master) runs the master loop over the in-memory bus;
 #  2. the whole project installed from a built tree (default build/debug) into another prefix;
-#     examples/embed configured with find_package(ibs) against it, built and run: it must exit 0.
+#     examples/embed configured with find_package(ibs) against it, built and run: it must exit 0;
+#  3. examples/ddi, a C master against the virtual board (libibs-ddi), built with CMake and run
+#     in real time, then built through pkg-config (ibs-ddi) and run stepped; the shared library
+#     must export the DDI_* calls only.
 # Usage: tools/check_install.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -59,4 +62,20 @@ cmake --install "$built" --prefix "$work/full" >/dev/null
 cmake -S examples/embed -B "$work/embed-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/embed-build" -j "$jobs" >/dev/null
 "$work/embed-build/embed"
+
+echo "check_install: examples/ddi (C, the virtual board's DDI) against the same installation" >&2
+cmake -S examples/ddi -B "$work/ddi-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
+cmake --build "$work/ddi-build" -j "$jobs" >/dev/null
+"$work/ddi-build/ddi_master"
+# The shared library gives the DDI's calls and nothing else; pkg-config finds it for a C build.
+if nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
+    | awk '$2 == "T" && $3 !~ /^DDI_/' | grep -q .; then
+  echo "check_install: libibs-ddi.so exports more than the DDI_* calls" >&2
+  exit 1
+fi
+export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu/pkgconfig"
+# shellcheck disable=SC2046
+gcc -std=c99 -Wall -Werror examples/ddi/ddi_master.c -o "$work/ddi_pc" $(pkg-config --cflags --libs ibs-ddi) \
+  -Wl,-rpath,"$(pkg-config --variable=libdir ibs-ddi)"
+IBS_DDI_MODE=stepped "$work/ddi_pc"
 echo "check_install: passed" >&2
