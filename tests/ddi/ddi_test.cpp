@@ -516,3 +516,83 @@ TEST_F(Ddi, InRealTimeTheBoardCyclesByItself) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(Ddi, ReadWriteDataWritesAndReadsInOneCall) {
+  open();
+  start();
+  std::uint8_t out[6] = {0x00, 0x06, 0, 0, 0, 0};
+  std::uint8_t in[6] = {};
+  T_DDI_DTI_ACCESS w{6, kMc, DDI_WORD, out};
+  T_DDI_DTI_ACCESS r{6, kMc, DDI_LWORD, in};
+  EXPECT_EQ(DDI_DTI_ReadWriteData(data_, &w, &r), ERR_INVLD_DATA_CONS);  // 6 bytes are no LWORDs
+  r.dataCons = DDI_WORD;
+  bool ready = false;
+  for (int k = 0; k < 4000 && !ready; ++k) {
+    ASSERT_EQ(DDI_DTI_ReadWriteData(data_, &w, &r), ERR_OK);
+    ready = ((in[0] << 8 | in[1]) & 0x6F) == 0x21;  // SHUTDOWN took the MC6000 to READY
+  }
+  EXPECT_TRUE(ready);
+  IBDDIHND wo = 0;
+  ASSERT_EQ(DDI_DevOpenNode(DDI_MAILBOX_NODE, DDI_WRITE, &wo), ERR_OK);
+  std::uint8_t b[8];
+  T_DDI_MXI_ACCESS m{0, sizeof b, 0, b};
+  EXPECT_EQ(DDI_MXI_RcvMessage(wo, &m), ERR_INVLD_PERM);
+  EXPECT_EQ(DDI_MXI_RcvMessage(mbx_, nullptr), ERR_INVLD_PARAM);
+  EXPECT_EQ(DDI_DevCloseNode(wo), ERR_OK);
+}
+
+TEST_F(Ddi, AServoLostDuringARequestEndsItsAssociationWithAnAbortIndication) {
+  setenv("IBS_DDI_SCENARIO",
+         write_file("ddi_pcp_lost.toml", R"(duration = "10 s"
+[bus]
+cycle_time = "1 ms"
+[[device]]
+name = "servo"
+type = "mc6000"
+[[timeline]]
+at = "300 ms"
+device = "servo"
+fault = "lost"
+duration = "2 s"
+)").c_str(),
+         1);
+  open();
+  start(1);
+  EXPECT_EQ(call({S_PCP_INITIATE, 3, 0x0102, 0, 0}), (Words{0x808B, 4, 0x0102, 0, 134, 134}));
+  std::uint8_t b[2];
+  for (int k = 0; k < 310; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);  // past 300 ms: the servo is away
+  ASSERT_EQ(send({S_PCP_READ, 3, 0x0202, 0x5C00 + 406, 0}), ERR_OK);
+  std::uint16_t type = 0;
+  // No confirmation: the PCP link's acknowledgement timeout (100 ms) resets the channel before the
+  // request's own timeout would, and the board reports an Abort indication, reason 2 (link reset).
+  EXPECT_EQ(receive(700, &type), (Words{S_PCP_ABORT_IND, 2, 2, 2}));
+  EXPECT_EQ(type, DDI_MSG_INDICATION);
+  EXPECT_EQ(diag() & DIAG_PF, DIAG_PF);
+}
+
+TEST_F(Ddi, StoppingTheDataTransferTripsTheDrivesBusWatchdog) {
+  setenv("IBS_DDI_SCENARIO",
+         write_file("ddi_watchdog.toml", R"(duration = "10 s"
+[bus]
+cycle_time = "1 ms"
+[[device]]
+name = "servo"
+type = "mc6000"
+watchdog_ms = 50
+)").c_str(),
+         1);
+  open();
+  start(1);
+  EXPECT_TRUE(drive_to(kMc, kMc, {0x0006, 0, 0}, 0x21));
+  ASSERT_EQ(call({S_STOP_DATA_TRANSFER, 0}), (Words{0x8702, 1, RES_OK}));
+  std::uint8_t b[2];
+  for (int k = 0; k < 100; ++k) ASSERT_EQ(read(0, 2, b), ERR_IB_STOPPED);  // 100 ms without a bus
+  ASSERT_EQ(call({S_START_DATA_TRANSFER, 0}), (Words{0x8701, 1, RES_OK}));
+  bool fault = false;
+  for (int k = 0; k < 50 && !fault; ++k) fault = (read_words(kMc, 1)[0] & 0x4F) == 0x08;
+  EXPECT_TRUE(fault);  // E-OP1: the MC6000's 409-BUTWD saw no valid cycle for 50 ms
+}
+
+}  // namespace
