@@ -50,57 +50,87 @@ BENCHMARK(BM_MasterCycleFullBus);
 // Arg 0: a new read for one PCP device each cycle, in turn (traffic spread over the cycles, as a
 // master's requests arrive); arg 1: a read for all 62 in the same cycle every 256 cycles (the
 // burst: 62 Initiates start together).
-void BM_MasterCycleFullBusPercentiles(benchmark::State& st) {
-  const bool burst = st.range(0) == 1;
-  std::vector<interbus::DeviceSpec> specs;
-  std::vector<std::unique_ptr<devices::DeviceDriver>> drivers;
-  const auto with_pcp = devices::mc6000::make_layout(11, 2);
-  const auto without = devices::mc6000::make_layout(12, 2);
-  std::vector<std::size_t> status_at;
-  std::size_t offset = 0;
-  for (int i = 0; i < 64; ++i) {
-    const auto& layout = i < 62 ? with_pcp : without;
-    specs.push_back({"mc" + std::to_string(i), interbus::IdCode{layout.id_code}, std::nullopt});
-    drivers.push_back(std::make_unique<devices::Mc6000Driver>(layout));
-    status_at.push_back(offset);  // process data in its own image, PCP words in theirs
-    offset += static_cast<std::size_t>(layout.pd_words);
+// The bus of the percentile benchmarks, its loop and its traffic; the same cycles every time.
+struct FullBusWithPcp {
+  explicit FullBusWithPcp(bool burst_traffic) : burst(burst_traffic) {
+    std::vector<interbus::DeviceSpec> specs;
+    std::vector<std::unique_ptr<devices::DeviceDriver>> drivers;
+    const auto with_pcp = devices::mc6000::make_layout(11, 2);
+    const auto without = devices::mc6000::make_layout(12, 2);
+    std::vector<std::size_t> status_at;
+    std::size_t offset = 0;
+    for (int i = 0; i < 64; ++i) {
+      const auto& layout = i < 62 ? with_pcp : without;
+      specs.push_back({"mc" + std::to_string(i), interbus::IdCode{layout.id_code}, std::nullopt});
+      drivers.push_back(std::make_unique<devices::Mc6000Driver>(layout));
+      status_at.push_back(offset);  // process data in its own image, PCP words in theirs
+      offset += static_cast<std::size_t>(layout.pd_words);
+    }
+    loop = std::make_unique<MasterLoop>(interbus::make_bus_config(specs), std::move(drivers));
+    loop->initial(image);
+    constexpr Word kStatus[] = {0x0637, 0x0231, 0x0233, 0x0208};  // ENABLED, READY, ON, FAULT
+    for (std::size_t i = 0; i < 64; ++i) {
+      loop->driver(i).sequencer().request(drivecom::Target::enabled, 0ns);
+      loop->driver(i).set_reference(1000.0 + static_cast<double>(i));
+      image.in[status_at[i]] = kStatus[i % 4];
+    }
   }
-  MasterLoop loop(interbus::make_bus_config(specs), std::move(drivers));
-  interbus::ProcessImage image;
-  loop.initial(image);
-  std::vector<master::LinkState> links(64);
-  constexpr Word kStatus[] = {0x0637, 0x0231, 0x0233, 0x0208};  // ENABLED, READY, ON, FAULT
-  for (std::size_t i = 0; i < 64; ++i) {
-    loop.driver(i).sequencer().request(drivecom::Target::enabled, 0ns);
-    loop.driver(i).set_reference(1000.0 + static_cast<double>(i));
-    image.in[status_at[i]] = kStatus[i % 4];
-  }
-  std::vector<std::uint32_t> ns;
-  ns.reserve(static_cast<std::size_t>(st.max_iterations));
-  Time now{0};
-  std::uint64_t k = 0;
-  for (auto _ : st) {
+  // Cycle k: its traffic submitted, then the cycle timed; returns its time in ns.
+  std::uint32_t cycle(std::uint64_t k) {
     if (burst && k % 256 == 0) {
-      for (std::size_t i = 0; i < 62; ++i) loop.driver(i).parameters().submit(devices::ParamOp::read, 85, 0);
+      for (std::size_t i = 0; i < 62; ++i) loop->driver(i).parameters().submit(devices::ParamOp::read, 85, 0);
     } else if (!burst) {
-      loop.driver(k % 62).parameters().submit(devices::ParamOp::read, 85, 0);
+      loop->driver(k % 62).parameters().submit(devices::ParamOp::read, 85, 0);
     }
     const auto t0 = std::chrono::steady_clock::now();
-    loop.cycle(image, now, master::Exchange{true, links});
+    loop->cycle(image, now, master::Exchange{true, links});
     const auto t1 = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(image.out.data());
-    ns.push_back(static_cast<std::uint32_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count()));
     now += 1ms;
-    ++k;
+    return static_cast<std::uint32_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count());
   }
-  // The same percentiles `ibs run` reports (sim::timing_stats).
-  const TimingStats t = timing_stats(ns, 1ms, {});
-  st.counters["p50_ns"] = t.median_ns;
-  st.counters["p99_ns"] = t.p99_ns;
-  st.counters["p999_ns"] = t.p999_ns;
-  st.counters["max_ns"] = t.max_ns;
+  void report(benchmark::State& st, const std::vector<std::uint32_t>& ns) const {
+    // The same percentiles `ibs run` reports (sim::timing_stats).
+    const TimingStats t = timing_stats(ns, 1ms, {});
+    st.counters["p50_ns"] = t.median_ns;
+    st.counters["p99_ns"] = t.p99_ns;
+    st.counters["p999_ns"] = t.p999_ns;
+    st.counters["max_ns"] = t.max_ns;
+  }
+
+  bool burst;
+  std::unique_ptr<MasterLoop> loop;
+  interbus::ProcessImage image;
+  std::vector<master::LinkState> links = std::vector<master::LinkState>(64);
+  Time now{0};
+};
+
+void BM_MasterCycleFullBusPercentiles(benchmark::State& st) {
+  FullBusWithPcp bus(st.range(0) == 1);
+  std::vector<std::uint32_t> ns;
+  ns.reserve(static_cast<std::size_t>(st.max_iterations));
+  std::uint64_t k = 0;
+  for (auto _ : st) ns.push_back(bus.cycle(k++));
+  bus.report(st, ns);
 }
 BENCHMARK(BM_MasterCycleFullBusPercentiles)->Arg(0)->Arg(1)->Iterations(1'000'000)->Unit(benchmark::kNanosecond);
+
+// The same million cycles three times over, each from a new loop (the cycles are deterministic:
+// the same inputs, the same work), and per cycle the least of its three times: what the code
+// costs, without the host's interrupts and preemptions, which seldom hit the same cycle three
+// times. The difference to the benchmark above is the machine's share of its tail.
+void BM_MasterCycleFullBusPercentilesMinOf3(benchmark::State& st) {
+  constexpr std::uint64_t kCycles = 1'000'000;
+  std::vector<std::uint32_t> best(kCycles, 0xFFFFFFFF);
+  for (auto _ : st) {
+    for (int rep = 0; rep < 3; ++rep) {
+      FullBusWithPcp bus(st.range(0) == 1);
+      for (std::uint64_t k = 0; k < kCycles; ++k) best[k] = std::min(best[k], bus.cycle(k));
+    }
+  }
+  FullBusWithPcp(false).report(st, best);
+}
+BENCHMARK(BM_MasterCycleFullBusPercentilesMinOf3)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 Scenario full_bus(Duration duration) {
   Scenario s;
