@@ -90,50 +90,10 @@ void Simulator::cycle_master(Time t) {
 }
 
 void Simulator::observe_master(Time t) {
-  if (external_ != nullptr) {
-    // Another master: what ibs's drivers saw is not there; the devices' watchdog errors are.
-    for (auto& d : devices_) {
-      const auto err = d->error_at_cycle;
-      if (err && err != d->reported_error) {
-        summary_.faults.push_back({t, d->cfg.name, "watchdog", std::string((*d->kind)->facts().watchdog_error)});
-      }
-      d->reported_error = err;
-    }
-    return;
-  }
   for (auto& d : devices_) {
-    devices::DeviceDriver& drv = loop_->driver(d->index);
-    const auto seen = drv.sequencer().report().state_seen;
-    auto& states = summary_.devices[d->index].states;
-    if (seen && seen != d->last_seen) {
-      states.push_back({t, std::string(drivecom::to_string(*seen))});
-      d->last_seen = seen;
-    }
-    // A reference the master sees reached (status bit 10 while ENABLED, the actual at it).
-    const std::span<const Word> in = d->in_slot;
-    // (the actual must be at the new reference too: the status word may still show the old one)
-    const bool at_reference = std::fabs(drv.actual() - d->reached_for) <= 0.01 * std::fabs(d->reached_for) + 0.1;
-    if (!d->reached_reported && !in.empty() && seen == State::enabled &&
-        bit(in[0], drivecom::sw::kReferenceReached) && at_reference) {
-      d->reached_reported = true;
-      states.push_back({t, "reference " + fmt_value(d->reached_for) + " " + std::string(drv.unit()) +
-                               " reached (actual " + fmt_value(drv.actual()) + ")"});
-    }
-    if (d->waiting_for && (seen == d->waiting_for || t >= d->wait_deadline)) {
-      if (seen != d->waiting_for) {
-        states.push_back({t, "wait for " + std::string(drivecom::to_string(*d->waiting_for)) + " timed out"});
-      }
-      d->waiting_for.reset();
-    }
-    const drivecom::Report& rep = drv.sequencer().report();
-    if (rep.phase != drivecom::Phase::failed) {
-      d->failure_reported = false;
-    } else if (!d->failure_reported) {
-      d->failure_reported = true;
-      const std::string why = drivecom::describe(rep);
-      states.push_back({t, "master: request failed (" + std::string(drivecom::to_string(rep.failure)) + ")"});
-      summary_.devices[d->index].failures.push_back({t, std::string(drivecom::to_string(rep.failure)), why});
-    }
+    // Under another master (ExternalMaster) what ibs's drivers saw is not there; the devices'
+    // watchdog errors are.
+    if (external_ == nullptr) observe_driver(*d, t);
     const auto err = d->error_at_cycle;
     if (err && err != d->reported_error) {
       const std::string what((*d->kind)->facts().watchdog_error);
@@ -155,6 +115,41 @@ void Simulator::observe_master(Time t) {
       r.result = pa.describe(r.id);
     }
     if (!pa.closing()) r.finished = t;
+  }
+}
+
+void Simulator::observe_driver(Device& d, Time t) {
+  devices::DeviceDriver& drv = loop_->driver(d.index);
+  const auto seen = drv.sequencer().report().state_seen;
+  auto& states = summary_.devices[d.index].states;
+  if (seen && seen != d.last_seen) {
+    states.push_back({t, std::string(drivecom::to_string(*seen))});
+    d.last_seen = seen;
+  }
+  // A reference the master sees reached (status bit 10 while ENABLED, the actual at it).
+  const std::span<const Word> in = d.in_slot;
+  // (the actual must be at the new reference too: the status word may still show the old one)
+  const bool at_reference = std::fabs(drv.actual() - d.reached_for) <= 0.01 * std::fabs(d.reached_for) + 0.1;
+  if (!d.reached_reported && !in.empty() && seen == State::enabled &&
+      bit(in[0], drivecom::sw::kReferenceReached) && at_reference) {
+    d.reached_reported = true;
+    states.push_back({t, "reference " + fmt_value(d.reached_for) + " " + std::string(drv.unit()) +
+                             " reached (actual " + fmt_value(drv.actual()) + ")"});
+  }
+  if (d.waiting_for && (seen == d.waiting_for || t >= d.wait_deadline)) {
+    if (seen != d.waiting_for) {
+      states.push_back({t, "wait for " + std::string(drivecom::to_string(*d.waiting_for)) + " timed out"});
+    }
+    d.waiting_for.reset();
+  }
+  const drivecom::Report& rep = drv.sequencer().report();
+  if (rep.phase != drivecom::Phase::failed) {
+    d.failure_reported = false;
+  } else if (!d.failure_reported) {
+    d.failure_reported = true;
+    const std::string why = drivecom::describe(rep);
+    states.push_back({t, "master: request failed (" + std::string(drivecom::to_string(rep.failure)) + ")"});
+    summary_.devices[d.index].failures.push_back({t, std::string(drivecom::to_string(rep.failure)), why});
   }
 }
 

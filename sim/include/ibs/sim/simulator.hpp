@@ -247,6 +247,7 @@ class Simulator {
   void apply_random_faults(Time t);
   void fault(Time t, std::size_t i, Action kind, Duration duration, int count);
   void observe_master(Time t);
+  void observe_driver(Device& d, Time t);  // what ibs's driver of `d` saw, into the summary
   Time next_sample_time(Device& d);
   void reschedule_front(Time at);
   void finish();
