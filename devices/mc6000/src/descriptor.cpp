@@ -7,8 +7,10 @@
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/pcp/parameters.hpp"
 
+#if !IBS_EMBEDDED
 #include "ibs/devices/mc6000/pcp_trace.hpp"
 #include "ibs/devices/mc6000/pd_trace.hpp"
+#endif
 
 namespace ibs::devices::mc6000 {
 
@@ -48,7 +50,9 @@ constexpr DriveFacts kFacts{
     .write_range = " (-2^31..2^32-1, 32 bits)",
     .watchdog_error = "error 16 (E-OP1), location 1: bus watchdog 409-BUTWD ran out",
     .timing_syntax = "mc6000:SUPI[:local|remote]",
+#if !IBS_EMBEDDED
     .channel_words = trace::WordsKind::pcp,
+#endif
     .channel_name = "PCP",
 };
 
@@ -163,6 +167,7 @@ class Descriptor final : public DriveDescriptor {
   }
   std::string explain_status(Word status) const override { return explain_status_word(status); }
 
+#if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header& h) const override {
     DeviceSettings s;
     s.supi = h.supi;
@@ -189,6 +194,7 @@ class Descriptor final : public DriveDescriptor {
   std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const override {
     return make_pcp_explainer(h);
   }
+#endif
 
   std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool) const override {
     if (supi && ibcnf) return std::nullopt;

@@ -10,8 +10,10 @@
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
 
+#if !IBS_EMBEDDED
 #include "ibs/devices/vf1000/pd_trace.hpp"
 #include "ibs/vf1000_channel/trace_adapters.hpp"
+#endif
 
 namespace ibs::devices::vf1000 {
 
@@ -70,7 +72,9 @@ constexpr DriveFacts kFacts{
     .write_range = " (-32768..65535, 16 bits)",
     .watchdog_error = "error 12 (E-IBS): process-data watchdog 906-IB-WD ran out",
     .timing_syntax = kName,
+#if !IBS_EMBEDDED
     .channel_words = trace::WordsKind::comm,
+#endif
     .channel_name = "the communication word",
 };
 
@@ -127,6 +131,7 @@ class Descriptor final : public DriveDescriptor {
   }
   std::string explain_status(Word status) const override { return explain_status_word(status); }
 
+#if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header&) const override { return {}; }
   void write_trace_settings(const Configuration&, trace::Header&) const override {}
   std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration&) const override {
@@ -144,6 +149,7 @@ class Descriptor final : public DriveDescriptor {
   std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header&) const override {
     return vf1000_channel::make_comm_explainer();
   }
+#endif
 
   std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const override {
     if (!supi && !ibcnf && !bus) return std::nullopt;

@@ -3,7 +3,8 @@
 // (registry.hpp); the simulator, the scenario reader, the command line and the replay adapters ask
 // the descriptor and never name a concrete drive. Everything here is configuration-time work: it
 // may allocate, and reports refused settings as a SettingsRefusal (or, where exceptions are on,
-// also as a SettingsError).
+// also as a SettingsError). The embedded build (IBS_EMBEDDED), which has no traces, leaves out
+// the trace part.
 #pragma once
 
 #include <cstddef>
@@ -21,9 +22,11 @@
 #include "ibs/interbus/id_code.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
+
+#if !IBS_EMBEDDED
 #include "ibs/interbus/replay.hpp"
 #include "ibs/interbus/trace.hpp"
-
+#endif
 #if IBS_EXCEPTIONS
 #include <stdexcept>
 #endif
@@ -144,7 +147,9 @@ struct DriveFacts {
   std::string_view timing_syntax;
   // The parameter channel's trace words besides `words: pd` (comm, pcp), if the drive has one,
   // and how a message names it ("the communication word", "PCP").
+#if !IBS_EMBEDDED
   std::optional<trace::WordsKind> channel_words;
+#endif
   std::string_view channel_name;
 };
 
@@ -185,6 +190,7 @@ class DriveDescriptor {
   [[nodiscard]] virtual std::string explain_control(Word control, Word previous) const = 0;
   [[nodiscard]] virtual std::string explain_status(Word status) const = 0;
 
+#if !IBS_EMBEDDED
   // --- traces (../shared/specs/trace-format.md) -------------------------------------------------
   // The settings a trace header gives (supi, ibcnf); the headers a recording of the device writes.
   [[nodiscard]] virtual DeviceSettings trace_settings(const trace::Header& h) const = 0;
@@ -197,6 +203,7 @@ class DriveDescriptor {
   [[nodiscard]] virtual std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const = 0;
+#endif
 
   // --- the command line ------------------------------------------------------------------------
   // `ibs layout`: a refusal of the options given (nullopt: they suit the drive), then the words.
