@@ -60,10 +60,12 @@ Error ParameterTable::validate(std::span<const ParameterInfo> params) {
     if (seen[p.number]) return refuse(ErrorCode::table_number_repeated, "number used twice");
     seen[p.number] = true;
     if (p.name.empty() || p.name.size() > 5 || !printable(p.name)) {
-      return refuse(ErrorCode::table_bad_name, "name must be 1 to 5 printable characters (4.1.3.3)");
+      return refuse(ErrorCode::table_bad_name,
+                    "name must be 1 to 5 printable characters (4.1.3.3)");
     }
     if (p.unit.size() > 5 || !printable(p.unit)) {
-      return refuse(ErrorCode::table_bad_unit, "unit must be at most 5 printable characters (4.1.3.3)");
+      return refuse(ErrorCode::table_bad_unit,
+                    "unit must be at most 5 printable characters (4.1.3.3)");
     }
     const auto n = [&p](Word w) { return raw_as_number(p.type, w); };
     if (n(p.min) < n(type_min_raw(p.type)) || n(p.max) > n(type_max_raw(p.type))) {
@@ -74,7 +76,8 @@ Error ParameterTable::validate(std::span<const ParameterInfo> params) {
     if (!in_range(p, p.default_value)) {
       return refuse(ErrorCode::table_default_outside_limits, "default outside min/max");
     }
-    if (!(p.scale > 0.0)) return refuse(ErrorCode::table_scale_not_positive, "scale must be positive");
+    if (!(p.scale > 0.0))
+      return refuse(ErrorCode::table_scale_not_positive, "scale must be positive");
   }
   return {};
 }
@@ -82,7 +85,8 @@ Error ParameterTable::validate(std::span<const ParameterInfo> params) {
 ParameterTable::ParameterTable(std::span<const ParameterInfo> params) : params_(params) {
   detail::require<std::invalid_argument>(validate(params));
   index_.fill(-1);
-  for (std::size_t i = 0; i < params.size(); ++i) index_[params[i].number] = static_cast<std::int16_t>(i);
+  for (std::size_t i = 0; i < params.size(); ++i)
+    index_[params[i].number] = static_cast<std::int16_t>(i);
 }
 
 ParameterStore::ParameterStore(std::span<const ParameterInfo> params)

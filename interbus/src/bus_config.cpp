@@ -39,28 +39,28 @@ Expected<Device> place(const DeviceSpec& s, std::size_t position) {
   const auto ring = id.ring_words();
   if (!ring) {
     return refuse(ErrorCode::bus_unknown_length_code, s, position,
-           "ID code " + to_hex(id) + " has the unknown length code " + length_code_hex(id) +
-               " in bits 8..12 (known: 00H..07H, 0EH, 0FH, 11H..13H, 15H..17H)");
+                  "ID code " + to_hex(id) + " has the unknown length code " + length_code_hex(id) +
+                      " in bits 8..12 (known: 00H..07H, 0EH, 0FH, 11H..13H, 15H..17H)");
   }
   const auto pcp = id.pcp_words();
   if (!pcp) {
     return refuse(ErrorCode::bus_unassigned_pcp_width, s, position,
-           "ID code " + to_hex(id) +
-               " is a PCP device with the unassigned PCP width bits 10b "
-               "(11b = 1 word, 00b = 2 words, 01b = 4 words)");
+                  "ID code " + to_hex(id) +
+                      " is a PCP device with the unassigned PCP width bits 10b "
+                      "(11b = 1 word, 00b = 2 words, 01b = 4 words)");
   }
   if (*pcp > *ring) {
     return refuse(ErrorCode::bus_pcp_wider_than_device, s, position,
-           "ID code " + to_hex(id) + " has a PCP channel of " +
-               n_words(static_cast<std::size_t>(*pcp)) + ", more than its " +
-               n_words(static_cast<std::size_t>(*ring)) + " on the bus");
+                  "ID code " + to_hex(id) + " has a PCP channel of " +
+                      n_words(static_cast<std::size_t>(*pcp)) + ", more than its " +
+                      n_words(static_cast<std::size_t>(*ring)) + " on the bus");
   }
   const Direction dir = id.direction();
   const auto pd = static_cast<std::size_t>(*ring - *pcp);
   if (dir == Direction::none && pd > 0) {
     return refuse(ErrorCode::bus_no_direction, s, position,
-           "ID code " + to_hex(id) + " has " + n_words(pd) +
-               " of process data but no direction (bits 1..0 = 00b)");
+                  "ID code " + to_hex(id) + " has " + n_words(pd) +
+                      " of process data but no direction (bits 1..0 = 00b)");
   }
   Device d;
   d.name = s.name;
@@ -82,8 +82,8 @@ Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring) {
   if (ring.size() > kMaxDevices) {
     const DeviceSpec& s = ring[kMaxDevices];
     return refuse(ErrorCode::bus_too_many_devices, s, kMaxDevices,
-           "the ring holds " + std::to_string(ring.size()) + " devices, the limit is " +
-               std::to_string(kMaxDevices) + " devices per INTERBUS system");
+                  "the ring holds " + std::to_string(ring.size()) + " devices, the limit is " +
+                      std::to_string(kMaxDevices) + " devices per INTERBUS system");
   }
   BusConfig c;
   c.devices.reserve(ring.size());
@@ -105,9 +105,9 @@ Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring) {
       ++c.remote_devices;
       if (c.remote_devices > kMaxRemoteDevices) {
         return refuse(ErrorCode::bus_too_many_remote_devices, s, i,
-               "remote bus device number " + std::to_string(c.remote_devices) +
-                   " exceeds the limit of " + std::to_string(kMaxRemoteDevices) +
-                   " remote bus devices");
+                      "remote bus device number " + std::to_string(c.remote_devices) +
+                          " exceeds the limit of " + std::to_string(kMaxRemoteDevices) +
+                          " remote bus devices");
       }
       segment_size = 0;
       segment_after = "'" + s.name + "'";
@@ -115,9 +115,9 @@ Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring) {
       ++segment_size;
       if (segment_size > kMaxLocalSegmentDevices) {
         return refuse(ErrorCode::bus_local_segment_too_long, s, i,
-               "local bus segment after " + segment_after + " would hold " +
-                   std::to_string(segment_size) + " devices, the limit is " +
-                   std::to_string(kMaxLocalSegmentDevices) + " per local bus segment");
+                      "local bus segment after " + segment_after + " would hold " +
+                          std::to_string(segment_size) + " devices, the limit is " +
+                          std::to_string(kMaxLocalSegmentDevices) + " per local bus segment");
       }
     }
 
@@ -125,8 +125,9 @@ Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring) {
       ++c.pcp_devices;
       if (c.pcp_devices > kMaxPcpDevices) {
         return refuse(ErrorCode::bus_too_many_pcp_devices, s, i,
-               "PCP device number " + std::to_string(c.pcp_devices) + " exceeds the limit of " +
-                   std::to_string(kMaxPcpDevices) + " PCP devices");
+                      "PCP device number " + std::to_string(c.pcp_devices) +
+                          " exceeds the limit of " + std::to_string(kMaxPcpDevices) +
+                          " PCP devices");
       }
     }
 
@@ -135,15 +136,15 @@ Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring) {
     d.pcp = Slice{c.pcp_words, d.pcp_words};
     if (d.in.end() > kMaxProcessWords) {
       return refuse(ErrorCode::bus_too_many_input_words, s, i,
-             "its " + n_words(d.pd_in_words) + " of input data would end at word " +
-                 std::to_string(d.in.end()) + ", the limit is " + std::to_string(kMaxProcessWords) +
-                 " input words (4096 bits)");
+                    "its " + n_words(d.pd_in_words) + " of input data would end at word " +
+                        std::to_string(d.in.end()) + ", the limit is " +
+                        std::to_string(kMaxProcessWords) + " input words (4096 bits)");
     }
     if (d.out.end() > kMaxProcessWords) {
       return refuse(ErrorCode::bus_too_many_output_words, s, i,
-             "its " + n_words(d.pd_out_words) + " of output data would end at word " +
-                 std::to_string(d.out.end()) + ", the limit is " +
-                 std::to_string(kMaxProcessWords) + " output words (4096 bits)");
+                    "its " + n_words(d.pd_out_words) + " of output data would end at word " +
+                        std::to_string(d.out.end()) + ", the limit is " +
+                        std::to_string(kMaxProcessWords) + " output words (4096 bits)");
     }
     c.in_words = d.in.end();
     c.out_words = d.out.end();

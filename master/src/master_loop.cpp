@@ -8,7 +8,8 @@ namespace ibs::master {
 
 Error MasterLoop::validate(const interbus::BusConfig& config, std::size_t drivers) {
   if (drivers != config.devices.size()) {
-    return {ErrorCode::master_driver_count, "master loop: " + std::to_string(drivers) + " drivers for " +
+    return {ErrorCode::master_driver_count, "master loop: " + std::to_string(drivers) +
+                                                " drivers for " +
                                                 std::to_string(config.devices.size()) + " devices"};
   }
   for (const interbus::Device& d : config.devices) {

@@ -8,7 +8,8 @@ namespace ibs::pcp {
 namespace {
 
 Error refuse(ErrorCode code, const ParameterInfo& p, const std::string& why) {
-  return {code, "parameter table: " + std::to_string(p.number) + "-" + std::string(p.name) + ": " + why};
+  return {code,
+          "parameter table: " + std::to_string(p.number) + "-" + std::string(p.name) + ": " + why};
 }
 
 bool fits(const ParameterInfo& p, std::int64_t v) {
@@ -26,16 +27,19 @@ std::uint32_t raw_of(const ParameterInfo& p, std::int64_t v) {
 Error ParameterStore::validate(std::span<const ParameterInfo> table) {
   if (table.size() > kMaxParameters) {
     return {ErrorCode::table_too_large, "parameter table has " + std::to_string(table.size()) +
-                                            " rows; the store holds at most " + std::to_string(kMaxParameters)};
+                                            " rows; the store holds at most " +
+                                            std::to_string(kMaxParameters)};
   }
   for (std::size_t i = 0; i < table.size(); ++i) {
     const ParameterInfo& p = table[i];
-    if (p.number > kMaxParameterNumber) return refuse(ErrorCode::table_number_out_of_range, p, "number above 999");
+    if (p.number > kMaxParameterNumber)
+      return refuse(ErrorCode::table_number_out_of_range, p, "number above 999");
     if (p.name.empty() || p.name.size() > 5) {
       return refuse(ErrorCode::table_bad_name, p, "name must have 1 to 5 characters");
     }
     for (std::size_t j = 0; j < i; ++j) {
-      if (table[j].number == p.number) return refuse(ErrorCode::table_number_repeated, p, "number appears twice");
+      if (table[j].number == p.number)
+        return refuse(ErrorCode::table_number_repeated, p, "number appears twice");
     }
     if (!fits(p, p.min) || !fits(p, p.max) || !fits(p, p.default_value)) {
       return refuse(ErrorCode::table_limits_outside_type, p,

@@ -67,7 +67,8 @@ Error Server::validate(const ServerConfig& cfg, std::span<const ParameterInfo> t
   }
   if (cfg.latency && (cfg.latency->processing_min < Duration::zero() ||
                       cfg.latency->processing_max < cfg.latency->processing_min)) {
-    return {ErrorCode::channel_latency_invalid, "PCP server latency: need 0 <= processing_min <= processing_max"};
+    return {ErrorCode::channel_latency_invalid,
+            "PCP server latency: need 0 <= processing_min <= processing_max"};
   }
   if (Error e = ParameterStore::validate(table)) return e;
   return Link::validate(link_config(cfg));

@@ -51,22 +51,42 @@ const std::vector<Refused>& refused() {
          std::vector<DeviceSpec> ring;
          for (std::size_t s = 0; s < 8; ++s) {
            ring.push_back({"bk" + std::to_string(s), kBusTerminal, {}});
-           for (const DeviceSpec& d : many(63, kLocalNoData, "l" + std::to_string(s) + "_")) ring.push_back(d);
+           for (const DeviceSpec& d : many(63, kLocalNoData, "l" + std::to_string(s) + "_"))
+             ring.push_back(d);
          }
          ring.push_back({"extra", kBusTerminal, {}});
          return ring;
        },
        ErrorCode::bus_too_many_devices},
-      {"unnamed", [] { return std::vector<DeviceSpec>{{"", kVf1000, {}}}; }, ErrorCode::bus_device_unnamed},
-      {"repeated name", [] { return std::vector<DeviceSpec>{{"vf", kVf1000, {}}, {"vf", kVf1000, {}}}; },
+      {"unnamed",
+       [] {
+         return std::vector<DeviceSpec>{{"", kVf1000, {}}};
+       },
+       ErrorCode::bus_device_unnamed},
+      {"repeated name",
+       [] {
+         return std::vector<DeviceSpec>{{"vf", kVf1000, {}}, {"vf", kVf1000, {}}};
+       },
        ErrorCode::bus_name_repeated},
-      {"unknown length code", [] { return std::vector<DeviceSpec>{{"odd", IdCode{0x0803}, {}}}; },
+      {"unknown length code",
+       [] {
+         return std::vector<DeviceSpec>{{"odd", IdCode{0x0803}, {}}};
+       },
        ErrorCode::bus_unknown_length_code},
-      {"unassigned PCP width", [] { return std::vector<DeviceSpec>{{"pcp", IdCode{0x2DA}, {}}}; },
+      {"unassigned PCP width",
+       [] {
+         return std::vector<DeviceSpec>{{"pcp", IdCode{0x2DA}, {}}};
+       },
        ErrorCode::bus_unassigned_pcp_width},
-      {"PCP wider than the device", [] { return std::vector<DeviceSpec>{{"narrow", IdCode{0x1D0}, {}}}; },
+      {"PCP wider than the device",
+       [] {
+         return std::vector<DeviceSpec>{{"narrow", IdCode{0x1D0}, {}}};
+       },
        ErrorCode::bus_pcp_wider_than_device},
-      {"no direction", [] { return std::vector<DeviceSpec>{{"nodir", IdCode{0x0300}, {}}}; },
+      {"no direction",
+       [] {
+         return std::vector<DeviceSpec>{{"nodir", IdCode{0x0300}, {}}};
+       },
        ErrorCode::bus_no_direction},
       {"too many remote devices", [] { return many(255, kBusTerminal, "r"); },
        ErrorCode::bus_too_many_remote_devices},
@@ -77,7 +97,8 @@ const std::vector<Refused>& refused() {
          return ring;
        },
        ErrorCode::bus_local_segment_too_long},
-      {"too many PCP devices", [] { return many(63, kRemotePcp1, "p"); }, ErrorCode::bus_too_many_pcp_devices},
+      {"too many PCP devices", [] { return many(63, kRemotePcp1, "p"); },
+       ErrorCode::bus_too_many_pcp_devices},
       {"too many input words",
        [] {
          std::vector<DeviceSpec> ring = many(16, kRemoteIn16, "i");

@@ -23,7 +23,8 @@ TEST(Error, NoErrorIsFalseAnErrorIsTrue) {
   const Error refused{ErrorCode::master_driver_count, "master loop: 1 drivers for 2 devices"};
   EXPECT_FALSE(refused.ok());
   EXPECT_TRUE(static_cast<bool>(refused));
-  EXPECT_EQ(refused, (Error{ErrorCode::master_driver_count, "master loop: 1 drivers for 2 devices"}));
+  EXPECT_EQ(refused,
+            (Error{ErrorCode::master_driver_count, "master loop: 1 drivers for 2 devices"}));
   EXPECT_NE(refused, none);
 }
 
@@ -63,7 +64,8 @@ struct Refusal : Error {
 };
 
 TEST(Expected, CarriesAnErrorOfItsOwnType) {
-  const Expected<int, Refusal> bad = Refusal{{ErrorCode::setting_out_of_range, "too high"}, "watchdog_ms"};
+  const Expected<int, Refusal> bad =
+      Refusal{{ErrorCode::setting_out_of_range, "too high"}, "watchdog_ms"};
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.error().setting, "watchdog_ms");
   EXPECT_EQ(bad.error().message, "too high");
@@ -94,7 +96,8 @@ TEST(Require, NothingForNoErrorAndTheExceptionWithTheMessageOtherwise) {
   }
   // An exception that can be made from the error itself is: it keeps what the error carries.
   try {
-    detail::require<WithSetting>(Refusal{{ErrorCode::setting_out_of_range, "too high"}, "reset_time"});
+    detail::require<WithSetting>(
+        Refusal{{ErrorCode::setting_out_of_range, "too high"}, "reset_time"});
     FAIL() << "no exception";
   } catch (const WithSetting& e) {
     EXPECT_STREQ(e.what(), "too high");

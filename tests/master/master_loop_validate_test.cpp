@@ -21,7 +21,8 @@ using namespace std::chrono_literals;
 interbus::BusConfig servo_and_fan() {
   const devices::Configuration mc = devices::mc6000::descriptor().configure({});
   const devices::Configuration vf = devices::vf1000::descriptor().configure({});
-  const std::vector<interbus::DeviceSpec> specs{{"servo", mc.id_code, mc.bus}, {"fan", vf.id_code, vf.bus}};
+  const std::vector<interbus::DeviceSpec> specs{{"servo", mc.id_code, mc.bus},
+                                                {"fan", vf.id_code, vf.bus}};
   return interbus::make_bus_config(specs);
 }
 
@@ -56,14 +57,16 @@ TEST(MasterLoopValidate, RefusesADriverCountThatIsNotTheDevices) {
 
 TEST(MasterLoopValidate, RefusesADeviceOutsideTheProcessImage) {
   interbus::BusConfig config = servo_and_fan();
-  config.devices[1].out = interbus::Slice{interbus::kMaxProcessWords - 1, 3};  // not as make_bus_config places it
+  config.devices[1].out =
+      interbus::Slice{interbus::kMaxProcessWords - 1, 3};  // not as make_bus_config places it
   const Error e = MasterLoop::validate(config, 2);
   EXPECT_EQ(e.code, ErrorCode::master_device_outside_image);
   EXPECT_EQ(e.message, "master loop: device 'fan' lies outside the process image");
   EXPECT_EQ(e.message, thrown(config, 2));
   config = servo_and_fan();
   config.devices[0].pcp = interbus::Slice{interbus::kMaxPcpWords, 1};
-  EXPECT_EQ(MasterLoop::validate(config, 2).message, "master loop: device 'servo' lies outside the process image");
+  EXPECT_EQ(MasterLoop::validate(config, 2).message,
+            "master loop: device 'servo' lies outside the process image");
 }
 
 TEST(MasterLoopValidate, AnAcceptedConfigurationMakesALoopThatRuns) {

@@ -17,7 +17,8 @@ ErrorCode expected_code(int supi, int ibcnf) {
   if (ibcnf < 0 || ibcnf > 4) return ErrorCode::layout_ibcnf_out_of_range;
   if (ibcnf == 4) return ErrorCode::layout_ibcnf_unsupported;
   if (supi == 0) return ErrorCode::none;
-  const bool allowed = ibcnf == 0 || (ibcnf == 1 && supi >= 7) || ((ibcnf == 2 || ibcnf == 3) && supi >= 10);
+  const bool allowed =
+      ibcnf == 0 || (ibcnf == 1 && supi >= 7) || ((ibcnf == 2 || ibcnf == 3) && supi >= 10);
   return allowed ? ErrorCode::none : ErrorCode::layout_supi_not_allowed;
 }
 
@@ -62,10 +63,14 @@ TEST(Mc6000LayoutError, EveryPairGivesTheThrowingFormsLayoutOrItsMessage) {
 }
 
 TEST(Mc6000LayoutError, TheMessagesNameTheValueAndTheRule) {
-  EXPECT_EQ(try_make_layout(13, 2).error().message, "405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)");
-  EXPECT_EQ(try_make_layout(11, 5).error().message, "406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)");
-  EXPECT_EQ(try_make_layout(9, 4).error().message, "406-IBCNF = 4 (modified LISIM software) is not supported");
-  EXPECT_EQ(try_make_layout(7, 2).error().message, "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
+  EXPECT_EQ(try_make_layout(13, 2).error().message,
+            "405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)");
+  EXPECT_EQ(try_make_layout(11, 5).error().message,
+            "406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)");
+  EXPECT_EQ(try_make_layout(9, 4).error().message,
+            "406-IBCNF = 4 (modified LISIM software) is not supported");
+  EXPECT_EQ(try_make_layout(7, 2).error().message,
+            "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
 }
 
 TEST(Mc6000LayoutError, Supi0IsAcceptedWithAnyIbcnfBelowLisim) {

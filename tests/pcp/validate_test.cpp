@@ -34,7 +34,8 @@ std::string thrown(const std::function<void()>& make) {
   return "";
 }
 
-void expect_refused(const Error& e, ErrorCode code, const std::string& message, const std::function<void()>& make) {
+void expect_refused(const Error& e, ErrorCode code, const std::string& message,
+                    const std::function<void()>& make) {
   EXPECT_EQ(e.code, code);
   EXPECT_EQ(e.message, message);
   EXPECT_EQ(e.message, thrown(make));
@@ -118,9 +119,11 @@ TEST(PcpValidate, Server) {
                  [&] { const Server s(bad, table); });
 
   // The table as the store refuses it, then the channel as the link refuses it.
-  const std::array<ParameterInfo, 1> out{{{2, "C", DataType::usign8, Category::ram_control, 0, 9, 10, 0}}};
+  const std::array<ParameterInfo, 1> out{
+      {{2, "C", DataType::usign8, Category::ram_control, 0, 9, 10, 0}}};
   expect_refused(Server::validate(ok, out), ErrorCode::table_default_outside_limits,
-                 "parameter table: 2-C: default outside min..max", [&] { const Server s(ok, out); });
+                 "parameter table: 2-C: default outside min..max",
+                 [&] { const Server s(ok, out); });
   bad = ok;
   bad.channel_words = 3;
   expect_refused(Server::validate(bad, table), ErrorCode::channel_width_invalid,
@@ -129,44 +132,54 @@ TEST(PcpValidate, Server) {
 }
 
 TEST(PcpValidate, ParameterStore) {
-  const auto store = [](std::span<const ParameterInfo> t) { return [t] { const ParameterStore s(t); }; };
+  const auto store = [](std::span<const ParameterInfo> t) {
+    return [t] { const ParameterStore s(t); };
+  };
   EXPECT_FALSE(ParameterStore::validate(ibs::devices::mc6000::parameters()));
 
   std::vector<ParameterInfo> many(kMaxParameters + 1);
   for (std::size_t i = 0; i < many.size(); ++i) {
-    many[i] = {static_cast<std::uint16_t>(i), "X", DataType::usign8, Category::ram_control, 0, 1, 0, 0};
+    many[i] = {
+        static_cast<std::uint16_t>(i), "X", DataType::usign8, Category::ram_control, 0, 1, 0, 0};
   }
   expect_refused(ParameterStore::validate(many), ErrorCode::table_too_large,
                  "parameter table has 65 rows; the store holds at most 64", store(many));
 
-  const std::array<ParameterInfo, 1> high{{{1000, "H", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
+  const std::array<ParameterInfo, 1> high{
+      {{1000, "H", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
   expect_refused(ParameterStore::validate(high), ErrorCode::table_number_out_of_range,
                  "parameter table: 1000-H: number above 999", store(high));
-  const std::array<ParameterInfo, 1> unnamed{{{3, "", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
+  const std::array<ParameterInfo, 1> unnamed{
+      {{3, "", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
   expect_refused(ParameterStore::validate(unnamed), ErrorCode::table_bad_name,
                  "parameter table: 3-: name must have 1 to 5 characters", store(unnamed));
   const std::array<ParameterInfo, 1> long_name{
       {{3, "TOOLONG", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
   expect_refused(ParameterStore::validate(long_name), ErrorCode::table_bad_name,
                  "parameter table: 3-TOOLONG: name must have 1 to 5 characters", store(long_name));
-  const std::array<ParameterInfo, 2> dup{{{1, "A", DataType::usign8, Category::ram_control, 0, 9, 0, 0},
-                                          {1, "B", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
+  const std::array<ParameterInfo, 2> dup{
+      {{1, "A", DataType::usign8, Category::ram_control, 0, 9, 0, 0},
+       {1, "B", DataType::usign8, Category::ram_control, 0, 9, 0, 0}}};
   expect_refused(ParameterStore::validate(dup), ErrorCode::table_number_repeated,
                  "parameter table: 1-B: number appears twice", store(dup));
-  const std::array<ParameterInfo, 1> fit{{{4, "D", DataType::usign8, Category::ram_control, 0, 300, 0, 0}}};
+  const std::array<ParameterInfo, 1> fit{
+      {{4, "D", DataType::usign8, Category::ram_control, 0, 300, 0, 0}}};
   expect_refused(ParameterStore::validate(fit), ErrorCode::table_limits_outside_type,
                  "parameter table: 4-D: a limit or the default does not fit " +
                      std::string(to_string(DataType::usign8)),
                  store(fit));
-  const std::array<ParameterInfo, 1> order{{{5, "E", DataType::integer16, Category::ram_control, 5, -5, 0, 0}}};
+  const std::array<ParameterInfo, 1> order{
+      {{5, "E", DataType::integer16, Category::ram_control, 5, -5, 0, 0}}};
   expect_refused(ParameterStore::validate(order), ErrorCode::table_min_above_max,
                  "parameter table: 5-E: min above max", store(order));
-  const std::array<ParameterInfo, 1> out{{{2, "C", DataType::usign8, Category::ram_control, 0, 9, 10, 0}}};
+  const std::array<ParameterInfo, 1> out{
+      {{2, "C", DataType::usign8, Category::ram_control, 0, 9, 10, 0}}};
   expect_refused(ParameterStore::validate(out), ErrorCode::table_default_outside_limits,
                  "parameter table: 2-C: default outside min..max", store(out));
 
   // An accepted table: the store holds its defaults.
-  const std::array<ParameterInfo, 1> one{{{7, "S", DataType::integer16, Category::ram_control, -5, 5, -3, 0}}};
+  const std::array<ParameterInfo, 1> one{
+      {{7, "S", DataType::integer16, Category::ram_control, -5, 5, -3, 0}}};
   ASSERT_FALSE(ParameterStore::validate(one));
   const ParameterStore s(one);
   ASSERT_TRUE(s.get(7).has_value());

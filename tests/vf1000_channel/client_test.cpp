@@ -418,7 +418,8 @@ TEST(ClientConstruction, ValidateGivesTheCodeAndTheConstructorsMessage) {
   cfg.queue_capacity = 0;
   Error e = Client::validate(cfg);
   EXPECT_EQ(e.code, ErrorCode::channel_capacity_zero);
-  EXPECT_EQ(e.message, "vf1000_channel::Client: queue_capacity and completed_capacity must be at least 1");
+  EXPECT_EQ(e.message,
+            "vf1000_channel::Client: queue_capacity and completed_capacity must be at least 1");
   EXPECT_EQ(e.message, thrown(cfg));
   cfg = ClientConfig{};
   cfg.completed_capacity = 0;

@@ -1,8 +1,6 @@
 // The inverter side of the parameter channel: the cycle tables of seed 001, 4.1.3 fed word by
 // word, every NAK path of 4.1.4 with its 85-SIOF bit and the clearing read, power-on (6.1), the
 // EEPROM rule (4.1.3.2), parameter numbers above FFH, and values never half-written.
-#include "ibs/devices/vf1000/channel.hpp"
-#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 #include <gtest/gtest.h>
@@ -13,6 +11,9 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 
 namespace {
 
@@ -473,7 +474,8 @@ TEST(ServerConstruction, ValidateGivesTheCodeAndTheConstructorsMessage) {
   Error e = Server::validate({&only, 1});
   EXPECT_EQ(e.code, ErrorCode::table_lacks_siof);
   EXPECT_EQ(e.message,
-            "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer depends "
+            "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value "
+            "transfer depends "
             "on (seed 001, 4.1.4)");
   EXPECT_EQ(e.message, thrown({&only, 1}));
 

@@ -142,7 +142,8 @@ Error Client::validate(const ClientConfig& config) {
             "vf1000_channel::Client: queue_capacity and completed_capacity must be at least 1"};
   }
   if (config.timeout <= Duration{0}) {
-    return {ErrorCode::channel_timeout_not_positive, "vf1000_channel::Client: timeout must be positive"};
+    return {ErrorCode::channel_timeout_not_positive,
+            "vf1000_channel::Client: timeout must be positive"};
   }
   return {};
 }
@@ -155,7 +156,9 @@ const ClientConfig& checked(const ClientConfig& config) {
 }  // namespace
 
 Client::Client(const ClientConfig& config)
-    : config_(checked(config)), queue_(config.queue_capacity), completed_(config.completed_capacity) {
+    : config_(checked(config)),
+      queue_(config.queue_capacity),
+      completed_(config.completed_capacity) {
   state_ = config.start_synchronised ? ClientState::idle : ClientState::resync;
 }
 

@@ -24,7 +24,8 @@ constexpr NakReason reason_for(WriteCheck c) {
   return NakReason::invalid_value;
 }
 
-const ServerConfig& checked(const ServerConfig& config, std::span<const drive::ParameterInfo> params) {
+const ServerConfig& checked(const ServerConfig& config,
+                            std::span<const drive::ParameterInfo> params) {
   detail::require<std::invalid_argument>(Server::validate(params));
   return config;
 }
@@ -33,13 +34,14 @@ const ServerConfig& checked(const ServerConfig& config, std::span<const drive::P
 
 Error Server::validate(std::span<const drive::ParameterInfo> params) {
   if (Error e = drive::ParameterTable::validate(params)) return e;
-  const bool has_siof = std::any_of(params.begin(), params.end(), [](const drive::ParameterInfo& p) {
-    return p.number == drive::kSiofNumber;
-  });
+  const bool has_siof =
+      std::any_of(params.begin(), params.end(),
+                  [](const drive::ParameterInfo& p) { return p.number == drive::kSiofNumber; });
   if (!has_siof) {
-    return {ErrorCode::table_lacks_siof,
-            "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer "
-            "depends on (seed 001, 4.1.4)"};
+    return {
+        ErrorCode::table_lacks_siof,
+        "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer "
+        "depends on (seed 001, 4.1.4)"};
   }
   return {};
 }
@@ -88,7 +90,8 @@ Server::Server(const ServerConfig& config, ServerStart start, Time now,
       table_(params),
       store_(params),
       siof_slot_(static_cast<std::size_t>(table_.slot(drive::kSiofNumber))),
-      prog_slot_(config.factory_defaults_parameter ? table_.slot(*config.factory_defaults_parameter) : -1) {
+      prog_slot_(config.factory_defaults_parameter ? table_.slot(*config.factory_defaults_parameter)
+                                                   : -1) {
   power_on(now);
   if (start == ServerStart::power_on) return;
   state_ = ServerState::wait;

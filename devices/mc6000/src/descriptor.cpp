@@ -122,19 +122,22 @@ class Descriptor final : public DriveDescriptor {
                     "watchdog_ms");
     }
     if (s.watchdog_reaction) {
-      return refuse(ErrorCode::setting_of_another_drive,
-                    "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 always reports E-OP1 "
-                    "(seed 001, 3.2.4)",
-                    "watchdog_reaction");
+      return refuse(
+          ErrorCode::setting_of_another_drive,
+          "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 always reports E-OP1 "
+          "(seed 001, 3.2.4)",
+          "watchdog_reaction");
     }
     if (s.keypad) {
-      return refuse(ErrorCode::setting_of_another_drive,
-                    "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row",
-                    "keypad");
+      return refuse(
+          ErrorCode::setting_of_another_drive,
+          "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row",
+          "keypad");
     }
     if (s.reset_time) {
       return refuse(ErrorCode::setting_of_another_drive,
-                    "'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)", "reset_time");
+                    "'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)",
+                    "reset_time");
     }
     return {};
   }
@@ -202,7 +205,8 @@ class Descriptor final : public DriveDescriptor {
   }
 
   LayoutDescription layout(const Configuration& config) const override;
-  Expected<RingEntry, SettingsRefusal> try_ring_entry(std::span<const std::string_view> fields) const override;
+  Expected<RingEntry, SettingsRefusal> try_ring_entry(
+      std::span<const std::string_view> fields) const override;
   std::string ring_spec(const DeviceSettings& s) const override {
     return std::string(kName) + ":" + std::to_string(s.supi) + (s.bus == interbus::BusKind::local ? ":local" : "");
   }
@@ -281,29 +285,35 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
   return r;
 }
 
-Expected<RingEntry, SettingsRefusal> Descriptor::try_ring_entry(std::span<const std::string_view> f) const {
+Expected<RingEntry, SettingsRefusal> Descriptor::try_ring_entry(
+    std::span<const std::string_view> f) const {
   // SUPI[:local|remote]
   if (f.empty() || f[0].empty()) {
-    return refuse(ErrorCode::setting_missing, "the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]", "supi");
+    return refuse(ErrorCode::setting_missing,
+                  "the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]", "supi");
   }
   if (f.size() > 2) {
-    return refuse(ErrorCode::setting_too_many_fields, "too many fields, expected mc6000:SUPI[:local|remote]", "");
+    return refuse(ErrorCode::setting_too_many_fields,
+                  "too many fields, expected mc6000:SUPI[:local|remote]", "");
   }
   int supi = -1;
   const auto r = std::from_chars(f[0].data(), f[0].data() + f[0].size(), supi);
   if (r.ec != std::errc{} || r.ptr != f[0].data() + f[0].size()) {
-    return refuse(ErrorCode::setting_invalid, "405-SUPI '" + std::string(f[0]) + "' is not a number", "supi");
+    return refuse(ErrorCode::setting_invalid,
+                  "405-SUPI '" + std::string(f[0]) + "' is not a number", "supi");
   }
   if (supi < 0 || supi > kSupiMax) {
     return refuse(ErrorCode::layout_supi_out_of_range,
-                  "405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)", "supi");
+                  "405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)",
+                  "supi");
   }
   interbus::BusKind bus = interbus::BusKind::remote;
   if (f.size() == 2) {
     if (f[1] == "local") {
       bus = interbus::BusKind::local;
     } else if (f[1] != "remote") {
-      return refuse(ErrorCode::setting_invalid, "bus '" + std::string(f[1]) + "' is neither local nor remote", "bus");
+      return refuse(ErrorCode::setting_invalid,
+                    "bus '" + std::string(f[1]) + "' is neither local nor remote", "bus");
     }
   }
   // The ID code follows from 405-SUPI alone (3.2.2); 406-IBCNF changes no word count.

@@ -88,7 +88,8 @@ class Descriptor final : public DriveDescriptor {
 
   Expected<Configuration, SettingsRefusal> try_configure(const DeviceSettings& s) const override {
     if (s.bus == interbus::BusKind::local) {
-      return refuse(ErrorCode::setting_bus_refused, "a VF1000 is always a remote bus device (seed 001, 1.3)", "bus");
+      return refuse(ErrorCode::setting_bus_refused,
+                    "a VF1000 is always a remote bus device (seed 001, 1.3)", "bus");
     }
     return Configuration{s, interbus::IdCode{kIdCode}, interbus::BusKind::remote, true, kWords, 0};
   }
@@ -97,7 +98,8 @@ class Descriptor final : public DriveDescriptor {
     if (s.watchdog_ms && (*s.watchdog_ms < kMinWatchdogMs || *s.watchdog_ms > kMaxWatchdogMs)) {
       return refuse(ErrorCode::setting_out_of_range,
                     "'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (" +
-                        std::to_string(kMinWatchdogMs) + ".." + std::to_string(kMaxWatchdogMs) + ", 906-IB-WD)",
+                        std::to_string(kMinWatchdogMs) + ".." + std::to_string(kMaxWatchdogMs) +
+                        ", 906-IB-WD)",
                     "watchdog_ms");
     }
     if (s.watchdog_reaction && (*s.watchdog_reaction < 0 || *s.watchdog_reaction > kMaxWatchdogReaction)) {
@@ -107,9 +109,10 @@ class Descriptor final : public DriveDescriptor {
                     "watchdog_reaction");
     }
     if (s.reset_time && (*s.reset_time <= Duration::zero() || *s.reset_time > std::chrono::seconds(60))) {
-      return refuse(ErrorCode::setting_out_of_range,
-                    "'reset_time' must be above 0 s and at most 60 s (the self-test after RESET FAULT)",
-                    "reset_time");
+      return refuse(
+          ErrorCode::setting_out_of_range,
+          "'reset_time' must be above 0 s and at most 60 s (the self-test after RESET FAULT)",
+          "reset_time");
     }
     return {};
   }
@@ -179,11 +182,12 @@ class Descriptor final : public DriveDescriptor {
     return r;
   }
 
-  Expected<RingEntry, SettingsRefusal> try_ring_entry(std::span<const std::string_view> fields) const override {
+  Expected<RingEntry, SettingsRefusal> try_ring_entry(
+      std::span<const std::string_view> fields) const override {
     if (!fields.empty()) {
       return refuse(ErrorCode::setting_too_many_fields,
-                    "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, seed 001 "
-                    "3.1.2)",
+                    "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote "
+                    "bus, seed 001 3.1.2)",
                     "");
     }
     return RingEntry{interbus::IdCode{kIdCode}, interbus::BusKind::remote, {}, ""};

@@ -68,7 +68,8 @@ class SettingsError : public std::invalid_argument {
  public:
   SettingsError(const std::string& what, std::string_view setting, std::string_view fallback = {})
       : std::invalid_argument(what), setting_(setting), fallback_(fallback) {}
-  explicit SettingsError(const SettingsRefusal& r) : SettingsError(r.message, r.setting, r.fallback) {}
+  explicit SettingsError(const SettingsRefusal& r)
+      : SettingsError(r.message, r.setting, r.fallback) {}
   [[nodiscard]] std::string_view setting() const { return setting_; }
   [[nodiscard]] std::string_view fallback() const { return fallback_; }
 
@@ -166,7 +167,8 @@ class DriveDescriptor {
   // --- configuration -------------------------------------------------------------------------
   // Where the settings place the device on the bus; refuses a bus side or a layout the drive
   // refuses.
-  [[nodiscard]] virtual Expected<Configuration, SettingsRefusal> try_configure(const DeviceSettings& s) const = 0;
+  [[nodiscard]] virtual Expected<Configuration, SettingsRefusal> try_configure(
+      const DeviceSettings& s) const = 0;
   // Refuses a watchdog setting out of the drive's range, and a setting of another drive kind's
   // (an MC6000 given the VF1000's watchdog_reaction, keypad or reset_time).
   [[nodiscard]] virtual SettingsRefusal validate_watchdog(const DeviceSettings& s) const = 0;

@@ -15,10 +15,10 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/error.hpp"
-#include "ibs/interbus/words.hpp"
 #include "ibs/drive/data_types.hpp"
 #include "ibs/drive/siof.hpp"
+#include "ibs/interbus/error.hpp"
+#include "ibs/interbus/words.hpp"
 
 namespace ibs::drive {
 

@@ -70,12 +70,12 @@ enum class ErrorCode : std::uint8_t {
   layout_supi_not_allowed,    // a 405-SUPI the 406-IBCNF does not allow
   // A drive's settings: DriveDescriptor::try_configure, validate_watchdog, try_ring_entry
   // (devices::SettingsError; the refusal names the setting)
-  setting_bus_refused,        // a bus side the drive cannot be on
-  setting_out_of_range,       // a number outside the drive's range
-  setting_of_another_drive,   // a setting this drive kind does not have
-  setting_missing,            // a field that must be given is not
-  setting_too_many_fields,    // more fields than the drive takes
-  setting_invalid,            // a field that is not what it must be (a number, a bus side)
+  setting_bus_refused,       // a bus side the drive cannot be on
+  setting_out_of_range,      // a number outside the drive's range
+  setting_of_another_drive,  // a setting this drive kind does not have
+  setting_missing,           // a field that must be given is not
+  setting_too_many_fields,   // more fields than the drive takes
+  setting_invalid,           // a field that is not what it must be (a number, a bus side)
   // master::MasterLoop::validate (std::invalid_argument)
   master_driver_count,          // not one driver per device
   master_device_outside_image,  // a device's words outside the process image

@@ -6,7 +6,7 @@
 
 #include "ibs/interbus/build.hpp"
 #if IBS_EMBEDDED
-#error "ibs/interbus/text_file.hpp: traces, replay and file reading are not in the embedded build (docs/embedding.md)"
+#error "traces, replay and file reading are not in the embedded build (docs/embedding.md)"
 #endif
 
 #include <cstddef>

@@ -99,7 +99,8 @@ class Server {
   // Refuses a workload outside 0..1 (ErrorCode::channel_workload_out_of_range), a latency with
   // processing_min below 0 or above processing_max (ErrorCode::channel_latency_invalid), then what
   // ParameterStore::validate refuses of the table and Link::validate of the channel.
-  [[nodiscard]] static Error validate(const ServerConfig& cfg, std::span<const ParameterInfo> table);
+  [[nodiscard]] static Error validate(const ServerConfig& cfg,
+                                      std::span<const ParameterInfo> table);
   // Serves the drive's table, with a configuration validate() accepts: otherwise it throws
   // std::invalid_argument with validate()'s message (configuration time), or, in the embedded
   // build, aborts.

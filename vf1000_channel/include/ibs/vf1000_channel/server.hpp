@@ -9,11 +9,11 @@
 #include <span>
 #include <string_view>
 
+#include "ibs/drive/parameters.hpp"
 #include "ibs/interbus/error.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
-#include "ibs/drive/parameters.hpp"
 #include "ibs/vf1000_channel/description.hpp"
 
 namespace ibs::vf1000_channel {

@@ -80,7 +80,8 @@ struct Layout {
 // Checks the pair against 3.2.2/3.2.3 and builds the layout. Refuses (ErrorCode::layout_*, the
 // message naming the value and the rule) a 405-SUPI or 406-IBCNF out of range, 406-IBCNF = 4 and
 // a pair 3.2.3 does not allow.
-Expected<Layout> try_make_layout(int supi, int ibcnf, interbus::BusKind bus = interbus::BusKind::remote);
+Expected<Layout> try_make_layout(int supi, int ibcnf,
+                                 interbus::BusKind bus = interbus::BusKind::remote);
 
 #if IBS_EXCEPTIONS
 // Thrown at configuration time for a refused SUPI/IBCNF pair; what() is the Error's message.
