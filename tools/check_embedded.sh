@@ -12,7 +12,9 @@
 #  3. a program compiled with g++ -std=c++20 -fno-exceptions -fno-rtti and linked through
 #     pkg-config (ibs-master) gets an error code for 405-SUPI = 13, then runs a master loop over
 #     the in-memory bus and sees the control word it must; it exits 0 only when all of that held;
-#  4. the throwing API is not there: the same compiler refuses a call of make_layout.
+#  4. a constructor given a configuration its validate() refuses aborts with the error's code and
+#     message (the embedded build's precondition);
+#  5. the throwing API is not there: the same compiler refuses a call of make_layout.
 # Usage: tools/check_embedded.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -130,6 +132,27 @@ flags=(-std=c++20 -fno-exceptions -fno-rtti -Wall -Wextra -Werror)
 # shellcheck disable=SC2046
 g++ "${flags[@]}" "$work/embedded.cpp" -o "$work/embedded" $(pkg-config --cflags --libs ibs-master)
 "$work/embedded" || fail "the program exited $?"
+
+echo "check_embedded: a constructor given what its validate() refuses aborts, naming the error" >&2
+cat >"$work/precondition.cpp" <<'CPP'
+#include "ibs/devices/vf1000/descriptor.hpp"
+#include "ibs/master/master_loop.hpp"
+int main() {
+  using namespace ibs;
+  const auto c = devices::vf1000::descriptor().try_configure({});
+  const interbus::DeviceSpec spec{"fan", c->id_code, c->bus};
+  const master::MasterLoop loop(interbus::try_make_bus_config({&spec, 1}).value(), {});  // no driver
+  return static_cast<int>(loop.size());
+}
+CPP
+# shellcheck disable=SC2046
+g++ "${flags[@]}" "$work/precondition.cpp" -o "$work/precondition" $(pkg-config --cflags --libs ibs-master)
+status=0
+# (The shell's own "Aborted" notice is expected here: dropped.)
+{ "$work/precondition" 2>"$work/precondition.log"; } 2>/dev/null || status=$?
+((status == 134)) || fail "the constructor did not abort (exit $status)"
+grep -qx "ibs: master_driver_count: master loop: 0 drivers for 1 devices" "$work/precondition.log" ||
+  fail "the abort said: $(cat "$work/precondition.log")"
 
 echo "check_embedded: no throwing API to call by mistake" >&2
 cat >"$work/throwing.cpp" <<'CPP'
