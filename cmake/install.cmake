@@ -30,8 +30,15 @@ function(ibs_install)
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
           RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # Headers of the sources a build leaves out (IBS_EMBEDDED: the trace and replay code).
+  get_property(excluded GLOBAL PROPERTY IBS_EXCLUDED_HEADERS)
+  set(exclude_patterns "")
+  foreach(name IN LISTS excluded)
+    list(APPEND exclude_patterns PATTERN ${name} EXCLUDE)
+  endforeach()
   foreach(dir IN LISTS header_dirs)
-    install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp")
+    install(DIRECTORY ${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp"
+            ${exclude_patterns})
   endforeach()
   set(cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/ibs)
   install(EXPORT ibs-targets NAMESPACE ibs:: DESTINATION ${cmake_dir})

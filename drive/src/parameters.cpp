@@ -1,5 +1,6 @@
 #include "ibs/drive/parameters.hpp"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -42,38 +43,50 @@ std::string_view to_string(WriteCheck c) {
   return "?";
 }
 
-ParameterTable::ParameterTable(std::span<const ParameterInfo> params) : params_(params) {
-  index_.fill(-1);
+Error ParameterTable::validate(std::span<const ParameterInfo> params) {
   if (params.size() > static_cast<std::size_t>(kMaxParameterNumber) + 1) {
-    throw std::invalid_argument("parameter table: " + std::to_string(params.size()) +
-                                " entries, but numbers only run from 0 to 3FFH");
+    return {ErrorCode::table_too_large, "parameter table: " + std::to_string(params.size()) +
+                                            " entries, but numbers only run from 0 to 3FFH"};
   }
+  std::array<bool, kMaxParameterNumber + 1> seen{};
   for (std::size_t i = 0; i < params.size(); ++i) {
     const ParameterInfo& p = params[i];
-    const std::string where =
-        "parameter table entry " + std::to_string(i) + " (" + label(p) + "): ";
+    const auto refuse = [&](ErrorCode code, const std::string& what) -> Error {
+      return {code, "parameter table entry " + std::to_string(i) + " (" + label(p) + "): " + what};
+    };
     if (p.number > kMaxParameterNumber) {
-      throw std::invalid_argument(where + "number above 3FFH (seed 001, 4.1.3)");
+      return refuse(ErrorCode::table_number_out_of_range, "number above 3FFH (seed 001, 4.1.3)");
     }
-    if (index_[p.number] >= 0) throw std::invalid_argument(where + "number used twice");
+    if (seen[p.number]) return refuse(ErrorCode::table_number_repeated, "number used twice");
+    seen[p.number] = true;
     if (p.name.empty() || p.name.size() > 5 || !printable(p.name)) {
-      throw std::invalid_argument(where + "name must be 1 to 5 printable characters (4.1.3.3)");
+      return refuse(ErrorCode::table_bad_name,
+                    "name must be 1 to 5 printable characters (4.1.3.3)");
     }
     if (p.unit.size() > 5 || !printable(p.unit)) {
-      throw std::invalid_argument(where + "unit must be at most 5 printable characters (4.1.3.3)");
+      return refuse(ErrorCode::table_bad_unit,
+                    "unit must be at most 5 printable characters (4.1.3.3)");
     }
     const auto n = [&p](Word w) { return raw_as_number(p.type, w); };
     if (n(p.min) < n(type_min_raw(p.type)) || n(p.max) > n(type_max_raw(p.type))) {
-      throw std::invalid_argument(where + "min/max outside the range of " +
-                                  std::string(to_string(p.type)));
+      return refuse(ErrorCode::table_limits_outside_type,
+                    "min/max outside the range of " + std::string(to_string(p.type)));
     }
-    if (n(p.min) > n(p.max)) throw std::invalid_argument(where + "min above max");
+    if (n(p.min) > n(p.max)) return refuse(ErrorCode::table_min_above_max, "min above max");
     if (!in_range(p, p.default_value)) {
-      throw std::invalid_argument(where + "default outside min/max");
+      return refuse(ErrorCode::table_default_outside_limits, "default outside min/max");
     }
-    if (!(p.scale > 0.0)) throw std::invalid_argument(where + "scale must be positive");
-    index_[p.number] = static_cast<std::int16_t>(i);
+    if (!(p.scale > 0.0))
+      return refuse(ErrorCode::table_scale_not_positive, "scale must be positive");
   }
+  return {};
+}
+
+ParameterTable::ParameterTable(std::span<const ParameterInfo> params) : params_(params) {
+  detail::require<std::invalid_argument>(validate(params));
+  index_.fill(-1);
+  for (std::size_t i = 0; i < params.size(); ++i)
+    index_[params[i].number] = static_cast<std::int16_t>(i);
 }
 
 ParameterStore::ParameterStore(std::span<const ParameterInfo> params)

@@ -19,8 +19,8 @@ std::string who(const DeviceSpec& s, std::size_t position) {
   return "device '" + s.name + "' (ring position " + std::to_string(position) + ")";
 }
 
-[[noreturn]] void refuse(const DeviceSpec& s, std::size_t position, const std::string& what) {
-  throw ConfigError("bus configuration: " + who(s, position) + ": " + what);
+Error refuse(ErrorCode code, const DeviceSpec& s, std::size_t position, const std::string& what) {
+  return {code, "bus configuration: " + who(s, position) + ": " + what};
 }
 
 std::string length_code_hex(IdCode id) {
@@ -34,33 +34,33 @@ std::string n_words(std::size_t n) {
 }
 
 // Decodes the spec's ID code into the word counts; refuses what does not decode.
-Device place(const DeviceSpec& s, std::size_t position) {
+Expected<Device> place(const DeviceSpec& s, std::size_t position) {
   const IdCode id = s.id.without_errors();
   const auto ring = id.ring_words();
   if (!ring) {
-    refuse(s, position,
-           "ID code " + to_hex(id) + " has the unknown length code " + length_code_hex(id) +
-               " in bits 8..12 (known: 00H..07H, 0EH, 0FH, 11H..13H, 15H..17H)");
+    return refuse(ErrorCode::bus_unknown_length_code, s, position,
+                  "ID code " + to_hex(id) + " has the unknown length code " + length_code_hex(id) +
+                      " in bits 8..12 (known: 00H..07H, 0EH, 0FH, 11H..13H, 15H..17H)");
   }
   const auto pcp = id.pcp_words();
   if (!pcp) {
-    refuse(s, position,
-           "ID code " + to_hex(id) +
-               " is a PCP device with the unassigned PCP width bits 10b "
-               "(11b = 1 word, 00b = 2 words, 01b = 4 words)");
+    return refuse(ErrorCode::bus_unassigned_pcp_width, s, position,
+                  "ID code " + to_hex(id) +
+                      " is a PCP device with the unassigned PCP width bits 10b "
+                      "(11b = 1 word, 00b = 2 words, 01b = 4 words)");
   }
   if (*pcp > *ring) {
-    refuse(s, position,
-           "ID code " + to_hex(id) + " has a PCP channel of " +
-               n_words(static_cast<std::size_t>(*pcp)) + ", more than its " +
-               n_words(static_cast<std::size_t>(*ring)) + " on the bus");
+    return refuse(ErrorCode::bus_pcp_wider_than_device, s, position,
+                  "ID code " + to_hex(id) + " has a PCP channel of " +
+                      n_words(static_cast<std::size_t>(*pcp)) + ", more than its " +
+                      n_words(static_cast<std::size_t>(*ring)) + " on the bus");
   }
   const Direction dir = id.direction();
   const auto pd = static_cast<std::size_t>(*ring - *pcp);
   if (dir == Direction::none && pd > 0) {
-    refuse(s, position,
-           "ID code " + to_hex(id) + " has " + n_words(pd) +
-               " of process data but no direction (bits 1..0 = 00b)");
+    return refuse(ErrorCode::bus_no_direction, s, position,
+                  "ID code " + to_hex(id) + " has " + n_words(pd) +
+                      " of process data but no direction (bits 1..0 = 00b)");
   }
   Device d;
   d.name = s.name;
@@ -78,12 +78,12 @@ Device place(const DeviceSpec& s, std::size_t position) {
 
 }  // namespace
 
-BusConfig make_bus_config(std::span<const DeviceSpec> ring) {
+Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring) {
   if (ring.size() > kMaxDevices) {
     const DeviceSpec& s = ring[kMaxDevices];
-    refuse(s, kMaxDevices,
-           "the ring holds " + std::to_string(ring.size()) + " devices, the limit is " +
-               std::to_string(kMaxDevices) + " devices per INTERBUS system");
+    return refuse(ErrorCode::bus_too_many_devices, s, kMaxDevices,
+                  "the ring holds " + std::to_string(ring.size()) + " devices, the limit is " +
+                      std::to_string(kMaxDevices) + " devices per INTERBUS system");
   }
   BusConfig c;
   c.devices.reserve(ring.size());
@@ -92,37 +92,42 @@ BusConfig make_bus_config(std::span<const DeviceSpec> ring) {
   std::string segment_after = "the master";  // the device the current segment follows
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const DeviceSpec& s = ring[i];
-    if (s.name.empty()) refuse(s, i, "a device needs a name");
-    if (!names.insert(s.name).second) refuse(s, i, "the name is used by an earlier device");
+    if (s.name.empty()) return refuse(ErrorCode::bus_device_unnamed, s, i, "a device needs a name");
+    if (!names.insert(s.name).second) {
+      return refuse(ErrorCode::bus_name_repeated, s, i, "the name is used by an earlier device");
+    }
 
-    Device d = place(s, i);
+    Expected<Device> placed = place(s, i);
+    if (!placed) return placed.error();
+    Device d = std::move(placed).value();
 
     if (d.bus == BusKind::remote) {
       ++c.remote_devices;
       if (c.remote_devices > kMaxRemoteDevices) {
-        refuse(s, i,
-               "remote bus device number " + std::to_string(c.remote_devices) +
-                   " exceeds the limit of " + std::to_string(kMaxRemoteDevices) +
-                   " remote bus devices");
+        return refuse(ErrorCode::bus_too_many_remote_devices, s, i,
+                      "remote bus device number " + std::to_string(c.remote_devices) +
+                          " exceeds the limit of " + std::to_string(kMaxRemoteDevices) +
+                          " remote bus devices");
       }
       segment_size = 0;
       segment_after = "'" + s.name + "'";
     } else {
       ++segment_size;
       if (segment_size > kMaxLocalSegmentDevices) {
-        refuse(s, i,
-               "local bus segment after " + segment_after + " would hold " +
-                   std::to_string(segment_size) + " devices, the limit is " +
-                   std::to_string(kMaxLocalSegmentDevices) + " per local bus segment");
+        return refuse(ErrorCode::bus_local_segment_too_long, s, i,
+                      "local bus segment after " + segment_after + " would hold " +
+                          std::to_string(segment_size) + " devices, the limit is " +
+                          std::to_string(kMaxLocalSegmentDevices) + " per local bus segment");
       }
     }
 
     if (d.pcp_words > 0) {
       ++c.pcp_devices;
       if (c.pcp_devices > kMaxPcpDevices) {
-        refuse(s, i,
-               "PCP device number " + std::to_string(c.pcp_devices) + " exceeds the limit of " +
-                   std::to_string(kMaxPcpDevices) + " PCP devices");
+        return refuse(ErrorCode::bus_too_many_pcp_devices, s, i,
+                      "PCP device number " + std::to_string(c.pcp_devices) +
+                          " exceeds the limit of " + std::to_string(kMaxPcpDevices) +
+                          " PCP devices");
       }
     }
 
@@ -130,16 +135,16 @@ BusConfig make_bus_config(std::span<const DeviceSpec> ring) {
     d.out = Slice{c.out_words, d.pd_out_words};
     d.pcp = Slice{c.pcp_words, d.pcp_words};
     if (d.in.end() > kMaxProcessWords) {
-      refuse(s, i,
-             "its " + n_words(d.pd_in_words) + " of input data would end at word " +
-                 std::to_string(d.in.end()) + ", the limit is " + std::to_string(kMaxProcessWords) +
-                 " input words (4096 bits)");
+      return refuse(ErrorCode::bus_too_many_input_words, s, i,
+                    "its " + n_words(d.pd_in_words) + " of input data would end at word " +
+                        std::to_string(d.in.end()) + ", the limit is " +
+                        std::to_string(kMaxProcessWords) + " input words (4096 bits)");
     }
     if (d.out.end() > kMaxProcessWords) {
-      refuse(s, i,
-             "its " + n_words(d.pd_out_words) + " of output data would end at word " +
-                 std::to_string(d.out.end()) + ", the limit is " +
-                 std::to_string(kMaxProcessWords) + " output words (4096 bits)");
+      return refuse(ErrorCode::bus_too_many_output_words, s, i,
+                    "its " + n_words(d.pd_out_words) + " of output data would end at word " +
+                        std::to_string(d.out.end()) + ", the limit is " +
+                        std::to_string(kMaxProcessWords) + " output words (4096 bits)");
     }
     c.in_words = d.in.end();
     c.out_words = d.out.end();
@@ -149,5 +154,13 @@ BusConfig make_bus_config(std::span<const DeviceSpec> ring) {
   }
   return c;
 }
+
+#if IBS_EXCEPTIONS
+BusConfig make_bus_config(std::span<const DeviceSpec> ring) {
+  Expected<BusConfig> c = try_make_bus_config(ring);
+  detail::require<ConfigError>(c.error());
+  return std::move(c).value();
+}
+#endif
 
 }  // namespace ibs::interbus

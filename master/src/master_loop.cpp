@@ -6,21 +6,28 @@
 
 namespace ibs::master {
 
-MasterLoop::MasterLoop(interbus::BusConfig config,
-                       std::vector<std::unique_ptr<devices::DeviceDriver>> drivers)
-    : config_(std::move(config)), drivers_(std::move(drivers)) {
-  if (drivers_.size() != config_.devices.size()) {
-    throw std::invalid_argument("master loop: " + std::to_string(drivers_.size()) + " drivers for " +
-                                std::to_string(config_.devices.size()) + " devices");
+Error MasterLoop::validate(const interbus::BusConfig& config, std::size_t drivers) {
+  if (drivers != config.devices.size()) {
+    return {ErrorCode::master_driver_count, "master loop: " + std::to_string(drivers) +
+                                                " drivers for " +
+                                                std::to_string(config.devices.size()) + " devices"};
   }
-  for (const interbus::Device& d : config_.devices) {
+  for (const interbus::Device& d : config.devices) {
     // make_bus_config keeps every slice inside its area; checked once here, not every cycle.
     if (d.in.end() > interbus::kMaxProcessWords || d.out.end() > interbus::kMaxProcessWords ||
         d.pcp.end() > interbus::kMaxPcpWords) {
-      throw std::invalid_argument("master loop: device '" + d.name + "' lies outside the process image");
+      return {ErrorCode::master_device_outside_image,
+              "master loop: device '" + d.name + "' lies outside the process image"};
     }
-    places_.push_back({d.in, d.out, d.pcp});
   }
+  return {};
+}
+
+MasterLoop::MasterLoop(interbus::BusConfig config,
+                       std::vector<std::unique_ptr<devices::DeviceDriver>> drivers)
+    : config_(std::move(config)), drivers_(std::move(drivers)) {
+  detail::require<std::invalid_argument>(validate(config_, drivers_.size()));
+  for (const interbus::Device& d : config_.devices) places_.push_back({d.in, d.out, d.pcp});
   ios_.resize(drivers_.size());
 }
 

@@ -52,22 +52,27 @@ LinkConfig link_config(const ClientConfig& cfg) {
 }
 
 const ClientConfig& checked(const ClientConfig& cfg) {
-  // The Initiate request and its negative confirmation are 20 bytes: below that no association.
-  constexpr std::uint16_t kInitiateSize = 20;
-  if (cfg.kbl.max_pdu_sending < kInitiateSize || cfg.kbl.max_pdu_sending > kMaxPduSize ||
-      cfg.kbl.max_pdu_receiving < kInitiateSize || cfg.kbl.max_pdu_receiving > kMaxPduSize) {
-    throw std::invalid_argument(
-        "PCP client KBL: max PDU sizes must be 20..134 bytes (got sending " +
-        std::to_string(cfg.kbl.max_pdu_sending) + ", receiving " +
-        std::to_string(cfg.kbl.max_pdu_receiving) + ")");
-  }
-  if (cfg.request_timeout <= Duration::zero()) {
-    throw std::invalid_argument("PCP client request_timeout must be positive");
-  }
+  detail::require<std::invalid_argument>(Client::validate(cfg));
   return cfg;
 }
 
 }  // namespace
+
+Error Client::validate(const ClientConfig& cfg) {
+  // The Initiate request and its negative confirmation are 20 bytes: below that no association.
+  constexpr std::uint16_t kInitiateSize = 20;
+  if (cfg.kbl.max_pdu_sending < kInitiateSize || cfg.kbl.max_pdu_sending > kMaxPduSize ||
+      cfg.kbl.max_pdu_receiving < kInitiateSize || cfg.kbl.max_pdu_receiving > kMaxPduSize) {
+    return {ErrorCode::channel_pdu_size_invalid,
+            "PCP client KBL: max PDU sizes must be 20..134 bytes (got sending " +
+                std::to_string(cfg.kbl.max_pdu_sending) + ", receiving " +
+                std::to_string(cfg.kbl.max_pdu_receiving) + ")"};
+  }
+  if (cfg.request_timeout <= Duration::zero()) {
+    return {ErrorCode::channel_timeout_not_positive, "PCP client request_timeout must be positive"};
+  }
+  return Link::validate(link_config(cfg));
+}
 
 Client::Client(const ClientConfig& cfg) : cfg_(checked(cfg)), link_(link_config(cfg)) {}
 

@@ -52,18 +52,30 @@ std::string_view to_string(LinkState s) {
   return "?";
 }
 
-Link::Link(const LinkConfig& cfg)
-    : cfg_(cfg),
-      data_size_(valid_channel_words(cfg.channel_words) ? frame_data_size(cfg.channel_words) : 0),
-      peer_dir_(cfg.direction == Direction::to_server ? Direction::to_client
-                                                      : Direction::to_server) {
+Error Link::validate(const LinkConfig& cfg) {
   if (!valid_channel_words(cfg.channel_words)) {
-    throw std::invalid_argument("PCP channel of " + std::to_string(cfg.channel_words) +
-                                " words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)");
+    return {ErrorCode::channel_width_invalid,
+            "PCP channel of " + std::to_string(cfg.channel_words) +
+                " words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)"};
   }
   if (cfg.ack_timeout <= Duration::zero()) {
-    throw std::invalid_argument("PCP link ack_timeout must be positive");
+    return {ErrorCode::channel_timeout_not_positive, "PCP link ack_timeout must be positive"};
   }
+  return {};
+}
+
+namespace {
+const LinkConfig& checked(const LinkConfig& cfg) {
+  detail::require<std::invalid_argument>(Link::validate(cfg));
+  return cfg;
+}
+}  // namespace
+
+Link::Link(const LinkConfig& cfg)
+    : cfg_(checked(cfg)),
+      data_size_(frame_data_size(cfg.channel_words)),
+      peer_dir_(cfg.direction == Direction::to_server ? Direction::to_client
+                                                      : Direction::to_server) {
   reset_transfers();
   if (cfg.start_ready) state_ = LinkState::ready;
 }

@@ -7,9 +7,9 @@ namespace ibs::pcp {
 
 namespace {
 
-[[noreturn]] void refuse(const ParameterInfo& p, const std::string& why) {
-  throw std::invalid_argument("parameter table: " + std::to_string(p.number) + "-" +
-                              std::string(p.name) + ": " + why);
+Error refuse(ErrorCode code, const ParameterInfo& p, const std::string& why) {
+  return {code,
+          "parameter table: " + std::to_string(p.number) + "-" + std::string(p.name) + ": " + why};
 }
 
 bool fits(const ParameterInfo& p, std::int64_t v) {
@@ -24,27 +24,40 @@ std::uint32_t raw_of(const ParameterInfo& p, std::int64_t v) {
 
 }  // namespace
 
-ParameterStore::ParameterStore(std::span<const ParameterInfo> table) : table_(table) {
+Error ParameterStore::validate(std::span<const ParameterInfo> table) {
   if (table.size() > kMaxParameters) {
-    throw std::invalid_argument("parameter table has " + std::to_string(table.size()) +
-                                " rows; the store holds at most " + std::to_string(kMaxParameters));
+    return {ErrorCode::table_too_large, "parameter table has " + std::to_string(table.size()) +
+                                            " rows; the store holds at most " +
+                                            std::to_string(kMaxParameters)};
   }
   for (std::size_t i = 0; i < table.size(); ++i) {
     const ParameterInfo& p = table[i];
-    if (p.number > kMaxParameterNumber) refuse(p, "number above 999");
-    if (p.name.empty() || p.name.size() > 5) refuse(p, "name must have 1 to 5 characters");
+    if (p.number > kMaxParameterNumber)
+      return refuse(ErrorCode::table_number_out_of_range, p, "number above 999");
+    if (p.name.empty() || p.name.size() > 5) {
+      return refuse(ErrorCode::table_bad_name, p, "name must have 1 to 5 characters");
+    }
     for (std::size_t j = 0; j < i; ++j) {
-      if (table[j].number == p.number) refuse(p, "number appears twice");
+      if (table[j].number == p.number)
+        return refuse(ErrorCode::table_number_repeated, p, "number appears twice");
     }
     if (!fits(p, p.min) || !fits(p, p.max) || !fits(p, p.default_value)) {
-      refuse(p, "a limit or the default does not fit " + std::string(to_string(p.type)));
+      return refuse(ErrorCode::table_limits_outside_type, p,
+                    "a limit or the default does not fit " + std::string(to_string(p.type)));
     }
-    if (compare(p.type, raw_of(p, p.min), raw_of(p, p.max)) > 0) refuse(p, "min above max");
+    if (compare(p.type, raw_of(p, p.min), raw_of(p, p.max)) > 0) {
+      return refuse(ErrorCode::table_min_above_max, p, "min above max");
+    }
     const std::uint32_t d = raw_of(p, p.default_value);
     if (compare(p.type, d, raw_of(p, p.min)) < 0 || compare(p.type, d, raw_of(p, p.max)) > 0) {
-      refuse(p, "default outside min..max");
+      return refuse(ErrorCode::table_default_outside_limits, p, "default outside min..max");
     }
   }
+  return {};
+}
+
+ParameterStore::ParameterStore(std::span<const ParameterInfo> table) : table_(table) {
+  detail::require<std::invalid_argument>(validate(table));
   factory_defaults();
 }
 

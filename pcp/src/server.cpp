@@ -50,15 +50,8 @@ LinkConfig link_config(const ServerConfig& cfg) {
   return l;
 }
 
-const ServerConfig& checked(const ServerConfig& cfg) {
-  if (!(cfg.workload >= 0.0 && cfg.workload <= 1.0)) {
-    throw std::invalid_argument("PCP server workload " + std::to_string(cfg.workload) +
-                                " is outside 0..1");
-  }
-  if (cfg.latency && (cfg.latency->processing_min < Duration::zero() ||
-                      cfg.latency->processing_max < cfg.latency->processing_min)) {
-    throw std::invalid_argument("PCP server latency: need 0 <= processing_min <= processing_max");
-  }
+const ServerConfig& checked(const ServerConfig& cfg, std::span<const ParameterInfo> table) {
+  detail::require<std::invalid_argument>(Server::validate(cfg, table));
   return cfg;
 }
 
@@ -67,8 +60,22 @@ constexpr bool is(std::uint16_t number, std::uint16_t role) { return role != 0 &
 
 }  // namespace
 
+Error Server::validate(const ServerConfig& cfg, std::span<const ParameterInfo> table) {
+  if (!(cfg.workload >= 0.0 && cfg.workload <= 1.0)) {
+    return {ErrorCode::channel_workload_out_of_range,
+            "PCP server workload " + std::to_string(cfg.workload) + " is outside 0..1"};
+  }
+  if (cfg.latency && (cfg.latency->processing_min < Duration::zero() ||
+                      cfg.latency->processing_max < cfg.latency->processing_min)) {
+    return {ErrorCode::channel_latency_invalid,
+            "PCP server latency: need 0 <= processing_min <= processing_max"};
+  }
+  if (Error e = ParameterStore::validate(table)) return e;
+  return Link::validate(link_config(cfg));
+}
+
 Server::Server(const ServerConfig& cfg, std::span<const ParameterInfo> table)
-    : cfg_(checked(cfg)),
+    : cfg_(checked(cfg, table)),
       latency_(cfg.latency ? *cfg.latency : LatencyModel::for_channel(cfg.channel_words)),
       store_(table),
       link_(link_config(cfg)),

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace {
 
 using namespace ibs::vf1000_channel;
 using namespace ibs::drive;
+using ibs::Error;
+using ibs::ErrorCode;
 using ibs::Time;
 using ibs::Word;
 using namespace std::chrono_literals;
@@ -397,6 +400,48 @@ TEST(ClientConstruction, RejectsEmptyQueuesAndNonPositiveTimeouts) {
   cfg = ClientConfig{};
   cfg.timeout = 0ms;
   EXPECT_THROW(Client{cfg}, std::invalid_argument);
+}
+
+// Client::validate, the check the constructor throws by (docs/embedding.md, "An embedded build").
+TEST(ClientConstruction, ValidateGivesTheCodeAndTheConstructorsMessage) {
+  const auto thrown = [](const ClientConfig& c) -> std::string {
+    try {
+      const Client client(c);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  ClientConfig cfg;
+  EXPECT_FALSE(Client::validate(cfg));
+  EXPECT_EQ(thrown(cfg), "");
+  cfg.queue_capacity = 0;
+  Error e = Client::validate(cfg);
+  EXPECT_EQ(e.code, ErrorCode::channel_capacity_zero);
+  EXPECT_EQ(e.message,
+            "vf1000_channel::Client: queue_capacity and completed_capacity must be at least 1");
+  EXPECT_EQ(e.message, thrown(cfg));
+  cfg = ClientConfig{};
+  cfg.completed_capacity = 0;
+  EXPECT_EQ(Client::validate(cfg).code, ErrorCode::channel_capacity_zero);
+  EXPECT_EQ(Client::validate(cfg).message, thrown(cfg));
+  for (const ibs::Duration t : {ibs::Duration{0}, ibs::Duration{-1}}) {
+    cfg = ClientConfig{};
+    cfg.timeout = t;
+    e = Client::validate(cfg);
+    EXPECT_EQ(e.code, ErrorCode::channel_timeout_not_positive);
+    EXPECT_EQ(e.message, "vf1000_channel::Client: timeout must be positive");
+    EXPECT_EQ(e.message, thrown(cfg));
+  }
+  // An accepted configuration makes the client it describes.
+  cfg = ClientConfig{};
+  cfg.start_synchronised = true;
+  cfg.queue_capacity = 1;
+  ASSERT_FALSE(Client::validate(cfg));
+  Client c(cfg);
+  EXPECT_EQ(c.state(), ClientState::idle);
+  EXPECT_TRUE(c.submit(value_inquiry(0x16)));
+  EXPECT_EQ(c.submit(value_inquiry(0x16)).error, SubmitError::queue_full);
 }
 
 }  // namespace

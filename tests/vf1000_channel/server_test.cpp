@@ -1,21 +1,27 @@
 // The inverter side of the parameter channel: the cycle tables of seed 001, 4.1.3 fed word by
 // word, every NAK path of 4.1.4 with its 85-SIOF bit and the clearing read, power-on (6.1), the
 // EEPROM rule (4.1.3.2), parameter numbers above FFH, and values never half-written.
-#include "ibs/devices/vf1000/channel.hpp"
-#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <optional>
+#include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "ibs/devices/vf1000/channel.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 
 namespace {
 
 using namespace ibs::vf1000_channel;
 using namespace ibs::drive;
 using namespace ibs::devices::vf1000;
+using ibs::Error;
+using ibs::ErrorCode;
 using ibs::Time;
 using ibs::Word;
 using namespace std::chrono_literals;
@@ -449,6 +455,36 @@ TEST(ServerDeviceAccess, SetValueAndValueForTheDeviceModel) {
   EXPECT_EQ(inv.s.value(pnr::kSiof), 0);
   inv.s.raise_siof(0x02);
   EXPECT_EQ(inv.s.value(pnr::kSiof), 0x02);
+}
+
+// Server::validate, the check the constructor throws by (docs/embedding.md, "An embedded build").
+TEST(ServerConstruction, ValidateGivesTheCodeAndTheConstructorsMessage) {
+  const auto thrown = [](std::span<const ParameterInfo> params) -> std::string {
+    try {
+      const Server s(ServerConfig{}, ServerStart::operational, Time{0}, params);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_FALSE(Server::validate(ibs::devices::vf1000::parameters()));
+  EXPECT_EQ(thrown(ibs::devices::vf1000::parameters()), "");
+
+  const ParameterInfo only{1, "MODE", "", Category::eeprom, DataType::usign8, 0, 4, 4, 1.0, ""};
+  Error e = Server::validate({&only, 1});
+  EXPECT_EQ(e.code, ErrorCode::table_lacks_siof);
+  EXPECT_EQ(e.message,
+            "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value "
+            "transfer depends "
+            "on (seed 001, 4.1.4)");
+  EXPECT_EQ(e.message, thrown({&only, 1}));
+
+  // A malformed table is refused as the table refuses it, before the 85-SIOF question.
+  const std::array<ParameterInfo, 2> twice{only, only};
+  e = Server::validate(twice);
+  EXPECT_EQ(e.code, ErrorCode::table_number_repeated);
+  EXPECT_EQ(e, ibs::drive::ParameterTable::validate(twice));
+  EXPECT_EQ(e.message, thrown(twice));
 }
 
 TEST(ServerConstruction, RequiresSiofInTheTable) {

@@ -136,15 +136,29 @@ std::string describe(const Outcome& o) {
   return "?";
 }
 
-Client::Client(const ClientConfig& config)
-    : config_(config), queue_(config.queue_capacity), completed_(config.completed_capacity) {
+Error Client::validate(const ClientConfig& config) {
   if (config.queue_capacity == 0 || config.completed_capacity == 0) {
-    throw std::invalid_argument(
-        "vf1000_channel::Client: queue_capacity and completed_capacity must be at least 1");
+    return {ErrorCode::channel_capacity_zero,
+            "vf1000_channel::Client: queue_capacity and completed_capacity must be at least 1"};
   }
   if (config.timeout <= Duration{0}) {
-    throw std::invalid_argument("vf1000_channel::Client: timeout must be positive");
+    return {ErrorCode::channel_timeout_not_positive,
+            "vf1000_channel::Client: timeout must be positive"};
   }
+  return {};
+}
+
+namespace {
+const ClientConfig& checked(const ClientConfig& config) {
+  detail::require<std::invalid_argument>(Client::validate(config));
+  return config;
+}
+}  // namespace
+
+Client::Client(const ClientConfig& config)
+    : config_(checked(config)),
+      queue_(config.queue_capacity),
+      completed_(config.completed_capacity) {
   state_ = config.start_synchronised ? ClientState::idle : ClientState::resync;
 }
 

@@ -1,5 +1,6 @@
 #include "ibs/vf1000_channel/server.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace ibs::vf1000_channel {
@@ -23,17 +24,27 @@ constexpr NakReason reason_for(WriteCheck c) {
   return NakReason::invalid_value;
 }
 
-std::size_t checked_siof_slot(const drive::ParameterTable& t) {
-  const int s = t.slot(drive::kSiofNumber);
-  if (s < 0) {
-    throw std::invalid_argument(
-        "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer "
-        "depends on (seed 001, 4.1.4)");
-  }
-  return static_cast<std::size_t>(s);
+const ServerConfig& checked(const ServerConfig& config,
+                            std::span<const drive::ParameterInfo> params) {
+  detail::require<std::invalid_argument>(Server::validate(params));
+  return config;
 }
 
 }  // namespace
+
+Error Server::validate(std::span<const drive::ParameterInfo> params) {
+  if (Error e = drive::ParameterTable::validate(params)) return e;
+  const bool has_siof =
+      std::any_of(params.begin(), params.end(),
+                  [](const drive::ParameterInfo& p) { return p.number == drive::kSiofNumber; });
+  if (!has_siof) {
+    return {
+        ErrorCode::table_lacks_siof,
+        "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer "
+        "depends on (seed 001, 4.1.4)"};
+  }
+  return {};
+}
 
 std::string_view to_string(ServerState s) {
   switch (s) {
@@ -75,11 +86,12 @@ std::string_view to_string(NakReason r) {
 
 Server::Server(const ServerConfig& config, ServerStart start, Time now,
                std::span<const drive::ParameterInfo> params)
-    : config_(config),
+    : config_(checked(config, params)),
       table_(params),
       store_(params),
-      siof_slot_(checked_siof_slot(table_)),
-      prog_slot_(config.factory_defaults_parameter ? table_.slot(*config.factory_defaults_parameter) : -1) {
+      siof_slot_(static_cast<std::size_t>(table_.slot(drive::kSiofNumber))),
+      prog_slot_(config.factory_defaults_parameter ? table_.slot(*config.factory_defaults_parameter)
+                                                   : -1) {
   power_on(now);
   if (start == ServerStart::power_on) return;
   state_ = ServerState::wait;

@@ -4,10 +4,13 @@
 
 #include "ibs/devices/mc6000/driver.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
-#include "ibs/devices/mc6000/pcp_trace.hpp"
-#include "ibs/devices/mc6000/pd_trace.hpp"
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/pcp/parameters.hpp"
+
+#if !IBS_EMBEDDED
+#include "ibs/devices/mc6000/pcp_trace.hpp"
+#include "ibs/devices/mc6000/pd_trace.hpp"
+#endif
 
 namespace ibs::devices::mc6000 {
 
@@ -47,19 +50,34 @@ constexpr DriveFacts kFacts{
     .write_range = " (-2^31..2^32-1, 32 bits)",
     .watchdog_error = "error 16 (E-OP1), location 1: bus watchdog 409-BUTWD ran out",
     .timing_syntax = "mc6000:SUPI[:local|remote]",
+#if !IBS_EMBEDDED
     .channel_words = trace::WordsKind::pcp,
+#endif
     .channel_name = "PCP",
 };
 
-// The layout of the settings; throws SettingsError naming 405-SUPI or 406-IBCNF.
+// The layout of the settings; the refusal names 405-SUPI or 406-IBCNF (the other as fallback).
+Expected<Layout, SettingsRefusal> try_layout_of(const DeviceSettings& s) {
+  Expected<Layout> l = try_make_layout(s.supi, s.ibcnf, s.bus);
+  if (l) return std::move(l).value();
+  const bool about_supi = l.error().code == ErrorCode::layout_supi_out_of_range;
+  return SettingsRefusal(l.error(), about_supi ? "supi" : "ibcnf", about_supi ? "ibcnf" : "supi");
+}
+
+// The layout of a configuration try_configure gave: other settings throw SettingsError or, in the
+// embedded build, abort.
 Layout layout_of(const DeviceSettings& s) {
-  try {
-    return make_layout(s.supi, s.ibcnf, s.bus);
-  } catch (const LayoutError& e) {
-    const std::string msg = e.what();
-    const bool about_supi = msg.rfind("405-SUPI", 0) == 0;
-    throw SettingsError(msg, about_supi ? "supi" : "ibcnf", about_supi ? "ibcnf" : "supi");
-  }
+  Expected<Layout, SettingsRefusal> l = try_layout_of(s);
+#if IBS_EXCEPTIONS
+  detail::require<SettingsError>(l.error());
+#else
+  if (!l) detail::abort_with(l.error());
+#endif
+  return std::move(l).value();
+}
+
+SettingsRefusal refuse(ErrorCode code, std::string message, std::string_view setting) {
+  return {{code, std::move(message)}, setting};
 }
 
 const char* ibcnf_meaning(Ibcnf c) {
@@ -84,36 +102,44 @@ class Descriptor final : public DriveDescriptor {
  public:
   Descriptor() : DriveDescriptor(kFacts) {}
 
-  Configuration configure(const DeviceSettings& s) const override {
-    const Layout l = layout_of(s);
-    return {s,
-            interbus::IdCode{l.id_code},
-            s.bus,
-            l.exchanges_data,
-            static_cast<std::size_t>(l.pd_words),
-            static_cast<std::size_t>(l.pcp_words)};
+  Expected<Configuration, SettingsRefusal> try_configure(const DeviceSettings& s) const override {
+    Expected<Layout, SettingsRefusal> layout = try_layout_of(s);
+    if (!layout) return layout.error();
+    const Layout& l = layout.value();
+    return Configuration{s,
+                         interbus::IdCode{l.id_code},
+                         s.bus,
+                         l.exchanges_data,
+                         static_cast<std::size_t>(l.pd_words),
+                         static_cast<std::size_t>(l.pcp_words)};
   }
 
-  void check_watchdog(const DeviceSettings& s) const override {
+  SettingsRefusal validate_watchdog(const DeviceSettings& s) const override {
     if (s.watchdog_ms && (*s.watchdog_ms < 0 || *s.watchdog_ms > kMaxWatchdogMs)) {
-      throw SettingsError("'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (0.." +
-                              std::to_string(kMaxWatchdogMs) + ", 409-BUTWD, 0 = off)",
-                          "watchdog_ms");
+      return refuse(ErrorCode::setting_out_of_range,
+                    "'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (0.." +
+                        std::to_string(kMaxWatchdogMs) + ", 409-BUTWD, 0 = off)",
+                    "watchdog_ms");
     }
     if (s.watchdog_reaction) {
-      throw SettingsError(
-          "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 always reports E-OP1 (seed "
-          "001, 3.2.4)",
+      return refuse(
+          ErrorCode::setting_of_another_drive,
+          "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 always reports E-OP1 "
+          "(seed 001, 3.2.4)",
           "watchdog_reaction");
     }
     if (s.keypad) {
-      throw SettingsError("'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row",
-                          "keypad");
+      return refuse(
+          ErrorCode::setting_of_another_drive,
+          "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row",
+          "keypad");
     }
     if (s.reset_time) {
-      throw SettingsError("'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)",
-                          "reset_time");
+      return refuse(ErrorCode::setting_of_another_drive,
+                    "'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)",
+                    "reset_time");
     }
+    return {};
   }
 
   std::optional<std::string_view> refused_setting(std::string_view) const override { return std::nullopt; }
@@ -144,6 +170,7 @@ class Descriptor final : public DriveDescriptor {
   }
   std::string explain_status(Word status) const override { return explain_status_word(status); }
 
+#if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header& h) const override {
     DeviceSettings s;
     s.supi = h.supi;
@@ -170,6 +197,7 @@ class Descriptor final : public DriveDescriptor {
   std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const override {
     return make_pcp_explainer(h);
   }
+#endif
 
   std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool) const override {
     if (supi && ibcnf) return std::nullopt;
@@ -177,7 +205,8 @@ class Descriptor final : public DriveDescriptor {
   }
 
   LayoutDescription layout(const Configuration& config) const override;
-  RingEntry ring_entry(std::span<const std::string_view> fields) const override;
+  Expected<RingEntry, SettingsRefusal> try_ring_entry(
+      std::span<const std::string_view> fields) const override;
   std::string ring_spec(const DeviceSettings& s) const override {
     return std::string(kName) + ":" + std::to_string(s.supi) + (s.bus == interbus::BusKind::local ? ":local" : "");
   }
@@ -256,24 +285,35 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
   return r;
 }
 
-RingEntry Descriptor::ring_entry(std::span<const std::string_view> f) const {
+Expected<RingEntry, SettingsRefusal> Descriptor::try_ring_entry(
+    std::span<const std::string_view> f) const {
   // SUPI[:local|remote]
-  if (f.empty() || f[0].empty()) throw SettingsError("the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]", "supi");
-  if (f.size() > 2) throw SettingsError("too many fields, expected mc6000:SUPI[:local|remote]", "");
+  if (f.empty() || f[0].empty()) {
+    return refuse(ErrorCode::setting_missing,
+                  "the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]", "supi");
+  }
+  if (f.size() > 2) {
+    return refuse(ErrorCode::setting_too_many_fields,
+                  "too many fields, expected mc6000:SUPI[:local|remote]", "");
+  }
   int supi = -1;
   const auto r = std::from_chars(f[0].data(), f[0].data() + f[0].size(), supi);
   if (r.ec != std::errc{} || r.ptr != f[0].data() + f[0].size()) {
-    throw SettingsError("405-SUPI '" + std::string(f[0]) + "' is not a number", "supi");
+    return refuse(ErrorCode::setting_invalid,
+                  "405-SUPI '" + std::string(f[0]) + "' is not a number", "supi");
   }
   if (supi < 0 || supi > kSupiMax) {
-    throw SettingsError("405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)", "supi");
+    return refuse(ErrorCode::layout_supi_out_of_range,
+                  "405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)",
+                  "supi");
   }
   interbus::BusKind bus = interbus::BusKind::remote;
   if (f.size() == 2) {
     if (f[1] == "local") {
       bus = interbus::BusKind::local;
     } else if (f[1] != "remote") {
-      throw SettingsError("bus '" + std::string(f[1]) + "' is neither local nor remote", "bus");
+      return refuse(ErrorCode::setting_invalid,
+                    "bus '" + std::string(f[1]) + "' is neither local nor remote", "bus");
     }
   }
   // The ID code follows from 405-SUPI alone (3.2.2); 406-IBCNF changes no word count.

@@ -18,16 +18,20 @@ SupiRange allowed_supi(Ibcnf c) {
   return {1, 0};
 }
 
-Layout make_layout(int supi, int ibcnf, interbus::BusKind bus) {
+Expected<Layout> try_make_layout(int supi, int ibcnf, interbus::BusKind bus) {
   if (supi < 0 || supi > kSupiMax) {
-    throw LayoutError("405-SUPI = " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)");
+    return Error{ErrorCode::layout_supi_out_of_range,
+                 "405-SUPI = " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)"};
   }
   if (ibcnf < 0 || ibcnf > kIbcnfMax) {
-    throw LayoutError("406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, seed 001 3.2.3)");
+    return Error{
+        ErrorCode::layout_ibcnf_out_of_range,
+        "406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, seed 001 3.2.3)"};
   }
   const auto c = static_cast<Ibcnf>(ibcnf);
   if (c == Ibcnf::lisim) {
-    throw LayoutError("406-IBCNF = 4 (modified LISIM software) is not supported");
+    return Error{ErrorCode::layout_ibcnf_unsupported,
+                 "406-IBCNF = 4 (modified LISIM software) is not supported"};
   }
   const SupiRow& row = kSupiTable[static_cast<std::size_t>(supi)];
   Layout l;
@@ -46,9 +50,10 @@ Layout make_layout(int supi, int ibcnf, interbus::BusKind bus) {
   }
   const SupiRange r = allowed_supi(c);
   if (supi < r.first || supi > r.last) {
-    throw LayoutError("406-IBCNF = " + std::to_string(ibcnf) + " needs 405-SUPI " +
-                      std::to_string(r.first) + ".." + std::to_string(r.last) + ", not " +
-                      std::to_string(supi) + " (seed 001 3.2.3)");
+    return Error{ErrorCode::layout_supi_not_allowed,
+                 "406-IBCNF = " + std::to_string(ibcnf) + " needs 405-SUPI " +
+                     std::to_string(r.first) + ".." + std::to_string(r.last) + ", not " +
+                     std::to_string(supi) + " (seed 001 3.2.3)"};
   }
   l.pd_words = row.pd_words;
   l.pcp_words = row.pcp_words;
@@ -61,6 +66,14 @@ Layout make_layout(int supi, int ibcnf, interbus::BusKind bus) {
   }
   return l;
 }
+
+#if IBS_EXCEPTIONS
+Layout make_layout(int supi, int ibcnf, interbus::BusKind bus) {
+  Expected<Layout> l = try_make_layout(supi, ibcnf, bus);
+  detail::require<LayoutError>(l.error());
+  return std::move(l).value();
+}
+#endif
 
 std::int32_t to_q16(double value) {
   // Rounded half away from zero, as std::round, without the library call (every device sample

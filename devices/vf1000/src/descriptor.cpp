@@ -7,10 +7,13 @@
 #include "ibs/devices/vf1000/channel.hpp"
 #include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/devices/vf1000/parameters.hpp"
-#include "ibs/devices/vf1000/pd_trace.hpp"
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
+
+#if !IBS_EMBEDDED
+#include "ibs/devices/vf1000/pd_trace.hpp"
 #include "ibs/vf1000_channel/trace_adapters.hpp"
+#endif
 
 namespace ibs::devices::vf1000 {
 
@@ -69,37 +72,49 @@ constexpr DriveFacts kFacts{
     .write_range = " (-32768..65535, 16 bits)",
     .watchdog_error = "error 12 (E-IBS): process-data watchdog 906-IB-WD ran out",
     .timing_syntax = kName,
+#if !IBS_EMBEDDED
     .channel_words = trace::WordsKind::comm,
+#endif
     .channel_name = "the communication word",
 };
+
+SettingsRefusal refuse(ErrorCode code, std::string message, std::string_view setting) {
+  return {{code, std::move(message)}, setting};
+}
 
 class Descriptor final : public DriveDescriptor {
  public:
   Descriptor() : DriveDescriptor(kFacts) {}
 
-  Configuration configure(const DeviceSettings& s) const override {
+  Expected<Configuration, SettingsRefusal> try_configure(const DeviceSettings& s) const override {
     if (s.bus == interbus::BusKind::local) {
-      throw SettingsError("a VF1000 is always a remote bus device (seed 001, 1.3)", "bus");
+      return refuse(ErrorCode::setting_bus_refused,
+                    "a VF1000 is always a remote bus device (seed 001, 1.3)", "bus");
     }
-    return {s, interbus::IdCode{kIdCode}, interbus::BusKind::remote, true, kWords, 0};
+    return Configuration{s, interbus::IdCode{kIdCode}, interbus::BusKind::remote, true, kWords, 0};
   }
 
-  void check_watchdog(const DeviceSettings& s) const override {
+  SettingsRefusal validate_watchdog(const DeviceSettings& s) const override {
     if (s.watchdog_ms && (*s.watchdog_ms < kMinWatchdogMs || *s.watchdog_ms > kMaxWatchdogMs)) {
-      throw SettingsError("'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (" +
-                              std::to_string(kMinWatchdogMs) + ".." + std::to_string(kMaxWatchdogMs) +
-                              ", 906-IB-WD)",
-                          "watchdog_ms");
+      return refuse(ErrorCode::setting_out_of_range,
+                    "'watchdog_ms' = " + std::to_string(*s.watchdog_ms) + " is out of range (" +
+                        std::to_string(kMinWatchdogMs) + ".." + std::to_string(kMaxWatchdogMs) +
+                        ", 906-IB-WD)",
+                    "watchdog_ms");
     }
     if (s.watchdog_reaction && (*s.watchdog_reaction < 0 || *s.watchdog_reaction > kMaxWatchdogReaction)) {
-      throw SettingsError("'watchdog_reaction' = " + std::to_string(*s.watchdog_reaction) +
-                              " is out of range (0..3, 907-IBCOD)",
-                          "watchdog_reaction");
+      return refuse(ErrorCode::setting_out_of_range,
+                    "'watchdog_reaction' = " + std::to_string(*s.watchdog_reaction) +
+                        " is out of range (0..3, 907-IBCOD)",
+                    "watchdog_reaction");
     }
     if (s.reset_time && (*s.reset_time <= Duration::zero() || *s.reset_time > std::chrono::seconds(60))) {
-      throw SettingsError("'reset_time' must be above 0 s and at most 60 s (the self-test after RESET FAULT)",
-                          "reset_time");
+      return refuse(
+          ErrorCode::setting_out_of_range,
+          "'reset_time' must be above 0 s and at most 60 s (the self-test after RESET FAULT)",
+          "reset_time");
     }
+    return {};
   }
 
   std::optional<std::string_view> refused_setting(std::string_view key) const override {
@@ -119,6 +134,7 @@ class Descriptor final : public DriveDescriptor {
   }
   std::string explain_status(Word status) const override { return explain_status_word(status); }
 
+#if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header&) const override { return {}; }
   void write_trace_settings(const Configuration&, trace::Header&) const override {}
   std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration&) const override {
@@ -136,6 +152,7 @@ class Descriptor final : public DriveDescriptor {
   std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header&) const override {
     return vf1000_channel::make_comm_explainer();
   }
+#endif
 
   std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const override {
     if (!supi && !ibcnf && !bus) return std::nullopt;
@@ -165,14 +182,15 @@ class Descriptor final : public DriveDescriptor {
     return r;
   }
 
-  RingEntry ring_entry(std::span<const std::string_view> fields) const override {
+  Expected<RingEntry, SettingsRefusal> try_ring_entry(
+      std::span<const std::string_view> fields) const override {
     if (!fields.empty()) {
-      throw SettingsError(
-          "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, seed 001 "
-          "3.1.2)",
-          "");
+      return refuse(ErrorCode::setting_too_many_fields,
+                    "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote "
+                    "bus, seed 001 3.1.2)",
+                    "");
     }
-    return {interbus::IdCode{kIdCode}, interbus::BusKind::remote, {}, ""};
+    return RingEntry{interbus::IdCode{kIdCode}, interbus::BusKind::remote, {}, ""};
   }
   std::string ring_spec(const DeviceSettings&) const override { return std::string(kName); }
 };

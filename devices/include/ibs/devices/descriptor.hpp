@@ -2,7 +2,9 @@
 // Each drive's wing implements one (devices/<drive>/descriptor.hpp) and the registry lists them
 // (registry.hpp); the simulator, the scenario reader, the command line and the replay adapters ask
 // the descriptor and never name a concrete drive. Everything here is configuration-time work: it
-// may allocate and reports refused settings by exception.
+// may allocate, and reports refused settings as a SettingsRefusal (or, where exceptions are on,
+// also as a SettingsError). The embedded build (IBS_EMBEDDED), which has no traces, leaves out
+// the trace part.
 #pragma once
 
 #include <cstddef>
@@ -10,17 +12,24 @@
 #include <memory>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ibs/devices/driver.hpp"
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/id_code.hpp"
-#include "ibs/interbus/replay.hpp"
 #include "ibs/interbus/time.hpp"
-#include "ibs/interbus/trace.hpp"
 #include "ibs/interbus/words.hpp"
+
+#if !IBS_EMBEDDED
+#include "ibs/interbus/replay.hpp"
+#include "ibs/interbus/trace.hpp"
+#endif
+#if IBS_EXCEPTIONS
+#include <stdexcept>
+#endif
 
 namespace ibs::devices {
 
@@ -40,13 +49,27 @@ struct DeviceSettings {
   friend bool operator==(const DeviceSettings&, const DeviceSettings&) = default;
 };
 
-// A setting the drive refuses. setting() names it as the files do ("supi", "ibcnf", "bus",
-// "watchdog_ms", "watchdog_reaction", "keypad", "reset_time"), fallback() the one to point at when the first is not in
-// the file, so that a reader can name the line.
+// A setting the drive refuses: the Error (ErrorCode::setting_*, or layout_* for an MC6000
+// layout) and the setting it is about. `setting` names it as the files do ("supi", "ibcnf", "bus",
+// "watchdog_ms", "watchdog_reaction", "keypad", "reset_time"), `fallback` the one to point at when
+// the first is not in the file, so that a reader can name the line. No error: the settings suit.
+struct SettingsRefusal : Error {
+  SettingsRefusal() = default;
+  SettingsRefusal(Error e, std::string_view setting_name, std::string_view fallback_name = {})
+      : Error(std::move(e)), setting(setting_name), fallback(fallback_name) {}
+
+  std::string_view setting;
+  std::string_view fallback;
+};
+
+#if IBS_EXCEPTIONS
+// The same refusal thrown: what() is the message, setting() and fallback() as the refusal's.
 class SettingsError : public std::invalid_argument {
  public:
   SettingsError(const std::string& what, std::string_view setting, std::string_view fallback = {})
       : std::invalid_argument(what), setting_(setting), fallback_(fallback) {}
+  explicit SettingsError(const SettingsRefusal& r)
+      : SettingsError(r.message, r.setting, r.fallback) {}
   [[nodiscard]] std::string_view setting() const { return setting_; }
   [[nodiscard]] std::string_view fallback() const { return fallback_; }
 
@@ -54,6 +77,7 @@ class SettingsError : public std::invalid_argument {
   std::string_view setting_;
   std::string_view fallback_;
 };
+#endif
 
 // One device as its settings place it on the bus.
 struct Configuration {
@@ -124,7 +148,9 @@ struct DriveFacts {
   std::string_view timing_syntax;
   // The parameter channel's trace words besides `words: pd` (comm, pcp), if the drive has one,
   // and how a message names it ("the communication word", "PCP").
+#if !IBS_EMBEDDED
   std::optional<trace::WordsKind> channel_words;
+#endif
   std::string_view channel_name;
 };
 
@@ -139,11 +165,18 @@ class DriveDescriptor {
   [[nodiscard]] std::string_view name() const { return facts_.name; }
 
   // --- configuration -------------------------------------------------------------------------
-  // Where the settings place the device on the bus; throws SettingsError for a bus side or a
-  // layout the drive refuses.
-  [[nodiscard]] virtual Configuration configure(const DeviceSettings& s) const = 0;
-  // Throws SettingsError for a watchdog setting out of the drive's range.
-  virtual void check_watchdog(const DeviceSettings& s) const = 0;
+  // Where the settings place the device on the bus; refuses a bus side or a layout the drive
+  // refuses.
+  [[nodiscard]] virtual Expected<Configuration, SettingsRefusal> try_configure(
+      const DeviceSettings& s) const = 0;
+  // Refuses a watchdog setting out of the drive's range, and a setting of another drive kind's
+  // (an MC6000 given the VF1000's watchdog_reaction, keypad or reset_time).
+  [[nodiscard]] virtual SettingsRefusal validate_watchdog(const DeviceSettings& s) const = 0;
+#if IBS_EXCEPTIONS
+  // try_configure and validate_watchdog, throwing SettingsError for what they refuse.
+  [[nodiscard]] Configuration configure(const DeviceSettings& s) const;
+  void check_watchdog(const DeviceSettings& s) const;
+#endif
   // The message for a setting the drive does not have at all ("'supi' is an MC6000 setting; a
   // VF1000 has no 405-SUPI"), nullopt for one it takes.
   [[nodiscard]] virtual std::optional<std::string_view> refused_setting(std::string_view key) const = 0;
@@ -152,11 +185,14 @@ class DriveDescriptor {
   [[nodiscard]] virtual std::optional<std::string> lacks(Capability c, const Configuration& config) const = 0;
 
   // --- the master side -----------------------------------------------------------------------
+  // For a configuration try_configure gave: an MC6000 configuration whose settings it refuses
+  // throws SettingsError (in the embedded build: aborts).
   [[nodiscard]] virtual std::unique_ptr<DeviceDriver> make_driver(const Configuration& config) const = 0;
   // Control and status words in words, the drive's own bits included.
   [[nodiscard]] virtual std::string explain_control(Word control, Word previous) const = 0;
   [[nodiscard]] virtual std::string explain_status(Word status) const = 0;
 
+#if !IBS_EMBEDDED
   // --- traces (../shared/specs/trace-format.md) -------------------------------------------------
   // The settings a trace header gives (supi, ibcnf); the headers a recording of the device writes.
   [[nodiscard]] virtual DeviceSettings trace_settings(const trace::Header& h) const = 0;
@@ -169,15 +205,21 @@ class DriveDescriptor {
   [[nodiscard]] virtual std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const = 0;
+#endif
 
   // --- the command line ------------------------------------------------------------------------
   // `ibs layout`: a refusal of the options given (nullopt: they suit the drive), then the words.
   [[nodiscard]] virtual std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const = 0;
   [[nodiscard]] virtual LayoutDescription layout(const Configuration& config) const = 0;
-  // `ibs timing`: the fields after the name in NAME[:FIELD...]; throws SettingsError. ring_spec
+  // `ibs timing`: the fields after the name in NAME[:FIELD...], or the refusal of them. ring_spec
   // writes the argument that stands for a device of these settings ("mc6000:11").
-  [[nodiscard]] virtual RingEntry ring_entry(std::span<const std::string_view> fields) const = 0;
+  [[nodiscard]] virtual Expected<RingEntry, SettingsRefusal> try_ring_entry(
+      std::span<const std::string_view> fields) const = 0;
   [[nodiscard]] virtual std::string ring_spec(const DeviceSettings& s) const = 0;
+#if IBS_EXCEPTIONS
+  // try_ring_entry, throwing SettingsError for what it refuses.
+  [[nodiscard]] RingEntry ring_entry(std::span<const std::string_view> fields) const;
+#endif
 
  private:
   DriveFacts facts_;

@@ -15,9 +15,10 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/words.hpp"
 #include "ibs/drive/data_types.hpp"
 #include "ibs/drive/siof.hpp"
+#include "ibs/interbus/error.hpp"
+#include "ibs/interbus/words.hpp"
 
 namespace ibs::drive {
 
@@ -89,8 +90,11 @@ constexpr WriteCheck check_write(const ParameterInfo* p, Word raw, bool power_st
 class ParameterTable {
  public:
   // Checks the table: numbers unique and <= 3FFH, names 1-5 and units 0-5 printable characters,
-  // min <= default <= max within the type's range; throws std::invalid_argument naming the
-  // parameter and what is wrong.
+  // min <= default <= max within the type's range, a positive scale. The refusal
+  // (ErrorCode::table_*) names the entry, the parameter and what is wrong.
+  [[nodiscard]] static Error validate(std::span<const ParameterInfo> params);
+  // A table that validate() accepts. Otherwise it throws std::invalid_argument with validate()'s
+  // message, or, in the embedded build, aborts (validate first).
   explicit ParameterTable(std::span<const ParameterInfo> params);
 
   [[nodiscard]] const ParameterInfo* find(std::uint16_t number) const {

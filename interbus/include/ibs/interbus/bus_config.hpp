@@ -1,18 +1,23 @@
 // A bus configuration: the ring of devices in physical order, each placed in the process image by
 // its ID code, checked against the INTERBUS limits. Building one is configuration-time work (it
-// allocates and throws ConfigError); reading it is free.
+// allocates, and a refusal is an Error, or a ConfigError where exceptions are on); reading it is
+// free.
 #pragma once
 
 #include <cstddef>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/id_code.hpp"
 #include "ibs/interbus/process_image.hpp"
+
+#if IBS_EXCEPTIONS
+#include <stdexcept>
+#endif
 
 namespace ibs::interbus {
 
@@ -21,12 +26,6 @@ namespace ibs::interbus {
 inline constexpr std::size_t kMaxDevices = 512;
 inline constexpr std::size_t kMaxRemoteDevices = 254;
 inline constexpr std::size_t kMaxLocalSegmentDevices = 63;
-
-// A configuration was refused; the message names the device, the offending value and the limit.
-class ConfigError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
 
 // What the user says about one device of the ring.
 struct DeviceSpec {
@@ -70,11 +69,22 @@ struct BusConfig {
 // build it; a modelling choice), its PCP words likewise in the PCP areas. A device that sends no
 // input (direction out) gets an empty `in` slice at the current offset, and vice versa.
 //
-// Throws ConfigError for: an empty or repeated name; an ID code whose length code or PCP width is
-// unknown, whose PCP channel is wider than the device, or that has words but no direction; more
-// than 512 devices, 254 remote-bus devices, 63 devices in one local bus segment (a run of
-// consecutive local-bus devices), 62 PCP devices, 256 process-data words in or out.
+// Refuses (ErrorCode::bus_*, the message naming the device, the offending value and the limit):
+// an empty or repeated name; an ID code whose length code or PCP width is unknown, whose PCP
+// channel is wider than the device, or that has words but no direction; more than 512 devices,
+// 254 remote-bus devices, 63 devices in one local bus segment (a run of consecutive local-bus
+// devices), 62 PCP devices, 256 process-data words in or out.
+Expected<BusConfig> try_make_bus_config(std::span<const DeviceSpec> ring);
+
+#if IBS_EXCEPTIONS
+// A configuration was refused; what() is the Error's message.
+class ConfigError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+// try_make_bus_config, throwing ConfigError for what it refuses.
 BusConfig make_bus_config(std::span<const DeviceSpec> ring);
+#endif
 
 // A device's words in an image (empty spans for a device of another configuration that does not
 // fit the image; never for one of the configuration the image is used with).

@@ -4,6 +4,11 @@
 // code: it allocates and throws.
 #pragma once
 
+#include "ibs/interbus/build.hpp"
+#if IBS_EMBEDDED
+#error "traces, replay and file reading are not in the embedded build (docs/embedding.md)"
+#endif
+
 #include <cstddef>
 #include <stdexcept>
 #include <string>

@@ -3,6 +3,11 @@
 // allocate and throw TraceError); nothing here is on the cycle path.
 #pragma once
 
+#include "ibs/interbus/build.hpp"
+#if IBS_EMBEDDED
+#error "traces, replay and file reading are not in the embedded build (docs/embedding.md)"
+#endif
+
 #include <cstdint>
 #include <optional>
 #include <span>

@@ -10,6 +10,7 @@
 
 #include "ibs/devices/driver.hpp"
 #include "ibs/interbus/bus_config.hpp"
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/process_image.hpp"
 #include "ibs/master/bus.hpp"
 
@@ -17,8 +18,13 @@ namespace ibs::master {
 
 class MasterLoop {
  public:
-  // One driver per device of the configuration, in ring order; throws std::invalid_argument when
-  // the counts differ or a device lies outside the process image.
+  // Refuses a count of drivers other than the configuration's devices
+  // (ErrorCode::master_driver_count) and a device whose words lie outside the process image
+  // (ErrorCode::master_device_outside_image).
+  [[nodiscard]] static Error validate(const interbus::BusConfig& config, std::size_t drivers);
+  // One driver per device of the configuration, in ring order, as validate() accepts them:
+  // otherwise it throws std::invalid_argument with validate()'s message, or, in the embedded
+  // build, aborts.
   MasterLoop(interbus::BusConfig config, std::vector<std::unique_ptr<devices::DeviceDriver>> drivers);
 
   // Writes every driver's initial output words into the image (before the first exchange).

@@ -91,7 +91,12 @@ struct ClientStats {
 
 class Client {
  public:
-  // Throws std::invalid_argument for a bad width or KBL (configuration time).
+  // Refuses KBL max PDU sizes outside 20..134 bytes (ErrorCode::channel_pdu_size_invalid), a
+  // request_timeout that is not positive (ErrorCode::channel_timeout_not_positive), then what
+  // Link::validate refuses of the channel width and link_ack_timeout.
+  [[nodiscard]] static Error validate(const ClientConfig& cfg);
+  // A client of a configuration validate() accepts: otherwise it throws std::invalid_argument with
+  // validate()'s message (configuration time), or, in the embedded build, aborts.
   explicit Client(const ClientConfig& cfg);
 
   // Submissions. `timeout` zero means the configured request_timeout.

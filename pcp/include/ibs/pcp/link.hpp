@@ -33,6 +33,7 @@
 #include <optional>
 #include <span>
 
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/pcp/pdu.hpp"
@@ -110,7 +111,11 @@ struct LinkEvents {
 
 class Link {
  public:
-  // Throws std::invalid_argument (configuration time) for a width other than 1, 2 or 4.
+  // Refuses a width other than 1, 2 or 4 (ErrorCode::channel_width_invalid) and an ack_timeout
+  // that is not positive (ErrorCode::channel_timeout_not_positive).
+  [[nodiscard]] static Error validate(const LinkConfig& cfg);
+  // A link of a configuration validate() accepts: otherwise it throws std::invalid_argument with
+  // validate()'s message (configuration time), or, in the embedded build, aborts.
   explicit Link(const LinkConfig& cfg);
 
   [[nodiscard]] const LinkConfig& config() const { return cfg_; }

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 
+#include "ibs/interbus/error.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/parameters.hpp"
 
@@ -18,9 +19,12 @@ inline constexpr std::size_t kMaxParameters = 64;
 
 class ParameterStore {
  public:
-  // Throws std::invalid_argument naming the parameter when the table has more than
-  // kMaxParameters rows, a duplicate number, a number above 999, an empty or over-long name,
-  // limits that do not fit the type, min > max, or a default outside min..max.
+  // Refuses (ErrorCode::table_*, naming the parameter) a table of more than kMaxParameters rows,
+  // a duplicate number, a number above 999, an empty or over-long name, limits that do not fit
+  // the type, min > max, or a default outside min..max.
+  [[nodiscard]] static Error validate(std::span<const ParameterInfo> table);
+  // A store of a table validate() accepts: otherwise it throws std::invalid_argument with
+  // validate()'s message, or, in the embedded build, aborts.
   explicit ParameterStore(std::span<const ParameterInfo> table);
 
   [[nodiscard]] std::span<const ParameterInfo> table() const { return table_; }

@@ -96,8 +96,14 @@ struct ServerStats {
 
 class Server {
  public:
-  // Serves the drive's table. Throws std::invalid_argument for a bad width, workload or table
-  // (configuration time).
+  // Refuses a workload outside 0..1 (ErrorCode::channel_workload_out_of_range), a latency with
+  // processing_min below 0 or above processing_max (ErrorCode::channel_latency_invalid), then what
+  // ParameterStore::validate refuses of the table and Link::validate of the channel.
+  [[nodiscard]] static Error validate(const ServerConfig& cfg,
+                                      std::span<const ParameterInfo> table);
+  // Serves the drive's table, with a configuration validate() accepts: otherwise it throws
+  // std::invalid_argument with validate()'s message (configuration time), or, in the embedded
+  // build, aborts.
   Server(const ServerConfig& cfg, std::span<const ParameterInfo> table);
 
   // Switches the servo off and on: RAM from EEPROM, an EEPROM save in progress is lost, SERR

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ibs/interbus/bounded_queue.hpp"
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
@@ -126,6 +127,11 @@ std::string_view to_string(ClientState s);
 
 class Client {
  public:
+  // Refuses an empty queue or completed ring (ErrorCode::channel_capacity_zero) and a timeout
+  // that is not positive (ErrorCode::channel_timeout_not_positive).
+  [[nodiscard]] static Error validate(const ClientConfig& config);
+  // A client of a configuration validate() accepts: otherwise it throws std::invalid_argument with
+  // validate()'s message, or, in the embedded build, aborts.
   explicit Client(const ClientConfig& config = {});
 
   // The master's word before its first step: the starting position.

@@ -9,10 +9,11 @@
 #include <span>
 #include <string_view>
 
+#include "ibs/drive/parameters.hpp"
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/time.hpp"
 #include "ibs/interbus/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
-#include "ibs/drive/parameters.hpp"
 #include "ibs/vf1000_channel/description.hpp"
 
 namespace ibs::vf1000_channel {
@@ -78,9 +79,12 @@ struct ServerEvent {
 
 class Server {
  public:
-  // Serves the drive's parameter table (devices/vf1000/parameters.hpp for the VF1000). The table
-  // must hold 85-SIOF (the channel's error register); throws std::invalid_argument otherwise, or
-  // when the table itself is malformed (see drive::ParameterTable).
+  // Refuses a malformed table (drive::ParameterTable::validate) and one without 85-SIOF, the
+  // channel's error register (ErrorCode::table_lacks_siof).
+  [[nodiscard]] static Error validate(std::span<const drive::ParameterInfo> params);
+  // Serves the drive's parameter table (devices/vf1000/parameters.hpp for the VF1000), one that
+  // validate() accepts: otherwise it throws std::invalid_argument with validate()'s message, or,
+  // in the embedded build, aborts.
   Server(const ServerConfig& config, ServerStart start, Time now,
          std::span<const drive::ParameterInfo> params);
 

@@ -7,11 +7,15 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 
+#include "ibs/interbus/error.hpp"
 #include "ibs/interbus/id_code.hpp"
 #include "ibs/interbus/words.hpp"
+
+#if IBS_EXCEPTIONS
+#include <stdexcept>
+#endif
 
 namespace ibs::devices::mc6000 {
 
@@ -73,14 +77,21 @@ struct Layout {
   int actual_words = 2;     // words after the status word that carry the actual value(s)
 };
 
-// Thrown at configuration time for a refused SUPI/IBCNF pair; the message names both values.
+// Checks the pair against 3.2.2/3.2.3 and builds the layout. Refuses (ErrorCode::layout_*, the
+// message naming the value and the rule) a 405-SUPI or 406-IBCNF out of range, 406-IBCNF = 4 and
+// a pair 3.2.3 does not allow.
+Expected<Layout> try_make_layout(int supi, int ibcnf,
+                                 interbus::BusKind bus = interbus::BusKind::remote);
+
+#if IBS_EXCEPTIONS
+// Thrown at configuration time for a refused SUPI/IBCNF pair; what() is the Error's message.
 class LayoutError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
-
-// Checks the pair against 3.2.2/3.2.3 and builds the layout; throws LayoutError.
+// try_make_layout, throwing LayoutError for what it refuses.
 Layout make_layout(int supi, int ibcnf, interbus::BusKind bus = interbus::BusKind::remote);
+#endif
 
 // Reference and actual values in engineering units of the control mode (rpm in speed control).
 // 16-bit words carry integer units (a modelling choice: the manual does not give the 16-bit
