@@ -4,6 +4,7 @@
 // environment anew. All state lives in one Driver object behind one lock.
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -86,6 +87,19 @@ IBDDIRET write_locked(Board& b, const T_DDI_DTI_ACCESS* a) {
   return ERR_OK;
 }
 
+// A DTI call: the node and its permission, the access(es) checked, then `f` with the board held.
+template <typename F>
+IBDDIRET data_call(IBDDIHND handle, int need, std::initializer_list<const T_DDI_DTI_ACCESS*> accesses, F&& f) {
+  Driver& d = driver();
+  const std::lock_guard<std::mutex> lock(d.mutex);
+  if (const IBDDIRET r = find(d, handle, DDI_NODE_DATA, need); r != ERR_OK) return r;
+  for (const T_DDI_DTI_ACCESS* a : accesses) {
+    if (const IBDDIRET r = check_access(a); r != ERR_OK) return r;
+  }
+  const std::lock_guard<std::mutex> board(d.board->mutex());
+  return f(*d.board);
+}
+
 }  // namespace
 
 extern "C" {
@@ -122,33 +136,19 @@ IBDDIRET DDI_DevCloseNode(IBDDIHND handle) {
 }
 
 IBDDIRET DDI_DTI_ReadData(IBDDIHND handle, T_DDI_DTI_ACCESS* access) {
-  Driver& d = driver();
-  const std::lock_guard<std::mutex> lock(d.mutex);
-  if (const IBDDIRET r = find(d, handle, DDI_NODE_DATA, DDI_READ); r != ERR_OK) return r;
-  if (const IBDDIRET r = check_access(access); r != ERR_OK) return r;
-  const std::lock_guard<std::mutex> board(d.board->mutex());
-  return read_locked(*d.board, access);
+  return data_call(handle, DDI_READ, {access}, [&](Board& b) { return read_locked(b, access); });
 }
 
 IBDDIRET DDI_DTI_WriteData(IBDDIHND handle, T_DDI_DTI_ACCESS* access) {
-  Driver& d = driver();
-  const std::lock_guard<std::mutex> lock(d.mutex);
-  if (const IBDDIRET r = find(d, handle, DDI_NODE_DATA, DDI_WRITE); r != ERR_OK) return r;
-  if (const IBDDIRET r = check_access(access); r != ERR_OK) return r;
-  const std::lock_guard<std::mutex> board(d.board->mutex());
-  return write_locked(*d.board, access);
+  return data_call(handle, DDI_WRITE, {access}, [&](Board& b) { return write_locked(b, access); });
 }
 
 IBDDIRET DDI_DTI_ReadWriteData(IBDDIHND handle, T_DDI_DTI_ACCESS* write, T_DDI_DTI_ACCESS* read) {
-  Driver& d = driver();
-  const std::lock_guard<std::mutex> lock(d.mutex);
-  if (const IBDDIRET r = find(d, handle, DDI_NODE_DATA, DDI_RW); r != ERR_OK) return r;
-  if (const IBDDIRET r = check_access(write); r != ERR_OK) return r;
-  if (const IBDDIRET r = check_access(read); r != ERR_OK) return r;
   // Both in one hold of the board: the outputs and the inputs of the same cycle.
-  const std::lock_guard<std::mutex> board(d.board->mutex());
-  if (const IBDDIRET r = write_locked(*d.board, write); r != ERR_OK) return r;
-  return read_locked(*d.board, read);
+  return data_call(handle, DDI_RW, {write, read}, [&](Board& b) {
+    const IBDDIRET r = write_locked(b, write);
+    return r != ERR_OK ? r : read_locked(b, read);
+  });
 }
 
 IBDDIRET DDI_MXI_SndMessage(IBDDIHND handle, T_DDI_MXI_ACCESS* access) {

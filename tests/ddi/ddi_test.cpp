@@ -45,6 +45,15 @@ class Ddi : public ::testing::Test {
       EXPECT_EQ(DDI_DevCloseNode(mbx_), ERR_OK);
     }
   }
+  // The next board's scenario: `toml` after a duration that leaves its faults room.
+  static void use_scenario(const std::string& name, const std::string& toml) {
+    setenv("IBS_DDI_SCENARIO", write_file(name, "duration = \"10 s\"\n" + toml).c_str(), 1);
+  }
+  // `n` bus cycles (stepped reads), each read accepted.
+  void run_cycles(int n) {
+    std::uint8_t b[2];
+    for (int k = 0; k < n; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);
+  }
   void open() {
     ASSERT_EQ(DDI_DevOpenNode(DDI_DATA_NODE, DDI_RW, &data_), ERR_OK);
     ASSERT_EQ(DDI_DevOpenNode(DDI_MAILBOX_NODE, DDI_RW, &mbx_), ERR_OK);
@@ -324,9 +333,7 @@ TEST_F(Ddi, PcpNeedsTheBusAndStoppingAbortsTheAssociation) {
 }
 
 TEST_F(Ddi, CorruptedCyclesAreABusError) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_corrupt.toml", R"(duration = "10 s"
-[[device]]
+  use_scenario("ddi_corrupt.toml", R"([[device]]
 name = "servo"
 type = "mc6000"
 [[device]]
@@ -336,14 +343,12 @@ type = "vf1000"
 at = "100 ms"
 fault = "corrupt"
 count = 3
-)").c_str(),
-         1);
+)");
   open();
   start();
-  std::uint8_t b[2];
-  for (int k = 0; k < 100; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);  // 72.6 ms
+  run_cycles(100);  // 72.6 ms
   EXPECT_EQ(diag() & (DIAG_BUS | DIAG_PF), 0);
-  for (int k = 0; k < 100; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);
+  run_cycles(100);
   EXPECT_EQ(diag() & (DIAG_BUS | DIAG_PF | DIAG_RUN), DIAG_BUS | DIAG_RUN);  // latched; data flows on
   EXPECT_EQ(call({S_GET_DIAG_INFO, 0}), (Words{0x832B, 4, RES_OK, 1, 0, DIAG_CODE_TRANSMISSION}));
   EXPECT_EQ(call({S_CONFIRM_DIAGNOSTICS, 0}), (Words{0x8760, 1, RES_OK}));
@@ -352,9 +357,7 @@ count = 3
 }
 
 TEST_F(Ddi, ALostDeviceIsAPeripheralFault) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_lost.toml", R"(duration = "10 s"
-[bus]
+  use_scenario("ddi_lost.toml", R"([bus]
 cycle_time = "1 ms"
 [[device]]
 name = "servo"
@@ -367,12 +370,10 @@ at = "50 ms"
 device = "fan"
 fault = "lost"
 duration = "100 ms"
-)").c_str(),
-         1);
+)");
   open();
   start();
-  std::uint8_t b[2];
-  for (int k = 0; k < 80; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);
+  run_cycles(80);
   EXPECT_EQ(diag() & (DIAG_BUS | DIAG_PF), DIAG_PF);
   EXPECT_EQ(diag_parameter(), 0x0200);  // device 2.0, the second remote-bus segment
   EXPECT_EQ(read_words(kVf, 3), (Words{0, 0, 0}));  // nothing from a missing device
@@ -380,16 +381,14 @@ duration = "100 ms"
   // Confirmed while the device is still away: it stays reported.
   EXPECT_EQ(call({S_CONFIRM_DIAGNOSTICS, 0}), (Words{0x8760, 1, RES_OK}));
   EXPECT_EQ(diag() & DIAG_PF, DIAG_PF);
-  for (int k = 0; k < 150; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);
+  run_cycles(150);
   EXPECT_EQ(call({S_CONFIRM_DIAGNOSTICS, 0}), (Words{0x8760, 1, RES_OK}));
   EXPECT_EQ(diag() & DIAG_PF, 0);
   EXPECT_NE(read_words(kVf, 1)[0], 0);  // back, with a status word
 }
 
 TEST_F(Ddi, APowerCycledDeviceIsAPeripheralFaultWhileItInitialises) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_power.toml", R"(duration = "10 s"
-[bus]
+  use_scenario("ddi_power.toml", R"([bus]
 cycle_time = "2 ms"
 [[device]]
 name = "fan"
@@ -398,20 +397,16 @@ type = "vf1000"
 at = "20 ms"
 device = "fan"
 fault = "power-cycle"
-)").c_str(),
-         1);
+)");
   open();
   start(1);
-  std::uint8_t b[2];
-  for (int k = 0; k < 30; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);
+  run_cycles(30);
   EXPECT_EQ(diag() & DIAG_PF, DIAG_PF);
   EXPECT_EQ(diag_parameter(), 0x0100);
 }
 
 TEST_F(Ddi, ADeviceFaultIsTheDrivesNotTheBoards) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_device_fault.toml", R"(duration = "10 s"
-[bus]
+  use_scenario("ddi_device_fault.toml", R"([bus]
 cycle_time = "1 ms"
 [[device]]
 name = "servo"
@@ -420,8 +415,7 @@ type = "mc6000"
 at = "20 ms"
 device = "servo"
 fault = "device"
-)").c_str(),
-         1);
+)");
   open();
   start(1);
   bool fault = false;
@@ -434,9 +428,7 @@ fault = "device"
 }
 
 TEST_F(Ddi, AMasterRestartInTheScenarioIsTheBoardsSysFail) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_sysfail.toml", R"(duration = "10 s"
-[bus]
+  use_scenario("ddi_sysfail.toml", R"([bus]
 cycle_time = "1 ms"
 [[device]]
 name = "servo"
@@ -444,8 +436,7 @@ type = "mc6000"
 [[timeline]]
 at = "10 ms"
 master_restart = true
-)").c_str(),
-         1);
+)");
   open();
   start(1);
   std::uint8_t b[2];
@@ -482,15 +473,14 @@ TEST_F(Ddi, SwitchingASegmentOffBypassesIt) {
 }
 
 TEST_F(Ddi, AScenarioWithMasterCommandsOrAnUnknownModeDoesNotStart) {
-  setenv("IBS_DDI_SCENARIO", write_file("ddi_commands.toml", R"(duration = "10 s"
-[[device]]
+  use_scenario("ddi_commands.toml", R"([[device]]
 name = "servo"
 type = "mc6000"
 [[timeline]]
 at = "0 s"
 device = "servo"
 state = "enabled"
-)").c_str(), 1);
+)");
   IBDDIHND h = 0;
   EXPECT_EQ(DDI_DevOpenNode(DDI_DATA_NODE, DDI_RW, &h), ERR_NODE_NOT_READY);
   setenv("IBS_DDI_SCENARIO", "/nonexistent/ddi.toml", 1);
@@ -527,6 +517,8 @@ TEST_F(Ddi, ReadWriteDataWritesAndReadsInOneCall) {
   T_DDI_DTI_ACCESS w{6, kMc, DDI_WORD, out};
   T_DDI_DTI_ACCESS r{6, kMc, DDI_LWORD, in};
   EXPECT_EQ(DDI_DTI_ReadWriteData(data_, &w, &r), ERR_INVLD_DATA_CONS);  // 6 bytes are no LWORDs
+  EXPECT_EQ(DDI_DTI_ReadWriteData(data_, &w, nullptr), ERR_INVLD_PARAM);
+  EXPECT_EQ(DDI_DTI_ReadWriteData(data_, nullptr, &r), ERR_INVLD_PARAM);
   r.dataCons = DDI_WORD;
   bool ready = false;
   for (int k = 0; k < 4000 && !ready; ++k) {
@@ -544,9 +536,7 @@ TEST_F(Ddi, ReadWriteDataWritesAndReadsInOneCall) {
 }
 
 TEST_F(Ddi, AServoLostDuringARequestEndsItsAssociationWithAnAbortIndication) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_pcp_lost.toml", R"(duration = "10 s"
-[bus]
+  use_scenario("ddi_pcp_lost.toml", R"([bus]
 cycle_time = "1 ms"
 [[device]]
 name = "servo"
@@ -556,13 +546,11 @@ at = "300 ms"
 device = "servo"
 fault = "lost"
 duration = "2 s"
-)").c_str(),
-         1);
+)");
   open();
   start(1);
   EXPECT_EQ(call({S_PCP_INITIATE, 3, 0x0102, 0, 0}), (Words{0x808B, 4, 0x0102, 0, 134, 134}));
-  std::uint8_t b[2];
-  for (int k = 0; k < 310; ++k) ASSERT_EQ(read(0, 2, b), ERR_OK);  // past 300 ms: the servo is away
+  run_cycles(310);  // past 300 ms: the servo is away
   ASSERT_EQ(send({S_PCP_READ, 3, 0x0202, 0x5C00 + 406, 0}), ERR_OK);
   std::uint16_t type = 0;
   // No confirmation: the PCP link's acknowledgement timeout (100 ms) resets the channel before the
@@ -573,16 +561,13 @@ duration = "2 s"
 }
 
 TEST_F(Ddi, StoppingTheDataTransferTripsTheDrivesBusWatchdog) {
-  setenv("IBS_DDI_SCENARIO",
-         write_file("ddi_watchdog.toml", R"(duration = "10 s"
-[bus]
+  use_scenario("ddi_watchdog.toml", R"([bus]
 cycle_time = "1 ms"
 [[device]]
 name = "servo"
 type = "mc6000"
 watchdog_ms = 50
-)").c_str(),
-         1);
+)");
   open();
   start(1);
   EXPECT_TRUE(drive_to(kMc, kMc, {0x0006, 0, 0}, 0x21));
