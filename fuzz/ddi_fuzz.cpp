@@ -9,7 +9,8 @@
 //   DDI_MSG_CONFIRMATION, anything else is an indication the header names (PCP Abort, Information
 //   Report) with the type DDI_MSG_INDICATION;
 // - the diagnostic status register is consistent: RUN only with ACTIVE and READY, CTRL alone;
-// - a process-data read succeeds only while RUN is set.
+// - a process-data read succeeds only while RUN is set;
+// - a read-and-write without one of its accesses, or without data behind one, is refused.
 //
 // Input: a sequence of operations, each one byte (the operation) and its arguments.
 #include <cstddef>
@@ -159,7 +160,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         } else if (op == 1) {
           r = DDI_DTI_WriteData(s.data, &a);
         } else {
-          r = DDI_DTI_ReadWriteData(s.data, &a, &a);
+          // Sometimes without one of the two accesses, or with no data behind one.
+          const auto shape = in.ConsumeIntegral<std::uint8_t>() % 4;
+          T_DDI_DTI_ACCESS no_data = a;
+          no_data.data = nullptr;
+          r = DDI_DTI_ReadWriteData(s.data, shape == 1 ? nullptr : &a,
+                                    shape == 2 ? nullptr : shape == 3 ? &no_data : &a);
+          if (shape != 0) IBS_FUZZ_REQUIRE(r != ERR_OK, "a missing access accepted");
         }
         IBS_FUZZ_REQUIRE(one_of(r, {ERR_OK, ERR_INVLD_PARAM, ERR_INVLD_DATA_CONS, ERR_AREA_EXCDED, ERR_IB_STOPPED,
                                     ERR_IBS_SYSFAIL}),
