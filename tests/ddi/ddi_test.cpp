@@ -24,6 +24,10 @@ using Words = std::vector<std::uint16_t>;
 constexpr std::uint16_t kMc = 0;
 constexpr std::uint16_t kVf = 6;
 
+// Devices of the tests' own scenarios.
+const std::string kServo = "[[device]]\nname = \"servo\"\ntype = \"mc6000\"\n";
+const std::string kFan = "[[device]]\nname = \"fan\"\ntype = \"vf1000\"\n";
+
 std::string write_file(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
@@ -45,9 +49,14 @@ class Ddi : public ::testing::Test {
       EXPECT_EQ(DDI_DevCloseNode(mbx_), ERR_OK);
     }
   }
-  // The next board's scenario: `toml` after a duration that leaves its faults room.
-  static void use_scenario(const std::string& name, const std::string& toml) {
-    setenv("IBS_DDI_SCENARIO", write_file(name, "duration = \"10 s\"\n" + toml).c_str(), 1);
+  // The next board's scenario: a duration that leaves its faults room, the bus cycle time (empty:
+  // the formula's), the ring (kServo, kFan), then `rest` (more keys of the last device, the
+  // timeline).
+  static void use_scenario(const std::string& name, const std::string& cycle_time, const std::string& ring,
+                           const std::string& rest) {
+    std::string toml = "duration = \"10 s\"\n";
+    if (!cycle_time.empty()) toml += "[bus]\ncycle_time = \"" + cycle_time + "\"\n";
+    setenv("IBS_DDI_SCENARIO", write_file(name, toml + ring + rest).c_str(), 1);
   }
   // `n` bus cycles (stepped reads), each read accepted.
   void run_cycles(int n) {
@@ -333,13 +342,7 @@ TEST_F(Ddi, PcpNeedsTheBusAndStoppingAbortsTheAssociation) {
 }
 
 TEST_F(Ddi, CorruptedCyclesAreABusError) {
-  use_scenario("ddi_corrupt.toml", R"([[device]]
-name = "servo"
-type = "mc6000"
-[[device]]
-name = "fan"
-type = "vf1000"
-[[timeline]]
+  use_scenario("ddi_corrupt.toml", "", kServo + kFan, R"([[timeline]]
 at = "100 ms"
 fault = "corrupt"
 count = 3
@@ -357,15 +360,7 @@ count = 3
 }
 
 TEST_F(Ddi, ALostDeviceIsAPeripheralFault) {
-  use_scenario("ddi_lost.toml", R"([bus]
-cycle_time = "1 ms"
-[[device]]
-name = "servo"
-type = "mc6000"
-[[device]]
-name = "fan"
-type = "vf1000"
-[[timeline]]
+  use_scenario("ddi_lost.toml", "1 ms", kServo + kFan, R"([[timeline]]
 at = "50 ms"
 device = "fan"
 fault = "lost"
@@ -388,12 +383,7 @@ duration = "100 ms"
 }
 
 TEST_F(Ddi, APowerCycledDeviceIsAPeripheralFaultWhileItInitialises) {
-  use_scenario("ddi_power.toml", R"([bus]
-cycle_time = "2 ms"
-[[device]]
-name = "fan"
-type = "vf1000"
-[[timeline]]
+  use_scenario("ddi_power.toml", "2 ms", kFan, R"([[timeline]]
 at = "20 ms"
 device = "fan"
 fault = "power-cycle"
@@ -406,12 +396,7 @@ fault = "power-cycle"
 }
 
 TEST_F(Ddi, ADeviceFaultIsTheDrivesNotTheBoards) {
-  use_scenario("ddi_device_fault.toml", R"([bus]
-cycle_time = "1 ms"
-[[device]]
-name = "servo"
-type = "mc6000"
-[[timeline]]
+  use_scenario("ddi_device_fault.toml", "1 ms", kServo, R"([[timeline]]
 at = "20 ms"
 device = "servo"
 fault = "device"
@@ -428,12 +413,7 @@ fault = "device"
 }
 
 TEST_F(Ddi, AMasterRestartInTheScenarioIsTheBoardsSysFail) {
-  use_scenario("ddi_sysfail.toml", R"([bus]
-cycle_time = "1 ms"
-[[device]]
-name = "servo"
-type = "mc6000"
-[[timeline]]
+  use_scenario("ddi_sysfail.toml", "1 ms", kServo, R"([[timeline]]
 at = "10 ms"
 master_restart = true
 )");
@@ -473,10 +453,7 @@ TEST_F(Ddi, SwitchingASegmentOffBypassesIt) {
 }
 
 TEST_F(Ddi, AScenarioWithMasterCommandsOrAnUnknownModeDoesNotStart) {
-  use_scenario("ddi_commands.toml", R"([[device]]
-name = "servo"
-type = "mc6000"
-[[timeline]]
+  use_scenario("ddi_commands.toml", "", kServo, R"([[timeline]]
 at = "0 s"
 device = "servo"
 state = "enabled"
@@ -536,12 +513,7 @@ TEST_F(Ddi, ReadWriteDataWritesAndReadsInOneCall) {
 }
 
 TEST_F(Ddi, AServoLostDuringARequestEndsItsAssociationWithAnAbortIndication) {
-  use_scenario("ddi_pcp_lost.toml", R"([bus]
-cycle_time = "1 ms"
-[[device]]
-name = "servo"
-type = "mc6000"
-[[timeline]]
+  use_scenario("ddi_pcp_lost.toml", "1 ms", kServo, R"([[timeline]]
 at = "300 ms"
 device = "servo"
 fault = "lost"
@@ -561,12 +533,7 @@ duration = "2 s"
 }
 
 TEST_F(Ddi, StoppingTheDataTransferTripsTheDrivesBusWatchdog) {
-  use_scenario("ddi_watchdog.toml", R"([bus]
-cycle_time = "1 ms"
-[[device]]
-name = "servo"
-type = "mc6000"
-watchdog_ms = 50
+  use_scenario("ddi_watchdog.toml", "1 ms", kServo, R"(watchdog_ms = 50
 )");
   open();
   start(1);
