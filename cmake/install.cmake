@@ -22,6 +22,19 @@ function(ibs_export target export_name)
   set_property(GLOBAL APPEND PROPERTY IBS_EXPORTED_TARGETS ${target})
 endfunction()
 
+# ibs_replay_only(target SOURCES file... HEADERS name...): sources that serve tests, replay and the
+# command line (traces and their adapters), never the cycle path. The default build compiles them
+# into `target`; the embedded build (IBS_EMBEDDED, docs/embedding.md) leaves them out and does not
+# install the headers of those names.
+function(ibs_replay_only target)
+  cmake_parse_arguments(arg "" "" "SOURCES;HEADERS" ${ARGN})
+  if(IBS_EMBEDDED)
+    set_property(GLOBAL APPEND PROPERTY IBS_EXCLUDED_HEADERS ${arg_HEADERS})
+  else()
+    target_sources(${target} PRIVATE ${arg_SOURCES})
+  endif()
+endfunction()
+
 # Called once at the end of the top-level CMakeLists.txt, when every target exists.
 function(ibs_install)
   get_property(targets GLOBAL PROPERTY IBS_EXPORTED_TARGETS)
