@@ -1,15 +1,11 @@
 #include "board.hpp"
 
-#include <pthread.h>
-#include <sched.h>
-#include <time.h>
-
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <stdexcept>
+
+#include "ibs/sim/realtime.hpp"
 
 namespace ibs::ddi {
 
@@ -94,24 +90,14 @@ void Board::step() {
 
 void Board::run_realtime() {
   if (options_.rt_priority > 0) {
-    sched_param p{};
-    p.sched_priority = options_.rt_priority;
-    if (const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p); err != 0) {
-      std::fprintf(stderr, "ibs-ddi: SCHED_FIFO priority %d refused (%s); the board runs without it\n",
-                   options_.rt_priority, std::strerror(err));
+    if (const std::string refused = sim::set_fifo_priority(options_.rt_priority); !refused.empty()) {
+      std::fprintf(stderr, "ibs-ddi: %s\n", refused.c_str());
     }
   }
-  timespec start{};
-  clock_gettime(CLOCK_MONOTONIC, &start);
+  const std::int64_t start = sim::monotonic_ns();
   const std::int64_t cycle_ns = sim_->cycle_time().count();
   while (!stop_) {
-    // (time_t and the nanoseconds are 64-bit on the targets: Linux on x86-64 and arm64)
-    const std::int64_t at = start.tv_nsec + cycle_ns * static_cast<std::int64_t>(cycle_ + 1);
-    timespec deadline{};
-    deadline.tv_sec = start.tv_sec + at / 1'000'000'000;
-    deadline.tv_nsec = at % 1'000'000'000;
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
-    }
+    sim::sleep_until_ns(start + cycle_ns * static_cast<std::int64_t>(cycle_ + 1));
     const std::lock_guard<std::mutex> lock(mutex_);
     if (stop_) break;
     try {

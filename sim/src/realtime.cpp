@@ -12,36 +12,38 @@
 
 namespace ibs::sim {
 
-namespace {
-
-std::int64_t mono_ns() {
+std::int64_t monotonic_ns() {
   timespec ts{};
   ::clock_gettime(CLOCK_MONOTONIC, &ts);
   const std::int64_t sec = ts.tv_sec;
   return sec * 1'000'000'000 + ts.tv_nsec;
 }
 
-void sleep_until(std::int64_t deadline_ns) {
+void sleep_until_ns(std::int64_t deadline) {
   timespec ts{};
-  ts.tv_sec = deadline_ns / 1'000'000'000;
-  ts.tv_nsec = deadline_ns % 1'000'000'000;
+  ts.tv_sec = deadline / 1'000'000'000;
+  ts.tv_nsec = deadline % 1'000'000'000;
   while (::clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
   }
 }
 
-}  // namespace
+std::string set_fifo_priority(int priority) {
+  sched_param p{};
+  p.sched_priority = priority;
+  // On Linux, pid 0 is the calling thread.
+  if (::sched_setscheduler(0, SCHED_FIFO, &p) == 0) return {};
+  return "SCHED_FIFO priority " + std::to_string(priority) + " refused (" + std::strerror(errno) +
+         "): running at the normal priority";
+}
 
 void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOptions& options) {
   RealtimeStats r;
   r.cycle_time = sim.cycle_time();
   if (realtime.rt_priority > 0) {
-    sched_param p{};
-    p.sched_priority = realtime.rt_priority;
-    if (::sched_setscheduler(0, SCHED_FIFO, &p) == 0) {
+    if (std::string refused = set_fifo_priority(realtime.rt_priority); refused.empty()) {
       r.rt_priority = realtime.rt_priority;
     } else {
-      r.notes.push_back("SCHED_FIFO priority " + std::to_string(realtime.rt_priority) + " refused (" +
-                        std::strerror(errno) + "): running at the normal priority");
+      r.notes.push_back(std::move(refused));
     }
     if (::mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
       r.memory_locked = true;
@@ -56,14 +58,14 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
   wake.reserve(cycles + 1);
   std::uint64_t index = 0;
   // The first deadline one cycle from now: the cycles of the run are k = 1 .. n.
-  const std::int64_t start = mono_ns();
+  const std::int64_t start = monotonic_ns();
   for (Time t = Time{0} + cycle; t <= Time{0} + end; t += cycle, ++index) {
     const std::int64_t deadline = start + (t - Time{0}).count();
-    sleep_until(deadline);
-    const std::int64_t woke = mono_ns();
+    sleep_until_ns(deadline);
+    const std::int64_t woke = monotonic_ns();
     wake.push_back(static_cast<std::uint32_t>(std::clamp<std::int64_t>(woke - deadline, 0, 0xFFFFFFFF)));
     sim.run_until(t, options);
-    const std::int64_t done = mono_ns();
+    const std::int64_t done = monotonic_ns();
     const std::int64_t late = done - (deadline + cycle.count());
     if (late > 0) {
       ++r.overruns;

@@ -8,9 +8,20 @@
 // a note says so once and the run goes on. The results go into `Summary::realtime`.
 #pragma once
 
+#include <cstdint>
+#include <string>
+
 #include "ibs/sim/simulator.hpp"
 
 namespace ibs::sim {
+
+// The pacing every real-time runner uses (this one, the DDI board's thread): CLOCK_MONOTONIC in
+// nanoseconds, a sleep to an absolute deadline on it (clock_nanosleep, TIMER_ABSTIME, resumed
+// after a signal), and SCHED_FIFO at `priority` for the calling thread: empty when granted, else
+// what to tell ("SCHED_FIFO priority 50 refused (...): running at the normal priority").
+std::int64_t monotonic_ns();
+void sleep_until_ns(std::int64_t deadline);
+std::string set_fifo_priority(int priority);
 
 struct RealtimeOptions {
   int rt_priority = 0;  // 1..99: SCHED_FIFO at this priority and memory locked (mlockall); 0: neither
