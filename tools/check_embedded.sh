@@ -70,7 +70,7 @@ cat >"$work/embedded.cpp" <<'CPP'
 #include <utility>
 #include <vector>
 #include "ibs/devices/mc6000/descriptor.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/master/master_loop.hpp"
 #include "ibs/master/memory_bus.hpp"
 #if defined(__cpp_exceptions) || defined(__GXX_RTTI)

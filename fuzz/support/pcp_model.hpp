@@ -17,7 +17,7 @@
 #include <span>
 #include <vector>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/pcp/crc16.hpp"
 
 namespace ibs::fuzz {

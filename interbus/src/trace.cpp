@@ -5,7 +5,7 @@
 #include <charconv>
 #include <limits>
 
-#include "ibs/interbus/text_file.hpp"
+#include "ibs/base/text_file.hpp"
 
 namespace ibs::trace {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <system_error>
 
-#include "ibs/interbus/text_file.hpp"
+#include "ibs/base/text_file.hpp"
 #include "scenario_internal.hpp"
 
 namespace ibs::sim {

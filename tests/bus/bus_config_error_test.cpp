@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "ibs/interbus/bus_config.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 
 namespace ibs::interbus {
 namespace {

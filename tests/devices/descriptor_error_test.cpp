@@ -13,7 +13,7 @@
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 
 namespace ibs::devices {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ibs/drive/parameters.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 
 namespace ibs::drive {
 namespace {

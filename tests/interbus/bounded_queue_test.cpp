@@ -1,7 +1,7 @@
 // The request queue of the parameter channels' master sides (interbus/bounded_queue.hpp).
 #include <gtest/gtest.h>
 
-#include "ibs/interbus/bounded_queue.hpp"
+#include "ibs/base/bounded_queue.hpp"
 
 namespace ibs {
 namespace {

@@ -1,7 +1,7 @@
-// The error boundary itself (ibs/interbus/error.hpp): Error and Expected as the non-throwing
+// The error boundary itself (ibs/base/error.hpp): Error and Expected as the non-throwing
 // configuration API returns them, the codes' names, and detail::require, which the constructors of
 // the default build throw through.
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 
 #include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/master/master_loop.hpp"
 #include "ibs/master/memory_bus.hpp"
 

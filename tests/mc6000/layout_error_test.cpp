@@ -6,7 +6,7 @@
 #include <string>
 
 #include "ibs/devices/mc6000/layout.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 
 namespace ibs::devices::mc6000 {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/pcp/client.hpp"
 #include "ibs/pcp/link.hpp"
 #include "ibs/pcp/parameter_store.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace CLI {
 class App;

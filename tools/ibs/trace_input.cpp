@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ibs/devices/trace_adapters.hpp"
-#include "ibs/interbus/text_file.hpp"
+#include "ibs/base/text_file.hpp"
 
 namespace ibs::cli {
 

@@ -25,7 +25,7 @@
 #include "ibs/canlust/identifiers.hpp"
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/telegrams.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::canlust {
 

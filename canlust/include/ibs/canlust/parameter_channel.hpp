@@ -16,7 +16,7 @@
 
 #include "ibs/canlust/data_types.hpp"
 #include "ibs/canlust/telegrams.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::canlust {
 

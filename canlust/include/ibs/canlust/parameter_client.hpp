@@ -21,7 +21,7 @@
 #include "ibs/canlust/frame.hpp"
 #include "ibs/canlust/identifiers.hpp"
 #include "ibs/canlust/parameter_channel.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::canlust {
 

@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "ibs/devices/driver.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/interbus/id_code.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 #if !IBS_EMBEDDED
 #include "ibs/interbus/replay.hpp"

@@ -12,8 +12,8 @@
 #include <string_view>
 
 #include "ibs/drivecom/sequencer.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices {
 

@@ -12,7 +12,7 @@
 
 #include "ibs/dfs1/frame.hpp"
 #include "ibs/dfs1/protocol.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::dfs1 {
 

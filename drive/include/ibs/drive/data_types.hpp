@@ -9,7 +9,7 @@
 #include <optional>
 #include <string_view>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::drive {
 

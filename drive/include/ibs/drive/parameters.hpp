@@ -17,8 +17,8 @@
 
 #include "ibs/drive/data_types.hpp"
 #include "ibs/drive/siof.hpp"
-#include "ibs/interbus/error.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/error.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::drive {
 

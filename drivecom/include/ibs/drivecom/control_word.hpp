@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::drivecom {
 

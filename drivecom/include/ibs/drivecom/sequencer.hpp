@@ -12,7 +12,7 @@
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/drivecom/status_word.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::drivecom {
 

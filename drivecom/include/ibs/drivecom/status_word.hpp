@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "ibs/drivecom/control_word.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::drivecom {
 

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/interbus/id_code.hpp"
 #include "ibs/interbus/process_image.hpp"
 

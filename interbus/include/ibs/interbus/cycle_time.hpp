@@ -9,7 +9,7 @@
 
 #include <cstddef>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::interbus {
 

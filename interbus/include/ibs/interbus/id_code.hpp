@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::interbus {
 

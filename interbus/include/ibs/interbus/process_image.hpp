@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::interbus {
 

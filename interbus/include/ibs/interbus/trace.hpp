@@ -3,7 +3,7 @@
 // allocate and throw TraceError); nothing here is on the cycle path.
 #pragma once
 
-#include "ibs/interbus/build.hpp"
+#include "ibs/base/build.hpp"
 #if IBS_EMBEDDED
 #error "traces, replay and file reading are not in the embedded build (docs/embedding.md)"
 #endif
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::trace {
 

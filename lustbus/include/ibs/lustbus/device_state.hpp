@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cstdint>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/siof.hpp"
 
 namespace ibs::lustbus {

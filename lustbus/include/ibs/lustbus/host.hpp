@@ -24,7 +24,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/telegram.hpp"
 #include "ibs/lustbus/timing.hpp"
 

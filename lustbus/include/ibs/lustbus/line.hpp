@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/receiver.hpp"
 

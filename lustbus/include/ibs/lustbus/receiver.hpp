@@ -40,7 +40,7 @@
 #include <span>
 #include <string_view>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/responder.hpp"
 #include "ibs/lustbus/telegram.hpp"
 

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/chars.hpp"
 #include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/value.hpp"

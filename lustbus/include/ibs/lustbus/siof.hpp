@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/drive/siof.hpp"
 
 namespace ibs::lustbus {

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/code.hpp"
 
 namespace ibs::lustbus {

@@ -10,7 +10,7 @@
 #include <span>
 
 #include "ibs/interbus/process_image.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::master {
 

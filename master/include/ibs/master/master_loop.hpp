@@ -10,7 +10,7 @@
 
 #include "ibs/devices/driver.hpp"
 #include "ibs/interbus/bus_config.hpp"
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/interbus/process_image.hpp"
 #include "ibs/master/bus.hpp"
 

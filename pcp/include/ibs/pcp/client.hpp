@@ -14,8 +14,8 @@
 #include <optional>
 #include <span>
 
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/link.hpp"
 #include "ibs/pcp/parameters.hpp"

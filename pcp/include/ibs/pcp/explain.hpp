@@ -5,7 +5,7 @@
 #include <span>
 #include <string>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/pcp/link.hpp"
 
 namespace ibs::pcp {

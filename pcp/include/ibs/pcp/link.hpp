@@ -33,9 +33,9 @@
 #include <optional>
 #include <span>
 
-#include "ibs/interbus/error.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/error.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/pcp/pdu.hpp"
 
 namespace ibs::pcp {

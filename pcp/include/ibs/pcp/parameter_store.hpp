@@ -9,7 +9,7 @@
 #include <optional>
 #include <span>
 
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/parameters.hpp"
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/parameters.hpp"
 

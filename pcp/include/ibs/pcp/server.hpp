@@ -21,8 +21,8 @@
 
 #include "ibs/drive/parameters.hpp"
 #include "ibs/drive/siof.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/pcp/link.hpp"
 #include "ibs/pcp/parameters.hpp"
 #include "ibs/pcp/parameter_store.hpp"

@@ -32,7 +32,7 @@
 #include "ibs/devices/mc6000/driver.hpp"
 #include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/sim/scenario.hpp"
 
 namespace ibs::sim {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "ibs/interbus/process_image.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
 

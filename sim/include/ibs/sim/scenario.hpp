@@ -13,7 +13,7 @@
 
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/interbus/id_code.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::sim {
 

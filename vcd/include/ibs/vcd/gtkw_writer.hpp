@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/vcd/vcd_writer.hpp"
 
 namespace ibs::vcd {

@@ -33,7 +33,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::vcd {
 

@@ -11,10 +11,10 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/bounded_queue.hpp"
-#include "ibs/interbus/error.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/bounded_queue.hpp"
+#include "ibs/base/error.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
 #include "ibs/vf1000_channel/description.hpp"
 

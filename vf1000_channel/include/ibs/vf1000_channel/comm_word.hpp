@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::vf1000_channel {
 

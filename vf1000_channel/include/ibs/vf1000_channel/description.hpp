@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "ibs/drive/parameters.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
 
 namespace ibs::vf1000_channel {

@@ -10,9 +10,9 @@
 #include <string_view>
 
 #include "ibs/drive/parameters.hpp"
-#include "ibs/interbus/error.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/error.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
 #include "ibs/vf1000_channel/description.hpp"
 

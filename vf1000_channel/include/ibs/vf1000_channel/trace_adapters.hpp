@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "ibs/interbus/replay.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/interbus/trace.hpp"
 #include "ibs/vf1000_channel/client.hpp"
 #include "ibs/vf1000_channel/server.hpp"

@@ -13,8 +13,8 @@
 
 #include "ibs/drivecom/status_word.hpp"
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices {
 

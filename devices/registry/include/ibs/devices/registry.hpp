@@ -13,7 +13,7 @@
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/devices/emulator.hpp"
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/interbus/trace.hpp"
 
 namespace ibs::devices {

@@ -40,7 +40,7 @@
 #include <vector>
 
 #include "ibs/drivecom/sequencer.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::sim::canlust {
 

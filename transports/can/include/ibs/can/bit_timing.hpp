@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "ibs/canlust/frame.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::can {
 

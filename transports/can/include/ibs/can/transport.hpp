@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "ibs/canlust/frame.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::can {
 

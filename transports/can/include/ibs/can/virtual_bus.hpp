@@ -25,7 +25,7 @@
 
 #include "ibs/can/bit_timing.hpp"
 #include "ibs/canlust/frame.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::can {
 

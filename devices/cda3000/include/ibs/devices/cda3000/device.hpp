@@ -28,7 +28,7 @@
 #include "ibs/devices/cda3000/parameters.hpp"
 #include "ibs/devices/cda3000/plant.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices::cda3000 {
 

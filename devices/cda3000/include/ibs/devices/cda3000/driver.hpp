@@ -30,7 +30,7 @@
 #include "ibs/canlust/master.hpp"
 #include "ibs/devices/cda3000/parameters.hpp"
 #include "ibs/drivecom/sequencer.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices::cda3000 {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices::cda3000 {
 

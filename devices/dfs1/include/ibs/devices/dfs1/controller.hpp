@@ -15,7 +15,7 @@
 #include "ibs/devices/dfs1/parameters.hpp"
 #include "ibs/dfs1/controller.hpp"
 #include "ibs/dfs1/frame.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices::dfs1 {
 

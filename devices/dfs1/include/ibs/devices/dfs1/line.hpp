@@ -17,7 +17,7 @@
 
 #include "ibs/devices/dfs1/controller.hpp"
 #include "ibs/devices/dfs1/master.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices::dfs1 {
 

@@ -14,7 +14,7 @@
 
 #include "ibs/dfs1/frame.hpp"
 #include "ibs/dfs1/host.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices::dfs1 {
 

@@ -9,8 +9,8 @@
 
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/drivecom/status_word.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices::mc6000 {
 

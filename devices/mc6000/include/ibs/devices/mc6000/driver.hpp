@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "ibs/devices/driver.hpp"
-#include "ibs/interbus/bounded_queue.hpp"
+#include "ibs/base/bounded_queue.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/mc6000/pd_master.hpp"
 #include "ibs/pcp/client.hpp"

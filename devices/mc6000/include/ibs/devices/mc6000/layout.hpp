@@ -9,9 +9,9 @@
 #include <span>
 #include <string>
 
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 #include "ibs/interbus/id_code.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 #if IBS_EXCEPTIONS
 #include <stdexcept>

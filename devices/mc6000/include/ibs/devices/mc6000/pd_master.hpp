@@ -7,8 +7,8 @@
 
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/drivecom/sequencer.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices {
 

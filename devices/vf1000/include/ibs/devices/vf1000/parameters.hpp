@@ -11,7 +11,7 @@
 #include <span>
 
 #include "ibs/drive/parameters.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices::vf1000 {
 

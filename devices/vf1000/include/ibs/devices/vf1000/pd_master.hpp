@@ -6,8 +6,8 @@
 
 #include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/drivecom/sequencer.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices {
 

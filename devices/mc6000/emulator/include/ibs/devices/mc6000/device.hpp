@@ -14,7 +14,7 @@
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/mc6000/pd_device.hpp"
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace ibs::devices {

@@ -12,8 +12,8 @@
 #include "ibs/devices/mc6000/plant.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices {
 

@@ -26,7 +26,7 @@
 #include <cstdint>
 
 #include "ibs/devices/mc6000/descriptor.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 
 namespace ibs::devices {
 

@@ -27,7 +27,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/lustbus/value.hpp"
 
 namespace ibs::devices::mc6000 {

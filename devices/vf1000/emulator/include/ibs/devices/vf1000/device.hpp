@@ -16,7 +16,7 @@
 #include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/devices/vf1000/pd_device.hpp"
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/time.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/vf1000_channel/server.hpp"
 
 namespace ibs::devices {

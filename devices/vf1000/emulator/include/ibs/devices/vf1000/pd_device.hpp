@@ -10,8 +10,8 @@
 #include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/interbus/device_start.hpp"
-#include "ibs/interbus/time.hpp"
-#include "ibs/interbus/words.hpp"
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
 
 namespace ibs::devices {
 

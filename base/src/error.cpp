@@ -1,4 +1,4 @@
-#include "ibs/interbus/error.hpp"
+#include "ibs/base/error.hpp"
 
 #include <cstdio>
 #include <cstdlib>

@@ -14,7 +14,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "ibs/interbus/build.hpp"
+#include "ibs/base/build.hpp"
 
 // 1 where the throwing API exists: the libraries were built with exceptions (not IBS_EMBEDDED)
 // and the code including this header is compiled with them too.

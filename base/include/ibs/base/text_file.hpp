@@ -4,7 +4,7 @@
 // code: it allocates and throws.
 #pragma once
 
-#include "ibs/interbus/build.hpp"
+#include "ibs/base/build.hpp"
 #if IBS_EMBEDDED
 #error "traces, replay and file reading are not in the embedded build (docs/embedding.md)"
 #endif

@@ -1,4 +1,4 @@
-#include "ibs/interbus/text_file.hpp"
+#include "ibs/base/text_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
