@@ -94,7 +94,7 @@ int main() {
   const auto refused = kind.try_configure(bad);
   if (refused) return 1;
   print(refused.error());
-  if (refused.error().code != ErrorCode::layout_supi_out_of_range || refused.error().setting != "supi") return 2;
+  if (refused.error().code != ErrorCode::layout_setting_out_of_range || refused.error().setting != "supi") return 2;
 
   const auto configured = kind.try_configure({});
   if (!configured) {

@@ -36,10 +36,9 @@ std::string_view to_string(ErrorCode c) {
     case ErrorCode::channel_pdu_size_invalid: return "channel_pdu_size_invalid";
     case ErrorCode::channel_workload_out_of_range: return "channel_workload_out_of_range";
     case ErrorCode::channel_latency_invalid: return "channel_latency_invalid";
-    case ErrorCode::layout_supi_out_of_range: return "layout_supi_out_of_range";
-    case ErrorCode::layout_ibcnf_out_of_range: return "layout_ibcnf_out_of_range";
-    case ErrorCode::layout_ibcnf_unsupported: return "layout_ibcnf_unsupported";
-    case ErrorCode::layout_supi_not_allowed: return "layout_supi_not_allowed";
+    case ErrorCode::layout_setting_out_of_range: return "layout_setting_out_of_range";
+    case ErrorCode::layout_setting_unsupported: return "layout_setting_unsupported";
+    case ErrorCode::layout_settings_conflict: return "layout_settings_conflict";
     case ErrorCode::setting_bus_refused: return "setting_bus_refused";
     case ErrorCode::setting_out_of_range: return "setting_out_of_range";
     case ErrorCode::setting_of_another_drive: return "setting_of_another_drive";

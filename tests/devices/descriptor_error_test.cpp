@@ -70,15 +70,15 @@ TEST(DescriptorError, Mc6000ConfigureRefusesTheLayoutNamingTheSetting) {
     const char* message;
   };
   const std::vector<Case> cases{
-      {mc(13, 2), ErrorCode::layout_supi_out_of_range, "supi", "ibcnf",
+      {mc(13, 2), ErrorCode::layout_setting_out_of_range, "supi", "ibcnf",
        "405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)"},
-      {mc(-1, 2), ErrorCode::layout_supi_out_of_range, "supi", "ibcnf",
+      {mc(-1, 2), ErrorCode::layout_setting_out_of_range, "supi", "ibcnf",
        "405-SUPI = -1 is out of range (0..12, seed 001 3.2.2)"},
-      {mc(11, 5), ErrorCode::layout_ibcnf_out_of_range, "ibcnf", "supi",
+      {mc(11, 5), ErrorCode::layout_setting_out_of_range, "ibcnf", "supi",
        "406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)"},
-      {mc(9, 4), ErrorCode::layout_ibcnf_unsupported, "ibcnf", "supi",
+      {mc(9, 4), ErrorCode::layout_setting_unsupported, "ibcnf", "supi",
        "406-IBCNF = 4 (modified LISIM software) is not supported"},
-      {mc(7, 2, interbus::BusKind::local), ErrorCode::layout_supi_not_allowed, "ibcnf", "supi",
+      {mc(7, 2, interbus::BusKind::local), ErrorCode::layout_settings_conflict, "ibcnf", "supi",
        "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)"},
   };
   for (const Case& c : cases) {
@@ -223,7 +223,7 @@ TEST(DescriptorError, RingEntriesOfBothDrives) {
       {mc, {"11x"}, ErrorCode::setting_invalid, "supi", "405-SUPI '11x' is not a number"},
       {mc,
        {"13"},
-       ErrorCode::layout_supi_out_of_range,
+       ErrorCode::layout_setting_out_of_range,
        "supi",
        "405-SUPI 13 is out of range (0..12, seed 001 3.2.2)"},
       {mc,

@@ -37,7 +37,7 @@ TEST(Error, EveryCodeHasItsOwnName) {
     EXPECT_TRUE(names.insert(name).second) << name;
   }
   EXPECT_EQ(to_string(ErrorCode::none), "none");
-  EXPECT_EQ(to_string(ErrorCode::layout_supi_out_of_range), "layout_supi_out_of_range");
+  EXPECT_EQ(to_string(ErrorCode::layout_setting_out_of_range), "layout_setting_out_of_range");
   EXPECT_EQ(to_string(ErrorCode::bus_too_many_pcp_devices), "bus_too_many_pcp_devices");
   EXPECT_EQ(to_string(static_cast<ErrorCode>(last + 1)), "?");
 }
@@ -52,10 +52,10 @@ TEST(Expected, HoldsTheValueOrTheError) {
   good.value() += "s";
   EXPECT_EQ(std::move(good).value(), "layouts");
 
-  const Expected<int> bad = Error{ErrorCode::layout_ibcnf_unsupported, "not supported"};
+  const Expected<int> bad = Error{ErrorCode::layout_setting_unsupported, "not supported"};
   EXPECT_FALSE(bad.ok());
   EXPECT_FALSE(static_cast<bool>(bad));
-  EXPECT_EQ(bad.error().code, ErrorCode::layout_ibcnf_unsupported);
+  EXPECT_EQ(bad.error().code, ErrorCode::layout_setting_unsupported);
   EXPECT_EQ(bad.error().message, "not supported");
 }
 
@@ -72,7 +72,7 @@ TEST(Expected, CarriesAnErrorOfItsOwnType) {
 }
 
 TEST(ExpectedDeathTest, AskingAnErrorForItsValueAborts) {
-  const Expected<int> bad = Error{ErrorCode::layout_supi_out_of_range, "405-SUPI = 13"};
+  const Expected<int> bad = Error{ErrorCode::layout_setting_out_of_range, "405-SUPI = 13"};
   EXPECT_DEATH((void)bad.value(), "Expected::value\\(\\) asked of an error");
 }
 

@@ -13,13 +13,13 @@ namespace {
 
 // The rule of 3.2.2 / 3.2.3, written out on its own: which code a pair must get.
 ErrorCode expected_code(int supi, int ibcnf) {
-  if (supi < 0 || supi > 12) return ErrorCode::layout_supi_out_of_range;
-  if (ibcnf < 0 || ibcnf > 4) return ErrorCode::layout_ibcnf_out_of_range;
-  if (ibcnf == 4) return ErrorCode::layout_ibcnf_unsupported;
+  if (supi < 0 || supi > 12) return ErrorCode::layout_setting_out_of_range;
+  if (ibcnf < 0 || ibcnf > 4) return ErrorCode::layout_setting_out_of_range;
+  if (ibcnf == 4) return ErrorCode::layout_setting_unsupported;
   if (supi == 0) return ErrorCode::none;
   const bool allowed =
       ibcnf == 0 || (ibcnf == 1 && supi >= 7) || ((ibcnf == 2 || ibcnf == 3) && supi >= 10);
-  return allowed ? ErrorCode::none : ErrorCode::layout_supi_not_allowed;
+  return allowed ? ErrorCode::none : ErrorCode::layout_settings_conflict;
 }
 
 TEST(Mc6000LayoutError, EveryPairGivesTheThrowingFormsLayoutOrItsMessage) {

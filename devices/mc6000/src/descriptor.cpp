@@ -60,7 +60,9 @@ constexpr DriveFacts kFacts{
 Expected<Layout, SettingsRefusal> try_layout_of(const DeviceSettings& s) {
   Expected<Layout> l = try_make_layout(s.supi, s.ibcnf, s.bus);
   if (l) return std::move(l).value();
-  const bool about_supi = l.error().code == ErrorCode::layout_supi_out_of_range;
+  // 405-SUPI is checked first (try_make_layout): only its own range makes a refusal about it.
+  const bool about_supi = l.error().code == ErrorCode::layout_setting_out_of_range &&
+                          (s.supi < 0 || s.supi > kSupiMax);
   return SettingsRefusal(l.error(), about_supi ? "supi" : "ibcnf", about_supi ? "ibcnf" : "supi");
 }
 
@@ -303,7 +305,7 @@ Expected<RingEntry, SettingsRefusal> Descriptor::try_ring_entry(
                   "405-SUPI '" + std::string(f[0]) + "' is not a number", "supi");
   }
   if (supi < 0 || supi > kSupiMax) {
-    return refuse(ErrorCode::layout_supi_out_of_range,
+    return refuse(ErrorCode::layout_setting_out_of_range,
                   "405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)",
                   "supi");
   }

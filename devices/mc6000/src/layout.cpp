@@ -20,17 +20,17 @@ SupiRange allowed_supi(Ibcnf c) {
 
 Expected<Layout> try_make_layout(int supi, int ibcnf, interbus::BusKind bus) {
   if (supi < 0 || supi > kSupiMax) {
-    return Error{ErrorCode::layout_supi_out_of_range,
+    return Error{ErrorCode::layout_setting_out_of_range,
                  "405-SUPI = " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)"};
   }
   if (ibcnf < 0 || ibcnf > kIbcnfMax) {
     return Error{
-        ErrorCode::layout_ibcnf_out_of_range,
+        ErrorCode::layout_setting_out_of_range,
         "406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, seed 001 3.2.3)"};
   }
   const auto c = static_cast<Ibcnf>(ibcnf);
   if (c == Ibcnf::lisim) {
-    return Error{ErrorCode::layout_ibcnf_unsupported,
+    return Error{ErrorCode::layout_setting_unsupported,
                  "406-IBCNF = 4 (modified LISIM software) is not supported"};
   }
   const SupiRow& row = kSupiTable[static_cast<std::size_t>(supi)];
@@ -50,7 +50,7 @@ Expected<Layout> try_make_layout(int supi, int ibcnf, interbus::BusKind bus) {
   }
   const SupiRange r = allowed_supi(c);
   if (supi < r.first || supi > r.last) {
-    return Error{ErrorCode::layout_supi_not_allowed,
+    return Error{ErrorCode::layout_settings_conflict,
                  "406-IBCNF = " + std::to_string(ibcnf) + " needs 405-SUPI " +
                      std::to_string(r.first) + ".." + std::to_string(r.last) + ", not " +
                      std::to_string(supi) + " (seed 001 3.2.3)"};

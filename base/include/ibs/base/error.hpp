@@ -63,11 +63,11 @@ enum class ErrorCode : std::uint8_t {
   channel_pdu_size_invalid,       // KBL max PDU sizes outside 20..134 bytes
   channel_workload_out_of_range,  // a PCP server workload outside 0..1
   channel_latency_invalid,        // a PCP server latency with min below 0 or above max
-  // MC6000 layouts: devices::mc6000::try_make_layout (devices::mc6000::LayoutError)
-  layout_supi_out_of_range,   // 405-SUPI outside 0..12
-  layout_ibcnf_out_of_range,  // 406-IBCNF outside 0..4
-  layout_ibcnf_unsupported,   // 406-IBCNF = 4, the modified LISIM software
-  layout_supi_not_allowed,    // a 405-SUPI the 406-IBCNF does not allow
+  // A drive's process-data layout from its settings (e.g. devices::mc6000::try_make_layout;
+  // the message, and a descriptor's refusal, name the setting)
+  layout_setting_out_of_range,  // a layout setting outside its range
+  layout_setting_unsupported,   // a value of a layout setting the emulated drive does not model
+  layout_settings_conflict,     // two layout settings whose values do not go together
   // A drive's settings: DriveDescriptor::try_configure, validate_watchdog, try_ring_entry
   // (devices::SettingsError; the refusal names the setting)
   setting_bus_refused,       // a bus side the drive cannot be on
@@ -81,7 +81,7 @@ enum class ErrorCode : std::uint8_t {
   master_device_outside_image,  // a device's words outside the process image
 };
 
-// The enumerator's name ("layout_supi_out_of_range"), for a log line.
+// The enumerator's name ("layout_setting_out_of_range"), for a log line.
 std::string_view to_string(ErrorCode c);
 
 // A refusal: its code and the message of the default build's exception (where and what). As
