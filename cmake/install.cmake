@@ -80,4 +80,29 @@ function(ibs_install)
   file(RELATIVE_PATH IBS_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
   configure_file(${PROJECT_SOURCE_DIR}/cmake/ibs-master.pc.in ${PROJECT_BINARY_DIR}/ibs-master.pc @ONLY)
   install(FILES ${PROJECT_BINARY_DIR}/ibs-master.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+  if(NOT IBS_MASTER_ONLY)
+    # The hosts of the other buses with their transports (docs/embedding.md, "Hosts on the other
+    # buses"), each library after the ones that need it, then the system's.
+    ibs_host_pc(ibs-lustbus "ibs LUSTBUS host (seed 000) with serial ports and pseudo-terminals"
+                "ibs_lustbus ibs_serial ibs_drive ibs_base" "-lutil -pthread")
+    ibs_host_pc(ibs-canlust "ibs CANLust master side (seed 003) with CAN over UDP and SocketCAN"
+                "ibs_can_transport ibs_canlust ibs_base" "-lpcap")
+    ibs_host_pc(ibs-dfs1 "ibs PowerTec DFS-1 host (seed 004) with serial ports and pseudo-terminals"
+                "ibs_dfs1 ibs_serial ibs_base" "-lutil -pthread")
+  endif()
+endfunction()
+
+# ibs_host_pc(NAME DESCRIPTION "LIB..." "SYSTEM-FLAGS"): NAME.pc for a bus host's libraries.
+function(ibs_host_pc name description libs system)
+  set(IBS_PC_NAME ${name})
+  set(IBS_PC_DESCRIPTION ${description})
+  set(IBS_PC_LIBS "")
+  separate_arguments(libs)
+  foreach(lib IN LISTS libs)
+    string(APPEND IBS_PC_LIBS " -l${lib}")
+  endforeach()
+  string(APPEND IBS_PC_LIBS " ${system}")
+  file(RELATIVE_PATH IBS_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/ibs-host.pc.in ${PROJECT_BINARY_DIR}/${name}.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/${name}.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 endfunction()

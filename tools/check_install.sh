@@ -7,7 +7,10 @@
 #     examples/embed configured with find_package(ibs) against it, built and run: it must exit 0;
 #  3. examples/ddi, a C master against the virtual board (libibs-ddi), built with CMake and run
 #     in real time, then built through pkg-config (ibs-ddi) and run stepped; the shared library
-#     must export the DDI_* calls only.
+#     must export the DDI_* calls only;
+#  4. examples/hosts, a LUSTBUS, a CANLust and a DFS-1 host as a user's own programs, built with
+#     CMake (ibs::lustbus, ibs::canlust, ibs::dfs1 and their transports) and run against the
+#     installed tool's emulators, then built through pkg-config (ibs-lustbus, ibs-canlust, ibs-dfs1).
 # Usage: tools/check_install.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -78,4 +81,50 @@ export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu
 gcc -std=c99 -Wall -Werror examples/ddi/ddi_master.c -o "$work/ddi_pc" $(pkg-config --cflags --libs ibs-ddi) \
   -Wl,-rpath,"$(pkg-config --variable=libdir ibs-ddi)"
 IBS_DDI_MODE=stepped "$work/ddi_pc"
+echo "check_install: examples/hosts (LUSTBUS, CANLust and DFS-1 hosts) against the same installation" >&2
+cmake -S examples/hosts -B "$work/hosts-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
+cmake --build "$work/hosts-build" -j "$jobs" >/dev/null
+ibs_bin=$work/full/bin/ibs
+# Each host against the installed tool's emulator on a pty (CAN over UDP on loopback); the
+# emulators are stopped by the trap below whatever happens.
+emulators=()
+stop_emulators() {
+  for p in "${emulators[@]}"; do kill "$p" 2>/dev/null || true; wait "$p" 2>/dev/null || true; done
+  emulators=()
+}
+trap 'stop_emulators; rm -rf "$work"' EXIT
+wait_for_line() {  # file prefix: the emulator's first line, within 10 s
+  for _ in $(seq 100); do
+    grep -q "^$2" "$1" 2>/dev/null && { sed -n "s/^$2//p" "$1" | head -n 1; return 0; }
+    sleep 0.1
+  done
+  echo "check_install: no '$2' line from the emulator" >&2
+  return 1
+}
+"$ibs_bin" lustbus emulate --pty vf1000@1 >"$work/lustbus.txt" 2>&1 &
+emulators+=($!)
+lustbus_pty=$(wait_for_line "$work/lustbus.txt" "pty: ")
+"$work/hosts-build/lustbus_read" "$lustbus_pty" 1 00004 | tee "$work/lustbus_read.txt"
+grep -qx "1 00004 = 0019" "$work/lustbus_read.txt"  # 4-FSSEL's factory value, 25
+"$ibs_bin" dfs1 emulate --pty dfs1@1 >"$work/dfs1.txt" 2>&1 &
+emulators+=($!)
+dfs1_pty=$(wait_for_line "$work/dfs1.txt" "pty: ")
+"$work/hosts-build/dfs1_status" "$dfs1_pty" 1 | tee "$work/dfs1_status.txt"
+grep -q "^uid 1: commanded 0 rpm, actual 0 rpm" "$work/dfs1_status.txt"
+"$ibs_bin" canlust emulate --bus udp:29711:127.0.0.1:29710 cda3000@1 >"$work/canlust.txt" 2>&1 &
+emulators+=($!)
+wait_for_line "$work/canlust.txt" "bus: " >/dev/null
+"$work/hosts-build/canlust_read" 29710 29711 1 360 | tee "$work/canlust_read.txt"
+grep -qx "CDA 1 parameter 360: 406" "$work/canlust_read.txt"  # 360-DISP, as docs/canlust.md reads it
+# The same hosts through pkg-config (ibs-lustbus, ibs-dfs1, ibs-canlust), as a build without CMake
+# links them.
+export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu/pkgconfig"
+# shellcheck disable=SC2046
+g++ examples/hosts/lustbus_read.cpp -o "$work/lustbus_read_pc" $(pkg-config --cflags --libs ibs-lustbus)
+"$work/lustbus_read_pc" "$lustbus_pty" 1 00004 >/dev/null
+# shellcheck disable=SC2046
+g++ examples/hosts/dfs1_status.cpp -o "$work/dfs1_status_pc" $(pkg-config --cflags --libs ibs-dfs1)
+# shellcheck disable=SC2046
+g++ examples/hosts/canlust_read.cpp -o "$work/canlust_read_pc" $(pkg-config --cflags --libs ibs-canlust)
+stop_emulators
 echo "check_install: passed" >&2
