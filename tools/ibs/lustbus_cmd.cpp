@@ -1,5 +1,5 @@
-// The CLI11 wiring of `ibs lustbus ...`, the emulator's serving loop and the host's loop over a
-// serial port.
+// The CLI11 wiring of `ibs lustbus ...` (the emulator serves with serial::serve) and the host's
+// loop over a serial port.
 #include "lustbus_cmd.hpp"
 
 #include <CLI/CLI.hpp>
@@ -22,11 +22,13 @@
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/description.hpp"
+#include "ibs/lustbus/served_receiver.hpp"
 #include "ibs/lustbus/value.hpp"
 #include "ibs/lustbus/siof.hpp"
 #include "ibs/lustbus/telegram.hpp"
 #include "ibs/serial/byte_log.hpp"
 #include "ibs/serial/pty.hpp"
+#include "ibs/serial/serve.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -228,7 +230,7 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   std::vector<std::unique_ptr<devices::vf1000::LustbusDevice>> vfs;
   std::vector<std::unique_ptr<devices::mc6000::LustbusDevice>> mcs;
   std::vector<std::unique_ptr<lb::Receiver>> receivers;
-  std::vector<LustbusServed> served;
+  std::vector<lb::ServedReceiver> served;
   std::set<lb::Address> used;
   try {
     for (const std::string& spec : o.devices) {
@@ -249,8 +251,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
                          std::to_string(o.port.baud));
         }
         receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
-                          [p = d.get()]() { return p->line_baud(); }});
+        served.emplace_back(receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
+                            [p = d.get()]() { return p->line_baud(); });
       } else {
         devices::mc6000::LustbusTiming timing;
         timing.reaction = o.reaction_ms >= 0
@@ -262,8 +264,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
                          std::to_string(o.port.baud));
         }
         receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
-                          [p = d.get()]() { return p->line_baud(); }});
+        served.emplace_back(receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
+                            [p = d.get()]() { return p->line_baud(); });
       }
     }
   } catch (const BadInput& e) {
@@ -290,7 +292,9 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n" << std::flush;
   for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
   port.set_log(log.get());
-  serve_lustbus(port, served, [&signals]() { return signals.raised(); });
+  std::vector<base::LineDevice*> lines;
+  for (lb::ServedReceiver& d : served) lines.push_back(&d);
+  serial::serve(port, lines, [&signals]() { return signals.raised(); });
   return kExitLustbusOk;
 }
 
@@ -555,38 +559,6 @@ void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) 
 }
 
 }  // namespace
-
-void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
-                   const std::function<bool()>& stop) {
-  const Clock::time_point t0 = Clock::now();
-  std::array<std::uint8_t, 256> buf{};
-  while (!stop()) {
-    Time now = since(t0);
-    Duration wait = kServePoll;
-    for (const LustbusServed& d : devices) {
-      if (auto due = d.receiver->answer_due()) wait = std::min(wait, std::max(*due - now, Duration(0)));
-    }
-    const std::size_t n = port.read(buf, std::max(wait, Duration(100us)));
-    now = since(t0);
-    for (const LustbusServed& d : devices) {
-      d.advance(now);
-      if (d.baud && d.baud() != port.baud()) continue;  // another rate: nothing it can read
-      for (std::size_t i = 0; i < n; ++i) d.receiver->receive(buf[i], now);
-    }
-    now = since(t0);
-    for (const LustbusServed& d : devices) {
-      const auto due = d.receiver->answer_due();
-      if (!due || *due > now) continue;
-      const auto a = d.receiver->take_answer(now);
-      if (!a.empty()) port.write(a);
-    }
-    // 11.5: a lone drive's new rate (4-PROG = 111, or a restart) takes the port along, after its
-    // answer has gone out at the old one.
-    if (devices.size() == 1 && devices[0].baud && !devices[0].receiver->answer_due()) {
-      port.set_baud(devices[0].baud());
-    }
-  }
-}
 
 namespace {
 
