@@ -15,7 +15,7 @@ using canlust::CanFrame;
 
 const auto kAt = std::chrono::system_clock::time_point(std::chrono::microseconds(1795431275322679LL));
 
-TEST(Candump, WritesSecondsMicrosIfaceIdHashData) {
+TEST(CandumpFormat, WritesSecondsMicrosIfaceIdHashData) {
   EXPECT_EQ(candump_line(CanFrame::make(0x297, {0x0F, 0x00, 0x00, 0x80, 0x14, 0x00}), kAt, "can0"),
             "(1795431275.322679) can0 297#0F0000801400");
   EXPECT_EQ(candump_line(CanFrame::make(0x7FF, {}), kAt, "vcan1"), "(1795431275.322679) vcan1 7FF#");
@@ -30,7 +30,7 @@ TEST(Candump, WritesSecondsMicrosIfaceIdHashData) {
   EXPECT_EQ(candump_line(rtr, kAt, "c"), "(1795431275.322679) c 123#R2");
 }
 
-TEST(Candump, ReadsWhatItWrites) {
+TEST(CandumpFormat, ReadsWhatItWrites) {
   for (const CanFrame& f : {CanFrame::make(0x297, {1, 2, 3, 4, 5, 6, 7, 8}), CanFrame::make(0, {})}) {
     const auto r = parse_candump_line(candump_line(f, kAt, "can0"));
     ASSERT_TRUE(r);
@@ -45,7 +45,7 @@ TEST(Candump, ReadsWhatItWrites) {
   EXPECT_EQ(r->frame.dlc, 8);
 }
 
-TEST(Candump, ExtendedAndFdFramesAreLinesButNoCanlustFrames) {
+TEST(CandumpFormat, ExtendedAndFdFramesAreLinesButNoCanlustFrames) {
   const auto ext = parse_candump_line("(1.5) can0 12345678#00");
   ASSERT_TRUE(ext);
   EXPECT_FALSE(ext->classic);
@@ -55,7 +55,7 @@ TEST(Candump, ExtendedAndFdFramesAreLinesButNoCanlustFrames) {
   EXPECT_FALSE(fd->classic);
 }
 
-TEST(Candump, MalformedLinesSayWhatIsWrong) {
+TEST(CandumpFormat, MalformedLinesSayWhatIsWrong) {
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"not a line", "it does not begin with '(' and the time"},
       {"(1.5 can0 297#00", "no ')' after the time"},
@@ -79,7 +79,7 @@ TEST(Candump, MalformedLinesSayWhatIsWrong) {
   }
 }
 
-TEST(Candump, LogSkipsBlankLinesAndNamesTheFirstBadOne) {
+TEST(CandumpFormat, LogSkipsBlankLinesAndNamesTheFirstBadOne) {
   const std::vector<std::string> lines = {"", "(1.000001) can0 297#0F00  \r", "  ", "(2.000000) can0 zz#00",
                                           "(3.000000) can0 297#00"};
   EXPECT_TRUE(is_candump_log(lines));
@@ -100,7 +100,7 @@ TEST(Candump, LogSkipsBlankLinesAndNamesTheFirstBadOne) {
   EXPECT_FALSE(ok.entries[1].record.classic);
 }
 
-TEST(Candump, ALogIsOneWhoseFirstLineIsACandumpLine) {
+TEST(CandumpFormat, ALogIsOneWhoseFirstLineIsACandumpLine) {
   EXPECT_FALSE(is_candump_log(std::vector<std::string>{}));
   EXPECT_FALSE(is_candump_log(std::vector<std::string>{" ", ""}));
   EXPECT_FALSE(is_candump_log(std::vector<std::string>{"# a trace", "(1.5) can0 297#00"}));
