@@ -1,5 +1,5 @@
 // LUSTBUS over a pseudo-terminal in real time (docs/performance.md, "LUSTBUS over a pty"): the
-// host (transact_lustbus) asks an emulated VF1000 (serve_lustbus, reaction time 0) for 91-TYPE.
+// host (transact_lustbus) asks an emulated VF1000 (serial::serve, reaction time 0) for 91-TYPE.
 // Reported per ENQUIRY: the whole transaction (request out, answer in, closing EOT out) and the
 // host's turnaround of seed 000, 10 step 4 -- the last answer byte read to the EOT written --
 // taken from the host's byte log timestamps; p50 and p99 over all iterations.
@@ -17,13 +17,14 @@
 
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/serial/byte_log.hpp"
+#include "ibs/lustbus/served_receiver.hpp"
 #include "ibs/serial/pty.hpp"
+#include "ibs/serial/serve.hpp"
 #include "lustbus_cmd.hpp"
 
 namespace {
 
 namespace lb = ibs::lustbus;
-using ibs::cli::LustbusServed;
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
@@ -63,9 +64,10 @@ void BM_PtyEnquiryRoundTrip(benchmark::State& state) {
   ibs::devices::vf1000::LustbusDevice vf(timing);
   lb::Receiver rx(vf, 1);
   auto pair = ibs::serial::PtyPair::open({9600, ibs::serial::k7E1, false});
-  std::vector<LustbusServed> served{{&rx, [&vf](ibs::Time t) { vf.advance(t); }, {}}};
+  lb::ServedReceiver served_vf{&rx, [&vf](ibs::Time t) { vf.advance(t); }};
+  std::vector<ibs::base::LineDevice*> served{&served_vf};
   std::atomic<bool> stop{false};
-  std::thread server([&] { ibs::cli::serve_lustbus(pair.master(), served, [&] { return stop.load(); }); });
+  std::thread server([&] { ibs::serial::serve(pair.master(), served, [&] { return stop.load(); }); });
   auto port = ibs::serial::SerialPort::open(pair.slave_path(), {9600, ibs::serial::k7E1, false});
   const std::string log_path = "/tmp/ibs_lustbus_pty_bench.log";
   {

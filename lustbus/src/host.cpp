@@ -119,6 +119,13 @@ std::string describe(const Outcome& o) {
   return s;
 }
 
+std::optional<Code> parameter_code(Family f, unsigned parameter, bool description) {
+  if (f == Family::vf1000) return vf_code(parameter, description ? VfSpecifier::description : VfSpecifier::value);
+  return mc_code(description ? McCodeKind::description : McCodeKind::value, parameter);
+}
+
+std::string_view device_kind(Family f) { return f == Family::vf1000 ? "inverter" : "servo"; }
+
 Request enquiry(Address a, const Code& c) {
   Request r;
   r.kind = RequestKind::enquiry;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "canlust_cmd.hpp"
+#include "ibs/can/candump.hpp"
 #include "ibs/can/udp.hpp"
 #include "ibs/devices/cda3000/driver.hpp"
 
@@ -33,6 +34,8 @@ namespace {
 namespace dev = ::ibs::devices::cda3000;
 namespace cl = ::ibs::canlust;
 
+using can::candump_line;  // the log format lives in transports/can (tests/canlust/candump_test.cpp)
+using can::parse_candump_line;
 using test::CliRun;
 
 CliRun run_cli(std::vector<std::string> args) {

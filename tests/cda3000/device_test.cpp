@@ -10,6 +10,7 @@
 
 #include "bus.hpp"
 #include "ibs/canlust/errors.hpp"
+#include "ibs/devices/cda3000/description.hpp"
 #include "ibs/devices/cda3000/descriptor.hpp"
 
 namespace ibs::devices::cda3000 {
@@ -274,6 +275,42 @@ TEST(Cda3000Parameters, DescribeItems) {
   const auto& end = finish(b, m, describe(1, kCascy, 8));
   EXPECT_EQ(end.kind, OutcomeKind::refused);
   EXPECT_EQ(end.status, kStatusListEnd);
+}
+
+// D29 read back as `ibs canlust describe` reads it: the items the drive answers make the
+// parameter's description again.
+TEST(Cda3000Parameters, DescriptionItemsReadBack) {
+  Master m;
+  Bus<Master> b(m);
+  b.add(commissioned(1));
+  std::vector<std::uint32_t> items;
+  for (std::uint8_t item = 0; item < kDescriptionItems; ++item) {
+    items.push_back(finish(b, m, describe(1, kCascy, item)).value);
+  }
+  const auto d = read_description(items);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->type, DataType::usign16);
+  EXPECT_EQ(d->min, 1U);
+  EXPECT_EQ(d->max, 32000U);
+  EXPECT_EQ(d->factory, 80U);
+  EXPECT_TRUE(d->writable());
+  EXPECT_TRUE(d->flash());
+  EXPECT_FALSE(d->after_mains_reset());
+  EXPECT_EQ(d->short_name, "CASCY");
+  EXPECT_EQ(d->unit, "ms");
+  // Not this drive's items: too few, or item 0 no data type.
+  EXPECT_FALSE(read_description(std::span(items).first(7)));
+  items[0] = 0xFF;
+  EXPECT_FALSE(read_description(items));
+}
+
+TEST(Cda3000Parameters, FourCharactersAnItemIntelOrder) {
+  EXPECT_EQ(pack4("CASCY"), 0x43534143U);  // the fifth is item 6's
+  EXPECT_EQ(pack4("Y"), 0x59U);
+  EXPECT_EQ(pack4(""), 0U);
+  EXPECT_EQ(unpack4(0x43534143U), "CASC");
+  EXPECT_EQ(unpack4(0x736DU), "ms");
+  EXPECT_EQ(unpack4(0x00590000U), "");  // text ends at the first NUL
 }
 
 // 4.5 string read: 578-OPTN2 = "LCAN": block 0 carries the characters, block 1 the terminator,

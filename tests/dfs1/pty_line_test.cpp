@@ -1,5 +1,5 @@
 // Host against emulated DFS-1 controllers over a real pseudo-terminal pair, through the serial
-// transport and the loops of `ibs dfs1` (serve_dfs1, transact_dfs1), in real time.
+// transport and the loops of `ibs dfs1` (serial::serve, transact_dfs1), in real time.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "dfs1_cmd.hpp"
+#include "ibs/devices/dfs1/served_controller.hpp"
 #include "ibs/serial/pty.hpp"
+#include "ibs/serial/serve.hpp"
 
 namespace ibs::cli {
 namespace {
@@ -22,11 +24,12 @@ class PtyLine : public ::testing::Test {
   void SetUp() override {
     for (std::uint8_t uid : std::vector<std::uint8_t>{1, 2, 3}) {
       controllers_.push_back(std::make_unique<dev::Controller>(dev::ControllerConfig{uid}));
-      raw_.push_back(controllers_.back().get());
+      served_.push_back(std::make_unique<dev::ServedController>(*controllers_.back()));
+      raw_.push_back(served_.back().get());
     }
     pair_ = std::make_unique<serial::PtyPair>(serial::PtyPair::open());
     server_ =
-        std::thread([this] { serve_dfs1(pair_->master(), raw_, [this] { return stop_.load(); }); });
+        std::thread([this] { serial::serve(pair_->master(), raw_, [this] { return stop_.load(); }); });
     host_ = std::make_unique<serial::SerialPort>(serial::SerialPort::open(pair_->slave_path(), {}));
   }
   void TearDown() override {
@@ -39,7 +42,8 @@ class PtyLine : public ::testing::Test {
   }
 
   std::vector<std::unique_ptr<dev::Controller>> controllers_;
-  std::vector<dev::Controller*> raw_;
+  std::vector<std::unique_ptr<dev::ServedController>> served_;
+  std::vector<base::LineDevice*> raw_;
   std::unique_ptr<serial::PtyPair> pair_;
   std::atomic<bool> stop_{false};
   std::thread server_;

@@ -433,5 +433,17 @@ TEST(HostQueue, RestartAbortsAndSendsEot) {
   EXPECT_EQ(bus.run(enquiry(1, make_code(112))).kind, OutcomeKind::value);
 }
 
+// 2.4.1 / 2.4.2, 11.1 / 11.2: the CODE of a parameter's value and description in each family.
+TEST(HostCodes, ParameterCodeOfEitherFamily) {
+  EXPECT_EQ(parameter_code(Family::vf1000, 5), make_code(105));                // 0 0 1 05
+  EXPECT_EQ(parameter_code(Family::vf1000, 5, true), make_code(10105));        // 1 0 1 05
+  EXPECT_EQ(parameter_code(Family::mc6000, 77), make_code(20077));             // 2 0 077
+  EXPECT_EQ(parameter_code(Family::mc6000, 416, true), make_code(30416));      // 3 0 416
+  EXPECT_FALSE(parameter_code(Family::vf1000, 100));  // two digits only
+  EXPECT_FALSE(parameter_code(Family::mc6000, 1000));
+  EXPECT_EQ(device_kind(Family::vf1000), "inverter");
+  EXPECT_EQ(device_kind(Family::mc6000), "servo");
+}
+
 }  // namespace
 }  // namespace ibs::lustbus

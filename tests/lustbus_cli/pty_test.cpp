@@ -1,4 +1,4 @@
-// The host against the wings' LUSTBUS devices over a pseudo-terminal in process: serve_lustbus on
+// The host against the wings' LUSTBUS devices over a pseudo-terminal in process: serial::serve on
 // the master side, transact_lustbus on the slave, real time.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,9 @@
 
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/lustbus/served_receiver.hpp"
 #include "ibs/serial/pty.hpp"
+#include "ibs/serial/serve.hpp"
 #include "lustbus_cmd.hpp"
 
 namespace ibs::cli {
@@ -21,11 +23,11 @@ struct PtyBus {
   lb::Receiver rx_vf{vf, 1};
   lb::Receiver rx_mc{mc, 3};
   serial::PtyPair pair = serial::PtyPair::open({9600, serial::k7E1, false});
-  std::vector<LustbusServed> served{
-      {&rx_vf, [this](Time t) { vf.advance(t); }, [this] { return vf.line_baud(); }},
-      {&rx_mc, [this](Time t) { mc.advance(t); }, [this] { return mc.line_baud(); }}};
+  lb::ServedReceiver served_vf{&rx_vf, [this](Time t) { vf.advance(t); }, [this] { return vf.line_baud(); }};
+  lb::ServedReceiver served_mc{&rx_mc, [this](Time t) { mc.advance(t); }, [this] { return mc.line_baud(); }};
+  std::vector<base::LineDevice*> served{&served_vf, &served_mc};
   std::atomic<bool> stop{false};
-  std::thread server{[this] { serve_lustbus(pair.master(), served, [this] { return stop.load(); }); }};
+  std::thread server{[this] { serial::serve(pair.master(), served, [this] { return stop.load(); }); }};
   serial::SerialPort host_port =
       serial::SerialPort::open(pair.slave_path(), {9600, serial::k7E1, false});
   ~PtyBus() {
@@ -88,9 +90,10 @@ TEST(LustbusPty, LoneServoTakesThePortAlong) {
   devices::mc6000::LustbusDevice mc;
   lb::Receiver rx{mc, 3};
   serial::PtyPair pair = serial::PtyPair::open({9600, serial::k7E1, false});
-  std::vector<LustbusServed> served{{&rx, [&mc](Time t) { mc.advance(t); }, [&mc] { return mc.line_baud(); }}};
+  lb::ServedReceiver served_mc{&rx, [&mc](Time t) { mc.advance(t); }, [&mc] { return mc.line_baud(); }};
+  std::vector<base::LineDevice*> served{&served_mc};
   std::atomic<bool> stop{false};
-  std::thread server{[&] { serve_lustbus(pair.master(), served, [&] { return stop.load(); }); }};
+  std::thread server{[&] { serial::serve(pair.master(), served, [&] { return stop.load(); }); }};
   serial::SerialPort port = serial::SerialPort::open(pair.slave_path(), {9600, serial::k7E1, false});
   lb::HostConfig cfg;
   cfg.response_timeout = std::chrono::milliseconds(1000);

@@ -1,5 +1,6 @@
 // The CLI11 wiring of `ibs canlust ...`, the emulator's serving loop, the client loops in real
-// time, the frame recorder (candump log, pcap) and the candump-log decoder of `ibs decode`.
+// time, the frame recorder (candump log, pcap) and the file side of `ibs decode` for a candump log
+// (the format is can/candump.hpp's).
 #include "canlust_cmd.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,9 +16,11 @@
 #include <set>
 #include <stdexcept>
 
+#include "ibs/can/candump.hpp"
 #include "ibs/can/socketcan.hpp"
 #include "ibs/can/udp.hpp"
 #include "ibs/canlust/parameter_client.hpp"
+#include "ibs/devices/cda3000/description.hpp"
 #include "ibs/devices/cda3000/descriptor.hpp"
 #include "ibs/devices/cda3000/parameters.hpp"
 #include "stop_signals.hpp"
@@ -338,16 +341,6 @@ int write_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& er
   return kExitCanOk;
 }
 
-std::string unpack4(std::uint32_t v) {
-  std::string s;
-  for (unsigned i = 0; i < 4; ++i) {
-    const auto c = static_cast<char>((v >> (8U * i)) & 0xFFU);
-    if (c == '\0') break;
-    s += c;
-  }
-  return s;
-}
-
 int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
   const Target t = resolve(o.parameter);
   Session s(o.bus);
@@ -371,8 +364,8 @@ int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream&
   j["items"] = items;
   // D29: the CDA3000's items.
   std::string text = "CDA " + std::to_string(o.address) + " " + target_name(t) + ":";
-  if (items.size() >= 8 && items[0] <= static_cast<std::uint32_t>(cl::DataType::string)) {
-    const auto type = static_cast<cl::DataType>(items[0]);
+  if (const auto d = dev::read_description(items)) {
+    const cl::DataType type = d->type;
     const bool is_signed = type == cl::DataType::int8 || type == cl::DataType::int16 ||
                            type == cl::DataType::int32 || type == cl::DataType::int32q16;
     const auto num = [&](std::uint32_t v) -> nlohmann::json {
@@ -381,19 +374,19 @@ int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream&
       return v;
     };
     j["type"] = std::string(cl::to_string(type));
-    j["min"] = num(items[1]);
-    j["max"] = num(items[2]);
-    j["factory"] = num(items[3]);
-    j["writable"] = (items[4] & 1U) != 0;
-    j["flash"] = (items[4] & 2U) != 0;
-    j["after_mains_reset"] = (items[4] & 4U) != 0;
-    j["short_name"] = unpack4(items[5]) + unpack4(items[6]);
-    j["unit"] = unpack4(items[7]);
-    const std::string unit = unpack4(items[7]).empty() ? "" : " " + unpack4(items[7]);
-    text += " " + j["short_name"].get<std::string>() + ", " + j["type"].get<std::string>() + ", " +
-            j["min"].dump() + ".." + j["max"].dump() + unit + ", factory " + j["factory"].dump() + unit + ", " +
-            ((items[4] & 1U) != 0 ? "writable" : "read-only") + ((items[4] & 2U) != 0 ? ", flash" : ", RAM") +
-            ((items[4] & 4U) != 0 ? ", acts after a mains reset" : "");
+    j["min"] = num(d->min);
+    j["max"] = num(d->max);
+    j["factory"] = num(d->factory);
+    j["writable"] = d->writable();
+    j["flash"] = d->flash();
+    j["after_mains_reset"] = d->after_mains_reset();
+    j["short_name"] = d->short_name;
+    j["unit"] = d->unit;
+    const std::string unit = d->unit.empty() ? "" : " " + d->unit;
+    text += " " + d->short_name + ", " + j["type"].get<std::string>() + ", " + j["min"].dump() + ".." +
+            j["max"].dump() + unit + ", factory " + j["factory"].dump() + unit + ", " +
+            (d->writable() ? "writable" : "read-only") + (d->flash() ? ", flash" : ", RAM") +
+            (d->after_mains_reset() ? ", acts after a mains reset" : "");
   } else {
     for (std::size_t i = 0; i < items.size(); ++i) text += " item " + std::to_string(i) + " = " + hex(items[i], 8) + "H";
   }
@@ -566,77 +559,13 @@ FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, st
 FrameRecorder::~FrameRecorder() = default;
 
 void FrameRecorder::record(const cl::CanFrame& f, Wall::time_point at) {
-  if (files_->has_log) files_->log << candump_line(f, at, files_->iface) << "\n" << std::flush;
+  if (files_->has_log) files_->log << can::candump_line(f, at, files_->iface) << "\n" << std::flush;
 #ifdef IBS_HAVE_PCAP
   if (files_->pcap) {
     files_->pcap->write(f, std::chrono::duration_cast<Duration>(at.time_since_epoch()));
     files_->pcap->flush();
   }
 #endif
-}
-
-std::string candump_line(const cl::CanFrame& f, Wall::time_point at, std::string_view iface) {
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at.time_since_epoch()).count();
-  char head[64];
-  std::snprintf(head, sizeof head, "(%lld.%06lld) ", static_cast<long long>(us / 1000000),
-                static_cast<long long>(us % 1000000));
-  std::string s = head + std::string(iface) + " " + hex(f.id, 3) + "#";
-  if (f.rtr) {
-    s += "R";
-    if (f.dlc > 0) s += std::to_string(f.dlc);
-    return s;
-  }
-  for (const auto b : f.payload()) s += hex(b, 2);
-  return s;
-}
-
-std::optional<CandumpRecord> parse_candump_line(std::string_view line) {
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
-  if (line.size() < 4 || line[0] != '(') return std::nullopt;
-  const auto close = line.find(')');
-  if (close == std::string_view::npos) return std::nullopt;
-  CandumpRecord r;
-  r.time = std::string(line.substr(1, close - 1));
-  const auto dot = r.time.find('.');
-  if (dot == std::string::npos || !parse_int(std::string_view(r.time).substr(0, dot)) ||
-      !parse_int(std::string_view(r.time).substr(dot + 1))) {
-    return std::nullopt;
-  }
-  std::string_view rest = line.substr(close + 1);
-  if (rest.empty() || rest[0] != ' ') return std::nullopt;
-  rest.remove_prefix(1);
-  const auto sp = rest.find(' ');
-  if (sp == std::string_view::npos || sp == 0) return std::nullopt;
-  r.interface_name = std::string(rest.substr(0, sp));
-  const std::string_view frame = rest.substr(sp + 1);
-  const auto hash = frame.find('#');
-  if (hash == std::string_view::npos || hash == 0) return std::nullopt;
-  const std::string_view id = frame.substr(0, hash);
-  std::string_view data = frame.substr(hash + 1);
-  unsigned idv = 0;
-  const auto rid = std::from_chars(id.data(), id.data() + id.size(), idv, 16);
-  if (rid.ec != std::errc{} || rid.ptr != id.data() + id.size()) return std::nullopt;
-  if (id.size() > 3 || (!data.empty() && data[0] == '#')) {
-    r.classic = false;  // an extended identifier or a CAN FD frame
-    return r;
-  }
-  if (idv > cl::kMaxStandardId) return std::nullopt;
-  r.frame.id = static_cast<std::uint16_t>(idv);
-  if (!data.empty() && (data[0] == 'R' || data[0] == 'r')) {
-    r.frame.rtr = true;
-    if (data.size() == 2 && data[1] >= '0' && data[1] <= '8') r.frame.dlc = static_cast<std::uint8_t>(data[1] - '0');
-    else if (data.size() != 1) return std::nullopt;
-    return r;
-  }
-  if (data.size() % 2 != 0 || data.size() > 16) return std::nullopt;
-  for (std::size_t i = 0; i < data.size(); i += 2) {
-    unsigned b = 0;
-    const auto rb = std::from_chars(data.data() + i, data.data() + i + 2, b, 16);
-    if (rb.ec != std::errc{} || rb.ptr != data.data() + i + 2) return std::nullopt;
-    r.frame.data[i / 2] = static_cast<std::uint8_t>(b);
-  }
-  r.frame.dlc = static_cast<std::uint8_t>(data.size() / 2);
-  return r;
 }
 
 std::optional<int> decode_candump_log(const std::string& file, unsigned id_step, unsigned cacnf,
@@ -649,10 +578,7 @@ std::optional<int> decode_candump_log(const std::string& file, unsigned id_step,
   if (!in) return std::nullopt;
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
-  const auto first = std::find_if(lines.begin(), lines.end(), [](const std::string& l) {
-    return l.find_first_not_of(" \t\r") != std::string::npos;
-  });
-  if (first == lines.end() || !parse_candump_line(*first)) return std::nullopt;
+  if (!can::is_candump_log(lines)) return std::nullopt;
   CanBusOptions o;
   o.id_step = id_step;
   o.cacnf = cacnf;
@@ -665,21 +591,18 @@ std::optional<int> decode_candump_log(const std::string& file, unsigned id_step,
     err << "ibs decode: " << e.what() << "\n";
     return kExitCanBadInput;
   }
+  const can::CandumpLog log = can::read_candump_log(lines);
+  if (log.error) {
+    err << file << ":" << log.error->line << ": not a candump log line: '" << log.error->text << "'\n";
+    return kExitCanBadInput;
+  }
   std::string text;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const std::string& l = lines[i];
-    if (l.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto r = parse_candump_line(l);
-    if (!r) {
-      err << file << ":" << (i + 1) << ": not a candump log line: '" << l << "'\n";
-      return kExitCanBadInput;
-    }
-    std::string line = l;
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  for (const can::CandumpEntry& e : log.entries) {
+    std::string line = e.text;
     line.resize(std::max<std::size_t>(line.size(), 44), ' ');
     text += line + "  " +
-            (r->classic ? dev::explain_frame(r->frame, ids, layout).text
-                        : std::string("extended or CAN FD frame: not CANLust")) + "\n";
+            (e.record.classic ? dev::explain_frame(e.record.frame, ids, layout).text
+                              : std::string("extended or CAN FD frame: not CANLust")) + "\n";
   }
   out << text;
   return kExitCanOk;

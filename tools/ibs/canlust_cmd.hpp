@@ -91,7 +91,8 @@ std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::o
 // Opens BUS; throws std::invalid_argument saying what is wrong with it (or why it did not open).
 std::unique_ptr<can::CanTransport> open_bus(const std::string& spec);
 
-// Every frame sent or received, with the wall-clock time: a candump -l log and/or a pcap file.
+// Every frame sent or received, with the wall-clock time: a candump -l log (can/candump.hpp)
+// and/or a pcap file.
 class FrameRecorder {
  public:
   // Throws std::invalid_argument when a file does not open (or pcap is not built in).
@@ -106,19 +107,6 @@ class FrameRecorder {
   struct Files;
   std::unique_ptr<Files> files_;
 };
-
-// candump's log line: "(1700000000.123456) can0 297#0F00008014000".
-std::string candump_line(const canlust::CanFrame& f, std::chrono::system_clock::time_point at,
-                         std::string_view interface_name);
-// One line of a candump log, or nullopt when the line is not one. Extended-identifier and CAN FD
-// frames are lines of the log but no CANLust frames: `classic` is false and `frame` empty.
-struct CandumpRecord {
-  std::string time;  // as written, seconds.microseconds
-  std::string interface_name;
-  bool classic = true;
-  canlust::CanFrame frame{};
-};
-std::optional<CandumpRecord> parse_candump_line(std::string_view line);
 
 // `ibs decode FILE` for a candump log: every frame explained; nullopt when FILE is not a candump
 // log (the caller then reads it as a trace).

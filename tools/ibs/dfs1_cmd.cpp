@@ -1,5 +1,5 @@
-// The CLI11 wiring of `ibs dfs1 ...`, the emulator's serving loop and the host's transaction loop
-// over a serial port.
+// The CLI11 wiring of `ibs dfs1 ...` (the emulator serves with serial::serve) and the host's
+// transaction loop over a serial port.
 #include "dfs1_cmd.hpp"
 
 #include <CLI/CLI.hpp>
@@ -11,11 +11,15 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <span>
 #include <stdexcept>
 
 #include "ibs/devices/dfs1/parameters.hpp"
+#include "ibs/devices/dfs1/served_controller.hpp"
+#include "ibs/devices/dfs1/status.hpp"
 #include "ibs/serial/byte_log.hpp"
 #include "ibs/serial/pty.hpp"
+#include "ibs/serial/serve.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -27,7 +31,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr Duration kServePoll = 20ms;
 constexpr Duration kInterByteTimeout = 20ms;
 
 Time since(Clock::time_point t0) {
@@ -64,31 +67,10 @@ std::string hex2(unsigned v) {
   return {kHex[(v >> 4) & 0xF], kHex[v & 0xF]};
 }
 
-std::vector<std::string> st2_flags(std::uint8_t s) {
-  static constexpr std::array<const char*, 8> kNames = {
-      "zero-speed", "uP-fault", "enabled", "fault", "forward", "at-speed", "slave", "remote"};
-  std::vector<std::string> out;
-  for (std::size_t bit = 8; bit-- > 0;) {
-    if (((static_cast<unsigned>(s) >> bit) & 1U) != 0U) out.emplace_back(kNames[bit]);
-  }
-  return out;
-}
-
-std::vector<std::string> st1_flags(std::uint8_t s) {
-  static constexpr std::array<const char*, 8> kNames = {
-      "undervolt", "overvolt", "commutation", "heatsink-overtemp",
-      "I2t",       "stall",    "IOC",         "bus-not-charged"};
-  std::vector<std::string> out;
-  for (std::size_t bit = 8; bit-- > 0;) {
-    if (((static_cast<unsigned>(s) >> bit) & 1U) != 0U) out.emplace_back(kNames[bit]);
-  }
-  return out;
-}
-
-std::string join(const std::vector<std::string>& v) {
+std::string join(const std::vector<std::string_view>& v) {
   if (v.empty()) return "none";
   std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : " ") + x;
+  for (const auto& x : v) s += (s.empty() ? "" : " ") + std::string(x);
   return s;
 }
 
@@ -102,7 +84,8 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
     return kExitDfs1BadInput;
   }
   std::vector<std::unique_ptr<dev::Controller>> controllers;
-  std::vector<dev::Controller*> raw;
+  std::vector<std::unique_ptr<dev::ServedController>> served;
+  std::vector<base::LineDevice*> raw;
   std::set<std::uint8_t> uids;
   serial::PortOptions popts;
   try {
@@ -117,7 +100,8 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
       if (auto code = dev::code_for_baud(o.port.baud)) {
         (void)controllers.back()->set_parameter(dev::kBaudCode, *code);
       }
-      raw.push_back(controllers.back().get());
+      served.push_back(std::make_unique<dev::ServedController>(*controllers.back()));
+      raw.push_back(served.back().get());
     }
   } catch (const std::invalid_argument& e) {
     err << "ibs dfs1 emulate: " << e.what() << "\n";
@@ -152,7 +136,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   }
   port.set_log(log.get());
 
-  serve_dfs1(port, raw, [&signals]() { return signals.raised(); });
+  serial::serve(port, raw, [&signals]() { return signals.raised(); });
   return kExitDfs1Ok;
 }
 
@@ -266,15 +250,15 @@ int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
     j["load_percent"] = load;
     j["st2"] = st2;
     j["st1"] = st1;
-    j["st2_flags"] = st2_flags(st2);
-    j["st1_flags"] = st1_flags(st1);
+    j["st2_flags"] = dev::st2_flags(st2);
+    j["st1_flags"] = dev::st1_flags(st1);
     if (o.json) {
       out << j.dump() << "\n";
     } else {
       out << "uid " << o.uid << ": commanded " << commanded << " rpm, actual " << actual
           << " rpm, load " << load << " %\n"
-          << "ST2 " << hex2(st2) << "H: " << join(st2_flags(st2)) << "\n"
-          << "ST1 " << hex2(st1) << "H: " << join(st1_flags(st1)) << "\n";
+          << "ST2 " << hex2(st2) << "H: " << join(dev::st2_flags(st2)) << "\n"
+          << "ST1 " << hex2(st1) << "H: " << join(dev::st1_flags(st1)) << "\n";
     }
   } else if (name == "read") {
     const std::uint32_t v = r.value();
@@ -318,31 +302,6 @@ void add_client_options(CLI::App* cmd, Dfs1ClientOptions& o) {
 }
 
 }  // namespace
-
-void serve_dfs1(serial::SerialPort& port, std::span<dev::Controller* const> controllers,
-                const std::function<bool()>& stop) {
-  const Clock::time_point t0 = Clock::now();
-  std::array<std::uint8_t, 256> buf{};
-  while (!stop()) {
-    Time now = since(t0);
-    Duration wait = kServePoll;
-    for (const dev::Controller* c : controllers) {
-      if (auto due = c->next_deadline()) wait = std::min(wait, std::max(*due - now, Duration(0)));
-    }
-    const std::size_t n = port.read(buf, std::max(wait, Duration(100us)));
-    now = since(t0);
-    for (dev::Controller* c : controllers) {
-      c->receive(std::span<const std::uint8_t>(buf.data(), n), now);
-      c->step(now);
-    }
-    for (dev::Controller* c : controllers) {
-      const auto p = c->pending(now);
-      if (p.empty()) continue;
-      port.write(p);
-      c->consume(p.size());
-    }
-  }
-}
 
 proto::HostResult transact_dfs1(serial::SerialPort& port, const proto::Frame& request,
                                 proto::HostTimeouts timeouts) {

@@ -13,14 +13,11 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <iosfwd>
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
-#include "ibs/devices/dfs1/controller.hpp"
 #include "ibs/dfs1/host.hpp"
 #include "ibs/serial/serial_port.hpp"
 
@@ -78,13 +75,9 @@ std::optional<int> run_dfs1_commands(const Dfs1CommandState& state);
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
                                      std::ostream& err);
 
-// The I/O loops, also for tests.
+// The host's loop, also for tests (the emulator serves with serial::serve through
+// devices::dfs1::ServedController).
 //
-// Serves `controllers` on one line: every byte read goes to every controller with the time since
-// the loop began; a reply is written when its turnaround has passed. Returns when stop() is true
-// (asked between reads, at least every 20 ms).
-void serve_dfs1(serial::SerialPort& port, std::span<devices::dfs1::Controller* const> controllers,
-                const std::function<bool()>& stop);
 // One transaction in real time: flushes the input, writes the request, waits for the outcome.
 ::ibs::dfs1::HostResult transact_dfs1(serial::SerialPort& port, const ::ibs::dfs1::Frame& request,
                                       ::ibs::dfs1::HostTimeouts timeouts);

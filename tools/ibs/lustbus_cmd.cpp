@@ -1,5 +1,5 @@
-// The CLI11 wiring of `ibs lustbus ...`, the emulator's serving loop and the host's loop over a
-// serial port.
+// The CLI11 wiring of `ibs lustbus ...` (the emulator serves with serial::serve), the host's loop
+// over a serial port, and the file side of `ibs decode` for a byte log (lustbus::read_byte_log).
 #include "lustbus_cmd.hpp"
 
 #include <CLI/CLI.hpp>
@@ -20,13 +20,16 @@
 
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/lustbus/byte_log.hpp"
 #include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/description.hpp"
+#include "ibs/lustbus/served_receiver.hpp"
 #include "ibs/lustbus/value.hpp"
 #include "ibs/lustbus/siof.hpp"
 #include "ibs/lustbus/telegram.hpp"
 #include "ibs/serial/byte_log.hpp"
 #include "ibs/serial/pty.hpp"
+#include "ibs/serial/serve.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -124,26 +127,10 @@ Param find_param(lb::Family f, const std::string& text) {
 
 std::string label(const Param& p) { return std::to_string(p.number) + "-" + p.name; }
 
-std::string engineering_text(lb::DataType t, std::uint32_t bits) {
-  const auto e = lb::to_engineering(t, bits);
-  if (!e.ok()) return "";
-  std::ostringstream s;
-  if (t == lb::DataType::fixpoint16) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.2f", e.value);
-    return b;
-  }
-  s << e.value;
-  return s.str();
-}
+using lb::engineering_text;
 
 lb::Code value_code(const Param& p, bool description) {
-  const auto c = p.family == lb::Family::vf1000
-                     ? lb::vf_code(p.number, description ? lb::VfSpecifier::description
-                                                         : lb::VfSpecifier::value)
-                     : lb::mc_code(description ? lb::McCodeKind::description
-                                               : lb::McCodeKind::value,
-                                   p.number);
+  const auto c = lb::parameter_code(p.family, p.number, description);
   if (!c) throw BadInput("parameter " + label(p) + " has no CODE");
   return *c;
 }
@@ -228,7 +215,7 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   std::vector<std::unique_ptr<devices::vf1000::LustbusDevice>> vfs;
   std::vector<std::unique_ptr<devices::mc6000::LustbusDevice>> mcs;
   std::vector<std::unique_ptr<lb::Receiver>> receivers;
-  std::vector<LustbusServed> served;
+  std::vector<lb::ServedReceiver> served;
   std::set<lb::Address> used;
   try {
     for (const std::string& spec : o.devices) {
@@ -249,8 +236,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
                          std::to_string(o.port.baud));
         }
         receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
-                          [p = d.get()]() { return p->line_baud(); }});
+        served.emplace_back(receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
+                            [p = d.get()]() { return p->line_baud(); });
       } else {
         devices::mc6000::LustbusTiming timing;
         timing.reaction = o.reaction_ms >= 0
@@ -262,8 +249,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
                          std::to_string(o.port.baud));
         }
         receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.push_back({receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
-                          [p = d.get()]() { return p->line_baud(); }});
+        served.emplace_back(receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
+                            [p = d.get()]() { return p->line_baud(); });
       }
     }
   } catch (const BadInput& e) {
@@ -290,7 +277,9 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n" << std::flush;
   for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
   port.set_log(log.get());
-  serve_lustbus(port, served, [&signals]() { return signals.raised(); });
+  std::vector<base::LineDevice*> lines;
+  for (lb::ServedReceiver& d : served) lines.push_back(&d);
+  serial::serve(port, lines, [&signals]() { return signals.raised(); });
   return kExitLustbusOk;
 }
 
@@ -418,9 +407,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
       j["devices"] = nlohmann::json::array();
       for (const lb::ScanEntry& e : r.scan.found()) {
         const std::string fam = e.family ? std::string(lb::to_string(*e.family)) : "unknown";
-        const std::string kind = !e.family                          ? "unknown"
-                                 : *e.family == lb::Family::vf1000 ? "inverter"
-                                                                    : "servo";
+        const std::string kind = e.family ? std::string(lb::device_kind(*e.family)) : "unknown";
         j["devices"].push_back({{"address", e.address}, {"family", fam}, {"kind", kind},
                                 {"type", e.type}});
         if (!o.json) {
@@ -556,308 +543,35 @@ void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) 
 
 }  // namespace
 
-void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
-                   const std::function<bool()>& stop) {
-  const Clock::time_point t0 = Clock::now();
-  std::array<std::uint8_t, 256> buf{};
-  while (!stop()) {
-    Time now = since(t0);
-    Duration wait = kServePoll;
-    for (const LustbusServed& d : devices) {
-      if (auto due = d.receiver->answer_due()) wait = std::min(wait, std::max(*due - now, Duration(0)));
-    }
-    const std::size_t n = port.read(buf, std::max(wait, Duration(100us)));
-    now = since(t0);
-    for (const LustbusServed& d : devices) {
-      d.advance(now);
-      if (d.baud && d.baud() != port.baud()) continue;  // another rate: nothing it can read
-      for (std::size_t i = 0; i < n; ++i) d.receiver->receive(buf[i], now);
-    }
-    now = since(t0);
-    for (const LustbusServed& d : devices) {
-      const auto due = d.receiver->answer_due();
-      if (!due || *due > now) continue;
-      const auto a = d.receiver->take_answer(now);
-      if (!a.empty()) port.write(a);
-    }
-    // 11.5: a lone drive's new rate (4-PROG = 111, or a restart) takes the port along, after its
-    // answer has gone out at the old one.
-    if (devices.size() == 1 && devices[0].baud && !devices[0].receiver->answer_due()) {
-      port.set_baud(devices[0].baud());
-    }
-  }
-}
-
-namespace {
-
-// What a CODE names, for the log's reader: the family its digits say (2.4.1 / 2.4.2, 5.2) and
-// the parameter's name from that family's table.
-struct Named {
-  std::string text;       // "VF1000 5-FSSIO", "MC6000 428-RSIO description", "PosMOD1"
-  std::optional<Param> param;
-  bool description = false;
-};
-
-Named name_code(const lb::Code& c) {
-  Named n;
-  if (c == lb::kPosmodCode) {
-    n.text = "MC6000 PosMOD1 (11.6)";
-    return n;
-  }
-  const auto try_param = [&](lb::Family f, unsigned number) -> std::optional<Param> {
-    try {
-      return find_param(f, std::to_string(number));
-    } catch (const BadInput&) {
-      return std::nullopt;
-    }
-  };
-  if (const auto mc = lb::as_mc_code(c); mc && mc->kind != lb::McCodeKind::shared) {
-    n.param = try_param(lb::Family::mc6000, mc->parameter);
-    const std::string what = mc->kind == lb::McCodeKind::description         ? " description (11.2)"
-                             : mc->kind == lb::McCodeKind::substitution_text ? " substitution text (11.3)"
-                             : mc->kind == lb::McCodeKind::special           ? " special function"
-                                                                             : "";
-    n.description = mc->kind != lb::McCodeKind::value;
-    n.text = "MC6000 " + (n.param ? label(*n.param) : std::to_string(mc->parameter) + " (not in the table)") + what;
-    return n;
-  }
-  if (const auto vf = lb::as_vf_code(c)) {
-    const bool shared = lb::is_shared_parameter(vf->parameter) && c.digit(0) == '0' && c.digit(2) == '0';
-    n.param = try_param(lb::Family::vf1000, vf->parameter);
-    n.description = vf->specifier == lb::VfSpecifier::description;
-    n.text = std::string(shared ? "VF1000/MC6000 " : "VF1000 ") +
-             (n.param ? label(*n.param) : std::to_string(vf->parameter) + " (not in the table)") +
-             (n.description ? " description (11.1)" : "");
-    return n;
-  }
-  n.text = "no CODE of either family";
-  return n;
-}
-
-std::string hex2(std::uint8_t b) {
-  char t[4];
-  std::snprintf(t, sizeof t, "%02X", b);
-  return t;
-}
-
-// The VALUE as the parameter's type reads it.
-std::string explain_value(const Named& n, std::string_view v) {
-  if (!n.param || n.description) return "";
-  const auto bits = lb::parse_typed(n.param->family, n.param->type, v);
-  if (!bits.ok()) return " (" + std::string(lb::to_string(bits.error)) + " for " + std::string(lb::to_string(n.param->type)) + ")";
-  const std::string e = engineering_text(n.param->type, bits.value);
-  return " " + (e.empty() ? std::to_string(bits.value) : e + (n.param->unit.empty() ? "" : " " + n.param->unit));
-}
-
-std::string printable(std::string_view v) {
-  std::string out;
-  for (const char c : v) {
-    const auto b = static_cast<unsigned char>(c);
-    out += b >= 0x20 && b < 0x7F ? std::string(1, c) : "<" + hex2(b) + ">";
-  }
-  return out;
-}
-
-// The byte stream of one side, split into telegrams (seed 000, 2.2, 6.1, 6.2).
-class LogReader {
- public:
-  explicit LogReader(std::ostream& out) : out_(out) {}
-
-  void host_byte(std::uint8_t b, const std::string& at) {
-    if (b == lb::kEot && step_ != Step::bcc) {
-      flush_host(at, "");
-      out_ << at << " host  EOT\n";
-      return;
-    }
-    if (host_.empty()) host_at_ = at;
-    host_.push_back(static_cast<char>(b));
-    if (step_ == Step::bcc) {
-      finish_select();
-      return;
-    }
-    if (b == lb::kEtx) step_ = Step::bcc;
-    if (b == lb::kEnq) finish_enquiry();
-  }
-
-  void device_byte(std::uint8_t b, const std::string& at) {
-    if (!answering_) {
-      answer_at_ = at;
-      answering_ = true;
-      decoder_.start(addr_, code_, expect_, lb::answer_binary_prefix(code_));
-      raw_.clear();
-    }
-    raw_.push_back(static_cast<char>(b));
-    if (decoder_.feed(b) == lb::AnswerDecoder::Status::need_more) return;
-    answering_ = false;
-    if (decoder_.status() == lb::AnswerDecoder::Status::error) {
-      out_ << answer_at_ << " drive broken answer (" << lb::to_string(decoder_.error()) << "): " << printable(raw_) << "\n";
-      return;
-    }
-    const Named n = name_code(code_);
-    switch (decoder_.kind()) {
-      case lb::AnswerKind::ack:
-        out_ << answer_at_ << " drive " << lb::address_char(addr_) << " ACK\n";
-        return;
-      case lb::AnswerKind::nak:
-        out_ << answer_at_ << " drive " << lb::address_char(addr_) << " NAK"
-             << (expect_ == lb::AnswerDecoder::Expect::ack_or_nak && code_ != lb::kPosmodCode
-                     ? " (the cause is in 85-SIOF/SERR, 9.2)\n"
-                     : "\n");
-        return;
-      default: {
-        const std::string v(decoder_.value().view());
-        out_ << answer_at_ << " drive " << lb::address_char(addr_) << " " << code_.text() << "="
-             << printable(v) << " BCC ok: " << n.text << (n.param && !n.description ? " =" : "")
-             << explain_value(n, v);
-        if (lb::reads_siof(code_)) {
-          const auto bits = lb::parse_raw(lb::Family::mc6000, v);
-          if (bits.ok()) out_ << " (" << lb::describe_siof(static_cast<std::uint8_t>(bits.value)) << ")";
-        }
-        out_ << "\n";
-        return;
-      }
-    }
-  }
-
-  void end(const std::string& at) {
-    flush_host(at, " (cut off at the end of the log)");
-    if (answering_) out_ << answer_at_ << " drive incomplete answer: " << printable(raw_) << "\n";
-  }
-
- private:
-  enum class Step : std::uint8_t { text, bcc };
-
-  void flush_host(const std::string& at, const std::string& why) {
-    if (!host_.empty()) {
-      out_ << host_at_ << " host  broken telegram" << (why.empty() ? " (EOT before its end)" : why) << ": "
-           << printable(host_) << "\n";
-      (void)at;
-    }
-    host_.clear();
-    step_ = Step::text;
-    answering_ = false;
-  }
-
-  // ADR CODE ENQ (6.1).
-  void finish_enquiry() {
-    const auto a = host_.empty() ? std::nullopt : lb::address_from_char(static_cast<std::uint8_t>(host_[0]));
-    const auto c = host_.size() == 7 ? lb::Code::parse(std::string_view(host_).substr(1, 5)) : std::nullopt;
-    if (!a || !c) {
-      flush_host("", " (no ENQUIRY of 6.1)");
-      return;
-    }
-    addr_ = *a;
-    code_ = *c;
-    expect_ = lb::AnswerDecoder::Expect::text_or_nak;
-    out_ << host_at_ << " host  ENQUIRY " << host_[0] << " (address " << int{*a} << ") " << c->text() << ": "
-         << name_code(*c).text << "\n";
-    host_.clear();
-  }
-
-  // ADR STX CODE = VALUE ETX BCC (6.2).
-  void finish_select() {
-    const std::string t = host_;
-    host_.clear();
-    step_ = Step::text;
-    const auto a = lb::address_from_char(static_cast<std::uint8_t>(t[0]));
-    const auto c = t.size() >= 10 ? lb::Code::parse(std::string_view(t).substr(2, 5)) : std::nullopt;
-    if (!a || t[1] != lb::kStx || !c || t[7] != lb::kEquals) {
-      out_ << host_at_ << " host  broken telegram (no SELECT of 6.2): " << printable(t) << "\n";
-      return;
-    }
-    const std::string v = t.substr(8, t.size() - 10);
-    std::uint8_t bcc = 0;
-    for (std::size_t i = 2; i + 1 < t.size(); ++i) bcc ^= static_cast<std::uint8_t>(t[i]);
-    const bool ok = bcc == static_cast<std::uint8_t>(t.back());
-    addr_ = *a;
-    code_ = *c;
-    expect_ = lb::AnswerDecoder::Expect::ack_or_nak;
-    const Named n = name_code(*c);
-    out_ << host_at_ << " host  SELECT " << t[0] << " (address " << int{*a}
-         << (*a == lb::kAddressBroadcast ? ", broadcast" : "") << ") " << c->text() << "=" << printable(v)
-         << (ok ? " BCC ok: " : " BCC WRONG (" + hex2(static_cast<std::uint8_t>(t.back())) + ", should be " + hex2(bcc) + "): ")
-         << n.text << (n.param && !n.description ? " :=" : "") << explain_value(n, v) << "\n";
-  }
-
-  std::ostream& out_;
-  std::string host_;
-  std::string host_at_;
-  Step step_ = Step::text;
-  bool answering_ = false;
-  std::string answer_at_;
-  std::string raw_;
-  lb::Address addr_ = 0;
-  lb::Code code_{};
-  lb::AnswerDecoder::Expect expect_ = lb::AnswerDecoder::Expect::text_or_nak;
-  lb::AnswerDecoder decoder_{};
-};
-
-}  // namespace
-
 std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out, std::ostream& err) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
   std::ifstream in(file);
   std::string header;
-  if (!in || !std::getline(in, header) || header != "ibs-serial-log 1") return std::nullopt;
-  struct Line {
-    std::string at;
-    bool tx = false;
-    std::string port;
-    std::vector<std::uint8_t> bytes;
+  if (!in || !std::getline(in, header) || header != lb::kByteLogHeader) return std::nullopt;
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(std::move(l));
+  // The names, units and types of the parameters: the drives' tables (find_param).
+  const lb::ParameterLookup lookup = [](lb::Family f, std::uint16_t number) -> std::optional<lb::ParameterFacts> {
+    try {
+      const Param p = find_param(f, std::to_string(number));
+      return lb::ParameterFacts{p.number, p.name, p.unit, p.type};
+    } catch (const BadInput&) {
+      return std::nullopt;
+    }
   };
-  std::vector<Line> lines;
-  std::size_t number = 1;
-  for (std::string l; std::getline(in, l);) {
-    ++number;
-    if (l.empty()) continue;
-    std::istringstream s(l);
-    Line line;
-    std::string dir;
-    s >> line.at >> dir >> line.port;
-    const auto bad = [&](const std::string& what) {
-      err << "ibs decode: " << file << ":" << number << ": " << what << " (the byte log of docs/dfs1.md: "
-          << "<seconds> <tx|rx> <PORT> <hex bytes>)\n";
-      return kExitLustbusBadInput;
-    };
-    double seconds = 0;
-    if (std::from_chars(line.at.data(), line.at.data() + line.at.size(), seconds).ec != std::errc{}) {
-      return bad("'" + line.at + "' is no time in seconds");
-    }
-    if (dir != "tx" && dir != "rx") return bad("'" + dir + "' is neither tx nor rx");
-    line.tx = dir == "tx";
-    for (std::string h; s >> h;) {
-      unsigned v = 0;
-      const auto r = std::from_chars(h.data(), h.data() + h.size(), v, 16);
-      if (h.size() != 2 || r.ec != std::errc{} || r.ptr != h.data() + 2) {
-        return bad("'" + h + "' is not a byte in two hex digits");
-      }
-      line.bytes.push_back(static_cast<std::uint8_t>(v));
-    }
-    if (line.bytes.empty()) return bad("a line without bytes");
-    lines.push_back(std::move(line));
-  }
-  // The host's side is the one that sends EOT first (3: every telegram begins with it); the log
-  // of `emulate` has it as rx, that of a host command as tx.
-  const auto first = std::find_if(lines.begin(), lines.end(), [](const Line& l) { return l.bytes[0] == lb::kEot; });
-  if (first == lines.end()) {
-    err << "ibs decode: " << file << ": no EOT in the log: not a LUSTBUS byte log (3: every telegram "
-        << "begins with EOT); DFS-1 logs are read by eye\n";
+  const lb::ByteLogReading r = lb::read_byte_log(lines, lookup);
+  if (r.error && r.error->line == 0) {
+    err << "ibs decode: " << file << ": " << r.error->what << "; DFS-1 logs are read by eye\n";
     return kExitLustbusBadInput;
   }
-  const bool host_tx = first->tx;
-  out << file << ": LUSTBUS byte log, host = " << (host_tx ? "tx" : "rx") << " (" << first->port << ")\n";
-  LogReader reader(out);
-  for (const Line& l : lines) {
-    for (const std::uint8_t b : l.bytes) {
-      if (l.tx == host_tx) {
-        reader.host_byte(b, l.at);
-      } else {
-        reader.device_byte(b, l.at);
-      }
-    }
+  if (r.error) {
+    err << "ibs decode: " << file << ":" << r.error->line << ": " << r.error->what
+        << " (the byte log of docs/dfs1.md: <seconds> <tx|rx> <PORT> <hex bytes>)\n";
+    return kExitLustbusBadInput;
   }
-  reader.end(lines.empty() ? "" : lines.back().at);
+  out << file << ": LUSTBUS byte log, host = " << (r.host_tx ? "tx" : "rx") << " (" << r.host_port << ")\n"
+      << r.text;
   return kExitLustbusOk;
 }
 

@@ -15,15 +15,12 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <iosfwd>
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
 #include "ibs/lustbus/host.hpp"
-#include "ibs/lustbus/receiver.hpp"
 #include "ibs/serial/serial_port.hpp"
 
 namespace CLI {
@@ -82,22 +79,9 @@ std::optional<int> run_lustbus_commands(const LustbusCommandState& state);
 std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::ostream& out,
                                         std::ostream& err);
 
-// The I/O loops, also for tests.
+// The emulator serves its drives with serial::serve (transports/serial/serve.hpp) through
+// lustbus::ServedReceiver.
 //
-// A device on the line: the receiver and a hook that lets time pass for its drive.
-struct LustbusServed {
-  lustbus::Receiver* receiver = nullptr;
-  std::function<void(Time)> advance;
-  // The rate the drive's line runs at (11.5); empty: always the port's.
-  std::function<std::uint32_t()> baud;
-};
-// Serves the devices on one port: every byte read goes to every receiver with the time since the
-// loop began; an answer is written when its reaction time has passed. Returns when stop() is true
-// (asked at least every 20 ms). A drive whose line rate is not the port's hears nothing (on a
-// real line it would see garbage); a single drive that changes its rate takes the port with it
-// once its answer is out (11.5).
-void serve_lustbus(serial::SerialPort& port, std::span<const LustbusServed> devices,
-                   const std::function<bool()>& stop);
 // `ibs decode FILE` for a byte log of `--log` (docs/lustbus.md, "Reading a byte log"): nullopt
 // when FILE is no byte log (the caller tries the other formats); otherwise every telegram and
 // answer explained, one per line, and the exit code (2: a malformed line, named file:line).

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ibs/devices/cda3000/descriptor.hpp"
+#include "ibs/devices/cda3000/description.hpp"
 
 namespace ibs::devices::cda3000 {
 
@@ -17,22 +18,6 @@ std::size_t index_or_throw(std::uint16_t number) {
   const auto i = parameter_index(number);
   if (!i) throw std::invalid_argument("CDA3000: parameter " + std::to_string(number) + " is not in the table");
   return *i;
-}
-
-// Description items of mode 04 (decision D10 leaves them to the drive; D29): 0 the data type,
-// 1 the minimum, 2 the maximum, 3 the factory setting, 4 attribute bits, 5 and 6 the name's
-// characters 1-4 and 5-8, 7 the unit's first 4 characters, each in Intel order.
-constexpr std::uint32_t kAttrWritable = 0x01;
-constexpr std::uint32_t kAttrFlash = 0x02;
-constexpr std::uint32_t kAttrAfterMainsReset = 0x04;
-constexpr std::uint32_t kAttrChoices = 0x08;
-
-std::uint32_t pack4(std::string_view s) {
-  std::uint32_t v = 0;
-  for (std::size_t i = 0; i < std::min<std::size_t>(4, s.size()); ++i) {
-    v |= static_cast<std::uint32_t>(static_cast<unsigned char>(s[i])) << (8U * i);
-  }
-  return v;
 }
 
 }  // namespace

@@ -88,6 +88,15 @@ struct Request {
   std::uint16_t parameter = 0;
   std::uint32_t text_index = 0;
 };
+// The CODE a host asks a parameter's value by or, with `description`, its description: on a
+// VF1000 S0DPP with device digit 1, specifier 0 or 1 (2.4.1, 11.1); on an MC6000 2 0 ppp or
+// 3 0 ppp (2.4.2, 11.2). nullopt for a number the family's CODEs cannot carry (VF1000 above 99,
+// MC6000 above 999).
+std::optional<Code> parameter_code(Family f, unsigned parameter, bool description = false);
+// What a device of the family is, as a scan tells them apart (5.2): "inverter" (the SMARTDRIVE
+// VF1000) or "servo" (the MASTERCONTROL MC6000/7000).
+std::string_view device_kind(Family f);
+
 Request enquiry(Address a, const Code& c);
 Request select(Address a, const Code& c, const Value& v);
 Request broadcast(const Code& c, const Value& v);
