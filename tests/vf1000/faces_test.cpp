@@ -64,7 +64,9 @@ struct Rig {
     wait(200ms);  // the master's channel synchronised (ClientConfig::resync_hold)
     // The client reads 85 before its first transfer (it cannot know what happened before it);
     // done here, so that every test's transfers take their own time.
-    if (ib) EXPECT_EQ(ib_write(pnr::kSiow, 0).kind, "written");
+    if (ib) {
+      EXPECT_EQ(ib_write(pnr::kSiow, 0).kind, "written");
+    }
   }
 
   // One 8.2 ms sample of the INTERBUS face (when there is one), the line brought to that time.
