@@ -367,6 +367,29 @@ TEST(Vf1000Faces, AChangedEepromValueTakesTheSameDriveTimeThroughEitherFace) {
   }
 }
 
+TEST(Vf1000Faces, Stat000FResetsAFaultOverTheCommunicationWordToo) {
+  // VF-E14: 11-STAT is the drive's parameter whatever carries it (seed 000, 8.1.1): 000FH with an
+  // error boots the inverter; the transfer's ACK is lost to the reset, the master sees the
+  // inverter restart (RESET distinction 0, seed 001 4.1.2.2) and its module error (6.1).
+  Rig r(true, false);
+  r.drive->set_fault(true, r.now);
+  r.wait(50ms);
+  r.drive->set_fault(false, r.now);
+  r.wait(50ms);
+  ASSERT_EQ(r.drive->state(), State::fault);
+  EXPECT_EQ(r.ib_read(pnr::kStat).value, vf::kStatReady | vf::kStatError);
+  const Result w = r.ib_write(pnr::kStat, vf::kStatReset);
+  EXPECT_EQ(w.kind, "inverter restarted");
+  EXPECT_EQ(r.drive->software_resets(), 1U);
+  EXPECT_TRUE(r.ib->module_error(r.now));
+  r.wait(4100ms);
+  EXPECT_EQ(r.drive->state(), State::start_up_inhibit);
+  EXPECT_EQ(r.ib_read(pnr::kSiof).value, 0x01);
+  // Without an error 000FH is taken and resets nothing.
+  EXPECT_EQ(r.ib_write(pnr::kStat, vf::kStatReset).kind, "written");
+  EXPECT_EQ(r.drive->software_resets(), 1U);
+}
+
 // --- One drive, two faces -------------------------------------------------------------------
 
 TEST(Vf1000Faces, TheSerialInterfaceControlsOnlyWhenModeAndCselGiveItControl) {
