@@ -545,7 +545,6 @@ devices::Vf1000Device& vf1000_of(Simulator& sim, std::size_t i) {
   return dynamic_cast<devices::Vf1000Device&>(sim.emulator(i));
 }
 
-namespace vc = vf1000_channel;
 
 constexpr Duration kPcpTimeout = 500ms;      // pcp::ClientConfig::request_timeout (docs/pcp.md)
 constexpr Duration kVfTimeout = 2s;          // vf1000_channel::ClientConfig::timeout
@@ -770,7 +769,10 @@ struct Runner {
       m.min = p.min;
       m.max = p.max;
       m.eeprom_save = Duration{0};  // the inverter's store takes the EEPROM copy with the value
-      const bool mirrored = p.number == devices::vf1000::pnr::kIcntl || p.number == devices::vf1000::pnr::kFdriv;
+      // 901/905 mirror the process data; 11-STAT reads the drive's status and takes only the reset
+      // 000FH (seed 000, 8.1.1), over the communication word too (VF-E14).
+      const bool mirrored = p.number == devices::vf1000::pnr::kIcntl || p.number == devices::vf1000::pnr::kFdriv ||
+                            p.number == devices::vf1000::pnr::kStat;
       m.role = (!drive::writable(p.category) || mirrored) ? ParamRole::device_owned
                : p.number == devices::vf1000::pnr::kProg           ? ParamRole::command
                                                       : ParamRole::normal;
@@ -921,12 +923,12 @@ struct Runner {
         store.push_back(entry);
       }
     } else {
-      const vc::Server& s = vf1000_of(*sim, n.index).channel();
+      const devices::vf1000::Drive& d = vf1000_of(*sim, n.index).drive();
       for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
-        const int slot = s.table().slot(p.number);
+        const int slot = d.table().slot(p.number);
         if (slot < 0) continue;
-        store.push_back({p.number, s.store().value(static_cast<std::size_t>(slot)),
-                         std::optional<std::int64_t>(s.store().eeprom_value(static_cast<std::size_t>(slot)))});
+        store.push_back({p.number, d.store().value(static_cast<std::size_t>(slot)),
+                         std::optional<std::int64_t>(d.store().eeprom_value(static_cast<std::size_t>(slot)))});
       }
     }
     checker.check_store(n.index, now, store);

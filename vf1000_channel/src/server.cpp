@@ -86,45 +86,88 @@ std::string_view to_string(NakReason r) {
 
 Server::Server(const ServerConfig& config, ServerStart start, Time now,
                std::span<const drive::ParameterInfo> params)
-    : config_(checked(config, params)),
-      table_(params),
-      store_(params),
-      siof_slot_(static_cast<std::size_t>(table_.slot(drive::kSiofNumber))),
-      prog_slot_(config.factory_defaults_parameter ? table_.slot(*config.factory_defaults_parameter)
-                                                   : -1) {
+    : config_(checked(config, params)) {
+  own_.emplace(params, config.factory_defaults_parameter);
+  drive_ = &*own_;
   power_on(now);
   if (start == ServerStart::power_on) return;
   state_ = ServerState::wait;
   ready_at_ = now;
   out_ = kInverterWaitWord;
-  if (start == ServerStart::operational) store_.set(siof_slot_, 0);
+  if (start == ServerStart::operational) own_->clear_siof(0xFF);
+}
+
+Server::Server(const ServerConfig& config, ServerStart start, Time now,
+               drive::ParameterAccess& drive)
+    : config_(checked(config, drive.table().params())), drive_(&drive) {
+  restart(now, config_.init_duration);
+  if (start == ServerStart::power_on) return;
+  state_ = ServerState::wait;
+  ready_at_ = now;
+  out_ = kInverterWaitWord;
+}
+
+Server::Server(const Server& other)
+    : config_(other.config_),
+      own_(other.own_),
+      drive_(own_ ? &*own_ : other.drive_),
+      state_(other.state_),
+      ready_at_(other.ready_at_),
+      out_(other.out_),
+      toggle_(other.toggle_),
+      code_(other.code_),
+      number_(other.number_),
+      slot_(other.slot_),
+      index_(other.index_),
+      length_(other.length_),
+      high_(other.high_),
+      latched_(other.latched_),
+      event_(other.event_) {}
+
+Server& Server::operator=(const Server& other) {
+  if (this == &other) return *this;
+  config_ = other.config_;
+  own_ = other.own_;
+  drive_ = own_ ? &*own_ : other.drive_;
+  state_ = other.state_;
+  ready_at_ = other.ready_at_;
+  out_ = other.out_;
+  toggle_ = other.toggle_;
+  code_ = other.code_;
+  number_ = other.number_;
+  slot_ = other.slot_;
+  index_ = other.index_;
+  length_ = other.length_;
+  high_ = other.high_;
+  latched_ = other.latched_;
+  event_ = other.event_;
+  return *this;
 }
 
 void Server::power_on(Time now, Duration init) {
+  restart(now, init);
+  if (own_) own_->power_on();  // 6.1: RAM from EEPROM, the power-on bit
+}
+
+void Server::restart(Time now, Duration init) {
   state_ = ServerState::initialising;
   ready_at_ = now + init;
   out_ = 0;  // RESET distinction 0 (4.1.2.2)
   toggle_ = false;
   code_ = Code::reset;
   slot_ = -1;
-  store_.power_on();
-  store_.set(siof_slot_, siof_mask(SiofBit::power_on));  // 6.1
-}
-
-void Server::raise_siof(std::uint8_t bits) {
-  store_.set(siof_slot_, static_cast<Word>(siof() | bits));
 }
 
 std::optional<Word> Server::value(std::uint16_t number) const {
-  const int s = table_.slot(number);
+  const int s = drive_->table().slot(number);
   if (s < 0) return std::nullopt;
-  return store_.value(static_cast<std::size_t>(s));
+  return drive_->read(static_cast<std::size_t>(s));
 }
 
 bool Server::set_value(std::uint16_t number, Word raw) {
-  const int s = table_.slot(number);
+  const int s = drive_->table().slot(number);
   if (s < 0) return false;
-  store_.set(static_cast<std::size_t>(s), raw);
+  drive_->set(static_cast<std::size_t>(s), raw);
   return true;
 }
 
@@ -135,14 +178,14 @@ Word Server::step(Word m, Time now, bool power_stage_enabled) {
     state_ = ServerState::wait;
     toggle_ = false;
     out_ = kInverterWaitWord;
-    const Word w = process(m, power_stage_enabled);
+    const Word w = process(m, power_stage_enabled, now);
     if (event_.kind == ServerEvent::Kind::none) event_ = {ServerEvent::Kind::initialised};
     return w;
   }
-  return process(m, power_stage_enabled);
+  return process(m, power_stage_enabled, now);
 }
 
-Word Server::process(Word m, bool power_stage_enabled) {
+Word Server::process(Word m, bool power_stage_enabled, Time now) {
   const std::uint8_t code = master_code(m);
   if (code == 0) {
     // The master's starting position ends every telegram (4.1.3.1.1 row 6): wait mode. A transfer
@@ -176,7 +219,7 @@ Word Server::process(Word m, bool power_stage_enabled) {
       return take_high(m);
     case ServerState::transfer_low:
       if (!control_ok) return nak(NakReason::unintended_control_bits, transfer_bit);
-      return take_low(m, power_stage_enabled);
+      return take_low(m, power_stage_enabled, now);
     case ServerState::done:
       return nak(NakReason::after_end, 0);
     case ServerState::initialising:
@@ -195,14 +238,15 @@ Word Server::start_telegram(Word m, bool power_stage_enabled) {
   }
   if (code_ == Code::reset) return nak(NakReason::undefined_code, 0);
 
-  const int s = table_.slot(number_);
+  const drive::ParameterTable& table = drive_->table();
+  const int s = table.slot(number_);
   switch (code_) {
     case Code::value_inquiry:
       // Missing parameter: NAK on receipt of the PNR, no 85-SIOF entry (4.1.3.1, 4.1.4).
       if (s < 0) return nak(NakReason::no_parameter, 0);
       slot_ = static_cast<std::int16_t>(s);
       // The whole value is taken now, so the two bytes always belong to one value.
-      latched_ = store_.value(static_cast<std::size_t>(s));
+      latched_ = drive_->read(static_cast<std::size_t>(s));
       length_ = 2;
       index_ = 0;
       state_ = ServerState::sending;
@@ -218,7 +262,7 @@ Word Server::start_telegram(Word m, bool power_stage_enabled) {
       // 85-SIOF <> 0 refuses every value transfer (4.1.4; power-on bit, 6.1).
       if (siof() != 0) return nak(NakReason::siof_pending, 0);
       const WriteCheck access = drive::check_access(
-          s < 0 ? nullptr : &table_.params()[static_cast<std::size_t>(s)], power_stage_enabled);
+          s < 0 ? nullptr : &table.params()[static_cast<std::size_t>(s)], power_stage_enabled);
       if (access != WriteCheck::ok) return nak(reason_for(access), drive::siof_bits_for(access));
       slot_ = static_cast<std::int16_t>(s);
       state_ = ServerState::transfer_high;
@@ -234,7 +278,7 @@ Word Server::next_byte() {
   const auto slot = static_cast<std::size_t>(slot_);
   const std::uint8_t byte = code_ == Code::value_inquiry
                                 ? (index_ == 0 ? high_byte(latched_) : low_byte(latched_))
-                                : description_byte(table_.params()[slot], index_);
+                                : description_byte(drive_->table().params()[slot], index_);
   ++index_;
   if (index_ < length_) return send(byte, Flag::none);
 
@@ -243,7 +287,7 @@ Word Server::next_byte() {
   if (code_ == Code::value_inquiry) {
     event_ = {ServerEvent::Kind::value_read, code_, number_, latched_, NakReason{}, 0};
     // Reading 85-SIOF clears the bits it returned (4.1.4); bits set meanwhile stay.
-    if (slot == siof_slot_) store_.set(siof_slot_, static_cast<Word>(siof() & ~latched_ & 0xFFU));
+    if (number_ == drive::kSiofNumber) drive_->clear_siof(static_cast<std::uint8_t>(latched_ & 0xFFU));
   } else {
     event_ = {ServerEvent::Kind::description_read, code_, number_, 0, NakReason{}, 0};
   }
@@ -256,28 +300,23 @@ Word Server::take_high(Word m) {
   return send(0, Flag::none);  // 4.1.3.2.1 row 4
 }
 
-Word Server::take_low(Word m, bool power_stage_enabled) {
+Word Server::take_low(Word m, bool power_stage_enabled, Time now) {
   const Word value = make_word(high_, low_byte(m));
   const auto slot = static_cast<std::size_t>(slot_);
-  const drive::ParameterInfo& p = table_.params()[slot];
+  const drive::ParameterInfo& p = drive_->table().params()[slot];
   // 85-SIOF <> 0 refuses every value transfer (4.1.4): a bit set since the PNR arrived (a
   // watchdog, the device) refuses it here, where the value is taken.
   if (siof() != 0) return nak(NakReason::siof_pending, 0);
   // The power stage may have been enabled since the PNR arrived: checked again here.
-  const WriteCheck c = drive::check_write(&p, value, power_stage_enabled);
+  const WriteCheck c = drive_->check_write(&p, value, power_stage_enabled);
   if (c != WriteCheck::ok) return nak(reason_for(c), drive::siof_bits_for(c));
 
-  // The value takes effect whole, now, after its last byte (4.1.3.2.1 row 6).
-  const Word eeprom_before = store_.eeprom_value(slot);
-  store_.write(slot, value, power_stage_enabled);
-  const bool eeprom_changed = store_.eeprom_value(slot) != eeprom_before;
-  if (static_cast<int>(slot) == prog_slot_ && value == drive::kLoadDefaults) {
-    const std::uint8_t keep = siof();
-    store_.factory_defaults();
-    store_.set(siof_slot_, keep);
-  }
+  // The value takes effect whole, now, after its last byte (4.1.3.2.1 row 6); what else it does
+  // (71-PROG, the EEPROM) is the drive's.
+  const drive::WriteEffect effect = drive_->write(slot, value, power_stage_enabled, now);
   state_ = ServerState::done;
-  event_ = {ServerEvent::Kind::value_written, code_, number_, value, NakReason{}, 0, eeprom_changed};
+  event_ = {ServerEvent::Kind::value_written, code_, number_, value, NakReason{}, 0,
+            effect.eeprom_changed, effect.storing};
   return send(0, Flag::ack);
 }
 

@@ -17,17 +17,6 @@
 
 namespace ibs::devices::vf1000 {
 
-Word reference_word(double hz) {
-  const double bits = std::clamp(std::round(std::fabs(hz) / kHzPerBit), 0.0, 65535.0);
-  return static_cast<Word>(bits);
-}
-double reference_hz(Word w) { return static_cast<double>(w) * kHzPerBit; }
-Word actual_word(double hz) {
-  const double bits = std::clamp(std::round(hz / kHzPerBit), -32768.0, 32767.0);
-  return static_cast<Word>(static_cast<std::int16_t>(bits));
-}
-double actual_hz(Word w) { return static_cast<double>(static_cast<std::int16_t>(w)) * kHzPerBit; }
-
 std::string explain_control_word(Word control, Word previous) {
   std::string s = drivecom::explain_control_word(control, previous);
   const auto b = decode_control_bits(control);

@@ -2,6 +2,10 @@
 // the master's communication word and returns the inverter's. The caller decides how often the
 // inverter processes the channel (the VF1000 samples every 8.2 ms and advances the channel about
 // one byte every few samples, 7.1); step() itself is pure: state and inputs in, word out.
+// The server keeps only the channel's protocol state. The parameters it serves are a drive's
+// (drive::ParameterAccess: the drive's one store, its 85-SIOF latch, its write rules), given to it
+// by reference, so that another channel of the same drive serves the same values; made from a bare
+// table, it owns a drive::StoredParameters of its own (the channel's tests and fuzz target).
 #pragma once
 
 #include <cstdint>
@@ -9,6 +13,7 @@
 #include <span>
 #include <string_view>
 
+#include "ibs/drive/parameter_access.hpp"
 #include "ibs/drive/parameters.hpp"
 #include "ibs/base/error.hpp"
 #include "ibs/base/time.hpp"
@@ -23,7 +28,8 @@ struct ServerConfig {
   // carries RESET distinction bit 0 meanwhile (4.1.2.2).
   Duration init_duration = 4s;
   // The parameter whose value 1 loads every parameter's factory default (seed 000, 10, exception
-  // 1: the VF1000's 71-PROG); none: the table has no such command.
+  // 1: the VF1000's 71-PROG); none: the table has no such command. Used by a server that owns its
+  // parameters; a drive that lends its parameters applies its own PROG.
   std::optional<std::uint16_t> factory_defaults_parameter;
 };
 
@@ -75,6 +81,7 @@ struct ServerEvent {
   std::uint8_t siof_set = 0;  // nak: 85-SIOF bits this NAK set (only value transfers set bits)
   bool eeprom_changed = false;  // value_written: the EEPROM copy took a different value (7.1: the
                                 // write then takes longer)
+  Duration storing{};           // value_written: how long the drive takes to store it (its model)
 };
 
 class Server {
@@ -83,10 +90,23 @@ class Server {
   // channel's error register (ErrorCode::table_lacks_siof).
   [[nodiscard]] static Error validate(std::span<const drive::ParameterInfo> params);
   // Serves the drive's parameter table (devices/vf1000/parameters.hpp for the VF1000), one that
-  // validate() accepts: otherwise it throws std::invalid_argument with validate()'s message, or,
-  // in the embedded build, aborts.
+  // validate() accepts, with parameters of its own: otherwise it throws std::invalid_argument with
+  // validate()'s message, or, in the embedded build, aborts.
   Server(const ServerConfig& config, ServerStart start, Time now,
          std::span<const drive::ParameterInfo> params);
+  // Serves the parameters of a drive that owns them (its table must pass validate(), as above).
+  // `drive` must outlive the server. The drive keeps its own start state (85-SIOF, values): `start`
+  // sets only the channel's (initialising until now + init_duration, or in wait mode).
+  Server(const ServerConfig& config, ServerStart start, Time now, drive::ParameterAccess& drive);
+  // A copy of a server that owns its parameters owns a copy of them; one that serves a drive's
+  // serves the same drive (rebind() moves it to another).
+  Server(const Server& other);
+  Server& operator=(const Server& other);
+  Server(Server&&) = delete;
+  Server& operator=(Server&&) = delete;
+  ~Server() = default;
+  // Serves another drive's parameters from now on (a copy of the drive the server belongs to).
+  void rebind(drive::ParameterAccess& drive) { drive_ = &drive; }
 
   // One inverter processing step: reads the master's word, returns the inverter's. What the step
   // did is in last_event() until the next step. `power_stage_enabled` is the drive's state now
@@ -94,12 +114,16 @@ class Server {
   Word step(Word from_master, Time now, bool power_stage_enabled);
   [[nodiscard]] const ServerEvent& last_event() const { return event_; }
 
-  // Power cycle: an unfinished telegram is lost (never half-applied), RAM values return to their
-  // defaults, EEPROM values stay; RESET distinction 0 until now + init_duration; power-on bit set.
+  // Power cycle: an unfinished telegram is lost (never half-applied); RESET distinction 0 until
+  // now + init_duration. Parameters the server owns power on too: RAM values return to their
+  // defaults, EEPROM values stay, power-on bit set (a drive that lends its parameters does that
+  // itself, and tells the server through restart()).
   void power_on(Time now) { power_on(now, config_.init_duration); }
   // The same start with another self-test time: the software reset that RESET FAULT performs
   // (seed 001, 5.2.1; seed 000, 8.1.1: the link is gone during the self-test, 9.2: power-on bit).
   void power_on(Time now, Duration init);
+  // The channel alone starts again: the drive's parameters are left as they are.
+  void restart(Time now, Duration init);
 
   [[nodiscard]] ServerState state() const { return state_; }
   // True while the inverter initialises (its word has RESET distinction bit 0).
@@ -110,11 +134,9 @@ class Server {
   // The word the inverter shows now (what the last step returned).
   [[nodiscard]] Word output() const { return out_; }
 
-  [[nodiscard]] std::uint8_t siof() const {
-    return static_cast<std::uint8_t>(store_.value(siof_slot_));
-  }
+  [[nodiscard]] std::uint8_t siof() const { return drive_->siof(); }
   // The device sets error bits of its own (e.g. the watchdog bit 1).
-  void raise_siof(std::uint8_t bits);
+  void raise_siof(std::uint8_t bits) { drive_->raise_siof(bits); }
 
   // The device side's access to its parameters (actual values like 911-IBSTA and 912-FIST, the
   // control word 901-ICNTL); nullopt / false for a number the table lacks. set_value bypasses the
@@ -122,23 +144,21 @@ class Server {
   [[nodiscard]] std::optional<Word> value(std::uint16_t number) const;
   bool set_value(std::uint16_t number, Word raw);
 
-  [[nodiscard]] const drive::ParameterTable& table() const { return table_; }
-  [[nodiscard]] const drive::ParameterStore& store() const { return store_; }
+  [[nodiscard]] const drive::ParameterTable& table() const { return drive_->table(); }
+  [[nodiscard]] const drive::ParameterAccess& parameters() const { return *drive_; }
 
  private:
-  Word process(Word m, bool power_stage_enabled);
+  Word process(Word m, bool power_stage_enabled, Time now);
   Word start_telegram(Word m, bool power_stage_enabled);
   Word next_byte();
   Word take_high(Word m);
-  Word take_low(Word m, bool power_stage_enabled);
+  Word take_low(Word m, bool power_stage_enabled, Time now);
   Word nak(NakReason reason, std::uint8_t siof_bits);
   Word send(std::uint8_t data, Flag flag);
 
   ServerConfig config_;
-  drive::ParameterTable table_;
-  drive::ParameterStore store_;
-  std::size_t siof_slot_ = 0;
-  int prog_slot_ = -1;
+  std::optional<drive::StoredParameters> own_;  // parameters of its own, when given none
+  drive::ParameterAccess* drive_ = nullptr;      // what it serves: *own_ or a drive's
 
   ServerState state_ = ServerState::initialising;
   Time ready_at_{0};

@@ -1,7 +1,9 @@
-// The VF1000 as the simulator runs it (seed 001, 3.1, 4.1, 5.2, 6.1, 7.1): process data sampled
-// every 8.2 ms, the parameter channel in the communication word with the inverter's parameter
-// table behind it, the 906-IB-WD watchdog with the 907-IBCOD reactions, and the ~4 s
-// initialisation after power-on during which the bus reports a module error.
+// The VF1000's INTERBUS face as the simulator runs it (seed 001, 3.1, 4.1, 5.2, 6.1, 7.1): process
+// data sampled every 8.2 ms, the parameter channel in the communication word, and the module
+// error while the inverter initialises. The drive itself -- its parameters, 85-SIOF, DRIVECOM and
+// ramp, the 906/907 watchdog, faults and resets, the ~4 s initialisation, the storing times -- is
+// the drive core (drive.hpp); this face keeps only the channel's protocol state and its step
+// timing, and may share its core with the LUSTBUS face (lustbus_device.hpp).
 #pragma once
 
 #include <array>
@@ -14,6 +16,7 @@
 #include "ibs/devices/emulator.hpp"
 #include "ibs/devices/vf1000/channel.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
+#include "ibs/devices/vf1000/drive.hpp"
 #include "ibs/devices/vf1000/pd_device.hpp"
 #include "ibs/interbus/device_start.hpp"
 #include "ibs/base/time.hpp"
@@ -27,10 +30,11 @@ struct Vf1000DeviceConfig {
   // How long the inverter takes for one step of the parameter channel, in 8.2 ms samples from the
   // sample that first sees the master's new word. Calibrated to seed 001, 7.1 (without KEYPAD,
   // motor stopped): value inquiry ~100 ms (3 steps), value transfer ~124-131 ms (4 steps), scan of
-  // a description ~490 ms (19 steps); an EEPROM value that changes takes ~250 ms in all.
+  // a description ~490 ms (19 steps). How long storing takes (an EEPROM value that changes: ~250
+  // ms in all; 71-PROG) is the drive's (storing), held back here in whole 8.2 ms samples.
   int value_step_samples = 4;
   int description_step_samples = 3;
-  int eeprom_change_extra_samples = 15;
+  vf1000::StoringTimes storing{};
   // The other rows of 7.1. A KEYPAD plugged into the inverter is served by the same processor: a
   // value inquiry takes ~115 ms instead of ~100 (2 samples more at its start) and a value
   // transfer ~192 ms instead of ~131 (7 samples more before its ACK); a description takes 490 ms
@@ -46,8 +50,16 @@ struct Vf1000DeviceConfig {
 class Vf1000Device final : public DeviceEmulator {
  public:
   static constexpr std::size_t kWords = vf1000::kWords;
-  // power_on: initialising (NOT READY, module error) for ~4 s.
+  // A drive of its own, started as `start` (power_on: initialising, NOT READY, module error, for
+  // ~4 s). Allocates.
   Vf1000Device(const Vf1000DeviceConfig& config, DeviceStart start, Time now);
+  // The INTERBUS face of an existing drive (which another face may serve too); config.pd and
+  // config.storing are the drive's and not used. Allocates.
+  Vf1000Device(const Vf1000DeviceConfig& config, std::shared_ptr<vf1000::Drive> drive, Time now);
+  // A copy is an independent inverter: the face with a copy of its drive.
+  Vf1000Device(const Vf1000Device& other);
+  Vf1000Device& operator=(const Vf1000Device&) = delete;
+  ~Vf1000Device() override;
   [[nodiscard]] std::unique_ptr<DeviceEmulator> clone() const override {
     return std::make_unique<Vf1000Device>(*this);
   }
@@ -62,64 +74,61 @@ class Vf1000Device final : public DeviceEmulator {
     sample(m2s, words, now);
   }
   // The words the device shows now.
-  void output(std::span<Word> s2m) const override { pd_.output(s2m); }
+  void output(std::span<Word> s2m) const override { drive_->output(s2m); }
 
   // A valid data cycle reached the device (the process-data watchdog is fed by every one).
   void bus_cycle(Time now) override;
   // Switched off and on: initialising again, parameters from EEPROM, power-on bit set.
   void power_cycle(Time now) override;
   // How many times RESET FAULT made the inverter perform its software reset (5.2.1).
-  [[nodiscard]] std::uint32_t software_resets() const { return software_resets_; }
+  [[nodiscard]] std::uint32_t software_resets() const { return drive_->software_resets(); }
   // A KEYPAD plugged in or pulled (7.1: it slows the parameter channel).
   void set_keypad(bool plugged) { config_.keypad = plugged; }
   [[nodiscard]] bool keypad() const { return config_.keypad; }
   // A device fault (e.g. overcurrent) present or gone.
-  void set_fault(bool present) override { external_fault_ = present; }
+  void set_fault(bool present) override { drive_->set_fault(present, last_sample_); }
 
   // The bus shows a module error for this device (initialisation, 6.1); meanwhile its bus
   // interface still takes the master's words, and it acts on the newest ones once it is ready.
-  [[nodiscard]] bool module_error(Time now) const override { return server_.initialising(now); }
+  [[nodiscard]] bool module_error(Time now) const override { return drive_->initialising(now); }
   [[nodiscard]] bool takes_words_in_module_error() const override { return true; }
-  [[nodiscard]] drivecom::State state() const override { return pd_.state(); }
-  [[nodiscard]] double frequency_hz() const { return pd_.frequency_hz(); }
-  [[nodiscard]] double actual() const override { return pd_.frequency_hz(); }
+  [[nodiscard]] drivecom::State state() const override { return drive_->state(); }
+  [[nodiscard]] double frequency_hz() const { return drive_->frequency_hz(); }
+  [[nodiscard]] double actual() const override { return drive_->frequency_hz(); }
   // Recorded as `init: operational` once 85-SIOF has been read clear, else `init: power-on`.
   [[nodiscard]] DeviceStart trace_start() const override {
-    return server_.siof() == 0 ? DeviceStart::operational : DeviceStart::initialised;
+    return drive_->siof() == 0 ? DeviceStart::operational : DeviceStart::initialised;
   }
-  [[nodiscard]] double setpoint_hz() const { return pd_.setpoint_hz(); }
-  [[nodiscard]] Word status_word() const { return pd_.status_word(); }
-  [[nodiscard]] bool watchdog_tripped() const override { return tripped_; }
+  [[nodiscard]] double setpoint_hz() const { return drive_->pd().setpoint_hz(); }
+  [[nodiscard]] Word status_word() const { return drive_->pd().status_word(); }
+  [[nodiscard]] bool watchdog_tripped() const override { return drive_->interbus_watchdog_tripped(); }
   [[nodiscard]] std::optional<int> error_number() const override {
-    return watchdog_fault_ ? std::optional<int>(vf1000::kWatchdogError) : std::nullopt;
+    return drive_->e_ibs() ? std::optional<int>(vf1000::kWatchdogError) : std::nullopt;
   }
   [[nodiscard]] const vf1000_channel::Server& channel() const { return server_; }
   [[nodiscard]] vf1000_channel::Server& channel() { return server_; }
-  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
+  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return drive_->pd().last_sample(); }
+  // The drive behind this face.
+  [[nodiscard]] const vf1000::Drive& drive() const { return *drive_; }
+  [[nodiscard]] vf1000::Drive& drive() { return *drive_; }
+  [[nodiscard]] const std::shared_ptr<vf1000::Drive>& shared_drive() const { return drive_; }
 
  private:
   Word channel_word(Word from_master, Time now);
-  void apply_parameters();
-  void mirror_parameters(Word control, Word reference);
-  void run_watchdog(Time now);
-  void software_reset(Word control, Time now);
+  bool sync(Time now);
+  void reset_channel(Time now);
 
   Vf1000DeviceConfig config_;
-  Vf1000PdDevice pd_;
+  std::shared_ptr<vf1000::Drive> drive_;
   vf1000_channel::Server server_;
+  std::uint32_t seen_starts_ = 0;  // the drive's starts() the channel last followed
+  Time last_sample_{0};
   // Parameter channel timing: the inverter takes `pending_` more samples for the word it saw.
   int pending_ = 0;
   int hold_ = 0;          // samples the last answer is still held back (EEPROM write)
   Word taken_ = 0;        // the master word the last channel step answered
   Word shown_ = 0x0000;   // the communication word on the bus
   Word held_answer_ = 0;  // an answer waiting for hold_ to run out
-  // Watchdog (906/907).
-  bool armed_ = false;
-  Time last_cycle_{0};
-  bool tripped_ = false;
-  bool watchdog_fault_ = false;
-  bool external_fault_ = false;
-  std::uint32_t software_resets_ = 0;
 };
 
 namespace vf1000 {

@@ -1,0 +1,208 @@
+// The SMARTDRIVE VF1000 itself, on no bus (../shared/design.md, "One drive, many faces"): the one
+// parameter store (RAM and EEPROM) with the drive's write rules, 71-PROG and the time storing
+// takes; 85-SIOF with its power-on bit; the process-data model (DRIVECOM and ramp, pd_device.hpp);
+// the external fault; power-on, the software reset and its self-test; both of the drive's
+// monitors, the INTERBUS watchdog 906/907 and the serial watchdog 84-SIOT; the mirrored and
+// actual values (901, 905, 911, 912, 11-STAT, 12). Its faces -- the INTERBUS communication word
+// (device.hpp) and LUSTBUS (lustbus_device.hpp) -- keep only protocol state and call it; several
+// faces may serve one drive at once. Everything after construction is on the cycle path: no
+// allocation, no exception, time passed in.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
+#include "ibs/devices/vf1000/pd_device.hpp"
+#include "ibs/drive/parameter_access.hpp"
+#include "ibs/interbus/device_start.hpp"
+
+namespace ibs::devices::vf1000 {
+
+// How long storing takes: the drive's time, which each face expresses in its own units (the
+// INTERBUS face in extra 8.2 ms samples before its ACK, the LUSTBUS face in reaction time).
+struct StoringTimes {
+  // Seed 000, 10 exception 4: a changed EEPROM value adds about 120 ms (two bytes) or 60 ms (one
+  // byte); seed 001, 7.1 agrees for the two-byte case: 250 ms instead of 124 (erratum VF-E12).
+  Duration eeprom_two_bytes = std::chrono::milliseconds(120);
+  Duration eeprom_one_byte = std::chrono::milliseconds(60);
+  // Seed 000, 10 exception 1: 71-PROG = 1 answers once every parameter is initialised, "up to 10
+  // seconds"; 1.5 s here (LB-D18), over either bus (VF-E11).
+  Duration factory_defaults = std::chrono::milliseconds(1500);
+};
+
+struct DriveConfig {
+  // Ramp, stop ramp, 6.1's initialisation time after power-on and the self-test after a software
+  // reset (reset_time, D13).
+  Vf1000PdConfig pd{};
+  StoringTimes storing{};
+};
+
+// The faces a drive can be reached through.
+enum class Face : std::uint8_t { interbus, serial };
+
+// 11-STAT as read (LB-D19, chosen): 01H ready, 02H power stage on, 04H counter-clockwise, 80H
+// error; 8.1.1: the VALUE 000FH written resets a fault.
+inline constexpr Word kStatReady = 0x01;
+inline constexpr Word kStatRunning = 0x02;
+inline constexpr Word kStatCounterClockwise = 0x04;
+inline constexpr Word kStatError = 0x80;
+inline constexpr Word kStatReset = 0x000F;
+
+class Drive final : public drive::ParameterAccess {
+ public:
+  // Allocates (the store). `start` as the emulators take it: power_on (initialising for the
+  // init time, power-on bit), initialised (ready, power-on bit still set), operational (85-SIOF
+  // read), fault (operational, in FAULT).
+  Drive(const DriveConfig& config, DeviceStart start, Time now);
+  // A copy is an independent drive with the same state and no faces (a face that is copied
+  // attaches itself to its copy).
+  Drive(const Drive& other) = default;
+  Drive& operator=(const Drive&) = delete;
+  ~Drive() override = default;
+
+  // --- The parameters (drive::ParameterAccess: what every face serves) ------------------------
+  [[nodiscard]] const drive::ParameterTable& table() const override { return params_.table(); }
+  // 11-STAT and 12 are formed from the drive's state when read (seed 000, 8.1.1, 6.1.1.1); every
+  // other value comes from the store.
+  [[nodiscard]] Word read(std::size_t slot) const override;
+  [[nodiscard]] std::uint8_t siof() const override { return params_.siof(); }
+  void raise_siof(std::uint8_t bits) override { params_.raise_siof(bits); }
+  void clear_siof(std::uint8_t bits) override { params_.clear_siof(bits); }
+  // drive::check_write, and 11-STAT takes only 000FH (8.1.1; anything else is 80H, LB-D19).
+  [[nodiscard]] drive::WriteCheck check_write(const drive::ParameterInfo* p, Word raw,
+                                              bool power_stage_enabled) const override;
+  // A checked value takes effect: into RAM/EEPROM (4.1.3.3), 71-PROG = 1 loads the factory
+  // defaults (10 exception 1), 11-STAT = 000FH resets a fault (8.1.1), 84-SIOT restarts the
+  // serial watchdog; the effect says how long storing takes.
+  drive::WriteEffect write(std::size_t slot, Word raw, bool power_stage_enabled, Time now) override;
+  void set(std::size_t slot, Word raw) override { params_.set(slot, raw); }
+
+  // The one store, for the faces and tests (its address is the same through every face).
+  [[nodiscard]] const drive::ParameterStore& store() const { return params_.store(); }
+  [[nodiscard]] const drive::ParameterInfo* find(std::uint16_t number) const {
+    return params_.table().find(number);
+  }
+  // By number, the store's RAM value (value()) and as a read returns it (reading(): 11-STAT and
+  // 12 formed now); 0 for a number the table lacks.
+  [[nodiscard]] Word value(std::uint16_t number) const;
+  [[nodiscard]] Word reading(std::uint16_t number) const;
+  [[nodiscard]] Word eeprom_value(std::uint16_t number) const;
+  bool set_value(std::uint16_t number, Word raw) { return params_.set_value(number, raw); }
+  // A read of 85-SIOF: the bits, which the read erases (seed 000, 9.2; seed 001, 4.1.4).
+  std::uint8_t read_siof();
+
+  // --- Faces ----------------------------------------------------------------------------------
+  void attach(Face f);
+  void detach(Face f);
+  [[nodiscard]] bool attached(Face f) const {
+    return (f == Face::interbus ? faces_.interbus : faces_.serial) > 0;
+  }
+  // Seed 000, 7.1: with 1-MODE = 0 and 2-CSEL = 3 the serial interface controls (3-CNTL, and
+  // 5-FSSIO with 4-FSSEL = 8); it can only where a serial face is attached. Otherwise the
+  // INTERBUS words control (seed 001, 6.1: INTERBUS operation).
+  [[nodiscard]] bool serial_has_control() const;
+
+  // --- Time -----------------------------------------------------------------------------------
+  // Time passes (a face calls it before it acts). While an INTERBUS face is attached its samples
+  // are the drive's (sample() below); otherwise the drive runs its own 8.2 ms samples up to
+  // `now` with the serial interface's inputs. Either way: the end of a self-test, the serial
+  // watchdog.
+  void advance(Time now);
+  // A valid INTERBUS data cycle reached the drive at `now` (906-IB-WD is fed by every one).
+  void interbus_cycle(Time now);
+  // A valid LUSTBUS telegram reached the drive at `now` (84-SIOT is fed by every one, 5.2).
+  void serial_telegram(Time now);
+  // The INTERBUS face's sample, in two halves around its channel step: first the monitors and
+  // the fault input, then one 8.2 ms sample of the process data with the master's words (or the
+  // serial inputs when the serial interface controls), `comm` as word 3 of the answer.
+  void begin_sample(Time now);
+  void sample(std::span<const Word> m2s, std::span<Word> s2m, Time now, std::optional<Word> comm);
+  // The words the drive shows now.
+  void output(std::span<Word> s2m) const { pd_.output(s2m); }
+
+  // --- Events ---------------------------------------------------------------------------------
+  // Switched off and on: initialising for the init time, EEPROM values back, power-on bit.
+  void power_cycle(Time now);
+  // A new start without the initialisation time (the LUSTBUS face's restart).
+  void restart(Time now);
+  // A device fault (e.g. overcurrent) present or gone.
+  void set_fault(bool present, Time now);
+
+  // --- State ----------------------------------------------------------------------------------
+  // Counts every new start (power cycle, restart, software reset): a face that sees it change
+  // drops its unfinished telegram.
+  [[nodiscard]] std::uint32_t starts() const { return starts_; }
+  // How many times a fault reset made the inverter perform its software reset (5.2.1, 8.1.1).
+  [[nodiscard]] std::uint32_t software_resets() const { return software_resets_; }
+  // Initialising or in the self-test: the bus shows a module error (6.1), LUSTBUS is deaf (8.1.1).
+  [[nodiscard]] bool initialising(Time now) const { return now < ready_at_; }
+  [[nodiscard]] Time ready_at() const { return ready_at_; }
+  // In a start whose end advance()/begin_sample() has not yet seen.
+  [[nodiscard]] bool starting() const { return starting_; }
+  [[nodiscard]] const Vf1000PdDevice& pd() const { return pd_; }
+  [[nodiscard]] drivecom::State state() const { return pd_.state(); }
+  [[nodiscard]] double frequency_hz() const { return pd_.frequency_hz(); }
+  [[nodiscard]] bool power_stage_enabled() const {
+    return drivecom::power_stage_enabled(pd_.state());
+  }
+  [[nodiscard]] Word status() const;  // 11-STAT
+  [[nodiscard]] bool external_fault() const { return external_fault_; }
+  // 906/907: the INTERBUS watchdog ran out (and has not seen data since); E-IBS latched.
+  [[nodiscard]] bool interbus_watchdog_tripped() const { return ib_tripped_; }
+  [[nodiscard]] bool e_ibs() const { return ib_fault_; }
+  // 84-SIOT ran out (5.2): the error state until a software reset.
+  [[nodiscard]] bool serial_watchdog_fault() const { return serial_fault_; }
+  [[nodiscard]] const DriveConfig& config() const { return config_; }
+
+ private:
+  void software_reset(Word control, Time now);
+  void new_start(Time now, Duration init);
+  void finish_start(Time now);
+  void run_interbus_watchdog(Time now);
+  bool check_serial_watchdog(Time now);
+  void apply_parameters();
+  void mirror(Word control);
+  [[nodiscard]] Word serial_control_word() const;
+  [[nodiscard]] Word serial_reference() const;
+  void own_sample(Duration dt, Time now);
+  void after_sample(Word control, Time now);
+  void sample_now(Time now);
+  [[nodiscard]] Duration storing_time(const drive::ParameterInfo& p, bool eeprom_changed,
+                                      bool defaults) const;
+
+  DriveConfig config_;
+  drive::StoredParameters params_;
+  Vf1000PdDevice pd_;
+  Time ready_at_{0};
+  bool starting_ = false;
+  std::uint32_t starts_ = 0;
+  std::uint32_t software_resets_ = 0;
+  bool external_fault_ = false;
+  // 906/907.
+  bool ib_armed_ = false;
+  Time ib_last_cycle_{0};
+  bool ib_tripped_ = false;
+  bool ib_fault_ = false;
+  // 84-SIOT.
+  Time serial_last_{0};
+  bool serial_fault_ = false;
+  // The drive's own sampling, while no INTERBUS face samples it.
+  Time sample_time_{0};
+  Word last_control_ = 0;  // the control word of the last sample
+  // The faces attached; a copy of the drive has none.
+  struct Faces {
+    int interbus = 0;
+    int serial = 0;
+    Faces() = default;
+    Faces(const Faces&) {}
+    Faces& operator=(const Faces&) { return *this; }
+  };
+  Faces faces_;
+};
+
+}  // namespace ibs::devices::vf1000

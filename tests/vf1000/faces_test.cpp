@@ -1,0 +1,481 @@
+// One VF1000 drive core behind its two faces (../shared/design.md, "One drive, many faces"): the
+// INTERBUS face (communication word, seed 001) and the LUSTBUS face (seed 000) on one core serve
+// one store; the same parameter access through each face gives the same answer, with the drive's
+// timing expressed in each face's units. Decisions VF-E11 .. VF-E16 (docs/errata.md).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include "../lustbus_devices/support.hpp"
+#include "ibs/devices/vf1000/device.hpp"
+#include "ibs/devices/vf1000/drive.hpp"
+#include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
+#include "ibs/vf1000_channel/client.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using ibs::Duration;
+using ibs::Time;
+using ibs::Word;
+using ibs::DeviceStart;
+using ibs::devices::Vf1000Device;
+using ibs::devices::Vf1000DeviceConfig;
+using ibs::drivecom::State;
+namespace vf = ibs::devices::vf1000;
+namespace pnr = ibs::devices::vf1000::pnr;
+namespace lb = ibs::lustbus;
+namespace vc = ibs::vf1000_channel;
+
+constexpr Duration kSample = vf::kSamplePeriod;
+constexpr lb::Address kAddress = 1;
+
+// Seed 001, 5.2.1 / 5.1.2: a DRIVECOM control word with the ramp bits 4-6 set.
+constexpr Word kRampBits = 0x0070;
+
+// What a parameter access ended with, in words both faces share.
+struct Result {
+  std::string kind;   // "value", "written", "nak"
+  Word value = 0;     // value: the value read
+  std::uint8_t siof = 0;  // nak: 85-SIOF as the master read it right after the NAK
+  Duration took{};    // from the request to its answer
+  bool operator==(const Result&) const = default;
+};
+std::ostream& operator<<(std::ostream& os, const Result& r) {
+  return os << r.kind << " value " << r.value << " siof " << int(r.siof) << " took "
+            << r.took.count() << " ns";
+}
+
+// A drive with whichever faces a test gives it: the INTERBUS face sampled every 8.2 ms in
+// lockstep with its master (the communication-word client), the LUSTBUS face on a simulated
+// line at 9600 Bd with its host, both on one timeline.
+struct Rig {
+  explicit Rig(bool interbus = true, bool serial = true,
+               DeviceStart start = DeviceStart::operational)
+      : drive(std::make_shared<vf::Drive>(vf::DriveConfig{}, start, Time{0})) {
+    if (interbus) ib = std::make_unique<Vf1000Device>(Vf1000DeviceConfig{}, drive, Time{0});
+    if (serial) {
+      lbd = std::make_unique<vf::LustbusDevice>(drive);
+      bus.add(*lbd, kAddress);
+    }
+    wait(200ms);  // the master's channel synchronised (ClientConfig::resync_hold)
+    // The client reads 85 before its first transfer (it cannot know what happened before it);
+    // done here, so that every test's transfers take their own time.
+    if (ib) {
+      EXPECT_EQ(ib_write(pnr::kSiow, 0).kind, "written");
+    }
+  }
+
+  // One 8.2 ms sample of the INTERBUS face (when there is one), the line brought to that time.
+  void tick() {
+    now += kSample;
+    if (ib) {
+      m2s[2] = master.step(s2m[2], now);
+      ib->bus_cycle(now);
+      ib->sample(m2s, s2m, now);
+    }
+    drive->advance(now);  // the drive's own time passes between telegrams
+    bus.line.run_until(now);
+  }
+  void wait(Duration d) {
+    const Time until = now + d;
+    while (now < until) tick();
+  }
+
+  Result lustbus(const lb::Request& r) {
+    const Time start = now;
+    const auto s = bus.host.submit(r);
+    EXPECT_TRUE(s);
+    for (int i = 0; i < 2000; ++i) {
+      tick();
+      if (const lb::Outcome* o = bus.host.outcome(s.id)) {
+        Result res;
+        res.took = o->finished - start;
+        switch (o->kind) {
+          case lb::OutcomeKind::value: {
+            res.kind = "value";
+            const auto raw = lb::parse_raw(lb::Family::vf1000, o->value.view());
+            EXPECT_TRUE(raw.ok());
+            res.value = static_cast<Word>(raw.value);
+            break;
+          }
+          case lb::OutcomeKind::acknowledged: res.kind = "written"; break;
+          case lb::OutcomeKind::nak:
+            res.kind = "nak";
+            res.siof = o->siof.value_or(0xFF);
+            break;
+          default: res.kind = std::string(lb::to_string(o->kind)); break;
+        }
+        return res;
+      }
+    }
+    ADD_FAILURE() << "no LUSTBUS outcome";
+    return {};
+  }
+  Result lb_read(std::uint16_t number) {
+    return lustbus(lb::enquiry(kAddress, lb::make_code(100U + number)));
+  }
+  // `wait_for`: how long the host waits for the answer (the seed's "up to 10 seconds" of 71-PROG).
+  Result lb_write(std::uint16_t number, Word value, Duration wait_for = Duration{0}) {
+    char v[5];
+    std::snprintf(v, sizeof v, "%04X", static_cast<unsigned>(value));
+    lb::Request req = lb::select(kAddress, lb::make_code(100U + number), lb::make_value(v));
+    if (wait_for > Duration{0}) req.response_timeout = wait_for;
+    return lustbus(req);
+  }
+
+  Result interbus(const vc::Request& r) {
+    const Time start = now;
+    const auto s = master.submit(r);
+    EXPECT_TRUE(s);
+    for (int i = 0; i < 2000; ++i) {
+      tick();
+      if (const vc::Outcome* o = master.outcome(s.id)) {
+        Result res;
+        res.took = now - start;
+        switch (o->kind) {
+          case vc::OutcomeKind::value: res.kind = "value"; res.value = o->value; break;
+          case vc::OutcomeKind::written: res.kind = "written"; break;
+          case vc::OutcomeKind::nak:
+            res.kind = "nak";
+            res.siof = o->nak_cause == vc::NakCause::siof ? o->siof : 0xFF;
+            break;
+          default: res.kind = std::string(vc::to_string(o->kind)); break;
+        }
+        return res;
+      }
+    }
+    ADD_FAILURE() << "no INTERBUS outcome";
+    return {};
+  }
+  Result ib_read(std::uint16_t number) { return interbus(vc::value_inquiry(number)); }
+  Result ib_write(std::uint16_t number, Word value) {
+    return interbus(vc::value_transfer(number, value));
+  }
+
+  // The master's control word (seed 001, 5.1.2), held until changed.
+  void control(Word w) { m2s[0] = w; }
+
+  std::shared_ptr<vf::Drive> drive;
+  std::unique_ptr<Vf1000Device> ib;
+  std::unique_ptr<vf::LustbusDevice> lbd;
+  lb::devtest::Bus bus;
+  vc::Client master;
+  std::array<Word, 3> m2s{0x0000, 0x0000, vc::Client::initial_word()};
+  std::array<Word, 3> s2m{};
+  Time now{0};
+};
+
+// The same access through a drive of its own behind each face (the results without `took`).
+enum class Via { interbus, lustbus };
+Result read(Rig& r, Via v, std::uint16_t n) { return v == Via::interbus ? r.ib_read(n) : r.lb_read(n); }
+Result write(Rig& r, Via v, std::uint16_t n, Word value) {
+  return v == Via::interbus ? r.ib_write(n, value) : r.lb_write(n, value);
+}
+Result untimed(Result r) {
+  r.took = Duration{0};
+  return r;
+}
+std::unique_ptr<Rig> rig_for(Via v, DeviceStart start = DeviceStart::operational) {
+  return std::make_unique<Rig>(v == Via::interbus, v == Via::lustbus, start);
+}
+
+// --- One store -----------------------------------------------------------------------------------
+
+TEST(Vf1000Faces, BothFacesServeTheOneStoreOfTheirDrive) {
+  Rig r;
+  ASSERT_TRUE(r.ib && r.lbd);
+  // The one store: both faces reach the same object.
+  EXPECT_EQ(&r.ib->drive(), r.drive.get());
+  EXPECT_EQ(&r.lbd->drive(), r.drive.get());
+  EXPECT_EQ(&r.ib->drive().store(), &r.lbd->drive().store());
+  EXPECT_EQ(&r.ib->channel().parameters(), static_cast<const ibs::drive::ParameterAccess*>(r.drive.get()));
+
+  // Written through the communication word, run to its ACK: LUSTBUS reads it.
+  EXPECT_EQ(r.ib_write(pnr::kFmax1, 0x01F4).kind, "written");
+  EXPECT_EQ(untimed(r.lb_read(pnr::kFmax1)), (Result{"value", 0x01F4, 0, {}}));
+  EXPECT_EQ(r.drive->eeprom_value(pnr::kFmax1), 0x01F4);
+  // And the other way: written by a SELECT, read by a value inquiry.
+  EXPECT_EQ(r.lb_write(pnr::kVb2, 0x0064).kind, "written");
+  EXPECT_EQ(untimed(r.ib_read(pnr::kVb2)), (Result{"value", 0x0064, 0, {}}));
+  // A RAM value too (83-SIOW).
+  EXPECT_EQ(r.ib_write(pnr::kSiow, 0x1234).kind, "written");
+  EXPECT_EQ(r.lb_read(pnr::kSiow).value, 0x1234);
+}
+
+TEST(Vf1000Faces, ARefusalOnOneFaceLatches85ForTheOther) {
+  // 85-SIOF is the drive's: a bit a refused SELECT set refuses the next value transfer on
+  // INTERBUS until 85 is read (seed 000, 9.2; seed 001, 4.1.4), and reading it there clears it.
+  // A wrong BCC on the serial line sets 08H (9.2 bit 3); no host reads 85 after it.
+  Rig r;
+  r.lbd->checksum_error({kAddress, r.now});
+  EXPECT_EQ(r.drive->siof(), 0x08);
+  const Result w = r.ib_write(pnr::kFssel, 8);
+  EXPECT_EQ(w.kind, "nak");
+  EXPECT_EQ(w.siof, 0x08) << "the client read 85 after the NAK";
+  EXPECT_EQ(r.drive->siof(), 0);
+  EXPECT_EQ(r.lb_write(pnr::kFssel, 8).kind, "written");
+}
+
+// --- Conformance: the same access, the same answer --------------------------------------------
+
+TEST(Vf1000Faces, ReadsAndWritesAnswerAlikeThroughEitherFace) {
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    auto r = rig_for(v);
+    EXPECT_EQ(untimed(read(*r, v, pnr::kFmax1)), (Result{"value", 1000, 0, {}}));
+    EXPECT_EQ(untimed(write(*r, v, pnr::kFssel, 8)), (Result{"written", 0, 0, {}}));
+    EXPECT_EQ(r->drive->value(pnr::kFssel), 8);
+    EXPECT_EQ(r->drive->eeprom_value(pnr::kFssel), 8);
+    // 11-STAT and 12 read the drive's state (LB-D19, VF-E14): ready, stopped.
+    EXPECT_EQ(untimed(read(*r, v, pnr::kStat)), (Result{"value", vf::kStatReady, 0, {}}));
+    EXPECT_EQ(untimed(read(*r, v, pnr::kFout)), (Result{"value", 0, 0, {}}));
+  }
+}
+
+TEST(Vf1000Faces, EachRefusalSetsTheSameBitThroughEitherFace) {
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    auto r = rig_for(v);
+    // No parameter 99: 20H. Read-only 91-TYPE: 40H. 4-FSSEL 26 > 25: 80H. 11-STAT other than
+    // 000FH: 80H (VF-E14). Each master reads 85 after the NAK, which clears it (9.2, 4.1.4).
+    EXPECT_EQ(untimed(write(*r, v, 99, 0)), (Result{"nak", 0, 0x20, {}}));
+    EXPECT_EQ(r->drive->siof(), 0);
+    EXPECT_EQ(untimed(write(*r, v, pnr::kType, 1)), (Result{"nak", 0, 0x40, {}}));
+    EXPECT_EQ(untimed(write(*r, v, pnr::kFssel, 26)), (Result{"nak", 0, 0x80, {}}));
+    EXPECT_EQ(untimed(write(*r, v, pnr::kStat, 1)), (Result{"nak", 0, 0x80, {}}));
+    EXPECT_EQ(r->drive->value(pnr::kFssel), 25);
+    EXPECT_EQ(r->drive->siof(), 0);
+    // A value inquiry of a missing parameter is refused without an entry in 85 (seed 001 4.1.4,
+    // seed 000 6.1 note).
+    EXPECT_EQ(read(*r, v, 99).kind, "nak");
+    EXPECT_EQ(r->drive->siof(), 0);
+  }
+}
+
+TEST(Vf1000Faces, AnEepromParameterIsRefusedWhileThePowerStageRunsThroughEitherFace) {
+  // Seed 001, 4.1.3.2 / seed 000, 3: EEPROM parameters are not writable with the power stage
+  // enabled; 5-FSSIO (EEPROM/RAM) goes to RAM only. The drive runs from its serial interface
+  // (seed 000, 7.1): the same drive state for both faces.
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    Rig r(true, true);
+    for (const auto& [n, value] : {std::pair{pnr::kMode, Word{0}}, {pnr::kCsel, Word{3}},
+                                   {pnr::kFssel, Word{8}}, {pnr::kFssio, Word{100}},
+                                   {pnr::kCntl, Word{0x80}}}) {
+      ASSERT_EQ(r.lb_write(n, value).kind, "written") << n;
+    }
+    r.wait(100ms);
+    ASSERT_TRUE(r.drive->power_stage_enabled());
+    EXPECT_EQ(untimed(write(r, v, pnr::kFmax1, 900)), (Result{"nak", 0, 0x40, {}}));
+    EXPECT_EQ(r.drive->value(pnr::kFmax1), 1000);
+    EXPECT_EQ(untimed(write(r, v, pnr::kFssio, 200)), (Result{"written", 0, 0, {}}));
+    EXPECT_EQ(r.drive->value(pnr::kFssio), 200);
+    EXPECT_EQ(r.drive->eeprom_value(pnr::kFssio), 100);
+  }
+}
+
+TEST(Vf1000Faces, ThePowerOnBitAfterPowerOnAndAfterAFaultReset) {
+  // Seed 000, 6 and 9.2; seed 001, 6.1: the power-on bit after every new start, which refuses
+  // value transfers until 85 is read; a fault reset is a new start (seed 000, 8.1.1: 11-STAT =
+  // 000FH over LUSTBUS; seed 001, 5.2.1: RESET FAULT over INTERBUS -- the one place the seeds
+  // make the trigger differ by bus). The self-test lasts the drive's reset time either way
+  // (VF-E13).
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    auto r = rig_for(v);
+    r->drive->power_cycle(r->now);
+    r->wait(4100ms);
+    EXPECT_EQ(untimed(read(*r, v, pnr::kSiof)), (Result{"value", 0x01, 0, {}}));
+    EXPECT_EQ(r->drive->siof(), 0);
+
+    ASSERT_EQ(write(*r, v, pnr::kSiow, 0x4321).kind, "written");  // a RAM value
+    r->drive->set_fault(true, r->now);
+    r->wait(50ms);
+    r->drive->set_fault(false, r->now);
+    r->wait(50ms);
+    ASSERT_EQ(r->drive->state(), State::fault);
+    const std::uint32_t resets = r->drive->software_resets();
+    if (v == Via::interbus) {
+      r->control(0x0080);  // bit 7: RESET FAULT
+      r->wait(20ms);
+      r->control(0x0000);
+    } else {
+      EXPECT_EQ(r->lb_write(pnr::kStat, vf::kStatReset).kind, "bad_answer");  // the cut ACK
+    }
+    EXPECT_EQ(r->drive->software_resets(), resets + 1);
+    EXPECT_TRUE(r->drive->initialising(r->now));
+    r->wait(4100ms);
+    EXPECT_FALSE(r->drive->initialising(r->now));
+    EXPECT_EQ(untimed(read(*r, v, pnr::kSiow)), (Result{"value", 0, 0, {}})) << "RAM starts anew";
+    EXPECT_EQ(untimed(read(*r, v, pnr::kSiof)), (Result{"value", 0x01, 0, {}}));
+    EXPECT_EQ(r->drive->state(), v == Via::interbus ? State::start_up_inhibit : State::ready);
+  }
+}
+
+TEST(Vf1000Faces, Prog1LoadsTheFactoryDefaultsAndTakesTheDrivesTimeThroughEitherFace) {
+  // Seed 000, 10 exception 1: the ACK only once every parameter is initialised; the time is the
+  // drive's (1.5 s, LB-D18) on INTERBUS too, where seed 001 names no time (VF-E11). The
+  // INTERBUS face holds its ACK for whole 8.2 ms samples.
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    auto r = rig_for(v);
+    ASSERT_EQ(write(*r, v, pnr::kFssel, 8).kind, "written");
+    ASSERT_EQ(write(*r, v, pnr::kSiow, 0x55).kind, "written");
+    const Result plain = write(*r, v, pnr::kSiow, 0x56);  // a RAM value: no storing time
+    const Result prog = v == Via::interbus ? r->ib_write(pnr::kProg, 1) : r->lb_write(pnr::kProg, 1, 10s);
+    EXPECT_EQ(prog.kind, "written");
+    const Duration storing = r->drive->config().storing.factory_defaults;
+    // The time the drive took, beyond a plain write, in the face's units: whole 8.2 ms samples
+    // rounded up on INTERBUS (183), reaction time on LUSTBUS.
+    const Duration extra = prog.took - plain.took;
+    EXPECT_GE(extra, storing);
+    EXPECT_LT(extra, storing + (v == Via::interbus ? kSample : Duration{1ms}));
+    EXPECT_EQ(r->drive->value(pnr::kFssel), 25);
+    EXPECT_EQ(r->drive->eeprom_value(pnr::kFssel), 25);
+    EXPECT_EQ(r->drive->value(pnr::kProg), 0) << "a command, not a setting";
+  }
+}
+
+TEST(Vf1000Faces, AChangedEepromValueTakesTheSameDriveTimeThroughEitherFace) {
+  // Seed 000, 10 exception 4: about 120 ms for a changed two-byte value, 60 ms for one byte; seed
+  // 001, 7.1: 250 ms instead of 124 for the communication word, the same 120 ms give or take a
+  // sample (VF-E12). An unchanged value costs nothing.
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    auto r = rig_for(v);
+    const Result two_changed = write(*r, v, pnr::kFmax1, 0x01F4);
+    const Result two_same = write(*r, v, pnr::kFmax1, 0x01F4);
+    const Result one_changed = write(*r, v, pnr::kSouta, 7);
+    const Result one_same = write(*r, v, pnr::kSouta, 7);
+    for (const Result* w : {&two_changed, &two_same, &one_changed, &one_same}) {
+      EXPECT_EQ(w->kind, "written");
+    }
+    if (v == Via::interbus) {
+      // In the face's units: whole samples, rounded up (120 ms: 15, 60 ms: 8).
+      EXPECT_EQ(two_changed.took - two_same.took, 15 * kSample);
+      EXPECT_EQ(one_changed.took - one_same.took, 8 * kSample);
+    } else {
+      // In reaction time (the simulated line: whole characters, so compare to the microsecond).
+      using Ms = std::chrono::duration<double, std::milli>;
+      EXPECT_NEAR(Ms(two_changed.took - two_same.took).count(), 120.0, 8.3);
+      EXPECT_NEAR(Ms(one_changed.took - one_same.took).count(), 60.0, 8.3);
+    }
+  }
+}
+
+TEST(Vf1000Faces, Stat000FResetsAFaultOverTheCommunicationWordToo) {
+  // VF-E14: 11-STAT is the drive's parameter whatever carries it (seed 000, 8.1.1): 000FH with an
+  // error boots the inverter; the transfer's ACK is lost to the reset, the master sees the
+  // inverter restart (RESET distinction 0, seed 001 4.1.2.2) and its module error (6.1).
+  Rig r(true, false);
+  r.drive->set_fault(true, r.now);
+  r.wait(50ms);
+  r.drive->set_fault(false, r.now);
+  r.wait(50ms);
+  ASSERT_EQ(r.drive->state(), State::fault);
+  EXPECT_EQ(r.ib_read(pnr::kStat).value, vf::kStatReady | vf::kStatError);
+  const Result w = r.ib_write(pnr::kStat, vf::kStatReset);
+  EXPECT_EQ(w.kind, "inverter restarted");
+  EXPECT_EQ(r.drive->software_resets(), 1U);
+  EXPECT_TRUE(r.ib->module_error(r.now));
+  r.wait(4100ms);
+  EXPECT_EQ(r.drive->state(), State::start_up_inhibit);
+  EXPECT_EQ(r.ib_read(pnr::kSiof).value, 0x01);
+  // Without an error 000FH is taken and resets nothing.
+  EXPECT_EQ(r.ib_write(pnr::kStat, vf::kStatReset).kind, "written");
+  EXPECT_EQ(r.drive->software_resets(), 1U);
+}
+
+// --- One drive, two faces -------------------------------------------------------------------
+
+TEST(Vf1000Faces, TheSerialInterfaceControlsOnlyWhenModeAndCselGiveItControl) {
+  // Decision VF-E16: the INTERBUS words control the drive (seed 001, 6.1: INTERBUS operation)
+  // unless 1-MODE = 0 and 2-CSEL = 3 hand control to the serial interface (seed 000, 7.1).
+  Rig r;
+  ASSERT_EQ(r.lb_write(pnr::kFssel, 8).kind, "written");
+  ASSERT_EQ(r.lb_write(pnr::kFssio, 100).kind, "written");  // 5 Hz
+  ASSERT_EQ(r.lb_write(pnr::kCntl, 0x80).kind, "written");  // start clockwise
+  r.control(0x0000);  // the INTERBUS master disables the voltage
+  r.wait(200ms);
+  EXPECT_FALSE(r.drive->power_stage_enabled()) << "3-CNTL is not the control location";
+  ASSERT_EQ(r.lb_write(pnr::kMode, 0).kind, "written");
+  ASSERT_EQ(r.lb_write(pnr::kCsel, 3).kind, "written");
+  r.wait(500ms);
+  EXPECT_TRUE(r.drive->power_stage_enabled());
+  EXPECT_DOUBLE_EQ(r.drive->frequency_hz(), 5.0);
+  // Both faces read the same running drive: 11-STAT 03H, 12 = 100 (5 Hz).
+  EXPECT_EQ(r.ib_read(pnr::kStat).value, vf::kStatReady | vf::kStatRunning);
+  EXPECT_EQ(r.lb_read(pnr::kStat).value, vf::kStatReady | vf::kStatRunning);
+  EXPECT_EQ(r.ib_read(pnr::kFout).value, 100);
+  EXPECT_EQ(r.lb_read(pnr::kFout).value, 100);
+}
+
+TEST(Vf1000Faces, AResetOnOneFaceIsASelfTestOnTheOther) {
+  // VF-E13: one software reset whatever triggers it. 11-STAT = 000FH over LUSTBUS: the INTERBUS
+  // face shows its module error and RESET distinction 0 for the self-test (seed 001, 6.1,
+  // 4.1.2.2); RESET FAULT over INTERBUS: the LUSTBUS face is deaf for it (seed 000, 8.1.1).
+  Rig r;
+  r.drive->set_fault(true, r.now);
+  r.wait(50ms);
+  r.drive->set_fault(false, r.now);
+  r.wait(50ms);
+  ASSERT_EQ(r.drive->state(), State::fault);
+  r.lb_write(pnr::kStat, vf::kStatReset);
+  EXPECT_TRUE(r.ib->module_error(r.now));
+  EXPECT_EQ(r.s2m[2], 0x0000);
+  r.wait(4100ms);
+  EXPECT_FALSE(r.ib->module_error(r.now));
+  EXPECT_EQ(r.ib_read(pnr::kSiof).value, 0x01);
+
+  r.drive->set_fault(true, r.now);
+  r.wait(50ms);
+  r.drive->set_fault(false, r.now);
+  r.wait(50ms);
+  r.control(0x0080);
+  r.wait(20ms);
+  EXPECT_FALSE(r.lbd->listening(r.now));
+  EXPECT_EQ(r.lb_read(pnr::kSiof).kind, "no_answer");
+  r.wait(4100ms);
+  EXPECT_TRUE(r.lbd->listening(r.now));
+  EXPECT_EQ(r.lb_read(pnr::kSiof).value, 0x01);
+}
+
+TEST(Vf1000Faces, TheSerialWatchdogMonitorsOnlyASerialLink) {
+  // VF-E15: 84-SIOT watches the serial link (seed 000, 5.2): set through the communication word
+  // of a drive without a LUSTBUS face it never runs out; with one it stops the drive and sets
+  // 02H, which the INTERBUS master reads too. 906/907 set no bit in 85 (seed 001, 4.1.1).
+  Rig only_interbus(true, false);
+  ASSERT_EQ(only_interbus.ib_write(pnr::kSiot, 100).kind, "written");
+  only_interbus.wait(1s);
+  EXPECT_FALSE(only_interbus.drive->serial_watchdog_fault());
+  EXPECT_EQ(only_interbus.drive->siof(), 0);
+
+  Rig both;
+  ASSERT_EQ(both.ib_write(pnr::kSiot, 100).kind, "written");
+  both.wait(300ms);
+  EXPECT_TRUE(both.drive->serial_watchdog_fault());
+  EXPECT_EQ(both.drive->state(), State::fault);
+  EXPECT_EQ(both.ib_read(pnr::kSiof).value, 0x02);
+}
+
+TEST(Vf1000Faces, ACopyOfAFaceIsAnIndependentDrive) {
+  Rig r;
+  ASSERT_EQ(r.ib_write(pnr::kFmax1, 0x0200).kind, "written");
+  const auto copy = r.ib->clone();
+  auto& c = dynamic_cast<Vf1000Device&>(*copy);
+  EXPECT_NE(&c.drive(), r.drive.get());
+  EXPECT_NE(&c.drive().store(), &r.drive->store());
+  EXPECT_EQ(c.drive().value(pnr::kFmax1), 0x0200);
+  EXPECT_EQ(&c.channel().parameters(), static_cast<const ibs::drive::ParameterAccess*>(&c.drive()));
+  ASSERT_EQ(r.lb_write(pnr::kFmax1, 0x0300).kind, "written");
+  EXPECT_EQ(c.drive().value(pnr::kFmax1), 0x0200);
+  // The copy has only its own face: its drive takes the INTERBUS words, not 3-CNTL.
+  EXPECT_TRUE(c.drive().attached(vf::Face::interbus));
+  EXPECT_FALSE(c.drive().attached(vf::Face::serial));
+}
+
+}  // namespace
