@@ -1,6 +1,7 @@
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 
-#include <cmath>
+#include <memory>
+#include <optional>
 
 #include "ibs/devices/mc6000/service.hpp"
 #include "ibs/lustbus/code.hpp"
