@@ -38,9 +38,13 @@ std::vector<std::uint32_t> values_of(const devices::vf1000::LustbusDevice& d) {
   for (std::uint16_t n = 0; n < 100; ++n) v.push_back(n == drive::kSiofNumber ? 0U : d.value(n));
   return v;
 }
+// The settings: the drive core's actual values (77-SPEED, 408-IBSTA, 85-SERR, ...) are its
+// readings, which move with the plant and the latch.
 std::vector<std::uint32_t> values_of(const devices::mc6000::LustbusDevice& d) {
   std::vector<std::uint32_t> v;
-  for (std::uint16_t n = 0; n < 1000; ++n) v.push_back(d.value(n));
+  for (const pcp::ParameterInfo& p : d.drive().parameters().table()) {
+    if (p.category != pcp::Category::ram_actual) v.push_back(d.value(p.number));
+  }
   return v;
 }
 std::uint8_t bits_of(const devices::vf1000::LustbusDevice& d) { return d.siof(); }

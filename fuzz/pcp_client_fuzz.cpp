@@ -30,6 +30,7 @@
 #include "ibs/pcp/client.hpp"
 #include "ibs/pcp/link.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/pcp_served.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace {
@@ -66,7 +67,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   scfg.channel_words = cfg.channel_words;
   scfg.start = (h & 0x04U) != 0 ? StartMode::running : StartMode::power_on;
   if ((h & 0x08U) == 0) scfg.latency = LatencyModel::immediate();
-  Server servo(scfg, ibs::devices::mc6000::parameters());
+  // The MC6000's parameters (the drive core's) behind the server.
+  ibs::devices::mc6000::ParametersOnly drive(ibs::devices::mc6000::drive_parameters_config());
+  if (scfg.start == StartMode::running) drive.read(Time{0}, ibs::devices::mc6000::kSerr);
+  ibs::devices::mc6000::PcpServed served(drive);
+  Server servo(scfg, served);
   const auto words = static_cast<std::size_t>(cfg.channel_words);
   const auto table = ibs::devices::mc6000::parameters();
 
@@ -183,6 +188,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         open.reset();
       }
     } else if (act == 6) {
+      drive.parameters().power_on(now);
       servo.power_on(now);
       recent.note("servo-power-on");
     }

@@ -13,8 +13,11 @@
 // - checked: the parameter is writable (not a RAM actual value), the value lies within its
 //   min..max, 85-SERR was 0 and the association stood before the step, and an EEPROM parameter
 //   was not still being saved;
-// - the documented exceptions: 80-SLOAD -2 reads -1 and then 0 by itself, 4-PROG = 1 returns
-//   every parameter to its default, 85-SERR is the server's own; actual values never change;
+// - the documented exceptions: 80-SLOAD -2 reads -1 and then 0 or a parameter's number by itself;
+//   during a download (80-SLOAD = -1 until its test ends) the CardWriteable parameters take
+//   written values without the range check and a rejected dataset comes back (seed 000, 11.4);
+//   4-PROG = 1 returns every parameter to its default; 85-SERR is the drive's own; actual values
+//   never change;
 // - the server's frame always has odd parity and the servo's direction.
 //
 // Input: a header (channel width, start mode, latency, password); then per cycle an action byte
@@ -36,6 +39,8 @@
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/link.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/pcp_served.hpp"
+#include "ibs/devices/mc6000/service.hpp"
 #include "ibs/pcp/pdu.hpp"
 #include "ibs/pcp/server.hpp"
 #include "pcp_model.hpp"
@@ -140,7 +145,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cfg.workload = static_cast<double>(in.ConsumeIntegral<std::uint8_t>()) / 255.0;
   cfg.password = (h & 0x10U) != 0 ? in.ConsumeIntegral<std::uint16_t>() : 0;
   cfg.link_ack_timeout = std::chrono::milliseconds(10 + in.ConsumeIntegral<std::uint8_t>());
-  Server server(cfg, ibs::devices::mc6000::parameters());
+  // The MC6000's parameters (the drive core's) behind the server.
+  ibs::devices::mc6000::ParametersOnly drive(ibs::devices::mc6000::drive_parameters_config());
+  if (cfg.start == StartMode::running) drive.read(Time{0}, kSerr);
+  ibs::devices::mc6000::PcpServed served(drive);
+  Server server(cfg, served);
   const auto words = static_cast<std::size_t>(cfg.channel_words);
   // The master's side of the channel, for the input's PDUs.
   Link master(LinkConfig{cfg.channel_words, Direction::to_server, cfg.link_ack_timeout, cfg.start == StartMode::running});
@@ -148,13 +157,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<PlausibleWrite> writes;
   bool factory_defaults = false;  // a plausible, accepted 4-PROG = 1
   bool sload_end = false;         // a plausible 80-SLOAD = -2
-  const auto table = server.parameters().table();
+  const auto table = drive.parameters().table();
   Time now{0};
   std::uint8_t iid = 0;
   // The store's values, taken once a step (a lookup by number is a search: kept to one pass).
   const auto snapshot = [&](std::vector<std::uint32_t>& v) {
     v.clear();
-    for (const ParameterInfo& p : table) v.push_back(server.parameters().get(p.number)->raw);
+    for (const ParameterInfo& p : table) v.push_back(drive.parameters().value(p.number)->raw);
   };
   std::vector<std::uint32_t> before;
   std::vector<std::uint32_t> after;
@@ -185,14 +194,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
       case 4:
+        drive.parameters().power_on(now);
         server.power_on(now);
         snapshot(before);
         recent.note("power-on");
         break;
       case 5: {
         const std::uint8_t b = in.ConsumeIntegral<std::uint8_t>();
-        server.set_drive_running((b & 1U) != 0);
-        server.set_fault((b & 2U) != 0);
+        drive.set_running((b & 1U) != 0);
+        drive.set_fault((b & 2U) != 0);
         server.set_workload(static_cast<double>(b) / 255.0);
         break;
       }
@@ -214,7 +224,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     const std::uint32_t serr_before = serr_slot < before.size() ? before[serr_slot] : 0;
     const bool associated_before = server.associated();
-    const bool eeprom_busy_before = server.eeprom_busy(now);
+    const bool eeprom_busy_before = drive.parameters().eeprom_busy(now);
+    const bool downloading_before = drive.parameters().downloading();
 
     server.step(now, std::span<const Word>(m2s.data(), words), std::span<Word>(s2m.data(), words));
     snapshot(after);
@@ -261,6 +272,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         ok = written_with(p, now_raw) && passes(p, now_raw);
       }
       if (!ok && factory_defaults && now_raw == ParameterStore::default_raw(p)) ok = true;
+      // 11.4: the dataset without the range check, and the old one back when it is rejected.
+      const bool download_ended = downloading_before && !drive.parameters().downloading();
+      if (!ok && downloading_before && ibs::devices::mc6000::card_writeable(p.number) &&
+          (download_ended || (written_with(p, now_raw) && serr_before == 0 && associated_before))) {
+        ok = true;
+      }
+      if (!ok && p.number == kSload && download_ended) ok = true;  // 0 or the rejected number
       if (trace) std::fprintf(stderr, "parameter %u: %u -> %u (%s)\n", p.number, before[i], now_raw, ok ? "allowed" : "NOT allowed");
       if (!ok) {
         fail("parameter " + std::to_string(p.number) + " changed from " + std::to_string(before[i]) + " to " +

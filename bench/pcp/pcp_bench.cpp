@@ -9,6 +9,7 @@
 #include "ibs/pcp/client.hpp"
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/pcp_served.hpp"
 #include "ibs/pcp/crc16.hpp"
 #include "ibs/pcp/server.hpp"
 
@@ -24,13 +25,18 @@ struct Loop {
           c.channel_words = words;
           return c;
         }()),
+        served(drive),
         server([&] {
           ServerConfig c = ibs::devices::mc6000::server_config(1);
           c.channel_words = words;
           c.latency = latency;
           c.start = StartMode::running;
           return c;
-        }(), ibs::devices::mc6000::parameters()) {}
+        }(), served) {
+    drive.read(now, ibs::devices::mc6000::kSerr);  // running: 85-SERR read
+  }
+  Loop(const Loop&) = delete;
+  Loop& operator=(const Loop&) = delete;
 
   // Steps until the client reports; returns the number of steps.
   int until_result(Result& out) {
@@ -50,6 +56,9 @@ struct Loop {
   }
 
   Client client;
+  // The MC6000's parameters (its drive core's) behind the server.
+  ibs::devices::mc6000::ParametersOnly drive{ibs::devices::mc6000::drive_parameters_config()};
+  ibs::devices::mc6000::PcpServed served;
   Server server;
   Time now{};
   std::array<Word, 4> m2s{};

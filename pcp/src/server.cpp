@@ -55,9 +55,6 @@ const ServerConfig& checked(const ServerConfig& cfg, std::span<const ParameterIn
   return cfg;
 }
 
-// Whether `number` is the parameter of a role the drive gave (0: none).
-constexpr bool is(std::uint16_t number, std::uint16_t role) { return role != 0 && number == role; }
-
 }  // namespace
 
 Error Server::validate(const ServerConfig& cfg, std::span<const ParameterInfo> table) {
@@ -74,36 +71,19 @@ Error Server::validate(const ServerConfig& cfg, std::span<const ParameterInfo> t
   return Link::validate(link_config(cfg));
 }
 
-Server::Server(const ServerConfig& cfg, std::span<const ParameterInfo> table)
-    : cfg_(checked(cfg, table)),
+Server::Server(const ServerConfig& cfg, ServedParameters& served)
+    : cfg_(checked(cfg, served.table())),
       latency_(cfg.latency ? *cfg.latency : LatencyModel::for_channel(cfg.channel_words)),
-      store_(table),
+      served_(&served),
       link_(link_config(cfg)),
-      workload_(cfg.workload) {
-  store_.power_on();
-  if (cfg.start == StartMode::power_on) set_serr_bits(drive::siof_mask(drive::SiofBit::power_on));
-}
+      workload_(cfg.workload) {}
 
 void Server::set_workload(double workload) {
   workload_ = std::clamp(workload, 0.0, 1.0);
 }
 
-std::uint8_t Server::serr() const {
-  const auto v = store_.get(cfg_.roles.serr);
-  return v ? static_cast<std::uint8_t>(v->raw & 0xFFU) : 0;
-}
-
-void Server::set_serr_bits(std::uint8_t bits) {
-  store_.set(cfg_.roles.serr, static_cast<std::uint32_t>(serr() | bits));
-}
-
 void Server::power_on(Time now) {
-  store_.power_on();  // an unfinished EEPROM save is lost: the EEPROM keeps the old value
-  set_serr_bits(drive::siof_mask(drive::SiofBit::power_on));
-  eeprom_pending_ = false;
-  eeprom_busy_until_ = now;  // idle from now on
-  download_active_ = false;
-  dataset_checking_ = false;
+  (void)now;
   job_active_ = false;
   out_pending_ = false;
   associated_ = false;
@@ -116,21 +96,8 @@ void Server::drop_association() {
   out_pending_ = false;
 }
 
-void Server::advance(Time now) {
-  if (eeprom_pending_ && now >= eeprom_busy_until_) {
-    store_.commit_eeprom(eeprom_number_, eeprom_value_);
-    eeprom_pending_ = false;
-    ++stats_.eeprom_saves;
-  }
-  if (dataset_checking_ && now >= dataset_done_at_) {
-    // Every value was range-checked when written, so the dataset is plausible: SLOAD = 0.
-    dataset_checking_ = false;
-    store_.set(cfg_.roles.sload, 0);
-  }
-}
-
 void Server::step(Time now, std::span<const Word> m2s, std::span<Word> s2m) {
-  advance(now);
+  served_->advance(now);
   const LinkEvents ev = link_.receive(now, m2s);
   if (ev.reset) {
     ++stats_.link_resets;
@@ -194,100 +161,13 @@ void Server::handle_message(Time now, std::span<const std::uint8_t> msg) {
   job_at_ = now + latency_.processing(workload_);
 }
 
-PcpError Server::do_read(ResponsePdu& r) {
-  const ParameterInfo* p = find_by_index(store_.table(), job_.index);
-  if (p == nullptr) return errors::kObjectDoesNotExist;
-  if (job_.subindex != 0) return errors::kInvalidSubindex;
-  const Value v = *store_.get(p->number);
+PcpError Server::do_read(Time now, ResponsePdu& r) {
+  Value v{};
+  const PcpError e = served_->read(now, job_.index, job_.subindex, v);
+  if (e != PcpError{}) return e;
   std::array<std::uint8_t, kMaxValueSize> b{};
   const std::size_t n = encode(v, b);
   r.data.assign(std::span<const std::uint8_t>(b.data(), n));
-  // Seed 000, 6 and 9.2: reading 85-SERR clears it. Read errors never enter SERR (6.1).
-  if (p->number == cfg_.roles.serr) store_.set(cfg_.roles.serr, 0);
-  return {};
-}
-
-PcpError Server::do_write(Time now, Duration& extra_delay) {
-  const ParameterInfo* p = find_by_index(store_.table(), job_.index);
-  // Checks from the most to the least specific; each failure also sets its SERR bit (seed 000,
-  // 9.2), which then refuses every further write until 85-SERR is read (seed 000, 6).
-  if (p == nullptr) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::no_parameter));
-    return errors::kObjectDoesNotExist;
-  }
-  if (job_.subindex != 0) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::no_parameter));
-    return errors::kInvalidSubindex;
-  }
-  if (!p->writable()) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::no_change));
-    return errors::kNoAccess;
-  }
-  const auto v = decode(p->type, job_.data.view());
-  if (!v) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
-    return errors::kDataLength;
-  }
-  const std::uint32_t lo = ParameterStore::to_raw(*p, p->min);
-  const std::uint32_t hi = ParameterStore::to_raw(*p, p->max);
-  if (compare(p->type, v->raw, hi) > 0) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
-    return errors::kValueTooHigh;
-  }
-  if (compare(p->type, v->raw, lo) < 0) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
-    return errors::kValueTooLow;
-  }
-  const std::int64_t number = signed_raw(*v);
-  // Seed 000, 11.4: the master writes only -1 (begin) and -2 (end); 0.. are the servo's answers.
-  if (is(p->number, cfg_.roles.sload) && number >= 0) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::invalid_value));
-    return errors::kValueTooHigh;
-  }
-  if (serr() != 0) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::no_change));
-    return errors::kNotExecutableNow;
-  }
-  if (is(p->number, cfg_.roles.sload) &&
-      (running_ || (number == drive::kDownloadEnd && !download_active_) || dataset_checking_)) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::no_change));
-    return errors::kNotExecutableNow;  // seed 000, 11.4: "only when the system is in a stillstand"
-  }
-  if (p->category == Category::eeprom && eeprom_busy(now)) {
-    set_serr_bits(drive::siof_mask(drive::SiofBit::eeprom_busy));
-    return errors::kNotExecutableNow;  // seed 000, 3: repeat until the value is accepted
-  }
-
-  store_.set(p->number, v->raw);
-  if (p->category == Category::eeprom) {
-    // Seed 000, 10.2.2: memory time = data width * 3 * 5 ms; RAM is valid at once.
-    eeprom_pending_ = true;
-    eeprom_number_ = p->number;
-    eeprom_value_ = v->raw;
-    eeprom_busy_until_ =
-        now + latency_.eeprom_byte_time * static_cast<Duration::rep>(size_of(p->type));
-  }
-  const ParameterRoles& roles = cfg_.roles;
-  if (is(p->number, roles.prog)) {
-    if (number == drive::kLoadDefaults) {
-      store_.factory_defaults();
-      eeprom_pending_ = false;
-      extra_delay = latency_.factory_defaults_time;
-    }
-    // 111 activates a new LUSTBUS baud rate (seed 000, 11.5): nothing to do on INTERBUS.
-    store_.set(roles.prog, 0);  // a command, not a setting
-  } else if (is(p->number, roles.plrdy)) {
-    if (number == 1) ++plrdy_requests_;
-  } else if (is(p->number, roles.sload)) {
-    if (number == drive::kDownloadBegin) {
-      download_active_ = true;
-    } else {
-      download_active_ = false;
-      dataset_checking_ = true;
-      dataset_done_at_ = now + latency_.dataset_check_time;
-      store_.set(roles.sload, value_from_signed_raw(DataType::integer16, -1)->raw);
-    }
-  }
   return {};
 }
 
@@ -312,13 +192,16 @@ void Server::execute(Time now) {
       }
       break;
     case ServiceCode::read:
-      err = do_read(r);
+      err = do_read(now, r);
       break;
-    case ServiceCode::write:
-      err = do_write(now, extra_delay);
+    case ServiceCode::write: {
+      const WriteAnswer a = served_->write(now, job_.index, job_.subindex, job_.data.view());
+      err = a.error;
+      extra_delay = a.confirm_after;
       break;
+    }
     case ServiceCode::get_ov: {
-      const ParameterInfo* p = find_by_index(store_.table(), job_.index);
+      const ParameterInfo* p = find_by_index(served_->table(), job_.index);
       if (p == nullptr) {
         err = errors::kObjectDoesNotExist;
       } else {
@@ -333,8 +216,8 @@ void Server::execute(Time now) {
       break;
     case ServiceCode::status:
       r.status.logical = 0;
-      r.status.physical = fault_ ? 1 : 0;
-      r.status.local_detail = serr();
+      r.status.physical = served_->fault() ? 1 : 0;
+      r.status.local_detail = served_->status_detail();
       break;
     case ServiceCode::abort:
     case ServiceCode::information_report:
@@ -355,7 +238,7 @@ void Server::execute(Time now) {
 }
 
 bool Server::information_report(std::uint16_t number) {
-  const auto v = store_.get(number);
+  const auto v = served_->value(number);
   if (!associated_ || job_active_ || out_pending_ || !v) return false;
   ResponsePdu r;
   r.kind = ResponsePdu::Kind::information_report;

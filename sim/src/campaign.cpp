@@ -11,6 +11,7 @@
 #include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/mc6000/device.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/service.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/devices/vf1000/device.hpp"
 #include "ibs/devices/vf1000/parameters.hpp"
@@ -207,12 +208,12 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
         }
       } else if (o.value == -2) {
         if (certain) {
-          // The dataset is checked (SLOAD -1), then SLOAD reads 0 (docs/pcp.md: 500 ms).
+          // The dataset is checked (SLOAD -1), then SLOAD reads 0 (docs/errata.md MC-D2).
           c->ram = {-1, 0};
-          c->settle_at = now + 500ms + 2 * d.spec.period + 2 * d.spec.jitter;
+          c->settle_at = now + d.spec.download_check + 2 * d.spec.period + 2 * d.spec.jitter;
           c->settle = 0;
           c->settle_ram = true;
-          d.lock_may_end = o.submitted + 500ms;
+          d.lock_may_end = o.submitted + d.spec.download_check;
         } else {
           add(c->ram, -1);
           add(c->ram, 0);
@@ -221,6 +222,19 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
       }
       break;
     case ParamRole::normal:
+      if (d.download_open) {
+        // Seed 000 11.4 (MC-D2): during a download only the CardWriteable parameters take the
+        // value, into RAM; their EEPROM copy follows when the dataset is accepted.
+        if (!c->spec.card_writeable) break;
+        if (certain) {
+          c->ram = {o.value};
+        } else {
+          add(c->ram, o.value);
+        }
+        if (c->spec.eeprom) add(c->eeprom, o.value);
+        c->settle_at.reset();
+        break;
+      }
       if (certain) {
         c->ram = {o.value};
         c->settle_at.reset();
@@ -691,6 +705,7 @@ struct Runner {
         n.pcp = l.pcp_words > 0;
         n.pd = l.pd_words > 0;
         spec.period = ibs::devices::mc6000::kSamplePeriod;
+        spec.download_check = ibs::devices::mc6000::DriveTiming{}.download_check;
         spec.has_pd = n.pd;
         desc += "MC6000 SUPI " + std::to_string(c.supi) + " / IBCNF " + std::to_string(c.ibcnf) + ", " +
                 std::to_string(l.pd_words) + " process-data word(s), " +
@@ -739,6 +754,7 @@ struct Runner {
       m.max = p.max;
       m.eeprom_save = std::chrono::milliseconds(15) * static_cast<std::int64_t>(pcp::size_of(p.type)) +
                       ibs::devices::mc6000::kSamplePeriod + 2 * c.jitter;
+      m.card_writeable = devices::mc6000::card_writeable(p.number);
       m.role = !p.writable() ? ParamRole::device_owned
                : p.number == devices::mc6000::kProg  ? ParamRole::command
                : p.number == devices::mc6000::kSload ? ParamRole::sload
@@ -913,11 +929,12 @@ struct Runner {
   void check_store(Node& n, Time now) {
     store.clear();
     if (n.kind == devices::mc6000::kName) {
-      const pcp::Server* s = mc6000_of(*sim, n.index).pcp();
-      if (s == nullptr) return;
+      const auto& servo = mc6000_of(*sim, n.index);
+      if (servo.pcp() == nullptr) return;
+      const pcp::ParameterStore& ps = servo.drive().store();
       for (const pcp::ParameterInfo& p : devices::mc6000::kParameters) {
-        const auto v = s->parameters().get(p.number);
-        const auto e = s->parameters().eeprom(p.number);
+        const auto v = ps.get(p.number);
+        const auto e = ps.eeprom(p.number);
         StoreEntry entry{p.number, v ? pcp::signed_raw(*v) : 0, std::nullopt};
         if (e) entry.eeprom = pcp::signed_raw(*e);
         store.push_back(entry);
@@ -985,11 +1002,9 @@ struct Runner {
 
   void recommission(Node& n, Time now) {
     // 405/406 back to the ring's configuration (keypad), then switched off and on.
-    pcp::ParameterStore& ps = mc6000_of(*sim, n.index).pcp()->parameters();
+    devices::mc6000::DriveParameters& ps = mc6000_of(*sim, n.index).drive().parameters();
     for (const auto& [number, v] : {std::pair<std::uint16_t, int>{devices::mc6000::kSupi, n.supi}, {devices::mc6000::kIbcnf, n.ibcnf}}) {
-      const auto raw = pcp::ParameterStore::to_raw(*ps.info(number), v);
-      ps.set(number, raw);
-      ps.commit_eeprom(number, raw);
+      ps.preset(number, v);
       checker.set_value(n.index, number, v);
     }
     sim->inject_fault(Action::fault_power_cycle, n.index);

@@ -220,7 +220,7 @@ TEST(Client, ServoRestartEndsTheOutstandingRequestWithALinkReset) {
   ASSERT_TRUE(s.initiate().ok());
   ASSERT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::accepted);
   for (int i = 0; i < 30; ++i) s.bus.cycle();
-  s.server.power_on(s.bus.now());
+  s.power_on();
   const auto r = s.bus.await(100ms);
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->kind, ResultKind::link_reset);
@@ -233,8 +233,8 @@ TEST(Client, ARestartedMasterNeverSeesTheOldConfirmation) {
   for (const int words : {1, 2, 4}) {
     Session s(words);
     ASSERT_TRUE(s.initiate().ok());
-    s.server.parameters().set(83, 1111);
-    s.server.parameters().set(kIbstu, 2222);
+    s.drive().set_reading(83, 1111);
+    s.drive().set_reading(kIbstu, 2222);
     ASSERT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::accepted);
     // Run until the servo is half-way through sending the Read's confirmation.
     ASSERT_TRUE(s.bus.run_until(

@@ -33,7 +33,8 @@ Span measure(int words, double workload, Duration cycle = 567us) {
     sc.channel_words = words;
     sc.workload = workload;
     sc.start = StartMode::running;
-    Server server(sc, ibs::devices::mc6000::parameters());
+    test::Served server_parameters((sc).start);
+    Server server(sc, server_parameters.served);
     test::Bus bus(client, server, cycle, 1ms);
     for (int k = 0; k < phase; ++k) bus.cycle();
     EXPECT_EQ(client.initiate(bus.now()), SubmitStatus::accepted);
@@ -106,7 +107,8 @@ TEST(LatencyModel, ErrataOneWordChannelIsBoundBySegmentation) {
     sc.channel_words = 1;
     sc.latency = none;
     sc.start = StartMode::running;
-    Server server(sc, ibs::devices::mc6000::parameters());
+    test::Served server_parameters((sc).start);
+    Server server(sc, server_parameters.served);
     test::Bus bus(client, server, 567us, 1ms);
     for (int k = 0; k < phase; ++k) bus.cycle();
     client.initiate(bus.now());

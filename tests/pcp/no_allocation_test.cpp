@@ -8,6 +8,7 @@
 #include <new>
 
 #include "ibs/pcp/client.hpp"
+#include "pcp_harness.hpp"
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/pcp/server.hpp"
@@ -40,11 +41,12 @@ struct Rig {
           c.channel_words = words;
           return c;
         }()),
+        parameters(StartMode::power_on),
         server([&] {
           ServerConfig c = ibs::devices::mc6000::server_config(1);
           c.channel_words = words;
           return c;
-        }(), ibs::devices::mc6000::parameters()) {}
+        }(), parameters.served) {}
 
   // Lock-step with a deterministic fault every 7th cycle (the servo's word is not delivered).
   void cycle() {
@@ -67,6 +69,7 @@ struct Rig {
   }
 
   Client client;
+  test::Served parameters;
   Server server;
   Time now{};
   long n = 0;
@@ -116,6 +119,7 @@ TEST(CyclePath, AllocatesNothing) {
       ok += rig.await(r) && r.ok() ? 1 : 0;
       rig.client.read(rig.now, ParameterRef::number(83));
       for (int i = 0; i < 5; ++i) rig.cycle();
+      rig.parameters.drive.parameters().power_on(rig.now);
       rig.server.power_on(rig.now);
       ok += rig.await(r) && r.kind == ResultKind::link_reset ? 1 : 0;
     }

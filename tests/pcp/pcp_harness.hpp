@@ -20,6 +20,7 @@
 #include "ibs/pcp/client.hpp"
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/pcp_served.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace ibs::pcp::test {
@@ -146,6 +147,24 @@ inline ServerConfig server_config(int words, std::optional<LatencyModel> latency
   return c;
 }
 
+// The MC6000's parameters (the drive core's, without a servo behind them) as a server serves
+// them; `start` power_on keeps 85-SERR's power-on bit, running has read it.
+struct Served {
+  explicit Served(StartMode start = StartMode::running, std::span<const ParameterInfo> table = ibs::devices::mc6000::parameters())
+      : drive([&] {
+          auto c = ibs::devices::mc6000::drive_parameters_config();
+          c.table = table;
+          return c;
+        }()),
+        served(drive) {
+    if (start == StartMode::running) drive.read(Time{}, kSerr);
+  }
+  Served(const Served&) = delete;
+  Served& operator=(const Served&) = delete;
+  ibs::devices::mc6000::ParametersOnly drive;
+  ibs::devices::mc6000::PcpServed served;
+};
+
 // A client and a server on a lock-step bus (1 ms cycles and samples), with shortcuts.
 struct Session {
   explicit Session(int words, ServerConfig sc, ClientConfig cc = {})
@@ -153,10 +172,11 @@ struct Session {
           cc.channel_words = words;
           return cc;
         }()),
+        parameters(sc.start),
         server([&] {
           sc.channel_words = words;
           return sc;
-        }(), ibs::devices::mc6000::parameters()),
+        }(), parameters.served),
         bus(client, server) {}
   explicit Session(int words) : Session(words, running_server()) {}
 
@@ -194,7 +214,16 @@ struct Session {
     while (bus.now() < end) bus.cycle();
   }
 
+  // The servo switched off and on: its parameters (85-SERR power-on bit) and the server's link.
+  void power_on() {
+    drive().power_on(bus.now());
+    server.power_on(bus.now());
+  }
+  // The drive's parameters behind the server (the core's store, 85-SERR, EEPROM, PROG, SLOAD).
+  [[nodiscard]] ibs::devices::mc6000::DriveParameters& drive() { return parameters.drive.parameters(); }
+
   Client client;
+  Served parameters;
   Server server;
   Bus bus;
 };

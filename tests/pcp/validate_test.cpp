@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "pcp_harness.hpp"
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/base/error.hpp"
@@ -102,13 +103,13 @@ TEST(PcpValidate, Server) {
   const std::span<const ParameterInfo> table = ibs::devices::mc6000::parameters();
   const ServerConfig ok = ibs::devices::mc6000::server_config(2);
   EXPECT_FALSE(Server::validate(ok, table));
-  EXPECT_EQ(thrown([&] { const Server s(ok, table); }), "");
+  EXPECT_EQ(thrown([&] { test::Served sp; const Server s(ok, sp.served); }), "");
 
   ServerConfig bad = ok;
   bad.workload = 1.5;
   expect_refused(Server::validate(bad, table), ErrorCode::channel_workload_out_of_range,
                  "PCP server workload " + std::to_string(1.5) + " is outside 0..1",
-                 [&] { const Server s(bad, table); });
+                 [&] { test::Served sp; const Server s(bad, sp.served); });
   bad = ok;
   LatencyModel inverted;
   inverted.processing_min = 9ms;
@@ -116,19 +117,19 @@ TEST(PcpValidate, Server) {
   bad.latency = inverted;
   expect_refused(Server::validate(bad, table), ErrorCode::channel_latency_invalid,
                  "PCP server latency: need 0 <= processing_min <= processing_max",
-                 [&] { const Server s(bad, table); });
+                 [&] { test::Served sp; const Server s(bad, sp.served); });
 
   // The table as the store refuses it, then the channel as the link refuses it.
   const std::array<ParameterInfo, 1> out{
       {{2, "C", DataType::usign8, Category::ram_control, 0, 9, 10, 0}}};
   expect_refused(Server::validate(ok, out), ErrorCode::table_default_outside_limits,
                  "parameter table: 2-C: default outside min..max",
-                 [&] { const Server s(ok, out); });
+                 [&] { test::Served sp(StartMode::running, out); const Server s(ok, sp.served); });
   bad = ok;
   bad.channel_words = 3;
   expect_refused(Server::validate(bad, table), ErrorCode::channel_width_invalid,
                  "PCP channel of 3 words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)",
-                 [&] { const Server s(bad, table); });
+                 [&] { test::Served sp; const Server s(bad, sp.served); });
 }
 
 TEST(PcpValidate, ParameterStore) {

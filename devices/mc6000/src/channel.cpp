@@ -9,10 +9,6 @@ pcp::ServerConfig server_config(int channel_words) {
   c.channel_words = channel_words;
   c.kbl = kKbl;
   c.identity.model = pcp::Name::from("MC6000");
-  c.roles.serr = kSerr;
-  c.roles.prog = kProg;
-  c.roles.plrdy = kPlrdy;
-  c.roles.sload = kSload;
   return c;
 }
 

@@ -7,6 +7,7 @@
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/pcp_served.hpp"
 #include "ibs/pcp/client.hpp"
 #include "ibs/pcp/explain.hpp"
 #include "ibs/pcp/server.hpp"
@@ -34,11 +35,15 @@ void check_header(const ibs::trace::Header& h) {
 class PcpDeviceSide final : public ibs::trace::DeviceSide {
  public:
   explicit PcpDeviceSide(const ibs::trace::Header& h)
-      : words_(trace_channel_words(h)), server_(config(h), parameters()) {
-    server_.parameters().set(
+      : words_(trace_channel_words(h)), drive_(drive_parameters_config()), served_(drive_), server_(config(h), served_) {
+    // The trace's power-on start keeps the 85-SERR power-on bit; the others have read it.
+    if (h.init != DeviceStart::initialised) drive_.read(now_, kSerr);
+    drive_.parameters().set_reading(
         kIbsta, h.init == DeviceStart::fault ? kStatusFault : kStatusStartUpInhibit);
-    server_.set_fault(h.init == DeviceStart::fault);
+    drive_.set_fault(h.init == DeviceStart::fault);
   }
+  PcpDeviceSide(const PcpDeviceSide&) = delete;
+  PcpDeviceSide& operator=(const PcpDeviceSide&) = delete;
   [[nodiscard]] std::size_t m2s_words() const override { return static_cast<std::size_t>(words_); }
   [[nodiscard]] std::size_t s2m_words() const override { return static_cast<std::size_t>(words_); }
   void initial(std::span<Word> s2m) override { server_.show(now_, s2m); }
@@ -55,6 +60,8 @@ class PcpDeviceSide final : public ibs::trace::DeviceSide {
     return c;
   }
   int words_;
+  ParametersOnly drive_;
+  PcpServed served_;
   Server server_;
   Time now_{};
 };

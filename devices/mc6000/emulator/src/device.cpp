@@ -1,6 +1,6 @@
 #include "ibs/devices/mc6000/device.hpp"
 
-#include <algorithm>
+#include <chrono>
 
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
@@ -10,120 +10,113 @@ namespace ibs::devices {
 namespace {
 
 constexpr std::uint16_t kButwd = 409;  // 409-BUTWD (3.2.4)
+constexpr Word kResetFault = 0x0080;   // control word bit 7 (5.1.2)
+
+mc6000::DriveConfig drive_config(const Mc6000DeviceConfig& c) {
+  mc6000::DriveConfig d;
+  d.timing = c.timing;
+  d.pd = c.pd;
+  return d;
+}
 
 }  // namespace
 
-Mc6000PdConfig Mc6000Device::pd_config(const Mc6000DeviceConfig& c) {
-  Mc6000PdConfig p = c.pd;
-  p.layout = devices::mc6000::make_layout(c.supi, c.ibcnf, c.bus);
-  return p;
+Mc6000Device::Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time now)
+    : Mc6000Device(config, std::make_shared<mc6000::Drive>(drive_config(config), start, now), start, now) {}
+
+Mc6000Device::Mc6000Device(const Mc6000DeviceConfig& config, std::shared_ptr<mc6000::Drive> drive,
+                           DeviceStart start, Time now)
+    : layout_(devices::mc6000::make_layout(config.supi, config.ibcnf, config.bus)),
+      drive_(std::move(drive)),
+      served_(*drive_) {
+  (void)now;
+  attach(config, start);
 }
 
-Mc6000Device::Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time now)
-    : config_(config), pd_(pd_config(config)) {
-  switch (start) {
-    case DeviceStart::power_on: pd_.power_on(); break;
-    case DeviceStart::initialised:
-    case DeviceStart::operational: pd_.start(DeviceStart::operational); break;
-    case DeviceStart::fault: pd_.start(DeviceStart::fault); break;
-  }
-  const int words = pd_.layout().pcp_words;
+Mc6000Device::Mc6000Device(const Mc6000Device& other)
+    : DeviceEmulator(other),
+      layout_(other.layout_),
+      drive_(std::make_shared<mc6000::Drive>(*other.drive_)),
+      served_(*drive_),
+      pcp_(other.pcp_),
+      last_control_(other.last_control_),
+      configuration_mismatch_(other.configuration_mismatch_) {
+  if (pcp_) pcp_->serve(served_);
+}
+
+void Mc6000Device::attach(const Mc6000DeviceConfig& config, DeviceStart start) {
+  // The servo's EEPROM holds the configuration it was switched on with (3.2.2, 3.2.3, 3.2.4).
+  auto& params = drive_->parameters();
+  const auto butwd = std::chrono::duration_cast<std::chrono::milliseconds>(config.bus_watchdog).count();
+  params.preset(devices::mc6000::kSupi, config.supi);
+  params.preset(devices::mc6000::kIbcnf, config.ibcnf);
+  params.preset(kButwd, butwd);
+  // This face samples the drive every 1 ms (seed 001, 7.2; docs/errata.md MC-D4).
+  drive_->set_fieldbus_sampling(true);
+  const int words = layout_.pcp_words;
   if (words > 0) {
     pcp::ServerConfig sc = mc6000::server_config(words);
     sc.latency = config.pcp_latency;
     sc.workload = config.workload;
     sc.start = start == DeviceStart::operational ? pcp::StartMode::running : pcp::StartMode::power_on;
-    pcp_.emplace(sc, mc6000::parameters());
-    // The servo's EEPROM holds the configuration it was switched on with (3.2.2, 3.2.3, 3.2.4).
-    auto& store = pcp_->parameters();
-    const auto butwd = std::chrono::duration_cast<std::chrono::milliseconds>(config.bus_watchdog).count();
-    for (const auto& [n, v] : {std::pair<std::uint16_t, std::int64_t>{devices::mc6000::kSupi, config.supi},
-                               {devices::mc6000::kIbcnf, config.ibcnf},
-                               {kButwd, butwd}}) {
-      if (const auto* info = store.info(n)) {
-        const auto raw = pcp::ParameterStore::to_raw(*info, v);
-        store.set(n, raw);
-        store.commit_eeprom(n, raw);
-      }
-    }
-    if (start == DeviceStart::power_on) pcp_->power_on(now);
+    pcp_.emplace(sc, served_);
   }
 }
 
-void Mc6000Device::power_cycle(Time now) {
-  pd_.power_on();
-  armed_ = false;
-  watchdog_fault_ = false;
-  if (!pcp_) return;
-  pcp_->power_on(now);
-  // 405/406 are read at power-on (3.2.2): values written through PCP since the ring was
-  // configured give another layout and ID code, which the running ring cannot carry.
-  const auto& store = pcp_->parameters();
-  const auto supi = store.get(devices::mc6000::kSupi);
-  const auto ibcnf = store.get(devices::mc6000::kIbcnf);
-  const auto& l = pd_.layout();
-  configuration_mismatch_ = (supi && static_cast<int>(supi->raw) != l.supi) ||
-                            (ibcnf && static_cast<int>(ibcnf->raw) != static_cast<int>(l.ibcnf));
+void Mc6000Device::set_bus_watchdog(Duration d) {
+  drive_->parameters().preset(kButwd, std::chrono::duration_cast<std::chrono::milliseconds>(d).count());
 }
 
-void Mc6000Device::bus_cycle(Time now) {
-  armed_ = true;
-  last_cycle_ = now;
+void Mc6000Device::power_cycle(Time now) {
+  drive_->power_on(now);
+  last_control_ = 0;
+  if (pcp_) pcp_->power_on(now);
+  // 405/406 are read at power-on (3.2.2): values written through PCP since the ring was
+  // configured give another layout and ID code, which the running ring cannot carry.
+  const auto& params = drive_->parameters();
+  configuration_mismatch_ = static_cast<int>(params.raw(devices::mc6000::kSupi)) != layout_.supi ||
+                            static_cast<int>(params.raw(devices::mc6000::kIbcnf)) != static_cast<int>(layout_.ibcnf);
+}
+
+void Mc6000Device::output(std::span<Word> pd_s2m) const {
+  write_pd_words(layout_, drive_->status_word(), drive_->actual_rpm(), drive_->torque_percent(), pd_s2m);
 }
 
 void Mc6000Device::output_pcp(Time now, std::span<Word> pcp_s2m) {
   if (pcp_ && !pcp_s2m.empty()) pcp_->show(now, pcp_s2m);
 }
 
+void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
+  // SUPI 0: the INTERBUS CPU loops without exchanging data with the servo (3.2.2); without
+  // process data the drive's machine does not move, its watchdog still runs out.
+  if (layout_.pd_words == 0 || !layout_.exchanges_data) {
+    for (std::uint32_t k = 0; k < count; ++k) drive_->watch(first + static_cast<std::int64_t>(k) * period);
+    return;
+  }
+  const Word control = pd_m2s.empty() ? Word{0} : pd_m2s[0];
+  const double reference = devices::mc6000::decode_reference(
+      layout_, pd_m2s.subspan(1, static_cast<std::size_t>(layout_.reference_words)));
+  // The master's reset acts while the fieldbus has the control location (MC-D4).
+  if ((control & kResetFault) != 0 && (last_control_ & kResetFault) == 0 && !drive_->serial_control()) {
+    drive_->fault_reset(first);
+  }
+  last_control_ = control;
+  drive_->sample(first, period, count, control, reference);
+}
+
 void Mc6000Device::step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
-  if (pcp_ || watchdog_fault_ || period <= Duration{0}) {
-    // The channel's parameters (409-BUTWD among them) and the watchdog's reset are looked at
-    // sample by sample.
+  if (pcp_) {
+    // The channel is stepped sample by sample.
     for (std::uint32_t k = 0; k < count; ++k) step(pd_m2s, first + static_cast<std::int64_t>(k) * period);
     return;
   }
-  // 3.2.4: the monitoring time runs out at the first sample more than 409-BUTWD after the last
-  // cycle; from there on every sample of this stretch sees the watchdog fault.
-  std::uint32_t in_time = count;
-  if (armed_ && config_.bus_watchdog > Duration{0}) {
-    const Duration left = config_.bus_watchdog - (first - last_cycle_);
-    in_time = left < Duration{0} ? 0U : static_cast<std::uint32_t>(std::min<std::int64_t>(count, left / period + 1));
-  }
-  const bool pd = pd_.layout().pd_words > 0;
-  pd_.set_fault(external_fault_);
-  if (pd) pd_.step_held(pd_m2s, mc6000::kSamplePeriod, in_time);
-  if (in_time < count) {
-    watchdog_fault_ = true;
-    pd_.set_fault(true);
-    if (pd) pd_.step_held(pd_m2s, mc6000::kSamplePeriod, count - in_time);
-  }
+  sample_core(pd_m2s, first, period, count);
 }
 
 void Mc6000Device::step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s,
                         std::span<Word> pcp_s2m) {
-  if (pcp_) {
-    // 409-BUTWD as the servo holds it now (the master may have written it through PCP).
-    if (const auto v = pcp_->parameters().get(kButwd)) config_.bus_watchdog = std::chrono::milliseconds(v->raw);
-  }
-  // 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16 (E-OP1),
-  // location 1, a device fault that stays until it is reset once data flows again.
-  const bool expired = armed_ && config_.bus_watchdog > Duration{0} &&
-                       (now - last_cycle_) > config_.bus_watchdog;
-  if (expired) watchdog_fault_ = true;
-  pd_.set_fault(external_fault_ || expired);
-  if (pcp_) pd_.set_enable_locked(pcp_->engage_locked());
-  if (pd_.layout().pd_words > 0) pd_.step(pd_m2s, mc6000::kSamplePeriod);
-  if (watchdog_fault_ && !expired && pd_.state() == drivecom::State::start_up_inhibit) {
-    watchdog_fault_ = false;  // reset by the master after the data came back
-  }
-  if (pcp_ && !pcp_m2s.empty()) {
-    pcp_->set_drive_running(drivecom::power_stage_enabled(pd_.state()));
-    pcp_->set_fault(pd_.state() == drivecom::State::fault || pd_.state() == drivecom::State::fault_response_active);
-    // 408-IBSTA mirrors the status word, 77-SPEED the actual speed (Q16 rpm, seed 000 6.1.1.2).
-    pcp_->parameters().set(devices::mc6000::kIbsta, pd_.status_word());
-    pcp_->parameters().set(devices::mc6000::kSpeed, static_cast<std::uint32_t>(devices::mc6000::to_q16(pd_.actual_rpm())));
-    pcp_->step(now, pcp_m2s, pcp_s2m);
-  }
+  sample_core(pd_m2s, now, mc6000::kSamplePeriod, 1);
+  if (pcp_ && !pcp_m2s.empty()) pcp_->step(now, pcp_m2s, pcp_s2m);
 }
 
 namespace mc6000 {

@@ -64,9 +64,15 @@ void Mc6000PdDevice::step_held(std::span<const Word> m2s, Duration dt, std::uint
   const auto& l = config_.layout;
   // SUPI 0: the INTERBUS CPU loops without exchanging data with the servo (3.2.2).
   if (!l.exchanges_data || count == 0) return;
-  const Word control = override_ ? *override_ : (m2s.empty() ? Word{0} : m2s[0]);
-  reference_ = mc6000::decode_reference(
-      l, m2s.subspan(1, static_cast<std::size_t>(l.reference_words)));
+  step_held(m2s.empty() ? Word{0} : m2s[0],
+            mc6000::decode_reference(l, m2s.subspan(1, static_cast<std::size_t>(l.reference_words))), dt,
+            count);
+}
+
+void Mc6000PdDevice::step_held(Word word, double reference_rpm, Duration dt, std::uint32_t count) {
+  if (count == 0) return;
+  const Word control = override_ ? *override_ : word;
+  reference_ = reference_rpm;
   for (std::uint32_t k = 0; k < count; ++k) {
     sample_held(control, dt);
     if (initialised_ && machine_.holds({control, initialised_, fault_present_, true, true, enable_locked_})) {
@@ -113,18 +119,22 @@ void Mc6000PdDevice::sample_held(Word control, Duration dt) {
 }
 
 void Mc6000PdDevice::output(std::span<Word> s2m) const {
-  const auto& l = config_.layout;
+  write_pd_words(config_.layout, status_, actual_, torque_percent(), s2m);
+}
+
+void write_pd_words(const mc6000::Layout& l, Word status, double actual_rpm, double torque_percent,
+                    std::span<Word> s2m) {
   if (s2m.empty()) return;
   if (!l.exchanges_data) {
     std::fill(s2m.begin(), s2m.end(), Word{0});  // SUPI 0 (3.2.2)
     return;
   }
-  s2m[0] = status_;
+  s2m[0] = status;
   // The actual words, and 0 in a word the layout leaves unused (SUPI 12 with IBCNF 2). IBCNF 3
   // sends the torque in its second word, in % of the rated torque (a modelling choice: the
   // manual gives no scaling).
-  const double torque = l.ibcnf == mc6000::Ibcnf::speed_torque ? torque_percent() : 0.0;
-  mc6000::encode_actual(l, {actual_, torque}, s2m.subspan(1));
+  const double torque = l.ibcnf == mc6000::Ibcnf::speed_torque ? torque_percent : 0.0;
+  mc6000::encode_actual(l, {actual_rpm, torque}, s2m.subspan(1));
 }
 
 }  // namespace ibs::devices

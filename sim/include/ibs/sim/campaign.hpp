@@ -63,6 +63,9 @@ struct ParamModelSpec {
   std::int64_t min = 0;      // the documented range: a write outside it must not be `written`
   std::int64_t max = 0;
   Duration eeprom_save{0};   // after a confirmed write the EEPROM copy follows within this
+  // Seed 000 11.4: takes a download's value (untested; EEPROM once the dataset is accepted);
+  // any other parameter's write during a download is acknowledged and dropped.
+  bool card_writeable = false;
 };
 
 struct CheckerDeviceSpec {
@@ -74,6 +77,7 @@ struct CheckerDeviceSpec {
   std::vector<ParamModelSpec> params;
   std::uint16_t watchdog_parameter = 0;  // 409 (ms, 0 off) or 906 (50 ms steps, 65535 off); 0: none
   std::int64_t watchdog_fixed_ms = 0;    // an MC6000 without PCP: its configured 409-BUTWD
+  Duration download_check{0};            // 80-SLOAD = -2 until SLOAD reads the result (11.4)
 };
 
 struct StoreEntry {

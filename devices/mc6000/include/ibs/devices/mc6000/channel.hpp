@@ -9,8 +9,8 @@ namespace ibs::devices::mc6000 {
 // Seed 001, 4.2.2: 134 bytes each way; server for Get-OV long, Read, Write, Information Report.
 inline constexpr pcp::Kbl kKbl = pcp::kDefaultServerKbl;
 
-// The servo's PCP server over `channel_words` words (405-SUPI): 85-SERR, 4-PROG, 15-PLRDY and
-// 80-SLOAD as its roles, "Lust" / "MC6000" / "PCP 2.0" as its identity.
+// The servo's PCP server over `channel_words` words (405-SUPI): "Lust" / "MC6000" / "PCP 2.0" as
+// its identity. What it serves is the drive core's (pcp_served.hpp).
 pcp::ServerConfig server_config(int channel_words);
 
 }  // namespace ibs::devices::mc6000

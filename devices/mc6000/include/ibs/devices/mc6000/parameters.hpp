@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <span>
 
+#include "ibs/devices/mc6000/drive_parameters.hpp"
 #include "ibs/drive/parameters.hpp"
 #include "ibs/drive/siof.hpp"
 #include "ibs/pcp/parameters.hpp"
@@ -50,6 +51,10 @@ inline constexpr std::uint8_t kSerrChecksum = drive::siof_mask(drive::SiofBit::c
 inline constexpr std::uint8_t kSerrNoParameter = drive::siof_mask(drive::SiofBit::no_parameter);
 inline constexpr std::uint8_t kSerrNoChange = drive::siof_mask(drive::SiofBit::no_change);
 inline constexpr std::uint8_t kSerrInvalidValue = drive::siof_mask(drive::SiofBit::invalid_value);
+
+// 416-SCTL1 bits: 7.2.1, bit 0 starts the drive; 8.1.2, bit 7 resets an error.
+inline constexpr std::uint32_t kSctl1Start = 0x0001;
+inline constexpr std::uint32_t kSctl1Reset = 0x0080;
 
 // 4-PROG commands (seed 000, 10 exception 1; 11.5).
 inline constexpr std::int64_t kProgFactoryDefaults = drive::kLoadDefaults;
@@ -116,5 +121,9 @@ inline constexpr std::array<pcp::ParameterInfo, 31> kParameters{{
 
 // The table as a span (what the server and the drivers take).
 std::span<const pcp::ParameterInfo> parameters();
+
+// The MC6000's parameter core (drive_parameters.hpp) as this table and the service structure
+// (service.hpp: CardWriteable, seed 000 11.4) define it.
+DriveParametersConfig drive_parameters_config(const DriveTiming& timing = {});
 
 }  // namespace ibs::devices::mc6000

@@ -1,6 +1,9 @@
-// The MC6000 as the simulator runs it (seed 001, 3.2, 4.2, 5.3, 7.2): the process-data layout
-// 405-SUPI / 406-IBCNF read at power-on, DRIVECOM sampled every 1 ms with the servo plant behind
-// it, the 409-BUTWD bus watchdog (error 16 E-OP1, location 1), and the PCP channel words.
+// The MC6000's INTERBUS face as the simulator runs it (seed 001, 3.2, 4.2, 5.3, 7.2): the
+// process-data layout 405-SUPI / 406-IBCNF read at power-on, the DRIVECOM words decoded into the
+// drive core's control word and reference every 1 ms sample, and the PCP channel, whose server
+// serves the core's parameters. The servo itself -- parameters, DRIVECOM machine and plant, the
+// 409-BUTWD bus watchdog (error 16 E-OP1, location 1), faults -- is the core (drive.hpp), which a
+// LUSTBUS face may serve at the same time.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +14,9 @@
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/devices/emulator.hpp"
 #include "ibs/devices/mc6000/descriptor.hpp"
+#include "ibs/devices/mc6000/drive.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/pcp_served.hpp"
 #include "ibs/devices/mc6000/pd_device.hpp"
 #include "ibs/interbus/device_start.hpp"
 #include "ibs/base/time.hpp"
@@ -28,17 +33,29 @@ struct Mc6000DeviceConfig {
   // The PCP server's latency model (pcp/server.hpp); empty: calibrated for the channel width.
   std::optional<pcp::LatencyModel> pcp_latency;
   double workload = 0.0;  // processor workload 0..1: PCP answers take longer as it grows (7.2)
+  mc6000::DriveTiming timing{};  // the drive's own (EEPROM, 4-PROG, 80-SLOAD), for a core it makes
 };
 
 class Mc6000Device final : public DeviceEmulator {
  public:
-  // Throws devices::mc6000::LayoutError for a SUPI/IBCNF pair the servo refuses.
+  // A servo of its own. Throws devices::mc6000::LayoutError for a SUPI/IBCNF pair the servo refuses.
   Mc6000Device(const Mc6000DeviceConfig& config, DeviceStart start, Time now);
+  // The INTERBUS face of an existing drive core (shared with other faces): stores 405/406/409 of
+  // `config` in it as configured, and from now on samples it every 1 ms (drive.hpp). `start`
+  // says only how the PCP link starts (operational: ready).
+  Mc6000Device(const Mc6000DeviceConfig& config, std::shared_ptr<mc6000::Drive> drive, DeviceStart start,
+               Time now);
+  // A copy is an independent servo: its own copy of the core.
+  Mc6000Device(const Mc6000Device& other);
+  Mc6000Device& operator=(const Mc6000Device&) = delete;
   [[nodiscard]] std::unique_ptr<DeviceEmulator> clone() const override {
     return std::make_unique<Mc6000Device>(*this);
   }
 
-  [[nodiscard]] const devices::mc6000::Layout& layout() const { return pd_.layout(); }
+  [[nodiscard]] const devices::mc6000::Layout& layout() const { return layout_; }
+  [[nodiscard]] mc6000::Drive& drive() { return *drive_; }
+  [[nodiscard]] const mc6000::Drive& drive() const { return *drive_; }
+  [[nodiscard]] const std::shared_ptr<mc6000::Drive>& shared_drive() const { return drive_; }
 
   // One 1 ms sample: the process-data words (control word first) and the PCP channel words
   // (layout().pcp_words each; empty spans without PCP).
@@ -55,63 +72,64 @@ class Mc6000Device final : public DeviceEmulator {
     step_held(pd_m2s, first, period, count);
   }
   // The same sample without writing the process-data words; output() writes them as they stand
-  // after the last sample (Mc6000PdDevice::step). The PCP words are written in every sample.
+  // after the last sample. The PCP words are written in every sample.
   void step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s = {},
             std::span<Word> pcp_s2m = {});
   // `count` samples at first, first + period, ... with the same process-data words (between two
   // bus cycles they do not change): exactly what as many calls of step() do. A servo with PCP
   // words steps its channel sample by sample (use step() for those words).
   void step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
-  void output(std::span<Word> pd_s2m) const override { pd_.output(pd_s2m); }
+  void output(std::span<Word> pd_s2m) const override;
   void output_pcp(Time now, std::span<Word> pcp_s2m) override;
 
   // A valid data cycle reached the device: "the watchdog is triggered with every INTERBUS cycle".
-  void bus_cycle(Time now) override;
+  void bus_cycle(Time now) override { drive_->fieldbus_cycle(now); }
   void power_cycle(Time now) override;
-  void set_fault(bool present) override { external_fault_ = present; }
-  void set_load_torque(double nm) { pd_.set_load_torque(nm); }
-  void set_bus_watchdog(Duration d) { config_.bus_watchdog = d; }
+  void set_fault(bool present) override { drive_->set_external_fault(present); }
+  void set_load_torque(double nm) { drive_->set_load_torque(nm); }
+  void set_bus_watchdog(Duration d);
 
   // A servo switched on with other 405-SUPI / 406-IBCNF values than the ring was configured for
   // shows another ID code: the master's configuration no longer fits it and the bus reports a
   // module error until the ring is configured again (a new run).
   [[nodiscard]] bool module_error(Time /*now*/) const override { return configuration_mismatch_; }
   [[nodiscard]] bool configuration_mismatch() const { return configuration_mismatch_; }
-  [[nodiscard]] drivecom::State state() const override { return pd_.state(); }
-  [[nodiscard]] double actual_rpm() const { return pd_.actual_rpm(); }
-  [[nodiscard]] double actual() const override { return pd_.actual_rpm(); }
-  [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
-  [[nodiscard]] double torque_nm() const { return pd_.torque_nm(); }
-  [[nodiscard]] Word status_word() const { return pd_.status_word(); }
-  [[nodiscard]] bool watchdog_tripped() const override { return watchdog_fault_; }
+  [[nodiscard]] drivecom::State state() const override { return drive_->state(); }
+  [[nodiscard]] double actual_rpm() const { return drive_->actual_rpm(); }
+  [[nodiscard]] double actual() const override { return drive_->actual_rpm(); }
+  [[nodiscard]] double reference_rpm() const { return drive_->reference_rpm(); }
+  [[nodiscard]] double torque_nm() const { return drive_->torque_nm(); }
+  [[nodiscard]] Word status_word() const { return drive_->status_word(); }
+  [[nodiscard]] bool watchdog_tripped() const override { return drive_->bus_watchdog_fault(); }
   // The error the servo shows: 16 (E-OP1) at location 1 after the bus watchdog ran out.
   [[nodiscard]] std::optional<int> error_number() const override {
-    return watchdog_fault_ ? std::optional<int>(mc6000::kWatchdogError) : std::nullopt;
+    return watchdog_tripped() ? std::optional<int>(mc6000::kWatchdogError) : std::nullopt;
   }
   // Its error location (3.2.4: "The watchdog error number is 16 ('E-OP1'), with error location 1").
   [[nodiscard]] std::optional<int> error_location() const {
-    return watchdog_fault_ ? std::optional<int>(mc6000::kWatchdogLocation) : std::nullopt;
+    return watchdog_tripped() ? std::optional<int>(mc6000::kWatchdogLocation) : std::nullopt;
   }
-  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
-  // The PCP server and its parameters (nullptr for a layout without PCP words).
+  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return drive_->last_sample(); }
+  // The PCP server (nullptr for a layout without PCP words); it serves drive().parameters().
   [[nodiscard]] pcp::Server* pcp() { return pcp_ ? &*pcp_ : nullptr; }
   [[nodiscard]] const pcp::Server* pcp() const { return pcp_ ? &*pcp_ : nullptr; }
   // How many times 15-PLRDY = 1 recalculated the controller (4.2).
-  [[nodiscard]] std::uint32_t recalculations() const { return pcp_ ? pcp_->plrdy_requests() : 0; }
+  [[nodiscard]] std::uint32_t recalculations() const { return drive_->recalculations(); }
   [[nodiscard]] Notices notices() const override {
     return {recalculations(), "15-PLRDY = 1: controller parameters recalculated"};
   }
 
  private:
-  static Mc6000PdConfig pd_config(const Mc6000DeviceConfig& c);
+  void attach(const Mc6000DeviceConfig& config, DeviceStart start);
+  // Decodes the process-data words and samples the core (seed 001, 5.1.2: a 0->1 edge of control
+  // word bit 7 is the fault reset, the same core call as 416-SCTL1 bit 7 over LUSTBUS).
+  void sample_core(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
 
-  Mc6000DeviceConfig config_;
-  Mc6000PdDevice pd_;
+  mc6000::Layout layout_;
+  std::shared_ptr<mc6000::Drive> drive_;
+  mc6000::PcpServed served_;
   std::optional<pcp::Server> pcp_;
-  bool armed_ = false;
-  Time last_cycle_{0};
-  bool watchdog_fault_ = false;
-  bool external_fault_ = false;
+  Word last_control_ = 0;
   bool configuration_mismatch_ = false;
 };
 

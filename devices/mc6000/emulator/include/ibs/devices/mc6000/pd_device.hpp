@@ -25,6 +25,11 @@ struct Mc6000PdConfig {
   double standstill_rpm = 0.5;        // below this the fault reaction counts as done
 };
 
+// The process-data words a servo shows in `layout`: the status word, then the actual words
+// (IBCNF 3: speed and torque in % of the rated torque); all zero for SUPI 0 (3.2.2).
+void write_pd_words(const mc6000::Layout& layout, Word status, double actual_rpm, double torque_percent,
+                    std::span<Word> s2m);
+
 class Mc6000PdDevice {
  public:
   explicit Mc6000PdDevice(const Mc6000PdConfig& config = {});
@@ -49,6 +54,9 @@ class Mc6000PdDevice {
   // `count` samples with the same master words (between two bus cycles they do not change):
   // exactly what `count` calls of step() do, with the words decoded once.
   void step_held(std::span<const Word> m2s, Duration dt, std::uint32_t count);
+  // The same with the words already decoded: the control word and the speed reference (rpm), as
+  // the drive core (drive.hpp) takes them from whichever interface has the control location.
+  void step_held(Word control, double reference_rpm, Duration dt, std::uint32_t count);
   // The words the device shows: after the last sample, or before the first.
   void output(std::span<Word> s2m) const;
 

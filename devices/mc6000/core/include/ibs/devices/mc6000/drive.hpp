@@ -1,0 +1,125 @@
+// The MC6000 drive core: the servo itself, knowing no bus (docs/architecture.md, "One drive, many
+// faces"). It owns the parameters (drive_parameters.hpp: the one store, 85-SERR, EEPROM, 4-PROG,
+// 80-SLOAD), the DRIVECOM device machine with the servo plant (Mc6000PdDevice), the external
+// fault and the fault reset, the bus watchdog 409-BUTWD (seed 001, 3.2.4: error 16 E-OP1 at
+// location 1) and the serial watchdog 84-SWDGT (seed 000, 5.2), and the readings every face
+// shows (77-SPEED, 408-IBSTA).
+//
+// Faces are thin: the INTERBUS face (device.hpp) decodes its SUPI/IBCNF words and runs PCP, the
+// LUSTBUS face (lustbus_device.hpp) parses telegrams; both read and write through this object and
+// tell it only "a valid cycle / telegram arrived at t". Who samples and who controls when both
+// serve one core (docs/errata.md MC-D4): an INTERBUS face samples the drive every 1 ms; without
+// one the drive samples itself up to the time of each telegram. 402-CLSEL = SIO puts control on
+// the serial interface (416-SCTL1, 428-RSIO over 417..420) when a serial face serves the drive,
+// any other location the fieldbus's control word and reference (seed 000, 7.2; seed 001, 3.2.1:
+// OPT1 for INTERBUS); a drive with the fieldbus face alone follows the fieldbus whatever 402 says.
+//
+// The cycle path (sample, advance, read, write) allocates nothing, throws nothing, reads no clock.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "ibs/base/time.hpp"
+#include "ibs/base/words.hpp"
+#include "ibs/devices/mc6000/drive_parameters.hpp"
+#include "ibs/devices/mc6000/pd_device.hpp"
+#include "ibs/drivecom/device_state_machine.hpp"
+#include "ibs/interbus/device_start.hpp"
+
+namespace ibs::devices::mc6000 {
+
+struct DriveConfig {
+  DriveTiming timing{};
+  Mc6000PdConfig pd{};  // plant and limits (the layout is the INTERBUS face's)
+};
+
+class Drive final : public DriveAccess {
+ public:
+  // The servo started as `start` at `now`: power_on (NOT READY first, 85-SERR power-on bit),
+  // initialised (START-UP INHIBIT, power-on bit), operational (START-UP INHIBIT, 85-SERR read),
+  // fault (FAULT).
+  explicit Drive(const DriveConfig& config = {}, DeviceStart start = DeviceStart::operational, Time now = {});
+
+  // Parameter access, the same for every face.
+  void advance(Time now) override;
+  std::optional<pcp::Value> read(Time now, std::uint16_t number) override;
+  WriteResult write(Time now, std::uint16_t number, std::optional<std::uint32_t> raw) override;
+  WriteResult refuse(Refusal r) override { return params_.refuse(r); }
+  [[nodiscard]] const DriveParameters& parameters() const override { return params_; }
+  [[nodiscard]] bool fault() const override;
+  [[nodiscard]] DriveParameters& parameters() { return params_; }
+  // The one parameter store (RAM and EEPROM) every face serves.
+  [[nodiscard]] const pcp::ParameterStore& store() const { return params_.store(); }
+
+  // The fieldbus face. From the first call of set_fieldbus_sampling(true) the face's samples are
+  // the drive's 1 ms samples (seed 001, 7.2).
+  void set_fieldbus_sampling(bool on) { fieldbus_sampling_ = on; }
+  [[nodiscard]] bool fieldbus_sampling() const { return fieldbus_sampling_; }
+  // A valid data cycle reached the servo: "the watchdog is triggered with every INTERBUS cycle".
+  void fieldbus_cycle(Time now);
+  // `count` samples at first, first + period, ... with the fieldbus's control word and reference
+  // (used while the control location is the fieldbus).
+  void sample(Time first, Duration period, std::uint32_t count, Word control, double reference_rpm);
+
+  // A sample in which the fieldbus face has no process data for the drive (SUPI 0, a layout of
+  // PCP words only: seed 001, 3.2.2): the watchdogs are looked at, DRIVECOM does not move.
+  void watch(Time now);
+
+  // The serial face: it serves the drive (from then on 402-CLSEL = SIO gives it the control),
+  // a valid telegram (5.2: resets the watchdog), a wrong BCC (9.2 bit 3).
+  void set_serial_face(bool on) { serial_face_ = on; }
+  void serial_telegram(Time now);
+  void serial_checksum_error() { params_.set_serr(drive::SiofBit::checksum); }
+
+  // Fault reset (seed 000, 8.1.2: 416-SCTL1 bit 7; seed 001, 5.1.2: control word bit 7; each
+  // from the interface that has the control location, which the faces ask first): latched
+  // fault causes whose condition is gone are cleared (the serial watchdog's time starts again),
+  // and the DRIVECOM machine gets its RESET FAULT edge in the next sample, whichever interface
+  // has the control location.
+  void fault_reset(Time now);
+  void set_external_fault(bool present) { external_fault_ = present; }
+  void set_load_torque(double nm) { pd_.set_load_torque(nm); }
+  // Switched off and on.
+  void power_on(Time now);
+
+  // Readings.
+  [[nodiscard]] drivecom::State state() const { return pd_.state(); }
+  [[nodiscard]] bool running() const { return pd_.state() == drivecom::State::enabled; }
+  [[nodiscard]] double actual_rpm() const { return pd_.actual_rpm(); }
+  [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
+  [[nodiscard]] double torque_nm() const { return pd_.torque_nm(); }
+  [[nodiscard]] double torque_percent() const { return pd_.torque_percent(); }
+  [[nodiscard]] Word status_word() const { return pd_.status_word(); }
+  [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
+  // The speed reference of the serial control location: 428-RSIO once per selector 417..420 that
+  // says RSIO (7.2.1); RCON and the option give 0 here.
+  [[nodiscard]] double serial_reference_rpm() const;
+  [[nodiscard]] bool serial_control() const;
+  [[nodiscard]] bool bus_watchdog_fault() const { return bus_fault_; }
+  [[nodiscard]] bool serial_watchdog_fault() const { return serial_fault_; }
+  [[nodiscard]] std::uint32_t recalculations() const { return params_.plrdy_requests(); }
+
+ private:
+  void sample_one(Time now, Word control, double reference_rpm);
+  void serial_samples(std::uint32_t count, Duration dt);
+  void check_serial_watchdog(Time now);
+  [[nodiscard]] Word serial_word() const;
+  [[nodiscard]] Duration bus_watchdog() const;
+  void refresh_readings();
+
+  DriveParameters params_;
+  Mc6000PdDevice pd_;
+  bool fieldbus_sampling_ = false;
+  bool serial_face_ = false;
+  bool armed_ = false;
+  Time last_cycle_{};
+  bool bus_fault_ = false;
+  Time last_telegram_{};
+  bool serial_fault_ = false;
+  bool external_fault_ = false;
+  bool reset_pending_ = false;
+  Time sampled_until_{};
+};
+
+}  // namespace ibs::devices::mc6000

@@ -1,0 +1,245 @@
+#include "ibs/devices/mc6000/drive.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "ibs/devices/mc6000/descriptor.hpp"
+#include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/drivecom/control_word.hpp"
+
+namespace ibs::devices::mc6000 {
+
+namespace {
+
+using drivecom::State;
+
+constexpr std::uint16_t kButwd = 409;  // seed 001, 3.2.4
+// The longest silence the drive catches up on by itself: after a longer one only its last part is
+// simulated (a speed loop has settled long before; 60 s x 1 ms samples are 60 000 samples).
+constexpr Duration kCatchUp = std::chrono::seconds(60);
+// The samples a serial command takes to walk DRIVECOM (reset edge, SHUTDOWN, ENABLE OPERATION).
+constexpr int kSettleSamples = 6;
+
+}  // namespace
+
+Drive::Drive(const DriveConfig& config, DeviceStart start, Time now)
+    : params_(drive_parameters_config(config.timing)), pd_(config.pd) {
+  last_cycle_ = last_telegram_ = sampled_until_ = now;
+  switch (start) {
+    case DeviceStart::power_on:
+      power_on(now);
+      break;
+    case DeviceStart::initialised:
+      pd_.start(DeviceStart::operational);
+      break;
+    case DeviceStart::operational:
+      pd_.start(DeviceStart::operational);
+      params_.read(now, kSerr);  // running for a while: 85-SERR has been read
+      break;
+    case DeviceStart::fault:
+      pd_.start(DeviceStart::fault);
+      break;
+  }
+  refresh_readings();
+}
+
+bool Drive::fault() const {
+  return pd_.state() == State::fault || pd_.state() == State::fault_response_active;
+}
+
+bool Drive::serial_control() const {
+  // 7.2 step 2: 402-CLSEL = SIO gives the serial interface the control -- where a serial face
+  // serves the drive; a drive without a fieldbus face has no other master to listen to (MC-D4).
+  if (!fieldbus_sampling_) return true;
+  return serial_face_ && params_.raw(kClsel) == static_cast<std::uint32_t>(kClselSio);
+}
+
+double Drive::serial_reference_rpm() const {
+  double rpm = 0.0;
+  for (const std::uint16_t sel : {kRssl1, kRssl2, kRssl3, kRssl4}) {
+    if (params_.raw(sel) == static_cast<std::uint32_t>(kRsslRsio)) {
+      rpm += static_cast<double>(static_cast<std::int32_t>(params_.raw(kRsio))) / 65536.0;
+    }
+  }
+  return rpm;
+}
+
+Word Drive::serial_word() const {
+  // 7.2: 416-SCTL1 bit 0 starts with the control location on SIO; the plant is a speed loop, so
+  // only 300-CFCON = SCON engages it (LB-D19). The drive walks DRIVECOM's sequence itself:
+  // the reset edge of 8.1.2 first, SHUTDOWN before ENABLE OPERATION.
+  if (reset_pending_) {
+    return static_cast<Word>(drivecom::command_word(drivecom::Command::shutdown) | 0x0080U);
+  }
+  const bool start = params_.raw(kClsel) == static_cast<std::uint32_t>(kClselSio) &&
+                     params_.raw(kCfcon) == static_cast<std::uint32_t>(kCfconScon) &&
+                     (params_.raw(kSctl1) & kSctl1Start) != 0;
+  if (start && pd_.state() != State::start_up_inhibit) return drivecom::command_word(drivecom::Command::enable);
+  return drivecom::command_word(drivecom::Command::shutdown);
+}
+
+Duration Drive::bus_watchdog() const { return std::chrono::milliseconds(params_.raw(kButwd)); }
+
+void Drive::refresh_readings() {
+  // 408-IBSTA mirrors the status word (seed 001, 4.2.1), 77-SPEED the motor speed as Q16 rpm
+  // (seed 000, 6.1.1.2).
+  params_.set_reading(kIbsta, pd_.status_word());
+  params_.set_reading(kSpeed, static_cast<std::uint32_t>(to_q16(pd_.actual_rpm())));
+}
+
+void Drive::check_serial_watchdog(Time now) {
+  // 5.2: no valid telegram within 84-SWDGT ms: the error state, 02H in 85-SERR; the drive stops.
+  const auto swdgt = params_.raw(kSwdgt);
+  if (!serial_fault_ && swdgt != 0 && now - last_telegram_ > std::chrono::milliseconds(swdgt)) {
+    serial_fault_ = true;
+    params_.set_serr(drive::SiofBit::watchdog);
+  }
+}
+
+void Drive::serial_telegram(Time now) {
+  advance(now);
+  last_telegram_ = now;
+}
+
+void Drive::fieldbus_cycle(Time now) {
+  armed_ = true;
+  last_cycle_ = now;
+}
+
+void Drive::fault_reset(Time now) {
+  // 8.1.2: the reset clears the error; the serial watchdog's time runs again from the reset.
+  serial_fault_ = false;
+  last_telegram_ = now;
+  reset_pending_ = true;
+}
+
+void Drive::power_on(Time now) {
+  params_.power_on(now);
+  pd_.power_on();
+  armed_ = false;
+  bus_fault_ = false;
+  serial_fault_ = false;
+  reset_pending_ = false;
+  last_telegram_ = sampled_until_ = now;
+  refresh_readings();
+}
+
+void Drive::sample_one(Time now, Word control, double reference_rpm) {
+  params_.advance(now);
+  check_serial_watchdog(now);
+  // Seed 001, 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16
+  // (E-OP1), location 1, a device fault that stays until it is reset once data flows again.
+  const Duration butwd = bus_watchdog();
+  const bool expired = armed_ && butwd > Duration{0} && (now - last_cycle_) > butwd;
+  if (expired) bus_fault_ = true;
+  pd_.set_fault(external_fault_ || expired || serial_fault_);
+  pd_.set_enable_locked(params_.downloading());
+  if (serial_control()) {
+    pd_.step_held(serial_word(), serial_reference_rpm(), kSamplePeriod, 1);
+  } else {
+    // A reset given over another face reaches DRIVECOM as the RESET FAULT edge in this sample.
+    const Word w = reset_pending_ ? static_cast<Word>(control | 0x0080U) : control;
+    pd_.step_held(w, reference_rpm, kSamplePeriod, 1);
+  }
+  reset_pending_ = false;
+  if (bus_fault_ && !expired && pd_.state() == State::start_up_inhibit) bus_fault_ = false;
+  sampled_until_ = now;
+}
+
+void Drive::watch(Time now) {
+  params_.advance(now);
+  check_serial_watchdog(now);
+  const Duration butwd = bus_watchdog();
+  const bool expired = armed_ && butwd > Duration{0} && (now - last_cycle_) > butwd;
+  if (expired) bus_fault_ = true;
+  if (bus_fault_ && !expired && pd_.state() == State::start_up_inhibit) bus_fault_ = false;
+  sampled_until_ = now;
+}
+
+void Drive::sample(Time first, Duration period, std::uint32_t count, Word control, double reference_rpm) {
+  if (count == 0) return;
+  if (count == 1 || period <= Duration{0} || serial_control() || bus_fault_ || serial_fault_ ||
+      params_.downloading() || params_.raw(kSwdgt) != 0 || reset_pending_) {
+    for (std::uint32_t k = 0; k < count; ++k) sample_one(first + static_cast<std::int64_t>(k) * period, control, reference_rpm);
+    refresh_readings();
+    return;
+  }
+  // A stretch with the same words: the monitoring time runs out at the first sample more than
+  // 409-BUTWD after the last cycle; from there on every sample sees the watchdog fault.
+  params_.advance(first);
+  const Duration butwd = bus_watchdog();
+  std::uint32_t in_time = count;
+  if (armed_ && butwd > Duration{0}) {
+    const Duration left = butwd - (first - last_cycle_);
+    in_time = left < Duration{0} ? 0U : static_cast<std::uint32_t>(std::min<std::int64_t>(count, left / period + 1));
+  }
+  pd_.set_fault(external_fault_);
+  pd_.set_enable_locked(false);
+  pd_.step_held(control, reference_rpm, kSamplePeriod, in_time);
+  if (in_time < count) {
+    bus_fault_ = true;
+    pd_.set_fault(true);
+    pd_.step_held(control, reference_rpm, kSamplePeriod, count - in_time);
+  }
+  sampled_until_ = first + static_cast<std::int64_t>(count - 1) * period;
+  params_.advance(sampled_until_);
+  refresh_readings();
+}
+
+void Drive::serial_samples(std::uint32_t count, Duration dt) {
+  // The serial word follows the state: sample by sample until the machine holds, then the rest
+  // with the word it holds on (Mc6000PdDevice::step_held moves the plant in one loop).
+  for (std::uint32_t k = 0; k < count; ++k) {
+    pd_.set_fault(external_fault_ || serial_fault_);
+    pd_.set_enable_locked(params_.downloading());
+    const Word w = serial_word();
+    pd_.step_held(w, serial_reference_rpm(), dt, 1);
+    reset_pending_ = false;
+    if (pd_.last_sample().count == 0 && serial_word() == w && pd_.initialised() && k + 1 < count) {
+      pd_.step_held(w, serial_reference_rpm(), dt, count - k - 1);
+      break;
+    }
+  }
+}
+
+void Drive::advance(Time now) {
+  params_.advance(now);
+  check_serial_watchdog(now);
+  if (fieldbus_sampling_) return;  // the fieldbus face samples (MC-D4)
+  // Without a fieldbus face the drive samples itself up to `now` (7.2: the plant under the
+  // serial control location), then lets a command that just arrived take effect at once.
+  if (now > sampled_until_) {
+    if (now - sampled_until_ > kCatchUp) sampled_until_ = now - kCatchUp;
+    const auto n = static_cast<std::uint32_t>((now - sampled_until_) / kSamplePeriod);
+    serial_samples(n, kSamplePeriod);
+    sampled_until_ += static_cast<std::int64_t>(n) * kSamplePeriod;
+  }
+  serial_samples(kSettleSamples, Duration{0});
+  refresh_readings();
+}
+
+std::optional<pcp::Value> Drive::read(Time now, std::uint16_t number) {
+  advance(now);
+  refresh_readings();
+  return params_.read(now, number);
+}
+
+WriteResult Drive::write(Time now, std::uint16_t number, std::optional<std::uint32_t> raw) {
+  advance(now);
+  WriteResult r = params_.write(now, number, raw, drivecom::power_stage_enabled(pd_.state()));
+  if (!r.ok() || !raw) return r;
+  if (number == kSwdgt) last_telegram_ = now;  // 5.2: the watchdog's own setting restarts it
+  if (number == kSctl1 && (*raw & kSctl1Reset) != 0 && !params_.downloading() && serial_control()) {
+    // 8.1.2: bit 7 resets the error -- like bit 0, only from the control location SIO (7.2 step
+    // 2, MC-D4); it is a command, the stored word keeps the other bits.
+    params_.set_reading(kSctl1, *raw & ~kSctl1Reset);
+    fault_reset(now);
+  }
+  if (!fieldbus_sampling_) serial_samples(kSettleSamples, Duration{0});
+  refresh_readings();
+  return r;
+}
+
+}  // namespace ibs::devices::mc6000

@@ -1,0 +1,407 @@
+// One MC6000 drive core, two faces (docs/architecture.md, "One drive, many faces"): the INTERBUS
+// face (PCP over the process-data ring) and the LUSTBUS face on one mc6000::Drive. A value written
+// on one bus is what the other reads; and the same access through either face gives the same
+// answer -- reads, writes, each refusal and its 85-SERR bit, the power-on bit, the fault reset,
+// 4-PROG, the 80-SLOAD download and the EEPROM save, with the same timing (docs/errata.md MC-D1..D4).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <optional>
+#include <span>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/mc6000/drive.hpp"
+#include "ibs/devices/mc6000/lustbus_device.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/lustbus/chars.hpp"
+#include "ibs/lustbus/receiver.hpp"
+#include "ibs/lustbus/telegram.hpp"
+#include "ibs/lustbus/value.hpp"
+#include "ibs/pcp/client.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using ibs::Duration;
+using ibs::Time;
+using ibs::Word;
+using ibs::drivecom::State;
+using ibs::DeviceStart;
+namespace mc = ibs::devices::mc6000;
+namespace pcp = ibs::pcp;
+namespace lb = ibs::lustbus;
+
+enum class Face { pcp, lustbus };
+std::string name(Face f) { return f == Face::pcp ? "PCP" : "LUSTBUS"; }
+
+// What an access through a face came to, in the drive's terms.
+struct Answer {
+  bool ok = false;
+  std::uint32_t raw = 0;  // a read's value (the type's bit pattern)
+  Duration took{};        // from the request to its answer
+};
+
+// An MC6000 with both faces on one core: the INTERBUS face sampled every 1 ms by a lock-step
+// ring with a PCP client on its two channel words (405-SUPI 9, 406-IBCNF 1: control word and a
+// 16-bit reference), the LUSTBUS face at address 3.
+class Servo {
+ public:
+  explicit Servo(DeviceStart start = DeviceStart::operational)
+      : core_(std::make_shared<mc::Drive>(mc::DriveConfig{}, start, Time{0})),
+        interbus_(interbus_config(), core_, start, Time{0}),
+        lustbus_(core_),
+        rx_(lustbus_, 3),
+        client_([] {
+          pcp::ClientConfig c;
+          c.channel_words = 2;
+          return c;
+        }()) {
+    // After a power-on both link ends announce their restart first; the client then initiates again.
+    for (int i = 0; i < 3; ++i) {
+      client_.initiate(now_);
+      const auto r = run_pcp();
+      if (r && r->ok()) break;
+    }
+  }
+
+  mc::Drive& core() { return *core_; }
+  ibs::devices::Mc6000Device& interbus() { return interbus_; }
+  mc::LustbusDevice& lustbus() { return lustbus_; }
+  [[nodiscard]] Time now() const { return now_; }
+
+  // One 1 ms ring cycle: the client's and the servo's channel words, the process data.
+  void tick() {
+    now_ += 1ms;
+    client_.step(now_, s2m_, m2s_);
+    interbus_.bus_cycle(now_);
+    interbus_.sample(pd_m2s_, pd_s2m_, now_, m2s_, s2m_);
+  }
+  void idle(Duration d) {
+    const Time end = now_ + d;
+    while (now_ < end) tick();
+  }
+  void set_control_word(Word w) { pd_m2s_[0] = w; }
+
+  Answer read(Face f, std::uint16_t number) {
+    if (f == Face::pcp) {
+      const Time t = now_;
+      if (client_.read(now_, pcp::ParameterRef::number(number)) != pcp::SubmitStatus::accepted) return {};
+      const auto r = run_pcp();
+      if (!r || !r->ok()) return {false, 0, now_ - t};
+      std::uint32_t v = 0;
+      for (std::size_t i = 0; i < r->data.size; ++i) v = v << 8U | r->data.data[i];
+      return {true, v, now_ - t};
+    }
+    const auto a = telegram(lb::encode_enquiry(3, lb::make_code(20000 + number)).span());
+    if (a.bytes.size() < 2 || a.bytes[1] != lb::kStx) return {false, 0, a.took};
+    // ADR STX CODE(5) '=' VALUE ETX BCC: the VALUE in hex.
+    const std::string value(a.bytes.begin() + 8, a.bytes.end() - 2);
+    return {true, static_cast<std::uint32_t>(std::stoul(value, nullptr, 16)), a.took};
+  }
+
+  Answer write(Face f, std::uint16_t number, std::uint32_t raw, Duration limit = 20s) {
+    if (f == Face::pcp) {
+      const pcp::ParameterInfo* p = core_->store().info(number);
+      const pcp::Value v{p ? p->type : pcp::DataType::usign16, raw};
+      const Time t = now_;
+      if (client_.write(now_, pcp::ParameterRef::number(number), v, limit) != pcp::SubmitStatus::accepted) return {};
+      const auto r = run_pcp(limit);
+      return {r && r->ok(), 0, now_ - t};
+    }
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%X", raw);
+    const auto a = telegram(lb::encode_select(3, lb::make_code(20000 + number), lb::make_value(hex)).span());
+    return {a.bytes.size() == 2 && a.bytes[1] == lb::kAck, 0, a.took};
+  }
+
+ private:
+  static ibs::devices::Mc6000DeviceConfig interbus_config() {
+    ibs::devices::Mc6000DeviceConfig c;
+    c.supi = 9;  // 2 process-data words, 2 PCP words (seed 001, 3.2.2)
+    c.ibcnf = 1;
+    c.pcp_latency = pcp::LatencyModel::immediate();
+    return c;
+  }
+
+  std::optional<pcp::Result> run_pcp(Duration limit = 20s) {
+    const Time end = now_ + limit + 1s;
+    while (now_ < end) {
+      tick();
+      if (auto r = client_.take_result()) return r;
+    }
+    return std::nullopt;
+  }
+
+  struct Telegram {
+    std::vector<std::uint8_t> bytes;
+    Duration took{};
+  };
+  // A telegram at the next cycle; the ring runs on until its answer is due, then the host's EOT.
+  Telegram telegram(std::span<const std::uint8_t> bytes) {
+    tick();
+    const Time t = now_;
+    for (const auto b : bytes) rx_.receive(b, now_);
+    Telegram out;
+    if (const auto due = rx_.answer_due()) {
+      while (now_ < *due) tick();
+      const auto a = rx_.take_answer(*due);
+      out.bytes.assign(a.begin(), a.end());
+    }
+    out.took = now_ - t;
+    rx_.receive(lb::kEot, now_);
+    return out;
+  }
+
+  std::shared_ptr<mc::Drive> core_;
+  ibs::devices::Mc6000Device interbus_;
+  mc::LustbusDevice lustbus_;
+  lb::Receiver rx_;
+  pcp::Client client_;
+  Time now_{0};
+  std::array<Word, 2> pd_m2s_{};
+  std::array<Word, 2> pd_s2m_{};
+  std::array<Word, 2> m2s_{};
+  std::array<Word, 2> s2m_{};
+};
+
+constexpr Face kFaces[] = {Face::pcp, Face::lustbus};
+
+TEST(Mc6000Faces, OneStoreBehindBothFaces) {
+  Servo s;
+  // Both faces serve the one core, and the PCP server serves its store.
+  EXPECT_EQ(&s.interbus().drive(), &s.core());
+  EXPECT_EQ(&s.lustbus().drive(), &s.core());
+  EXPECT_EQ(&s.interbus().drive().store(), &s.lustbus().drive().store());
+  EXPECT_EQ(s.interbus().pcp()->served().table().data(), s.core().store().table().data());
+
+  ASSERT_TRUE(s.write(Face::pcp, 83, 1234).ok);
+  EXPECT_EQ(s.read(Face::lustbus, 83).raw, 1234U) << "a PCP Write is what a LUSTBUS ENQUIRY reads";
+  ASSERT_TRUE(s.write(Face::lustbus, 83, 0x0929).ok);
+  EXPECT_EQ(s.read(Face::pcp, 83).raw, 0x0929U) << "a LUSTBUS SELECT is what a PCP Read reads";
+  // An EEPROM value the same way, and its EEPROM copy is the core's.
+  ASSERT_TRUE(s.write(Face::lustbus, 409, 250).ok);
+  EXPECT_EQ(s.read(Face::pcp, 409).raw, 250U);
+  s.idle(40ms);
+  EXPECT_EQ(s.core().parameters().eeprom(409)->raw, 250U);
+}
+
+TEST(Mc6000Faces, ReadsAndWritesAlike) {
+  for (const Face f : kFaces) {
+    Servo s;
+    EXPECT_EQ(s.read(f, mc::kType).raw, 6000U) << name(f);
+    EXPECT_TRUE(s.write(f, 83, 7).ok) << name(f);
+    EXPECT_EQ(s.read(f, 83).raw, 7U) << name(f);
+    EXPECT_EQ(s.read(f, mc::kSerr).raw, 0U) << name(f);
+    // Seed 000 6.1 note: a read of a missing parameter is refused and enters nothing.
+    EXPECT_FALSE(s.read(f, 999).ok) << name(f);
+    EXPECT_EQ(s.core().parameters().serr(), 0U) << name(f);
+  }
+}
+
+// Seed 000 9.2: each refusal enters its cause; while a bit is set every write is refused and
+// enters nothing (MC-D3); reading 85-SERR returns the bits and clears them.
+TEST(Mc6000Faces, EachRefusalEntersItsSerrBitThroughEitherFace) {
+  struct Case {
+    std::uint16_t number;
+    std::uint32_t raw;
+    std::uint8_t bit;
+  };
+  const Case cases[] = {
+      {999, 1, mc::kSerrNoParameter},     // no parameter
+      {mc::kType, 1, mc::kSerrNoChange},  // 91-TYPE is an actual value
+      {mc::kIbcnf, 9, mc::kSerrInvalidValue},  // above max
+      {mc::kSload, 5, mc::kSerrInvalidValue},  // 11.4: the host writes -1 and -2 only
+  };
+  for (const Face f : kFaces) {
+    for (const Case& c : cases) {
+      Servo s;
+      EXPECT_FALSE(s.write(f, c.number, c.raw).ok) << name(f) << " " << c.number;
+      EXPECT_FALSE(s.write(f, 83, 1).ok) << name(f) << ": refused while 85-SERR holds a bit";
+      EXPECT_EQ(s.core().parameters().raw(83), 0U) << name(f);
+      EXPECT_EQ(s.read(f, mc::kSerr).raw, c.bit) << name(f) << " " << c.number;
+      EXPECT_EQ(s.read(f, mc::kSerr).raw, 0U) << name(f) << ": reading clears it";
+      EXPECT_TRUE(s.write(f, 83, 1).ok) << name(f);
+    }
+    // 11.4: 80-SLOAD = -2 without -1, and -1 while the power stage is on: 40H.
+    Servo s;
+    EXPECT_FALSE(s.write(f, mc::kSload, 0xFFFE).ok) << name(f);
+    EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrNoChange) << name(f);
+  }
+}
+
+// Seed 000 6: "After every new start of the device, the bit for flagging power on ... is set".
+TEST(Mc6000Faces, PowerOnBitRefusesTheFirstWriteOnEitherFace) {
+  for (const Face f : kFaces) {
+    Servo s(DeviceStart::initialised);
+    EXPECT_EQ(s.core().parameters().serr(), mc::kSerrPowerOn) << name(f);
+    EXPECT_FALSE(s.write(f, 83, 2).ok) << name(f);
+    EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrPowerOn) << name(f) << ": the refusal adds nothing";
+    EXPECT_TRUE(s.write(f, 83, 2).ok) << name(f);
+    s.core().power_on(s.now());
+    EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrPowerOn) << name(f);
+  }
+}
+
+// Seed 000 3, 10.2.2: RAM at once, the EEPROM copy 15 ms per byte later; another EEPROM write
+// meanwhile is refused with 04H.
+TEST(Mc6000Faces, EepromSaveTakesFifteenMsPerByteOnEitherFace) {
+  for (const Face f : kFaces) {
+    Servo s;
+    ASSERT_TRUE(s.write(f, mc::kSwdgt, 0).ok);  // settle: the first EEPROM write is the one timed
+    s.idle(50ms);
+    const Answer w = s.write(f, 409, 100);
+    ASSERT_TRUE(w.ok) << name(f);
+    const Time busy_until = s.core().parameters().eeprom_busy_until();
+    // The save started when the write was executed: between the request and its answer.
+    EXPECT_LE(busy_until, s.now() + 30ms) << name(f);
+    EXPECT_GE(busy_until, s.now() - w.took + 30ms) << name(f);
+    EXPECT_EQ(s.core().parameters().raw(409), 100U) << name(f) << ": RAM at once";
+    EXPECT_FALSE(s.write(f, 84, 5).ok) << name(f) << ": EEPROM busy";
+    EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrEepromBusy) << name(f);
+    while (s.now() < busy_until - 1ms) s.tick();
+    EXPECT_EQ(s.core().parameters().eeprom(409)->raw, 0U) << name(f) << ": still saving";
+    s.idle(2ms);
+    EXPECT_EQ(s.core().parameters().eeprom(409)->raw, 100U) << name(f);
+    EXPECT_EQ(s.core().parameters().timing().eeprom_per_byte * 2, 30ms);
+  }
+}
+
+// Seed 000 10 exception 1 (MC-D1): the answer to 4-PROG = 1 comes once every parameter is back at
+// its default, 9.9 s after the command on either bus -- within the seed's "up to 10 seconds".
+TEST(Mc6000Faces, Prog1AnswersAfterTheSameTimeOnEitherFace) {
+  for (const Face f : kFaces) {
+    Servo s;
+    ASSERT_TRUE(s.write(f, 83, 5).ok);
+    ASSERT_TRUE(s.write(f, 417, 3).ok);
+    s.idle(50ms);
+    const Answer a = s.write(f, mc::kProg, 1, 12s);
+    ASSERT_TRUE(a.ok) << name(f);
+    EXPECT_GE(a.took, 9900ms) << name(f);
+    EXPECT_LT(a.took, 10s) << name(f);
+    EXPECT_EQ(s.read(f, 83).raw, 0U) << name(f);
+    EXPECT_EQ(s.core().parameters().eeprom(417)->raw, 0U) << name(f);
+    EXPECT_EQ(s.read(f, mc::kProg).raw, 0U) << name(f) << ": a command, not a setting";
+  }
+}
+
+// Seed 000 11.4 (MC-D2): the download of the CardWriteable parameters, tested 200 ms after
+// 80-SLOAD = -2 on either bus; a rejected dataset names its first invalid parameter and the old
+// one comes back; an accepted one goes to EEPROM.
+TEST(Mc6000Faces, DownloadResultAndTimingAlike) {
+  for (const Face f : kFaces) {
+    Servo s;
+    ASSERT_TRUE(s.write(f, mc::kSload, 0xFFFF).ok) << name(f);
+    ASSERT_TRUE(s.write(f, 418, 3).ok) << name(f);
+    ASSERT_TRUE(s.write(f, 419, 9).ok) << name(f) << ": taken without the range check";
+    ASSERT_TRUE(s.write(f, 83, 44).ok) << name(f) << ": not CardWriteable: acknowledged";
+    EXPECT_EQ(s.core().parameters().raw(83), 0U) << name(f) << ": and dropped";
+    ASSERT_TRUE(s.write(f, mc::kSload, 0xFFFE).ok) << name(f);
+    const Time end = s.now();
+    EXPECT_EQ(s.read(f, mc::kSload).raw, 0xFFFFU) << name(f) << ": -1 while testing";
+    EXPECT_FALSE(s.write(f, 83, 1).ok) << name(f) << ": busy testing";
+    EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrNoChange) << name(f);
+    // The test ended 200 ms after the -2 was executed, which was before its answer at `end`.
+    while (s.now() < end + 150ms) s.tick();
+    EXPECT_EQ(s.read(f, mc::kSload).raw, 0xFFFFU) << name(f);
+    while (s.now() < end + 230ms) s.tick();
+    EXPECT_EQ(s.read(f, mc::kSload).raw, 419U) << name(f) << ": rejected, first invalid";
+    EXPECT_EQ(s.core().parameters().raw(418), 0U) << name(f) << ": the old dataset";
+    EXPECT_EQ(s.core().parameters().raw(419), 6U) << name(f);
+
+    ASSERT_TRUE(s.write(f, mc::kSload, 0xFFFF).ok) << name(f);
+    ASSERT_TRUE(s.write(f, 418, 3).ok) << name(f);
+    ASSERT_TRUE(s.write(f, mc::kSload, 0xFFFE).ok) << name(f);
+    s.idle(250ms);
+    EXPECT_EQ(s.read(f, mc::kSload).raw, 0U) << name(f) << ": accepted";
+    EXPECT_EQ(s.core().parameters().eeprom(418)->raw, 3U) << name(f);
+  }
+}
+
+// Seed 000 5.2 and 8.1.2 / seed 001 5.1.2: the serial watchdog's fault, and its reset through
+// either face -- 416-SCTL1 bit 7 over LUSTBUS, control word bit 7 over INTERBUS, each from the
+// control location (MC-D4) -- ends in the same core call: the cause cleared, DRIVECOM out of FAULT.
+TEST(Mc6000Faces, FaultResetThroughEitherFace) {
+  for (const Face f : kFaces) {
+    Servo s;
+    if (f == Face::lustbus) {
+      ASSERT_TRUE(s.write(Face::lustbus, mc::kClsel, mc::kClselSio).ok);
+    }
+    s.idle(40ms);
+    ASSERT_TRUE(s.write(Face::lustbus, mc::kSwdgt, 50).ok);
+    s.idle(80ms);
+    ASSERT_TRUE(s.core().serial_watchdog_fault()) << name(f);
+    EXPECT_EQ(s.core().state(), State::fault) << name(f);
+    EXPECT_EQ(s.core().parameters().serr() & mc::kSerrWatchdog, mc::kSerrWatchdog);
+    s.read(Face::lustbus, mc::kSerr);
+    // The other interface's reset does not act: it has not the control location.
+    if (f == Face::pcp) {
+      ASSERT_TRUE(s.write(Face::lustbus, mc::kSctl1, 0x80).ok);
+    } else {
+      s.set_control_word(0x0080);
+      s.tick();
+      s.set_control_word(0x0000);
+    }
+    s.tick();
+    ASSERT_TRUE(s.core().serial_watchdog_fault()) << name(f);
+    EXPECT_EQ(s.core().state(), State::fault) << name(f);
+    if (f == Face::pcp) {
+      s.set_control_word(0x0080);
+      s.tick();
+      s.set_control_word(0x0000);
+    } else {
+      ASSERT_TRUE(s.write(Face::lustbus, mc::kSctl1, 0x80).ok);
+    }
+    s.tick();
+    EXPECT_FALSE(s.core().serial_watchdog_fault()) << name(f);
+    // Out of FAULT (transition 15); on SIO the drive then walks on to READY TO SWITCH ON itself.
+    EXPECT_EQ(s.core().state(), f == Face::pcp ? State::start_up_inhibit : State::ready) << name(f);
+    if (f == Face::lustbus) {
+      EXPECT_EQ(s.core().parameters().raw(mc::kSctl1) & mc::kSctl1Reset, 0U) << "a command, not kept";
+    }
+  }
+}
+
+// Seed 000 7.2 step 2, seed 001 3.2.1 (MC-D4): with both faces the INTERBUS face samples the
+// drive; 402-CLSEL decides whose commands it follows -- the fieldbus's control word with the
+// factory OPT1, 416-SCTL1 with SIO.
+TEST(Mc6000Faces, ControlLocationDecidesWhichFaceCommands) {
+  Servo s;
+  EXPECT_FALSE(s.core().serial_control());
+  ASSERT_TRUE(s.write(Face::lustbus, 300, mc::kCfconScon).ok);
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kSctl1, 1).ok);
+  s.idle(10ms);
+  EXPECT_EQ(s.core().state(), State::start_up_inhibit) << "SCTL1 does not command on OPT1";
+  s.set_control_word(0x0006);  // SHUTDOWN
+  s.idle(5ms);
+  s.set_control_word(0x000F);  // ENABLE OPERATION
+  s.idle(5ms);
+  EXPECT_EQ(s.core().state(), State::enabled) << "the fieldbus commands on OPT1";
+  s.set_control_word(0x0006);
+  s.idle(500ms);
+  ASSERT_TRUE(s.write(Face::pcp, mc::kClsel, mc::kClselSio).ok);  // the master hands over
+  s.idle(10ms);
+  EXPECT_TRUE(s.core().serial_control());
+  EXPECT_EQ(s.core().state(), State::enabled) << "416-SCTL1 bit 0 commands on SIO";
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kSctl1, 0).ok);
+  s.idle(5ms);
+  EXPECT_EQ(s.core().state(), State::ready);
+}
+
+// DeviceEmulator::clone: a copy of the INTERBUS face is an independent servo with its own core.
+TEST(Mc6000Faces, CloneOfAFaceClonesItsCore) {
+  Servo s;
+  ASSERT_TRUE(s.write(Face::pcp, 83, 11).ok);
+  const auto copy = s.interbus().clone();
+  auto& twin = dynamic_cast<ibs::devices::Mc6000Device&>(*copy);
+  EXPECT_NE(&twin.drive(), &s.core());
+  EXPECT_EQ(twin.drive().parameters().raw(83), 11U);
+  ASSERT_TRUE(s.write(Face::lustbus, 83, 12).ok);
+  EXPECT_EQ(twin.drive().parameters().raw(83), 11U);
+  EXPECT_EQ(twin.pcp()->served().table().data(), twin.drive().store().table().data());
+}
+
+}  // namespace
