@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
-#include <random>
 #include <unordered_map>
 
 #include "ibs/devices/emulator.hpp"
