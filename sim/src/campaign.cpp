@@ -187,7 +187,7 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
   const bool certain = landed && !o.disturbed;
   switch (c->spec.role) {
     case ParamRole::command:
-      if (o.value == 1) factory_reset(d, certain);
+      if (o.value == drive::kLoadDefaults) factory_reset(d, certain);
       break;
     case ParamRole::download:
       if (o.value == drive::kDownloadBegin) {
@@ -279,7 +279,7 @@ std::vector<std::int64_t> CampaignChecker::allowed_now(const Dev& d, const Cell&
     if (x.spec.number == w.number) wc = &x;
   }
   if (wc == nullptr || w.value < wc->spec.min || w.value > wc->spec.max) return v;
-  if (wc->spec.role == ParamRole::command && w.value == 1 && c.spec.role != ParamRole::command &&
+  if (wc->spec.role == ParamRole::command && w.value == drive::kLoadDefaults && c.spec.role != ParamRole::command &&
       c.spec.role != ParamRole::device_owned) {
     add(v, c.spec.factory);
   }
