@@ -38,7 +38,8 @@ if [[ -e "$work/prefix/bin/ibs" ]] || ls "$work/prefix"/lib*/libibs_sim* >/dev/n
 fi
 for header in interbus/trace.hpp interbus/replay.hpp interbus/text_file.hpp devices/trace_support.hpp \
               vf1000_channel/trace_adapters.hpp devices/mc6000/pcp_trace.hpp devices/mc6000/pd_trace.hpp \
-              devices/vf1000/pd_trace.hpp; do
+              devices/vf1000/pd_trace.hpp devices/campaign_profile.hpp devices/mc6000/campaign_profile.hpp \
+              devices/vf1000/campaign_profile.hpp; do
   if [[ -e "$work/prefix/include/ibs/$header" ]]; then fail "the embedded installation holds ibs/$header"; fi
 done
 

@@ -2,21 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
-#include <random>
 #include <unordered_map>
 
-#include "ibs/devices/mc6000/descriptor.hpp"
-#include "ibs/devices/mc6000/device.hpp"
-#include "ibs/devices/mc6000/parameters.hpp"
-#include "ibs/devices/mc6000/service.hpp"
-#include "ibs/devices/vf1000/descriptor.hpp"
-#include "ibs/devices/vf1000/device.hpp"
-#include "ibs/devices/vf1000/parameters.hpp"
-#include "ibs/pcp/data_types.hpp"
-#include "ibs/pcp/parameter_store.hpp"
+#include "ibs/devices/emulator.hpp"
+#include "ibs/devices/registry.hpp"
+#include "ibs/drive/parameters.hpp"
 #include "ibs/sim/simulator.hpp"
 
 namespace ibs::sim {
@@ -124,7 +117,7 @@ void CampaignChecker::settle(Dev& d, Time now) {
     if (!c.settle_at || *c.settle_at > now) continue;
     if (c.settle_ram) {
       c.ram = {c.settle};
-      if (c.spec.role == ParamRole::sload) d.download_open = false;
+      if (c.spec.role == ParamRole::download) d.download_open = false;
     } else {
       c.eeprom = {c.settle};
     }
@@ -194,28 +187,29 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
   const bool certain = landed && !o.disturbed;
   switch (c->spec.role) {
     case ParamRole::command:
-      if (o.value == 1) factory_reset(d, certain);
+      if (o.value == drive::kLoadDefaults) factory_reset(d, certain);
       break;
-    case ParamRole::sload:
-      if (o.value == -1) {
+    case ParamRole::download:
+      if (o.value == drive::kDownloadBegin) {
         if (certain) {
-          c->ram = {-1};
+          c->ram = {drive::kDownloadBegin};
           c->settle_at.reset();
           d.download_open = true;
           d.lock_may_end.reset();
         } else {
-          add(c->ram, -1);
+          add(c->ram, drive::kDownloadBegin);
         }
-      } else if (o.value == -2) {
+      } else if (o.value == drive::kDownloadEnd) {
         if (certain) {
-          // The dataset is checked (SLOAD -1), then SLOAD reads 0 (docs/errata.md MC-D2).
-          c->ram = {-1, 0};
+          // The dataset is checked (SLOAD reads kDownloadBegin), then SLOAD reads 0 (docs/errata.md
+          // MC-D2).
+          c->ram = {drive::kDownloadBegin, 0};
           c->settle_at = now + d.spec.download_check + 2 * d.spec.period + 2 * d.spec.jitter;
           c->settle = 0;
           c->settle_ram = true;
           d.lock_may_end = o.submitted + d.spec.download_check;
         } else {
-          add(c->ram, -1);
+          add(c->ram, drive::kDownloadBegin);
           add(c->ram, 0);
           d.download_open = false;  // not known any more
         }
@@ -299,16 +293,16 @@ std::vector<std::int64_t> CampaignChecker::allowed_now(const Dev& d, const Cell&
     if (x.spec.number == w.number) wc = &x;
   }
   if (wc == nullptr || w.value < wc->spec.min || w.value > wc->spec.max) return v;
-  if (wc->spec.role == ParamRole::command && w.value == 1 && c.spec.role != ParamRole::command &&
+  if (wc->spec.role == ParamRole::command && w.value == drive::kLoadDefaults && c.spec.role != ParamRole::command &&
       c.spec.role != ParamRole::device_owned) {
     add(v, c.spec.factory);
   }
   if (w.number == c.spec.number) {
     if (c.spec.role == ParamRole::normal) {
       add(v, w.value);
-    } else if (c.spec.role == ParamRole::sload && w.value < 0 && !eeprom) {
-      add(v, -1);
-      if (w.value == -2) add(v, 0);
+    } else if (c.spec.role == ParamRole::download && w.value < 0 && !eeprom) {
+      add(v, drive::kDownloadBegin);
+      if (w.value == drive::kDownloadEnd) add(v, 0);
     }
   }
   return v;
@@ -337,8 +331,8 @@ void CampaignChecker::withdraw(Dev& d, Time t, const std::string& why, bool via_
 }
 
 void CampaignChecker::software_reset(std::size_t dev, Time now) {
-  // The VF1000's RESET FAULT (seed 001, 5.2.1): it boots, its store as after a power cycle, and
-  // its bus watchdog as after one too: monitoring again from the first valid cycle after the
+  // A reset from FAULT that boots the drive (RESET FAULT, seed 001, 5.2.1): its store
+  // as after a power cycle, and its bus watchdog as after one too: monitoring again from the first valid cycle after the
   // self-test. The master asked for it, so its request is not touched.
   Dev& d = devices_[dev];
   reboot_store(d, now);
@@ -363,7 +357,7 @@ void CampaignChecker::reboot_store(Dev& d, Time now) {
     switch (c.spec.role) {
       case ParamRole::device_owned: break;
       case ParamRole::command:
-      case ParamRole::sload: c.ram = {c.spec.factory}; c.settle_at.reset(); break;
+      case ParamRole::download: c.ram = {c.spec.factory}; c.settle_at.reset(); break;
       case ParamRole::normal:
         c.ram = c.spec.eeprom ? c.eeprom : std::vector<std::int64_t>{c.spec.factory};
         c.settle_at.reset();  // a save not yet done may be lost: the EEPROM set keeps both
@@ -454,11 +448,7 @@ std::pair<std::int64_t, std::int64_t> CampaignChecker::watchdog_window(const Dev
   std::int64_t hi = -1;
   bool off = false;
   for (std::int64_t v : values) {
-    std::int64_t t = v;
-    if (d.spec.kind == devices::vf1000::kName) {
-      const auto m = devices::vf1000::ib_wd_monitoring_time(static_cast<Word>(v));
-      t = m ? m->count() : 0;
-    }
+    const std::int64_t t = d.spec.watchdog_parameter != 0 && d.spec.watchdog_ms ? d.spec.watchdog_ms(v) : v;
     if (t <= 0) {
       off = true;
       continue;
@@ -521,7 +511,8 @@ void CampaignChecker::observe(std::size_t dev, Time t, State state, bool watchdo
   ++counts_.state_checks;
   if (d.download_open && !(d.lock_may_end && t >= *d.lock_may_end) && !d.lock_reported) {
     d.lock_reported = true;
-    violation(d, t, "download-lock", "ENABLED during an open 80-SLOAD download (seed 000 11.4: secured until it ends)");
+    violation(d, t, "download-lock",
+              "ENABLED during an open " + d.spec.download_label + " download (" + d.spec.download_source + ")");
   }
   const bool in_flight = d.written_after || d.word_out || d.leave_by;
   if (!d.permitted && !in_flight && !d.enabled_reported) {
@@ -547,29 +538,13 @@ std::vector<std::int64_t> CampaignChecker::possible(std::size_t dev, std::uint16
 }
 
 // ---------------------------------------------------------------------------------------------
-// The campaign: the ring, the traffic, the faults.
+// The campaign: the ring, the traffic, the faults. Every drive kind's part comes from its profile
+// (devices/campaign_profile.hpp), found through the registry.
 
 namespace {
 
-// The campaign's oracle knows both drives it runs; the simulator hands out their emulators.
-devices::Mc6000Device& mc6000_of(Simulator& sim, std::size_t i) {
-  return dynamic_cast<devices::Mc6000Device&>(sim.emulator(i));
-}
-devices::Vf1000Device& vf1000_of(Simulator& sim, std::size_t i) {
-  return dynamic_cast<devices::Vf1000Device&>(sim.emulator(i));
-}
-
-
-constexpr Duration kPcpTimeout = 500ms;      // pcp::ClientConfig::request_timeout (docs/pcp.md)
-constexpr Duration kVfTimeout = 2s;          // vf1000_channel::ClientConfig::timeout
 constexpr int kMarginCycles = 5;             // see docs/robustness.md
 constexpr Duration kOutage = 550ms;          // longer than every watchdog time the ring uses
-
-struct Pool {
-  std::uint16_t number = 0;
-  std::vector<std::int64_t> in_range;
-  std::vector<std::int64_t> out_of_range;
-};
 
 struct Step {
   ParamOp op = ParamOp::read;
@@ -581,13 +556,17 @@ struct Step {
 
 struct Node {
   std::size_t index = 0;
-  std::string kind;  // the drive kind's name
-  int supi = 0;
-  int ibcnf = 0;
-  bool pcp = false;
+  const devices::CampaignProfile* profile = nullptr;
+  devices::CampaignRingDevice ring;  // as the ring configured it
+  bool pcp = false;                  // a parameter channel
   bool pd = false;
-  std::vector<Pool> pools;
+  std::vector<devices::CampaignWrites> pools;
   std::vector<std::uint16_t> readable;
+  std::vector<devices::CampaignLayoutParameter> layout;
+  std::optional<devices::CampaignDownload> download;
+  std::optional<devices::CampaignFactoryDefaults> factory_defaults;
+  std::optional<std::uint16_t> error_register;
+  double describe_share = 0.0;
   // Traffic.
   bool busy = false;
   devices::ParamId id = 0;
@@ -600,19 +579,38 @@ struct Node {
   // State commands.
   Time next_command{0};
   std::optional<State> last_state;
-  std::uint32_t software_resets = 0;  // VF1000 boots from RESET FAULT seen so far
-  // 405/406 and the technician.
+  std::uint32_t software_resets = 0;  // boots from a reset seen so far
+  // The layout parameters and the technician.
   std::optional<Time> power_cycle_at;
   bool check_layout = false;
   bool layout_expected_mismatch = false;
+
+  [[nodiscard]] bool is_download(std::uint16_t number) const { return download && download->parameter == number; }
+  // "405/406"
+  [[nodiscard]] std::string layout_numbers() const {
+    std::string s;
+    for (const auto& l : layout) s += (s.empty() ? "" : "/") + std::to_string(l.number);
+    return s;
+  }
 };
 
 std::string kind_name(ParamKind k) { return std::string(devices::to_string(k)); }
 
+DeviceConfig device_config(const devices::DriveKind& kind, const devices::CampaignRingDevice& r) {
+  DeviceConfig c;
+  c.name = r.name;
+  c.kind = std::string(kind->name());
+  set_device_settings(c, r.settings);
+  c.phase = r.phase;
+  c.jitter = r.jitter;
+  c.initialised = r.initialised;
+  return c;
+}
+
 struct Runner {
   const CampaignOptions& opt;
   CampaignResult& res;
-  std::mt19937_64 rng;
+  devices::CampaignRandom rng;
   Scenario scenario;
   std::unique_ptr<Simulator> sim;
   CampaignChecker checker;
@@ -629,51 +627,21 @@ struct Runner {
 
   Runner(const CampaignOptions& o, CampaignResult& r) : opt(o), res(r), rng(o.seed * 0x9E3779B97F4A7C15ULL + 7) {}
 
-  std::int64_t uniform(std::int64_t lo, std::int64_t hi) { return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng); }
-  bool chance(double p) { return std::uniform_real_distribution<double>(0.0, 1.0)(rng) < p; }
+  std::int64_t uniform(std::int64_t lo, std::int64_t hi) { return rng.uniform(lo, hi); }
+  bool chance(double p) { return rng.chance(p); }
   template <typename T>
-  const T& pick(const std::vector<T>& v) { return v[static_cast<std::size_t>(uniform(0, static_cast<std::int64_t>(v.size()) - 1))]; }
-  Duration between(Duration lo, Duration hi) { return Duration{uniform(lo.count(), hi.count())}; }
+  const T& pick(const std::vector<T>& v) { return rng.pick(v); }
+  Duration between(Duration lo, Duration hi) { return rng.between(lo, hi); }
 
   void build() {
-    struct Mc {
-      const char* name;
-      int supi, ibcnf;
-      std::vector<int> butwd;
-    };
-    // PCP over 4 words (SUPI 3), 2 words (SUPI 2, 6, 9), 1 word (SUPI 5, 8, 11); two servos
-    // without PCP (SUPI 10, 12), one of them stepped a cycle at a time (no jitter).
-    const std::vector<Mc> mcs = {
-        {"mc4a", 3, 0, {0, 50, 120}},   {"mc4b", 3, 0, {0, 80}},       {"mc4c", 3, 0, {40, 150}},
-        {"mc2a", 9, 1, {30, 60, 100}},  {"mc2b", 6, 0, {0, 100}},      {"mc2c", 9, 0, {50, 200}},
-        {"mc2d", 2, 0, {0, 60}},        {"mc1a", 11, 2, {30, 50}},     {"mc1b", 11, 3, {0, 200}},
-        {"mc1c", 8, 1, {40, 120}},      {"mc1d", 5, 0, {0, 80}},       {"mcpd", 12, 2, {25, 40, 250}},
-        {"mcpd2", 10, 3, {20, 100}},
-    };
-    for (const auto& m : mcs) {
-      DeviceConfig c;
-      c.name = m.name;
-      c.kind = devices::mc6000::kName;
-      c.supi = m.supi;
-      c.ibcnf = m.ibcnf;
-      c.bus = chance(0.3) ? interbus::BusKind::local : interbus::BusKind::remote;
-      c.phase = between(Duration{0}, ibs::devices::mc6000::kSamplePeriod - Duration{1});
-      c.jitter = std::string(m.name) == "mcpd" ? Duration{0} : pick(std::vector<Duration>{0us, 20us, 50us, 100us});
-      c.initialised = !chance(0.2);
-      c.watchdog_ms = pick(m.butwd);
-      scenario.devices.push_back(c);
-    }
-    const std::vector<int> ibwd = {100, 200, 400, 65535};
-    for (int v = 0; v < 4; ++v) {
-      DeviceConfig c;
-      c.name = "vf" + std::to_string(v + 1);
-      c.kind = devices::vf1000::kName;
-      c.phase = between(Duration{0}, ibs::devices::vf1000::kSamplePeriod - Duration{1});
-      c.jitter = pick(std::vector<Duration>{0us, 100us, 400us});
-      c.initialised = !chance(0.25);
-      c.watchdog_ms = ibwd[static_cast<std::size_t>(v)] == 65535 ? 65535 : static_cast<int>(uniform(8, ibwd[static_cast<std::size_t>(v)]));
-      c.watchdog_reaction = v % 4;  // 0 none, 1 E-IBS, 2 BLOCK POWER, 3 EMERGENCY STOP
-      scenario.devices.push_back(c);
+    // Every kind's share of the ring, in the registry's order.
+    std::vector<std::pair<const devices::DriveKind*, devices::CampaignRingDevice>> ring;
+    for (const devices::DriveKind& k : devices::drive_kinds()) {
+      if (k.campaign == nullptr) continue;
+      for (devices::CampaignRingDevice& r : k.campaign->ring(rng)) {
+        scenario.devices.push_back(device_config(k, r));
+        ring.emplace_back(&k, std::move(r));
+      }
     }
     scenario.name = "campaign";
     scenario.bus.baud_2mbit = true;
@@ -690,45 +658,37 @@ struct Runner {
 
     for (std::size_t i = 0; i < scenario.devices.size(); ++i) {
       const DeviceConfig& c = scenario.devices[i];
+      const devices::CampaignProfile& profile = *ring[i].first->campaign;
       Node n;
       n.index = i;
-      n.kind = c.kind;
+      n.profile = &profile;
+      n.ring = std::move(ring[i].second);
+      devices::CampaignDevice dev = profile.device(n.ring, sim->emulator(i), rng);
+      n.pcp = dev.has_channel;
+      n.pd = dev.has_pd;
+      n.pools = std::move(dev.writes);
+      n.readable = std::move(dev.readable);
+      n.layout = std::move(dev.layout);
+      n.download = profile.download();
+      n.factory_defaults = profile.factory_defaults();
+      n.error_register = profile.write_error_register();
+      n.describe_share = profile.describe_share();
       CheckerDeviceSpec spec;
       spec.name = c.name;
-      spec.kind = c.kind;
+      spec.period = dev.period;
       spec.jitter = c.jitter;
-      std::string desc = c.name + ": ";
-      if (c.kind == devices::mc6000::kName) {
-        const auto& l = mc6000_of(*sim, i).layout();
-        n.supi = c.supi;
-        n.ibcnf = c.ibcnf;
-        n.pcp = l.pcp_words > 0;
-        n.pd = l.pd_words > 0;
-        spec.period = ibs::devices::mc6000::kSamplePeriod;
-        spec.download_check = ibs::devices::mc6000::DriveTiming{}.download_check;
-        spec.has_pd = n.pd;
-        desc += "MC6000 SUPI " + std::to_string(c.supi) + " / IBCNF " + std::to_string(c.ibcnf) + ", " +
-                std::to_string(l.pd_words) + " process-data word(s), " +
-                (n.pcp ? "PCP " + std::to_string(l.pcp_words) + " word(s)" : std::string("no PCP")) + ", " +
-                (c.bus == interbus::BusKind::local ? "local" : "remote") + std::string(" bus, 409-BUTWD ") + std::to_string(*c.watchdog_ms) + " ms";
-        if (n.pcp) {
-          spec.watchdog_parameter = 409;
-          build_mc_params(n, spec, c);
-        } else {
-          spec.watchdog_fixed_ms = *c.watchdog_ms;
-        }
-      } else {
-        n.pcp = true;  // the communication word
-        n.pd = true;
-        spec.period = ibs::devices::vf1000::kSamplePeriod;
-        spec.watchdog_parameter = 906;
-        desc += "VF1000, 906-IB-WD " + std::to_string(*c.watchdog_ms) + " ms, 907-IBCOD " +
-                std::to_string(*c.watchdog_reaction);
-        build_vf_params(n, spec, c);
+      spec.has_pd = dev.has_pd;
+      spec.params = std::move(dev.params);
+      spec.watchdog_parameter = dev.watchdog_parameter;
+      spec.watchdog_ms = [&profile](std::int64_t raw) { return profile.watchdog_ms(raw); };
+      spec.watchdog_fixed_ms = dev.watchdog_fixed_ms;
+      if (n.download) {
+        spec.download_check = n.download->check;
+        spec.download_label = std::string(n.download->label);
+        spec.download_source = std::string(n.download->source);
       }
-      desc += ", phase " + fmt_time(c.phase) + ", jitter " + fmt_time(c.jitter) +
-              (c.initialised ? "" : ", switched on at the start");
-      res.devices.push_back(desc);
+      res.devices.push_back(c.name + ": " + dev.description + ", phase " + fmt_time(c.phase) + ", jitter " +
+                            fmt_time(c.jitter) + (c.initialised ? "" : ", switched on at the start"));
       checker.add_device(std::move(spec));
       n.next_command = Time{0} + between(1ms, 50ms);
       by_name[c.name] = i;
@@ -741,72 +701,6 @@ struct Runner {
     }
   }
 
-  void build_mc_params(Node& n, CheckerDeviceSpec& spec, const DeviceConfig& c) {
-    for (const pcp::ParameterInfo& p : devices::mc6000::kParameters) {
-      ParamModelSpec m;
-      m.number = p.number;
-      m.eeprom = p.category == pcp::Category::eeprom;
-      m.factory = p.default_value;
-      m.initial = p.number == devices::mc6000::kSupi ? c.supi : p.number == devices::mc6000::kIbcnf ? c.ibcnf
-                  : p.number == 409        ? *c.watchdog_ms
-                                           : p.default_value;
-      m.min = p.min;
-      m.max = p.max;
-      m.eeprom_save = std::chrono::milliseconds(15) * static_cast<std::int64_t>(pcp::size_of(p.type)) +
-                      ibs::devices::mc6000::kSamplePeriod + 2 * c.jitter;
-      m.card_writeable = devices::mc6000::card_writeable(p.number);
-      m.role = !p.writable() ? ParamRole::device_owned
-               : p.number == devices::mc6000::kProg  ? ParamRole::command
-               : p.number == devices::mc6000::kSload ? ParamRole::sload
-                                         : ParamRole::normal;
-      spec.params.push_back(m);
-      n.readable.push_back(p.number);
-      if (m.role != ParamRole::normal || p.number == devices::mc6000::kSupi || p.number == devices::mc6000::kIbcnf) continue;
-      Pool pool;
-      pool.number = p.number;
-      pool.in_range = {p.default_value, p.min, p.max};
-      for (int k = 0; k < 3; ++k) add(pool.in_range, uniform(p.min, p.max));
-      if (p.number == 409) pool.in_range = {0, 40, 100, 250, m.initial};
-      for (const std::int64_t v : {p.min - 1, p.max + 1}) pool.out_of_range.push_back(v);
-      n.pools.push_back(std::move(pool));
-    }
-  }
-
-  void build_vf_params(Node& n, CheckerDeviceSpec& spec, const DeviceConfig& c) {
-    for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
-      ParamModelSpec m;
-      m.number = p.number;
-      const drive::Storage s = drive::storage(p.category);
-      m.eeprom = s == drive::Storage::eeprom || s == drive::Storage::eeprom_ram;
-      m.eeprom_ram = s == drive::Storage::eeprom_ram;
-      m.factory = p.default_value;
-      m.initial = p.number == devices::vf1000::pnr::kIbWd ? *c.watchdog_ms : p.number == devices::vf1000::pnr::kIbcod ? *c.watchdog_reaction
-                                                                                           : p.default_value;
-      m.min = p.min;
-      m.max = p.max;
-      m.eeprom_save = Duration{0};  // the inverter's store takes the EEPROM copy with the value
-      // 901/905 mirror the process data; 11-STAT reads the drive's status and takes only the reset
-      // 000FH (seed 000, 8.1.1), over the communication word too (VF-E14).
-      const bool mirrored = p.number == devices::vf1000::pnr::kIcntl || p.number == devices::vf1000::pnr::kFdriv ||
-                            p.number == devices::vf1000::pnr::kStat;
-      m.role = (!drive::writable(p.category) || mirrored) ? ParamRole::device_owned
-               : p.number == devices::vf1000::pnr::kProg           ? ParamRole::command
-                                                      : ParamRole::normal;
-      spec.params.push_back(m);
-      n.readable.push_back(p.number);
-      if (m.role != ParamRole::normal) continue;
-      Pool pool;
-      pool.number = p.number;
-      pool.in_range = {p.default_value, p.min, p.max};
-      for (int k = 0; k < 2; ++k) add(pool.in_range, uniform(p.min, p.max));
-      if (p.number == devices::vf1000::pnr::kIbWd) pool.in_range = {100, 200, 400, 65535, m.initial};
-      if (p.max < 0xFFFF) pool.out_of_range.push_back(p.max + 1);
-      if (p.type == drive::DataType::usign8 || p.type == drive::DataType::binary8) pool.out_of_range.push_back(0x1FF);
-      if (p.min > 0) pool.out_of_range.push_back(p.min - 1);
-      n.pools.push_back(std::move(pool));
-    }
-  }
-
   // --- traffic ---------------------------------------------------------------------------------
 
   Step next_step(Node& n) {
@@ -815,53 +709,58 @@ struct Runner {
       n.script.pop_front();
       return s;
     }
-    const bool mc = n.kind == devices::mc6000::kName;
-    if (mc && chance(1.0 / 3000)) start_download(n);
-    if (mc && chance(1.0 / 3000)) {
-      // 405-SUPI / 406-IBCNF: evaluated only at the next power-on (seed 001 3.2.2).
-      const bool supi = chance(0.5);
-      const std::uint16_t number = supi ? devices::mc6000::kSupi : devices::mc6000::kIbcnf;
-      const int configured = supi ? n.supi : n.ibcnf;
-      std::int64_t v = configured;
-      if (chance(0.5)) {
-        while (v == configured) v = supi ? uniform(0, 12) : uniform(0, 3);
-      }
-      n.script.push_back({ParamOp::write, number, v, Duration{0}, supi ? "405-SUPI writes" : "406-IBCNF writes"});
-    }
-    if (chance(1.0 / 6000)) {
-      // 4-PROG / 71-PROG: 1 loads the factory defaults (seed 000 10); 111 (MC6000) a baud rate.
-      const std::int64_t v = mc && chance(0.3) ? pick(std::vector<std::int64_t>{0, 111}) : 1;
-      n.script.push_back({ParamOp::write, static_cast<std::uint16_t>(mc ? devices::mc6000::kProg : devices::vf1000::pnr::kProg), v,
-                          Duration{0}, mc ? "4-PROG writes" : "71-PROG writes"});
+    if (n.download && chance(1.0 / 3000)) start_download(n);
+    if (!n.layout.empty() && chance(1.0 / 3000)) change_layout(n);
+    if (n.factory_defaults && chance(1.0 / 6000)) {
+      // The PROG command: kLoadDefaults loads the factory defaults (seed 000 10); now and then
+      // another of its values.
+      const devices::CampaignFactoryDefaults& f = *n.factory_defaults;
+      const std::int64_t v = !f.other_values.empty() && chance(f.other_chance) ? pick(f.other_values)
+                                                                             : std::int64_t{drive::kLoadDefaults};
+      n.script.push_back({ParamOp::write, f.parameter, v, Duration{0}, std::string(f.label) + " writes"});
     }
     if (!n.script.empty()) return next_step(n);
-    const double r = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
-    const double describe = mc ? 0.06 : 0.02;
+    const double r = rng.real();
     if (r < 0.02) {
       // A parameter the device does not have.
       const std::uint16_t missing = pick(std::vector<std::uint16_t>{40, 400, 999});
       const ParamOp op = pick(std::vector<ParamOp>{ParamOp::read, ParamOp::write, ParamOp::describe});
       return {op, missing, 1, Duration{0}, ""};
     }
-    if (r < 0.02 + describe) return {ParamOp::describe, pick(n.readable), 0, Duration{0}, ""};
+    if (r < 0.02 + n.describe_share) return {ParamOp::describe, pick(n.readable), 0, Duration{0}, ""};
     if (r < 0.5) return {ParamOp::read, pick(n.readable), 0, Duration{0}, ""};
-    const Pool& p = pick(n.pools);
+    const devices::CampaignWrites& p = pick(n.pools);
     const bool bad = !p.out_of_range.empty() && chance(0.12);
     return {ParamOp::write, p.number, bad ? pick(p.out_of_range) : pick(p.in_range), Duration{0}, ""};
   }
 
+  void change_layout(Node& n) {
+    // One of the layout parameters, each as likely: the drive evaluates it only at the next
+    // power-on. Half the time the ring's value, half another.
+    std::size_t k = 0;
+    while (k + 1 < n.layout.size() && !chance(1.0 / static_cast<double>(n.layout.size() - k))) ++k;
+    const devices::CampaignLayoutParameter& l = n.layout[k];
+    std::int64_t v = l.configured;
+    if (chance(0.5)) {
+      while (v == l.configured) v = uniform(l.min, l.max);
+    }
+    n.script.push_back({ParamOp::write, l.number, v, Duration{0}, std::string(l.label) + " writes"});
+  }
+
   void start_download(Node& n) {
     // Seed 000 11.4: SLOAD = -1 (only at standstill), the dataset, SLOAD = -2, then poll SLOAD.
-    ++res.special["80-SLOAD downloads started"];
+    const devices::CampaignDownload& dl = *n.download;
+    const std::string label(dl.label);
+    ++res.special[label + " downloads started"];
     n.sload_end_retries = 0;
     if (n.pd) command(n, StateCommand::block_power, sim->now());
-    n.script.push_back({ParamOp::write, devices::mc6000::kSload, -1, 30ms, "80-SLOAD = -1"});
+    n.script.push_back({ParamOp::write, dl.parameter, drive::kDownloadBegin, 30ms, label + " = -1"});
     for (int k = 0; k < 3; ++k) {
-      const Pool& p = pick(n.pools);
+      const devices::CampaignWrites& p = pick(n.pools);
       n.script.push_back({ParamOp::write, p.number, pick(p.in_range), Duration{0}, "writes during a download"});
     }
-    n.script.push_back({ParamOp::write, devices::mc6000::kSload, -2, Duration{0}, "80-SLOAD = -2"});
-    n.script.push_back({ParamOp::read, devices::mc6000::kSload, 0, 600ms, "80-SLOAD polls"});
+    n.script.push_back({ParamOp::write, dl.parameter, drive::kDownloadEnd, Duration{0}, label + " = -2"});
+    n.script.push_back({ParamOp::read, dl.parameter, 0, 600ms, label + " polls"});
   }
 
   void submit(Node& n, Time now) {
@@ -873,13 +772,7 @@ struct Runner {
       return;
     }
     devices::DeviceDriver& drv = sim->driver(n.index);
-    // An MC6000 request: an Initiate and the request itself, each with the PCP client's timeout;
-    // a write of 4-PROG = 1 waits for the factory defaults (seed 000, 10: up to 10 s).
-    const bool factory_defaults = n.kind == devices::mc6000::kName && s.op == devices::ParamOp::write &&
-                                  s.number == devices::mc6000::kProg && s.value == devices::mc6000::kProgFactoryDefaults;
-    const Duration mc_limit =
-        kPcpTimeout + (factory_defaults ? devices::Mc6000Driver::kFactoryDefaultsTimeout : kPcpTimeout);
-    const Duration limit = (n.kind == devices::mc6000::kName ? mc_limit : kVfTimeout) + kMarginCycles * sim->cycle_time();
+    const Duration limit = n.profile->request_timeout(s.op, s.number, s.value) + kMarginCycles * sim->cycle_time();
     n.current = s;
     trace(n, now, "submit " + std::string(devices::to_string(s.op)) + " " + std::to_string(s.number) + " " + std::to_string(s.value));
     checker.submitted(n.index, s.op, s.number, s.value, now, limit);
@@ -896,58 +789,42 @@ struct Runner {
     ++res.transactions_by[std::string(devices::to_string(n.current.op)) + " " + kind_name(st.kind)];
     if (!n.current.special.empty()) ++res.special[n.current.special + " (" + kind_name(st.kind) + ")"];
     check_store(n, now);
-    const bool mc = n.kind == devices::mc6000::kName;
-    if (mc && n.current.op == ParamOp::write && st.kind != ParamKind::written && st.kind != ParamKind::refused) {
-      // A refused PCP write sets 85-SERR, which refuses every further write until it is read.
-      n.script.push_front({ParamOp::read, devices::mc6000::kSerr, 0, Duration{0}, ""});
+    const Step& cur = n.current;
+    if (n.error_register && cur.op == ParamOp::write && st.kind != ParamKind::written && st.kind != ParamKind::refused) {
+      // The refused write latched the error register, which refuses every further write until
+      // it is read.
+      const std::uint16_t reg = *n.error_register;
+      n.script.push_front({ParamOp::read, reg, 0, Duration{0}, ""});
       // A download whose start or end was refused is given up (or its end repeated).
-      if (n.current.number == devices::mc6000::kSload && n.current.value == -1) {
-        while (!n.script.empty() && !n.script.front().special.empty() && n.script.front().number != devices::mc6000::kSerr) n.script.pop_front();
+      if (n.is_download(cur.number) && cur.value == drive::kDownloadBegin) {
+        while (!n.script.empty() && !n.script.front().special.empty() && n.script.front().number != reg) n.script.pop_front();
         std::erase_if(n.script, [](const Step& x) { return !x.special.empty(); });
       }
-      if (n.current.number == devices::mc6000::kSload && n.current.value == -2 && n.sload_end_retries < 3) {
+      if (n.is_download(cur.number) && cur.value == drive::kDownloadEnd && n.sload_end_retries < 3) {
         ++n.sload_end_retries;
-        n.script.push_back({ParamOp::write, devices::mc6000::kSload, -2, 100ms, "80-SLOAD = -2"});
+        n.script.push_back({ParamOp::write, cur.number, drive::kDownloadEnd, 100ms, std::string(n.download->label) + " = -2"});
       }
     }
-    if (mc && n.current.op == ParamOp::read && n.current.number == devices::mc6000::kSload && st.kind == ParamKind::value &&
-        !n.current.special.empty()) {
-      ++res.special[st.value == 0 ? "80-SLOAD downloads completed (reads 0)" : "80-SLOAD polls still -1"];
-      if (st.value == -1 && checker.download_open(n.index)) {
-        n.script.push_back({ParamOp::read, devices::mc6000::kSload, 0, 100ms, "80-SLOAD polls"});
+    if (n.is_download(cur.number) && cur.op == ParamOp::read && st.kind == ParamKind::value && !cur.special.empty()) {
+      const std::string label(n.download->label);
+      ++res.special[st.value == 0 ? label + " downloads completed (reads 0)" : label + " polls still -1"];
+      if (st.value == drive::kDownloadBegin && checker.download_open(n.index)) {
+        n.script.push_back({ParamOp::read, cur.number, 0, 100ms, label + " polls"});
       }
     }
-    if (mc && n.current.op == ParamOp::write && st.kind == ParamKind::written &&
-        (n.current.number == devices::mc6000::kSupi || n.current.number == devices::mc6000::kIbcnf) &&
-        n.current.value != (n.current.number == devices::mc6000::kSupi ? n.supi : n.ibcnf)) {
-      // Switch the servo off and on once the EEPROM has the value: it must come back with a
-      // module error (its layout no longer fits the ring).
-      n.power_cycle_at = now + 40ms;
+    if (cur.op == ParamOp::write && st.kind == ParamKind::written) {
+      for (const auto& l : n.layout) {
+        // Switch the drive off and on once the EEPROM has the value: it must come back with a
+        // module error (its layout no longer fits the ring).
+        if (cur.number == l.number && cur.value != l.configured) n.power_cycle_at = now + 40ms;
+      }
     }
   }
 
   void check_store(Node& n, Time now) {
     store.clear();
-    if (n.kind == devices::mc6000::kName) {
-      const auto& servo = mc6000_of(*sim, n.index);
-      if (servo.pcp() == nullptr) return;
-      const pcp::ParameterStore& ps = servo.drive().store();
-      for (const pcp::ParameterInfo& p : devices::mc6000::kParameters) {
-        const auto v = ps.get(p.number);
-        const auto e = ps.eeprom(p.number);
-        StoreEntry entry{p.number, v ? pcp::signed_raw(*v) : 0, std::nullopt};
-        if (e) entry.eeprom = pcp::signed_raw(*e);
-        store.push_back(entry);
-      }
-    } else {
-      const devices::vf1000::Drive& d = vf1000_of(*sim, n.index).drive();
-      for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
-        const int slot = d.table().slot(p.number);
-        if (slot < 0) continue;
-        store.push_back({p.number, d.store().value(static_cast<std::size_t>(slot)),
-                         std::optional<std::int64_t>(d.store().eeprom_value(static_cast<std::size_t>(slot)))});
-      }
-    }
+    if (!n.pcp) return;
+    n.profile->read_store(sim->emulator(n.index), store);
     checker.check_store(n.index, now, store);
   }
 
@@ -975,13 +852,13 @@ struct Runner {
   }
 
   [[nodiscard]] bool in_download(const Node& n) const {
-    if (n.kind != devices::mc6000::kName) return false;
-    if (checker.download_open(n.index) || (n.busy && n.current.number == devices::mc6000::kSload)) return true;
-    return std::any_of(n.script.begin(), n.script.end(), [](const Step& s) { return s.number == devices::mc6000::kSload; });
+    if (!n.download) return false;
+    if (checker.download_open(n.index) || (n.busy && n.is_download(n.current.number))) return true;
+    return std::any_of(n.script.begin(), n.script.end(), [&n](const Step& s) { return n.is_download(s.number); });
   }
 
   void random_command(Node& n, Time now) {
-    const double r = std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+    const double r = rng.real();
     StateCommand c = r < 0.5    ? StateCommand::enable
                      : r < 0.75 ? StateCommand::other_target
                      : r < 0.875 ? StateCommand::emergency_stop
@@ -989,9 +866,8 @@ struct Runner {
     if (c == StateCommand::enable && !opt.enable_during_download && in_download(n)) c = StateCommand::other_target;
     command(n, c, now);
     if (chance(0.2)) {
-      devices::DeviceDriver& drv = sim->driver(n.index);
-      drv.set_reference(n.kind == devices::mc6000::kName ? static_cast<double>(uniform(-3000, 3000))
-                                                     : static_cast<double>(uniform(-60, 60)));
+      const auto [lo, hi] = n.profile->reference_range();
+      sim->driver(n.index).set_reference(static_cast<double>(uniform(lo, hi)));
     }
     // Mostly every few cycles; now and then a long pause, in which a request runs its whole
     // course through whatever faults come.
@@ -1000,16 +876,51 @@ struct Runner {
 
   // --- the technician ---------------------------------------------------------------------------
 
-  void recommission(Node& n, Time now) {
-    // 405/406 back to the ring's configuration (keypad), then switched off and on.
-    devices::mc6000::DriveParameters& ps = mc6000_of(*sim, n.index).drive().parameters();
-    for (const auto& [number, v] : {std::pair<std::uint16_t, int>{devices::mc6000::kSupi, n.supi}, {devices::mc6000::kIbcnf, n.ibcnf}}) {
-      ps.preset(number, v);
-      checker.set_value(n.index, number, v);
-    }
+  void recommission(Node& n) {
+    // The layout parameters back to the ring's configuration at the drive, then switched off
+    // and on.
+    n.profile->restore_layout(sim->emulator(n.index), n.ring);
+    for (const auto& l : n.layout) checker.set_value(n.index, l.number, l.configured);
     sim->inject_fault(Action::fault_power_cycle, n.index);
-    ++res.special["recommissioned (405/406 restored, power cycle)"];
-    static_cast<void>(now);
+    ++res.special["recommissioned (" + n.layout_numbers() + " restored, power cycle)"];
+  }
+
+  void check_layouts(Time t) {
+    for (Node& n : nodes) {
+      if (n.layout.empty() || !n.pcp) continue;
+      if (n.check_layout) {
+        n.check_layout = false;
+        if (n.profile->layout_mismatch(sim->emulator(n.index)) != n.layout_expected_mismatch) {
+          std::string values;
+          for (const auto& l : n.layout) {
+            values += (values.empty() ? "" : " / ") + show(checker.possible(n.index, l.number, true));
+          }
+          checker.report(n.index, t, "layout",
+                         "after a power-on with " + n.layout_numbers() + " = " + values + " the device " +
+                             (n.layout_expected_mismatch ? "does not show" : "shows") + " a module error");
+        }
+        ++res.special["layout checks after a power-on with changed " + n.layout_numbers()];
+      }
+      if (n.power_cycle_at && t >= *n.power_cycle_at && !n.busy) {
+        n.power_cycle_at.reset();
+        // Known EEPROM values only: then the layout after the power-on is known too.
+        bool known = true;
+        bool mismatch = false;
+        for (const auto& l : n.layout) {
+          const auto v = checker.possible(n.index, l.number, true);
+          known = known && v.size() == 1;
+          if (v.size() == 1 && v[0] != l.configured) mismatch = true;
+        }
+        if (known) {
+          n.check_layout = true;
+          n.layout_expected_mismatch = mismatch;
+        }
+        sim->inject_fault(Action::fault_power_cycle, n.index);
+        ++res.special["power cycles after changing " + n.layout_numbers()];
+        continue;
+      }
+      if (n.profile->layout_mismatch(sim->emulator(n.index)) && !n.check_layout) recommission(n);
+    }
   }
 
   // --- the loop ----------------------------------------------------------------------------------
@@ -1032,7 +943,8 @@ struct Runner {
       Node& n = nodes[it->second];
       if (f.kind == "power-cycle") {
         checker.power_cycle(n.index, f.at, n.last_state);
-        if (n.kind == devices::mc6000::kName && n.pcp) n.script.push_front({ParamOp::read, devices::mc6000::kSerr, 0, Duration{0}, ""});
+        // The power-on latched in the error register.
+        if (n.error_register && n.pcp) n.script.push_front({ParamOp::read, *n.error_register, 0, Duration{0}, ""});
       } else if (f.kind == "device-fault") {
         checker.device_fault(n.index, f.at, n.last_state);
       }
@@ -1050,11 +962,10 @@ struct Runner {
     for (std::int64_t k = 1;; ++k) {
       const Time t = Time{0} + k * ct;
       const bool more = sim->run_until(t, so);
-      // A VF1000 that booted from RESET FAULT during this stretch: the model's store follows before
+      // A drive that booted from a reset during this stretch: the model's store follows before
       // any outcome of this cycle is checked against the device's.
       for (Node& n : nodes) {
-        if (n.kind != devices::vf1000::kName) continue;
-        if (const std::uint32_t r = vf1000_of(*sim, n.index).software_resets(); r != n.software_resets) {
+        if (const std::uint32_t r = n.profile->software_resets(sim->emulator(n.index)); r != n.software_resets) {
           n.software_resets = r;
           checker.software_reset(n.index, t);
         }
@@ -1064,10 +975,11 @@ struct Runner {
       valid_before = valid_now;
       process_faults();
       for (Node& n : nodes) {
+        const devices::DeviceEmulator& e = sim->emulator(n.index);
         const bool me = sim->module_error(n.index, t);
         bool lost = me;
-        if (n.kind == devices::vf1000::kName && vf1000_of(*sim, n.index).module_error(t)) lost = false;  // initialising
-        if (n.kind == devices::mc6000::kName && mc6000_of(*sim, n.index).configuration_mismatch()) lost = true;
+        if (e.takes_words_in_module_error() && e.module_error(t)) lost = false;  // initialising
+        if (n.profile->layout_mismatch(e)) lost = true;
         checker.exchange(n.index, t, valid && !lost, valid && !me);
         if (traced && *traced == n.index && (valid && !me) != n.fed_trace) {
           n.fed_trace = valid && !me;
@@ -1082,15 +994,9 @@ struct Runner {
       }
       for (Node& n : nodes) {
         const State s = sim->device_state(n.index);
-        bool tripped = false;
-        bool wd_fault = false;
-        if (n.kind == devices::vf1000::kName) {
-          tripped = vf1000_of(*sim, n.index).watchdog_tripped();
-          wd_fault = vf1000_of(*sim, n.index).error_number().has_value();
-        } else {
-          tripped = wd_fault = mc6000_of(*sim, n.index).watchdog_tripped();
-        }
-        checker.observe(n.index, t, s, tripped, wd_fault);
+        const devices::DeviceEmulator& e = sim->emulator(n.index);
+        const bool tripped = e.watchdog_tripped();
+        checker.observe(n.index, t, s, tripped, e.error_number().has_value());
         if (traced && *traced == n.index && (s != n.last_state || tripped != n.tripped_trace)) {
           n.tripped_trace = tripped;
           trace(n, t, "state " + std::string(drivecom::to_string(s)) + (tripped ? " (watchdog tripped)" : ""));
@@ -1099,38 +1005,10 @@ struct Runner {
       }
       checker.check_overdue(t);
       if (!more || res.transactions >= opt.transactions) break;
-      // Layout checks and the technician.
-      for (Node& n : nodes) {
-        if (n.kind != devices::mc6000::kName || !n.pcp) continue;
-        devices::Mc6000Device* mc = &mc6000_of(*sim, n.index);
-        if (n.check_layout) {
-          n.check_layout = false;
-          if (mc->configuration_mismatch() != n.layout_expected_mismatch) {
-            checker.report(n.index, t, "layout",
-                           std::string("after a power-on with 405/406 = ") + show(checker.possible(n.index, devices::mc6000::kSupi, true)) +
-                               " / " + show(checker.possible(n.index, devices::mc6000::kIbcnf, true)) + " the device " +
-                               (n.layout_expected_mismatch ? "does not show" : "shows") + " a module error");
-          }
-          ++res.special["layout checks after a power-on with changed 405/406"];
-        }
-        if (n.power_cycle_at && t >= *n.power_cycle_at && !n.busy) {
-          n.power_cycle_at.reset();
-          const auto supi = checker.possible(n.index, devices::mc6000::kSupi, true);
-          const auto ibcnf = checker.possible(n.index, devices::mc6000::kIbcnf, true);
-          if (supi.size() == 1 && ibcnf.size() == 1) {
-            n.check_layout = true;
-            n.layout_expected_mismatch = supi[0] != n.supi || ibcnf[0] != n.ibcnf;
-          }
-          sim->inject_fault(Action::fault_power_cycle, n.index);
-          ++res.special["power cycles after changing 405/406"];
-          continue;
-        }
-        if (mc->configuration_mismatch() && !n.check_layout) recommission(n, t);
-      }
+      check_layouts(t);
       // Traffic and commands.
       for (Node& n : nodes) {
-        if (!n.busy && t >= n.pause_until && !n.power_cycle_at && n.pcp &&
-            !(n.kind == devices::vf1000::kName && sim->driver(n.index).parameters().closing())) {
+        if (!n.busy && t >= n.pause_until && !n.power_cycle_at && n.pcp && !sim->driver(n.index).parameters().closing()) {
           submit(n, t);
         }
         if (n.pd && t >= n.next_command) random_command(n, t);

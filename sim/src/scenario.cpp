@@ -63,6 +63,16 @@ devices::DeviceSettings device_settings(const DeviceConfig& d) {
   return s;
 }
 
+void set_device_settings(DeviceConfig& d, const devices::DeviceSettings& s) {
+  d.supi = s.supi;
+  d.ibcnf = s.ibcnf;
+  d.bus = s.bus;
+  d.watchdog_ms = s.watchdog_ms;
+  d.watchdog_reaction = s.watchdog_reaction;
+  d.keypad = s.keypad;
+  d.reset_time = s.reset_time;
+}
+
 bool operator==(const DeviceConfig& a, const DeviceConfig& b) {
   // A setting the kind refuses (a VF1000's SUPI/IBCNF, seed 001 3.1.2) keeps whatever it holds.
   const devices::DriveKind* k = devices::find_drive_kind(a.kind);

@@ -78,6 +78,85 @@ TEST(Registry, EveryKindBuildsItsEmulatorAndDriverFromItsDescriptor) {
   }
 }
 
+// The fault campaign finds each kind's part through the registry (campaign_profile.hpp): a ring
+// its descriptor takes, and a model whose start is what the kind's emulator holds and whose
+// writes keep to (or, where meant to, leave) the documented ranges.
+TEST(Registry, EveryKindHasACampaignProfileTheEmulatorAgreesWith) {
+  for (const DriveKind& k : drive_kinds()) {
+    SCOPED_TRACE(std::string(k->name()));
+    ASSERT_NE(k.campaign, nullptr);
+    EXPECT_EQ(k.campaign->kind(), k->name());
+    CampaignRandom rng(1);
+    const std::vector<CampaignRingDevice> ring = k.campaign->ring(rng);
+    ASSERT_FALSE(ring.empty());
+    for (const CampaignRingDevice& r : ring) {
+      SCOPED_TRACE(r.name);
+      EXPECT_NO_THROW(k->check_watchdog(r.settings));
+      const Configuration c = k->configure(r.settings);
+      EXPECT_LT(r.phase, k->facts().sample_period);
+      auto emulator = k.make_emulator(c, DeviceStart::operational, Time{0});
+      const CampaignDevice d = k.campaign->device(r, *emulator, rng);
+      EXPECT_EQ(d.period, k->facts().sample_period);
+      EXPECT_FALSE(d.description.empty());
+      EXPECT_EQ(k.campaign->software_resets(*emulator), 0U);
+      EXPECT_FALSE(k.campaign->layout_mismatch(*emulator));
+      std::vector<CampaignStoreEntry> store;
+      k.campaign->read_store(*emulator, store);
+      if (!d.has_channel) {
+        EXPECT_TRUE(d.params.empty());
+        EXPECT_TRUE(store.empty());
+        EXPECT_GT(d.watchdog_fixed_ms, 0);
+        continue;
+      }
+      ASSERT_FALSE(d.params.empty());
+      EXPECT_FALSE(d.writes.empty());
+      const auto watchdog = std::find_if(d.params.begin(), d.params.end(),
+                                         [&d](const CampaignParam& p) { return p.number == d.watchdog_parameter; });
+      ASSERT_NE(watchdog, d.params.end());
+      EXPECT_EQ(watchdog->initial, *r.settings.watchdog_ms);
+      for (const CampaignParam& p : d.params) {
+        if (p.role == CampaignRole::device_owned) continue;
+        SCOPED_TRACE(p.number);
+        const auto e = std::find_if(store.begin(), store.end(),
+                                    [&p](const CampaignStoreEntry& x) { return x.number == p.number; });
+        ASSERT_NE(e, store.end());
+        EXPECT_EQ(e->ram, p.initial);
+        if (p.eeprom && e->eeprom) {
+          EXPECT_EQ(*e->eeprom, p.initial);
+        }
+        EXPECT_GE(p.factory, p.min);
+        EXPECT_LE(p.factory, p.max);
+      }
+      for (const CampaignWrites& w : d.writes) {
+        SCOPED_TRACE(w.number);
+        const auto p = std::find_if(d.params.begin(), d.params.end(),
+                                    [&w](const CampaignParam& x) { return x.number == w.number; });
+        ASSERT_NE(p, d.params.end());
+        EXPECT_EQ(p->role, CampaignRole::normal);
+        for (const std::int64_t v : w.in_range) EXPECT_TRUE(v >= p->min && v <= p->max) << v;
+        for (const std::int64_t v : w.out_of_range) EXPECT_TRUE(v < p->min || v > p->max) << v;
+      }
+    }
+  }
+}
+
+// The watchdog's raw value and the channel's timeouts, as the manuals give them.
+TEST(Registry, CampaignProfilesTurnWatchdogValuesAndRequestsIntoTimes) {
+  const CampaignProfile& vf = *find_drive_kind("vf1000")->campaign;
+  EXPECT_EQ(vf.watchdog_ms(65), 100);  // seed 001, 4.1.1: 50 ms steps, rounded up
+  EXPECT_EQ(vf.watchdog_ms(100), 100);
+  EXPECT_LE(vf.watchdog_ms(65535), 0);  // off
+  EXPECT_EQ(vf.request_timeout(ParamOp::write, 71, 1), 2s);
+  const CampaignProfile& mc = *find_drive_kind("mc6000")->campaign;
+  EXPECT_EQ(mc.watchdog_ms(30), 30);  // 409-BUTWD in ms
+  EXPECT_LE(mc.watchdog_ms(0), 0);    // off
+  EXPECT_EQ(mc.request_timeout(ParamOp::read, 4, 0), 1s);  // Initiate + request, 500 ms each
+  EXPECT_EQ(mc.request_timeout(ParamOp::write, 4, 1), 500ms + 10500ms);  // factory defaults
+  ASSERT_TRUE(mc.download().has_value());
+  EXPECT_EQ(mc.download()->parameter, 80);
+  EXPECT_FALSE(vf.download().has_value());
+}
+
 TEST(Registry, EveryKindRefusesASettingWithTheSettingNamed) {
   for (const DriveKind& k : drive_kinds()) {
     SCOPED_TRACE(std::string(k->name()));

@@ -16,7 +16,6 @@ using drivecom::State;
 CheckerDeviceSpec small_device() {
   CheckerDeviceSpec d;
   d.name = "dev";
-  d.kind = "mc6000";
   d.period = 1ms;
   d.params = {
       {10, ParamRole::normal, false, false, 5, 5, 0, 100, Duration{0}},
@@ -213,7 +212,7 @@ TEST(CampaignChecker, AnEmergencyStopMustReachTheDriveWithinOneSampleOfItsDelive
 TEST(CampaignChecker, EnabledDuringAnOpenDownloadIsAViolation) {
   CampaignChecker c;
   auto spec = small_device();
-  spec.params.push_back({80, ParamRole::sload, false, false, 0, 0, -2, 999, Duration{0}});
+  spec.params.push_back({80, ParamRole::download, false, false, 0, 0, -2, 999, Duration{0}});
   const auto d = c.add_device(spec);
   c.state_command(d, StateCommand::enable, 0ms);
   c.submitted(d, ParamOp::write, 80, -1, 1ms, 1s);
@@ -253,6 +252,42 @@ TEST(CampaignChecker, AWatchdogMustTripNeitherEarlyNorLate) {
   in_time.exchange(d, 52ms, false, false);
   in_time.observe(d, 52ms, State::fault, true, true);
   EXPECT_EQ(in_time.violation_count(), 0U);
+}
+
+// The watchdog parameter's raw value is a monitoring time only as the drive's profile reads it
+// (e.g. the VF1000's 906-IB-WD in 50 ms steps): here 10 ms a step, raw 5 = 50 ms, raw 0 = off.
+TEST(CampaignChecker, TheWatchdogTimeIsTheProfilesReadingOfTheRawValue) {
+  auto stepped = [](std::int64_t raw_value) {
+    CheckerDeviceSpec d = small_device();
+    d.params[3].initial = raw_value;
+    d.watchdog_ms = [](std::int64_t raw) { return raw * 10; };
+    return d;
+  };
+  CampaignChecker early;
+  auto d = early.add_device(stepped(5));
+  early.exchange(d, 1ms, true, true);
+  early.observe(d, 1ms, State::ready, false, false);
+  early.exchange(d, 40ms, false, false);
+  early.observe(d, 40ms, State::fault, true, true);  // 39 ms: raw 5 taken as ms would allow it
+  EXPECT_TRUE(has(early, "watchdog-early"));
+
+  CampaignChecker in_time;
+  d = in_time.add_device(stepped(5));
+  in_time.exchange(d, 1ms, true, true);
+  in_time.observe(d, 1ms, State::ready, false, false);
+  in_time.exchange(d, 52ms, false, false);
+  in_time.observe(d, 52ms, State::fault, true, true);
+  EXPECT_EQ(in_time.violation_count(), 0U);
+
+  CampaignChecker off;
+  d = off.add_device(stepped(0));
+  off.exchange(d, 1ms, true, true);
+  off.observe(d, 1ms, State::ready, false, false);
+  off.exchange(d, 900ms, false, false);
+  off.observe(d, 900ms, State::ready, false, false);  // off: never late
+  EXPECT_EQ(off.violation_count(), 0U);
+  off.observe(d, 901ms, State::fault, true, true);
+  EXPECT_TRUE(has(off, "watchdog-early"));
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // The fault campaign (issue 9, docs/robustness.md "Fault campaign"): the simulator runs a ring of
-// MC6000 (PCP channels of 1, 2 and 4 words, several SUPI/IBCNF) and VF1000 with random faults from
-// a seed -- corrupted cycles, power cycles, lost devices, device faults, master restarts, sample
-// jitter, long outages for the watchdogs -- during continuous parameter traffic and state commands
-// on every device, and an oracle independent of the code under test checks every step:
+// every drive kind the registry knows, each kind's devices as its campaign profile lays them out
+// (devices/campaign_profile.hpp), with random faults from a seed -- corrupted cycles, power cycles,
+// lost devices, device faults, master restarts, sample jitter, long outages for the watchdogs --
+// during continuous parameter traffic and state commands on every device, and an oracle
+// independent of the code under test checks every step:
 //
 // - a write reported successful is held by the device, and no device holds a value nobody wrote
 //   (the store, RAM and EEPROM, against a model of the values master writes may have left there);
@@ -10,11 +11,11 @@
 // - every request ends within the documented timeout of its channel plus a margin, with an
 //   outcome its operation can have;
 // - no drive is ENABLED unless the master requested ENABLED after its last fault, power cycle or
-//   master restart (and not during an open 80-SLOAD download, seed 000 11.4);
+//   master restart (and not during an open SLOAD download, seed 000 11.4);
 // - EMERGENCY STOP / BLOCK POWER (and every other withdrawal) has the drive out of ENABLED by
 //   the device's first sample after the bus delivered the word;
-// - the bus watchdogs (409-BUTWD, 906-IB-WD) trip neither before their time nor later than their
-//   time plus one sample period after the last valid cycle.
+// - the bus watchdogs trip neither before their time nor later than their time plus one sample
+//   period after the last valid cycle.
 //
 // The oracle (`CampaignChecker`) takes plain observations, so tests can feed it wrong ones and see
 // it report them; `run_campaign` feeds it from a `Simulator`.
@@ -28,9 +29,8 @@
 #include <string>
 #include <vector>
 
+#include "ibs/devices/campaign_profile.hpp"
 #include "ibs/devices/driver.hpp"
-#include "ibs/devices/mc6000/driver.hpp"
-#include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/base/time.hpp"
 #include "ibs/sim/scenario.hpp"
@@ -45,46 +45,31 @@ struct Violation {
   std::string what;
 };
 
-// What a parameter is to the oracle.
-enum class ParamRole : std::uint8_t {
-  normal,        // written by the master only; RAM (and EEPROM copy) checked against the model
-  command,       // 4-PROG / 71-PROG: always reads its default (0); 1 loads the factory defaults
-  sload,         // 80-SLOAD: -1 begins a download, -2 ends it (-1 while checked, then 0)
-  device_owned,  // actual values, mirrors, error registers: not checked
-};
-
-struct ParamModelSpec {
-  std::uint16_t number = 0;
-  ParamRole role = ParamRole::normal;
-  bool eeprom = false;       // has an EEPROM copy that power-on restores
-  bool eeprom_ram = false;   // VF1000 category 3: EEPROM only while the power stage is off
-  std::int64_t initial = 0;  // RAM and EEPROM at the start (default or configured value)
-  std::int64_t factory = 0;  // the factory default (4-PROG / 71-PROG = 1)
-  std::int64_t min = 0;      // the documented range: a write outside it must not be `written`
-  std::int64_t max = 0;
-  Duration eeprom_save{0};   // after a confirmed write the EEPROM copy follows within this
-  // Seed 000 11.4: takes a download's value (untested; EEPROM once the dataset is accepted);
-  // any other parameter's write during a download is acknowledged and dropped.
-  bool card_writeable = false;
-};
+// What a parameter is to the oracle, and its model (devices/campaign_profile.hpp: the drive's
+// profile gives them from the manuals).
+using ParamRole = devices::CampaignRole;
+using ParamModelSpec = devices::CampaignParam;
 
 struct CheckerDeviceSpec {
   std::string name;
-  std::string kind;  // the drive kind's name ("mc6000", "vf1000")
   Duration period{0};  // sample period
   Duration jitter{0};
   bool has_pd = true;  // DRIVECOM through process data
   std::vector<ParamModelSpec> params;
-  std::uint16_t watchdog_parameter = 0;  // 409 (ms, 0 off) or 906 (50 ms steps, 65535 off); 0: none
-  std::int64_t watchdog_fixed_ms = 0;    // an MC6000 without PCP: its configured 409-BUTWD
-  Duration download_check{0};            // 80-SLOAD = -2 until SLOAD reads the result (11.4)
+  // The bus watchdog: a parameter whose raw value `watchdog_ms` turns into the monitoring time in
+  // ms (0 or less: off; empty: the value is ms), or a fixed time for a device whose watchdog
+  // cannot be changed. Neither: none.
+  std::uint16_t watchdog_parameter = 0;
+  std::function<std::int64_t(std::int64_t)> watchdog_ms;
+  std::int64_t watchdog_fixed_ms = 0;
+  // ParamRole::download: after its end the drive checks the dataset this long, and may stay
+  // disabled meanwhile; how a violation names the download and the promise.
+  Duration download_check{0};
+  std::string download_label = "SLOAD";
+  std::string download_source = "seed 000 11.4: secured until it ends";
 };
 
-struct StoreEntry {
-  std::uint16_t number = 0;
-  std::int64_t ram = 0;
-  std::optional<std::int64_t> eeprom;
-};
+using StoreEntry = devices::CampaignStoreEntry;
 
 enum class StateCommand : std::uint8_t { enable, other_target, emergency_stop, block_power };
 
@@ -114,7 +99,7 @@ class CampaignChecker {
   void check_overdue(Time now);
   // The device's parameter store now.
   void check_store(std::size_t dev, Time now, const std::vector<StoreEntry>& store);
-  // Somebody set a value directly on the device (the technician recommissioning 405/406).
+  // Somebody set a value directly on the device (the technician restoring a layout parameter).
   void set_value(std::size_t dev, std::uint16_t number, std::int64_t value);
 
   // Faults and commands.
@@ -122,7 +107,8 @@ class CampaignChecker {
   // the master already sees; nullopt: unknown, counts as a new power cycle).
   void power_cycle(std::size_t dev, Time now, std::optional<drivecom::State> state_then = std::nullopt);
   void device_fault(std::size_t dev, Time now, std::optional<drivecom::State> state_then);
-  // A VF1000 booted from RESET FAULT (seed 001, 5.2.1): its parameters as after a power cycle.
+  // A boot the master asked for (a reset from FAULT, CampaignProfile::software_resets): its
+  // parameters and its watchdog as after a power cycle.
   void software_reset(std::size_t dev, Time now);
   void master_restart(Time now);
   void state_command(std::size_t dev, StateCommand c, Time now);
@@ -132,11 +118,12 @@ class CampaignChecker {
   // watchdog (a valid cycle without module error)?
   void exchange(std::size_t dev, Time t, bool words_delivered, bool watchdog_fed);
   // The device as it is after the samples up to `t`: its state, whether its bus watchdog has
-  // tripped (VF1000: monitoring time ran out; MC6000: E-OP1 latched) and whether that made a
-  // device fault (MC6000 E-OP1, VF1000 907-IBCOD 1 E-IBS).
+  // tripped (DeviceEmulator::watchdog_tripped) and whether that made a device fault (its
+  // error_number()).
   void observe(std::size_t dev, Time t, drivecom::State state, bool watchdog_tripped, bool watchdog_fault);
 
-  // A check made outside the oracle (e.g. the layout after a power-on with changed 405/406).
+  // A check made outside the oracle (e.g. the layout after a power-on with changed layout
+  // parameters).
   void report(std::size_t dev, Time at, std::string check, std::string what);
   // The values the model allows for a parameter now (RAM, or the EEPROM copy).
   [[nodiscard]] std::vector<std::int64_t> possible(std::size_t dev, std::uint16_t number, bool eeprom) const;
@@ -144,7 +131,7 @@ class CampaignChecker {
   [[nodiscard]] const std::vector<Violation>& violations() const { return violations_; }
   [[nodiscard]] std::uint64_t violation_count() const { return violation_count_; }
   [[nodiscard]] const CheckCounts& counts() const { return counts_; }
-  // A download (80-SLOAD = -1 .. 0) is open on the device, as far as the master knows.
+  // A download (SLOAD = -1 .. 0) is open on the device, as far as the master knows.
   [[nodiscard]] bool download_open(std::size_t dev) const { return devices_[dev].download_open; }
   std::size_t max_violations_kept = 1000;
 
@@ -180,8 +167,8 @@ class CampaignChecker {
     std::string leave_why;
     bool enabled_reported = false;
     bool download_open = false;
-    // 80-SLOAD = -2 confirmed: the servo may free the drive from this time on (its dataset check
-    // ends 500 ms after it executed the write, which happened after the submission).
+    // SLOAD = -2 confirmed: the servo may free the drive from this time on (its dataset check
+    // ends download_check after it executed the write, which happened after the submission).
     std::optional<Time> lock_may_end;
     // Watchdog.
     bool armed = false;
@@ -212,7 +199,7 @@ class CampaignChecker {
 struct CampaignOptions {
   std::uint64_t seed = 1;
   std::uint64_t transactions = 100000;  // parameter transactions to complete
-  // Whether the master may request ENABLED while an 80-SLOAD download it started is open. A
+  // Whether the master may request ENABLED while an SLOAD download it started is open. A
   // master following seed 000 11.4 does not (the default); true probes the servo's promise to stay
   // "secured against being engaged until the download has ended".
   bool enable_during_download = false;
@@ -225,10 +212,10 @@ struct CampaignResult {
   Duration simulated{0};
   double wall_seconds = 0.0;
   Duration cycle_time{0};
-  std::vector<std::string> devices;  // "name: MC6000 SUPI 3 / IBCNF 0, PCP 4 words, 409-BUTWD 50 ms"
+  std::vector<std::string> devices;  // "name: " and the profile's description, phase, jitter
   std::uint64_t transactions = 0;
   std::map<std::string, std::uint64_t> transactions_by;  // "read value", "write nak", ...
-  std::map<std::string, std::uint64_t> special;          // "80-SLOAD downloads", "405-SUPI writes", ...
+  std::map<std::string, std::uint64_t> special;          // scripted sequences: "80-SLOAD downloads", ...
   std::uint64_t state_commands = 0;
   std::map<std::string, std::uint64_t> state_commands_by;
   std::map<std::string, std::uint64_t> faults;  // per kind, as the simulator records them

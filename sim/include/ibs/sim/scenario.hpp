@@ -36,6 +36,8 @@ struct DeviceConfig {
 
 // The settings the device's drive kind reads (devices/descriptor.hpp).
 devices::DeviceSettings device_settings(const DeviceConfig& d);
+// The other way: `s` into the device's fields (device_settings(d) == s afterwards).
+void set_device_settings(DeviceConfig& d, const devices::DeviceSettings& s);
 
 struct BusSettings {
   std::optional<Duration> cycle_time;  // fixed bus cycle time; default: the cycle-time formula

@@ -1,5 +1,6 @@
 // The drive kinds the project knows: one entry per wing, each a descriptor (its master side,
-// descriptor.hpp) and a factory of its emulator (its device side, emulator.hpp). The simulator,
+// descriptor.hpp), a factory of its emulator (its device side, emulator.hpp) and its part in the
+// fault campaign (campaign_profile.hpp). The simulator,
 // the scenario reader, the command line and the replay adapters find a drive here by the name
 // files give it and never name a concrete drive. Adding a drive adds its wing and one entry in
 // registry.cpp (docs/architecture.md, "Adding a drive").
@@ -10,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "ibs/devices/campaign_profile.hpp"
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/devices/emulator.hpp"
 #include "ibs/interbus/device_start.hpp"
@@ -24,6 +26,7 @@ using EmulatorFactory = std::unique_ptr<DeviceEmulator> (*)(const Configuration&
 struct DriveKind {
   const DriveDescriptor* descriptor = nullptr;
   EmulatorFactory make_emulator = nullptr;
+  const CampaignProfile* campaign = nullptr;
 
   [[nodiscard]] const DriveDescriptor& operator*() const { return *descriptor; }
   [[nodiscard]] const DriveDescriptor* operator->() const { return descriptor; }
