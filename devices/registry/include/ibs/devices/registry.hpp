@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "ibs/devices/capture.hpp"
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/devices/emulator.hpp"
 #include "ibs/interbus/device_start.hpp"
@@ -24,6 +25,8 @@ using EmulatorFactory = std::unique_ptr<DeviceEmulator> (*)(const Configuration&
 struct DriveKind {
   const DriveDescriptor* descriptor = nullptr;
   EmulatorFactory make_emulator = nullptr;
+  // The drive's kind number and value formats in INTERBUS captures (capture.hpp, docs/pcap.md).
+  const CaptureFace* capture = nullptr;
 
   [[nodiscard]] const DriveDescriptor& operator*() const { return *descriptor; }
   [[nodiscard]] const DriveDescriptor* operator->() const { return descriptor; }
