@@ -3,10 +3,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "ibs/devices/mc6000/descriptor.hpp"
-#include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/registry.hpp"
-#include "ibs/devices/vf1000/descriptor.hpp"
 
 #ifdef IBS_SIM_HAVE_PCAP
 #include <pcap/pcap.h>
@@ -121,22 +118,14 @@ Device describe(const std::string& name, const std::string& kind_name, const dev
   const devices::Configuration c = (*kind)->configure(settings);
   d.id_code = c.id_code.raw;
   d.unit = std::string((*kind)->facts().unit);
-  // The format's own codes for the drives its dissector decodes (docs/pcap.md, "Configuration").
-  if (kind_name == devices::vf1000::kName) {
-    d.kind = Kind::vf1000;
-    d.values = Values::vf1000;
-  } else if (kind_name == devices::mc6000::kName) {
-    d.kind = Kind::mc6000;
-    d.supi = static_cast<std::uint8_t>(settings.supi);
-    d.ibcnf = static_cast<std::uint8_t>(settings.ibcnf);
-    const auto layout = devices::mc6000::make_layout(settings.supi, settings.ibcnf);
-    switch (layout.exchanges_data ? layout.ibcnf : devices::mc6000::Ibcnf::none) {
-      case devices::mc6000::Ibcnf::word16: d.values = Values::word16; break;
-      case devices::mc6000::Ibcnf::q16: d.values = Values::q16; break;
-      case devices::mc6000::Ibcnf::speed_torque: d.values = Values::speed_torque; break;
-      case devices::mc6000::Ibcnf::none:
-      case devices::mc6000::Ibcnf::lisim: d.values = Values::none; break;
-    }
+  // The kind number and value format the drive declares for the format (docs/pcap.md,
+  // "Configuration"); a drive without them is "other" to the dissector.
+  if (const devices::CaptureFace* capture = kind->capture; capture != nullptr) {
+    d.kind = capture->kind;
+    const devices::CaptureFormat f = capture->format(settings);
+    d.values = f.values;
+    d.supi = f.supi;
+    d.ibcnf = f.ibcnf;
   }
   return d;
 }

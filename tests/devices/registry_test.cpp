@@ -7,11 +7,29 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "ibs/canlust/parameter_client.hpp"
+#include "ibs/devices/cda3000/bus_face.hpp"
+#include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/devices/dfs1/bus_face.hpp"
+#include "ibs/devices/dfs1/parameters.hpp"
+#include "ibs/devices/drives.hpp"
+#include "ibs/devices/mc6000/capture.hpp"
+#include "ibs/devices/mc6000/lustbus_face.hpp"
 #include "ibs/devices/trace_adapters.hpp"
+#include "ibs/devices/vf1000/capture.hpp"
+#include "ibs/devices/vf1000/lustbus_face.hpp"
+#include "ibs/dfs1/host.hpp"
 #include "ibs/drivecom/sequencer.hpp"
+#include "ibs/lustbus/host.hpp"
+#include "ibs/lustbus/line.hpp"
+#include "ibs/lustbus/receiver.hpp"
 
 namespace ibs::devices {
 namespace {
@@ -215,6 +233,234 @@ TEST(Registry, TracesOfAChannelAnotherDriveHasAreRefused) {
   } catch (const trace::TraceError& e) {
     EXPECT_STREQ(e.what(), "p.trace:3: words: pcp is not served for device vf1000 (PCP is the MC6000's)");
   }
+}
+
+// ---- The registry of drive and bus (drives.hpp) ----------------------------------------------
+
+using namespace std::chrono_literals;
+
+std::vector<std::string> pair_names(const std::vector<DriveOnBus>& pairs) {
+  std::vector<std::string> v;
+  for (const DriveOnBus& p : pairs) v.push_back(std::string(p.drive->name) + "/" + std::string(to_string(p.bus)));
+  return v;
+}
+
+// The pairs are exactly the faces the wings declare: each wing's face function is what the
+// registry hands out, and no drive speaks a bus its wing has no face for.
+TEST(DriveRegistry, ThePairsAreWhatTheWingsDeclare) {
+  EXPECT_EQ(pair_names(drive_bus_pairs()),
+            (std::vector<std::string>{"cda3000/CANLust", "dfs1/DFS-1", "mc6000/INTERBUS", "mc6000/LUSTBUS",
+                                      "vf1000/INTERBUS", "vf1000/LUSTBUS"}));
+  const Drive* vf = find_drive("vf1000");
+  const Drive* mc = find_drive("mc6000");
+  const Drive* dfs = find_drive("dfs1");
+  const Drive* cda = find_drive("cda3000");
+  ASSERT_TRUE(vf && mc && dfs && cda);
+  EXPECT_EQ(vf->interbus, find_drive_kind("vf1000"));
+  EXPECT_EQ(mc->interbus, find_drive_kind("mc6000"));
+  EXPECT_EQ(vf->lustbus, &vf1000::lustbus_face());
+  EXPECT_EQ(mc->lustbus, &mc6000::lustbus_face());
+  EXPECT_EQ(dfs->dfs1, &dfs1::bus_face());
+  EXPECT_EQ(cda->canlust, &cda3000::bus_face());
+  EXPECT_EQ(vf->lustbus->family, lustbus::Family::vf1000);
+  EXPECT_EQ(mc->lustbus->family, lustbus::Family::mc6000);
+  // Every INTERBUS kind is a drive of the registry, with the capture facts its wing declares.
+  std::size_t interbus = 0;
+  for (const DriveKind& k : drive_kinds()) {
+    const Drive* d = find_drive(k->name(), Bus::interbus);
+    ASSERT_NE(d, nullptr) << k->name();
+    EXPECT_EQ(d->interbus, &k);
+    ++interbus;
+  }
+  EXPECT_EQ(drives_on(Bus::interbus).size(), interbus);
+  EXPECT_EQ(find_drive_kind("vf1000")->capture, &vf1000::capture_face());
+  EXPECT_EQ(find_drive_kind("mc6000")->capture, &mc6000::capture_face());
+  // Sorted by name, each once; a drive is found under a bus only if it speaks it.
+  std::vector<std::string_view> names;
+  for (const Drive& d : drives()) names.push_back(d.name);
+  EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
+  EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
+  EXPECT_EQ(find_drive("dfs1", Bus::lustbus), nullptr);
+  EXPECT_EQ(find_drive("vf1000", Bus::canlust), nullptr);
+  EXPECT_EQ(find_drive("mc7000"), nullptr);
+  // The names the command line's messages list (docs/lustbus.md: "vf1000@ADDR or mc6000@ADDR").
+  EXPECT_EQ(drive_names(Bus::lustbus, ", ", " or ", "@ADDR"), "vf1000@ADDR or mc6000@ADDR");
+  EXPECT_EQ(drive_names(Bus::dfs1, ", ", " or ", "@UID"), "dfs1@UID");
+  EXPECT_EQ(drive_names(Bus::canlust, ", ", " or "), "cda3000");
+}
+
+// INTERBUS: the drive's master driver reads parameter 85 through the emulator's parameter channel
+// (the VF1000's communication word, the MC6000's PCP), both cycled in memory.
+void read_on_interbus(const DriveKind& k) {
+  const Configuration c = k->configure(DeviceSettings{});
+  auto emulator = k.make_emulator(c, DeviceStart::operational, Time{0});
+  auto driver = k->make_driver(c);
+  ASSERT_TRUE(emulator && driver);
+  std::array<Word, 4> m2s{};
+  std::array<Word, 4> s2m{};
+  std::array<Word, 4> pcp_m2s{};
+  std::array<Word, 4> pcp_s2m{};
+  const DriverIo io{std::span<const Word>(s2m.data(), c.pd_words), std::span<Word>(m2s.data(), c.pd_words),
+                    std::span<const Word>(pcp_s2m.data(), c.pcp_words), std::span<Word>(pcp_m2s.data(), c.pcp_words)};
+  emulator->output(std::span<Word>(s2m.data(), c.pd_words));
+  driver->initial(io);
+  const ParamId id = driver->parameters().submit(ParamOp::read, 85, 0);
+  ASSERT_NE(id, 0U);
+  const Duration period = k->facts().sample_period;
+  for (Time t = period; t <= Time{8s} && !driver->parameters().status(id).done(); t += period) {
+    driver->cycle(io, t);
+    emulator->bus_cycle(t);
+    emulator->sample({std::span<const Word>(m2s.data(), c.pd_words), std::span<Word>(s2m.data(), c.pd_words),
+                      std::span<const Word>(pcp_m2s.data(), c.pcp_words), std::span<Word>(pcp_s2m.data(), c.pcp_words)},
+                     t);
+  }
+  EXPECT_EQ(driver->parameters().status(id).kind, ParamKind::value) << driver->parameters().describe(id);
+}
+
+// LUSTBUS: the face behind a lustbus::Receiver at address 1 on the simulated line answers the
+// host's ENQUIRY of 91-TYPE, which 5.2's scan reads from every LUSTBUS device.
+void read_on_lustbus(const LustbusFace& face) {
+  LustbusEmulated e = face.make(LustbusFaceOptions{});
+  ASSERT_TRUE(e.responder && e.advance && e.line_baud);
+  EXPECT_EQ(e.line_baud(), 9600U);
+  const auto p = face.find_parameter("91");
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(face.find_parameter(p->name)->number, 91);
+  lustbus::Receiver receiver(*e.responder, 1);
+  lustbus::Host host;
+  lustbus::Line line(9600);
+  line.attach(host);
+  line.attach(receiver);
+  const auto code = lustbus::parameter_code(face.family, p->number, false);
+  ASSERT_TRUE(code.has_value());
+  const auto s = host.submit(lustbus::enquiry(1, *code));
+  ASSERT_TRUE(s);
+  ASSERT_TRUE(line.run_until_idle(line.now() + 5s));
+  const lustbus::Outcome* o = host.outcome(s.id);
+  ASSERT_NE(o, nullptr);
+  ASSERT_EQ(o->kind, lustbus::OutcomeKind::value) << lustbus::describe(*o);
+  EXPECT_TRUE(lustbus::parse_typed(face.family, p->type, o->value.view()).ok()) << o->value.view();
+  // A rate the drive does not run at is refused when the face is made (seed 000, 4).
+  LustbusFaceOptions odd;
+  odd.baud = 1234;
+  EXPECT_THROW((void)face.make(odd), std::invalid_argument);
+}
+
+// DFS-1: the controller answers a read of its baud rate code with the code of the rate it was
+// made for (docs/dfs1.md).
+void read_on_dfs1(const dfs1::Dfs1Face& face) {
+  auto c = face.make(7, 9600);
+  ASSERT_NE(c, nullptr);
+  const ::ibs::dfs1::EncodedFrame e = ::ibs::dfs1::encode(::ibs::dfs1::request::read_parameter(7, dfs1::kBaudCode));
+  c->receive(e.span(), Time{0});
+  const auto due = c->next_deadline();
+  ASSERT_TRUE(due.has_value());
+  ::ibs::dfs1::FrameDecoder d;
+  std::optional<::ibs::dfs1::Frame> answer;
+  for (const std::uint8_t b : c->pending(*due)) {
+    if (d.push(b).status == ::ibs::dfs1::DecodeStatus::frame) answer = d.frame();
+  }
+  ASSERT_TRUE(answer.has_value());
+  ASSERT_TRUE(answer->is_ack());
+  EXPECT_EQ(answer->value_at(0), *dfs1::code_for_baud(9600));
+}
+
+// CANLust: a commissioned CDA3000 at address 1 answers the parameter client's read of 360-DISP
+// (7.1.3) with its value, frames passed in memory.
+void read_on_canlust(const cda3000::CanlustFace& face) {
+  auto drive = face.make(cda3000::CanlustFaceOptions{});
+  ASSERT_NE(drive, nullptr);
+  drive->power_on(Time{0});
+  canlust::ParameterClient client;
+  const auto s = client.submit(canlust::read(1, cda3000::kDisp));
+  ASSERT_TRUE(s);
+  for (Time t{0}; t <= Time{2s} && client.poll(s.id).state != canlust::RequestState::done; t += 100us) {
+    client.step(t);
+    while (auto f = client.take_frame()) drive->receive(*f, t);
+    drive->step(t);
+    while (auto f = drive->take_frame()) client.receive(*f, t);
+  }
+  const canlust::Poll p = client.poll(s.id);
+  ASSERT_EQ(p.state, canlust::RequestState::done);
+  ASSERT_EQ(p.outcome->kind, canlust::OutcomeKind::done) << canlust::describe(*p.outcome);
+  EXPECT_EQ(p.outcome->value, *drive->value(cda3000::kDisp));
+}
+
+TEST(DriveRegistry, EveryDriveAnswersAParameterReadOnEveryBusItSpeaks) {
+  for (const DriveOnBus& p : drive_bus_pairs()) {
+    SCOPED_TRACE(std::string(p.drive->name) + " on " + std::string(to_string(p.bus)));
+    switch (p.bus) {
+      case Bus::interbus: read_on_interbus(*p.drive->interbus); break;
+      case Bus::lustbus: read_on_lustbus(*p.drive->lustbus); break;
+      case Bus::dfs1: read_on_dfs1(*p.drive->dfs1); break;
+      case Bus::canlust: read_on_canlust(*p.drive->canlust); break;
+    }
+  }
+}
+
+// The byte-log reader's lookup finds each LUSTBUS drive's parameters by family and number.
+TEST(DriveRegistry, TheByteLogLookupIsTheFacesTables) {
+  const lustbus::ParameterLookup lookup = lustbus_parameter_lookup();
+  for (const Drive* d : drives_on(Bus::lustbus)) {
+    SCOPED_TRACE(std::string(d->name));
+    const auto f = lookup(d->lustbus->family, 91);
+    ASSERT_TRUE(f.has_value());
+    EXPECT_EQ(f->name, d->lustbus->find_parameter("91")->name);
+  }
+  EXPECT_FALSE(lookup(lustbus::Family::vf1000, 100).has_value()) << "2.4.1: two digits";
+}
+
+// The `local NAME = { [0] = "...", ... }` table of the dissector, as number -> text.
+std::map<int, std::string> lua_table(const std::string& lua, const std::string& name) {
+  std::smatch m;
+  const std::regex table("local " + name + " = \\{([^}]*)\\}");
+  if (!std::regex_search(lua, m, table)) return {};
+  const std::string body = m[1];
+  std::map<int, std::string> out;
+  const std::regex entry("\\[(\\d+)\\] = \"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(body.begin(), body.end(), entry); it != std::sregex_iterator(); ++it) {
+    out[std::stoi((*it)[1])] = (*it)[2];
+  }
+  return out;
+}
+
+// The capture writer's kind numbers come from the registry and the dissector decodes by its own
+// table: the two must agree, or existing captures decode as the wrong drive (docs/pcap.md).
+TEST(DriveRegistry, TheDissectorsKindsAreTheRegistrysCaptureKinds) {
+  std::ifstream in(std::string(IBS_SOURCE_DIR) + "/tools/wireshark/interbus.lua");
+  ASSERT_TRUE(in) << "tools/wireshark/interbus.lua";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string lua = ss.str();
+  std::map<int, std::string> expected{{0, "other"}};
+  for (const DriveKind& k : drive_kinds()) {
+    ASSERT_NE(k.capture, nullptr) << k->name();
+    EXPECT_NE(k.capture->kind, 0) << "0 is the format's \"other\"";
+    EXPECT_TRUE(expected.emplace(k.capture->kind, std::string(k.capture->label)).second)
+        << k->name() << ": kind " << int(k.capture->kind) << " twice";
+  }
+  EXPECT_EQ(lua_table(lua, "kinds"), expected);
+  EXPECT_EQ(find_drive_kind("vf1000")->capture->kind, 1) << "existing captures say 1 for the VF1000";
+  EXPECT_EQ(find_drive_kind("mc6000")->capture->kind, 2) << "existing captures say 2 for the MC6000";
+  // Every value format a drive declares is one the dissector knows.
+  const auto formats = lua_table(lua, "value_formats");
+  for (const DriveKind& k : drive_kinds()) {
+    for (int ibcnf = 0; ibcnf <= 3; ++ibcnf) {
+      DeviceSettings s;
+      s.ibcnf = ibcnf;
+      try {
+        (void)k->configure(s);  // the writer asks for the format of configured settings only
+      } catch (const SettingsError&) {
+        continue;
+      }
+      const CaptureFormat f = k.capture->format(s);
+      EXPECT_TRUE(formats.contains(static_cast<int>(f.values))) << k->name() << " IBCNF " << ibcnf;
+    }
+  }
+  EXPECT_EQ(find_drive_kind("vf1000")->capture->format(DeviceSettings{}).values, CaptureValues::hz_005);
+  DeviceSettings q16;
+  q16.ibcnf = 2;
+  EXPECT_EQ(find_drive_kind("mc6000")->capture->format(q16).values, CaptureValues::q16);
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ capture::Configuration two_devices() {
   c.pcp_words = 1;
   capture::Device mc;
   mc.name = "servo";
-  mc.kind = capture::Kind::mc6000;
+  mc.kind = 2;  // MC6000 (docs/pcap.md, "Configuration")
   mc.id_code = 0x4DB;
   mc.in = {0, 3};
   mc.out = {0, 3};
@@ -39,12 +39,12 @@ capture::Configuration two_devices() {
   mc.unit = "rpm";
   capture::Device vf;
   vf.name = "fan";
-  vf.kind = capture::Kind::vf1000;
+  vf.kind = 1;  // VF1000
   vf.id_code = 0x33B;
   vf.in = {3, 3};
   vf.out = {3, 3};
   vf.pcp = {1, 0};
-  vf.values = capture::Values::vf1000;
+  vf.values = capture::Values::hz_005;
   vf.unit = "Hz";
   c.devices = {mc, vf};
   return c;

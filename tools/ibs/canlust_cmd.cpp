@@ -23,6 +23,7 @@
 #include "ibs/devices/cda3000/description.hpp"
 #include "ibs/devices/cda3000/descriptor.hpp"
 #include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/devices/drives.hpp"
 #include "stop_signals.hpp"
 #ifdef IBS_HAVE_PCAP
 #include "ibs/can/pcap_writer.hpp"
@@ -150,7 +151,8 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
     err << "ibs canlust emulate: " << what << "\n";
     return kExitCanBadInput;
   };
-  if (o.devices.empty()) return bad("no device: give cda3000@ADDR (one or more)");
+  const std::string forms = devices::drive_names(devices::Bus::canlust, ", ", " or ", "@ADDR");
+  if (o.devices.empty()) return bad("no device: give " + forms + " (one or more)");
   std::vector<std::unique_ptr<dev::Cda3000>> drives;
   std::vector<dev::Cda3000*> raw;
   try {
@@ -162,22 +164,23 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
     }
     std::set<unsigned> seen;
     for (const std::string& spec : o.devices) {
-      const std::string prefix = "cda3000@";
+      // The drive by the name before '@', from the registry's CANLust faces.
       const unsigned max = o.factory ? 7U : ids.max_address;
-      const auto a = spec.rfind(prefix, 0) == 0 ? parse_int(std::string_view(spec).substr(prefix.size())) : std::nullopt;
+      const auto at = spec.find('@');
+      const devices::Drive* drive =
+          at == std::string::npos ? nullptr : devices::find_drive(std::string_view(spec).substr(0, at), devices::Bus::canlust);
+      const auto a = drive != nullptr ? parse_int(std::string_view(spec).substr(at + 1)) : std::nullopt;
       if (!a || *a < (o.factory ? 0 : 1) || *a > static_cast<long long>(max)) {
-        return bad("device '" + spec + "': expected cda3000@ADDR with ADDR " + (o.factory ? "0..7 (the connector's address, 2.1)" : "1..99 (571-CLADR)"));
+        return bad("device '" + spec + "': expected " + forms + " with ADDR " + (o.factory ? "0..7 (the connector's address, 2.1)" : "1..99 (571-CLADR)"));
       }
       if (!seen.insert(static_cast<unsigned>(*a)).second) return bad("device '" + spec + "': address given twice");
-      dev::DeviceConfig c;
+      dev::CanlustFaceOptions c;
       c.ids = ids;
       c.watchdog_reaction = *reaction;
-      if (o.factory) {
-        c.connector_address = static_cast<std::uint8_t>(*a);
-      } else {
-        c.saved = dev::commissioned_for_bus(static_cast<std::uint8_t>(*a), static_cast<std::uint8_t>(o.bus.cacnf));
-      }
-      drives.push_back(std::make_unique<dev::Cda3000>(c));
+      c.factory = o.factory;
+      c.address = static_cast<std::uint8_t>(*a);
+      c.cacnf = static_cast<std::uint8_t>(o.bus.cacnf);
+      drives.push_back(drive->canlust->make(c));
       raw.push_back(drives.back().get());
     }
   } catch (const std::invalid_argument& e) {
@@ -655,7 +658,9 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
 
   CanlustEmulateOptions& eo = state.emulate_options;
   state.emulate = state.canlust->add_subcommand("emulate", "emulate CDA3000 drives on the bus until SIGINT/SIGTERM");
-  state.emulate->add_option("DEVICE", eo.devices, "cda3000@ADDR, one per drive")->required();
+  state.emulate->add_option("DEVICE", eo.devices,
+                            devices::drive_names(devices::Bus::canlust, ", ", " or ", "@ADDR") + ", one per drive")
+      ->required();
   state.emulate->add_option("--watchdog-reaction", eo.watchdog_reaction,
                             "the drives' reaction when 574-CAWDG runs out: wrn, stop, quick-stop, disable-power (default)");
   state.emulate->add_flag("--factory", eo.factory,

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "ibs/devices/dfs1/parameters.hpp"
+#include "ibs/devices/drives.hpp"
 #include "ibs/devices/dfs1/served_controller.hpp"
 #include "ibs/devices/dfs1/status.hpp"
 #include "ibs/serial/byte_log.hpp"
@@ -45,21 +46,26 @@ serial::PortOptions port_options(const Dfs1PortOptions& o) {
   return p;
 }
 
-// "dfs1@7" -> 7; throws std::invalid_argument naming the text.
-std::uint8_t parse_device(const std::string& spec) {
-  const std::string prefix = "dfs1@";
+// "dfs1@UID": the registry's DFS-1 drives.
+std::string device_forms() { return devices::drive_names(devices::Bus::dfs1, ", ", " or ", "@UID"); }
+
+// "dfs1@7" -> (the drive's face, 7); throws std::invalid_argument naming the text.
+std::pair<const dev::Dfs1Face*, std::uint8_t> parse_device(const std::string& spec) {
   const auto bad = [&]() {
-    return std::invalid_argument("device '" + spec + "': expected dfs1@UID with UID 1..255");
+    return std::invalid_argument("device '" + spec + "': expected " + device_forms() + " with UID 1..255");
   };
-  if (spec.rfind(prefix, 0) != 0) throw bad();
-  const std::string rest = spec.substr(prefix.size());
+  const auto at = spec.find('@');
+  if (at == std::string::npos) throw bad();
+  const devices::Drive* d = devices::find_drive(std::string_view(spec).substr(0, at), devices::Bus::dfs1);
+  if (d == nullptr) throw bad();
+  const std::string rest = spec.substr(at + 1);
   unsigned v = 0;
   const auto r = std::from_chars(rest.data(), rest.data() + rest.size(), v);
   if (rest.empty() || r.ec != std::errc{} || r.ptr != rest.data() + rest.size() || v < 1 ||
       v > 255) {
     throw bad();
   }
-  return static_cast<std::uint8_t>(v);
+  return {d->dfs1, static_cast<std::uint8_t>(v)};
 }
 
 std::string hex2(unsigned v) {
@@ -80,7 +86,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
     return kExitDfs1BadInput;
   }
   if (o.devices.empty()) {
-    err << "ibs dfs1 emulate: no device: give dfs1@UID (one or more)\n";
+    err << "ibs dfs1 emulate: no device: give " << device_forms() << " (one or more)\n";
     return kExitDfs1BadInput;
   }
   std::vector<std::unique_ptr<dev::Controller>> controllers;
@@ -91,15 +97,12 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   try {
     popts = port_options(o.port);
     for (const std::string& spec : o.devices) {
-      const std::uint8_t uid = parse_device(spec);
+      const auto [face, uid] = parse_device(spec);
       if (!uids.insert(uid).second) {
         throw std::invalid_argument("device '" + spec + "': UID " + std::to_string(uid) +
                                     " is given twice");
       }
-      controllers.push_back(std::make_unique<dev::Controller>(dev::ControllerConfig{uid}));
-      if (auto code = dev::code_for_baud(o.port.baud)) {
-        (void)controllers.back()->set_parameter(dev::kBaudCode, *code);
-      }
+      controllers.push_back(face->make(uid, o.port.baud));
       served.push_back(std::make_unique<dev::ServedController>(*controllers.back()));
       raw.push_back(served.back().get());
     }
@@ -334,7 +337,7 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
   Dfs1EmulateOptions& eo = state.emulate_options;
   state.emulate = state.dfs1->add_subcommand(
       "emulate", "emulate DFS-1 controllers on a port or a new pty until SIGINT/SIGTERM");
-  state.emulate->add_option("DEVICE", eo.devices, "dfs1@UID, one per controller")->required();
+  state.emulate->add_option("DEVICE", eo.devices, device_forms() + ", one per controller")->required();
   state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
   add_port_options(state.emulate, eo.port);

@@ -18,8 +18,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "ibs/devices/mc6000/lustbus_device.hpp"
-#include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/devices/drives.hpp"
 #include "ibs/lustbus/byte_log.hpp"
 #include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/description.hpp"
@@ -58,17 +57,10 @@ struct BadInput : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// A parameter as the command line needs it, from either wing's table.
-struct Param {
+// A parameter as the command line needs it: the drive's table (its LUSTBUS face in the registry)
+// and the protocol family it is asked in.
+struct Param : devices::LustbusParameter {
   lb::Family family = lb::Family::vf1000;
-  std::uint16_t number = 0;
-  std::string name;
-  std::string unit;
-  lb::DataType type = lb::DataType::usign16;
-  std::int64_t min = 0;  // as numbers of the type (signed where the type is)
-  std::int64_t max = 0;
-  bool writable = true;
-  bool prog = false;  // PROG: 1 takes up to 10 s (10 exception 1)
 };
 
 std::int64_t number_of(lb::DataType t, std::uint32_t bits) {
@@ -90,10 +82,13 @@ std::uint32_t bits_of(lb::DataType t, std::int64_t n) {
   return static_cast<std::uint32_t>(w == 32 ? (u & 0xFFFFFFFFULL) : (u & ((1ULL << w) - 1ULL)));
 }
 
-lb::Family parse_family(const std::string& s) {
-  if (s == "vf1000") return lb::Family::vf1000;
-  if (s == "mc6000") return lb::Family::mc6000;
-  throw BadInput("--device '" + s + "': expected vf1000 or mc6000");
+// The drive a name gives, from the registry's LUSTBUS faces.
+const devices::LustbusFace& parse_face(const std::string& s) {
+  const devices::Drive* d = devices::find_drive(s, devices::Bus::lustbus);
+  if (d == nullptr) {
+    throw BadInput("--device '" + s + "': expected " + devices::drive_names(devices::Bus::lustbus, ", ", " or "));
+  }
+  return *d->lustbus;
 }
 
 bool parse_uint(const std::string& s, unsigned& v) {
@@ -101,28 +96,23 @@ bool parse_uint(const std::string& s, unsigned& v) {
   return !s.empty() && r.ec == std::errc{} && r.ptr == s.data() + s.size();
 }
 
-// PARAM by number or by name (case-sensitive, as the tables spell it).
-Param find_param(lb::Family f, const std::string& text) {
-  unsigned n = 0;
-  const bool numeric = parse_uint(text, n);
-  if (f == lb::Family::vf1000) {
-    for (const drive::ParameterInfo& p : devices::vf1000::parameters()) {
-      if (p.number > 99) continue;  // 2.4.1: two digits
-      if (numeric ? p.number == n : p.name == text) {
-        return {f,  p.number, std::string(p.name), std::string(p.unit), devices::vf1000::lustbus_type(p.type),
-                p.min, p.max, drive::writable(p.category), p.number == devices::vf1000::pnr::kProg};
-      }
-    }
-  } else {
-    for (const pcp::ParameterInfo& p : devices::mc6000::parameters()) {
-      if (numeric ? p.number == n : p.name == text) {
-        return {f,   p.number, std::string(p.name), "", devices::mc6000::lustbus_type(p.type),
-                p.min, p.max, p.writable(), p.number == devices::mc6000::kProg};
-      }
-    }
+// The registered drive of a protocol family; a build without one is a broken registry.
+const devices::Drive& lustbus_drive(lb::Family f) {
+  const devices::Drive* d = devices::find_lustbus_drive(f);
+  if (d == nullptr) throw std::logic_error("no drive of the LUSTBUS family " + std::string(lb::to_string(f)));
+  return *d;
+}
+
+// PARAM by number or by name (case-sensitive, as the tables spell it), from the drive's face.
+Param find_param(const devices::LustbusFace& face, const std::string& text) {
+  if (auto p = face.find_parameter(text)) {
+    Param r;
+    static_cast<devices::LustbusParameter&>(r) = std::move(*p);
+    r.family = face.family;
+    return r;
   }
-  throw BadInput("parameter '" + text + "': the " + std::string(lb::to_string(f)) +
-                 " has no such parameter" + (f == lb::Family::vf1000 ? " (1..99)" : ""));
+  throw BadInput("parameter '" + text + "': the " + std::string(lb::to_string(face.family)) +
+                 " has no such parameter" + std::string(face.parameter_numbers));
 }
 
 std::string label(const Param& p) { return std::to_string(p.number) + "-" + p.name; }
@@ -188,21 +178,18 @@ std::string hex_text(std::uint32_t v, unsigned digits) {
   return b;
 }
 
-// "vf1000@3" -> (family, 3); throws naming the text.
-std::pair<lb::Family, lb::Address> parse_device(const std::string& spec) {
+// "vf1000@ADDR or mc6000@ADDR": the registry's LUSTBUS drives.
+std::string device_forms() { return devices::drive_names(devices::Bus::lustbus, ", ", " or ", "@ADDR"); }
+
+// "vf1000@3" -> (the drive's face, 3); throws naming the text.
+std::pair<const devices::LustbusFace*, lb::Address> parse_device(const std::string& spec) {
   const auto at = spec.find('@');
-  const auto bad = [&]() {
-    return BadInput("device '" + spec + "': expected vf1000@ADDR or mc6000@ADDR, ADDR 1..30");
-  };
+  const auto bad = [&]() { return BadInput("device '" + spec + "': expected " + device_forms() + ", ADDR 1..30"); };
   if (at == std::string::npos) throw bad();
-  const std::string kind = spec.substr(0, at);
+  const devices::Drive* d = devices::find_drive(spec.substr(0, at), devices::Bus::lustbus);
   unsigned a = 0;
-  if ((kind != "vf1000" && kind != "mc6000") || !parse_uint(spec.substr(at + 1), a) || a < 1 ||
-      a > 30) {
-    throw bad();
-  }
-  return {kind == "vf1000" ? lb::Family::vf1000 : lb::Family::mc6000,
-          static_cast<lb::Address>(a)};
+  if (d == nullptr || !parse_uint(spec.substr(at + 1), a) || a < 1 || a > 30) throw bad();
+  return {d->lustbus, static_cast<lb::Address>(a)};
 }
 
 int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err) {
@@ -211,47 +198,31 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
     return kExitLustbusBadInput;
   };
   if (o.pty == !o.port.port.empty()) return bad("give either --port PATH or --pty");
-  if (o.devices.empty()) return bad("no device: give vf1000@ADDR or mc6000@ADDR (one or more)");
-  std::vector<std::unique_ptr<devices::vf1000::LustbusDevice>> vfs;
-  std::vector<std::unique_ptr<devices::mc6000::LustbusDevice>> mcs;
+  if (o.devices.empty()) return bad("no device: give " + device_forms() + " (one or more)");
+  std::vector<devices::LustbusEmulated> drives;
   std::vector<std::unique_ptr<lb::Receiver>> receivers;
   std::vector<lb::ServedReceiver> served;
   std::set<lb::Address> used;
   try {
     for (const std::string& spec : o.devices) {
-      const auto [family, addr] = parse_device(spec);
+      const auto [face, addr] = parse_device(spec);
       if (!used.insert(addr).second) {
         throw BadInput("device '" + spec + "': address " + std::to_string(addr) +
                        " is given twice (9.1: both would answer at once)");
       }
-      const std::uint64_t seed = o.seed + addr;
-      if (family == lb::Family::vf1000) {
-        devices::vf1000::LustbusTiming timing;
-        timing.reaction = o.reaction_ms >= 0
-                              ? lb::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
-                              : lb::ReactionModel::inverter(o.keypad, seed);
-        auto& d = vfs.emplace_back(std::make_unique<devices::vf1000::LustbusDevice>(timing));
-        if (!d->set_line_baud(o.port.baud)) {
-          throw BadInput("device '" + spec + "': a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not " +
-                         std::to_string(o.port.baud));
-        }
-        receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.emplace_back(receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
-                            [p = d.get()]() { return p->line_baud(); });
-      } else {
-        devices::mc6000::LustbusTiming timing;
-        timing.reaction = o.reaction_ms >= 0
-                              ? lb::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
-                              : lb::ReactionModel::servo(o.keypad, seed);
-        auto& d = mcs.emplace_back(std::make_unique<devices::mc6000::LustbusDevice>(timing));
-        if (!d->set_line_baud(o.port.baud)) {
-          throw BadInput("device '" + spec + "': an MC6000 runs at 2400..57600 baud (seed 000, 4), not " +
-                         std::to_string(o.port.baud));
-        }
-        receivers.push_back(std::make_unique<lb::Receiver>(*d, addr));
-        served.emplace_back(receivers.back().get(), [p = d.get()](Time t) { p->advance(t); },
-                            [p = d.get()]() { return p->line_baud(); });
+      devices::LustbusFaceOptions options;
+      options.keypad = o.keypad;
+      options.seed = o.seed + addr;
+      options.reaction_ms = o.reaction_ms;
+      options.baud = o.port.baud;
+      try {
+        drives.push_back(face->make(options));
+      } catch (const std::invalid_argument& e) {
+        throw BadInput("device '" + spec + "': " + e.what());
       }
+      const devices::LustbusEmulated& d = drives.back();
+      receivers.push_back(std::make_unique<lb::Receiver>(*d.responder, addr));
+      served.emplace_back(receivers.back().get(), d.advance, d.line_baud);
     }
   } catch (const BadInput& e) {
     return bad(e.what());
@@ -336,8 +307,9 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
         throw BadInput(o.parameter + ":" + std::to_string(n) + ": expected `PARAM VALUE`");
       }
       try {
-        const Param p = find_param(lb::Family::mc6000, param);
-        if (!p.writable || p.number == devices::mc6000::kSload) {
+        // 11.4: the dataset download is the servo family's.
+        const Param p = find_param(*lustbus_drive(lb::Family::mc6000).lustbus, param);
+        if (!p.in_dataset) {
           throw BadInput(label(p) + " cannot be part of a dataset");
         }
         records.push_back({value_code(p, false), format_value(p, parse_value(p, value, false))});
@@ -421,8 +393,9 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
     }
 
     if (o.addr < 0 || o.addr > 30) throw BadInput("--addr must be 0..30 (31 is broadcast)");
-    const lb::Family family = parse_family(o.device);
-    const Param p = find_param(family, o.parameter);
+    const devices::LustbusFace& face = parse_face(o.device);
+    const lb::Family family = face.family;
+    const Param p = find_param(face, o.parameter);
     const auto addr = static_cast<lb::Address>(o.addr);
     const std::string who = o.device + "@" + std::to_string(o.addr) + " " + label(p);
     j["device"] = o.device;
@@ -532,7 +505,8 @@ void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) 
   if (parameter) {
     cmd->add_option("--addr", o.addr, "the device's address, 1..30 (0: the only device)")
         ->required();
-    cmd->add_option("--device", o.device, "vf1000 or mc6000: the parameter table to use")
+    cmd->add_option("--device", o.device,
+                    devices::drive_names(devices::Bus::lustbus, ", ", " or ") + ": the parameter table to use")
         ->required();
     cmd->add_option("PARAM", o.parameter, "parameter number or name")->required();
   }
@@ -551,16 +525,8 @@ std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out
   if (!in || !std::getline(in, header) || header != lb::kByteLogHeader) return std::nullopt;
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(std::move(l));
-  // The names, units and types of the parameters: the drives' tables (find_param).
-  const lb::ParameterLookup lookup = [](lb::Family f, std::uint16_t number) -> std::optional<lb::ParameterFacts> {
-    try {
-      const Param p = find_param(f, std::to_string(number));
-      return lb::ParameterFacts{p.number, p.name, p.unit, p.type};
-    } catch (const BadInput&) {
-      return std::nullopt;
-    }
-  };
-  const lb::ByteLogReading r = lb::read_byte_log(lines, lookup);
+  // The names, units and types of the parameters: the drives' tables, through the registry.
+  const lb::ByteLogReading r = lb::read_byte_log(lines, devices::lustbus_parameter_lookup());
   if (r.error && r.error->line == 0) {
     err << "ibs decode: " << file << ": " << r.error->what << "; DFS-1 logs are read by eye\n";
     return kExitLustbusBadInput;
@@ -609,7 +575,7 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
   LustbusEmulateOptions& eo = state.emulate_options;
   state.emulate = state.lustbus->add_subcommand(
       "emulate", "emulate drives on a port or a new pty until SIGINT/SIGTERM");
-  state.emulate->add_option("DEVICE", eo.devices, "vf1000@ADDR or mc6000@ADDR, one per drive")
+  state.emulate->add_option("DEVICE", eo.devices, device_forms() + ", one per drive")
       ->required();
   state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");

@@ -6,9 +6,11 @@
 #include <type_traits>
 
 #include "ibs/devices/mc6000/campaign_profile.hpp"
+#include "ibs/devices/mc6000/capture.hpp"
 #include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/mc6000/device.hpp"
 #include "ibs/devices/vf1000/campaign_profile.hpp"
+#include "ibs/devices/vf1000/capture.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/devices/vf1000/device.hpp"
 #include "ibs/drivecom/sequencer.hpp"
@@ -20,8 +22,8 @@ namespace {
 // The one list of drive kinds, sorted by name. A new drive adds its line here.
 const auto& kinds() {
   static const auto k = std::to_array<DriveKind>({
-      {&mc6000::descriptor(), &mc6000::make_emulator, &mc6000::campaign_profile()},
-      {&vf1000::descriptor(), &vf1000::make_emulator, &vf1000::campaign_profile()},
+      {&mc6000::descriptor(), &mc6000::make_emulator, &mc6000::campaign_profile(), &mc6000::capture_face()},
+      {&vf1000::descriptor(), &vf1000::make_emulator, &vf1000::campaign_profile(), &vf1000::capture_face()},
   });
   return k;
 }

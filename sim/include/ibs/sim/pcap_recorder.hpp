@@ -17,6 +17,7 @@
 #include "ibs/interbus/process_image.hpp"
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
+#include "ibs/devices/capture.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
 
@@ -37,27 +38,24 @@ inline constexpr std::size_t kCycleHeaderSize = 16;
 
 // What wrote the capture.
 enum class Source : std::uint8_t { run = 0, replay_device = 1, replay_master = 2 };
-enum class Kind : std::uint8_t { other = 0, vf1000 = 1, mc6000 = 2 };
-// How a device's reference and actual value read (docs/pcap.md, "Values").
-enum class Values : std::uint8_t {
-  none = 0,          // no values (MC6000 IBCNF 0, a trace of PCP or communication words only)
-  word16 = 1,        // MC6000 IBCNF 1: one signed word each, whole units
-  q16 = 2,           // MC6000 IBCNF 2: 32-bit Q16 each, high word first
-  speed_torque = 3,  // MC6000 IBCNF 3: Q16 reference; actual speed and torque as signed words
-  vf1000 = 4,        // VF1000: reference 0.05 Hz per bit (absolute), actual 0.05 Hz signed
-};
+// A device's kind: the number its drive declares (devices::CaptureFace::kind, from the drive
+// registry); kKindOther for a device no registered drive describes.
+inline constexpr std::uint8_t kKindOther = 0;
+// How a device's reference and actual value read (docs/pcap.md, "Values"): the drive's own
+// declaration (devices::CaptureFace::format).
+using Values = devices::CaptureValues;
 
 struct Device {
   std::string name;
-  Kind kind = Kind::other;
+  std::uint8_t kind = kKindOther;
   Word id_code = 0;
   std::uint8_t first_word = 1;  // the device's process-data word number the slices start with
   interbus::Slice in;           // in the IN area (what the device sends)
   interbus::Slice out;          // in the OUT area (what the master sends)
   interbus::Slice pcp;          // in both PCP areas
   Values values = Values::none;
-  std::uint8_t supi = 0;   // MC6000
-  std::uint8_t ibcnf = 0;  // MC6000
+  std::uint8_t supi = 0;   // layout settings of a drive that has them (CaptureFormat)
+  std::uint8_t ibcnf = 0;
   std::string unit;        // of the reference and actual value: "rpm", "Hz"
 };
 
@@ -77,13 +75,13 @@ std::vector<std::uint8_t> encode_configuration(const Configuration& c);
 void encode_cycle(const Configuration& c, std::uint32_t cycle, bool valid, const interbus::ProcessImage& image,
                   std::vector<std::uint8_t>& out);
 
-// What a capture says of one device besides its slices: its kind code, ID code, unit, MC6000
-// settings and how its values read, from the drive's descriptor (no slices; Kind::other for a
+// What a capture says of one device besides its slices: its kind number, ID code, unit, layout
+// settings and how its values read, from the drive's registry entry (no slices; kKindOther for a
 // kind the registry does not know). Throws devices::SettingsError for settings the drive refuses.
 Device describe(const std::string& name, const std::string& kind, const devices::DeviceSettings& settings);
 
-// The configuration of a simulated ring: the bus configuration of `sim`, kinds and MC6000 layouts
-// from `scenario` (the one `sim` was built from).
+// The configuration of a simulated ring: the bus configuration of `sim`, kinds and layouts from
+// `scenario` (the one `sim` was built from).
 Configuration configuration_of(const Simulator& sim, const Scenario& scenario);
 
 }  // namespace capture

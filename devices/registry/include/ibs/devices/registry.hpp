@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "ibs/devices/campaign_profile.hpp"
+#include "ibs/devices/capture.hpp"
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/devices/emulator.hpp"
 #include "ibs/interbus/device_start.hpp"
@@ -27,6 +28,8 @@ struct DriveKind {
   const DriveDescriptor* descriptor = nullptr;
   EmulatorFactory make_emulator = nullptr;
   const CampaignProfile* campaign = nullptr;
+  // The drive's kind number and value formats in INTERBUS captures (capture.hpp, docs/pcap.md).
+  const CaptureFace* capture = nullptr;
 
   [[nodiscard]] const DriveDescriptor& operator*() const { return *descriptor; }
   [[nodiscard]] const DriveDescriptor* operator->() const { return descriptor; }

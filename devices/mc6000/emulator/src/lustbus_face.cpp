@@ -1,0 +1,50 @@
+// The MC6000 as the registry's LUSTBUS face: its LustbusDevice made from the emulate options and
+// its parameter table as the host commands read it.
+#include "ibs/devices/mc6000/lustbus_face.hpp"
+
+#include <charconv>
+#include <stdexcept>
+#include <string>
+
+#include "ibs/devices/mc6000/lustbus_device.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
+
+namespace ibs::devices::mc6000 {
+
+namespace {
+
+LustbusEmulated make(const LustbusFaceOptions& o) {
+  LustbusTiming timing;
+  // 10: up to 30 ms with a KEYPAD, 25 ms without, unless a fixed time is asked for.
+  timing.reaction = o.reaction_ms >= 0 ? lustbus::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
+                                       : lustbus::ReactionModel::servo(o.keypad, o.seed);
+  auto d = std::make_unique<LustbusDevice>(timing);
+  if (!d->set_line_baud(o.baud)) {
+    throw std::invalid_argument("an MC6000 runs at 2400..57600 baud (seed 000, 4), not " + std::to_string(o.baud));
+  }
+  LustbusDevice* p = d.get();
+  return {std::move(d), [p](Time t) { p->advance(t); }, [p]() { return p->line_baud(); }};
+}
+
+std::optional<LustbusParameter> find_parameter(std::string_view text) {
+  unsigned n = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), n);
+  const bool numeric = !text.empty() && r.ec == std::errc{} && r.ptr == text.data() + text.size();
+  for (const pcp::ParameterInfo& p : parameters()) {
+    if (numeric ? p.number == n : p.name == text) {
+      // 11.4: 80-SLOAD runs the download; it is no part of the dataset.
+      return LustbusParameter{p.number, std::string(p.name),   "",    lustbus_type(p.type), p.min, p.max,
+                              p.writable(), p.number == kProg, p.writable() && p.number != kSload};
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+const LustbusFace& lustbus_face() {
+  static const LustbusFace face{lustbus::Family::mc6000, &make, &find_parameter, ""};
+  return face;
+}
+
+}  // namespace ibs::devices::mc6000

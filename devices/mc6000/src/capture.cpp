@@ -1,0 +1,33 @@
+#include "ibs/devices/mc6000/capture.hpp"
+
+#include "ibs/devices/mc6000/layout.hpp"
+
+namespace ibs::devices::mc6000 {
+
+namespace {
+
+// The reference and actual value as 406-IBCNF lays them out: none when the layout
+// exchanges no process data (IBCNF 0) or is the LISIM one; seed 001 3.2.3.
+CaptureFormat format(const DeviceSettings& s) {
+  CaptureFormat f;
+  f.supi = static_cast<std::uint8_t>(s.supi);
+  f.ibcnf = static_cast<std::uint8_t>(s.ibcnf);
+  const auto layout = make_layout(s.supi, s.ibcnf);
+  switch (layout.exchanges_data ? layout.ibcnf : Ibcnf::none) {
+    case Ibcnf::word16: f.values = CaptureValues::word16; break;
+    case Ibcnf::q16: f.values = CaptureValues::q16; break;
+    case Ibcnf::speed_torque: f.values = CaptureValues::speed_torque; break;
+    case Ibcnf::none:
+    case Ibcnf::lisim: f.values = CaptureValues::none; break;
+  }
+  return f;
+}
+
+}  // namespace
+
+const CaptureFace& capture_face() {
+  static const CaptureFace face{2, "MC6000", &format};
+  return face;
+}
+
+}  // namespace ibs::devices::mc6000

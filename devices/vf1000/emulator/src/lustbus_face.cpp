@@ -1,0 +1,52 @@
+// The VF1000 as the registry's LUSTBUS face: its LustbusDevice made from the emulate options and
+// its parameter table as the host commands read it.
+#include "ibs/devices/vf1000/lustbus_face.hpp"
+
+#include <charconv>
+#include <stdexcept>
+#include <string>
+
+#include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
+
+namespace ibs::devices::vf1000 {
+
+namespace {
+
+LustbusEmulated make(const LustbusFaceOptions& o) {
+  LustbusTiming timing;
+  // 10: "1...60 ms" with a KEYPAD, "1...30 ms" without, unless a fixed time is asked for.
+  timing.reaction = o.reaction_ms >= 0 ? lustbus::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
+                                       : lustbus::ReactionModel::inverter(o.keypad, o.seed);
+  auto d = std::make_unique<LustbusDevice>(timing);
+  if (!d->set_line_baud(o.baud)) {
+    throw std::invalid_argument("a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not " +
+                                std::to_string(o.baud));
+  }
+  LustbusDevice* p = d.get();
+  return {std::move(d), [p](Time t) { p->advance(t); }, [p]() { return p->line_baud(); }};
+}
+
+std::optional<LustbusParameter> find_parameter(std::string_view text) {
+  unsigned n = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), n);
+  const bool numeric = !text.empty() && r.ec == std::errc{} && r.ptr == text.data() + text.size();
+  for (const drive::ParameterInfo& p : parameters()) {
+    if (p.number > 99) continue;  // 2.4.1: the CODE carries two digits
+    if (numeric ? p.number == n : p.name == text) {
+      return LustbusParameter{p.number, std::string(p.name), std::string(p.unit), lustbus_type(p.type),
+                              p.min,    p.max,               drive::writable(p.category),
+                              p.number == pnr::kProg, false};
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+const LustbusFace& lustbus_face() {
+  static const LustbusFace face{lustbus::Family::vf1000, &make, &find_parameter, " (1..99)"};
+  return face;
+}
+
+}  // namespace ibs::devices::vf1000
