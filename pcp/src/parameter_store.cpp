@@ -58,6 +58,8 @@ Error ParameterStore::validate(std::span<const ParameterInfo> table) {
 
 ParameterStore::ParameterStore(std::span<const ParameterInfo> table) : table_(table) {
   detail::require<std::invalid_argument>(validate(table));
+  slots_.fill(kNoSlot);
+  for (std::size_t i = 0; i < table_.size(); ++i) slots_[table_[i].number] = static_cast<std::uint8_t>(i);
   factory_defaults();
 }
 
@@ -66,10 +68,8 @@ std::uint32_t ParameterStore::to_raw(const ParameterInfo& p, std::int64_t number
 }
 
 std::optional<std::size_t> ParameterStore::slot(std::uint16_t number) const {
-  for (std::size_t i = 0; i < table_.size(); ++i) {
-    if (table_[i].number == number) return i;
-  }
-  return std::nullopt;
+  if (number > kMaxParameterNumber || slots_[number] == kNoSlot) return std::nullopt;
+  return slots_[number];
 }
 
 const ParameterInfo* ParameterStore::info(std::uint16_t number) const {

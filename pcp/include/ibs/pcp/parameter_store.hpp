@@ -54,7 +54,14 @@ class ParameterStore {
  private:
   [[nodiscard]] std::optional<std::size_t> slot(std::uint16_t number) const;
 
+  static constexpr std::uint8_t kNoSlot = 0xFF;
+  static_assert(kMaxParameters < kNoSlot);
+
   std::span<const ParameterInfo> table_;
+  // A parameter's slot by its number, filled at construction: the drive core and the servers
+  // look values up on every sample, and a walk over the table there cost the MC6000's sample a
+  // quarter more instructions than before the drive core (docs/performance.md).
+  std::array<std::uint8_t, kMaxParameterNumber + 1> slots_{};
   std::array<std::uint32_t, kMaxParameters> ram_{};
   std::array<std::uint32_t, kMaxParameters> eeprom_{};
 };
