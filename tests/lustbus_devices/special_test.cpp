@@ -188,7 +188,7 @@ TEST(McDescriptionAreas, CarryFrameCharacters) {
 // 10: reaction times drawn from the table, with and without KEYPAD; the same seed, the same times.
 TEST(ReactionTimes, Of10SeededWithinTheTable) {
   for (const bool keypad : {false, true}) {
-    for (const auto& m : {ReactionModel::servo(keypad, 7), ReactionModel::inverter(keypad, 7)}) {
+    for (const auto& m : {mc::lustbus_reaction(keypad, 7), ibs::devices::vf1000::lustbus_reaction(keypad, 7)}) {
       ReactionTimes a(m);
       ReactionTimes b(m);
       ibs::Duration lo = m.max;
@@ -205,15 +205,15 @@ TEST(ReactionTimes, Of10SeededWithinTheTable) {
       EXPECT_GT(hi, m.max - 3ms);
     }
   }
-  EXPECT_EQ(ReactionModel::servo(true, 0).max, 30ms);
-  EXPECT_EQ(ReactionModel::servo(false, 0).max, 25ms);
-  EXPECT_EQ(ReactionModel::inverter(true, 0).max, 60ms);
-  EXPECT_EQ(ReactionModel::inverter(false, 0).max, 30ms);
-  EXPECT_NE(ReactionTimes(ReactionModel::servo(false, 1)).next(),
-            ReactionTimes(ReactionModel::servo(false, 2)).next());
+  EXPECT_EQ(mc::lustbus_reaction(true, 0).max, 30ms);
+  EXPECT_EQ(mc::lustbus_reaction(false, 0).max, 25ms);
+  EXPECT_EQ(ibs::devices::vf1000::lustbus_reaction(true, 0).max, 60ms);
+  EXPECT_EQ(ibs::devices::vf1000::lustbus_reaction(false, 0).max, 30ms);
+  EXPECT_NE(ReactionTimes(mc::lustbus_reaction(false, 1)).next(),
+            ReactionTimes(mc::lustbus_reaction(false, 2)).next());
   // A drive with the model answers after the time drawn.
   ibs::devices::vf1000::LustbusTiming timing;
-  timing.reaction = ReactionModel::inverter(false, 42);
+  timing.reaction = ibs::devices::vf1000::lustbus_reaction(false, 42);
   ibs::devices::vf1000::LustbusDevice vf(timing);
   Receiver rx(vf, 1);
   ReactionTimes expect(timing.reaction);

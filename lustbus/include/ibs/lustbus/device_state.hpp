@@ -56,23 +56,18 @@ class SerialWatchdog {
   Time last_{};
 };
 
-// 10: "the time to react to a telegram depends on the individual device and its load", with and
-// without a KEYPAD: servos 1...30 / 1...25 ms, inverters 1...60 / 1...30 ms. The emulated drives
-// draw each reaction from a seeded generator, uniformly between `min` and `max` in whole
-// microseconds (LB-D18): the same seed gives the same times. min == max is a fixed time.
+// 10: "the time to react to a telegram depends on the individual device and its load". The
+// emulated drives draw each reaction from a seeded generator, uniformly between `min` and `max` in
+// whole microseconds (LB-D18): the same seed gives the same times. min == max is a fixed time.
+// Each drive's range (10's table, with and without a KEYPAD) is its wing's: lustbus_reaction() in
+// devices/<drive>/emulator/.../lustbus_device.hpp.
 struct ReactionModel {
   Duration min = std::chrono::milliseconds(2);
   Duration max = std::chrono::milliseconds(2);
   std::uint64_t seed = 0;
 
   static constexpr ReactionModel fixed(Duration d) { return {d, d, 0}; }
-  // 10's table.
-  static constexpr ReactionModel servo(bool keypad, std::uint64_t seed) {
-    return {std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 30 : 25), seed};
-  }
-  static constexpr ReactionModel inverter(bool keypad, std::uint64_t seed) {
-    return {std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 60 : 30), seed};
-  }
+  static constexpr ReactionModel uniform(Duration lo, Duration hi, std::uint64_t seed) { return {lo, hi, seed}; }
 };
 
 class ReactionTimes {

@@ -26,8 +26,14 @@ namespace ibs::devices::mc6000 {
 // How a table type of the MC6000 (pcp::DataType) reads as a LUSTBUS VALUE (seed 000, 2.3.2).
 lustbus::DataType lustbus_type(pcp::DataType t);
 
+// Seed 000, 10's table: the servo reacts within 1...30 ms with a KEYPAD, 1...25 ms without,
+// drawn from `seed` (LB-D18).
+constexpr lustbus::ReactionModel lustbus_reaction(bool keypad, std::uint64_t seed) {
+  return lustbus::ReactionModel::uniform(std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 30 : 25), seed);
+}
+
 struct LustbusTiming {
-  // Reaction time of 10: fixed 2 ms unless told (ReactionModel::servo(keypad, seed) draws from
+  // Reaction time of 10: fixed 2 ms unless told (lustbus_reaction(keypad, seed) draws from
   // 10's "1...30 ms" with KEYPAD, "1...25 ms" without; LB-D18).
   lustbus::ReactionModel reaction = lustbus::ReactionModel::fixed(std::chrono::milliseconds(2));
   // The drive's own timing, for a core this face makes itself (a face on a given core takes

@@ -24,8 +24,14 @@ namespace ibs::devices::vf1000 {
 // How a table type of the VF1000 (drive::DataType) reads as a LUSTBUS VALUE (seed 000, 2.3.1).
 lustbus::DataType lustbus_type(drive::DataType t);
 
+// Seed 000, 10's table: the inverter reacts within 1...60 ms with a KEYPAD, 1...30 ms without,
+// drawn from `seed` (LB-D18).
+constexpr lustbus::ReactionModel lustbus_reaction(bool keypad, std::uint64_t seed) {
+  return lustbus::ReactionModel::uniform(std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 60 : 30), seed);
+}
+
 struct LustbusTiming {
-  // Reaction time of 10: fixed 2 ms unless told (ReactionModel::inverter(keypad, seed) draws
+  // Reaction time of 10: fixed 2 ms unless told (lustbus_reaction(keypad, seed) draws
   // from 10's "1...60 ms" with KEYPAD, "1...30 ms" without; LB-D18). The time the drive takes to
   // store a value (10 exceptions 1 and 4) is the drive's (DriveConfig::storing) and adds to it.
   lustbus::ReactionModel reaction = lustbus::ReactionModel::fixed(std::chrono::milliseconds(2));
