@@ -12,8 +12,14 @@ CaptureFormat format(const DeviceSettings& s) {
   CaptureFormat f;
   f.supi = static_cast<std::uint8_t>(s.supi);
   f.ibcnf = static_cast<std::uint8_t>(s.ibcnf);
-  const auto layout = make_layout(s.supi, s.ibcnf);
-  switch (layout.exchanges_data ? layout.ibcnf : Ibcnf::none) {
+  // The non-throwing form: this is in the master library, which the embedded build compiles
+  // without exceptions. Settings the servo refuses never reach a capture; none for them anyway.
+  const Expected<Layout> layout = try_make_layout(s.supi, s.ibcnf, interbus::BusKind::remote);
+  if (!layout) {
+    f.values = CaptureValues::none;
+    return f;
+  }
+  switch (layout->exchanges_data ? layout->ibcnf : Ibcnf::none) {
     case Ibcnf::word16: f.values = CaptureValues::word16; break;
     case Ibcnf::q16: f.values = CaptureValues::q16; break;
     case Ibcnf::speed_torque: f.values = CaptureValues::speed_torque; break;
