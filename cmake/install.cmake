@@ -68,8 +68,8 @@ function(ibs_install)
           DESTINATION ${cmake_dir})
   # pkg-config: the master's libraries in link order (each after the ones that need it).
   set(IBS_MASTER_PKG_LIBS "")
-  set(libs ibs_master ibs_vf1000_master ibs_mc6000_master ibs_devices_api ibs_vf1000_channel ibs_pcp
-           ibs_drive ibs_drivecom ibs_interbus_bus)
+  set(libs ibs_master ibs_vf1000_master ibs_mc6000_master ibs_devices_api ibs_vf1000_channel
+           ibs_vf1000_table ibs_mc6000_core ibs_pcp ibs_drive ibs_drivecom ibs_interbus_bus)
   if(NOT IBS_EMBEDDED)
     list(APPEND libs ibs_interbus_core)  # traces and replay: headers only in the embedded build
   endif()
