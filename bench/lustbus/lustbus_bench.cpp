@@ -38,7 +38,7 @@ BENCHMARK(BM_EncodeSelect);
 
 void BM_EncodeMc32BitValue(benchmark::State& state) {
   for (auto _ : state) {
-    const auto v = encode(Family::mc6000, DataType::int32q16, 333.254);
+    const auto v = encode(Family::enhanced, DataType::int32q16, 333.254);
     Frame f = encode_select(1, make_code(20428), v.value);
     benchmark::DoNotOptimize(f);
   }

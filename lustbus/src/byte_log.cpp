@@ -18,7 +18,7 @@ namespace {
 // parameter's name from that family's table.
 struct Named {
   std::string text;  // "VF1000 5-FSSIO", "MC6000 428-RSIO description", "PosMOD1"
-  Family family = Family::vf1000;
+  Family family = Family::standard;
   std::optional<ParameterFacts> param;
   bool description = false;
 };
@@ -35,8 +35,8 @@ Named name_code(const Code& c, const ParameterLookup& lookup) {
     return lookup ? lookup(f, number) : std::nullopt;
   };
   if (const auto mc = as_mc_code(c); mc && mc->kind != McCodeKind::shared) {
-    n.family = Family::mc6000;
-    n.param = find(Family::mc6000, mc->parameter);
+    n.family = Family::enhanced;
+    n.param = find(Family::enhanced, mc->parameter);
     const std::string what = mc->kind == McCodeKind::description         ? " description (11.2)"
                              : mc->kind == McCodeKind::substitution_text ? " substitution text (11.3)"
                              : mc->kind == McCodeKind::special           ? " special function"
@@ -47,8 +47,8 @@ Named name_code(const Code& c, const ParameterLookup& lookup) {
   }
   if (const auto vf = as_vf_code(c)) {
     const bool shared = is_shared_parameter(vf->parameter) && c.digit(0) == '0' && c.digit(2) == '0';
-    n.family = Family::vf1000;
-    n.param = find(Family::vf1000, vf->parameter);
+    n.family = Family::standard;
+    n.param = find(Family::standard, vf->parameter);
     n.description = vf->specifier == VfSpecifier::description;
     n.text = std::string(shared ? "VF1000/MC6000 " : "VF1000 ") +
              (n.param ? label(*n.param) : std::to_string(vf->parameter) + " (not in the table)") +
@@ -136,7 +136,7 @@ class LogReader {
         out_ << answer_at_ << " drive " << address_char(addr_) << " " << code_.text() << "=" << printable(v)
              << " BCC ok: " << n.text << (n.param && !n.description ? " =" : "") << explain_value(n, v);
         if (reads_siof(code_)) {
-          const auto bits = parse_raw(Family::mc6000, v);
+          const auto bits = parse_raw(Family::enhanced, v);
           if (bits.ok()) out_ << " (" << describe_siof(static_cast<std::uint8_t>(bits.value)) << ")";
         }
         out_ << "\n";

@@ -120,11 +120,11 @@ std::string describe(const Outcome& o) {
 }
 
 std::optional<Code> parameter_code(Family f, unsigned parameter, bool description) {
-  if (f == Family::vf1000) return vf_code(parameter, description ? VfSpecifier::description : VfSpecifier::value);
+  if (f == Family::standard) return vf_code(parameter, description ? VfSpecifier::description : VfSpecifier::value);
   return mc_code(description ? McCodeKind::description : McCodeKind::value, parameter);
 }
 
-std::string_view device_kind(Family f) { return f == Family::vf1000 ? "inverter" : "servo"; }
+std::string_view device_kind(Family f) { return f == Family::standard ? "inverter" : "servo"; }
 
 Request enquiry(Address a, const Code& c) {
   Request r;
@@ -419,7 +419,7 @@ void Host::start_job(Time now) {
       return;
     case RequestKind::substitution_text: {
       // 11.3 step 2: STEXT = the value whose text is wanted (USIGN "%X").
-      const auto v = format_raw(Family::mc6000, r.text_index);
+      const auto v = format_raw(Family::enhanced, r.text_index);
       select_phase(Phase::st_select, kStextCode, v.value, now);
       return;
     }
@@ -618,7 +618,7 @@ void Host::tx_done(Time now) {
         on_select_like_failure(select_failure_, now);
         return;
       }
-      const auto raw = parse_raw(Family::mc6000, decoder_.value().view());
+      const auto raw = parse_raw(Family::enhanced, decoder_.value().view());
       if (!raw.ok() || raw.value > 0xFFFFU) {
         out_->siof.reset();
         on_select_like_failure(select_failure_, now);
@@ -648,7 +648,7 @@ void Host::tx_done(Time now) {
         ScanEntry& e = out_->scan.devices[out_->scan.count++];
         e = ScanEntry{};
         e.address = scan_address_;
-        const auto t = parse_raw(Family::mc6000, decoder_.value().view());
+        const auto t = parse_raw(Family::enhanced, decoder_.value().view());
         e.type = t.ok() ? t.value : 0;
         enquiry_phase(Phase::scan_probe, scan_address_, kServoProbeCode,
                       config_.scan_response_timeout, now);
@@ -659,16 +659,16 @@ void Host::tx_done(Time now) {
     case Phase::scan_probe: {
       ScanEntry& e = out_->scan.devices[out_->scan.count - 1];
       if (answer_kind_ == AnswerKind::text) {
-        e.family = Family::mc6000;
+        e.family = Family::enhanced;
       } else if (answer_kind_ == AnswerKind::nak) {
-        e.family = Family::vf1000;
+        e.family = Family::standard;
       }
       next_scan_address(now);
       return;
     }
     case Phase::dl_poll: {
       if (answer_kind_ == AnswerKind::text) {
-        const auto v = parse_typed(Family::mc6000, DataType::integer16, decoder_.value().view());
+        const auto v = parse_typed(Family::enhanced, DataType::integer16, decoder_.value().view());
         if (v.ok()) {
           const auto sload = static_cast<std::int16_t>(v.value);
           if (sload == 0) {

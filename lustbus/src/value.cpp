@@ -39,7 +39,7 @@ constexpr std::uint32_t width_max(DataType t) {
 }  // namespace
 
 std::string_view to_string(Family f) {
-  return f == Family::vf1000 ? "VF1000" : "MC6000";
+  return f == Family::standard ? "VF1000" : "MC6000";
 }
 
 std::string_view to_string(ValueError e) {
@@ -93,7 +93,7 @@ std::string_view to_string(DataType t) {
 }
 
 Result<Value> format_raw(Family f, std::uint32_t raw) {
-  if (f == Family::vf1000) {
+  if (f == Family::standard) {
     if (raw > 0xFFFFU) return {{}, ValueError::out_of_range};
     return {hex_value(raw, 4), ValueError::none};  // sprintf("%04X") of 2.3.1
   }
@@ -107,7 +107,7 @@ Result<Value> format_raw_width(std::uint32_t raw, std::size_t min_width) {
 
 Result<std::uint32_t> parse_raw(Family f, std::string_view s) {
   if (s.empty()) return {0, ValueError::empty};
-  if (f == Family::vf1000 && s.size() != 4) return {0, ValueError::wrong_length};
+  if (f == Family::standard && s.size() != 4) return {0, ValueError::wrong_length};
   if (s.size() > kMaxValueLength) return {0, ValueError::too_long};
   std::uint32_t raw = 0;
   std::size_t significant = 0;
@@ -130,7 +130,7 @@ Result<std::uint32_t> parse_typed(Family f, DataType t, std::string_view value) 
 }
 
 Result<Value> format_typed(Family f, DataType t, std::uint32_t bits) {
-  if (f == Family::vf1000 && width_bits(t) > 16) return {{}, ValueError::wrong_type};
+  if (f == Family::standard && width_bits(t) > 16) return {{}, ValueError::wrong_type};
   if (bits > width_max(t)) return {{}, ValueError::out_of_range};
   return format_raw(f, bits);
 }

@@ -262,8 +262,8 @@ TEST(DriveRegistry, ThePairsAreWhatTheWingsDeclare) {
   EXPECT_EQ(mc->lustbus, &mc6000::lustbus_face());
   EXPECT_EQ(dfs->dfs1, &dfs1::bus_face());
   EXPECT_EQ(cda->canlust, &cda3000::bus_face());
-  EXPECT_EQ(vf->lustbus->family, lustbus::Family::vf1000);
-  EXPECT_EQ(mc->lustbus->family, lustbus::Family::mc6000);
+  EXPECT_EQ(vf->lustbus->family, lustbus::Family::standard);
+  EXPECT_EQ(mc->lustbus->family, lustbus::Family::enhanced);
   // Every INTERBUS kind is a drive of the registry, with the capture facts its wing declares.
   std::size_t interbus = 0;
   for (const DriveKind& k : drive_kinds()) {
@@ -407,7 +407,7 @@ TEST(DriveRegistry, TheByteLogLookupIsTheFacesTables) {
     ASSERT_TRUE(f.has_value());
     EXPECT_EQ(f->name, d->lustbus->find_parameter("91")->name);
   }
-  EXPECT_FALSE(lookup(lustbus::Family::vf1000, 100).has_value()) << "2.4.1: two digits";
+  EXPECT_FALSE(lookup(lustbus::Family::standard, 100).has_value()) << "2.4.1: two digits";
 }
 
 // The `local NAME = { [0] = "...", ... }` table of the dissector, as number -> text.

@@ -15,8 +15,8 @@ using Lines = std::vector<std::string>;
 
 // A table of two parameters, as a wing would answer.
 std::optional<ParameterFacts> two_parameters(Family f, std::uint16_t number) {
-  if (f == Family::vf1000 && number == 5) return ParameterFacts{5, "FSSIO", "Hz", DataType::fixpoint16};
-  if (f == Family::mc6000 && number == 77) return ParameterFacts{77, "SPEED", "", DataType::int32q16};
+  if (f == Family::standard && number == 5) return ParameterFacts{5, "FSSIO", "Hz", DataType::fixpoint16};
+  if (f == Family::enhanced && number == 77) return ParameterFacts{77, "SPEED", "", DataType::int32q16};
   return std::nullopt;
 }
 

@@ -68,108 +68,108 @@ TEST(McCode, Coding242WithSharedSubstitutionAndPosmod) {
 // ---- VALUE formats (2.3) -------------------------------------------------------------------------
 
 TEST(ValueFormat, Vf1000IsExactlyFourCapitalHexDigits) {
-  EXPECT_EQ(format_raw(Family::vf1000, 0).value.view(), "0000");
-  EXPECT_EQ(format_raw(Family::vf1000, 0x3E8).value.view(), "03E8");
-  EXPECT_EQ(format_raw(Family::vf1000, 0xFFFF).value.view(), "FFFF");
-  EXPECT_EQ(format_raw(Family::vf1000, 0x10000).error, ValueError::out_of_range);
-  EXPECT_EQ(parse_raw(Family::vf1000, "03E8").value, 0x3E8U);
-  EXPECT_EQ(parse_raw(Family::vf1000, "3E8").error, ValueError::wrong_length);
-  EXPECT_EQ(parse_raw(Family::vf1000, "003E8").error, ValueError::wrong_length);
-  EXPECT_EQ(parse_raw(Family::vf1000, "03e8").error, ValueError::lower_case);
-  EXPECT_EQ(parse_raw(Family::vf1000, "03G8").error, ValueError::not_hex);
-  EXPECT_EQ(parse_raw(Family::vf1000, "").error, ValueError::empty);
+  EXPECT_EQ(format_raw(Family::standard, 0).value.view(), "0000");
+  EXPECT_EQ(format_raw(Family::standard, 0x3E8).value.view(), "03E8");
+  EXPECT_EQ(format_raw(Family::standard, 0xFFFF).value.view(), "FFFF");
+  EXPECT_EQ(format_raw(Family::standard, 0x10000).error, ValueError::out_of_range);
+  EXPECT_EQ(parse_raw(Family::standard, "03E8").value, 0x3E8U);
+  EXPECT_EQ(parse_raw(Family::standard, "3E8").error, ValueError::wrong_length);
+  EXPECT_EQ(parse_raw(Family::standard, "003E8").error, ValueError::wrong_length);
+  EXPECT_EQ(parse_raw(Family::standard, "03e8").error, ValueError::lower_case);
+  EXPECT_EQ(parse_raw(Family::standard, "03G8").error, ValueError::not_hex);
+  EXPECT_EQ(parse_raw(Family::standard, "").error, ValueError::empty);
 }
 
 TEST(ValueFormat, Mc6000IsOneToHundredCharactersLeadingZerosOptional) {
-  EXPECT_EQ(format_raw(Family::mc6000, 0).value.view(), "0");
-  EXPECT_EQ(format_raw(Family::mc6000, 0x842666).value.view(), "842666");
-  EXPECT_EQ(format_raw(Family::mc6000, 0xFFFFFFFF).value.view(), "FFFFFFFF");
+  EXPECT_EQ(format_raw(Family::enhanced, 0).value.view(), "0");
+  EXPECT_EQ(format_raw(Family::enhanced, 0x842666).value.view(), "842666");
+  EXPECT_EQ(format_raw(Family::enhanced, 0xFFFFFFFF).value.view(), "FFFFFFFF");
   EXPECT_EQ(format_raw_width(0x4FA4000, 8).value.view(), "04FA4000");
-  EXPECT_EQ(parse_raw(Family::mc6000, "2").value, 2U);
-  EXPECT_EQ(parse_raw(Family::mc6000, "0002").value, 2U);
-  EXPECT_EQ(parse_raw(Family::mc6000, std::string(92, '0') + "FFFFFFFF").value, 0xFFFFFFFFU);
-  EXPECT_EQ(parse_raw(Family::mc6000, std::string(101, '0')).error, ValueError::too_long);
-  EXPECT_EQ(parse_raw(Family::mc6000, "100000000").error, ValueError::too_long);
-  EXPECT_EQ(parse_raw(Family::mc6000, "").error, ValueError::empty);
-  EXPECT_EQ(parse_raw(Family::mc6000, "-1").error, ValueError::not_hex);
-  EXPECT_EQ(parse_raw(Family::mc6000, " 1").error, ValueError::not_hex);
+  EXPECT_EQ(parse_raw(Family::enhanced, "2").value, 2U);
+  EXPECT_EQ(parse_raw(Family::enhanced, "0002").value, 2U);
+  EXPECT_EQ(parse_raw(Family::enhanced, std::string(92, '0') + "FFFFFFFF").value, 0xFFFFFFFFU);
+  EXPECT_EQ(parse_raw(Family::enhanced, std::string(101, '0')).error, ValueError::too_long);
+  EXPECT_EQ(parse_raw(Family::enhanced, "100000000").error, ValueError::too_long);
+  EXPECT_EQ(parse_raw(Family::enhanced, "").error, ValueError::empty);
+  EXPECT_EQ(parse_raw(Family::enhanced, "-1").error, ValueError::not_hex);
+  EXPECT_EQ(parse_raw(Family::enhanced, " 1").error, ValueError::not_hex);
 }
 
 // ---- data types (2.3.1, 2.3.2) -------------------------------------------------------------------
 
 TEST(DataTypes, FamiliesListTheirTables) {
-  EXPECT_TRUE(family_has(Family::vf1000, DataType::binary8));
-  EXPECT_TRUE(family_has(Family::vf1000, DataType::vf_error));
-  EXPECT_FALSE(family_has(Family::vf1000, DataType::int32q16));
-  EXPECT_TRUE(family_has(Family::mc6000, DataType::float_ieee));
-  EXPECT_FALSE(family_has(Family::mc6000, DataType::binary8));
+  EXPECT_TRUE(family_has(Family::standard, DataType::binary8));
+  EXPECT_TRUE(family_has(Family::standard, DataType::vf_error));
+  EXPECT_FALSE(family_has(Family::standard, DataType::int32q16));
+  EXPECT_TRUE(family_has(Family::enhanced, DataType::float_ieee));
+  EXPECT_FALSE(family_has(Family::enhanced, DataType::binary8));
   for (const auto t : {DataType::usign8, DataType::usign16, DataType::fixpoint16, DataType::password}) {
-    EXPECT_TRUE(family_has(Family::vf1000, t) && family_has(Family::mc6000, t)) << to_string(t);
+    EXPECT_TRUE(family_has(Family::standard, t) && family_has(Family::enhanced, t)) << to_string(t);
   }
 }
 
 TEST(DataTypes, EightBitTypes) {
   for (const auto t : {DataType::usign8, DataType::binary8}) {
-    EXPECT_EQ(encode(Family::vf1000, t, 255).value.view(), "00FF");
-    EXPECT_EQ(encode(Family::vf1000, t, 256).error, ValueError::out_of_range);
-    EXPECT_EQ(encode(Family::vf1000, t, -1).error, ValueError::out_of_range);
-    EXPECT_EQ(decode(Family::vf1000, t, "00FF").value, 255.0);
-    EXPECT_EQ(decode(Family::vf1000, t, "0100").error, ValueError::out_of_range);
+    EXPECT_EQ(encode(Family::standard, t, 255).value.view(), "00FF");
+    EXPECT_EQ(encode(Family::standard, t, 256).error, ValueError::out_of_range);
+    EXPECT_EQ(encode(Family::standard, t, -1).error, ValueError::out_of_range);
+    EXPECT_EQ(decode(Family::standard, t, "00FF").value, 255.0);
+    EXPECT_EQ(decode(Family::standard, t, "0100").error, ValueError::out_of_range);
   }
-  EXPECT_EQ(encode(Family::mc6000, DataType::usign8, 3).value.view(), "3");
+  EXPECT_EQ(encode(Family::enhanced, DataType::usign8, 3).value.view(), "3");
 }
 
 TEST(DataTypes, SixteenBitUnsignedAndPassword) {
   for (const auto t : {DataType::usign16, DataType::password}) {
-    EXPECT_EQ(encode(Family::vf1000, t, 65535).value.view(), "FFFF");
-    EXPECT_EQ(encode(Family::mc6000, t, 65535).value.view(), "FFFF");
-    EXPECT_EQ(encode(Family::mc6000, t, 65536).error, ValueError::out_of_range);
-    EXPECT_EQ(decode(Family::mc6000, t, "10000").error, ValueError::out_of_range);
-    EXPECT_EQ(decode(Family::vf1000, t, "0000").value, 0.0);
+    EXPECT_EQ(encode(Family::standard, t, 65535).value.view(), "FFFF");
+    EXPECT_EQ(encode(Family::enhanced, t, 65535).value.view(), "FFFF");
+    EXPECT_EQ(encode(Family::enhanced, t, 65536).error, ValueError::out_of_range);
+    EXPECT_EQ(decode(Family::enhanced, t, "10000").error, ValueError::out_of_range);
+    EXPECT_EQ(decode(Family::standard, t, "0000").value, 0.0);
   }
 }
 
 TEST(DataTypes, Fixpoint16RoundsToTheNearestStepUpTo3276p75) {
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, 23.15).value.view(), "01CF");  // LB-D8
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, 50.0).value.view(), "03E8");
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, 3276.75).value.view(), "FFFF");
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, 3276.80).error, ValueError::out_of_range);  // LB-E6
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, -0.05).error, ValueError::out_of_range);
-  EXPECT_DOUBLE_EQ(decode(Family::mc6000, DataType::fixpoint16, "FFFF").value, 3276.75);
-  EXPECT_DOUBLE_EQ(decode(Family::vf1000, DataType::fixpoint16, "0001").value, 0.05);
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, 23.15).value.view(), "01CF");  // LB-D8
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, 50.0).value.view(), "03E8");
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, 3276.75).value.view(), "FFFF");
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, 3276.80).error, ValueError::out_of_range);  // LB-E6
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, -0.05).error, ValueError::out_of_range);
+  EXPECT_DOUBLE_EQ(decode(Family::enhanced, DataType::fixpoint16, "FFFF").value, 3276.75);
+  EXPECT_DOUBLE_EQ(decode(Family::standard, DataType::fixpoint16, "0001").value, 0.05);
 }
 
 TEST(DataTypes, Integer16IsSixteenBitTwosComplement) {
-  EXPECT_EQ(encode(Family::mc6000, DataType::integer16, -1).value.view(), "FFFF");
-  EXPECT_EQ(encode(Family::mc6000, DataType::integer16, -2).value.view(), "FFFE");
-  EXPECT_EQ(encode(Family::mc6000, DataType::integer16, -32768).value.view(), "8000");
-  EXPECT_EQ(encode(Family::mc6000, DataType::integer16, 32767).value.view(), "7FFF");
-  EXPECT_EQ(encode(Family::mc6000, DataType::integer16, 32768).error, ValueError::out_of_range);
-  EXPECT_EQ(encode(Family::mc6000, DataType::integer16, -32769).error, ValueError::out_of_range);
-  EXPECT_EQ(decode(Family::mc6000, DataType::integer16, "FFFF").value, -1.0);
-  EXPECT_EQ(decode(Family::mc6000, DataType::integer16, "5").value, 5.0);
-  EXPECT_EQ(decode(Family::mc6000, DataType::integer16, "FFFFFFFF").error, ValueError::out_of_range);  // LB-D9
+  EXPECT_EQ(encode(Family::enhanced, DataType::integer16, -1).value.view(), "FFFF");
+  EXPECT_EQ(encode(Family::enhanced, DataType::integer16, -2).value.view(), "FFFE");
+  EXPECT_EQ(encode(Family::enhanced, DataType::integer16, -32768).value.view(), "8000");
+  EXPECT_EQ(encode(Family::enhanced, DataType::integer16, 32767).value.view(), "7FFF");
+  EXPECT_EQ(encode(Family::enhanced, DataType::integer16, 32768).error, ValueError::out_of_range);
+  EXPECT_EQ(encode(Family::enhanced, DataType::integer16, -32769).error, ValueError::out_of_range);
+  EXPECT_EQ(decode(Family::enhanced, DataType::integer16, "FFFF").value, -1.0);
+  EXPECT_EQ(decode(Family::enhanced, DataType::integer16, "5").value, 5.0);
+  EXPECT_EQ(decode(Family::enhanced, DataType::integer16, "FFFFFFFF").error, ValueError::out_of_range);  // LB-D9
 }
 
 TEST(DataTypes, Int32Q16SpansTheFullSigned32BitRange) {
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, 333.254).value.view(), "14D4106");  // 6.2.3
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, 132.15).value.view(), "842666");    // 7.2.1
-  EXPECT_DOUBLE_EQ(decode(Family::mc6000, DataType::int32q16, "4FA4000").value, 1274.25);  // 6.1.1.2
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, -1.0).value.view(), "FFFF0000");
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, -32768.0).value.view(), "80000000");
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, 32768.0).error, ValueError::out_of_range);
-  EXPECT_DOUBLE_EQ(decode(Family::mc6000, DataType::int32q16, "7FFFFFFF").value, 2147483647.0 / 65536.0);
-  EXPECT_EQ(encode(Family::vf1000, DataType::int32q16, 1.0).error, ValueError::wrong_type);
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, 333.254).value.view(), "14D4106");  // 6.2.3
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, 132.15).value.view(), "842666");    // 7.2.1
+  EXPECT_DOUBLE_EQ(decode(Family::enhanced, DataType::int32q16, "4FA4000").value, 1274.25);  // 6.1.1.2
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, -1.0).value.view(), "FFFF0000");
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, -32768.0).value.view(), "80000000");
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, 32768.0).error, ValueError::out_of_range);
+  EXPECT_DOUBLE_EQ(decode(Family::enhanced, DataType::int32q16, "7FFFFFFF").value, 2147483647.0 / 65536.0);
+  EXPECT_EQ(encode(Family::standard, DataType::int32q16, 1.0).error, ValueError::wrong_type);
 }
 
 TEST(DataTypes, FloatIeeeIsThePattern) {
-  EXPECT_EQ(encode(Family::mc6000, DataType::float_ieee, 1.0).value.view(), "3F800000");
-  EXPECT_EQ(encode(Family::mc6000, DataType::float_ieee, -2.5).value.view(), "C0200000");
-  EXPECT_EQ(encode(Family::mc6000, DataType::float_ieee, 0.0).value.view(), "0");
-  EXPECT_DOUBLE_EQ(decode(Family::mc6000, DataType::float_ieee, "3F800000").value, 1.0);
-  EXPECT_EQ(decode(Family::mc6000, DataType::float_ieee, "7FC00000").error, ValueError::not_finite);
-  EXPECT_EQ(encode(Family::mc6000, DataType::float_ieee, 1e39).error, ValueError::out_of_range);
-  EXPECT_EQ(encode(Family::mc6000, DataType::float_ieee, std::nan("")).error, ValueError::not_finite);
+  EXPECT_EQ(encode(Family::enhanced, DataType::float_ieee, 1.0).value.view(), "3F800000");
+  EXPECT_EQ(encode(Family::enhanced, DataType::float_ieee, -2.5).value.view(), "C0200000");
+  EXPECT_EQ(encode(Family::enhanced, DataType::float_ieee, 0.0).value.view(), "0");
+  EXPECT_DOUBLE_EQ(decode(Family::enhanced, DataType::float_ieee, "3F800000").value, 1.0);
+  EXPECT_EQ(decode(Family::enhanced, DataType::float_ieee, "7FC00000").error, ValueError::not_finite);
+  EXPECT_EQ(encode(Family::enhanced, DataType::float_ieee, 1e39).error, ValueError::out_of_range);
+  EXPECT_EQ(encode(Family::enhanced, DataType::float_ieee, std::nan("")).error, ValueError::not_finite);
 }
 
 TEST(DataTypes, ErrorStructures) {
@@ -179,14 +179,14 @@ TEST(DataTypes, ErrorStructures) {
   EXPECT_EQ(e.time_tenths, 3);
   EXPECT_FALSE(vf_error_of(0xFFFF).code.has_value());
   EXPECT_EQ(vf_error_bits(e), 0x0203U);
-  EXPECT_EQ(format_typed(Family::vf1000, DataType::vf_error, 0x0203).value.view(), "0203");
+  EXPECT_EQ(format_typed(Family::standard, DataType::vf_error, 0x0203).value.view(), "0203");
   EXPECT_EQ(to_engineering(DataType::vf_error, 0x0203).error, ValueError::wrong_type);
   // PT_MC_ERROR: number bits 0-7, location 8-15, time 16-31 (PCP-E6).
   const McError m{0x12, 0x34, 0x5678};
   EXPECT_EQ(encode_mc_error(m), 0x56783412U);
   EXPECT_EQ(decode_mc_error(0x56783412U), m);
-  EXPECT_EQ(format_typed(Family::mc6000, DataType::mc_error, encode_mc_error(m)).value.view(), "56783412");
-  EXPECT_EQ(parse_typed(Family::mc6000, DataType::mc_error, "56783412").value, 0x56783412U);
+  EXPECT_EQ(format_typed(Family::enhanced, DataType::mc_error, encode_mc_error(m)).value.view(), "56783412");
+  EXPECT_EQ(parse_typed(Family::enhanced, DataType::mc_error, "56783412").value, 0x56783412U);
   EXPECT_EQ(from_engineering(DataType::mc_error, 1.0).error, ValueError::wrong_type);
 }
 
@@ -197,7 +197,7 @@ TEST(DataTypes, EveryTypeRoundTripsItsPatterns) {
                           DataType::password};
   const std::uint32_t patterns[] = {0, 1, 0x7F, 0xFF, 0x100, 0x7FFF, 0x8000, 0xFFFF, 0x10000,
                                     0x3F800000, 0x7FFFFFFF, 0x80000000, 0xFFFFFFFF};
-  for (const auto f : {Family::vf1000, Family::mc6000}) {
+  for (const auto f : {Family::standard, Family::enhanced}) {
     for (const auto t : all) {
       for (const auto p : patterns) {
         const auto v = format_typed(f, t, p);

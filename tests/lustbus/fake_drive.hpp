@@ -74,7 +74,7 @@ class FakeDrive : public Responder {
   // The parameter a value CODE names on this family, or nullptr (NAK: improper CODE).
   FakeParam* resolve(const Code& c, bool& description) {
     description = false;
-    if (family == Family::vf1000) {
+    if (family == Family::standard) {
       const auto vc = as_vf_code(c);
       if (!vc) return nullptr;
       description = vc->specifier == VfSpecifier::description;
@@ -97,7 +97,7 @@ class FakeDrive : public Responder {
   void telegram_received(const Context&) override { ++watchdog_resets; }
 
   EnquiryAnswer enquiry(const Code& code, const Context& ctx) override {
-    if (family == Family::mc6000) {
+    if (family == Family::enhanced) {
       const auto mc = as_mc_code(code);
       if (mc && mc->kind == McCodeKind::posmod) return EnquiryAnswer::text(posmod_reply, reaction);
       if (mc && mc->kind == McCodeKind::substitution_text) {  // 11.3
@@ -115,7 +115,7 @@ class FakeDrive : public Responder {
     if (p == nullptr) return EnquiryAnswer::nak(reaction);  // 6.1 note: nothing in 85
     if (description) {
       std::optional<Value> d;
-      if (family == Family::vf1000) {
+      if (family == Family::standard) {
         d = format_vf_description(p->name, p->unit, p->eeprom ? '2' : (p->writable ? '0' : '1'),
                                   p->type == DataType::fixpoint16 ? '2' : '3',
                                   static_cast<std::uint16_t>(p->min),
@@ -136,7 +136,7 @@ class FakeDrive : public Responder {
       if (!d) return EnquiryAnswer::nak(reaction);
       return EnquiryAnswer::text(*d, reaction);
     }
-    if (p->number == 80 && family == Family::mc6000 && download_mode &&
+    if (p->number == 80 && family == Family::enhanced && download_mode &&
         ctx.now >= download_ready) {
       p->value = static_cast<std::uint16_t>(download_result);
       download_mode = false;
@@ -155,7 +155,7 @@ class FakeDrive : public Responder {
       siof = static_cast<std::uint8_t>(siof | siof_mask(b));
       return SelectAnswer::nak(reaction);
     };
-    if (family == Family::mc6000 && as_mc_code(code) &&
+    if (family == Family::enhanced && as_mc_code(code) &&
         as_mc_code(code)->kind == McCodeKind::posmod) {
       posmod_last = value;
       return SelectAnswer::ack(reaction);
@@ -178,14 +178,14 @@ class FakeDrive : public Responder {
     }
     Duration r = reaction;
     if (p->eeprom) {
-      if (family == Family::mc6000) {
+      if (family == Family::enhanced) {
         if (ctx.now < eeprom_busy_until) return refuse(SiofBit::eeprom_busy);  // 3, 10.2.2
         eeprom_busy_until = ctx.now + mc_eeprom_per_byte * (width_bits(p->type) / 8);
       } else if (bits.value != p->value) {
         r += vf_eeprom_extra;  // 3: the VF1000 answers once the EEPROM holds the value
       }
     }
-    if (family == Family::mc6000 && p->number == 80) {  // 11.4
+    if (family == Family::enhanced && p->number == 80) {  // 11.4
       const auto s = static_cast<std::int16_t>(bits.value);
       if (s == -1) {
         download_mode = true;
@@ -214,7 +214,7 @@ class FakeDrive : public Responder {
 
 // A VF1000 with the parameters the seed's examples use (6.1.1.1, 6.2.2, 7.1.1, 8.1.1).
 inline FakeDrive make_vf1000(Duration reaction = 1ms) {
-  return FakeDrive(Family::vf1000,
+  return FakeDrive(Family::standard,
                    {
                        {1, DataType::usign8, 4, 0, 4, true, true, "MODE"},
                        {2, DataType::usign8, 5, 0, 5, true, true, "CSEL"},
@@ -237,7 +237,7 @@ inline FakeDrive make_vf1000(Duration reaction = 1ms) {
 // An MC6000 with the parameters of 6.1.1.2, 6.2.3, 7.2.1, 11.3, 11.4.
 inline FakeDrive make_mc6000(Duration reaction = 1ms) {
   return FakeDrive(
-      Family::mc6000,
+      Family::enhanced,
       {
           {77, DataType::int32q16, 0x04FA4000, 0, 0xFFFFFFFF, false, false, "SPEED"},
           {80, DataType::integer16, 0, 0xFFFE, 999, true, false, "SLOAD"},

@@ -272,10 +272,10 @@ TEST(HostScan, FindsInvertersAndServosOnOneToThirty) {
   ASSERT_EQ(o.kind, OutcomeKind::scan);
   ASSERT_EQ(o.scan.count, 2);
   EXPECT_EQ(o.scan.devices[0].address, 3);
-  EXPECT_EQ(o.scan.devices[0].family, Family::vf1000);
+  EXPECT_EQ(o.scan.devices[0].family, Family::standard);
   EXPECT_EQ(o.scan.devices[0].type, 1000U);
   EXPECT_EQ(o.scan.devices[1].address, 30);
-  EXPECT_EQ(o.scan.devices[1].family, Family::mc6000);
+  EXPECT_EQ(o.scan.devices[1].family, Family::enhanced);
   EXPECT_EQ(o.scan.devices[1].type, 6000U);
   // 30 TYPE enquiries + 2 probes, each framed by EOT ... EOT.
   std::size_t enqs = 0;
@@ -435,14 +435,14 @@ TEST(HostQueue, RestartAbortsAndSendsEot) {
 
 // 2.4.1 / 2.4.2, 11.1 / 11.2: the CODE of a parameter's value and description in each family.
 TEST(HostCodes, ParameterCodeOfEitherFamily) {
-  EXPECT_EQ(parameter_code(Family::vf1000, 5), make_code(105));                // 0 0 1 05
-  EXPECT_EQ(parameter_code(Family::vf1000, 5, true), make_code(10105));        // 1 0 1 05
-  EXPECT_EQ(parameter_code(Family::mc6000, 77), make_code(20077));             // 2 0 077
-  EXPECT_EQ(parameter_code(Family::mc6000, 416, true), make_code(30416));      // 3 0 416
-  EXPECT_FALSE(parameter_code(Family::vf1000, 100));  // two digits only
-  EXPECT_FALSE(parameter_code(Family::mc6000, 1000));
-  EXPECT_EQ(device_kind(Family::vf1000), "inverter");
-  EXPECT_EQ(device_kind(Family::mc6000), "servo");
+  EXPECT_EQ(parameter_code(Family::standard, 5), make_code(105));                // 0 0 1 05
+  EXPECT_EQ(parameter_code(Family::standard, 5, true), make_code(10105));        // 1 0 1 05
+  EXPECT_EQ(parameter_code(Family::enhanced, 77), make_code(20077));             // 2 0 077
+  EXPECT_EQ(parameter_code(Family::enhanced, 416, true), make_code(30416));      // 3 0 416
+  EXPECT_FALSE(parameter_code(Family::standard, 100));  // two digits only
+  EXPECT_FALSE(parameter_code(Family::enhanced, 1000));
+  EXPECT_EQ(device_kind(Family::standard), "inverter");
+  EXPECT_EQ(device_kind(Family::enhanced), "servo");
 }
 
 }  // namespace

@@ -30,25 +30,25 @@ struct Kind {
 
 std::vector<Kind> kinds() {
   return {
-      {"VF SELECT RAM", Family::vf1000, select(1, make_code(105), make_value("03E8")), 5, 0x3E8, ""},
-      {"VF SELECT EEPROM (delayed ACK)", Family::vf1000, select(1, make_code(122), make_value("0190")),
+      {"VF SELECT RAM", Family::standard, select(1, make_code(105), make_value("03E8")), 5, 0x3E8, ""},
+      {"VF SELECT EEPROM (delayed ACK)", Family::standard, select(1, make_code(122), make_value("0190")),
        22, 0x190, ""},
-      {"VF ENQUIRY", Family::vf1000, enquiry(1, make_code(112)), 0, 0, "03E8"},
-      {"VF description", Family::vf1000, enquiry(1, make_code(10122)), 0, 0,
+      {"VF ENQUIRY", Family::standard, enquiry(1, make_code(112)), 0, 0, "03E8"},
+      {"VF description", Family::standard, enquiry(1, make_code(10122)), 0, 0,
        " FMAX1    Hz2200004E1F03E8"},
-      {"VF broadcast", Family::vf1000, broadcast(shared_code(83), make_value("0042")), 83, 0x42, ""},
-      {"VF SIOF read", Family::vf1000, enquiry(1, kSiofCode), 0, 0, "0000"},
-      {"MC SELECT 32 bit", Family::mc6000, select(1, make_code(20428), make_value("84FA4000")), 428,
+      {"VF broadcast", Family::standard, broadcast(shared_code(83), make_value("0042")), 83, 0x42, ""},
+      {"VF SIOF read", Family::standard, enquiry(1, kSiofCode), 0, 0, "0000"},
+      {"MC SELECT 32 bit", Family::enhanced, select(1, make_code(20428), make_value("84FA4000")), 428,
        0x84FA4000, ""},
-      {"MC SELECT short", Family::mc6000, select(1, make_code(20416), make_value("1")), 416, 1, ""},
-      {"MC ENQUIRY", Family::mc6000, enquiry(1, make_code(20077)), 0, 0, "4FA4000"},
-      {"MC PosMOD1", Family::mc6000, select(1, kPosmodCode, make_value("8GOA0V1000")), 0, 0, ""},
-      {"MC substitution text", Family::mc6000, substitution_text_request(1, 300, 2), 108, 2, "SCON"},
+      {"MC SELECT short", Family::enhanced, select(1, make_code(20416), make_value("1")), 416, 1, ""},
+      {"MC ENQUIRY", Family::enhanced, enquiry(1, make_code(20077)), 0, 0, "4FA4000"},
+      {"MC PosMOD1", Family::enhanced, select(1, kPosmodCode, make_value("8GOA0V1000")), 0, 0, ""},
+      {"MC substitution text", Family::enhanced, substitution_text_request(1, 300, 2), 108, 2, "SCON"},
   };
 }
 
 FakeDrive make(Family f) {
-  auto d = f == Family::vf1000 ? make_vf1000() : make_mc6000();
+  auto d = f == Family::standard ? make_vf1000() : make_mc6000();
   d.siof = 0;
   d.mc_eeprom_per_byte = 0ms;
   return d;
@@ -98,7 +98,7 @@ TEST(Interruptions, EveryCharacterOfEveryTelegramKindOnTheLine) {
             EXPECT_EQ(now, k.new_value) << where;
           }
         }
-        if (k.family == Family::mc6000 && k.request.code == kPosmodCode) {
+        if (k.family == Family::enhanced && k.request.code == kPosmodCode) {
           EXPECT_TRUE(d.posmod_last.empty() || d.posmod_last == k.request.value) << where;
         }
         if (o.kind == OutcomeKind::value) {
@@ -129,10 +129,10 @@ TEST(Interruptions, InsertedEotOrGarbageBeforeEveryCharacterOnTheReceiver) {
     unsigned parameter;
     std::uint32_t new_value;
   };
-  const Sel sels[] = {{Family::vf1000, 105, "03E8", 5, 0x3E8},
-                      {Family::vf1000, 103, "0080", 3, 0x80},  // BCC 05H (ENQ)
-                      {Family::mc6000, 20428, "84FA4000", 428, 0x84FA4000},
-                      {Family::mc6000, 20416, "1", 416, 1}};
+  const Sel sels[] = {{Family::standard, 105, "03E8", 5, 0x3E8},
+                      {Family::standard, 103, "0080", 3, 0x80},  // BCC 05H (ENQ)
+                      {Family::enhanced, 20428, "84FA4000", 428, 0x84FA4000},
+                      {Family::enhanced, 20416, "1", 416, 1}};
   const std::uint8_t inserts[] = {kEot, kStx, kEtx, kEnq, kAck, kNak, kGarbled, 0x00, 'X', '0',
                                   '=',  0x41};
   for (const Sel& s : sels) {

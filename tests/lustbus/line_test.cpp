@@ -24,28 +24,28 @@ struct Row {
 
 // 10.1.1 examples 1 and 2, 10.1.2 examples 1 and 2: max and min reaction, host 2 ms, 9600 Bd.
 const Row kRows[] = {
-    {"10.1.1 ex 1 VF1000 ENQUIRY max", Family::vf1000, false, 60ms, 82, 85.958},
-    {"10.1.1 ex 1 VF1000 ENQUIRY min", Family::vf1000, false, 1ms, 23, 26.958},
-    {"10.1.1 ex 2 MC6000 ENQUIRY max", Family::mc6000, false, 30ms, 55, 60.125},
-    {"10.1.1 ex 2 MC6000 ENQUIRY min", Family::mc6000, false, 1ms, 26, 31.125},
-    {"10.1.2 ex 1 VF1000 SELECT max", Family::vf1000, true, 60ms, 78, 80.750},
-    {"10.1.2 ex 1 VF1000 SELECT min", Family::vf1000, true, 1ms, 19, 21.750},
-    {"10.1.2 ex 2 MC6000 SELECT max", Family::mc6000, true, 30ms, 51, 54.917},
-    {"10.1.2 ex 2 MC6000 SELECT min", Family::mc6000, true, 1ms, 22, 25.917},
+    {"10.1.1 ex 1 VF1000 ENQUIRY max", Family::standard, false, 60ms, 82, 85.958},
+    {"10.1.1 ex 1 VF1000 ENQUIRY min", Family::standard, false, 1ms, 23, 26.958},
+    {"10.1.1 ex 2 MC6000 ENQUIRY max", Family::enhanced, false, 30ms, 55, 60.125},
+    {"10.1.1 ex 2 MC6000 ENQUIRY min", Family::enhanced, false, 1ms, 26, 31.125},
+    {"10.1.2 ex 1 VF1000 SELECT max", Family::standard, true, 60ms, 78, 80.750},
+    {"10.1.2 ex 1 VF1000 SELECT min", Family::standard, true, 1ms, 19, 21.750},
+    {"10.1.2 ex 2 MC6000 SELECT max", Family::enhanced, true, 30ms, 51, 54.917},
+    {"10.1.2 ex 2 MC6000 SELECT min", Family::enhanced, true, 1ms, 22, 25.917},
 };
 
 TEST(Timing101, TablesInSimulatedTimeWithTenBitsPerCharacter) {
   for (const Row& row : kRows) {
-    auto drive = row.family == Family::vf1000 ? make_vf1000(row.reaction) : make_mc6000(row.reaction);
+    auto drive = row.family == Family::standard ? make_vf1000(row.reaction) : make_mc6000(row.reaction);
     drive.siof = 0;
-    if (row.family == Family::mc6000) drive.find(77)->value = 0x84FA4000;  // 8 characters: 18 bytes
+    if (row.family == Family::enhanced) drive.find(77)->value = 0x84FA4000;  // 8 characters: 18 bytes
     HostConfig cfg;
     cfg.turnaround = 2ms;  // "Reaction time of the Host computer e.g., 2 ms"
     Bus bus(cfg, 9600);
     bus.add(drive, 1);
     Request r;
     std::size_t value_len = 0;
-    if (row.family == Family::vf1000) {
+    if (row.family == Family::standard) {
       r = row.select ? select(1, make_code(105), make_value("03E8")) : enquiry(1, make_code(112));
       value_len = 4;
     } else {

@@ -63,7 +63,7 @@ TEST(SeedExamples, Enquiry6111Vf1000) {
   const auto d = decode(0, make_code(112), AnswerDecoder::Expect::text_or_nak, answer);
   ASSERT_EQ(d.status(), AnswerDecoder::Status::done);
   EXPECT_EQ(d.value().view(), "03E8");
-  EXPECT_DOUBLE_EQ(decode(Family::vf1000, DataType::fixpoint16, d.value().view()).value, 50.0);
+  EXPECT_DOUBLE_EQ(decode(Family::standard, DataType::fixpoint16, d.value().view()).value, 50.0);
 }
 
 // 6.1.1.2: 77-SPEED via address 0. LB-E4: ETX is 3 (the row shows 2) and the VALUE is the
@@ -78,12 +78,12 @@ TEST(SeedExamples, Enquiry6112Mc6000) {
 
   const auto d = decode(0, make_code(20077), AnswerDecoder::Expect::text_or_nak, answer);
   ASSERT_EQ(d.status(), AnswerDecoder::Status::done);
-  EXPECT_DOUBLE_EQ(decode(Family::mc6000, DataType::int32q16, d.value().view()).value, 1274.25);
+  EXPECT_DOUBLE_EQ(decode(Family::enhanced, DataType::int32q16, d.value().view()).value, 1274.25);
   // Leading zeros are optional (2.3): the seven-character form, BCC 3BH, is the same value.
   const auto short_form = Bytes{}(64)(2)("20077=4FA4000")(3)(0x3B).v;
   const auto d2 = decode(0, make_code(20077), AnswerDecoder::Expect::text_or_nak, short_form);
   ASSERT_EQ(d2.status(), AnswerDecoder::Status::done);
-  EXPECT_DOUBLE_EQ(decode(Family::mc6000, DataType::int32q16, d2.value().view()).value, 1274.25);
+  EXPECT_DOUBLE_EQ(decode(Family::enhanced, DataType::int32q16, d2.value().view()).value, 1274.25);
   // The printed bytes as they stand: ETX 2 and BCC missing -> not an answer.
   const auto printed = Bytes{}(64)(2)(50)(48)(48)(55)(55)(61)(52)(52)(70)(65)(52)(48)(48)(48)(2).v;
   const auto d3 = decode(0, make_code(20077), AnswerDecoder::Expect::text_or_nak, printed);
@@ -97,7 +97,7 @@ TEST(SeedExamples, Select622Vf1000) {
   EXPECT_EQ(v(encode_select(0, make_code(105), make_value("03E8"))), host);
   EXPECT_EQ(host.size(), 15U);  // 10.1.2
   EXPECT_EQ(v(encode_ack(0)), (Bytes{}(64)(6).v));
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, 50.0).value.view(), "03E8");
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, 50.0).value.view(), "03E8");
 
   RecordingResponder r;
   Receiver rx(r, 7);
@@ -112,7 +112,7 @@ TEST(SeedExamples, Select622Vf1000) {
 // the VALUE; the VALUE is right. CODE 00005 is no MC6000 CODE (2.4.2): the corrected telegram
 // writes 428-RSIO (7.2.1) as 20428. Both pinned, each with its own BCC.
 TEST(SeedExamples, Select623Mc6000AsPrintedAndCorrected) {
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, 333.254).value.view(), "14D4106");
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, 333.254).value.view(), "14D4106");
   const auto printed = Bytes{}(4)(64)(2)("00005=14D4106")(3)(0x49).v;
   EXPECT_EQ(v(encode_select(0, make_code(5), make_value("14D4106"))), printed);
   EXPECT_FALSE(as_mc_code(make_code(5)).has_value());
@@ -142,8 +142,8 @@ TEST(SeedExamples, ControlSequence711Corrected) {
   };
   const Row rows[] = {{1, "0000", 0x0F}, {2, "0003", 0x0F}, {4, "0008", 0x02},
                       {5, "01CF", 0x0F}, {3, "0080", 0x05}};
-  EXPECT_EQ(encode(Family::vf1000, DataType::fixpoint16, 23.15).value.view(), "01CF");
-  EXPECT_EQ(format_raw(Family::vf1000, 128).value.view(), "0080");
+  EXPECT_EQ(encode(Family::standard, DataType::fixpoint16, 23.15).value.view(), "01CF");
+  EXPECT_EQ(format_raw(Family::standard, 128).value.view(), "0080");
   auto vf = test::make_vf1000();
   vf.siof = 0;
   Receiver rx(vf, 1);
@@ -172,7 +172,7 @@ TEST(SeedExamples, ControlSequence721) {
   const Row rows[] = {{20300, "2", 0x3D}, {20416, "0", 0x3F}, {20402, "2", 0x38},
                       {20418, "0", 0x31}, {20419, "0", 0x30}, {20420, "0", 0x3A},
                       {20417, "3", 0x3D}, {20428, "842666", 0x0A}, {20416, "1", 0x3E}};
-  EXPECT_EQ(encode(Family::mc6000, DataType::int32q16, 132.15).value.view(), "842666");
+  EXPECT_EQ(encode(Family::enhanced, DataType::int32q16, 132.15).value.view(), "842666");
   auto mc = test::make_mc6000();
   mc.siof = 0;
   mc.mc_eeprom_per_byte = 0ms;

@@ -108,7 +108,7 @@ TEST(Mc6000Lustbus, ControlSequence721ThroughTheHost) {
   bus.wait(2s);  // the speed loop settles
   const auto speed = bus.read(3, 20077);
   EXPECT_EQ(speed.value.view(), "00842666");
-  EXPECT_NEAR(decode(Family::mc6000, DataType::int32q16, speed.value.view()).value, 132.15, 1e-4);
+  EXPECT_NEAR(decode(Family::enhanced, DataType::int32q16, speed.value.view()).value, 132.15, 1e-4);
 }
 
 // 5.2: the shared CODEs 000xx; 2.4.2's own ones for the same parameters.
@@ -269,10 +269,10 @@ TEST(LustbusWings, NetworkScanTellsInvertersFromServos) {
   const auto found = o.scan.found();
   ASSERT_EQ(found.size(), 2U);
   EXPECT_EQ(found[0].address, 1);
-  EXPECT_EQ(found[0].family, Family::vf1000);
+  EXPECT_EQ(found[0].family, Family::standard);
   EXPECT_EQ(found[0].type, 1000U);
   EXPECT_EQ(found[1].address, 3);
-  EXPECT_EQ(found[1].family, Family::mc6000);
+  EXPECT_EQ(found[1].family, Family::enhanced);
   EXPECT_EQ(found[1].type, 6000U);
   EXPECT_EQ(vf.siof(), 0x01);  // an ENQUIRY answered NAK enters nothing (6.1 note)
 }

@@ -97,7 +97,7 @@ struct Rig {
         switch (o->kind) {
           case lb::OutcomeKind::value: {
             res.kind = "value";
-            const auto raw = lb::parse_raw(lb::Family::vf1000, o->value.view());
+            const auto raw = lb::parse_raw(lb::Family::standard, o->value.view());
             EXPECT_TRUE(raw.ok());
             res.value = static_cast<Word>(raw.value);
             break;

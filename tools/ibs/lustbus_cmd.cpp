@@ -60,7 +60,7 @@ struct BadInput : std::invalid_argument {
 // A parameter as the command line needs it: the drive's table (its LUSTBUS face in the registry)
 // and the protocol family it is asked in.
 struct Param : devices::LustbusParameter {
-  lb::Family family = lb::Family::vf1000;
+  lb::Family family = lb::Family::standard;
 };
 
 std::int64_t number_of(lb::DataType t, std::uint32_t bits) {
@@ -308,7 +308,7 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
       }
       try {
         // 11.4: the dataset download is the servo family's.
-        const Param p = find_param(*lustbus_drive(lb::Family::mc6000).lustbus, param);
+        const Param p = find_param(*lustbus_drive(lb::Family::enhanced).lustbus, param);
         if (!p.in_dataset) {
           throw BadInput(label(p) + " cannot be part of a dataset");
         }
@@ -426,7 +426,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
 
     if (name == "describe") {
       j["raw"] = std::string(r.value.view());
-      if (family == lb::Family::vf1000) {
+      if (family == lb::Family::standard) {
         const auto d = lb::parse_vf_description(r.value.view());
         if (!d.ok()) throw std::runtime_error("description: " + std::string(lb::to_string(d.error)));
         const auto t = lb::vf_type_from_char(d.value.type);

@@ -159,7 +159,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
   } else if (description) {
     r = drive_->refuse(Refusal::read_only);
   } else {
-    const auto parsed = lb::parse_typed(lb::Family::mc6000, lustbus_type(p->type), value.view());
+    const auto parsed = lb::parse_typed(lb::Family::enhanced, lustbus_type(p->type), value.view());
     r = drive_->write(ctx.now, p->number, parsed.ok() ? std::optional<std::uint32_t>(parsed.value) : std::nullopt);
   }
   if (!r.ok()) return lb::SelectAnswer::nak(reaction());

@@ -43,7 +43,7 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
 }  // namespace
 
 const LustbusFace& lustbus_face() {
-  static const LustbusFace face{lustbus::Family::mc6000, &make, &find_parameter, ""};
+  static const LustbusFace face{lustbus::Family::enhanced, &make, &find_parameter, ""};
   return face;
 }
 

@@ -98,7 +98,7 @@ lb::EnquiryAnswer LustbusDevice::enquiry(const lb::Code& code, const lb::Context
   }
   // 9.2: reading 85 erases the bits; 11-STAT and 12 are the drive's state (drive.hpp).
   const Word raw = p->number == pnr::kSiof ? Word{drive_->read_siof()} : drive_->reading(p->number);
-  const auto v = lb::format_raw(lb::Family::vf1000, raw);  // 2.3.1: "%04X"
+  const auto v = lb::format_raw(lb::Family::standard, raw);  // 2.3.1: "%04X"
   if (!v.ok()) return lb::EnquiryAnswer::nak(reaction());
   return lb::EnquiryAnswer::text(v.value, reaction());
 }
@@ -117,7 +117,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
   const drive::ParameterInfo* p = resolve(code, description);
   if (p == nullptr) return refuse(SiofBit::no_parameter);
   if (description) return refuse(SiofBit::no_change);  // a description cannot be written
-  const auto raw = lb::parse_raw(lb::Family::vf1000, value.view());  // exactly four hex digits
+  const auto raw = lb::parse_raw(lb::Family::standard, value.view());  // exactly four hex digits
   if (!raw.ok()) return refuse(SiofBit::invalid_value);
   const auto w = static_cast<Word>(raw.value);
   // 3, "Access limitations depend on the type of operation": 40H for a read-only parameter or an

@@ -45,7 +45,7 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
 }  // namespace
 
 const LustbusFace& lustbus_face() {
-  static const LustbusFace face{lustbus::Family::vf1000, &make, &find_parameter, " (1..99)"};
+  static const LustbusFace face{lustbus::Family::standard, &make, &find_parameter, " (1..99)"};
   return face;
 }
 

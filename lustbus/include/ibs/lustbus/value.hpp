@@ -56,9 +56,10 @@ class Value {
 // The VALUE of a constant known to be valid (tests, tables); empty when it is not.
 constexpr Value make_value(std::string_view s) { return Value::from(s).value_or(Value{}); }
 
-// The two device families of seed 000 (1): the standard protocol (SMARTDRIVE VF1000) and the
-// enhanced, downward-compatible one (MASTERCONTROL MC6000/7000).
-enum class Family : std::uint8_t { vf1000, mc6000 };
+// The two protocol families of seed 000 (1): the standard protocol and the enhanced, downward-
+// compatible one. Which drive speaks which is its wing's fact (the registry's LUSTBUS face):
+// the inverter the standard, the servo the enhanced.
+enum class Family : std::uint8_t { standard, enhanced };
 std::string_view to_string(Family f);
 
 // Why a VALUE or a number was refused.
@@ -116,12 +117,12 @@ constexpr bool family_has(Family f, DataType t) {
       return true;
     case DataType::binary8:
     case DataType::vf_error:
-      return f == Family::vf1000;
+      return f == Family::standard;
     case DataType::integer16:
     case DataType::int32q16:
     case DataType::float_ieee:
     case DataType::mc_error:
-      return f == Family::mc6000;
+      return f == Family::enhanced;
   }
   return false;
 }

@@ -49,7 +49,7 @@ struct LustbusParameter {
 };
 
 struct LustbusFace {
-  lustbus::Family family = lustbus::Family::vf1000;
+  lustbus::Family family = lustbus::Family::standard;
   // The drive's Responder; throws std::invalid_argument "a <TITLE> runs at ... baud (seed 000,
   // 4), not <baud>" for a rate the drive does not run at.
   LustbusEmulated (*make)(const LustbusFaceOptions& options) = nullptr;
