@@ -301,7 +301,12 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
     // (the VF1000 performs a software reset, seed 001 5.2.1), not a restart: the request goes on
     // as after power-on. The fault was reset; one that comes back ends the request (above).
     const bool booting_from_reset = known_ == State::fault && reset_edge_sent_;
-    if (up_since_request_ && !booting_from_reset) return fail(Failure::restarted);
+    // A drive last seen up and now NOT READY has restarted, perhaps during an outage in which
+    // the request was made: the master cannot tell whether the power cycle came before the
+    // request or after it, and takes it as after -- the request ends rather than enable a drive
+    // that was switched off and on since somebody asked (docs/errata.md DC-D1).
+    const bool restarted_unseen = known_ && *known_ != State::not_ready;
+    if ((up_since_request_ || restarted_unseen) && !booting_from_reset) return fail(Failure::restarted);
     up_since_request_ = false;
     reset_edge_sent_ = false;
   } else {

@@ -795,10 +795,17 @@ struct Runner {
       // it is read.
       const std::uint16_t reg = *n.error_register;
       n.script.push_front({ParamOp::read, reg, 0, Duration{0}, ""});
-      // A download whose start or end was refused is given up (or its end repeated).
+      // A download whose start was refused is given up (or its end repeated). A start whose
+      // outcome is unknown (timed out, or cut by a restart) may have opened the download: the
+      // drive then keeps it open -- it knows no connection (docs/errata.md MC-D2) -- and would
+      // take every later value untested or drop it. Its dataset is dropped, but its end is sent
+      // at once: it closes a download that did open and is refused where none did.
       if (n.is_download(cur.number) && cur.value == drive::kDownloadBegin) {
-        while (!n.script.empty() && !n.script.front().special.empty() && n.script.front().number != reg) n.script.pop_front();
-        std::erase_if(n.script, [](const Step& x) { return !x.special.empty(); });
+        const bool maybe_open = st.kind == ParamKind::timeout || st.kind == ParamKind::aborted;
+        std::erase_if(n.script, [&](const Step& x) {
+          if (x.special.empty()) return false;
+          return !maybe_open || !n.is_download(x.number);
+        });
       }
       if (n.is_download(cur.number) && cur.value == drive::kDownloadEnd && n.sload_end_retries < 3) {
         ++n.sload_end_retries;

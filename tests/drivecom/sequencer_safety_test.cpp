@@ -93,6 +93,29 @@ TEST(SequencerSafety, ADriveThatRestartsOnTheWayEndsTheRequest) {
   EXPECT_EQ(words_text(up), "0006 0006 0006 000F 000F");
 }
 
+// Found by the 10-million campaign of docs/robustness.md (seed 1 after the drive-core change): a
+// drive seen up, then an outage in which ENABLED was requested and the drive was switched off and
+// on, then NOT READY. The master cannot tell whether the power cycle came before the request or
+// after it; it takes it as after and ends the request (docs/errata.md DC-D1).
+TEST(SequencerSafety, ARestartHiddenInAnOutageEndsARequestMadeInIt) {
+  Sequencer seq;
+  EXPECT_EQ(seq.step(0x0240, Time{0}), 0x0000);  // idle, drive in START-UP INHIBIT
+  EXPECT_EQ(seq.step(0x0001, 1ms), 0x0000);       // the status word unreadable
+  seq.request(Target::enabled, 2ms);
+  EXPECT_EQ(seq.step(0x0001, 3ms), 0x0006) << "the command for the last state seen";
+  EXPECT_EQ(seq.step(0x0000, 4ms), 0x0000) << "NOT READY: switched off and on in the outage";
+  EXPECT_EQ(seq.report().failure, Failure::restarted);
+  EXPECT_EQ(seq.step(0x0240, 5ms), 0x0000);
+  EXPECT_EQ(seq.step(0x0231, 6ms), 0x0000) << "never brought up to ENABLED";
+  // A drive never seen up (a master that starts while the drive boots) is brought up as before.
+  Sequencer fresh;
+  fresh.request(Target::enabled, Time{0});
+  EXPECT_EQ(fresh.step(0x0001, 1ms), 0x0006);
+  EXPECT_EQ(fresh.step(0x0000, 2ms), 0x0006);
+  EXPECT_EQ(fresh.step(0x0240, 3ms), 0x0006);
+  EXPECT_EQ(fresh.report().failure, Failure::none);
+}
+
 // Issue 14: RESET FAULT makes the VF1000 boot (seed 001, 5.2.1, "a software reset"): NOT READY
 // right after the request's own reset edge is the drive coming up again, not a restart.
 TEST(SequencerSafety, NotReadyAfterTheRequestsOwnResetEdgeIsTheDriveBooting) {

@@ -279,6 +279,27 @@ TEST(Server, SloadDownloadHandshake) {
   EXPECT_EQ(make_word(r.data.data[0], r.data.data[1]), 0x0000);
 }
 
+// Seed 000 11.4 ties the download to SLOAD, not to a connection: an Abort and a new Initiate
+// (a master that restarts between SLOAD = -1 and -2) leave it open -- values are still taken
+// untested -- until SLOAD = -2 closes it (docs/errata.md MC-D2).
+TEST(Server, AnOpenDownloadOutlivesTheAssociation) {
+  Session s(2);
+  ASSERT_TRUE(s.initiate().ok());
+  ASSERT_TRUE(s.write(kSload, *value_from_signed_raw(DataType::integer16, kSloadBegin)).ok());
+  s.client.abort(s.bus.now());
+  s.idle(50ms);
+  ASSERT_FALSE(s.server.associated());
+  ASSERT_TRUE(s.initiate().ok());
+  EXPECT_TRUE(s.drive().downloading());
+  Result r = s.read(kSload);
+  EXPECT_EQ(make_word(r.data.data[0], r.data.data[1]), 0xFFFF) << "still -1: the download is open";
+  ASSERT_TRUE(s.write(kSload, *value_from_signed_raw(DataType::integer16, kSloadEnd)).ok());
+  s.idle(500ms);
+  r = s.read(kSload);
+  EXPECT_EQ(make_word(r.data.data[0], r.data.data[1]), 0x0000) << "closed by -2, the dataset accepted";
+  EXPECT_FALSE(s.drive().downloading());
+}
+
 TEST(Server, GetOvDescribesAParameter) {
   Session s(2);
   ASSERT_TRUE(s.initiate().ok());
