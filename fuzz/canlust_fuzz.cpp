@@ -108,6 +108,8 @@ void cannelloni_part(Input& in) {
   std::vector<std::uint8_t> again(can::cannelloni::encoded_size(std::span(out.data(), r.frames)));
   const auto n = can::cannelloni::encode(std::span(out.data(), r.frames), r.sequence, again);
   IBS_FUZZ_REQUIRE(n.has_value(), "decoded frames must encode");
+  // An accepted datagram is its header and its frames, nothing more (issue 23, defect 3).
+  IBS_FUZZ_REQUIRE(r.skipped != 0 || *n == bytes.size(), "an accepted datagram has bytes its frames do not explain");
   std::array<CanFrame, 64> back{};
   const auto r2 = can::cannelloni::decode(std::span(again.data(), *n), back);
   IBS_FUZZ_REQUIRE(r2.status == can::cannelloni::DecodeStatus::ok && r2.frames == r.frames &&

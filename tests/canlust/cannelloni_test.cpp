@@ -1,6 +1,10 @@
 // cannelloni's UDP format v2 byte for byte, and CANLust over UDP on loopback: two sockets in
 // one process form one bus, both sides of the parameter channel run over it.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <vector>
@@ -62,6 +66,9 @@ TEST(Cannelloni, SkipsExtendedAndFdFramesAndRejectsBrokenDatagrams) {
   EXPECT_EQ(cannelloni::decode(Bytes{0x02, 0, 0, 0, 1, 0, 0}, out).status, cannelloni::DecodeStatus::truncated);
   EXPECT_EQ(cannelloni::decode(Bytes{0x02, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0xAA}, out).status,
             cannelloni::DecodeStatus::truncated);
+  // One frame and a byte the header does not account for.
+  EXPECT_EQ(cannelloni::decode(Bytes{0x02, 0, 0, 0, 1, 0, 0, 0, 0xDD, 1, 0x01, 0x55}, out).status,
+            cannelloni::DecodeStatus::trailing);
 }
 
 // Two UDP sockets on loopback: the master on one, a fake drive's node on the other.
@@ -113,6 +120,48 @@ TEST(CanOverUdp, ParameterChannelBothSidesOverTwoLoopbackSockets) {
   EXPECT_EQ(c.poll(r2).outcome->text.view(), "over UDP, 4 by 4");
   EXPECT_TRUE(master.drive(1).logged_on);
   EXPECT_EQ(a.transport->bad_datagrams(), 0U);
+}
+
+// Issue 23, defect 3: a datagram whose header disagrees with its content ran the frames it held.
+// Each is dropped whole and counted; its sender does not become the peer; a good one still counts.
+TEST(CanOverUdp, ADatagramWhoseHeaderDisagreesIsDroppedWholeAndCounted) {
+  auto a = UdpCanTransport::open({"127.0.0.1", 0, "127.0.0.1", 0});
+  ASSERT_TRUE(a) << a.error;
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(a.transport->local_port());
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const auto send = [&](const Bytes& d) {
+    ASSERT_EQ(::sendto(fd, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to),
+              static_cast<ssize_t>(d.size()));
+  };
+  const Bytes frame = {0x00, 0x00, 0x00, 0xDD, 0x01, 0x01};  // 221: 01H (System Start)
+  const auto datagram = [&](std::uint16_t count, const Bytes& body) {
+    Bytes d = {0x02, 0x00, 0x00, static_cast<std::uint8_t>(count >> 8U), static_cast<std::uint8_t>(count & 0xFFU)};
+    d.insert(d.end(), body.begin(), body.end());
+    return d;
+  };
+  Bytes trailing = frame;
+  trailing.push_back(0x00);
+  send(datagram(2, frame));                                // count 2, one frame
+  send(datagram(65535, frame));                            // count 65535, one frame
+  send(datagram(1, trailing));                             // a byte after the frame
+  Bytes cut = frame;
+  cut.insert(cut.end(), {0x00, 0x00, 0x00, 0xDD});
+  send(datagram(2, cut));                                  // the second frame cut after its id
+  EXPECT_EQ(a.transport->receive(50ms).status, IoStatus::timeout) << "no frame of a broken datagram";
+  EXPECT_EQ(a.transport->bad_datagrams(), 4U);
+  EXPECT_EQ(a.transport->send(CanFrame::make(221, {1})), IoStatus::error) << "a broken datagram names no peer";
+  send(datagram(1, frame));
+  const auto r = a.transport->receive(500ms);
+  ASSERT_EQ(r.status, IoStatus::ok);
+  EXPECT_EQ(r.frame, CanFrame::make(221, {0x01}));
+  EXPECT_EQ(a.transport->receive(20ms).status, IoStatus::timeout);
+  EXPECT_EQ(a.transport->bad_datagrams(), 4U);
+  EXPECT_EQ(a.transport->send(CanFrame::make(221, {1})), IoStatus::ok) << "the good datagram's sender is the peer";
+  ::close(fd);
 }
 
 TEST(CanOverUdp, ReceiveTimesOutAndSendWithoutPeerSaysWhy) {

@@ -9,6 +9,7 @@ std::string_view to_string(DecodeStatus s) {
     case DecodeStatus::bad_version: return "bad version";
     case DecodeStatus::bad_op_code: return "bad op code";
     case DecodeStatus::out_full: return "output full";
+    case DecodeStatus::trailing: return "trailing bytes";
   }
   return "?";
 }
@@ -106,6 +107,7 @@ DecodeResult decode(std::span<const std::uint8_t> d, std::span<CanFrame> out) {
     }
     p += data;
   }
+  if (p != d.size()) r.status = DecodeStatus::trailing;
   return r;
 }
 

@@ -34,6 +34,8 @@ Opened<UdpCanTransport> UdpCanTransport::open(const UdpConfig& config) {
   if (!make_address(config.local_host, config.local_port, local, r.error)) return r;
   std::unique_ptr<UdpCanTransport> t(new UdpCanTransport());
   t->rx_buffer_.resize(65536);  // a whole datagram, up to the UDP maximum
+  // The smallest frame is 5 bytes (identifier and length): decoding never runs out of room.
+  t->rx_frames_.resize((t->rx_buffer_.size() - cannelloni::kHeaderSize) / 5);
   if (config.remote_port != 0) {
     if (!make_address(config.remote_host, config.remote_port, t->peer_, r.error)) return r;
     t->have_peer_ = true;
@@ -113,16 +115,25 @@ Received UdpCanTransport::receive(Duration timeout) {
       error_ = errno_text("recvfrom");
       return {IoStatus::error, {}};
     }
+    const auto r = cannelloni::decode(std::span(buf.data(), static_cast<std::size_t>(got)), rx_frames_);
+    if (r.status != cannelloni::DecodeStatus::ok) {
+      // A header that disagrees with its content (a count the bytes do not hold, a frame cut
+      // after its identifier, bytes left over): none of its frames is trusted, and its sender
+      // does not become the peer.
+      ++bad_datagrams_;
+      continue;
+    }
     if (!have_peer_) {
       peer_ = from;
       have_peer_ = true;
     }
-    std::array<CanFrame, 128> frames;
-    const auto r = cannelloni::decode(std::span(buf.data(), static_cast<std::size_t>(got)), frames);
-    if (r.status != cannelloni::DecodeStatus::ok) ++bad_datagrams_;
     skipped_frames_ += static_cast<std::uint32_t>(r.skipped);
-    for (std::size_t i = 0; i < r.frames && pending_size_ < pending_.size(); ++i) {
-      pending_[(pending_head_ + pending_size_) % pending_.size()] = frames[i];
+    for (std::size_t i = 0; i < r.frames; ++i) {
+      if (pending_size_ == pending_.size()) {
+        ++overflow_frames_;
+        continue;
+      }
+      pending_[(pending_head_ + pending_size_) % pending_.size()] = rx_frames_[i];
       ++pending_size_;
     }
   }

@@ -39,7 +39,11 @@ enum class DecodeStatus : std::uint8_t {
   bad_version,
   bad_op_code,
   out_full,      // more 2.0A frames than `out` holds: the first ones are in `out`
+  trailing,      // bytes after the frames the header counts
 };
+// Any status but `ok` means a broken datagram: the header and the content disagree (a count the
+// bytes do not hold, a frame cut short, bytes left over) or the datagram is not cannelloni's.
+// Frames already written to `out` must not be used -- a receiver drops the datagram whole.
 std::string_view to_string(DecodeStatus s);
 
 struct DecodeResult {

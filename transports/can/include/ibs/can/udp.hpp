@@ -36,9 +36,12 @@ class UdpCanTransport final : public CanTransport {
   [[nodiscard]] std::string_view name() const override { return name_; }
   [[nodiscard]] std::string_view last_error() const override { return error_; }
   [[nodiscard]] std::uint16_t local_port() const { return local_port_; }
-  // Datagrams that failed to decode, and frames skipped (extended / FD / error).
+  // Datagrams dropped whole because they failed to decode (a header that disagrees with the
+  // content: cannelloni::DecodeStatus), frames skipped (extended / FD / error), and frames lost
+  // because the receive queue was full.
   [[nodiscard]] std::uint32_t bad_datagrams() const { return bad_datagrams_; }
   [[nodiscard]] std::uint32_t skipped_frames() const { return skipped_frames_; }
+  [[nodiscard]] std::uint32_t overflow_frames() const { return overflow_frames_; }
 
  private:
   UdpCanTransport() = default;
@@ -53,8 +56,10 @@ class UdpCanTransport final : public CanTransport {
   std::size_t pending_head_ = 0;
   std::size_t pending_size_ = 0;
   std::vector<std::uint8_t> rx_buffer_;
+  std::vector<CanFrame> rx_frames_;  // every frame a datagram of rx_buffer_'s size can hold
   std::uint32_t bad_datagrams_ = 0;
   std::uint32_t skipped_frames_ = 0;
+  std::uint32_t overflow_frames_ = 0;
 };
 
 }  // namespace ibs::can
