@@ -429,3 +429,18 @@ TEST(Cli, RealtimeOptionsAreChecked) {
 }
 
 }  // namespace
+
+// Issue 23, defect 13: a seed of -1 or one past 2^64 - 1 ran as 18446744073709551615 and exited 0.
+TEST(Cli, UnsignedOptionsRefuseNegativeAndTooLargeNumbers) {
+  for (const std::string seed : {"-1", "18446744073709551616", "99999999999999999999999", "1e3", "+5"}) {
+    const Result r = run("campaign --transactions 1 --seed " + seed);
+    EXPECT_EQ(r.exit_code, 2) << seed << ": " << r.out;
+    EXPECT_NE(r.out.find("--seed"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(seed), std::string::npos) << "the message names the value: " << r.out;
+  }
+  const Result max = run("campaign --transactions 1 --json --seed 18446744073709551615");
+  EXPECT_EQ(max.exit_code, 0) << max.out;
+  EXPECT_NE(max.out.find("18446744073709551615"), std::string::npos) << max.out;
+  const Result step = run("decode --id-step -2 " + data("vf1000_pd_startup.trace"));
+  EXPECT_EQ(step.exit_code, 2) << step.out;
+}

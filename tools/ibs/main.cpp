@@ -1,7 +1,12 @@
 // ibs: the command line of the INTERBUS-S stack and simulator.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstdlib>
 #include <iostream>
+#include <limits>
+#include <string>
 
 #include "bus_commands.hpp"
 #include "canlust_cmd.hpp"
@@ -11,6 +16,23 @@
 #include "trace_input.hpp"
 
 namespace {
+
+// CLI11 turns "-1" given to an unsigned option into 2^64 - 1 and saturates a number too large
+// for it: `--seed -1` and `--seed 18446744073709551616` both ran seed 18446744073709551615 and
+// exited 0 (issue 23, defect 13). An unsigned option takes decimal digits whose value fits.
+CLI::Validator unsigned_decimal(std::uint64_t max) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        if (text.empty() || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+          return "expects a non-negative decimal integer, not '" + text + "'";
+        }
+        errno = 0;
+        const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+        if (errno == ERANGE || v > max) return "'" + text + "' is larger than the limit " + std::to_string(max);
+        return {};
+      },
+      "UINT");
+}
 
 int run_ibs(int argc, char** argv) {
   CLI::App app{"ibs: LUST drives (VF1000, MC6000, CDA3000) and the PowerTec DFS-1 on INTERBUS-S, LUSTBUS, CANLust and the DFS-1 link: masters, emulated drives, the INTERBUS cycle simulator"};
@@ -64,15 +86,19 @@ int run_ibs(int argc, char** argv) {
   decode->add_option("FILE", decode_files, "trace files, candump -l logs or byte logs of --log; - reads a trace from standard input")
       ->required();
   decode->add_flag("--json", decode_json, "traces: one JSON object per file, each on one line (docs/replay.md)");
-  decode->add_option("--id-step", decode_id_step, "candump log: CANLust identifier step (default 2)");
-  decode->add_option("--cacnf", decode_cacnf, "candump log: the drives' 492-CACNF (default 2)");
+  decode->add_option("--id-step", decode_id_step, "candump log: CANLust identifier step (default 2)")
+      ->check(unsigned_decimal(std::numeric_limits<unsigned>::max()));
+  decode->add_option("--cacnf", decode_cacnf, "candump log: the drives' 492-CACNF (default 2)")
+      ->check(unsigned_decimal(std::numeric_limits<unsigned>::max()));
 
   ibs::cli::CampaignOptions campaign_options;
   auto* campaign = app.add_subcommand(
       "campaign", "the fault campaign: random faults during parameter traffic and state commands, every step checked");
-  campaign->add_option("--seed", campaign_options.seed, "the random seed (default 1)");
+  campaign->add_option("--seed", campaign_options.seed, "the random seed (default 1)")
+      ->check(unsigned_decimal(std::numeric_limits<std::uint64_t>::max()));
   campaign->add_option("--transactions", campaign_options.transactions,
                        "parameter transactions to run (default 100000, at most 100 million)")
+      ->check(unsigned_decimal(std::numeric_limits<std::uint64_t>::max()))
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100000000}));
   campaign->add_flag("--json", campaign_options.json, "print the result as JSON");
   campaign->add_flag("--enable-during-download", campaign_options.enable_during_download,
