@@ -27,6 +27,12 @@ Reply Reply::nak(ErrorCode e) {
 }
 
 void ControllerReceiver::receive(std::uint8_t byte, Time now, RequestHandler& handler) {
+  // D13: what a silent host left half-sent is dropped; this byte starts afresh.
+  if (!decoder_.at_rest() && gap_ > Duration::zero() && now - last_byte_at_ > gap_) {
+    decoder_.reset();
+    ++counters_.fragments;
+  }
+  last_byte_at_ = now;
   const DecodeResult r = decoder_.push(byte);
   if (r.status == DecodeStatus::error) {
     ++counters_.decode_errors;

@@ -84,8 +84,34 @@ void Receiver::drop() {
   ++counters_.dropped;
 }
 
+namespace {
+// A telegram begun and not complete (not idle, not waiting for EOT after an answer or a drop).
+bool in_fragment(ReceiverState s) {
+  switch (s) {
+    case ReceiverState::address:
+    case ReceiverState::enquiry_code:
+    case ReceiverState::enquiry_end:
+    case ReceiverState::select_code:
+    case ReceiverState::select_equals:
+    case ReceiverState::select_value:
+    case ReceiverState::select_bcc: return true;
+    case ReceiverState::idle:
+    case ReceiverState::deferred:
+    case ReceiverState::answering:
+    case ReceiverState::ignoring: return false;
+  }
+  return false;
+}
+}  // namespace
+
 void Receiver::receive(std::uint8_t b, Time now) {
   event_ = ReceiverEvent::none;
+  // LB-D23: a fragment followed by silence is dropped; this character starts afresh.
+  if (in_fragment(state_) && gap_ > Duration::zero() && now - last_char_at_ > gap_) {
+    state_ = ReceiverState::idle;
+    ++counters_.fragments;
+  }
+  last_char_at_ = now;
   // 2.2: the byte after ETX is the BCC whatever its value — even EOT.
   if (state_ == ReceiverState::select_bcc) {
     finish_select(b, now);

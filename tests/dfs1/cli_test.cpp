@@ -3,6 +3,8 @@
 // byte log.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <thread>
+#include <chrono>
 #include <poll.h>
 #include <pty.h>
 #include <signal.h>
@@ -53,6 +55,31 @@ TEST(Dfs1Cli, EmulatePrintsThePtyFirstAndExitsZeroOnSigterm) {
   EXPECT_NE(r.out.find("uid 2: commanded 0 rpm, actual 0 rpm, load 0 %"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("ST2 31H: at-speed forward zero-speed"), std::string::npos) << r.out;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+// Issue 23, defect 1, as it was seen: a host writes P6 := 99 and dies before its frame ends; the
+// next host's read must get its answer, and P6 must keep its value -- at every cut point.
+TEST(Dfs1Cli, AFrameADyingHostLeftIsNotCompletedByTheNextHost) {
+  Emulator emu({"dfs1@1"});
+  const std::string port = emu.pty();
+  CliRun r = run_cli({"dfs1", "read", "--port", port, "--uid", "1", "6", "--json", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto p6 = nlohmann::json::parse(r.out)["value"].get<long>();
+  ASSERT_NE(p6, 99);
+  const std::vector<std::uint8_t> write_p6 = {0x10, 0x02, 0x01, 0x86, 0x06, 0x00, 0x00,
+                                              0x00, 0x63, 0x10, 0x03, 0x10, 0x10};
+  for (std::size_t cut = 1; cut < write_p6.size(); ++cut) {
+    const int fd = ::open(port.c_str(), O_RDWR | O_NOCTTY);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::write(fd, write_p6.data(), cut), static_cast<ssize_t>(cut));
+    ::close(fd);
+    // Longer than the fragment timeout (50 ms at the emulator's rate), as a next host would come.
+    std::this_thread::sleep_for(std::chrono::milliseconds(120));
+    r = run_cli({"dfs1", "read", "--port", port, "--uid", "1", "6", "--json", "--timeout-ms", "3000"});
+    ASSERT_EQ(r.rc, 0) << "cut after " << cut << " bytes: " << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["value"].get<long>(), p6) << "cut after " << cut << " bytes";
+  }
   EXPECT_EQ(emu.stop(SIGTERM), 0);
 }
 

@@ -95,5 +95,35 @@ TEST(Dfs1Receiver, CorruptFramesAreCountedAndNotAnswered) {
   EXPECT_EQ(rx.counters().decode_errors, 1U);
 }
 
+// D13 (issue 23, defect 1): a host sends P6 := 99 (checksum 10H, sent doubled) and dies part-way;
+// the next host's request, after a silence, must be answered as it is -- at every cut point -- and
+// the dead host's write never taken.
+TEST(Dfs1Receiver, AFrameCutAtAnyByteIsDroppedAfterSilence) {
+  const Bytes write_p6 = {0x10, 0x02, 0x01, 0x86, 0x06, 0x00, 0x00, 0x00, 0x63, 0x10, 0x03, 0x10, 0x10};
+  const Bytes status = bytes_of(make_frame(1, 0x81));
+  for (std::size_t cut = 1; cut < write_p6.size(); ++cut) {
+    RecordingHandler h;
+    ControllerReceiver rx(1, 0ms);
+    EXPECT_EQ(rx.fragment_timeout(), 50ms) << "20 characters at 9600 Bd are 20.8 ms: the floor";
+    rx.receive(Bytes(write_p6.begin(), write_p6.begin() + static_cast<std::ptrdiff_t>(cut)), 0ms, h);
+    rx.receive(status, rx.fragment_timeout() + 1ms, h);
+    ASSERT_EQ(h.seen.size(), 1U) << "cut after " << cut << " bytes";
+    EXPECT_EQ(h.seen[0].code, 0x81) << "cut after " << cut << " bytes";
+    EXPECT_EQ(rx.counters().fragments, 1U) << "cut after " << cut << " bytes";
+  }
+  // The whole frame in pieces within the timeout is one frame.
+  RecordingHandler h;
+  ControllerReceiver rx(1, 0ms);
+  Time now{0};
+  for (const std::uint8_t b : write_p6) {
+    rx.receive(Bytes{b}, now, h);
+    now += rx.fragment_timeout();
+  }
+  ASSERT_EQ(h.seen.size(), 1U);
+  EXPECT_EQ(h.seen[0].code, 0x86);
+  EXPECT_EQ(rx.counters().fragments, 0U);
+  EXPECT_EQ(fragment_timeout(1200), 166666667ns) << "20 characters of 10 bits at 1200 Bd";
+}
+
 }  // namespace
 }  // namespace ibs::dfs1

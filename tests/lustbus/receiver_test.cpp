@@ -2,6 +2,8 @@
 // timeout, deferred answers (10.2) and reaction times.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "ibs/lustbus/receiver.hpp"
 #include "test_support.hpp"
 
@@ -194,7 +196,10 @@ TEST_F(ReceiverTest, EotResetsAFragmentAtEveryPosition) {
   }
 }
 
-TEST_F(ReceiverTest, HasNoTimeout) {
+// Seed 000 3: "strictly as a state-machine without timeout monitoring" -- the device as the seed
+// describes it, with the fragment timeout off.
+TEST_F(ReceiverTest, WithTheFragmentTimeoutOffItWaitsForEver) {
+  rx.set_inter_char_timeout(Duration::zero());
   const auto t = enq(5, "00112");
   Time now{0};
   for (const auto b : t) {
@@ -202,6 +207,50 @@ TEST_F(ReceiverTest, HasNoTimeout) {
     now += 3600s;
   }
   EXPECT_EQ(rx.take_answer(now).size(), 14U);
+}
+
+// A SELECT to address 5 whose BCC is 04H (EOT): the case of issue 23, defect 2.
+std::vector<std::uint8_t> select_whose_bcc_is_eot() {
+  for (unsigned v = 0; v <= 0xFFFF; ++v) {
+    char value[8];
+    std::snprintf(value, sizeof value, "%04X", v);
+    auto t = sel(5, 5, value);
+    if (t.back() == kEot) return t;
+  }
+  return {};
+}
+
+// LB-D23 (issue 23, defect 2): a host sends a SELECT without its BCC and dies; the next host opens
+// with EOT. Without a timeout that EOT is the BCC (2.2) and completes the dead host's telegram.
+TEST_F(ReceiverTest, AFragmentFollowedBySilenceIsDroppedAndCounted) {
+  const auto t = select_whose_bcc_is_eot();
+  ASSERT_FALSE(t.empty());
+  EXPECT_EQ(rx.inter_char_timeout(), inter_char_timeout(9600)) << "the factory rate's until set";
+  EXPECT_EQ(inter_char_timeout(9600), 50ms) << "20 characters are 20.8 ms: the 50 ms floor";
+  EXPECT_EQ(inter_char_timeout(2400), 83333333ns) << "20 characters of 10 bits at 2400 Bd";
+  Time now{0};
+  for (std::size_t i = 0; i + 1 < t.size(); ++i) rx.receive(t[i], now);  // all but the BCC
+  now += rx.inter_char_timeout() + 1ms;
+  EXPECT_EQ(feed(rx, enq(5, "00112"), now).size(), 14U) << "the next host's ENQUIRY is answered";
+  EXPECT_EQ(rx.counters().selects, 0U) << "the dead host's SELECT was not taken";
+  EXPECT_EQ(r.telegrams, 1);
+  EXPECT_EQ(rx.counters().fragments, 1U);
+  // Within the timeout the byte after ETX is the BCC, whatever it is (2.2): here the EOT.
+  rx.receive(kEot, now);
+  for (std::size_t i = 0; i + 1 < t.size(); ++i) rx.receive(t[i], now);
+  EXPECT_EQ(feed(rx, {kEot}, now + rx.inter_char_timeout()), ack(5));
+  EXPECT_EQ(rx.counters().selects, 1U);
+  EXPECT_EQ(rx.counters().fragments, 1U);
+}
+
+TEST_F(ReceiverTest, SilenceOutsideAFragmentDropsNothing) {
+  Time now{0};
+  EXPECT_EQ(feed(rx, enq(5, "00112"), now).size(), 14U);
+  now += 10s;  // waiting for EOT after the answer
+  rx.receive(kEot, now);
+  now += 10s;  // idle
+  EXPECT_EQ(feed(rx, sel(5, 105, "03E8"), now), ack(5));
+  EXPECT_EQ(rx.counters().fragments, 0U);
 }
 
 TEST_F(ReceiverTest, ByteAfterEtxIsTheBccEvenWhenItIsEot) {

@@ -140,6 +140,13 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   port.set_log(log.get());
 
   serial::serve(port, raw, [&signals]() { return signals.raised(); });
+  // What each controller heard, and what it threw away (D13: fragments a silent host left).
+  for (const auto& c : controllers) {
+    const auto& n = c->counters();
+    err << "ibs dfs1 emulate: UID " << static_cast<unsigned>(c->uid()) << ": " << n.requests << " request(s), "
+        << n.decode_errors << " corrupt frame(s), " << n.fragments << " fragment(s) dropped after silence, "
+        << n.dropped_replies << " reply(ies) cut by a new request\n";
+  }
   return kExitDfs1Ok;
 }
 

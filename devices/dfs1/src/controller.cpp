@@ -20,6 +20,11 @@ Duration turnaround_for(std::uint32_t p56) {
   return std::chrono::milliseconds(p56);
 }  // D2
 
+// D13: the fragment timeout follows the line rate the baud rate code (parameter 2) holds.
+Duration fragment_timeout_for(std::uint32_t code) {
+  return proto::fragment_timeout(baud_for_code(code).value_or(9600));
+}
+
 std::uint32_t value_in(const proto::Frame& f, std::size_t offset) {
   return f.value_at(offset);
 }
@@ -45,6 +50,7 @@ Controller::Controller(const ControllerConfig& config)
   for (std::size_t i = 0; i < kParameters.size(); ++i) values_[i] = kParameters[i].default_value;
   values_[index(kUnitId)] = config.uid;
   receiver_.set_turnaround(turnaround_for(values_[index(kTurnaroundDelay)]));
+  receiver_.set_fragment_timeout(fragment_timeout_for(values_[index(kBaudCode)]));
   terminal_inputs_[kEstopInput - 1U] = true;  // E-stop closed: the drive may run
 }
 
@@ -168,6 +174,7 @@ Reply Controller::write_parameter(std::uint8_t number, std::uint32_t value) {
   // receiver answers this one as it was asked).
   if (number == kUnitId) receiver_.set_uid(static_cast<std::uint8_t>(value));
   if (number == kTurnaroundDelay) receiver_.set_turnaround(turnaround_for(value));
+  if (number == kBaudCode) receiver_.set_fragment_timeout(fragment_timeout_for(value));
   return Reply::ack();
 }
 

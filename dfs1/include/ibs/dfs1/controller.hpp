@@ -43,6 +43,16 @@ class RequestHandler {
   ~RequestHandler() = default;
 };
 
+// A frame begun and not finished (or a DLE that may begin one), followed by this much silence,
+// is dropped before the next byte is taken (docs/dfs1.md D13): 20 characters of 10 bits at the
+// line's rate, never less than 50 ms. The seed gives no time; without one, a host that dies
+// mid-frame has its frame completed or the next host's request swallowed by the bytes after it.
+inline constexpr Duration kFragmentTimeoutFloor = std::chrono::milliseconds(50);
+constexpr Duration fragment_timeout(std::uint32_t baud) {
+  const Duration twenty{(std::int64_t{200} * 1'000'000'000 + baud / 2) / baud};
+  return twenty > kFragmentTimeoutFloor ? twenty : kFragmentTimeoutFloor;
+}
+
 class ControllerReceiver {
  public:
   ControllerReceiver(std::uint8_t uid, Duration turnaround) : uid_(uid), turnaround_(turnaround) {}
@@ -61,6 +71,9 @@ class ControllerReceiver {
   void set_uid(std::uint8_t uid) { uid_ = uid; }
   Duration turnaround() const { return turnaround_; }
   void set_turnaround(Duration d) { turnaround_ = d; }
+  // The silence after which a fragment is dropped (zero: never); fragment_timeout(9600) until set.
+  Duration fragment_timeout() const { return gap_; }
+  void set_fragment_timeout(Duration d) { gap_ = d; }
 
   struct Counters {
     std::uint64_t requests = 0;  // frames for us or global, handled or NAKed
@@ -68,6 +81,7 @@ class ControllerReceiver {
     std::uint64_t foreign = 0;   // frames for another UID, or UID 0 with another command
     std::uint64_t decode_errors = 0;
     std::uint64_t dropped_replies = 0;  // a new request came before the old reply was sent
+    std::uint64_t fragments = 0;        // partial frames dropped after a silence (D13)
   };
   const Counters& counters() const { return counters_; }
 
@@ -81,6 +95,8 @@ class ControllerReceiver {
   std::size_t sent_ = 0;
   Time due_{};
   Counters counters_{};
+  Duration gap_ = dfs1::fragment_timeout(9600);
+  Time last_byte_at_{};
 };
 
 }  // namespace ibs::dfs1

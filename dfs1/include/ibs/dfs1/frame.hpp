@@ -77,6 +77,8 @@ class FrameDecoder {
   const Frame& frame() const { return frame_; }
   // Inside a frame (after DLE STX, before its end).
   bool in_frame() const { return state_ != State::hunt && state_ != State::hunt_dle; }
+  // Hunting with nothing held: not inside a frame, and no DLE that may begin one.
+  bool at_rest() const { return state_ == State::hunt; }
   void reset();
   std::uint64_t garbage() const { return garbage_; }
 

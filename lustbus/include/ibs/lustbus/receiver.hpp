@@ -30,6 +30,12 @@
 //   ignoring       anything but EOT               ignoring
 //   any other pair                                ignoring        no answer (3: improper construction)
 //
+// A fragment -- a telegram begun (ADR seen) and not complete -- followed by a silence longer than
+// the inter-character timeout is dropped before the next character is taken (counted in
+// `fragments`): a host that dies mid-telegram must not have its telegram completed by the next
+// host's bytes (LB-D23; seed 000 3's device has no timeout monitoring, and the EOT a next host
+// opens with would be taken as the BCC of a cut SELECT, 2.2).
+//
 // A character with a parity/framing error (>= 80H) is a wrong character. A VALUE longer than 100
 // characters is an improper construction (no answer, LB-D4). receive(), take_answer() and
 // deliver_*() allocate nothing and throw nothing.
@@ -43,6 +49,7 @@
 #include "ibs/base/time.hpp"
 #include "ibs/lustbus/responder.hpp"
 #include "ibs/lustbus/telegram.hpp"
+#include "ibs/lustbus/timing.hpp"
 
 namespace ibs::lustbus {
 
@@ -80,6 +87,7 @@ struct ReceiverCounters {
   std::uint32_t checksum_errors = 0;
   std::uint32_t dropped = 0;
   std::uint32_t answers = 0;
+  std::uint32_t fragments = 0;  // telegram fragments dropped after a silence (LB-D23)
 };
 
 class Receiver {
@@ -90,6 +98,11 @@ class Receiver {
   // Takes effect with the next telegram (the drive decides when a new 82 applies).
   void set_address(Address own) { own_ = own; }
   [[nodiscard]] Address address() const { return own_; }
+
+  // The silence after which a fragment is dropped (inter_char_timeout() of the line's rate; the
+  // factory 9600 Bd's until set). Zero: never, as seed 000 3 describes the device.
+  void set_inter_char_timeout(Duration d) { gap_ = d; }
+  [[nodiscard]] Duration inter_char_timeout() const { return gap_; }
 
   // One character from the line.
   void receive(std::uint8_t b, Time now);
@@ -136,6 +149,9 @@ class Receiver {
   Frame answer_{};
   bool answer_pending_ = false;
   Time answer_at_{};
+
+  Duration gap_ = lustbus::inter_char_timeout(kFactoryBaud);
+  Time last_char_at_{};
 };
 
 }  // namespace ibs::lustbus

@@ -10,6 +10,7 @@
 
 #include "ibs/base/line_device.hpp"
 #include "ibs/lustbus/receiver.hpp"
+#include "ibs/lustbus/timing.hpp"
 
 namespace ibs::lustbus {
 
@@ -26,6 +27,12 @@ class ServedReceiver final : public base::LineDevice {
     if (advance_) advance_(now);
   }
   void receive(std::span<const std::uint8_t> bytes, Time now) override {
+    // The fragment timeout follows the drive's line rate (LB-D23); 0: the port's, taken as the
+    // factory rate.
+    if (baud_) {
+      const std::uint32_t rate = baud_();
+      receiver_->set_inter_char_timeout(inter_char_timeout(rate != 0 ? rate : kFactoryBaud));
+    }
     for (const std::uint8_t b : bytes) receiver_->receive(b, now);
   }
   std::span<const std::uint8_t> output(Time now) override {

@@ -25,6 +25,15 @@ constexpr Duration transfer_time(std::size_t characters, std::uint32_t baud) {
                    baud / 2) / baud};
 }
 
+// A device's receiver drops a telegram fragment after this much silence (docs/lustbus.md LB-D23):
+// 20 characters at the line's rate, and never less than 50 ms, so that a host writing byte by byte
+// through a USB adapter (latency timers of 16 ms) is not cut. Seed 000 3's device has no timeout.
+inline constexpr Duration kInterCharTimeoutFloor = std::chrono::milliseconds(50);
+constexpr Duration inter_char_timeout(std::uint32_t baud) {
+  const Duration twenty = transfer_time(20, baud);
+  return twenty > kInterCharTimeoutFloor ? twenty : kInterCharTimeoutFloor;
+}
+
 // Telegram lengths of 10.1 (including the host's leading EOT).
 inline constexpr std::size_t kEnquiryLength = 3 + kCodeLength;  // EOT ADR CODE ENQ = 8
 constexpr std::size_t text_answer_length(std::size_t value_length) {
