@@ -1,5 +1,7 @@
 #include "ibs/dfs1/host.hpp"
 
+#include <algorithm>
+
 namespace ibs::dfs1 {
 
 namespace request {
@@ -116,6 +118,8 @@ std::string_view to_string(Outcome o) {
       return "bad response";
     case Outcome::sent:
       return "sent";
+    case Outcome::line_busy:
+      return "line busy";
   }
   return "?";
 }
@@ -141,7 +145,11 @@ void HostTransaction::transmitted(Time now) {
   decoder_.reset();
   state_ = State::awaiting_response;
   response_deadline_ = now + timeouts_.response;
+  overall_deadline_ = now + timeouts_.overall();
   deadline_ = response_deadline_;
+  bytes_heard_ = 0;
+  other_frames_ = 0;
+  corrupt_frames_ = 0;
 }
 
 void HostTransaction::finish(Outcome o, Time now) {
@@ -150,6 +158,9 @@ void HostTransaction::finish(Outcome o, Time now) {
   result_.request = request_;
   result_.elapsed = now - sent_at_;
   result_.last_decode_error = last_error_;
+  result_.bytes_heard = bytes_heard_;
+  result_.other_frames = other_frames_;
+  result_.corrupt_frames = corrupt_frames_;
   state_ = State::done;
 }
 
@@ -159,14 +170,17 @@ void HostTransaction::receive(std::uint8_t byte, Time now) {
     poll(now);
     if (state_ != State::awaiting_response) return;
   }
+  ++bytes_heard_;
   const DecodeResult r = decoder_.push(byte);
   if (r.status == DecodeStatus::error) {
     ++decode_errors_;
+    ++corrupt_frames_;
     last_error_ = r.error;
   } else if (r.status == DecodeStatus::frame) {
     const Frame& f = decoder_.frame();
     if (f.uid != request_.uid || (!f.is_ack() && !f.is_nak())) {
       ++foreign_frames_;
+      ++other_frames_;
     } else {
       const std::uint8_t want = command_info(static_cast<Command>(request_.code)).response_size;
       Outcome o = Outcome::bad_response;
@@ -178,8 +192,9 @@ void HostTransaction::receive(std::uint8_t byte, Time now) {
       return;
     }
   }
-  // The first byte of a response switches from the response to the inter-byte timeout.
-  deadline_ = decoder_.in_frame() ? now + timeouts_.inter_byte : response_deadline_;
+  // The first byte of a response switches from the response to the inter-byte timeout; no
+  // timer runs past the overall deadline.
+  deadline_ = std::min(decoder_.in_frame() ? now + timeouts_.inter_byte : response_deadline_, overall_deadline_);
 }
 
 void HostTransaction::receive(std::span<const std::uint8_t> bytes, Time now) {
@@ -188,6 +203,11 @@ void HostTransaction::receive(std::span<const std::uint8_t> bytes, Time now) {
 
 void HostTransaction::poll(Time now) {
   if (state_ != State::awaiting_response || now < deadline_) return;
+  // Only bytes that kept a frame open can carry the wait to the overall deadline.
+  if (now >= overall_deadline_ && now > response_deadline_) {
+    finish(Outcome::line_busy, now);
+    return;
+  }
   finish(decoder_.in_frame() ? Outcome::inter_byte_timeout : Outcome::timeout, now);
 }
 

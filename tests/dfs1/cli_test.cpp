@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -81,6 +82,38 @@ TEST(Dfs1Cli, AFrameADyingHostLeftIsNotCompletedByTheNextHost) {
     EXPECT_EQ(nlohmann::json::parse(r.out)["value"].get<long>(), p6) << "cut after " << cut << " bytes";
   }
   EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+// Issue 23, defect 7: against a device that answers with an endless trickle of bytes `dfs1 read`
+// did not exit. It ends at its overall deadline and says what it heard.
+TEST(Dfs1Cli, AHostAgainstADeviceThatKeepsSendingEnds) {
+  int master = -1;
+  int slave = -1;
+  char name[128] = {};
+  ASSERT_EQ(::openpty(&master, &slave, name, nullptr, nullptr), 0);
+  std::atomic<bool> stop{false};
+  std::thread babbler([&] {
+    // DLE STX and body bytes, one every 2 ms: every byte keeps a frame open.
+    const unsigned char open_frame[] = {0x10, 0x02, 0x01, 0x06};
+    std::size_t i = 0;
+    while (!stop) {
+      const unsigned char b = i < sizeof open_frame ? open_frame[i] : 0x55;
+      i = (i + 1) % 12;  // DLE STX again after eight body bytes: a frame is always open
+      (void)::write(master, &b, 1);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  });
+  const CliRun r = run_cli({"dfs1", "read", "--port", name, "--uid", "1", "6", "--timeout-ms", "100", "--json"});
+  stop = true;
+  babbler.join();
+  ::close(slave);
+  ::close(master);
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_NE(r.err.find("line busy (no response ended within"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("heard "), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["outcome"], "line busy");
+  EXPECT_GT(j["bytes_heard"].get<int>(), 10);
 }
 
 TEST(Dfs1Cli, EmulateExitsZeroOnSigint) {

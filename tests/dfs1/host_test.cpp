@@ -80,6 +80,43 @@ TEST(Dfs1Host, AResponseThatStopsIsAnInterByteTimeout) {
   EXPECT_EQ(r->outcome, Outcome::inter_byte_timeout);
 }
 
+// Issue 23, defect 7: a device that answers with an endless trickle of bytes held the host for
+// ever (each byte restarted the inter-byte timer). The overall deadline ends it, and the result
+// says what the line carried.
+TEST(Dfs1Host, ADeviceThatKeepsSendingEndsAtTheOverallDeadline) {
+  const HostTimeouts timeouts{100ms, 10ms};
+  EXPECT_EQ(timeouts.overall(), 100ms + 42 * 10ms) << "the response time and the longest frame, byte by byte";
+  HostTransaction t = started(request::status(1));
+  // A byte every 5 ms, each inside a frame: DLE STX, eight body bytes, DLE STX again (which
+  // drops the frame begun and begins another: `interrupted`), and so on.
+  const Bytes babble = {0x10, 0x02, 0x01, 0x06, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55, 0x55};
+  Time now = 1ms;
+  for (int i = 0; i < 10000 && !t.done(); ++i) {
+    t.receive(babble[static_cast<std::size_t>(i) % babble.size()], now);
+    now += 5ms;
+    t.poll(now);
+  }
+  ASSERT_TRUE(t.done()) << "still waiting after " << now.count() / 1'000'000 << " ms";
+  const auto r = t.take_result();
+  EXPECT_EQ(r->outcome, Outcome::line_busy);
+  EXPECT_EQ(to_string(r->outcome), "line busy");
+  EXPECT_GE(r->elapsed, timeouts.overall());
+  EXPECT_LE(r->elapsed, timeouts.overall() + 5ms);
+  EXPECT_GT(r->bytes_heard, 100U);
+  EXPECT_GT(r->corrupt_frames, 0U) << "the interrupted frames";
+  // Garbage outside any frame does not extend the wait: the response timeout ends it.
+  HostTransaction g = started(request::status(1));
+  now = 0ms;
+  while (!g.done()) {
+    g.receive(std::uint8_t{0x55}, now);
+    now += 5ms;
+    g.poll(now);
+  }
+  const auto rg = g.take_result();
+  EXPECT_EQ(rg->outcome, Outcome::timeout);
+  EXPECT_EQ(rg->elapsed, 100ms);
+}
+
 TEST(Dfs1Host, FramesForAnotherUidAreIgnored) {
   HostTransaction t = started(request::status(2));
   t.receive(bytes_of(make_ack(3, Bytes(16, 0))), 1ms);

@@ -237,10 +237,20 @@ int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
   if (r.outcome != proto::Outcome::ack && r.outcome != proto::Outcome::sent) {
     if (r.last_decode_error)
       j["last_decode_error"] = std::string(proto::to_string(*r.last_decode_error));
+    j["bytes_heard"] = r.bytes_heard;
+    j["other_frames"] = r.other_frames;
+    j["corrupt_frames"] = r.corrupt_frames;
     if (o.json) out << j.dump() << "\n";
     err << "ibs dfs1 " << name << ": " << who << ": " << proto::to_string(r.outcome);
     if (r.outcome == proto::Outcome::timeout)
       err << " (no answer within " << o.timeout_ms << " ms)";
+    if (r.outcome == proto::Outcome::line_busy) {
+      err << " (no response ended within " << to_ms(r.elapsed) << " ms, the overall deadline, while the line kept carrying bytes)";
+    }
+    if (r.bytes_heard > 0) {
+      err << "; heard " << r.bytes_heard << " byte(s), " << r.other_frames << " frame(s) not our response, "
+          << r.corrupt_frames << " corrupt frame(s)";
+    }
     if (r.last_decode_error)
       err << ", last corrupt frame: " << proto::to_string(*r.last_decode_error);
     err << "\n";

@@ -51,6 +51,12 @@ std::string_view to_string(RequestCheck c);
 struct HostTimeouts {
   Duration response = 100ms;   // transmitted() -> first byte of the response
   Duration inter_byte = 10ms;  // between two bytes of the response
+  // transmitted() -> the end, however the line behaves: the response time and then the longest
+  // frame with every gap at the inter-byte limit. A device that keeps sending (each byte
+  // restarting the inter-byte timer) cannot hold the host beyond it (outcome line_busy).
+  [[nodiscard]] Duration overall() const {
+    return response + static_cast<Duration::rep>(kMaxEncodedSize) * inter_byte;
+  }
 };
 
 enum class Outcome : std::uint8_t {
@@ -60,6 +66,7 @@ enum class Outcome : std::uint8_t {
   inter_byte_timeout,  // a response began and stopped
   bad_response,        // our UID answered with a data length that does not fit the request
   sent,                // a global 83: no response is expected
+  line_busy,           // bytes kept coming and no response ended by HostTimeouts::overall()
 };
 std::string_view to_string(Outcome o);
 
@@ -70,6 +77,11 @@ struct HostResult {
   std::uint8_t error = 0;                        // nak
   Duration elapsed{};                            // transmitted() -> end
   std::optional<DecodeError> last_decode_error;  // the last corrupt frame seen while waiting
+  // What the line carried while the host waited: bytes, frames that were not our response
+  // (another UID, a request), corrupt frames.
+  std::uint32_t bytes_heard = 0;
+  std::uint32_t other_frames = 0;
+  std::uint32_t corrupt_frames = 0;
   std::uint32_t value() const { return response.value_at(0); }
 };
 
@@ -115,6 +127,10 @@ class HostTransaction {
   Time sent_at_{};
   Time deadline_{};
   Time response_deadline_{};
+  Time overall_deadline_{};
+  std::uint32_t bytes_heard_ = 0;
+  std::uint32_t other_frames_ = 0;
+  std::uint32_t corrupt_frames_ = 0;
   std::optional<DecodeError> last_error_;
   std::uint64_t foreign_frames_ = 0;
   std::uint64_t decode_errors_ = 0;
