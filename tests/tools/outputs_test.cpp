@@ -3,6 +3,7 @@
 // (docs/simulator.md, "Plots"): what is written, what is printed, that gtkwave opens the save file
 // ready to read, what the picture shows, and that bad paths fail cleanly.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -305,6 +306,65 @@ TEST(Pictures, PlotRefusesWhatItCannotDrawBeforeTheRun) {
     EXPECT_TRUE(contains(missing.out, dir + "/missing/run.svg: cannot create the file")) << missing.out;
   }
   EXPECT_TRUE(fs::is_empty(dir)) << "nothing is left behind";
+  fs::remove_all(dir);
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 23, defect 6: `--vcd O --pcap O` left O with VCD bytes written over the capture.
+TEST(OutputFileRules, OneFileForTwoOutputsIsRefusedAndLeftAsItWas) {
+  const std::string dir = fresh_dir("two_outputs");
+  const std::string o = dir + "/O";
+  std::ofstream(o) << "the user's capture";
+  const Result r = run("run --vcd " + o + " --pcap " + dir + "/./O");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, "the same file is given for two outputs")) << r.out;
+  EXPECT_EQ(slurp(o), "the user's capture");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1) << "no temporary left";
+  fs::remove_all(dir);
+}
+
+// Issue 23, defect 12: a directory where the VCD's save file goes left g.vcd and g.vcd.states.txt.
+TEST(OutputFileRules, AnOutputThatIsADirectoryLeavesNothingBehind) {
+  const std::string dir = fresh_dir("dir_output");
+  fs::create_directory(dir + "/g.vcd.gtkw");
+  const Result r = run("run --vcd " + dir + "/g.vcd");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, dir + "/g.vcd.gtkw: is a directory")) << r.out;
+  EXPECT_FALSE(fs::exists(dir + "/g.vcd"));
+  EXPECT_FALSE(fs::exists(dir + "/g.vcd.states.txt"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1) << "only the directory";
+  const Result p = run("run --pcap " + dir + "/g.vcd.gtkw");
+  EXPECT_EQ(p.exit_code, 2) << p.out;
+  EXPECT_TRUE(fs::is_empty(dir + "/g.vcd.gtkw"));
+  fs::remove_all(dir);
+}
+
+// Issue 23, defect 10: a symbolic link or a FIFO given as an output was replaced by a regular file.
+TEST(OutputFileRules, ALinkIsFollowedAndAFifoWrittenThroughNeverReplaced) {
+  const std::string dir = fresh_dir("special_outputs");
+  const std::string target = dir + "/target.pcap";
+  std::ofstream(target) << "old";
+  fs::create_symlink(target, dir + "/link.pcap");
+  Result r = run("run --pcap " + dir + "/link.pcap");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(fs::is_symlink(dir + "/link.pcap")) << "the link stays a link";
+  EXPECT_EQ(slurp(target).substr(0, 4), std::string("\x4D\x3C\xB2\xA1", 4)) << "its target holds the capture";
+
+  const std::string fifo = dir + "/fifo.pcap";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  r = run("run --pcap " + fifo);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, fifo + ": a FIFO that no process reads")) << r.out;
+  // With a reader, the capture goes through the FIFO, which stays a FIFO.
+  r = run_shell("(cat " + fifo + " > " + dir + "/got.pcap) & sleep 0.2; " + std::string(IBS_CLI) + " run --pcap " +
+                fifo + " >/dev/null 2>&1; echo rc=$?; wait");
+  EXPECT_TRUE(contains(r.out, "rc=0")) << r.out;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_EQ(slurp(dir + "/got.pcap").substr(0, 4), std::string("\x4D\x3C\xB2\xA1", 4)) << "the reader got the capture";
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 4) << "no temporary left";
   fs::remove_all(dir);
 }
 

@@ -1,5 +1,6 @@
 #include "output_files.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -20,7 +21,7 @@ OutputFiles::~OutputFiles() {
   std::error_code ec;
   for (File& f : files_) {
     f.stream.reset();
-    std::filesystem::remove(f.temp_path, ec);
+    if (!f.temp_path.empty()) std::filesystem::remove(f.temp_path, ec);
   }
   // Directories made for the outputs go again, deepest first, as far as they are empty.
   for (auto it = made_dirs_.rbegin(); it != made_dirs_.rend(); ++it) {
@@ -47,10 +48,43 @@ bool OutputFiles::make_directory(const std::filesystem::path& dir, std::string& 
 }
 
 std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::string& error) {
+  std::error_code ec;
   File f;
   f.final_path = final_path;
-  f.temp_path = temp_name(final_path);
-  f.stream = std::make_unique<std::ofstream>(f.temp_path, std::ios::binary | std::ios::trunc);
+  // A symbolic link is followed: its target is what gets written (weakly_canonical resolves the
+  // links of the part that exists).
+  f.target = std::filesystem::weakly_canonical(std::filesystem::absolute(final_path, ec), ec);
+  if (ec) f.target = std::filesystem::absolute(final_path).lexically_normal();
+  for (const File& other : files_) {
+    if (other.target == f.target) {
+      error = final_path.string() + ": the same file is given for two outputs (" + other.final_path.string() +
+              "); nothing was written";
+      return nullptr;
+    }
+  }
+  const std::filesystem::file_status st = std::filesystem::status(f.target, ec);
+  if (std::filesystem::is_directory(st)) {
+    error = final_path.string() + ": is a directory; an output is written to a file";
+    return nullptr;
+  }
+  const bool special = std::filesystem::exists(st) && !std::filesystem::is_regular_file(st);
+  if (special) {
+    // A FIFO or a device is written through, never replaced. A FIFO without a reader would block
+    // the command: it is refused at once.
+    if (std::filesystem::is_fifo(st)) {
+      const int fd = ::open(f.target.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+      if (fd < 0) {
+        error = final_path.string() + (errno == ENXIO ? std::string(": a FIFO that no process reads")
+                                                      : ": cannot open the FIFO: " + std::string(std::strerror(errno)));
+        return nullptr;
+      }
+      ::close(fd);
+    }
+    f.stream = std::make_unique<std::ofstream>(f.target, std::ios::binary);
+  } else {
+    f.temp_path = temp_name(f.target);
+    f.stream = std::make_unique<std::ofstream>(f.temp_path, std::ios::binary | std::ios::trunc);
+  }
   if (!*f.stream) {
     error = final_path.string() + ": cannot create the file: " + std::strerror(errno);
     return nullptr;
@@ -80,9 +114,22 @@ bool OutputFiles::commit(std::string& error) {
       return false;
     }
   }
-  for (File& f : files_) {
+  // Every final name must still take a file before the first one is renamed: a directory that
+  // appeared there during the run fails the whole commit, not the half of it.
+  for (const File& f : files_) {
     std::error_code ec;
-    std::filesystem::rename(f.temp_path, f.final_path, ec);
+    if (!f.temp_path.empty() && std::filesystem::is_directory(f.target, ec)) {
+      error = f.final_path.string() + ": is a directory now; nothing was renamed into place";
+      return false;
+    }
+  }
+  for (File& f : files_) {
+    if (f.temp_path.empty()) {  // written through in place
+      f.renamed = true;
+      continue;
+    }
+    std::error_code ec;
+    std::filesystem::rename(f.temp_path, f.target, ec);
     if (ec) {
       error = f.final_path.string() + ": cannot rename the written file into place: " + ec.message();
       // What was renamed already is complete; the rest is removed.

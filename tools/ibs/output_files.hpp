@@ -2,6 +2,13 @@
 // final one, and only when every one of them has been written in full are they renamed to their
 // final names. Whatever fails, no partial or half-written file is left under a final name, the
 // temporaries are removed, and a directory made for the outputs is removed again if it stays empty.
+//
+// An output never replaces what is not a regular file (docs/robustness.md, "Output files"): a
+// symbolic link is followed (its target is written, the link stays), a FIFO or a device is written
+// through in place (no temporary, no rename; a FIFO nobody reads is refused at once instead of
+// blocking), a directory is refused. One file given for two outputs is refused when the second is
+// opened, and a final name that became a directory during the run fails the commit before anything
+// is renamed.
 #pragma once
 
 #include <filesystem>
@@ -32,7 +39,8 @@ class OutputFiles {
  private:
   struct File {
     std::filesystem::path final_path;
-    std::filesystem::path temp_path;
+    std::filesystem::path target;     // final_path with its symbolic links resolved
+    std::filesystem::path temp_path;  // empty: written through in place (a FIFO, a device)
     std::unique_ptr<std::ofstream> stream;
     bool renamed = false;
   };
