@@ -59,12 +59,17 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
   std::uint64_t index = 0;
   // The first deadline one cycle from now: the cycles of the run are k = 1 .. n.
   const std::int64_t start = monotonic_ns();
+  bool stopped = false;
   for (Time t = Time{0} + cycle; t <= Time{0} + end; t += cycle, ++index) {
     const std::int64_t deadline = start + (t - Time{0}).count();
     sleep_until_ns(deadline);
     const std::int64_t woke = monotonic_ns();
     wake.push_back(static_cast<std::uint32_t>(std::clamp<std::int64_t>(woke - deadline, 0, 0xFFFFFFFF)));
     sim.run_until(t, options);
+    if (realtime.stop && (index & 63U) == 0 && realtime.stop()) {
+      stopped = true;
+      break;
+    }
     const std::int64_t done = monotonic_ns();
     const std::int64_t late = done - (deadline + cycle.count());
     if (late > 0) {
@@ -76,7 +81,7 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
       }
     }
   }
-  sim.run(options);  // the rest of the scenario after the last whole cycle
+  if (!stopped) sim.run(options);  // the rest of the scenario after the last whole cycle
   r.wake = timing_stats(wake, cycle, processing_budgets());
   r.processing = sim.summary().master;
   if (r.rt_priority > 0) {

@@ -369,3 +369,33 @@ TEST(OutputFileRules, ALinkIsFollowedAndAFifoWrittenThroughNeverReplaced) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 23, defect 11: SIGINT or SIGTERM during `run --vcd --pcap --trace D` left
+// *.ibs-partial-PID files of 120-140 MB and an empty D. The run stops, removes what it began and
+// says so; exit 130.
+TEST(OutputFileRules, ASignalDuringARunLeavesNothingAndSaysSo) {
+  for (const char* sig : {"INT", "TERM"}) {
+    const std::string dir = fresh_dir(std::string("signal_") + sig);
+    const std::string scenario = dir + "/long.toml";
+    std::ofstream(scenario) << "name = \"long\"\nduration = \"3600 s\"\n\n[[device]]\nname = \"fan\"\ntype = \"vf1000\"\n";
+    // A script's background job ignores SIGINT (bash): env gives it the default back, as a
+    // terminal's Ctrl-C would find it.
+    const Result r = run_shell(
+        "cd " + dir + " && { env --default-signal=INT " + std::string(IBS_CLI) + " run " + scenario +
+        " --vcd run.vcd --pcap run.pcap --trace traces > out.txt 2> err.txt & pid=$!; "
+        "for i in $(seq 1 100); do ls | grep -q ibs-partial && break; sleep 0.1; done; "
+        "sleep 0.3; kill -" + sig + " $pid; wait $pid; echo \"exit $?\" > rc.txt; cat rc.txt err.txt; }");
+    EXPECT_TRUE(contains(r.out, "exit 130")) << sig << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, "ibs run: interrupted by a signal after ")) << r.out;
+    EXPECT_TRUE(contains(r.out, "no output was written")) << r.out;
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"err.txt", "long.toml", "out.txt", "rc.txt"})) << sig;
+    fs::remove_all(dir);
+  }
+}
+
+}  // namespace

@@ -10,6 +10,7 @@ namespace ibs::cli {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitMismatch = 1;  // replay: a row did not match
 inline constexpr int kExitBadInput = 2;  // malformed file, bad option, refused configuration
+inline constexpr int kExitInterrupted = 130;  // run: SIGINT / SIGTERM; nothing written (128 + SIGINT)
 
 struct RunOptions {
   std::string scenario;   // empty: the built-in default scenario

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
+#include "stop_signals.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
@@ -25,6 +26,9 @@
 namespace ibs::cli {
 
 namespace {
+
+// The simulated time run between two looks for SIGINT / SIGTERM (the run is the same in slices).
+constexpr Duration kRunSlice = std::chrono::milliseconds(200);
 
 // The image format a --plot file asks for by its extension.
 std::optional<sim::PlotFormat> plot_format(const std::string& file) {
@@ -163,12 +167,27 @@ int run(const RunOptions& o) {
       std::fflush(stderr);
     };
   }
+  // SIGINT and SIGTERM end the run between two slices of simulated time; then nothing is written
+  // (the outputs' temporaries and any directory made for them go) and the command says so.
+  StopSignals signals;
+  bool interrupted = false;
   if (o.realtime) {
-    sim::run_realtime(*simulator, sim::RealtimeOptions{o.rt_priority}, options);
+    sim::RealtimeOptions rt{o.rt_priority, [&signals, &interrupted] { return interrupted = signals.raised(); }};
+    sim::run_realtime(*simulator, rt, options);
   } else {
-    simulator->run(options);
+    for (Time t = Time{0} + kRunSlice; simulator->run_until(t, options); t += kRunSlice) {
+      if (signals.raised()) {
+        interrupted = true;
+        break;
+      }
+    }
   }
   if (shown) std::fprintf(stderr, "\r%60s\r", "");
+  if (interrupted) {
+    std::cerr << "ibs run: interrupted by a signal after " << to_ms(simulator->now()) / 1000.0 << " s of "
+              << to_ms(scenario.duration) / 1000.0 << " s simulated; no output was written\n";
+    return kExitInterrupted;
+  }
   if (vcd) {
     try {
       vcd->finish(scenario.duration);

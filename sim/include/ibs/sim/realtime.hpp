@@ -8,6 +8,8 @@
 // a note says so once and the run goes on. The results go into `Summary::realtime`.
 #pragma once
 
+#include <functional>
+
 #include <cstdint>
 #include <string>
 
@@ -25,6 +27,9 @@ std::string set_fifo_priority(int priority);
 
 struct RealtimeOptions {
   int rt_priority = 0;  // 1..99: SCHED_FIFO at this priority and memory locked (mlockall); 0: neither
+  // Asked every 64 cycles between two deadlines; true ends the run there (`ibs run` on SIGINT or
+  // SIGTERM). The simulator is then left part-way: its summary is not final.
+  std::function<bool()> stop;
 };
 
 // Runs `sim` from its start to the end of its scenario in real time. Allocates only before the
