@@ -172,6 +172,21 @@ void fuzz_host(In& in) {
   cfg.queue_capacity = 4;
   Host host(cfg);
   static const Assignment kRecords[] = {{make_code(20300), make_value("2")}};
+  // The procedures of seed 000, 11 as a servo describes them (80-SLOAD, 108-STEXT, PosMOD1).
+  static const DownloadProcedure kDownload{Family::enhanced, 80, -1, -2};
+  static const IndexedTextProcedure kTexts{Family::enhanced, 108};
+  static const BlockTransferProcedure kBlock = [] {
+    BlockTransferProcedure b;
+    b.code = kPosmodCode;
+    b.max_user_data = 80;
+    b.error_read = make_value("1%RDF");
+    b.asks_answer = [](char first) -> std::optional<bool> {
+      const auto st = parse_posmod_status(first);
+      if (!st) return std::nullopt;
+      return st->request;
+    };
+    return b;
+  }();
   Time now{0};
   std::vector<RequestId> ids;
   while (in.remaining_bytes() > 0) {
@@ -182,13 +197,13 @@ void fuzz_host(In& in) {
         const auto v = Value::from(random_string(in, 12)).value_or(Value{});
         Request r;
         switch (in.ConsumeIntegralInRange<int>(0, 6)) {
-          case 6: r = posmod_request(a, in.ConsumeBool() ? std::string_view{} : v.view()); break;  // 11.6
+          case 6: r = block_transfer_request(kBlock, a, in.ConsumeBool() ? std::string_view{} : v.view()); break;  // 11.6
           case 0: r = enquiry(a, c); break;
           case 1: r = select(a, c, v); break;
           case 2: r = broadcast(c, v); break;
           case 3: r = network_scan(); break;
-          case 4: r = download(a, kRecords); break;
-          default: r = substitution_text_request(a, static_cast<std::uint16_t>(c.number() % 1000), 1); break;
+          case 4: r = download(kDownload, a, kRecords); break;
+          default: r = indexed_text_request(kTexts, a, static_cast<std::uint16_t>(c.number() % 1000), 1); break;
         }
         const auto s = host.submit(r);
         if (s) ids.push_back(s.id);

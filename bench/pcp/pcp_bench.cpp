@@ -93,7 +93,7 @@ BENCHMARK(BM_Read)->Arg(1)->Arg(2)->Arg(4);
 
 // With the calibrated latency model at workload 0 (idle steps while the servo "processes").
 void BM_ReadCalibratedLatency(benchmark::State& state) {
-  run_reads(state, LatencyModel::for_channel(static_cast<int>(state.range(0))));
+  run_reads(state, ibs::devices::mc6000::pcp_latency(static_cast<int>(state.range(0))));
 }
 BENCHMARK(BM_ReadCalibratedLatency)->Arg(1)->Arg(2)->Arg(4);
 

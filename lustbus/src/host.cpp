@@ -10,13 +10,10 @@ namespace ibs::lustbus {
 
 namespace {
 
-constexpr Code kSloadCode = make_code(20000 + kParamSload);  // 20080
-constexpr Code kStextCode = make_code(20000 + kParamStext);  // 20108
-// 11.6: the error read, a request telegram (status byte 31H).
-const Value kPosmodErrorRead = make_value("1%RDF");
-// 11.4: SLOAD = -1 / -2, INTEGER16 sent as its 16-bit two's complement ("%X", 2.3.2).
-constexpr Value kSloadStart = make_value("FFFF");
-constexpr Value kSloadEnd = make_value("FFFE");
+// 11.4: a handshake value, INTEGER16 sent as its 16-bit two's complement (2.3.2).
+Value handshake_value(const DownloadProcedure& p, std::int16_t v) {
+  return format_raw(p.family, static_cast<std::uint16_t>(v)).value;
+}
 
 }  // namespace
 
@@ -32,10 +29,10 @@ std::string_view to_string(RequestKind k) {
       return "scan";
     case RequestKind::download:
       return "download";
-    case RequestKind::substitution_text:
-      return "substitution_text";
-    case RequestKind::posmod:
-      return "posmod";
+    case RequestKind::indexed_text:
+      return "indexed_text";
+    case RequestKind::block_transfer:
+      return "block_transfer";
   }
   return "?";
 }
@@ -151,33 +148,69 @@ Request network_scan() {
   r.kind = RequestKind::scan;
   return r;
 }
-Request download(Address a, std::span<const Assignment> records) {
+std::optional<Code> text_code(Family f, unsigned parameter) {
+  if (f != Family::enhanced) return std::nullopt;  // 2.4.1 has no text CODEs
+  return mc_code(McCodeKind::substitution_text, parameter);
+}
+
+Request download(const DownloadProcedure& p, Address a, std::span<const Assignment> records) {
   Request r;
   r.kind = RequestKind::download;
   r.address = a;
   r.records = records;
-  return r;
-}
-Request posmod_request(Address a, std::string_view user_data) {
-  Request r;
-  r.kind = RequestKind::posmod;
-  r.address = a;
-  r.code = kPosmodCode;
-  const auto v = Value::from(user_data);
-  r.value = v.value_or(Value{});
-  // A user data the VALUE cannot hold, or longer than 11.6.1's 80 bytes: refused by submit().
-  r.parameter = v && user_data.size() <= kPosmodMaxUserData ? 0 : 1;
+  r.download = &p;
   return r;
 }
 
-Request substitution_text_request(Address a, std::uint16_t parameter, std::uint32_t index) {
+Request block_transfer_request(const BlockTransferProcedure& p, Address a,
+                               std::string_view user_data) {
   Request r;
-  r.kind = RequestKind::substitution_text;
+  r.kind = RequestKind::block_transfer;
+  r.address = a;
+  r.code = p.code;
+  r.block_transfer = &p;
+  const auto v = Value::from(user_data);
+  r.value = v.value_or(Value{});
+  // A user data the VALUE cannot hold, or longer than the device takes: refused by submit().
+  r.unfit = !v || user_data.size() > p.max_user_data;
+  return r;
+}
+
+Request indexed_text_request(const IndexedTextProcedure& p, Address a, std::uint16_t parameter,
+                             std::uint32_t index) {
+  Request r;
+  r.kind = RequestKind::indexed_text;
   r.address = a;
   r.parameter = parameter;
   r.text_index = index;
+  r.indexed_text = &p;
   return r;
 }
+
+namespace {
+
+// Whether the request carries what its kind needs: the procedure's description, a CODE for its
+// parameters, user data the device takes.
+bool runnable(const Request& r) {
+  switch (r.kind) {
+    case RequestKind::download:
+      return r.download != nullptr && parameter_code(r.download->family, r.download->parameter);
+    case RequestKind::indexed_text:
+      return r.indexed_text != nullptr &&
+             parameter_code(r.indexed_text->family, r.indexed_text->index_parameter) &&
+             text_code(r.indexed_text->family, r.parameter);
+    case RequestKind::block_transfer: {
+      const BlockTransferProcedure* p = r.block_transfer;
+      if (p == nullptr || p->asks_answer == nullptr || r.unfit) return false;
+      if (r.value.size() > p->max_user_data) return false;
+      return r.value.empty() || p->asks_answer(r.value.view()[0]).has_value();
+    }
+    default:
+      return true;
+  }
+}
+
+}  // namespace
 
 Host::Host(const HostConfig& config) : config_(config) {
   capacity_ = config_.queue_capacity == 0 ? 1 : config_.queue_capacity;
@@ -195,8 +228,8 @@ Submitted Host::submit(const Request& r) {
     case RequestKind::enquiry:
     case RequestKind::select:
     case RequestKind::download:
-    case RequestKind::substitution_text:
-    case RequestKind::posmod:
+    case RequestKind::indexed_text:
+    case RequestKind::block_transfer:
       // 4.2 / 9.1: nothing answers at 31.
       if (r.address > kLastDeviceAddress) {
         s.error = SubmitError::invalid_address;
@@ -212,12 +245,7 @@ Submitted Host::submit(const Request& r) {
     case RequestKind::scan:
       break;
   }
-  if (r.kind == RequestKind::posmod &&
-      (r.parameter != 0 || (!r.value.empty() && !parse_posmod_status(r.value.view()[0])))) {
-    s.error = SubmitError::invalid_request;  // 11.6.3: the status byte first; <= 80 characters
-    return s;
-  }
-  if (r.kind == RequestKind::substitution_text && r.parameter > 999) {
+  if (!runnable(r)) {
     s.error = SubmitError::invalid_request;
     return s;
   }
@@ -408,19 +436,23 @@ void Host::start_job(Time now) {
       next_scan_address(now);
       return;
     case RequestKind::download:
-      select_phase(Phase::dl_start, kSloadCode, kSloadStart, now);  // 11.4 step 1
+      // 11.4 step 1.
+      select_phase(Phase::dl_start, handshake_code(),
+                   handshake_value(*r.download, r.download->start), now);
       return;
-    case RequestKind::posmod:
+    case RequestKind::block_transfer:
       if (r.value.empty()) {
-        enquiry_phase(Phase::pm_enquiry, r.address, kPosmodCode, timeout_of(r), now);
+        enquiry_phase(Phase::block_enquiry, r.address, r.block_transfer->code, timeout_of(r), now);
       } else {
-        select_phase(Phase::pm_select, kPosmodCode, r.value, now);
+        select_phase(Phase::block_select, r.block_transfer->code, r.value, now);
       }
       return;
-    case RequestKind::substitution_text: {
-      // 11.3 step 2: STEXT = the value whose text is wanted (USIGN "%X").
-      const auto v = format_raw(Family::enhanced, r.text_index);
-      select_phase(Phase::st_select, kStextCode, v.value, now);
+    case RequestKind::indexed_text: {
+      // 11.3 step 2: the index parameter = the value whose text is wanted (USIGN).
+      const IndexedTextProcedure& p = *r.indexed_text;
+      const auto v = format_raw(p.family, r.text_index);
+      const auto c = parameter_code(p.family, p.index_parameter);
+      select_phase(Phase::text_select, c.value_or(Code{}), v.value, now);
       return;
     }
   }
@@ -475,21 +507,22 @@ void Host::on_select_like_ack(Time now) {
       if (record_ < recs.size()) {
         select_phase(Phase::dl_record, recs[record_].code, recs[record_].value, now);
       } else {
-        select_phase(Phase::dl_end, kSloadCode, kSloadEnd, now);
+        const DownloadProcedure& p = *request().download;
+        select_phase(Phase::dl_end, handshake_code(), handshake_value(p, p.end), now);
       }
       return;
     }
     case Phase::dl_end:
-      // 11.4 step 4: poll SLOAD, within the timeout.
+      // 11.4 step 4: poll the handshake, within the timeout.
       poll_started_ = now;
       phase_ = Phase::dl_poll;
       tx_attempts_ = 0;
-      send_later(Tx{request().address, kSloadCode, {}, true, timeout_of(request())},
+      send_later(Tx{request().address, handshake_code(), {}, true, timeout_of(request())},
                  now + config_.download_poll_interval);
       return;
-    case Phase::st_select: {
-      const auto c = mc_code(McCodeKind::substitution_text, request().parameter);
-      enquiry_phase(Phase::st_enquiry, request().address, c.value_or(Code{}),
+    case Phase::text_select: {
+      const auto c = text_code(request().indexed_text->family, request().parameter);
+      enquiry_phase(Phase::text_enquiry, request().address, c.value_or(Code{}),
                     timeout_of(request()), now);
       return;
     }
@@ -503,7 +536,7 @@ void Host::on_select_like_failure(OutcomeKind k, Time now) {
   out_->attempts = select_attempts_;
   switch (select_return_) {
     case Phase::main:
-    case Phase::st_select:
+    case Phase::text_select:
       finish(k, now);
       return;
     case Phase::dl_start:
@@ -529,14 +562,15 @@ void Host::tx_done(Time now) {
   const Request& r = request();
   const bool answered = answer_kind_ != AnswerKind::none;
   switch (phase_) {
-    case Phase::pm_select:
-    case Phase::pm_error_select:
+    case Phase::block_select:
+    case Phase::block_error_select:
       out_->attempts = tx_attempts_;
       if (answer_kind_ == AnswerKind::ack) {
-        if (phase_ == Phase::pm_error_select) {
-          enquiry_phase(Phase::pm_error_enquiry, r.address, kPosmodCode, timeout_of(r), now);
-        } else if (const auto st = parse_posmod_status(r.value.view()[0]); st && st->request) {
-          enquiry_phase(Phase::pm_enquiry, r.address, kPosmodCode, timeout_of(r), now);
+        const BlockTransferProcedure& p = *r.block_transfer;
+        if (phase_ == Phase::block_error_select) {
+          enquiry_phase(Phase::block_error_enquiry, r.address, p.code, timeout_of(r), now);
+        } else if (p.asks_answer(r.value.view()[0]).value_or(false)) {
+          enquiry_phase(Phase::block_enquiry, r.address, p.code, timeout_of(r), now);
         } else {
           finish(OutcomeKind::acknowledged, now);
         }
@@ -544,16 +578,16 @@ void Host::tx_done(Time now) {
       }
       if (answer_kind_ != AnswerKind::nak) {
         finish_unanswered(now);
-      } else if (phase_ == Phase::pm_select) {
-        read_posmod_error(now);
+      } else if (phase_ == Phase::block_select) {
+        read_block_error(now);
       } else {
-        finish(OutcomeKind::nak, now);  // the %RDF itself refused
+        finish(OutcomeKind::nak, now);  // the error read itself refused
       }
       return;
-    case Phase::pm_enquiry:
-    case Phase::pm_error_enquiry:
+    case Phase::block_enquiry:
+    case Phase::block_error_enquiry:
       out_->attempts = tx_attempts_;
-      if (phase_ == Phase::pm_error_enquiry) {
+      if (phase_ == Phase::block_error_enquiry) {
         if (answer_kind_ == AnswerKind::text) out_->value = decoder_.value();
         finish(OutcomeKind::nak, now);
         return;
@@ -562,7 +596,7 @@ void Host::tx_done(Time now) {
         out_->value = decoder_.value();
         finish(OutcomeKind::value, now);
       } else if (answer_kind_ == AnswerKind::nak) {
-        read_posmod_error(now);
+        read_block_error(now);
       } else {
         finish_unanswered(now);
       }
@@ -591,7 +625,7 @@ void Host::tx_done(Time now) {
     case Phase::dl_start:
     case Phase::dl_record:
     case Phase::dl_end:
-    case Phase::st_select:
+    case Phase::text_select:
       // A SELECT step.
       if (answer_kind_ == AnswerKind::ack) {
         on_select_like_ack(now);
@@ -668,15 +702,16 @@ void Host::tx_done(Time now) {
     }
     case Phase::dl_poll: {
       if (answer_kind_ == AnswerKind::text) {
-        const auto v = parse_typed(Family::enhanced, DataType::integer16, decoder_.value().view());
+        const auto v =
+            parse_typed(r.download->family, DataType::integer16, decoder_.value().view());
         if (v.ok()) {
-          const auto sload = static_cast<std::int16_t>(v.value);
-          if (sload == 0) {
+          const auto handshake = static_cast<std::int16_t>(v.value);
+          if (handshake == 0) {
             finish(OutcomeKind::downloaded, now);
             return;
           }
-          if (sload > 0) {
-            out_->rejected_parameter = static_cast<std::uint32_t>(sload);
+          if (handshake > 0) {
+            out_->rejected_parameter = static_cast<std::uint32_t>(handshake);
             finish(OutcomeKind::download_rejected, now);
             return;
           }
@@ -691,13 +726,13 @@ void Host::tx_done(Time now) {
       send_later(tx_, now + config_.download_poll_interval);
       return;
     }
-    case Phase::st_enquiry:
+    case Phase::text_enquiry:
       out_->attempts = tx_attempts_;
       if (answer_kind_ == AnswerKind::text) {
         out_->value = decoder_.value();
         finish(OutcomeKind::value, now);
       } else if (answer_kind_ == AnswerKind::nak) {
-        finish(OutcomeKind::nak, now);  // 11.3: no parameter, no text, or STEXT too large
+        finish(OutcomeKind::nak, now);  // 11.3: no parameter, no text, or the index too large
       } else if (tx_attempts_ <= config_.enquiry_retries) {
         send(tx_, now);
       } else {
@@ -713,11 +748,18 @@ void Host::finish_unanswered(Time now) {
   finish(answer_error_ == AnswerError::no_answer ? OutcomeKind::no_answer : OutcomeKind::bad_answer, now);
 }
 
-// 11.6: after a NAK "the Host computer ascertains the error using the read command %RDF".
-void Host::read_posmod_error(Time now) {
-  phase_ = Phase::pm_error_select;
+// 11.6: after a NAK "the Host computer ascertains the error using the read command" the
+// device's description names.
+void Host::read_block_error(Time now) {
+  const BlockTransferProcedure& p = *request().block_transfer;
+  phase_ = Phase::block_error_select;
   tx_attempts_ = 0;
-  send(Tx{request().address, kPosmodCode, kPosmodErrorRead, false, timeout_of(request())}, now);
+  send(Tx{request().address, p.code, p.error_read, false, timeout_of(request())}, now);
+}
+
+Code Host::handshake_code() const {
+  const DownloadProcedure& p = *request().download;
+  return parameter_code(p.family, p.parameter).value_or(Code{});
 }
 
 void Host::restart(Time now) {

@@ -13,25 +13,6 @@ Duration LatencyModel::processing(double workload) const {
   return processing_min + Duration(static_cast<Duration::rep>(std::llround(w * span)));
 }
 
-LatencyModel LatencyModel::for_channel(int channel_words) {
-  LatencyModel m;
-  switch (channel_words) {
-    case 4:
-      m.processing_min = 7ms;
-      m.processing_max = 27ms;
-      break;
-    case 2:
-      m.processing_min = 0ms;
-      m.processing_max = 21ms;
-      break;
-    default:
-      m.processing_min = 0ms;
-      m.processing_max = 2ms;
-      break;
-  }
-  return m;
-}
-
 LatencyModel LatencyModel::immediate() {
   LatencyModel m;
   m.processing_min = Duration::zero();
@@ -40,6 +21,12 @@ LatencyModel LatencyModel::immediate() {
 }
 
 namespace {
+
+LatencyModel latency_of(const ServerConfig& cfg) {
+  if (cfg.latency) return *cfg.latency;
+  if (cfg.latency_for != nullptr) return cfg.latency_for(cfg.channel_words);
+  return LatencyModel{};
+}
 
 LinkConfig link_config(const ServerConfig& cfg) {
   LinkConfig l;
@@ -73,7 +60,7 @@ Error Server::validate(const ServerConfig& cfg, std::span<const ParameterInfo> t
 
 Server::Server(const ServerConfig& cfg, ServedParameters& served)
     : cfg_(checked(cfg, served.table())),
-      latency_(cfg.latency ? *cfg.latency : LatencyModel::for_channel(cfg.channel_words)),
+      latency_(latency_of(cfg)),
       served_(&served),
       link_(link_config(cfg)),
       workload_(cfg.workload) {}

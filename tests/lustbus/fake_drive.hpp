@@ -13,6 +13,7 @@
 
 #include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/description.hpp"
+#include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/responder.hpp"
 #include "ibs/lustbus/siof.hpp"
 #include "ibs/lustbus/value.hpp"
@@ -47,6 +48,10 @@ class FakeDrive : public Responder {
   Duration mc_eeprom_per_byte = 15ms;                // 3: every byte saved three times
   Time eeprom_busy_until{};
   bool defer_selects = false;  // answer SELECTs through Receiver::deliver_select
+  // The procedures of 11 a servo offers, through the parameters the MC6000 uses (80-SLOAD,
+  // 108-STEXT); a test may move them, and describes them to the host with procedures().
+  unsigned handshake_parameter = 80;
+  unsigned text_index_parameter = 108;
   // SLOAD (11.4) bookkeeping.
   bool download_mode = false;
   bool download_never_ready = false;
@@ -102,7 +107,7 @@ class FakeDrive : public Responder {
       if (mc && mc->kind == McCodeKind::posmod) return EnquiryAnswer::text(posmod_reply, reaction);
       if (mc && mc->kind == McCodeKind::substitution_text) {  // 11.3
         FakeParam* p = find(mc->parameter);
-        FakeParam* stext = find(108);
+        FakeParam* stext = find(text_index_parameter);
         if (p == nullptr || p->texts.empty() || stext == nullptr ||
             stext->value >= p->texts.size() || stext->value > p->max) {
           return EnquiryAnswer::nak(reaction);
@@ -136,7 +141,7 @@ class FakeDrive : public Responder {
       if (!d) return EnquiryAnswer::nak(reaction);
       return EnquiryAnswer::text(*d, reaction);
     }
-    if (p->number == 80 && family == Family::enhanced && download_mode &&
+    if (p->number == handshake_parameter && family == Family::enhanced && download_mode &&
         ctx.now >= download_ready) {
       p->value = static_cast<std::uint16_t>(download_result);
       download_mode = false;
@@ -167,7 +172,7 @@ class FakeDrive : public Responder {
     if (!p->writable) return refuse(SiofBit::no_change);
     const auto bits = parse_typed(family, p->type, value.view());
     if (!bits.ok()) return refuse(SiofBit::invalid_value);
-    const bool in_download = download_mode && p->number != 80;
+    const bool in_download = download_mode && p->number != handshake_parameter;
     if (!in_download && p->type == DataType::integer16) {
       const auto s = static_cast<std::int16_t>(bits.value);
       if (s < static_cast<std::int16_t>(p->min) || s > static_cast<std::int16_t>(p->max)) {
@@ -185,7 +190,7 @@ class FakeDrive : public Responder {
         r += vf_eeprom_extra;  // 3: the VF1000 answers once the EEPROM holds the value
       }
     }
-    if (family == Family::enhanced && p->number == 80) {  // 11.4
+    if (family == Family::enhanced && p->number == handshake_parameter) {  // 11.4
       const auto s = static_cast<std::int16_t>(bits.value);
       if (s == -1) {
         download_mode = true;
@@ -204,6 +209,30 @@ class FakeDrive : public Responder {
     history.push_back({p->number, bits.value});
     if (defer_selects) return SelectAnswer::deferred();
     return SelectAnswer::ack(r);
+  }
+
+  // The fake's procedures as a wing describes them to the host (11.3, 11.4, 11.6).
+  [[nodiscard]] DeviceProcedures procedures() const {
+    DeviceProcedures d;
+    d.download = DownloadProcedure{Family::enhanced,
+                                   static_cast<std::uint16_t>(handshake_parameter), -1, -2};
+    d.indexed_text =
+        IndexedTextProcedure{Family::enhanced, static_cast<std::uint16_t>(text_index_parameter)};
+    d.block_transfer = posmod_procedure();
+    return d;
+  }
+  // 11.6 as the MC6000 offers it: CODE 49999, 80 characters, the error read 1%RDF.
+  static BlockTransferProcedure posmod_procedure() {
+    BlockTransferProcedure b;
+    b.code = kPosmodCode;
+    b.max_user_data = 80;
+    b.error_read = make_value("1%RDF");
+    b.asks_answer = [](char first) -> std::optional<bool> {
+      const auto st = parse_posmod_status(first);
+      if (!st) return std::nullopt;
+      return st->request;
+    };
+    return b;
   }
 
   void checksum_error(const Context&) override {

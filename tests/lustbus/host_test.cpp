@@ -315,7 +315,8 @@ TEST(HostDownload, HandshakeOf114AsOneRequest) {
   const std::vector<Assignment> records = {{make_code(20300), make_value("2")},
                                            {make_code(20428), make_value("842666")},
                                            {make_code(20402), make_value("2")}};
-  const Outcome o = bus.run(download(5, records));
+  const auto procedures = mc.procedures();
+  const Outcome o = bus.run(download(*procedures.download, 5, records));
   EXPECT_EQ(o.kind, OutcomeKind::downloaded) << describe(o);
   EXPECT_EQ(mc.value_of(300), 2U);
   EXPECT_EQ(mc.value_of(428), 0x842666U);
@@ -329,7 +330,8 @@ TEST(HostDownload, RejectedDatasetNamesTheFirstInvalidParameter) {
   Bus bus;
   bus.add(mc, 5);
   const std::vector<Assignment> records = {{make_code(20428), make_value("7FFFFFFF")}};
-  const Outcome o = bus.run(download(5, records));
+  const auto procedures = mc.procedures();
+  const Outcome o = bus.run(download(*procedures.download, 5, records));
   EXPECT_EQ(o.kind, OutcomeKind::download_rejected);
   EXPECT_EQ(o.rejected_parameter, 428U);
 }
@@ -341,7 +343,8 @@ TEST(HostDownload, RefusedRecordEndsTheDownloadWithItsStepAndCause) {
   bus.add(mc, 5);
   const std::vector<Assignment> records = {{make_code(20300), make_value("2")},
                                            {make_code(20077), make_value("1")}};  // read-only
-  const Outcome o = bus.run(download(5, records));
+  const auto procedures = mc.procedures();
+  const Outcome o = bus.run(download(*procedures.download, 5, records));
   EXPECT_EQ(o.kind, OutcomeKind::download_refused);
   EXPECT_EQ(o.failed_step, 1);
   EXPECT_EQ(o.siof, 0x40);
@@ -356,7 +359,8 @@ TEST(HostDownload, TimesOutWhenSloadStaysBusy) {
   Bus bus(cfg);
   bus.add(mc, 5);
   const std::vector<Assignment> records = {{make_code(20300), make_value("2")}};
-  const Outcome o = bus.run(download(5, records));
+  const auto procedures = mc.procedures();
+  const Outcome o = bus.run(download(*procedures.download, 5, records));
   EXPECT_EQ(o.kind, OutcomeKind::download_timeout);
   EXPECT_GE(o.finished - o.started, 1s);
 }
@@ -366,13 +370,59 @@ TEST(HostSubstitutionText, Steps113AsOneRequest) {
   mc.siof = 0;
   Bus bus;
   bus.add(mc, 2);
-  Outcome o = bus.run(substitution_text_request(2, 300, 2));
+  const auto texts = *mc.procedures().indexed_text;
+  Outcome o = bus.run(indexed_text_request(texts, 2, 300, 2));
   EXPECT_EQ(o.kind, OutcomeKind::value);
   EXPECT_EQ(substitution_text(o.value.view()), "SCON");
-  o = bus.run(substitution_text_request(2, 300, 5));  // beyond the texts: NAK
+  o = bus.run(indexed_text_request(texts, 2, 300, 5));  // beyond the texts: NAK
   EXPECT_EQ(o.kind, OutcomeKind::nak);
-  o = bus.run(substitution_text_request(2, 416, 0));  // no texts
+  o = bus.run(indexed_text_request(texts, 2, 416, 0));  // no texts
   EXPECT_EQ(o.kind, OutcomeKind::nak);
+  // 2.4.2's text CODE carries parameters up to 999.
+  EXPECT_EQ(bus.host.submit(indexed_text_request(texts, 2, 1000, 0)).error,
+            SubmitError::invalid_request);
+}
+
+// The host knows no device's parameter numbers: the procedures run through the parameters the
+// device's description names (here a servo whose handshake is 79 and whose index is 416).
+TEST(HostProcedures, RunThroughTheParametersTheDescriptionNames) {
+  auto mc = make_mc6000();
+  mc.mc_eeprom_per_byte = 0ms;
+  mc.siof = 0;
+  mc.params.push_back({79, DataType::integer16, 0, 0xFFFE, 999, true, false, "HSHK"});
+  mc.handshake_parameter = 79;
+  mc.text_index_parameter = 416;
+  Bus bus;
+  bus.add(mc, 5);
+  const auto procedures = mc.procedures();
+  const std::vector<Assignment> records = {{make_code(20300), make_value("2")}};
+  const Outcome o = bus.run(download(*procedures.download, 5, records));
+  EXPECT_EQ(o.kind, OutcomeKind::downloaded) << describe(o);
+  EXPECT_EQ(mc.value_of(300), 2U);
+  EXPECT_EQ(mc.value_of(79), 0U);
+  EXPECT_EQ(mc.value_of(80), 0U);  // untouched: SLOAD is no handshake here
+  EXPECT_EQ(bus.run(indexed_text_request(*procedures.indexed_text, 5, 300, 0)).value.view(),
+            "TCON");
+  EXPECT_EQ(mc.value_of(416), 0U);
+  EXPECT_EQ(bus.run(indexed_text_request(*procedures.indexed_text, 5, 300, 1)).value.view(),
+            "VFCON");
+  EXPECT_EQ(mc.value_of(416), 1U);
+}
+
+// A request without the description its procedure needs, or one whose parameter the family's
+// CODEs cannot carry, is refused before a byte goes out.
+TEST(HostProcedures, RefusedWithoutADescriptionTheFamilyCanCarry) {
+  Host host;
+  Request r = download(DownloadProcedure{}, 1, {});
+  r.download = nullptr;
+  EXPECT_EQ(host.submit(r).error, SubmitError::invalid_request);
+  const DownloadProcedure too_high{Family::standard, 100, -1, -2};  // 2.4.1: 00..99
+  EXPECT_EQ(host.submit(download(too_high, 1, {})).error, SubmitError::invalid_request);
+  const IndexedTextProcedure standard_texts{Family::standard, 5};  // 2.4.1 has no text CODEs
+  EXPECT_EQ(host.submit(indexed_text_request(standard_texts, 1, 5, 0)).error,
+            SubmitError::invalid_request);
+  EXPECT_FALSE(text_code(Family::standard, 5));
+  EXPECT_EQ(text_code(Family::enhanced, 300)->text(), "61300");
 }
 
 TEST(HostDescriptions, ParsedFromBothFamilies) {

@@ -28,6 +28,9 @@ struct Kind {
   const char* text;        // what an ENQUIRY answers ("" for a SELECT)
 };
 
+// 11.3 as the fake servo offers it (a static: the requests point at it).
+const IndexedTextProcedure kTexts{Family::enhanced, 108};
+
 std::vector<Kind> kinds() {
   return {
       {"VF SELECT RAM", Family::standard, select(1, make_code(105), make_value("03E8")), 5, 0x3E8, ""},
@@ -43,7 +46,8 @@ std::vector<Kind> kinds() {
       {"MC SELECT short", Family::enhanced, select(1, make_code(20416), make_value("1")), 416, 1, ""},
       {"MC ENQUIRY", Family::enhanced, enquiry(1, make_code(20077)), 0, 0, "4FA4000"},
       {"MC PosMOD1", Family::enhanced, select(1, kPosmodCode, make_value("8GOA0V1000")), 0, 0, ""},
-      {"MC substitution text", Family::enhanced, substitution_text_request(1, 300, 2), 108, 2, "SCON"},
+      {"MC substitution text", Family::enhanced, indexed_text_request(kTexts, 1, 300, 2), 108, 2,
+       "SCON"},
   };
 }
 

@@ -5,6 +5,7 @@
 
 #include "../support/counting_new.hpp"
 #include "ibs/devices/mc6000/lustbus_device.hpp"
+#include "ibs/devices/mc6000/lustbus_face.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/receiver.hpp"
@@ -49,11 +50,14 @@ TEST(LustbusWingsBytePath, NoAllocation) {
       select(1, make_code(111), make_value("000F"))};
   const Assignment records[] = {{make_code(20417), make_value("3")},
                                 {make_code(20419), make_value("9")}};
-  const Request mc_reqs[] = {
-      enquiry(3, kSiofCode), select(3, make_code(20428), make_value("842666")),
-      select(3, make_code(20081), make_value("4B00")), select(3, make_code(20084), make_value("0")),
-      enquiry(3, make_code(30428)), enquiry(3, make_code(20077)),
-      slow(select(3, make_code(20004), make_value("1"))), download(3, records)};
+  const Request mc_reqs[] = {enquiry(3, kSiofCode),
+                             select(3, make_code(20428), make_value("842666")),
+                             select(3, make_code(20081), make_value("4B00")),
+                             select(3, make_code(20084), make_value("0")),
+                             enquiry(3, make_code(30428)),
+                             enquiry(3, make_code(20077)),
+                             slow(select(3, make_code(20004), make_value("1"))),
+                             download(*devices::mc6000::lustbus_procedures().download, 3, records)};
   exchange(host, rx_vf, vf_reqs[0], now);  // warm-up
   exchange(host, rx_mc, mc_reqs[0], now);
   ibs::test::AllocationCounter counter;

@@ -11,6 +11,7 @@
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "../lustbus/line_faults.hpp"
+#include "servo_procedures.hpp"
 #include "support.hpp"
 
 namespace {

@@ -1,12 +1,13 @@
 // The MC6000 wing as a LUSTBUS device (seed 000): the seed's telegrams byte-exact against it, the
 // shared CODEs of 5.2, 85-SERR, EEPROM in the background with 04H (3, 10.2.2), the description
 // (11.2), 4-PROG, the download handshake on 80-SLOAD (11.4), the watchdog (5.2).
-#include "ibs/devices/mc6000/lustbus_device.hpp"
-#include "ibs/devices/vf1000/lustbus_device.hpp"
-
 #include <gtest/gtest.h>
 
+#include "ibs/devices/mc6000/lustbus_device.hpp"
+#include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/devices/vf1000/lustbus_face.hpp"
 #include "ibs/lustbus/description.hpp"
+#include "servo_procedures.hpp"
 #include "support.hpp"
 
 namespace {
@@ -184,6 +185,27 @@ TEST(Mc6000Lustbus, Prog1LoadsFactoryDefaults) {
   EXPECT_EQ(dev.value(417), 0U);
 }
 
+// The servo's procedures of 11 are its wing's description, which the registry's face carries and
+// the host runs: 80-SLOAD with -1 / -2 (11.4), 108-STEXT (11.3), PosMOD1 over 49999 with 80
+// characters of user data and the error read %RDF (11.6). The inverter offers none.
+TEST(Mc6000Lustbus, TheWingDescribesItsProceduresToTheHost) {
+  const DeviceProcedures& p = ibs::devices::mc6000::lustbus_procedures();
+  EXPECT_EQ(ibs::devices::mc6000::lustbus_face().procedures, &p);
+  EXPECT_EQ(ibs::devices::vf1000::lustbus_face().procedures, nullptr);
+  ASSERT_TRUE(p.download && p.indexed_text && p.block_transfer);
+  EXPECT_EQ(p.download->parameter, mc::kSload);
+  EXPECT_EQ(p.download->start, -1);
+  EXPECT_EQ(p.download->end, -2);
+  EXPECT_EQ(parameter_code(p.download->family, p.download->parameter)->text(), "20080");
+  EXPECT_EQ(p.indexed_text->index_parameter, mc::kStext);
+  EXPECT_EQ(p.block_transfer->code, kPosmodCode);
+  EXPECT_EQ(p.block_transfer->max_user_data, 80U);
+  EXPECT_EQ(p.block_transfer->error_read.view(), "1%RDF");
+  EXPECT_EQ(p.block_transfer->asks_answer('1'), true);   // 11.6.3: a request telegram
+  EXPECT_EQ(p.block_transfer->asks_answer('8'), false);  // a data telegram
+  EXPECT_EQ(p.block_transfer->asks_answer('G'), std::nullopt);
+}
+
 // 11.4 through the host's download: accepted, rejected (the first invalid parameter, the old
 // dataset back), refused while running (40H).
 TEST(Mc6000Lustbus, DownloadHandshakeOn80Sload) {
@@ -192,13 +214,13 @@ TEST(Mc6000Lustbus, DownloadHandshakeOn80Sload) {
   bus.add(dev, 3);
   bus.read(3, 85);
   const Assignment good[] = {{make_code(20417), make_value("3")}, {make_code(20428), make_value("10000")}};
-  auto o = bus.run(download(3, good));
+  auto o = bus.run(servo_download(3, good));
   EXPECT_EQ(o.kind, OutcomeKind::downloaded) << describe(o);
   EXPECT_EQ(dev.value(417), 3U);
   EXPECT_EQ(dev.eeprom_value(417), 3U);
   EXPECT_EQ(dev.value(mc::kRsio), 0U);  // not CardWriteable: acknowledged, not taken (11.4)
   const Assignment bad[] = {{make_code(20418), make_value("3")}, {make_code(20419), make_value("9")}};
-  o = bus.run(download(3, bad));
+  o = bus.run(servo_download(3, bad));
   EXPECT_EQ(o.kind, OutcomeKind::download_rejected) << describe(o);
   EXPECT_EQ(o.rejected_parameter, 419U);
   EXPECT_EQ(dev.value(418), 0U);  // the old dataset
@@ -206,7 +228,7 @@ TEST(Mc6000Lustbus, DownloadHandshakeOn80Sload) {
   ASSERT_EQ(bus.write(3, 20402, "2").kind, OutcomeKind::acknowledged);  // CLSEL = SIO
   ASSERT_EQ(bus.write(3, 20416, "1").kind, OutcomeKind::acknowledged);  // running
   ASSERT_TRUE(dev.running());
-  o = bus.run(download(3, good));
+  o = bus.run(servo_download(3, good));
   EXPECT_EQ(o.kind, OutcomeKind::download_refused);
   EXPECT_EQ(o.siof, 0x40);
 }

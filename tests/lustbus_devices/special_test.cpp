@@ -9,6 +9,7 @@
 #include "ibs/devices/mc6000/service.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/lustbus/description.hpp"
+#include "servo_procedures.hpp"
 #include "support.hpp"
 
 namespace {

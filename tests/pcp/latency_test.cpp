@@ -69,13 +69,48 @@ Span measure(int words, double workload, Duration cycle = 567us) {
   return s;
 }
 
-TEST(LatencyModel, DefaultsPerWidth) {
-  EXPECT_EQ(LatencyModel::for_channel(4).processing_min, 7ms);
-  EXPECT_EQ(LatencyModel::for_channel(4).processing_max, 27ms);
-  EXPECT_EQ(LatencyModel::for_channel(2).processing_min, 0ms);
-  EXPECT_EQ(LatencyModel::for_channel(2).processing_max, 21ms);
-  EXPECT_EQ(LatencyModel::for_channel(1).processing_max, 2ms);
+// The MC6000's calibration is its wing's (devices/mc6000/channel.hpp), by channel width.
+TEST(LatencyModel, TheServosCalibrationPerWidth) {
+  EXPECT_EQ(pcp_latency(4).processing_min, 7ms);
+  EXPECT_EQ(pcp_latency(4).processing_max, 27ms);
+  EXPECT_EQ(pcp_latency(2).processing_min, 0ms);
+  EXPECT_EQ(pcp_latency(2).processing_max, 21ms);
+  EXPECT_EQ(pcp_latency(1).processing_max, 2ms);
   EXPECT_EQ(LatencyModel::immediate().processing(1.0), 0ms);
+  // The servo's server follows the width it is finally given.
+  ServerConfig sc = server_config(1);
+  sc.channel_words = 4;
+  ASSERT_NE(sc.latency_for, nullptr);
+  EXPECT_EQ(sc.latency_for(sc.channel_words).processing_min, 7ms);
+}
+
+// PCP itself holds no drive's numbers: a server configured without a latency executes a request
+// in the sample it completes, as immediate() does.
+TEST(LatencyModel, NeutralWithoutADrivesCalibration) {
+  EXPECT_EQ(LatencyModel{}.processing(0.0), 0ms);
+  EXPECT_EQ(LatencyModel{}.processing(1.0), 0ms);
+  const auto lock_step = [](ServerConfig sc) {
+    sc.channel_words = 4;
+    sc.workload = 1.0;
+    sc.start = StartMode::running;
+    Client client(test::client_config(4));
+    test::Served parameters(sc.start);
+    Server server(sc, parameters.served);
+    test::Bus bus(client, server, 1ms, 1ms);
+    EXPECT_EQ(client.initiate(bus.now()), SubmitStatus::accepted);
+    EXPECT_TRUE(bus.await()->ok());
+    client.read(bus.now(), ParameterRef::number(83));
+    const auto r = bus.await();
+    EXPECT_TRUE(r && r->ok());
+    return r ? r->completed_at - r->submitted_at : Duration::max();
+  };
+  ServerConfig neutral = server_config(4);
+  neutral.latency_for = nullptr;
+  ServerConfig immediate = server_config(4);
+  immediate.latency = LatencyModel::immediate();
+  const Duration servo = lock_step(server_config(4));
+  EXPECT_EQ(lock_step(neutral), lock_step(immediate));
+  EXPECT_GE(servo, lock_step(neutral) + 27ms) << "the servo's 4-word processing at full load";
 }
 
 class ManualWindow : public ::testing::TestWithParam<int> {};

@@ -96,11 +96,13 @@ bool parse_uint(const std::string& s, unsigned& v) {
   return !s.empty() && r.ec == std::errc{} && r.ptr == s.data() + s.size();
 }
 
-// The registered drive of a protocol family; a build without one is a broken registry.
-const devices::Drive& lustbus_drive(lb::Family f) {
-  const devices::Drive* d = devices::find_lustbus_drive(f);
-  if (d == nullptr) throw std::logic_error("no drive of the LUSTBUS family " + std::string(lb::to_string(f)));
-  return *d;
+// The registered drive whose LUSTBUS face offers a dataset download (11.4); a build without one is
+// a broken registry.
+const devices::Drive& download_drive() {
+  for (const devices::Drive* d : devices::drives_on(devices::Bus::lustbus)) {
+    if (d->lustbus->procedures != nullptr && d->lustbus->procedures->download) return *d;
+  }
+  throw std::logic_error("no LUSTBUS drive offers a dataset download (seed 000, 11.4)");
 }
 
 // PARAM by number or by name (case-sensitive, as the tables spell it), from the drive's face.
@@ -293,6 +295,11 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
     if (o.addr < 0 || o.addr > 30) throw BadInput("--addr must be 0..30 (31 is broadcast)");
     std::ifstream in(o.parameter);
     if (!in) throw BadInput("cannot read '" + o.parameter + "'");
+    // 11.4: the drive that offers the download, and the handshake parameter it runs through.
+    const devices::Drive& drive = download_drive();
+    const lb::DownloadProcedure& procedure = *drive.lustbus->procedures->download;
+    const std::string handshake =
+        label(find_param(*drive.lustbus, std::to_string(procedure.parameter)));
     std::vector<lb::Assignment> records;
     std::vector<std::string> labels;
     std::string line;
@@ -307,8 +314,7 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
         throw BadInput(o.parameter + ":" + std::to_string(n) + ": expected `PARAM VALUE`");
       }
       try {
-        // 11.4: the dataset download is the servo family's.
-        const Param p = find_param(*lustbus_drive(lb::Family::enhanced).lustbus, param);
+        const Param p = find_param(*drive.lustbus, param);
         if (!p.in_dataset) {
           throw BadInput(label(p) + " cannot be part of a dataset");
         }
@@ -323,18 +329,18 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
     cfg.response_timeout = std::chrono::milliseconds(o.timeout_ms);
     HostPort hp = open_host_port(o.port);
     lb::Host host(cfg);
-    const lb::Outcome r =
-        transact_lustbus(*hp.port, host, lb::download(static_cast<lb::Address>(o.addr), records));
+    const lb::Outcome r = transact_lustbus(
+        *hp.port, host, lb::download(procedure, static_cast<lb::Address>(o.addr), records));
     nlohmann::json j;
     j["address"] = o.addr;
     j["records"] = records.size();
     j["outcome"] = std::string(lb::to_string(r.kind));
-    const std::string who = "mc6000@" + std::to_string(o.addr);
+    const std::string who = std::string(drive.name) + "@" + std::to_string(o.addr);
     if (r.kind == lb::OutcomeKind::downloaded) {
       if (o.json) {
         out << j.dump() << "\n";
       } else {
-        out << who << ": " << records.size() << " parameters downloaded, 80-SLOAD = 0\n";
+        out << who << ": " << records.size() << " parameters downloaded, " << handshake << " = 0\n";
       }
       return kExitLustbusOk;
     }
@@ -342,14 +348,15 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
     if (r.kind == lb::OutcomeKind::download_rejected) {
       j["rejected_parameter"] = r.rejected_parameter;
       why = "the servo rejected the dataset: first invalid parameter " +
-            std::to_string(r.rejected_parameter) + " (80-SLOAD); the old dataset is back";
+            std::to_string(r.rejected_parameter) + " (" + handshake + "); the old dataset is back";
     } else if (r.kind == lb::OutcomeKind::download_refused) {
       j["failed_step"] = r.failed_step;
       const auto step = r.failed_step;
       why = "refused at " +
-            (step == lb::kDownloadStartStep                       ? std::string("80-SLOAD = -1")
-             : step >= static_cast<std::int32_t>(labels.size()) ? std::string("80-SLOAD = -2")
-                                                                 : labels[static_cast<std::size_t>(step)]) +
+            (step == lb::kDownloadStartStep ? handshake + " = " + std::to_string(procedure.start)
+             : step >= static_cast<std::int32_t>(labels.size())
+                 ? handshake + " = " + std::to_string(procedure.end)
+                 : labels[static_cast<std::size_t>(step)]) +
             ": " + why;
     }
     if (r.siof) j["siof"] = *r.siof;

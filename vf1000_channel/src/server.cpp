@@ -91,9 +91,9 @@ Server::Server(const ServerConfig& config, ServerStart start, Time now,
   drive_ = &*own_;
   power_on(now);
   if (start == ServerStart::power_on) return;
-  state_ = ServerState::wait;
-  ready_at_ = now;
-  out_ = kInverterWaitWord;
+  ch_.state = ServerState::wait;
+  ch_.ready_at = now;
+  ch_.out = kInverterWaitWord;
   if (start == ServerStart::operational) own_->clear_siof(0xFF);
 }
 
@@ -102,45 +102,23 @@ Server::Server(const ServerConfig& config, ServerStart start, Time now,
     : config_(checked(config, drive.table().params())), drive_(&drive) {
   restart(now, config_.init_duration);
   if (start == ServerStart::power_on) return;
-  state_ = ServerState::wait;
-  ready_at_ = now;
-  out_ = kInverterWaitWord;
+  ch_.state = ServerState::wait;
+  ch_.ready_at = now;
+  ch_.out = kInverterWaitWord;
 }
 
 Server::Server(const Server& other)
     : config_(other.config_),
       own_(other.own_),
       drive_(own_ ? &*own_ : other.drive_),
-      state_(other.state_),
-      ready_at_(other.ready_at_),
-      out_(other.out_),
-      toggle_(other.toggle_),
-      code_(other.code_),
-      number_(other.number_),
-      slot_(other.slot_),
-      index_(other.index_),
-      length_(other.length_),
-      high_(other.high_),
-      latched_(other.latched_),
-      event_(other.event_) {}
+      ch_(other.ch_) {}
 
 Server& Server::operator=(const Server& other) {
   if (this == &other) return *this;
   config_ = other.config_;
   own_ = other.own_;
   drive_ = own_ ? &*own_ : other.drive_;
-  state_ = other.state_;
-  ready_at_ = other.ready_at_;
-  out_ = other.out_;
-  toggle_ = other.toggle_;
-  code_ = other.code_;
-  number_ = other.number_;
-  slot_ = other.slot_;
-  index_ = other.index_;
-  length_ = other.length_;
-  high_ = other.high_;
-  latched_ = other.latched_;
-  event_ = other.event_;
+  ch_ = other.ch_;
   return *this;
 }
 
@@ -150,12 +128,12 @@ void Server::power_on(Time now, Duration init) {
 }
 
 void Server::restart(Time now, Duration init) {
-  state_ = ServerState::initialising;
-  ready_at_ = now + init;
-  out_ = 0;  // RESET distinction 0 (4.1.2.2)
-  toggle_ = false;
-  code_ = Code::reset;
-  slot_ = -1;
+  ch_.state = ServerState::initialising;
+  ch_.ready_at = now + init;
+  ch_.out = 0;  // RESET distinction 0 (4.1.2.2)
+  ch_.toggle = false;
+  ch_.code = Code::reset;
+  ch_.slot = -1;
 }
 
 std::optional<Word> Server::value(std::uint16_t number) const {
@@ -172,14 +150,14 @@ bool Server::set_value(std::uint16_t number, Word raw) {
 }
 
 Word Server::step(Word m, Time now, bool power_stage_enabled) {
-  event_.kind = ServerEvent::Kind::none;
-  if (state_ == ServerState::initialising) {
-    if (now < ready_at_) return out_;  // RESET distinction 0 (4.1.2.2, 6.1)
-    state_ = ServerState::wait;
-    toggle_ = false;
-    out_ = kInverterWaitWord;
+  ch_.event.kind = ServerEvent::Kind::none;
+  if (ch_.state == ServerState::initialising) {
+    if (now < ch_.ready_at) return ch_.out;  // RESET distinction 0 (4.1.2.2, 6.1)
+    ch_.state = ServerState::wait;
+    ch_.toggle = false;
+    ch_.out = kInverterWaitWord;
     const Word w = process(m, power_stage_enabled, now);
-    if (event_.kind == ServerEvent::Kind::none) event_ = {ServerEvent::Kind::initialised};
+    if (ch_.event.kind == ServerEvent::Kind::none) ch_.event = {ServerEvent::Kind::initialised};
     return w;
   }
   return process(m, power_stage_enabled, now);
@@ -190,25 +168,25 @@ Word Server::process(Word m, bool power_stage_enabled, Time now) {
   if (code == 0) {
     // The master's starting position ends every telegram (4.1.3.1.1 row 6): wait mode. A transfer
     // not yet complete is dropped here, so no value is ever half-written.
-    if (state_ == ServerState::sending || state_ == ServerState::transfer_high ||
-        state_ == ServerState::transfer_low) {
-      event_ = {ServerEvent::Kind::aborted, code_, number_, 0, NakReason{}, 0};
+    if (ch_.state == ServerState::sending || ch_.state == ServerState::transfer_high ||
+        ch_.state == ServerState::transfer_low) {
+      ch_.event = {ServerEvent::Kind::aborted, ch_.code, ch_.number, 0, NakReason{}, 0};
     }
-    state_ = ServerState::wait;
-    toggle_ = false;
-    code_ = Code::reset;
-    out_ = kInverterWaitWord;
-    return out_;
+    ch_.state = ServerState::wait;
+    ch_.toggle = false;
+    ch_.code = Code::reset;
+    ch_.out = kInverterWaitWord;
+    return ch_.out;
   }
   // No new data without a toggle change (4.1.2.1 bit 5): keep showing the last answer.
-  if (master_toggle(m) == toggle_) return out_;
-  toggle_ = master_toggle(m);
+  if (master_toggle(m) == ch_.toggle) return ch_.out;
+  ch_.toggle = master_toggle(m);
 
-  const bool control_ok = !master_unused_bits(m) && code == static_cast<std::uint8_t>(code_);
+  const bool control_ok = !master_unused_bits(m) && code == static_cast<std::uint8_t>(ch_.code);
   // An error inside a value transfer is entered in 85-SIOF (4.1.4); on this channel "unintended
   // control bits" take the transmission-error bit 3.
   const std::uint8_t transfer_bit = siof_mask(SiofBit::checksum);
-  switch (state_) {
+  switch (ch_.state) {
     case ServerState::wait:
       return start_telegram(m, power_stage_enabled);
     case ServerState::sending:
@@ -225,38 +203,38 @@ Word Server::process(Word m, bool power_stage_enabled, Time now) {
     case ServerState::initialising:
       break;
   }
-  return out_;
+  return ch_.out;
 }
 
 Word Server::start_telegram(Word m, bool power_stage_enabled) {
   const std::uint8_t code = master_code(m);
-  number_ = master_number(m);
-  code_ = is_telegram_code(code) ? static_cast<Code>(code) : Code::reset;
+  ch_.number = master_number(m);
+  ch_.code = is_telegram_code(code) ? static_cast<Code>(code) : Code::reset;
   if (master_unused_bits(m)) {
     return nak(NakReason::unintended_control_bits,
-               code_ == Code::value_transfer ? siof_mask(SiofBit::checksum) : 0);
+               ch_.code == Code::value_transfer ? siof_mask(SiofBit::checksum) : 0);
   }
-  if (code_ == Code::reset) return nak(NakReason::undefined_code, 0);
+  if (ch_.code == Code::reset) return nak(NakReason::undefined_code, 0);
 
   const drive::ParameterTable& table = drive_->table();
-  const int s = table.slot(number_);
-  switch (code_) {
+  const int s = table.slot(ch_.number);
+  switch (ch_.code) {
     case Code::value_inquiry:
       // Missing parameter: NAK on receipt of the PNR, no 85-SIOF entry (4.1.3.1, 4.1.4).
       if (s < 0) return nak(NakReason::no_parameter, 0);
-      slot_ = static_cast<std::int16_t>(s);
+      ch_.slot = static_cast<std::int16_t>(s);
       // The whole value is taken now, so the two bytes always belong to one value.
-      latched_ = drive_->read(static_cast<std::size_t>(s));
-      length_ = 2;
-      index_ = 0;
-      state_ = ServerState::sending;
+      ch_.latched = drive_->read(static_cast<std::size_t>(s));
+      ch_.length = 2;
+      ch_.index = 0;
+      ch_.state = ServerState::sending;
       return next_byte();
     case Code::description_scan:
       if (s < 0) return nak(NakReason::no_parameter, 0);
-      slot_ = static_cast<std::int16_t>(s);
-      length_ = static_cast<std::uint8_t>(kDescriptionLength);
-      index_ = 0;
-      state_ = ServerState::sending;
+      ch_.slot = static_cast<std::int16_t>(s);
+      ch_.length = static_cast<std::uint8_t>(kDescriptionLength);
+      ch_.index = 0;
+      ch_.state = ServerState::sending;
       return next_byte();
     case Code::value_transfer: {
       // 85-SIOF <> 0 refuses every value transfer (4.1.4; power-on bit, 6.1).
@@ -264,8 +242,8 @@ Word Server::start_telegram(Word m, bool power_stage_enabled) {
       const WriteCheck access = drive::check_access(
           s < 0 ? nullptr : &table.params()[static_cast<std::size_t>(s)], power_stage_enabled);
       if (access != WriteCheck::ok) return nak(reason_for(access), drive::siof_bits_for(access));
-      slot_ = static_cast<std::int16_t>(s);
-      state_ = ServerState::transfer_high;
+      ch_.slot = static_cast<std::int16_t>(s);
+      ch_.state = ServerState::transfer_high;
       return send(0, Flag::none);  // 4.1.3.2.1 row 2: PNR read, waiting for DAT1
     }
     case Code::reset:
@@ -275,34 +253,34 @@ Word Server::start_telegram(Word m, bool power_stage_enabled) {
 }
 
 Word Server::next_byte() {
-  const auto slot = static_cast<std::size_t>(slot_);
-  const std::uint8_t byte = code_ == Code::value_inquiry
-                                ? (index_ == 0 ? high_byte(latched_) : low_byte(latched_))
-                                : description_byte(drive_->table().params()[slot], index_);
-  ++index_;
-  if (index_ < length_) return send(byte, Flag::none);
+  const auto slot = static_cast<std::size_t>(ch_.slot);
+  const std::uint8_t byte = ch_.code == Code::value_inquiry
+                                ? (ch_.index == 0 ? high_byte(ch_.latched) : low_byte(ch_.latched))
+                                : description_byte(drive_->table().params()[slot], ch_.index);
+  ++ch_.index;
+  if (ch_.index < ch_.length) return send(byte, Flag::none);
 
   // The last byte carries ACK (4.1.3.1.1 row 4, 4.1.3.3.1 row 36).
-  state_ = ServerState::done;
-  if (code_ == Code::value_inquiry) {
-    event_ = {ServerEvent::Kind::value_read, code_, number_, latched_, NakReason{}, 0};
+  ch_.state = ServerState::done;
+  if (ch_.code == Code::value_inquiry) {
+    ch_.event = {ServerEvent::Kind::value_read, ch_.code, ch_.number, ch_.latched, NakReason{}, 0};
     // Reading 85-SIOF clears the bits it returned (4.1.4); bits set meanwhile stay.
-    if (number_ == drive::kSiofNumber) drive_->clear_siof(static_cast<std::uint8_t>(latched_ & 0xFFU));
+    if (ch_.number == drive::kSiofNumber) drive_->clear_siof(static_cast<std::uint8_t>(ch_.latched & 0xFFU));
   } else {
-    event_ = {ServerEvent::Kind::description_read, code_, number_, 0, NakReason{}, 0};
+    ch_.event = {ServerEvent::Kind::description_read, ch_.code, ch_.number, 0, NakReason{}, 0};
   }
   return send(byte, Flag::ack);
 }
 
 Word Server::take_high(Word m) {
-  high_ = low_byte(m);
-  state_ = ServerState::transfer_low;
+  ch_.high = low_byte(m);
+  ch_.state = ServerState::transfer_low;
   return send(0, Flag::none);  // 4.1.3.2.1 row 4
 }
 
 Word Server::take_low(Word m, bool power_stage_enabled, Time now) {
-  const Word value = make_word(high_, low_byte(m));
-  const auto slot = static_cast<std::size_t>(slot_);
+  const Word value = make_word(ch_.high, low_byte(m));
+  const auto slot = static_cast<std::size_t>(ch_.slot);
   const drive::ParameterInfo& p = drive_->table().params()[slot];
   // 85-SIOF <> 0 refuses every value transfer (4.1.4): a bit set since the PNR arrived (a
   // watchdog, the device) refuses it here, where the value is taken.
@@ -314,22 +292,22 @@ Word Server::take_low(Word m, bool power_stage_enabled, Time now) {
   // The value takes effect whole, now, after its last byte (4.1.3.2.1 row 6); what else it does
   // (71-PROG, the EEPROM) is the drive's.
   const drive::WriteEffect effect = drive_->write(slot, value, power_stage_enabled, now);
-  state_ = ServerState::done;
-  event_ = {ServerEvent::Kind::value_written, code_, number_, value, NakReason{}, 0,
+  ch_.state = ServerState::done;
+  ch_.event = {ServerEvent::Kind::value_written, ch_.code, ch_.number, value, NakReason{}, 0,
             effect.eeprom_changed, effect.storing};
   return send(0, Flag::ack);
 }
 
 Word Server::nak(NakReason reason, std::uint8_t siof_bits) {
   if (siof_bits != 0) raise_siof(siof_bits);
-  state_ = ServerState::done;
-  event_ = {ServerEvent::Kind::nak, code_, number_, 0, reason, siof_bits};
+  ch_.state = ServerState::done;
+  ch_.event = {ServerEvent::Kind::nak, ch_.code, ch_.number, 0, reason, siof_bits};
   return send(0, Flag::nak);
 }
 
 Word Server::send(std::uint8_t data, Flag flag) {
-  out_ = inverter_word(toggle_, flag, data);
-  return out_;
+  ch_.out = inverter_word(ch_.toggle, flag, data);
+  return ch_.out;
 }
 
 }  // namespace ibs::vf1000_channel

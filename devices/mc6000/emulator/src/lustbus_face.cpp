@@ -40,10 +40,44 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
   return std::nullopt;
 }
 
+// 11.6.3: the status byte leads the user data; bit 0 set makes it a request telegram, whose
+// answer the host fetches with an ENQUIRY.
+std::optional<bool> posmod_asks_answer(char first) {
+  const auto st = lustbus::parse_posmod_status(first);
+  if (!st) return std::nullopt;
+  return st->request;
+}
+
+lustbus::DeviceProcedures make_procedures() {
+  lustbus::DeviceProcedures p;
+  // 11.4: SLOAD = -1 opens the download, -2 ends it; SLOAD then reads -1 while the servo tests
+  // and saves, 0 when taken, the number of the first invalid parameter otherwise.
+  p.download = lustbus::DownloadProcedure{lustbus::Family::enhanced, kSload,
+                                          static_cast<std::int16_t>(kSloadBegin),
+                                          static_cast<std::int16_t>(kSloadEnd)};
+  // 11.3: STEXT = the value, then ENQUIRY 61ppp.
+  p.indexed_text = lustbus::IndexedTextProcedure{lustbus::Family::enhanced, kStext};
+  // 11.6.1: "0 ... 80 Byte ASCII-Data (use-data)"; 11.6: after a NAK "the Host computer
+  // ascertains the error using the read command %RDF" (a request telegram, status byte 31H).
+  lustbus::BlockTransferProcedure b;
+  b.code = lustbus::kPosmodCode;
+  b.max_user_data = 80;
+  b.error_read = lustbus::make_value("1%RDF");
+  b.asks_answer = &posmod_asks_answer;
+  p.block_transfer = b;
+  return p;
+}
+
 }  // namespace
 
+const lustbus::DeviceProcedures& lustbus_procedures() {
+  static const lustbus::DeviceProcedures procedures = make_procedures();
+  return procedures;
+}
+
 const LustbusFace& lustbus_face() {
-  static const LustbusFace face{lustbus::Family::enhanced, &make, &find_parameter, ""};
+  static const LustbusFace face{lustbus::Family::enhanced, &make, &find_parameter, "",
+                                &lustbus_procedures()};
   return face;
 }
 

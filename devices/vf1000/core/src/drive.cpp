@@ -36,6 +36,9 @@ bool one_byte(drive::DataType t) {
 Drive::Drive(const DriveConfig& config, DeviceStart start, Time now)
     : config_(config),
       params_(parameters(), pnr::kProg),
+      slots_{params_.table().slot(pnr::kIbWd),  params_.table().slot(pnr::kIbcod),
+             params_.table().slot(pnr::kIcntl), params_.table().slot(pnr::kIbsta),
+             params_.table().slot(pnr::kFdriv), params_.table().slot(pnr::kFist)},
       pd_(config.pd),
       serial_last_(now),
       sample_time_(now) {
@@ -224,7 +227,7 @@ void Drive::sample(std::span<const Word> m2s, std::span<Word> s2m, Time now,
   const std::array<Word, Vf1000PdDevice::kWords> in{control, reference, 0};
   pd_.sample(in, s2m, kSamplePeriod, comm);
   sample_time_ = now;
-  after_sample(control, now);
+  after_sample(control, s2m[1], now);
 }
 
 void Drive::own_sample(Duration dt, Time now) {
@@ -233,7 +236,7 @@ void Drive::own_sample(Duration dt, Time now) {
   const std::array<Word, Vf1000PdDevice::kWords> in{control, serial_reference(), 0};
   std::array<Word, Vf1000PdDevice::kWords> out{};
   pd_.sample(in, out, dt);
-  after_sample(control, now);
+  after_sample(control, out[1], now);
 }
 
 void Drive::sample_now(Time now) {
@@ -241,7 +244,8 @@ void Drive::sample_now(Time now) {
   own_sample(Duration{0}, now);
 }
 
-void Drive::after_sample(Word control, Time now) {
+// `actual`: word 2 of the sample's answer, the actual frequency as 912-FIST holds it.
+void Drive::after_sample(Word control, Word actual, Time now) {
   if (reset_fault_taken(pd_.last_sample())) {
     software_reset(control, now);
     return;
@@ -250,25 +254,26 @@ void Drive::after_sample(Word control, Time now) {
     ib_fault_ = false;  // reset by the master after the data came back
   }
   last_control_ = control;
-  mirror(control);
+  mirror(control, actual);
 }
 
-void Drive::mirror(Word control) {
+void Drive::mirror(Word control, Word actual) {
   // 901-ICNTL and 911-IBSTA mirror the DRIVECOM words, 905-FDRIV and 912-FIST the frequencies
-  // (seed 001, 4.1.1; signed 0.05 Hz, a modelling choice).
-  params_.set_value(pnr::kIcntl, control);
-  params_.set_value(pnr::kIbsta, pd_.status_word());
-  params_.set_value(pnr::kFdriv, actual_word(pd_.setpoint_hz()));
-  params_.set_value(pnr::kFist, actual_word(pd_.frequency_hz()));
+  // (seed 001, 4.1.1; signed 0.05 Hz, a modelling choice). 912 is the word the sample answered
+  // with (actual_word of the frequency), not formed a second time.
+  set_slot(slots_.icntl, control);
+  set_slot(slots_.ibsta, pd_.status_word());
+  set_slot(slots_.fdriv, actual_word(pd_.setpoint_hz()));
+  set_slot(slots_.fist, actual);
 }
 
 void Drive::run_interbus_watchdog(Time now) {
   // 906-IB-WD: monitoring time in 50 ms steps, 65535 = off; 907-IBCOD: the reaction (4.1.1).
-  const auto limit = ib_wd_monitoring_time(params_.value(pnr::kIbWd).value_or(0xFFFF));
+  const auto limit = ib_wd_monitoring_time(slot_value(slots_.ib_wd, 0xFFFF));
   const bool expired = ib_armed_ && limit && (now - ib_last_cycle_) > *limit;
   if (expired && !ib_tripped_) {
     ib_tripped_ = true;
-    switch (static_cast<IbCod>(params_.value(pnr::kIbcod).value_or(0))) {
+    switch (static_cast<IbCod>(slot_value(slots_.ibcod, 0))) {
       case IbCod::no_action: break;
       case IbCod::shutdown_e_ibs: ib_fault_ = true; break;
       case IbCod::block_power: pd_.override_control(Word{0x0000}); break;

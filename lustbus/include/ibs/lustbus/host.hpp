@@ -3,8 +3,10 @@
 // EOT (3); a response timeout runs from the host's last character to the first answer character
 // and an inter-character timeout between answer characters; after a NAK on a SELECT the host
 // reads 85-SIOF/SERR at once and reports the cause (6, 6.2, 9.2); retries only where the manual
-// allows them (LB-D5). Also: the network scan of 5.2, broadcast (4.2), the download handshake of
-// 11.4 and substitution texts of 11.3 as single requests. The baud scan of 5.1 is `BaudScan`.
+// allows them (LB-D5). Also: the network scan of 5.2, broadcast (4.2), and the procedures a
+// device may offer -- a download through a handshake parameter (11.4), texts indexed through a
+// parameter (11.3), block transfers over one CODE (11.6) -- as single requests, each run as the
+// device's description (DeviceProcedures, from its wing) says. The baud scan of 5.1 is `BaudScan`.
 //
 // The caller moves bytes and time:
 //   host.step(now);                       // timeouts; starts the next telegram
@@ -51,13 +53,13 @@ struct HostConfig {
 };
 
 enum class RequestKind : std::uint8_t {
-  enquiry,            // 6.1
-  select,             // 6.2
-  broadcast,          // SELECT at 31 (4.2): taken by every device, never answered
-  scan,               // 5.2: ENQUIRY 00091 at 1..30, then 20091 to tell servos from inverters
-  download,           // 11.4: SLOAD = -1, the records, SLOAD = -2, poll SLOAD
-  substitution_text,  // 11.3: SELECT 20108 = index, ENQUIRY 61xxx
-  posmod,             // 11.6: SELECT 49999 = status byte + data, ENQUIRY 49999 for a request
+  enquiry,         // 6.1
+  select,          // 6.2
+  broadcast,       // SELECT at 31 (4.2): taken by every device, never answered
+  scan,            // 5.2: ENQUIRY 00091 at 1..30, then 20091 to tell servos from inverters
+  download,        // 11.4: handshake = start, the records, handshake = end, poll the handshake
+  indexed_text,    // 11.3: SELECT the index parameter = index, ENQUIRY the parameter's text CODE
+  block_transfer,  // 11.6: SELECT the CODE = user data, ENQUIRY it when the data asks an answer
 };
 std::string_view to_string(RequestKind k);
 
@@ -67,11 +69,54 @@ struct Assignment {
   Value value{};
 };
 
-// 11.4 and 11.3 name the servo's parameters 80-SLOAD and 108-STEXT.
-inline constexpr unsigned kParamSload = 80;
-inline constexpr unsigned kParamStext = 108;
-// 11.6.1: "0 ... 80 Byte ASCII-Data (use-data)".
-inline constexpr std::size_t kPosmodMaxUserData = 80;
+// ---- The procedures of seed 000, 11 a device may offer ------------------------------------------
+// The host runs them; the parameter or CODE each runs through, its values and its limits are the
+// device's, described by its wing (docs/lustbus.md, "Procedures"). A request keeps a pointer to
+// the description: it must live until the request is done (the wings' are static).
+
+// 11.4: a dataset download through one handshake parameter. SELECT it = `start`, one SELECT per
+// record, SELECT it = `end`; then ENQUIRY it every HostConfig::download_poll_interval until it
+// reads 0 (taken), a positive number (the first invalid parameter, download_rejected) or
+// HostConfig::download_timeout runs out; a negative value: still testing and saving. The
+// handshake's values are INTEGER16, in the family's VALUE format.
+struct DownloadProcedure {
+  Family family = Family::enhanced;
+  std::uint16_t parameter = 0;  // the handshake parameter; its CODE by parameter_code()
+  std::int16_t start = 0;
+  std::int16_t end = 0;
+};
+
+// 11.3: a text indexed through a parameter. SELECT `index_parameter` = the value whose text is
+// wanted (USIGN, the family's format), then ENQUIRY the text CODE of the parameter the value
+// belongs to (text_code()).
+struct IndexedTextProcedure {
+  Family family = Family::enhanced;
+  std::uint16_t index_parameter = 0;
+};
+
+// 11.6: a block transfer over one CODE. With user data: SELECT `code` = the data, then, when the
+// data asks for an answer, ENQUIRY `code`, whose answer is the outcome's value; without: the
+// ENQUIRY alone (the next block of a multiblock answer). After a NAK: SELECT `code` =
+// `error_read` and ENQUIRY, whose answer is the error (the outcome is `nak`).
+struct BlockTransferProcedure {
+  Code code{};
+  std::size_t max_user_data = 0;
+  Value error_read{};
+  // What the first character of the user data makes the telegram: nullopt, one the device cannot
+  // take (submit() refuses it); otherwise whether an answer is to be fetched with the ENQUIRY.
+  std::optional<bool> (*asks_answer)(char first) = nullptr;
+};
+
+// The procedures one device offers (none: an empty optional).
+struct DeviceProcedures {
+  std::optional<DownloadProcedure> download;
+  std::optional<IndexedTextProcedure> indexed_text;
+  std::optional<BlockTransferProcedure> block_transfer;
+};
+
+// The CODE an IndexedTextProcedure asks the text of `parameter` by: 6 1 ppp of 2.4.2 in the
+// enhanced family; nullopt where the family's CODEs carry no texts or `parameter` is above 999.
+std::optional<Code> text_code(Family f, unsigned parameter);
 
 struct Request {
   RequestKind kind = RequestKind::enquiry;
@@ -82,11 +127,16 @@ struct Request {
   std::optional<Duration> response_timeout;
   // download: the records, kept alive by the caller until the request is done.
   std::span<const Assignment> records;
-  // substitution_text: the parameter and the value whose text is wanted.
-  // posmod: `value` holds the user data (empty: ENQUIRY only); `parameter` 1 marks user data
-  // posmod_request() could not take (submit() answers invalid_request).
+  // indexed_text: the parameter and the value whose text is wanted.
+  // block_transfer: `value` holds the user data (empty: ENQUIRY only).
   std::uint16_t parameter = 0;
   std::uint32_t text_index = 0;
+  // block_transfer: user data the VALUE cannot hold (submit() answers invalid_request).
+  bool unfit = false;
+  // The description of the procedure the request runs (see DownloadProcedure ff.).
+  const DownloadProcedure* download = nullptr;
+  const IndexedTextProcedure* indexed_text = nullptr;
+  const BlockTransferProcedure* block_transfer = nullptr;
 };
 // The CODE a host asks a parameter's value by or, with `description`, its description: on a
 // VF1000 S0DPP with device digit 1, specifier 0 or 1 (2.4.1, 11.1); on an MC6000 2 0 ppp or
@@ -101,16 +151,19 @@ Request enquiry(Address a, const Code& c);
 Request select(Address a, const Code& c, const Value& v);
 Request broadcast(const Code& c, const Value& v);
 Request network_scan();
-Request download(Address a, std::span<const Assignment> records);
-Request substitution_text_request(Address a, std::uint16_t parameter, std::uint32_t index);
-// 11.6: one PosMOD1 exchange at a servo. With `user_data` (the status byte of 11.6.3 and the
-// telegram data, <= 80 characters): SELECT 49999; when the status byte asks for data (bit 0),
-// then the ENQUIRY 49999 whose answer is the outcome's `value`. Without: the ENQUIRY alone (the
-// next block of a multiblock answer). A NAK is followed by the error read of 11.6, SELECT
-// "1%RDF" and ENQUIRY: the outcome is `nak` with the PosMOD1's error answer in `value` (empty
-// when that read failed too). No telegram of it is repeated: a PosMOD1 ENQUIRY moves on to the
-// next block, and a repeated SELECT would be a second command.
-Request posmod_request(Address a, std::string_view user_data);
+// 11.4 at device `a` as `p` describes it (`p` and `records` kept alive until the request is done).
+Request download(const DownloadProcedure& p, Address a, std::span<const Assignment> records);
+// 11.3: the text of value `index` of `parameter`.
+Request indexed_text_request(const IndexedTextProcedure& p, Address a, std::uint16_t parameter,
+                             std::uint32_t index);
+// 11.6: one block exchange. With `user_data` (at most p.max_user_data characters, its first one
+// accepted by p.asks_answer): SELECT; when the data asks for an answer, then the ENQUIRY whose
+// answer is the outcome's `value`. Without: the ENQUIRY alone (the next block of a multiblock
+// answer). A NAK is followed by the error read (p.error_read): the outcome is `nak` with the
+// error answer in `value` (empty when that read failed too). No telegram of it is repeated: the
+// ENQUIRY moves on to the next block, and a repeated SELECT would be a second command.
+Request block_transfer_request(const BlockTransferProcedure& p, Address a,
+                               std::string_view user_data);
 
 enum class OutcomeKind : std::uint8_t {
   value,              // text answer: `value`
@@ -207,20 +260,20 @@ class Host {
 
  private:
   enum class Phase : std::uint8_t {
-    main,         // the request's own telegram
-    siof_read,    // ENQUIRY 00085 after a NAK / broken answer on a SELECT
-    scan_type,    // ENQUIRY 00091 at scan_address_
-    scan_probe,   // ENQUIRY 20091 at scan_address_
-    dl_start,     // SELECT 20080 = FFFF (-1)
-    dl_record,    // SELECT records[record_]
-    dl_end,       // SELECT 20080 = FFFE (-2)
-    dl_poll,      // ENQUIRY 20080
-    st_select,    // SELECT 20108 = index
-    st_enquiry,   // ENQUIRY 61xxx
-    pm_select,    // SELECT 49999 = user data
-    pm_enquiry,   // ENQUIRY 49999
-    pm_error_select,   // SELECT 49999 = "1%RDF" after a NAK
-    pm_error_enquiry,  // ENQUIRY 49999: the error
+    main,                 // the request's own telegram
+    siof_read,            // ENQUIRY 00085 after a NAK / broken answer on a SELECT
+    scan_type,            // ENQUIRY 00091 at scan_address_
+    scan_probe,           // ENQUIRY 20091 at scan_address_
+    dl_start,             // SELECT handshake = start
+    dl_record,            // SELECT records[record_]
+    dl_end,               // SELECT handshake = end
+    dl_poll,              // ENQUIRY handshake
+    text_select,          // SELECT index parameter = index
+    text_enquiry,         // ENQUIRY the text CODE
+    block_select,         // SELECT CODE = user data
+    block_enquiry,        // ENQUIRY CODE
+    block_error_select,   // SELECT CODE = error read after a NAK
+    block_error_enquiry,  // ENQUIRY CODE: the error
   };
   struct Tx {
     Address address = 0;
@@ -251,7 +304,8 @@ class Host {
   void next_scan_address(Time now);
   void finish(OutcomeKind k, Time now);
   void finish_unanswered(Time now);
-  void read_posmod_error(Time now);
+  void read_block_error(Time now);
+  [[nodiscard]] Code handshake_code() const;
   Finished& slot_of(RequestId id) { return done_[(id - 1) % done_.size()]; }
   [[nodiscard]] const Request& request() const { return job_->request; }
   [[nodiscard]] Duration timeout_of(const Request& r) const;

@@ -27,17 +27,14 @@
 namespace ibs::pcp {
 
 struct LatencyModel {
-  // Time from a complete request to its execution: the servo's background task, slower as the
-  // control loop takes more of the processor. processing = min + workload * (max - min).
-  Duration processing_min = 7ms;
-  Duration processing_max = 27ms;
+  // Time from a complete request to its execution: the device's background task, slower as its
+  // control loop takes more of the processor. processing = min + workload * (max - min). The
+  // default is neutral -- none: a request is executed in the step it completes; a drive's wing
+  // calibrates its own (the MC6000's: mc6000::pcp_latency, devices/mc6000/channel.hpp).
+  Duration processing_min{0};
+  Duration processing_max{0};
   [[nodiscard]] Duration processing(double workload) const;
 
-  // The defaults per channel width, calibrated so that a Read or Write, end to end at the master,
-  // spans seed 001 7.2's 10..35 ms as the workload goes 0..1 (bus cycle 0.567 ms of one MC6000 on
-  // the ring, 1 ms samples): 4 words 7..27 ms, 2 words 0..21 ms. One word cannot: its
-  // segmentation alone takes 33..36 ms, so processing gets 0..2 ms (docs/pcp.md, errata).
-  static LatencyModel for_channel(int channel_words);
   // Replay (one trace step = one device step): a request is executed in the step it completes.
   static LatencyModel immediate();
 };
@@ -51,7 +48,10 @@ struct ServerConfig {
   int channel_words = 1;  // 1, 2 or 4 (405-SUPI)
   Kbl kbl = kDefaultServerKbl;
   std::uint16_t password = 0;           // an Initiate must carry it
-  std::optional<LatencyModel> latency;  // empty: LatencyModel::for_channel(channel_words)
+  // The processing time: `latency` when given; otherwise `latency_for(channel_words)`, the drive's
+  // calibration by channel width, when given; otherwise the neutral LatencyModel{}.
+  std::optional<LatencyModel> latency;
+  LatencyModel (*latency_for)(int channel_words) = nullptr;
   double workload = 0.0;                // 0..1
   Duration link_ack_timeout = 100ms;
   IdentifyInfo identity{Name::from("Lust"), Name{}, Name::from("PCP 2.0")};  // model: the drive's

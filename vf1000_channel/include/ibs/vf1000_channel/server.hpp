@@ -112,7 +112,7 @@ class Server {
   // did is in last_event() until the next step. `power_stage_enabled` is the drive's state now
   // (EEPROM parameters are refused while it is).
   Word step(Word from_master, Time now, bool power_stage_enabled);
-  [[nodiscard]] const ServerEvent& last_event() const { return event_; }
+  [[nodiscard]] const ServerEvent& last_event() const { return ch_.event; }
 
   // Power cycle: an unfinished telegram is lost (never half-applied); RESET distinction 0 until
   // now + init_duration. Parameters the server owns power on too: RAM values return to their
@@ -125,14 +125,14 @@ class Server {
   // The channel alone starts again: the drive's parameters are left as they are.
   void restart(Time now, Duration init);
 
-  [[nodiscard]] ServerState state() const { return state_; }
+  [[nodiscard]] ServerState state() const { return ch_.state; }
   // True while the inverter initialises (its word has RESET distinction bit 0).
   [[nodiscard]] bool initialising(Time now) const {
-    return state_ == ServerState::initialising && now < ready_at_;
+    return ch_.state == ServerState::initialising && now < ch_.ready_at;
   }
-  [[nodiscard]] Time ready_at() const { return ready_at_; }
+  [[nodiscard]] Time ready_at() const { return ch_.ready_at; }
   // The word the inverter shows now (what the last step returned).
-  [[nodiscard]] Word output() const { return out_; }
+  [[nodiscard]] Word output() const { return ch_.out; }
 
   [[nodiscard]] std::uint8_t siof() const { return drive_->siof(); }
   // The device sets error bits of its own (e.g. the watchdog bit 1).
@@ -160,18 +160,23 @@ class Server {
   std::optional<drive::StoredParameters> own_;  // parameters of its own, when given none
   drive::ParameterAccess* drive_ = nullptr;      // what it serves: *own_ or a drive's
 
-  ServerState state_ = ServerState::initialising;
-  Time ready_at_{0};
-  Word out_ = 0;
-  bool toggle_ = false;      // toggle of the last master word taken (echoed in out_)
-  Code code_ = Code::reset;  // the running telegram
-  std::uint16_t number_ = 0;
-  std::int16_t slot_ = -1;   // the running telegram's parameter
-  std::uint8_t index_ = 0;   // next byte to send
-  std::uint8_t length_ = 0;  // bytes to send: 2 (inquiry) or 18 (description)
-  std::uint8_t high_ = 0;    // DAT1 of a transfer, held until DAT2 completes it
-  Word latched_ = 0;         // the value an inquiry sends, taken whole when the PNR arrives
-  ServerEvent event_;
+  // The channel's protocol state: a copy of the server copies it whole; only what the server
+  // serves (own_, drive_) needs the copy constructor's care.
+  struct Channel {
+    ServerState state = ServerState::initialising;
+    Time ready_at{0};
+    Word out = 0;
+    bool toggle = false;      // toggle of the last master word taken (echoed in out)
+    Code code = Code::reset;  // the running telegram
+    std::uint16_t number = 0;
+    std::int16_t slot = -1;   // the running telegram's parameter
+    std::uint8_t index = 0;   // next byte to send
+    std::uint8_t length = 0;  // bytes to send: 2 (inquiry) or 18 (description)
+    std::uint8_t high = 0;    // DAT1 of a transfer, held until DAT2 completes it
+    Word latched = 0;         // the value an inquiry sends, taken whole when the PNR arrives
+    ServerEvent event;
+  };
+  Channel ch_;
 };
 
 }  // namespace ibs::vf1000_channel

@@ -1,8 +1,9 @@
 // A drive's LUSTBUS face (seed 000) as the registry of drive and bus lists it
 // (ibs/devices/drives.hpp): the Responder the emulator serves, made from the options of
-// `ibs lustbus emulate`, the protocol family the drive speaks and its parameters as the host
-// commands and the byte-log reader need them. Each wing that speaks LUSTBUS fills one of these in
-// its own source (devices/<drive>/emulator/src/lustbus_face.cpp); this header names no drive.
+// `ibs lustbus emulate`, the protocol family the drive speaks, its parameters as the host
+// commands and the byte-log reader need them, and the procedures of seed 000, 11 it offers. Each
+// wing that speaks LUSTBUS fills one of these in its own source
+// (devices/<drive>/emulator/src/lustbus_face.cpp); this header names no drive.
 // Configuration time: making a face and looking a parameter up may allocate and throw.
 #pragma once
 
@@ -14,6 +15,7 @@
 #include <string_view>
 
 #include "ibs/base/time.hpp"
+#include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/responder.hpp"
 #include "ibs/lustbus/value.hpp"
 
@@ -57,6 +59,9 @@ struct LustbusFace {
   std::optional<LustbusParameter> (*find_parameter)(std::string_view text) = nullptr;
   // What a refusal of an unknown parameter adds: the numbers the CODE can carry (" (1..99)").
   std::string_view parameter_numbers;
+  // The procedures of seed 000, 11 the drive offers a host (download, indexed texts, block
+  // transfer), as lustbus::Host runs them; nullptr: none.
+  const lustbus::DeviceProcedures* procedures = nullptr;
 };
 
 }  // namespace ibs::devices

@@ -166,17 +166,35 @@ class Drive final : public drive::ParameterAccess {
   void run_interbus_watchdog(Time now);
   bool check_serial_watchdog(Time now);
   void apply_parameters();
-  void mirror(Word control);
+  void mirror(Word control, Word actual);
   [[nodiscard]] Word serial_control_word() const;
   [[nodiscard]] Word serial_reference() const;
   void own_sample(Duration dt, Time now);
-  void after_sample(Word control, Time now);
+  void after_sample(Word control, Word actual, Time now);
   void sample_now(Time now);
   [[nodiscard]] Duration storing_time(const drive::ParameterInfo& p, bool eeprom_changed,
                                       bool defaults) const;
 
+  // The store's slots of the parameters every sample reads or mirrors, found once with the table
+  // (-1: the table lacks it), so that a sample looks none up by number.
+  struct SampleSlots {
+    int ib_wd = -1;
+    int ibcod = -1;
+    int icntl = -1;
+    int ibsta = -1;
+    int fdriv = -1;
+    int fist = -1;
+  };
+  [[nodiscard]] Word slot_value(int slot, Word absent) const {
+    return slot < 0 ? absent : params_.store().value(static_cast<std::size_t>(slot));
+  }
+  void set_slot(int slot, Word raw) {
+    if (slot >= 0) params_.set(static_cast<std::size_t>(slot), raw);
+  }
+
   DriveConfig config_;
   drive::StoredParameters params_;
+  SampleSlots slots_;
   Vf1000PdDevice pd_;
   Time ready_at_{0};
   bool starting_ = false;
