@@ -1,5 +1,7 @@
 #include "ibs/lustbus/host.hpp"
 
+#include <algorithm>
+
 #include "ibs/lustbus/description.hpp"
 
 #include <string>
@@ -290,7 +292,11 @@ void Host::step(Time now) {
     case HostState::receiving:
     case HostState::draining:
       if (now >= deadline_) {
-        if (state_ == HostState::receiving) {
+        if (now >= exchange_ends_) {
+          // LB-D24: characters never stopped; the EOT goes out now, whatever is on the line.
+          answer_kind_ = AnswerKind::none;
+          answer_error_ = AnswerError::line_busy;
+        } else if (state_ == HostState::receiving) {
           answer_kind_ = AnswerKind::none;
           answer_error_ = AnswerError::incomplete;
         }
@@ -312,7 +318,7 @@ void Host::receive(std::uint8_t b, Time now) {
     case HostState::awaiting:
     case HostState::receiving: {
       state_ = HostState::receiving;
-      deadline_ = now + config_.inter_char_timeout;
+      deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
       const auto st = decoder_.feed(b);
       if (st == AnswerDecoder::Status::done) {
         answer_kind_ = decoder_.kind();
@@ -328,7 +334,7 @@ void Host::receive(std::uint8_t b, Time now) {
       return;
     }
     case HostState::draining:
-      deadline_ = now + config_.inter_char_timeout;
+      deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
       return;
     default:
       return;  // characters outside an answer are noise: ignored
@@ -349,6 +355,7 @@ void Host::output_done(Time now) {
     }
     state_ = HostState::awaiting;
     deadline_ = now + tx_.timeout;
+    exchange_ends_ = now + config_.exchange_limit(tx_.timeout);
   } else if (state_ == HostState::closing) {
     if (!active_) {  // the EOT of restart()
       state_ = HostState::idle;

@@ -103,6 +103,8 @@ std::string_view to_string(AnswerError e) {
       return "incomplete answer";
     case AnswerError::no_answer:
       return "no answer";
+    case AnswerError::line_busy:
+      return "the line never fell quiet";
   }
   return "?";
 }

@@ -181,6 +181,48 @@ TEST(HostTimeouts, InterCharacterTimeoutEndsAnIncompleteAnswer) {
   EXPECT_EQ(o.value.view(), "03E8");
 }
 
+// Issue 23, defect 7 (LB-D24): against a device that answers with an endless trickle of
+// characters (each restarting the inter-character timer) `ibs lustbus read` did not end. Each
+// exchange ends by its overall deadline, and the outcome says why.
+TEST(HostTimeouts, ADeviceThatKeepsSendingEndsEachExchangeAtItsLimit) {
+  HostConfig cfg;
+  cfg.response_timeout = 100ms;
+  const Duration limit = cfg.exchange_limit(cfg.response_timeout);
+  EXPECT_EQ(limit, 100ms + 111 * 20ms) << "the response time and the longest telegram, character by character";
+  for (const std::uint8_t babble : {std::uint8_t{'A'}, std::uint8_t{'0'}}) {  // broken at once, or a long ADR...
+    Host h(cfg);
+    const Submitted sub = h.submit(enquiry(1, make_code(112)));
+    ASSERT_TRUE(sub);
+    const RequestId id = sub.id;
+    Time now{0};
+    Time exchange_start{0};
+    int exchanges = 0;
+    while (!h.idle() && now < 60s) {
+      h.step(now);
+      if (!h.take_output().empty()) {
+        h.output_done(now);
+        if (h.state() == HostState::awaiting) {
+          ++exchanges;
+          exchange_start = now;
+        }
+      }
+      if (h.state() == HostState::awaiting || h.state() == HostState::receiving || h.state() == HostState::draining) {
+        h.receive(babble, now);
+        EXPECT_LE(now - exchange_start, limit) << "an exchange past its limit";
+      }
+      now += 5ms;
+    }
+    ASSERT_TRUE(h.idle()) << "still busy after 60 s";
+    const Outcome* o = h.outcome(id);
+    ASSERT_NE(o, nullptr);
+    EXPECT_EQ(o->kind, OutcomeKind::bad_answer);
+    EXPECT_EQ(o->answer_error, AnswerError::line_busy);
+    EXPECT_EQ(to_string(o->answer_error), "the line never fell quiet");
+    EXPECT_EQ(exchanges, 1 + cfg.enquiry_retries);
+    EXPECT_LE(now, (1 + cfg.enquiry_retries) * (limit + 10ms));
+  }
+}
+
 TEST(HostTimeouts, SiofIsNotReadTwice) {
   auto vf = make_vf1000();
   vf.siof = 0x80;

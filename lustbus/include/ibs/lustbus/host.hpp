@@ -38,6 +38,12 @@ struct HostConfig {
   // Silence between answer characters that ends an answer as incomplete (and, after a broken
   // answer, tells that the line is quiet before the EOT).
   Duration inter_char_timeout = 20ms;
+  // One exchange ends, however the line behaves, by its response timeout and then the longest
+  // telegram with every gap at the inter-character limit: a device that keeps sending (each
+  // character restarting that timer) cannot hold the host (AnswerError::line_busy, LB-D24).
+  [[nodiscard]] Duration exchange_limit(Duration response) const {
+    return response + static_cast<Duration::rep>(kMaxTelegramLength) * inter_char_timeout;
+  }
   // 10, step 4: the host's reaction before its EOT (the tables use 2 ms).
   Duration turnaround = 0ms;
   // ENQUIRY repeated after no answer or a broken one; never for 85-SIOF, whose read clears it.
@@ -345,6 +351,7 @@ class Host {
   std::uint8_t out_size_ = 0;     // bytes handed out by take_output() still to be confirmed
   bool out_taken_ = false;
   Time deadline_ = Time::max();
+  Time exchange_ends_ = Time::max();  // the overall deadline of the exchange on the line
   Time last_now_{};
 };
 

@@ -64,6 +64,7 @@ enum class AnswerError : std::uint8_t {
   bad_bcc,         // BCC does not match
   incomplete,      // the answer stopped (inter-character timeout)
   no_answer,       // nothing within the response timeout
+  line_busy,       // characters kept coming until the exchange's overall deadline
 };
 std::string_view to_string(AnswerError e);
 
