@@ -99,9 +99,12 @@ TEST(CanlustRun, ExampleScenario) {
   EXPECT_EQ(r.overflows, 0U);
   // The JSON says the same.
   const auto j = nlohmann::json::parse(format_json(r));
+  EXPECT_EQ(j["version"], 1);
   EXPECT_EQ(j["protocol"], "canlust");
   EXPECT_EQ(j["bus"]["frames"], r.frames);
-  EXPECT_EQ(j["drives"][1]["state"], "FAULT");
+  EXPECT_EQ(j["devices"][1]["state"], "FAULT");
+  EXPECT_EQ(j["devices"][1]["watchdog_trips"], right.watchdog_trips);
+  EXPECT_EQ(j["events"].size(), r.entries.size());
   EXPECT_DOUBLE_EQ(j["bus"]["load"].get<double>(), r.load);
 }
 

@@ -59,7 +59,7 @@ int run_canlust(const RunOptions& o) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
   }
-  std::cout << (o.json ? sim::canlust::format_json(report) + "\n" : sim::canlust::format_text(report));
+  std::cout << (o.json ? sim::canlust::format_json(report) : sim::canlust::format_text(report));
   if (!o.json && !o.pcap_file.empty()) std::cout << "capture written: " << o.pcap_file << "\n";
   return kExitOk;
 }

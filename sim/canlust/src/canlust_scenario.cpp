@@ -166,6 +166,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
     if (type == nullptr || r.text(*type, "type") != "cda3000") {
       r.fail(type != nullptr ? type->line : d.line, "device '" + spec.name + "': type must be \"cda3000\" on a CANLust bus");
     }
+    spec.kind = r.text(*type, "type");
     const Node* addr = child(d, "address");
     if (addr == nullptr) r.fail(d.line, "device '" + spec.name + "' needs an address (571-CLADR)");
     spec.address = static_cast<std::uint8_t>(r.integer(*addr, "address", 0, max_address));
