@@ -83,10 +83,8 @@ struct Scenario {
   std::vector<Entry> timeline;
 };
 
-// True when the file's [bus] says protocol = "canlust" (a cheap look: syntax errors are left to
-// the reader that follows).
-bool is_canlust_scenario(const std::string& path);
-// Reads and checks a CANLust scenario; throws sim::ScenarioError naming file:line.
+// Reads and checks a CANLust scenario; throws sim::ScenarioError naming file:line. `ibs run` reads
+// a file of either bus through sim::load_any_scenario (scenario_file.hpp).
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario(const std::string& text, const std::string& file, bool json);
 
