@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ibs/devices/registry.hpp"
+#include "run_summary.hpp"
 
 namespace ibs::sim {
 
@@ -44,13 +45,13 @@ std::string over_text(const TimingStats& t, Duration budget) {
   return "";
 }
 
-nlohmann::json stats_json(const TimingStats& t) {
-  nlohmann::json j = {{"cycles", t.cycles},         {"median_ns", t.median_ns}, {"p99_ns", t.p99_ns},
+nlohmann::ordered_json stats_json(const TimingStats& t) {
+  nlohmann::ordered_json j = {{"cycles", t.cycles},         {"median_ns", t.median_ns}, {"p99_ns", t.p99_ns},
                       {"p999_ns", t.p999_ns},       {"max_ns", t.max_ns},       {"worst_cycle", t.worst_cycle},
                       {"worst_at_ms", to_ms(t.worst_at)}};
-  nlohmann::json over = nlohmann::json::array();
+  nlohmann::ordered_json over = nlohmann::ordered_json::array();
   for (const OverBudget& o : t.over) {
-    nlohmann::json x = {{"budget_ms", to_ms(o.budget)}, {"cycles", o.cycles}};
+    nlohmann::ordered_json x = {{"budget_ms", to_ms(o.budget)}, {"cycles", o.cycles}};
     if (o.first) x["first_at_ms"] = to_ms(*o.first);
     over.push_back(x);
   }
@@ -160,66 +161,16 @@ std::string format_text(const Summary& s) {
 }
 
 std::string format_json(const Summary& s) {
-  using nlohmann::json;
-  json j;
-  j["scenario"] = s.scenario;
-  j["simulated_s"] = static_cast<double>(s.simulated.count()) / 1e9;
-  j["wall_s"] = s.wall_seconds;
-  j["threads"] = s.threads;
-  j["bus"] = {{"cycle_time_ms", to_ms(s.cycle_time)},
+  using json = nlohmann::ordered_json;
+  json bus = {{"cycle_time_ms", to_ms(s.cycle_time)},
               {"cycle_time_basis", s.cycle_time_basis},
               {"cycles", s.cycles},
               {"valid_cycles", s.valid_cycles}};
-  json devices = json::array();
-  for (const DeviceReport& d : s.devices) {
-    json states = json::array();
-    for (const StateRecord& r : d.states) states.push_back({{"at_ms", to_ms(r.at)}, {"what", r.what}});
-    json failures = json::array();
-    for (const FailureRecord& f : d.failures) {
-      failures.push_back({{"at_ms", to_ms(f.at)}, {"failure", f.failure}, {"what", f.what}});
-    }
-    devices.push_back({{"name", d.name},
-                       {"type", d.kind},
-                       {"id_code", d.id_code},
-                       {"unit", d.unit},
-                       {"states", states},
-                       {"errors", d.errors},
-                       {"failures", failures},
-                       {"final_state", d.final_state},
-                       {"final_reference", d.final_reference},
-                       {"final_actual", d.final_actual},
-                       {"samples", d.samples}});
-  }
-  j["devices"] = devices;
-  json tx = json::array();
-  for (const TransactionRecord& r : s.transactions) {
-    json t = {{"device", r.device},
-              {"op", devices::to_string(r.op)},
-              {"parameter", r.number},
-              {"submitted_ms", to_ms(r.submitted)},
-              {"outcome", devices::to_string(r.kind)},
-              {"result", r.result}};
-    if (r.op == devices::ParamOp::write) t["value"] = r.value;
-    if (r.kind == devices::ParamKind::value) t["value_read"] = r.result_value;
-    if (r.answered) t["answered_ms"] = to_ms(*r.answered);
-    if (r.finished) {
-      t["finished_ms"] = to_ms(*r.finished);
-      t["duration_ms"] = to_ms(*r.finished - r.submitted);
-    }
-    if (r.source_line != 0) t["scenario_line"] = r.source_line;
-    tx.push_back(t);
-  }
-  j["transactions"] = tx;
-  json faults = json::array();
-  for (const FaultRecord& f : s.faults) {
-    faults.push_back({{"at_ms", to_ms(f.at)}, {"device", f.device}, {"kind", f.kind}, {"detail", f.detail}});
-  }
-  j["faults"] = faults;
-  j["master"] = stats_json(s.master);
-  for (const Budget& b : budgets()) j["master"][b.key] = budget_percent(s.master.median_ns, b.period);
+  bus["master"] = stats_json(s.master);
+  for (const Budget& b : budgets()) bus["master"][b.key] = budget_percent(s.master.median_ns, b.period);
   if (s.realtime) {
     const RealtimeStats& r = *s.realtime;
-    nlohmann::json rt = {{"cycle_time_ms", to_ms(r.cycle_time)},
+    json rt = {{"cycle_time_ms", to_ms(r.cycle_time)},
                          {"rt_priority", r.rt_priority},
                          {"memory_locked", r.memory_locked},
                          {"notes", r.notes},
@@ -230,9 +181,67 @@ std::string format_json(const Summary& s) {
       rt["worst_overrun_at_ms"] = to_ms(*r.worst_overrun);
       rt["worst_overrun_by_ms"] = to_ms(r.worst_overrun_by);
     }
-    j["realtime"] = rt;
+    bus["realtime"] = rt;
   }
-  return j.dump(2) + "\n";
+  json devices = json::array();
+  for (const DeviceReport& d : s.devices) {
+    json states = json::array();
+    for (const StateRecord& r : d.states) states.push_back({{"at_ms", to_ms(r.at)}, {"what", r.what}});
+    json failures = json::array();
+    for (const FailureRecord& f : d.failures) {
+      failures.push_back({{"at_ms", to_ms(f.at)}, {"failure", f.failure}, {"what", f.what}});
+    }
+    devices.push_back({{"name", d.name},
+                       {"kind", d.kind},
+                       {"state", d.final_state},
+                       {"unit", d.unit},
+                       {"reference", d.final_reference},
+                       {"actual", d.final_actual},
+                       {"states", states},
+                       {"id_code", d.id_code},
+                       {"errors", d.errors},
+                       {"failures", failures},
+                       {"samples", d.samples}});
+  }
+  // The parameter transactions and the faults, in time order (a transaction at its submission).
+  std::vector<std::pair<Time, json>> timed;
+  for (const TransactionRecord& r : s.transactions) {
+    const bool ok = r.kind == devices::ParamKind::value || r.kind == devices::ParamKind::written ||
+                    r.kind == devices::ParamKind::description;
+    json t = {{"at_ms", to_ms(r.submitted)},
+              {"device", r.device},
+              {"type", "parameter"},
+              {"what", op_text(r)},
+              {"outcome", r.result},
+              {"ok", ok},
+              {"op", devices::to_string(r.op)},
+              {"parameter", r.number},
+              {"result", devices::to_string(r.kind)}};
+    if (r.op == devices::ParamOp::write) t["value"] = r.value;
+    if (r.kind == devices::ParamKind::value) t["value_read"] = r.result_value;
+    if (r.answered) t["answered_ms"] = to_ms(*r.answered);
+    if (r.finished) {
+      t["finished_ms"] = to_ms(*r.finished);
+      t["duration_ms"] = to_ms(*r.finished - r.submitted);
+    }
+    if (r.source_line != 0) t["scenario_line"] = r.source_line;
+    timed.emplace_back(r.submitted, std::move(t));
+  }
+  for (const FaultRecord& f : s.faults) {
+    timed.emplace_back(f.at, json{{"at_ms", to_ms(f.at)},
+                                  {"device", f.device},
+                                  {"type", "fault"},
+                                  {"what", f.kind},
+                                  {"outcome", f.detail},
+                                  {"ok", true}});
+  }
+  std::stable_sort(timed.begin(), timed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  json events = json::array();
+  for (auto& [at, e] : timed) events.push_back(std::move(e));
+  return detail::run_summary(s.scenario, "interbus", s.simulated, s.wall_seconds, s.threads, std::move(bus),
+                             std::move(devices), std::move(events))
+             .dump(2) +
+         "\n";
 }
 
 }  // namespace ibs::sim

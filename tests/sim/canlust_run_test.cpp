@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/scenario.hpp"
+#include "ibs/sim/scenario_file.hpp"
 
 namespace ibs::sim::canlust {
 namespace {
@@ -43,9 +45,13 @@ std::optional<Time> first_state(const DriveResult& d, const std::string& state, 
 }
 
 TEST(CanlustRun, ExampleScenario) {
-  ASSERT_TRUE(is_canlust_scenario(kExample));
-  EXPECT_FALSE(is_canlust_scenario(std::string(IBS_SOURCE_DIR) + "/examples/faults.toml"));
-  const Scenario s = load_scenario(kExample);
+  // The one entry point sees the bus: CANLust here, INTERBUS in the other examples.
+  const AnyScenario any = load_any_scenario(kExample);
+  ASSERT_TRUE(std::holds_alternative<Scenario>(any));
+  EXPECT_TRUE(std::holds_alternative<sim::Scenario>(load_any_scenario(std::string(IBS_SOURCE_DIR) + "/examples/faults.toml")));
+  const Scenario s = std::get<Scenario>(any);
+  EXPECT_EQ(s.name, "conveyors");
+  EXPECT_EQ(s.timeline.size(), load_scenario(kExample).timeline.size());
   ASSERT_EQ(s.drives.size(), 2U);
   const Report r = run(s);
   const auto& left = drive(r, "left");
@@ -99,9 +105,12 @@ TEST(CanlustRun, ExampleScenario) {
   EXPECT_EQ(r.overflows, 0U);
   // The JSON says the same.
   const auto j = nlohmann::json::parse(format_json(r));
+  EXPECT_EQ(j["version"], 1);
   EXPECT_EQ(j["protocol"], "canlust");
   EXPECT_EQ(j["bus"]["frames"], r.frames);
-  EXPECT_EQ(j["drives"][1]["state"], "FAULT");
+  EXPECT_EQ(j["devices"][1]["state"], "FAULT");
+  EXPECT_EQ(j["devices"][1]["watchdog_trips"], right.watchdog_trips);
+  EXPECT_EQ(j["events"].size(), r.entries.size());
   EXPECT_DOUBLE_EQ(j["bus"]["load"].get<double>(), r.load);
 }
 
@@ -153,6 +162,41 @@ TEST(CanlustRun, EasyDriveWatchdogAndErrorReset) {
                "runs EasyDrive (cacnf = 4)");
 }
 
+
+// The one entry point reads the file once and keeps each schema's errors with file:line, for a
+// file of either bus, in TOML and JSON.
+TEST(CanlustRun, OneEntryPointKeepsFileAndLine) {
+  const auto error_of = [](const std::string& name, const std::string& text) -> std::string {
+    const std::string path = ::testing::TempDir() + name;
+    std::ofstream(path) << text;
+    try {
+      load_any_scenario(path);
+    } catch (const ScenarioError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const std::string dir = ::testing::TempDir();
+  // CANLust: the schema's own message at its line.
+  EXPECT_EQ(error_of("one_entry.toml", "[bus]\nprotocol = \"canlust\"\nbitrate = 7\n"),
+            dir + "one_entry.toml:3: bitrate = 7 is outside 25000..500000");
+  EXPECT_EQ(error_of("one_entry.json", "{\"bus\": {\"protocol\": \"canlust\"},\n \"device\": [{\"name\": \"a\"}]}"),
+            dir + "one_entry.json:2: device 'a': type must be \"cda3000\" on a CANLust bus");
+  // INTERBUS: its schema, as load_scenario says it.
+  const std::string interbus = "[bus]\ncycle_tme = \"1 ms\"\n";
+  std::string direct;
+  try {
+    parse_scenario_toml(interbus, dir + "one_entry_ib.toml");
+  } catch (const ScenarioError& e) {
+    direct = e.what();
+  }
+  EXPECT_NE(direct.find("one_entry_ib.toml:2: "), std::string::npos) << direct;
+  EXPECT_EQ(error_of("one_entry_ib.toml", interbus), direct);
+  // A syntax error, and a file that is neither format.
+  EXPECT_EQ(error_of("one_entry_syntax.toml", "[bus]\nprotocol = \"canlust\n").rfind(dir + "one_entry_syntax.toml:2: ", 0), 0U);
+  EXPECT_EQ(error_of("one_entry.txt", "[bus]\nprotocol = \"canlust\"\n"),
+            dir + "one_entry.txt:0: unknown scenario format: the file name must end in .toml or .json");
+}
 
 TEST(CanlustRun, ErrorsNameFileAndLine) {
   expect_error("name = \"x\"\n[bus]\nprotocol = \"canlust\"\n[[device]]\nname = \"a\"\ntype = \"cda3000\"\n"

@@ -227,6 +227,31 @@ TEST(Cli, RunWritesJsonTracesAndVcd) {
   EXPECT_NE(names.find("4 ENABLED"), std::string::npos) << names;
 }
 
+// `ibs run --json` prints the one run summary of docs/scenarios.md, "Run summary (JSON)", for an
+// INTERBUS and a CANLust scenario alike: the same top-level keys, the same version.
+TEST(Cli, RunJsonIsOneSchemaForBothBuses) {
+  const Result ib = run_shell(std::string(IBS_CLI) + " run --json");
+  const Result cl =
+      run_shell(std::string(IBS_CLI) + " run --json " + std::string(IBS_SOURCE_DIR) + "/examples/canlust/conveyors.toml");
+  ASSERT_EQ(ib.exit_code, 0) << ib.out;
+  ASSERT_EQ(cl.exit_code, 0) << cl.out;
+  const auto a = nlohmann::json::parse(ib.out);
+  const auto b = nlohmann::json::parse(cl.out);
+  std::vector<std::string> keys_a;
+  std::vector<std::string> keys_b;
+  for (const auto& [k, v] : a.items()) keys_a.push_back(k);
+  for (const auto& [k, v] : b.items()) keys_b.push_back(k);
+  EXPECT_EQ(keys_a, keys_b);
+  EXPECT_EQ(a["version"], 1);
+  EXPECT_EQ(b["version"], 1);
+  EXPECT_EQ(a["protocol"], "interbus");
+  EXPECT_EQ(b["protocol"], "canlust");
+  EXPECT_EQ(a["devices"][1]["kind"], "vf1000");
+  EXPECT_EQ(b["devices"][0]["kind"], "cda3000");
+  EXPECT_EQ(ib.out.back(), '\n');
+  EXPECT_EQ(cl.out.back(), '\n');
+}
+
 TEST(Cli, RunTakesAThreadCountAndRefusesABadOne) {
   const Result r = run("run --threads 3");
   EXPECT_EQ(r.exit_code, 0) << r.out;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <variant>
 
 #include "commands.hpp"
 #include "gnuplot.hpp"
@@ -20,6 +21,7 @@
 #include "ibs/sim/realtime.hpp"
 #include "ibs/sim/report.hpp"
 #include "ibs/sim/scenario.hpp"
+#include "ibs/sim/scenario_file.hpp"
 #include "ibs/sim/simulator.hpp"
 #include "ibs/sim/vcd_recorder.hpp"
 
@@ -40,7 +42,7 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
 }
 
 // A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation.
-int run_canlust(const RunOptions& o) {
+int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
                                     {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1},
                                     {"--realtime", o.realtime}}) {
@@ -49,13 +51,6 @@ int run_canlust(const RunOptions& o) {
       return kExitBadInput;
     }
   }
-  sim::canlust::Scenario scenario;
-  try {
-    scenario = sim::canlust::load_scenario(o.scenario);
-  } catch (const sim::ScenarioError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
   sim::canlust::Report report;
   try {
     report = sim::canlust::run(scenario, o.pcap_file);
@@ -63,7 +58,7 @@ int run_canlust(const RunOptions& o) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
   }
-  std::cout << (o.json ? sim::canlust::format_json(report) + "\n" : sim::canlust::format_text(report));
+  std::cout << (o.json ? sim::canlust::format_json(report) : sim::canlust::format_text(report));
   if (!o.json && !o.pcap_file.empty()) std::cout << "capture written: " << o.pcap_file << "\n";
   return kExitOk;
 }
@@ -75,7 +70,20 @@ int run(const RunOptions& o) {
     std::cerr << "--rt-priority " << o.rt_priority << " needs --realtime\n";
     return kExitBadInput;
   }
-  if (!o.scenario.empty() && sim::canlust::is_canlust_scenario(o.scenario)) return run_canlust(o);
+  // The file is read once; its [bus] says which bus's simulation runs it.
+  sim::Scenario scenario;
+  try {
+    if (o.scenario.empty()) {
+      scenario = sim::default_scenario();
+    } else {
+      sim::AnyScenario any = sim::load_any_scenario(o.scenario);
+      if (const auto* canlust = std::get_if<sim::canlust::Scenario>(&any)) return run_canlust(o, *canlust);
+      scenario = std::move(std::get<sim::Scenario>(any));
+    }
+  } catch (const sim::ScenarioError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
   // A plot that cannot be drawn fails before the run.
   std::optional<sim::PlotFormat> format;
   if (!o.plot_file.empty()) {
@@ -89,13 +97,6 @@ int run(const RunOptions& o) {
                    "nothing was run or written\n";
       return kExitBadInput;
     }
-  }
-  sim::Scenario scenario;
-  try {
-    scenario = o.scenario.empty() ? sim::default_scenario() : sim::load_scenario(o.scenario);
-  } catch (const sim::ScenarioError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
   }
   std::unique_ptr<sim::Simulator> simulator;
   try {

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -18,6 +19,7 @@
 #include "ibs/devices/cda3000/parameters.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/scenario.hpp"
+#include "run_summary.hpp"
 
 namespace ibs::sim::canlust {
 
@@ -56,6 +58,8 @@ std::string seconds(Time t) {
 }  // namespace
 
 Report run(const Scenario& s, const std::string& pcap_path) {
+  // The host's time for the run summary's wall_s (the simulation itself runs on simulated time).
+  const auto wall_start = std::chrono::steady_clock::now();
   can::VirtualBus bus({s.bitrate, 256, 4096});
   const can::NodeId master_id = bus.attach("master");
   const can::NodeId spy = bus.attach("spy");
@@ -84,6 +88,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     drive->bus_id = bus.attach(d.name);
     drive->power_on_at = d.power_on;
     drive->result.name = d.name;
+    drive->result.kind = d.kind;
     drive->result.address = d.address;
     drives.push_back(std::move(drive));
   }
@@ -140,6 +145,16 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     const Entry& e = s.timeline[i];
     EntryResult& r = report.entries[i];
     r.at = e.at;
+    r.device = e.device;
+    switch (e.action) {
+      case Action::read:
+      case Action::write: r.type = "parameter"; break;
+      case Action::mains_reset:
+      case Action::mains_off:
+      case Action::mains_on:
+      case Action::master_silent: r.type = "fault"; break;
+      default: r.type = "command"; break;
+    }
     r.what = (e.device.empty() ? std::string() : e.device + ": ") + std::string(to_string(e.action));
     switch (e.action) {
       case Action::start:
@@ -360,6 +375,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     if (ec) throw std::runtime_error(pcap_path + ": " + ec.message());
   }
 #endif
+  report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return report;
 }
 
@@ -394,38 +410,52 @@ std::string format_text(const Report& r) {
 }
 
 std::string format_json(const Report& r) {
-  nlohmann::json j;
-  j["scenario"] = r.name;
-  j["protocol"] = "canlust";
-  j["duration_ms"] = to_ms(r.duration);
-  j["bitrate"] = r.bitrate;
-  j["bus"] = {{"frames", r.frames},         {"bits", r.bits},
-              {"stuff_bits", r.stuff_bits}, {"load", r.load},
-              {"peak_load_100ms", r.peak_load}, {"arbitration_losses", r.arbitration_losses},
+  using json = nlohmann::ordered_json;
+  json bus = {{"bitrate", r.bitrate},
+              {"frames", r.frames},
+              {"bits", r.bits},
+              {"stuff_bits", r.stuff_bits},
+              {"load", r.load},
+              {"peak_load_100ms", r.peak_load},
+              {"arbitration_losses", r.arbitration_losses},
               {"overflows", r.overflows}};
-  if (r.start_spread) j["start_spread_ms"] = to_ms(*r.start_spread);
-  j["drives"] = nlohmann::json::array();
+  if (r.start_spread) bus["start_spread_ms"] = to_ms(*r.start_spread);
+  json devices = json::array();
   for (const auto& d : r.drives) {
-    nlohmann::json x{{"name", d.name},
-                     {"address", d.address},
-                     {"system_state", d.system_state},
-                     {"state", d.state},
-                     {"status", d.status},
-                     {"actual_hz", d.actual_hz},
-                     {"reference_hz", d.reference_hz},
-                     {"watchdog_trips", d.watchdog_trips},
-                     {"errors", d.errors}};
+    json states = json::array();
+    for (const auto& c : d.states) states.push_back({{"at_ms", to_ms(c.at)}, {"what", c.state}});
+    json x{{"name", d.name},
+           {"kind", d.kind},
+           {"state", d.state},
+           {"unit", "Hz"},
+           {"reference", d.reference_hz},
+           {"actual", d.actual_hz},
+           {"states", states},
+           {"address", d.address},
+           {"system_state", d.system_state},
+           {"status", d.status},
+           {"watchdog_trips", d.watchdog_trips},
+           {"error_telegrams", d.errors}};
     if (d.logon) x["logon_ms"] = to_ms(*d.logon);
     if (d.started) x["started_ms"] = to_ms(*d.started);
-    x["states"] = nlohmann::json::array();
-    for (const auto& c : d.states) x["states"].push_back({{"at_ms", to_ms(c.at)}, {"state", c.state}});
-    j["drives"].push_back(x);
+    devices.push_back(x);
   }
-  j["timeline"] = nlohmann::json::array();
+  json events = json::array();
   for (const auto& e : r.entries) {
-    j["timeline"].push_back({{"at_ms", to_ms(e.at)}, {"what", e.what}, {"outcome", e.outcome}, {"ok", e.ok}});
+    // The text names the device before the action ("left: read 575-CASCY"); the event has it apart.
+    const std::string prefix = e.device.empty() ? std::string() : e.device + ": ";
+    const std::string what = e.what.rfind(prefix, 0) == 0 ? e.what.substr(prefix.size()) : e.what;
+    events.push_back({{"at_ms", to_ms(e.at)},
+                      {"device", e.device},
+                      {"type", e.type},
+                      {"what", what},
+                      {"outcome", e.outcome},
+                      {"ok", e.ok}});
   }
-  return j.dump();
+  return sim::detail::run_summary(r.name, "canlust", r.duration, r.wall_seconds, 1, std::move(bus),
+                                  std::move(devices), std::move(events))
+             .dump(2) +
+         "\n";
 }
 
 }  // namespace ibs::sim::canlust

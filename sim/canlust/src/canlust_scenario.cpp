@@ -8,6 +8,7 @@
 
 #include "ibs/devices/cda3000/parameters.hpp"
 #include "ibs/sim/scenario.hpp"
+#include "canlust_reader.hpp"
 #include "scenario_internal.hpp"
 
 namespace ibs::sim::canlust {
@@ -100,17 +101,11 @@ std::string_view to_string(Action a) {
   return "?";
 }
 
-bool is_canlust_scenario(const std::string& path) {
-  try {
-    const std::string t = read_file(path);
-    const Node root = json_path(path) ? detail::json_tree(t, path) : detail::toml_tree(t, path);
-    const Node* bus = child(root, "bus");
-    if (bus == nullptr || bus->kind != Node::Kind::table) return false;
-    const Node* p = child(*bus, "protocol");
-    return p != nullptr && p->kind == Node::Kind::string && p->text == "canlust";
-  } catch (const std::exception&) {
-    return false;
-  }
+bool is_canlust_tree(const detail::Node& root) {
+  const Node* bus = child(root, "bus");
+  if (bus == nullptr || bus->kind != Node::Kind::table) return false;
+  const Node* p = child(*bus, "protocol");
+  return p != nullptr && p->kind == Node::Kind::string && p->text == "canlust";
 }
 
 Scenario load_scenario(const std::string& path) {
@@ -120,7 +115,10 @@ Scenario load_scenario(const std::string& path) {
 }
 
 Scenario parse_scenario(const std::string& text, const std::string& file, bool json) {
-  const Node root = json ? detail::json_tree(text, file) : detail::toml_tree(text, file);
+  return read_tree(json ? detail::json_tree(text, file) : detail::toml_tree(text, file), file);
+}
+
+Scenario read_tree(const detail::Node& root, const std::string& file) {
   const Reader r(file);
   Scenario s;
   r.only(root, {"name", "duration", "bus", "device", "timeline"}, "the scenario");
@@ -166,6 +164,7 @@ Scenario parse_scenario(const std::string& text, const std::string& file, bool j
     if (type == nullptr || r.text(*type, "type") != "cda3000") {
       r.fail(type != nullptr ? type->line : d.line, "device '" + spec.name + "': type must be \"cda3000\" on a CANLust bus");
     }
+    spec.kind = r.text(*type, "type");
     const Node* addr = child(d, "address");
     if (addr == nullptr) r.fail(d.line, "device '" + spec.name + "' needs an address (571-CLADR)");
     spec.address = static_cast<std::uint8_t>(r.integer(*addr, "address", 0, max_address));

@@ -46,6 +46,7 @@ namespace ibs::sim::canlust {
 
 struct DriveSpec {
   std::string name;
+  std::string kind;  // the scenario's `type`: the drive's name in the registry
   std::uint8_t address = 1;
   std::uint8_t cacnf = 2;  // 1..3 DRIVECOM, 4 EasyDrive
   std::uint16_t watchdog_ms = 0;
@@ -82,10 +83,8 @@ struct Scenario {
   std::vector<Entry> timeline;
 };
 
-// True when the file's [bus] says protocol = "canlust" (a cheap look: syntax errors are left to
-// the reader that follows).
-bool is_canlust_scenario(const std::string& path);
-// Reads and checks a CANLust scenario; throws sim::ScenarioError naming file:line.
+// Reads and checks a CANLust scenario; throws sim::ScenarioError naming file:line. `ibs run` reads
+// a file of either bus through sim::load_any_scenario (scenario_file.hpp).
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario(const std::string& text, const std::string& file, bool json);
 
@@ -96,6 +95,7 @@ struct StateChange {
 };
 struct DriveResult {
   std::string name;
+  std::string kind;
   std::uint8_t address = 0;
   std::optional<Time> logon;         // the first logon frame
   std::optional<Time> started;       // when the drive executed System Start
@@ -110,6 +110,8 @@ struct DriveResult {
 };
 struct EntryResult {
   Time at{};
+  std::string device;   // empty for the whole bus
+  std::string type;     // "command", "parameter" or "fault", as the run summary's events
   std::string what;     // "left: read 575-CASCY"
   std::string outcome;  // "80 ms", "refused: ...", "ok"
   bool ok = true;
@@ -128,12 +130,14 @@ struct Report {
   std::optional<Duration> start_spread;  // last minus first drive executing System Start
   std::vector<DriveResult> drives;
   std::vector<EntryResult> entries;
+  double wall_seconds = 0.0;  // the host's time for the run
 };
 
 // Runs the scenario; with `pcap_path`, every frame on the bus goes to that capture
 // (LINKTYPE_CAN_SOCKETCAN, docs/canlust.md) — throws std::runtime_error when it cannot be written.
 Report run(const Scenario& s, const std::string& pcap_path = "");
 std::string format_text(const Report& r);
-std::string format_json(const Report& r);  // one JSON object, one line
+// The run summary of docs/scenarios.md, "Run summary (JSON)": the same schema as an INTERBUS run.
+std::string format_json(const Report& r);
 
 }  // namespace ibs::sim::canlust
