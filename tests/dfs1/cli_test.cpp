@@ -76,7 +76,7 @@ TEST(Dfs1Cli, AFrameADyingHostLeftIsNotCompletedByTheNextHost) {
     ASSERT_EQ(::write(fd, write_p6.data(), cut), static_cast<ssize_t>(cut));
     ::close(fd);
     // Longer than the fragment timeout (50 ms at the emulator's rate), as a next host would come.
-    std::this_thread::sleep_for(std::chrono::milliseconds(120));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
     r = run_cli({"dfs1", "read", "--port", port, "--uid", "1", "6", "--json", "--timeout-ms", "3000"});
     ASSERT_EQ(r.rc, 0) << "cut after " << cut << " bytes: " << r.err;
     EXPECT_EQ(nlohmann::json::parse(r.out)["value"].get<long>(), p6) << "cut after " << cut << " bytes";
@@ -109,10 +109,15 @@ TEST(Dfs1Cli, AHostAgainstADeviceThatKeepsSendingEnds) {
   ::close(slave);
   ::close(master);
   EXPECT_EQ(r.rc, 1) << r.err;
-  EXPECT_NE(r.err.find("line busy (no response ended within"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("heard "), std::string::npos) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["outcome"], "line busy");
+  // "line busy" at the overall deadline; on a loaded machine the babbling thread may stall longer
+  // than the inter-byte timeout first (Dfs1Host.ADeviceThatKeepsSendingEndsAtTheOverallDeadline
+  // pins the deadline in simulated time).
+  EXPECT_TRUE(j["outcome"] == "line busy" || j["outcome"] == "inter-byte timeout") << r.out;
+  if (j["outcome"] == "line busy") {
+    EXPECT_NE(r.err.find("line busy (no response ended within"), std::string::npos) << r.err;
+  }
   EXPECT_GT(j["bytes_heard"].get<int>(), 10);
 }
 

@@ -399,3 +399,29 @@ TEST(OutputFileRules, ASignalDuringARunLeavesNothingAndSaysSo) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 23, defect 5: `ibs run examples/canlust/conveyors.toml --pcap U.pcap` wrote U.pcap.tmp
+// over the user's file of that name and then removed it. The CANLust capture takes the rules of
+// every output.
+TEST(OutputFileRules, ACanlustCaptureLeavesTheUsersFilesAlone) {
+  const std::string dir = fresh_dir("canlust_pcap");
+  std::ofstream(dir + "/U.pcap.tmp") << "the user's own file";
+  const std::string scenario = std::string(IBS_SOURCE_DIR) + "/examples/canlust/conveyors.toml";
+  const Result r = run("run " + scenario + " --pcap " + dir + "/U.pcap");
+  if (contains(r.out, "without libpcap")) GTEST_SKIP() << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(slurp(dir + "/U.pcap.tmp"), "the user's own file");
+  EXPECT_EQ(slurp(dir + "/U.pcap").substr(0, 4), std::string("\xD4\xC3\xB2\xA1", 4)) << "a pcap file";
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2) << "no temporary left";
+  // A capture that cannot be created fails before the run and leaves nothing.
+  const Result bad = run("run " + scenario + " --pcap " + dir + "/missing/U.pcap");
+  EXPECT_EQ(bad.exit_code, 2) << bad.out;
+  EXPECT_TRUE(contains(bad.out, dir + "/missing/U.pcap: ")) << bad.out;
+  EXPECT_FALSE(contains(bad.out, "ibs-partial")) << "the user's name, not the temporary's: " << bad.out;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+  fs::remove_all(dir);
+}
+
+}  // namespace

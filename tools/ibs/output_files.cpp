@@ -48,6 +48,25 @@ bool OutputFiles::make_directory(const std::filesystem::path& dir, std::string& 
 }
 
 std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::string& error) {
+  if (!place(final_path, error)) return nullptr;
+  File& f = files_.back();
+  f.stream = std::make_unique<std::ofstream>(f.temp_path.empty() ? f.target : f.temp_path,
+                                             f.temp_path.empty() ? std::ios::binary : std::ios::binary | std::ios::trunc);
+  if (!*f.stream) {
+    error = final_path.string() + ": cannot create the file: " + std::strerror(errno);
+    files_.pop_back();
+    return nullptr;
+  }
+  return f.stream.get();
+}
+
+std::optional<std::filesystem::path> OutputFiles::reserve(const std::filesystem::path& final_path, std::string& error) {
+  if (!place(final_path, error)) return std::nullopt;
+  const File& f = files_.back();
+  return f.temp_path.empty() ? f.target : f.temp_path;
+}
+
+bool OutputFiles::place(const std::filesystem::path& final_path, std::string& error) {
   std::error_code ec;
   File f;
   f.final_path = final_path;
@@ -59,13 +78,20 @@ std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::st
     if (other.target == f.target) {
       error = final_path.string() + ": the same file is given for two outputs (" + other.final_path.string() +
               "); nothing was written";
-      return nullptr;
+      return false;
     }
+  }
+  // The directory it goes into must be there (make_directory() makes --trace's): a writer that
+  // opens by name would otherwise report its temporary's name.
+  if (!std::filesystem::is_directory(f.target.parent_path(), ec)) {
+    error = final_path.string() + ": cannot create the file: " + std::strerror(ENOENT) + " (no directory " +
+            f.target.parent_path().string() + ")";
+    return false;
   }
   const std::filesystem::file_status st = std::filesystem::status(f.target, ec);
   if (std::filesystem::is_directory(st)) {
     error = final_path.string() + ": is a directory; an output is written to a file";
-    return nullptr;
+    return false;
   }
   const bool special = std::filesystem::exists(st) && !std::filesystem::is_regular_file(st);
   if (special) {
@@ -76,21 +102,15 @@ std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::st
       if (fd < 0) {
         error = final_path.string() + (errno == ENXIO ? std::string(": a FIFO that no process reads")
                                                       : ": cannot open the FIFO: " + std::string(std::strerror(errno)));
-        return nullptr;
+        return false;
       }
       ::close(fd);
     }
-    f.stream = std::make_unique<std::ofstream>(f.target, std::ios::binary);
   } else {
     f.temp_path = temp_name(f.target);
-    f.stream = std::make_unique<std::ofstream>(f.temp_path, std::ios::binary | std::ios::trunc);
-  }
-  if (!*f.stream) {
-    error = final_path.string() + ": cannot create the file: " + std::strerror(errno);
-    return nullptr;
   }
   files_.push_back(std::move(f));
-  return files_.back().stream.get();
+  return true;
 }
 
 bool OutputFiles::write(const std::filesystem::path& final_path, const std::string& text, std::string& error) {
@@ -107,6 +127,7 @@ bool OutputFiles::write(const std::filesystem::path& final_path, const std::stri
 
 bool OutputFiles::commit(std::string& error) {
   for (File& f : files_) {
+    if (!f.stream) continue;  // reserve(): its writer has closed it
     f.stream->flush();
     f.stream->close();
     if (f.stream->fail()) {

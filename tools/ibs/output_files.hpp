@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ class OutputFiles {
   std::ostream* open(const std::filesystem::path& final_path, std::string& error);
   // Writes `text` as `final_path`.
   bool write(const std::filesystem::path& final_path, const std::string& text, std::string& error);
+  // For a writer that opens files by name (libpcap): the path to write `final_path` through --
+  // its temporary, or the FIFO or device itself -- under the same rules as open(); nullopt with
+  // `error` set when it cannot be. The writer must have closed it before commit().
+  std::optional<std::filesystem::path> reserve(const std::filesystem::path& final_path, std::string& error);
   // Closes every stream, checks that everything was written, then renames all to their final
   // names. False with `error` (naming the file) on the first failure; nothing is renamed then.
   bool commit(std::string& error);
@@ -44,6 +49,9 @@ class OutputFiles {
     std::unique_ptr<std::ofstream> stream;
     bool renamed = false;
   };
+  // Checks `final_path` and adds its File (no stream yet); false with `error` set.
+  bool place(const std::filesystem::path& final_path, std::string& error);
+
   std::vector<File> files_;
   std::vector<std::filesystem::path> made_dirs_;  // deepest last
   bool committed_ = false;

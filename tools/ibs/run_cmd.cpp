@@ -51,11 +51,31 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
       return kExitBadInput;
     }
   }
+  // The capture goes under the rules of every output (output_files.hpp): a temporary renamed into
+  // place when the run has written it, never a user's file replaced or removed.
+  OutputFiles outputs;
+  std::string error;
+  std::string pcap_path;
+  if (!o.pcap_file.empty()) {
+    const auto path = outputs.reserve(o.pcap_file, error);
+    if (!path) {
+      std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+    pcap_path = path->string();
+  }
   sim::canlust::Report report;
   try {
-    report = sim::canlust::run(scenario, o.pcap_file);
+    report = sim::canlust::run(scenario, pcap_path);
   } catch (const std::exception& e) {
-    std::cerr << e.what() << "\n";
+    std::string what = e.what();
+    // Name the capture as the user gave it, not its temporary.
+    if (!pcap_path.empty() && what.rfind(pcap_path, 0) == 0) what = o.pcap_file + what.substr(pcap_path.size());
+    std::cerr << what << "\n";
+    return kExitBadInput;
+  }
+  if (!outputs.commit(error)) {
+    std::cerr << error << "\n";
     return kExitBadInput;
   }
   std::cout << (o.json ? sim::canlust::format_json(report) : sim::canlust::format_text(report));

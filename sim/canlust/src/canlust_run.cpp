@@ -101,10 +101,8 @@ Report run(const Scenario& s, const std::string& pcap_path) {
 
 #if defined(IBS_HAVE_PCAP)
   std::unique_ptr<can::PcapWriter> pcap;
-  std::string pcap_tmp;
   if (!pcap_path.empty()) {
-    pcap_tmp = pcap_path + ".tmp";
-    auto opened = can::PcapWriter::open(pcap_tmp);
+    auto opened = can::PcapWriter::open(pcap_path);
     if (!opened) throw std::runtime_error(pcap_path + ": " + opened.error);
     pcap = std::move(opened.transport);
   }
@@ -369,10 +367,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
 #if defined(IBS_HAVE_PCAP)
   if (pcap) {
     pcap->flush();
-    pcap.reset();
-    std::error_code ec;
-    std::filesystem::rename(pcap_tmp, pcap_path, ec);
-    if (ec) throw std::runtime_error(pcap_path + ": " + ec.message());
+    pcap.reset();  // closed: the caller may rename it into place
   }
 #endif
   report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

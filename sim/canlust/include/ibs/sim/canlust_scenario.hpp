@@ -134,7 +134,9 @@ struct Report {
 };
 
 // Runs the scenario; with `pcap_path`, every frame on the bus goes to that capture
-// (LINKTYPE_CAN_SOCKETCAN, docs/canlust.md) — throws std::runtime_error when it cannot be written.
+// (LINKTYPE_CAN_SOCKETCAN, docs/canlust.md), written there directly and closed at the end -- the
+// caller makes it all or nothing (`ibs run` writes a temporary and renames it into place) --
+// throws std::runtime_error when it cannot be written.
 Report run(const Scenario& s, const std::string& pcap_path = "");
 std::string format_text(const Report& r);
 // The run summary of docs/scenarios.md, "Run summary (JSON)": the same schema as an INTERBUS run.
