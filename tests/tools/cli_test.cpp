@@ -469,3 +469,45 @@ TEST(Cli, UnsignedOptionsRefuseNegativeAndTooLargeNumbers) {
   const Result step = run("decode --id-step -2 " + data("vf1000_pd_startup.trace"));
   EXPECT_EQ(step.exit_code, 2) << step.out;
 }
+
+// Issue 23, defects 8 and 9: a FIFO given as a scenario or a dataset blocked for ever (the
+// CANLust check opened it first), /dev/zero or a 2 GiB sparse file was read up to 2 GiB before its
+// message. Every input is a regular file of at most 256 MiB, told at once; a file's kind is told
+// from its head.
+TEST(Cli, InputsThatCannotBeReadWholeAreRefusedAtOnce) {
+  const std::string dir = ::testing::TempDir() + "ibs_inputs_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir + "/f.toml").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((dir + "/f.json").c_str(), 0600), 0);
+  std::filesystem::resize_file(temp_file("ibs_big.toml", ""), std::uintmax_t{2} << 30U);
+  std::filesystem::resize_file(temp_file("ibs_big.trace", ""), std::uintmax_t{2} << 30U);
+  const std::string big_toml = ::testing::TempDir() + "ibs_big.toml";
+  const std::string big_trace = ::testing::TempDir() + "ibs_big.trace";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run " + dir + "/f.toml", "it is a FIFO (a named pipe), not a regular file"},
+      {"run " + dir + "/f.json", "it is a FIFO (a named pipe), not a regular file"},
+      {"run " + big_toml, "more than the 256 MiB an input file may have"},
+      {"decode " + big_trace, "more than the 256 MiB an input file may have"},
+      {"decode " + dir, "it is a directory"},
+      {"lustbus download --port /dev/null --addr 1 " + dir + "/f.toml", "it is a FIFO"},
+      {"lustbus download --port /dev/null --addr 1 /dev/zero", "it is a device, not a regular file"},
+  };
+  for (const auto& [args, says] : cases) {
+    const Result r = run_shell("timeout 20 " + std::string(IBS_CLI) + " " + args + " 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << args << ": " << r.out;
+  }
+  std::filesystem::remove(big_toml);
+  std::filesystem::remove(big_trace);
+  std::filesystem::remove_all(dir);
+}
+
+// Issue 23, defect 15: a candump log with a bad first line got the trace format's message.
+TEST(Cli, ACandumpLogWithABadFirstLineIsToldWhatIsWrongWithIt) {
+  const std::string log = temp_file("ibs_bad_candump.log", "(1700000000.000000) can0 6X7#01\n(1700000000.001000) can0 607#01\n");
+  const Result r = run("decode " + log);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find(log + ":1: not a candump log line: '(1700000000.000000) can0 6X7#01'"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("ibs-trace"), std::string::npos) << "not the trace format's message: " << r.out;
+}

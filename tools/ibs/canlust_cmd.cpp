@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+
+#include "ibs/base/text_file.hpp"
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -573,15 +575,30 @@ void FrameRecorder::record(const cl::CanFrame& f, Wall::time_point at) {
 
 std::optional<int> decode_candump_log(const std::string& file, unsigned id_step, unsigned cacnf,
                                       std::ostream& out, std::ostream& err) {
-  // Only a regular file is looked at (a FIFO would block the open); everything else, and every
-  // file error, is the trace reader's to report.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
+  // Only a regular file is looked at (a FIFO would block the open), and only its head until it
+  // says candump (a 2 GiB file of another kind is not read whole); everything else, and every
+  // file error before that, is the trace reader's to report.
+  constexpr std::size_t kSniffBytes = 64 * 1024;
+  try {
+    const std::string head = read_text_head(file, kSniffBytes);
+    const auto first = lines_of(head, head.size() < kSniffBytes);
+    // A first line that opens as candump's "(SECONDS.FRACTION) " is a candump log, good or bad:
+    // a bad one is told what is wrong with it, not the trace format's first header.
+    const auto opener = std::find_if(first.begin(), first.end(),
+                                     [](const std::string& l) { return l.find_first_not_of(" \t") != std::string::npos; });
+    const bool looks = opener != first.end() && opener->find_first_not_of(" \t") != std::string::npos &&
+                       (*opener)[opener->find_first_not_of(" \t")] == '(';
+    if (!looks && !can::is_candump_log(first)) return std::nullopt;
+  } catch (const FileReadError&) {
+    return std::nullopt;
+  }
   std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  if (!can::is_candump_log(lines)) return std::nullopt;
+  try {
+    lines = lines_of(read_text_file(file));
+  } catch (const FileReadError& e) {
+    err << "ibs decode: " << file << ": " << e.what() << "\n";
+    return kExitCanBadInput;
+  }
   CanBusOptions o;
   o.id_step = id_step;
   o.cacnf = cacnf;

@@ -15,6 +15,8 @@
 #include <set>
 #include <sstream>
 #include <fstream>
+
+#include "ibs/base/text_file.hpp"
 #include <filesystem>
 #include <stdexcept>
 
@@ -293,8 +295,13 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
   const std::string name = "download";
   try {
     if (o.addr < 0 || o.addr > 30) throw BadInput("--addr must be 0..30 (31 is broadcast)");
-    std::ifstream in(o.parameter);
-    if (!in) throw BadInput("cannot read '" + o.parameter + "'");
+    // A regular file of bounded size only: a FIFO would block, /dev/zero never end.
+    std::istringstream in;
+    try {
+      in.str(read_text_file(o.parameter));
+    } catch (const FileReadError& e) {
+      throw BadInput(o.parameter + ": " + e.what());
+    }
     // 11.4: the drive that offers the download, and the handshake parameter it runs through.
     const devices::Drive& drive = download_drive();
     const lb::DownloadProcedure& procedure = *drive.lustbus->procedures->download;
@@ -524,14 +531,27 @@ void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) 
 
 }  // namespace
 
+// How much of a file is read to tell its kind.
+constexpr std::size_t kSniffBytes = 64 * 1024;
+
 std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out, std::ostream& err) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
-  std::ifstream in(file);
-  std::string header;
-  if (!in || !std::getline(in, header) || header != lb::kByteLogHeader) return std::nullopt;
+  // The first line tells; only then is the file read whole (bounded, regular files only), so that
+  // a 2 GiB file of another kind is not read to look at its first line.
+  try {
+    const std::string head = read_text_head(file, kSniffBytes);
+    const auto first = lines_of(head, head.size() < kSniffBytes);
+    if (first.empty() || first.front() != lb::kByteLogHeader) return std::nullopt;
+  } catch (const FileReadError&) {
+    return std::nullopt;  // not looked at (not a regular file, unreadable): the trace reader says why
+  }
   std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(std::move(l));
+  try {
+    lines = lines_of(read_text_file(file));
+  } catch (const FileReadError& e) {
+    err << "ibs decode: " << file << ": " << e.what() << "\n";
+    return kExitLustbusBadInput;
+  }
+  lines.erase(lines.begin());  // the header
   // The names, units and types of the parameters: the drives' tables, through the registry.
   const lb::ByteLogReading r = lb::read_byte_log(lines, devices::lustbus_parameter_lookup());
   if (r.error && r.error->line == 0) {

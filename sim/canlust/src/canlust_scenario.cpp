@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/base/text_file.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "canlust_reader.hpp"
 #include "scenario_internal.hpp"
@@ -18,11 +19,11 @@ namespace {
 using detail::Node;
 
 std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path, 0, "cannot read the file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  try {
+    return read_text_file(path);  // regular files of bounded size only (a FIFO would block)
+  } catch (const FileReadError& e) {
+    throw ScenarioError(path, 0, e.what());
+  }
 }
 
 bool json_path(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }

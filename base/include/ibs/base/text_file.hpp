@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ibs {
 
@@ -27,5 +28,14 @@ inline constexpr std::size_t kMaxInputFileBytes = std::size_t{256} << 20U;
 
 // The file's bytes; throws FileReadError. Never opens anything but a regular file.
 std::string read_text_file(const std::string& path);
+
+// At most the first `max_bytes` of the file, to tell its format before reading it whole (a
+// sniffer must not read a 2 GiB file to look at its first line); throws FileReadError as
+// read_text_file() does, except for the size.
+std::string read_text_head(const std::string& path, std::size_t max_bytes);
+
+// The complete lines of `head` (the text read_text_head() gave, `whole` when it is the whole
+// file): a last line cut by the limit is left out.
+std::vector<std::string> lines_of(const std::string& head, bool whole = true);
 
 }  // namespace ibs
