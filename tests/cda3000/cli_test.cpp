@@ -4,6 +4,8 @@
 // `ibs decode`, and the pcap decoded by tshark with the Lua dissector (skipped without tshark).
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
+
+#include <filesystem>
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
@@ -264,6 +266,36 @@ TEST(CanlustCli, BadBusAndDevicesAreRefused) {
   r = run_cli({"canlust", "read", "--bus", "socketcan:vcan9", "--address", "1", "360"});
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("--bus 'socketcan:vcan9': "), std::string::npos) << r.err;
+}
+
+// Issue 23, defect 4: `canlust read ... --log EXISTING --pcap /nonexistent/x.pcap` exited 2 and
+// left EXISTING at 0 bytes (emulate too). Nothing is emptied or made before both open.
+TEST(CanlustCli, AFailingRecordingEmptiesNoFile) {
+  const std::string log = ::testing::TempDir() + "ibs_canlust_existing.log";
+  const std::string fresh = ::testing::TempDir() + "ibs_canlust_fresh.log";
+  std::remove(fresh.c_str());
+  {
+    std::ofstream out(log);
+    out << "the user's log\n";
+  }
+  for (const std::string cmd : {"read", "emulate"}) {
+    std::vector<std::string> args = {"canlust", cmd, "--bus", "udp:0:127.0.0.1:1", "--log", log, "--pcap",
+                                     "/nonexistent/x.pcap"};
+    if (cmd == "read") {
+      args.insert(args.end(), {"--address", "1", "360"});
+    } else {
+      args.push_back("cda3000@1");
+    }
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.rc, 2) << cmd << ": " << r.err;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_EQ(text, "the user's log\n") << cmd;
+    args[5] = fresh;
+    EXPECT_EQ(run_cli(args).rc, 2);
+    EXPECT_FALSE(std::filesystem::exists(fresh)) << cmd << ": a log made for the failed command is removed";
+  }
+  std::remove(log.c_str());
 }
 
 // The dissector's copy of the CDA3000 parameter names is the wing's table.

@@ -4,20 +4,22 @@
 #include "canlust_cmd.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <unistd.h>
 #include <algorithm>
+#include <cstring>
 #include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
-#include "ibs/base/text_file.hpp"
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 
+#include "ibs/base/text_file.hpp"
 #include "ibs/can/candump.hpp"
 #include "ibs/can/socketcan.hpp"
 #include "ibs/can/udp.hpp"
@@ -545,19 +547,44 @@ struct FrameRecorder::Files {
 FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, std::string iface)
     : files_(std::make_unique<Files>()) {
   files_->iface = std::move(iface);
+  if (!log.empty() && !pcap.empty() && std::filesystem::weakly_canonical(log) == std::filesystem::weakly_canonical(pcap)) {
+    throw std::invalid_argument("--log " + log + " and --pcap " + pcap + " are the same file");
+  }
+  // Both recordings are live (written frame by frame until the command ends), so they are written
+  // in place; but nothing is emptied before both can be opened: the log is first opened without
+  // truncating it (and removed again if this made it), then the capture, and only then is the log
+  // truncated (issue 23, defect 4: a bad --pcap had emptied an existing --log).
+  bool log_made = false;
+  if (!log.empty()) {
+    std::error_code ec;
+    log_made = !std::filesystem::exists(log, ec);
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0666);
+    if (fd < 0) {
+      throw std::invalid_argument("--log " + log + ": cannot open the file for writing: " + std::strerror(errno));
+    }
+    ::close(fd);
+  }
+  const auto unmake_log = [&] {
+    std::error_code ec;
+    if (log_made) std::filesystem::remove(log, ec);
+  };
+  if (!pcap.empty()) {
+#ifdef IBS_HAVE_PCAP
+    auto w = can::PcapWriter::open(pcap);
+    if (!w) {
+      unmake_log();
+      throw std::invalid_argument("--pcap " + pcap + ": " + w.error);
+    }
+    files_->pcap = std::move(w.transport);
+#else
+    unmake_log();
+    throw std::invalid_argument("--pcap: this ibs was built without libpcap (apt-get install libpcap-dev)");
+#endif
+  }
   if (!log.empty()) {
     files_->log.open(log, std::ios::out | std::ios::trunc);
     if (!files_->log) throw std::invalid_argument("--log " + log + ": cannot open the file for writing");
     files_->has_log = true;
-  }
-  if (!pcap.empty()) {
-#ifdef IBS_HAVE_PCAP
-    auto w = can::PcapWriter::open(pcap);
-    if (!w) throw std::invalid_argument("--pcap " + pcap + ": " + w.error);
-    files_->pcap = std::move(w.transport);
-#else
-    throw std::invalid_argument("--pcap: this ibs was built without libpcap (apt-get install libpcap-dev)");
-#endif
   }
 }
 

@@ -15,11 +15,10 @@
 #include <set>
 #include <sstream>
 #include <fstream>
-
-#include "ibs/base/text_file.hpp"
 #include <filesystem>
 #include <stdexcept>
 
+#include "ibs/base/text_file.hpp"
 #include "ibs/devices/drives.hpp"
 #include "ibs/lustbus/byte_log.hpp"
 #include "ibs/lustbus/code.hpp"
