@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ibs/base/time.hpp"
+#include "ibs/devices/settings.hpp"
 
 namespace CLI {
 class App;

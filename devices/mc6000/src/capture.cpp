@@ -13,8 +13,7 @@ CaptureFormat format(const DeviceSettings& s) {
   CaptureFormat f;
   const int supi = supi_of(s);
   const int ibcnf = ibcnf_of(s);
-  f.supi = static_cast<std::uint8_t>(supi);
-  f.ibcnf = static_cast<std::uint8_t>(ibcnf);
+  f.layout = {static_cast<std::uint8_t>(supi), static_cast<std::uint8_t>(ibcnf)};
   // The non-throwing form: this is in the master library, which the embedded build compiles
   // without exceptions. Settings the servo refuses never reach a capture; none for them anyway.
   const Expected<Layout> layout = try_make_layout(supi, ibcnf, interbus::BusKind::remote);

@@ -166,13 +166,13 @@ class Descriptor final : public DriveDescriptor {
 #if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header& h) const override {
     DeviceSettings s;
-    set_layout(s, h.supi, h.ibcnf);
+    for (const SettingSpec& spec : kSettings) {
+      if (const trace::HeaderSetting* given = h.setting(spec.name)) s.drive.set_integer(spec.name, given->value);
+    }
     return s;
   }
   void write_trace_settings(const Configuration& config, trace::Header& h) const override {
-    h.supi = supi_of(config.settings);
-    h.ibcnf = ibcnf_of(config.settings);
-    h.supi_given = h.ibcnf_given = true;
+    for (const SettingSpec& spec : kSettings) h.set_setting(spec.name, config.settings.drive.integer(spec));
   }
   std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config) const override {
     return mc6000::make_pd_master(layout_of(config.settings));

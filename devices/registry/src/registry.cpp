@@ -154,6 +154,18 @@ SettingsRefusal check_settings(const DriveKind& kind, const SettingValues& value
   return {};
 }
 
-trace::Vocabulary trace_vocabulary() { return {names(), drivecom::kTargetKeys}; }
+trace::Vocabulary trace_vocabulary() {
+  // The header settings: the integer settings that place a device on the ring, as the kinds
+  // declare them (a trace header's value is an integer).
+  static const std::vector<std::string_view> settings = [] {
+    std::vector<std::string_view> out;
+    for (const std::string_view name : declared_setting_names()) {
+      const SettingSpec& spec = *any_declaration(name);
+      if (spec.kind == SettingKind::integer && uses(spec.faces, SettingFace::interbus)) out.push_back(name);
+    }
+    return out;
+  }();
+  return {names(), drivecom::kTargetKeys, settings};
+}
 
 }  // namespace ibs::devices

@@ -148,8 +148,9 @@ Scenario parse_scenario_json(const std::string& text, const std::string& file);
 std::string write_scenario_toml(const Scenario& s);
 std::string write_scenario_json(const Scenario& s);
 
-// Equality of meaning: fields that do not apply are not compared (settings the device's kind
-// refuses, e.g. a VF1000's supi/ibcnf; of an entry only the fields its action uses, never
+// Equality of meaning: fields that do not apply are not compared (a drive's own setting compares
+// as the drive reads it, its default when not given, and one its kind does not declare not at
+// all; of an entry only the fields its action uses, never
 // source_line), so every valid scenario survives
 // a write/parse round trip equal.
 bool operator==(const DeviceConfig& a, const DeviceConfig& b);
