@@ -91,7 +91,7 @@ int main() {
   using namespace ibs;
   const auto& kind = devices::mc6000::descriptor();
   devices::DeviceSettings bad;
-  bad.supi = 13;
+  bad.drive.set_integer("supi", 13);
   const auto refused = kind.try_configure(bad);
   if (refused) return 1;
   print(refused.error());

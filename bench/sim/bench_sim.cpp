@@ -139,8 +139,8 @@ Scenario full_bus(Duration duration) {
     DeviceConfig d;
     d.name = "mc" + std::to_string(i);
     d.kind = "mc6000";
-    d.supi = 12;
-    d.ibcnf = 2;
+    d.settings.set_integer("supi", 12);
+    d.settings.set_integer("ibcnf", 2);
     d.phase = std::chrono::microseconds(i * 15);
     s.devices.push_back(d);
     TimelineEntry e;

@@ -2,6 +2,16 @@
 
 namespace ibs::devices {
 
+std::string_view to_string(SettingKind k) {
+  switch (k) {
+    case SettingKind::integer: return "integer";
+    case SettingKind::boolean: return "boolean";
+    case SettingKind::duration: return "time";
+    case SettingKind::choice: return "choice";
+  }
+  return "?";
+}
+
 // The throwing forms, on top of the drives' non-throwing ones (not in the embedded build).
 #if IBS_EXCEPTIONS
 Configuration DriveDescriptor::configure(const DeviceSettings& s) const {

@@ -158,8 +158,6 @@ std::size_t* header_line(Header& h, std::string_view key) {
   auto& l = h.lines;
   if (key == "device") return &l.device;
   if (key == "words") return &l.words;
-  if (key == "supi") return &l.supi;
-  if (key == "ibcnf") return &l.ibcnf;
   if (key == "init") return &l.init;
   if (key == "request") return &l.request;
   if (key == "request-at") return &l.request_at;
@@ -174,6 +172,9 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
   if (const std::size_t* first = header_line(h, key); first != nullptr && *first != 0) {
     fail(file, line, "header '" + std::string(key) + "' given twice (first on line " + std::to_string(*first) + ")");
   }
+  if (const HeaderSetting* first = h.setting(key)) {
+    fail(file, line, "header '" + std::string(key) + "' given twice (first on line " + std::to_string(first->line) + ")");
+  }
   if (key == "device") {
     h.lines.device = line;
     if (!known(value, vocabulary.devices)) {
@@ -185,20 +186,6 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
     const auto w = lookup(value, kWords);
     if (!w) fail(file, line, "words: '" + std::string(value) + "' is not one of " + choices(kWords));
     h.words = *w;
-  } else if (key == "supi" || key == "ibcnf") {
-    const auto n = parse_number(value);
-    if (!n || *n < 0 || *n > 255) {
-      fail(file, line, std::string(key) + ": '" + std::string(value) + "' is not an integer 0..255");
-    }
-    if (key == "supi") {
-      h.lines.supi = line;
-      h.supi = static_cast<int>(*n);
-      h.supi_given = true;
-    } else {
-      h.lines.ibcnf = line;
-      h.ibcnf = static_cast<int>(*n);
-      h.ibcnf_given = true;
-    }
   } else if (key == "init") {
     h.lines.init = line;
     const auto i = lookup(value, kInits);
@@ -223,12 +210,46 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
                            std::to_string(kMaxGapLimit) + " steps a gap may stand for");
     }
     h.max_gap_given = true;
+  } else if (vocabulary.settings.empty() || known(key, vocabulary.settings)) {
+    // A drive's setting: its range is the drive's (the replay adapters check it); the format
+    // holds 0..255.
+    const auto n = parse_number(value);
+    if (!n || *n < 0 || *n > 255) {
+      fail(file, line, std::string(key) + ": '" + std::string(value) + "' is not an integer 0..255");
+    }
+    // In the vocabulary's order, so that a header written again reads the same.
+    const auto rank = [&vocabulary](std::string_view k) {
+      return std::find(vocabulary.settings.begin(), vocabulary.settings.end(), k) - vocabulary.settings.begin();
+    };
+    auto at = h.settings.end();
+    if (!vocabulary.settings.empty()) {
+      at = std::find_if(h.settings.begin(), h.settings.end(),
+                        [&](const HeaderSetting& s) { return rank(s.key) > rank(key); });
+    }
+    h.settings.insert(at, HeaderSetting{std::string(key), static_cast<int>(*n), line});
   } else {
     fail(file, line, "unknown header '" + std::string(key) + "'");
   }
 }
 
 }  // namespace
+
+const HeaderSetting* Header::setting(std::string_view key) const {
+  for (const HeaderSetting& s : settings) {
+    if (s.key == key) return &s;
+  }
+  return nullptr;
+}
+
+void Header::set_setting(std::string_view key, int value) {
+  for (HeaderSetting& s : settings) {
+    if (s.key == key) {
+      s.value = value;
+      return;
+    }
+  }
+  settings.push_back({std::string(key), value, 0});
+}
 
 std::string_view to_string(WordsKind w) { return name_of(w, kWords); }
 std::string_view to_string(DeviceStart s) { return name_of(s, kInits); }
@@ -534,8 +555,7 @@ std::string write(const Trace& t) {
   out += "# format: ibs-trace 1\n";
   out += "# device: " + h.device + "\n";
   out += "# words: " + std::string(to_string(h.words)) + "\n";
-  if (h.supi_given) out += "# supi: " + std::to_string(h.supi) + "\n";
-  if (h.ibcnf_given) out += "# ibcnf: " + std::to_string(h.ibcnf) + "\n";
+  for (const HeaderSetting& s : h.settings) out += "# " + s.key + ": " + std::to_string(s.value) + "\n";
   if (h.init_given) out += "# init: " + std::string(to_string(h.init)) + "\n";
   if (h.request) out += "# request: " + to_string(*h.request) + "\n";
   if (h.request_at_given) out += "# request-at: " + std::to_string(h.request_at) + "\n";

@@ -86,8 +86,8 @@ std::vector<std::uint8_t> encode_configuration(const Configuration& c) {
     put16(b, d.pcp.offset);
     put16(b, d.pcp.length);
     put8(b, static_cast<std::size_t>(d.values));
-    put8(b, d.supi);
-    put8(b, d.ibcnf);
+    put8(b, d.layout[0]);
+    put8(b, d.layout[1]);
     put_text(b, d.name, "the name is", d.name);
     put_text(b, d.unit, "the unit is", d.name);
   }
@@ -124,8 +124,7 @@ Device describe(const std::string& name, const std::string& kind_name, const dev
     d.kind = capture->kind;
     const devices::CaptureFormat f = capture->format(settings);
     d.values = f.values;
-    d.supi = f.supi;
-    d.ibcnf = f.ibcnf;
+    d.layout = f.layout;
   }
   return d;
 }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ibs/devices/registry.hpp"
@@ -50,15 +51,26 @@ Node json_tree(const std::string& text, const std::string& file);
 struct DeviceLines {
   std::size_t table = 0;
   std::size_t name = 0;
-  std::size_t supi = 0;
-  std::size_t ibcnf = 0;
   std::size_t bus = 0;
   std::size_t phase = 0;
   std::size_t jitter = 0;
   std::size_t watchdog_ms = 0;
   std::size_t watchdog_reaction = 0;
-  std::size_t keypad = 0;
-  std::size_t reset_time = 0;
+  std::vector<std::pair<std::string, std::size_t>> settings;  // the drive's own, by name
+
+  // The line of a setting by its name, generic or the drive's own; 0 when not in the file.
+  [[nodiscard]] std::size_t line_of(std::string_view setting) const {
+    if (setting == "name") return name;
+    if (setting == "bus") return bus;
+    if (setting == "phase") return phase;
+    if (setting == "jitter") return jitter;
+    if (setting == "watchdog_ms") return watchdog_ms;
+    if (setting == "watchdog_reaction") return watchdog_reaction;
+    for (const auto& [key, line] : settings) {
+      if (key == setting) return line;
+    }
+    return 0;
+  }
 };
 struct EntryLines {
   std::size_t table = 0;

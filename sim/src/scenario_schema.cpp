@@ -21,9 +21,19 @@ const std::vector<std::string_view> kTopKeys = {"name",   "duration", "bus",
                                                 "device", "timeline", "random_faults"};
 const std::vector<std::string_view> kBusKeys = {"cycle_time", "baud", "software_time",
                                                 "recovery_cycles"};
-const std::vector<std::string_view> kDeviceKeys = {
-    "name",  "type",   "supi",        "ibcnf",       "bus",
-    "phase", "jitter", "initialised", "watchdog_ms", "watchdog_reaction", "keypad", "reset_time"};
+// A device's keys every kind takes; each kind's own settings come from its declarations
+// (devices/settings.hpp), read by device_keys().
+const std::vector<std::string_view> kGenericDeviceKeys = {"name",        "type",        "bus",
+                                                          "phase",       "jitter",      "initialised",
+                                                          "watchdog_ms", "watchdog_reaction"};
+const std::vector<std::string_view>& device_keys() {
+  static const std::vector<std::string_view> keys = [] {
+    std::vector<std::string_view> k = kGenericDeviceKeys;
+    for (const std::string_view name : devices::declared_setting_names()) k.push_back(name);
+    return k;
+  }();
+  return keys;
+}
 const std::vector<std::string_view> kActionKeys = {
     "state", "emergency_stop", "block_power", "speed", "frequency",     "read",
     "write", "describe",       "wait_state",  "fault", "master_restart"};
@@ -200,13 +210,43 @@ void read_bus(const Reader& r, const Node& n, BusSettings& bus, SourceMap& lines
   });
 }
 
+// One of a drive's own settings by its declaration's type. An integer's range is the
+// validator's (the wing words it); here only what the value type cannot hold.
+void read_setting(const Reader& r, const Node& v, const devices::SettingSpec& spec, devices::SettingValues& out) {
+  const std::string key(spec.name);
+  switch (spec.kind) {
+    case devices::SettingKind::integer:
+      out.set_integer(key, r.int_value(v, key, spec.min, spec.max));
+      return;
+    case devices::SettingKind::boolean:
+      out.set_boolean(key, r.boolean(v, key));
+      return;
+    case devices::SettingKind::duration:
+      out.set_duration(key, r.time(v, key));
+      return;
+    case devices::SettingKind::choice: {
+      const std::string given = r.string(v, key);
+      std::string names;
+      for (std::size_t i = 0; i < spec.choices.size(); ++i) {
+        if (spec.choices[i] == given) {
+          out.set(key, devices::SettingKind::choice, static_cast<std::int64_t>(i));
+          return;
+        }
+        names += std::string(i == 0 ? "" : i + 1 == spec.choices.size() ? " or " : ", ") + "\"" +
+                 std::string(spec.choices[i]) + "\"";
+      }
+      r.fail(v.line, "'" + key + "' must be " + names + ", not \"" + given + "\"");
+    }
+  }
+}
+
 void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l) {
   if (n.kind != Kind::table) {
     r.fail(n.line, "each 'device' must be " + r.table_word() + ", not " + r.kind_name(n));
   }
   l.table = n.line;
   bool has_type = false;
-  r.members(n, kDeviceKeys, "in a device", [&](const std::string& key, std::size_t, const Node& v) {
+  r.members(n, device_keys(), "in a device", [&](const std::string& key, std::size_t, const Node& v) {
     if (key == "name") {
       d.name = r.string(v, key);
       l.name = v.line;
@@ -217,12 +257,6 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
       }
       d.kind = type;
       has_type = true;
-    } else if (key == "supi") {
-      d.supi = r.int_value(v, key, 0, 12);
-      l.supi = v.line;
-    } else if (key == "ibcnf") {
-      d.ibcnf = r.int_value(v, key, 0, 4);
-      l.ibcnf = v.line;
     } else if (key == "bus") {
       const std::string bus = r.string(v, key);
       if (bus != "local" && bus != "remote") {
@@ -244,23 +278,24 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
     } else if (key == "watchdog_reaction") {
       d.watchdog_reaction = r.int_value(v, key, 0, 3);
       l.watchdog_reaction = v.line;
-    } else if (key == "keypad") {
-      d.keypad = r.boolean(v, key);
-      l.keypad = v.line;
-    } else if (key == "reset_time") {
-      d.reset_time = r.time(v, key);
-      l.reset_time = v.line;
+    } else {
+      // A drive's own setting: read by the device's kind's declaration when the type came first,
+      // else by the first kind's that declares it; whether the kind has it is checked below.
+      const devices::DriveKind* kind = has_type ? devices::find_drive_kind(d.kind) : nullptr;
+      const devices::SettingSpec* spec = kind != nullptr ? (*kind)->setting(key) : nullptr;
+      if (spec == nullptr) spec = devices::any_declaration(key);
+      read_setting(r, v, *spec, d.settings);
+      l.settings.emplace_back(key, v.line);
     }
   });
   if (l.name == 0) r.fail(n.line, "a device needs a 'name'");
   if (!has_type)
     r.fail(n.line, "device '" + d.name + "' needs a 'type' (" + devices::drive_kind_names(", ", " or ", "\"") + ")");
-  // A setting the kind does not have at all (a VF1000's 405-SUPI, seed 001 3.1.2); the struct keeps
-  // its default for it.
-  const devices::DriveDescriptor& kind = **devices::find_drive_kind(d.kind);
-  for (const auto& [key, line] : {std::pair<std::string_view, std::size_t>{"supi", l.supi}, {"ibcnf", l.ibcnf}}) {
-    if (line == 0) continue;
-    if (const auto refusal = kind.refused_setting(key)) r.fail(line, std::string(*refusal));
+  // A setting the kind does not declare (a VF1000 has no 405-SUPI, seed 001 3.1.2): refused on
+  // its line, in the words of the kind that declares it.
+  const devices::DriveKind& kind = *devices::find_drive_kind(d.kind);
+  for (const auto& [key, line] : l.settings) {
+    if (const auto refusal = devices::refuse_setting_name(kind, key)) r.fail(line, refusal->message);
   }
 }
 

@@ -170,16 +170,7 @@ class Validator {
     }
     const devices::DriveDescriptor& k = **kind;
     // The line a setting the drive refuses was given on (the table's when it was not given).
-    const auto line_of = [&l](std::string_view setting) -> std::size_t {
-      if (setting == "supi") return l.supi;
-      if (setting == "ibcnf") return l.ibcnf;
-      if (setting == "bus") return l.bus;
-      if (setting == "watchdog_ms") return l.watchdog_ms;
-      if (setting == "watchdog_reaction") return l.watchdog_reaction;
-      if (setting == "keypad") return l.keypad;
-      if (setting == "reset_time") return l.reset_time;
-      return 0;
-    };
+    const auto line_of = [&l](std::string_view setting) -> std::size_t { return l.line_of(setting); };
     const auto refuse = [&](const devices::SettingsError& e) {
       fail(pick(line_of(e.setting()), pick(line_of(e.fallback()), table)), who + e.what());
     };
@@ -204,6 +195,9 @@ class Validator {
     }
     try {
       k.check_watchdog(settings);
+      // Whatever the wing's own checks leave: the drive's settings against its declarations (a
+      // scenario built in code may give a VF1000 an MC6000's setting; a file's reader refused it).
+      ibs::detail::require<devices::SettingsError>(devices::check_settings(*kind, settings.drive));
     } catch (const devices::SettingsError& e) {
       refuse(e);
     }

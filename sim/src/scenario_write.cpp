@@ -29,6 +29,22 @@ OutField yes(std::string key) {
   return {std::move(key), "true", {}};
 }
 
+// A drive's own setting, as its declaration's type writes it.
+OutField setting(const devices::SettingSpec& spec, std::int64_t v) {
+  const std::string key(spec.name);
+  switch (spec.kind) {
+    case devices::SettingKind::integer: return integer(key, v);
+    case devices::SettingKind::boolean: return {key, v != 0 ? "true" : "false", {}};
+    case devices::SettingKind::duration: return time(key, Duration{v});
+    case devices::SettingKind::choice:
+      if (v >= 0 && static_cast<std::size_t>(v) < spec.choices.size()) {
+        return text(key, spec.choices[static_cast<std::size_t>(v)]);
+      }
+      return integer(key, v);
+  }
+  return integer(key, v);
+}
+
 // A raw value: an integer where it is one (every valid write value is).
 OutField raw(std::string key, double v) {
   if (std::trunc(v) == v && std::abs(v) < 9007199254740992.0) {
@@ -54,18 +70,25 @@ std::vector<OutField> bus_fields(const BusSettings& b) {
 
 std::vector<OutField> device_fields(const DeviceConfig& d) {
   std::vector<OutField> f{text("name", d.name), text("type", d.kind)};
-  // The settings the kind takes (a VF1000 has no 405-SUPI / 406-IBCNF).
+  // The kind's own settings (devices/settings.hpp), in its declarations' order: those that place
+  // the device on the ring always (even at their default) and next to its bus side, the others
+  // when given, after the generic ones.
   const devices::DriveKind* k = devices::find_drive_kind(d.kind);
-  if (k == nullptr || !(*k)->refused_setting("supi")) f.push_back(integer("supi", d.supi));
-  if (k == nullptr || !(*k)->refused_setting("ibcnf")) f.push_back(integer("ibcnf", d.ibcnf));
+  const auto own = [&](bool ring) {
+    if (k == nullptr) return;
+    for (const devices::SettingSpec& spec : (*k)->settings()) {
+      if (spec.places_device != ring) continue;
+      if (ring || d.settings.given(spec.name)) f.push_back(setting(spec, d.settings.value(spec)));
+    }
+  };
+  own(true);
   f.push_back(text("bus", bus_text(d.bus)));
   if (d.phase != Duration::zero()) f.push_back(time("phase", d.phase));
   if (d.jitter != Duration::zero()) f.push_back(time("jitter", d.jitter));
   f.push_back({"initialised", d.initialised ? "true" : "false", {}});
   if (d.watchdog_ms) f.push_back(integer("watchdog_ms", *d.watchdog_ms));
   if (d.watchdog_reaction) f.push_back(integer("watchdog_reaction", *d.watchdog_reaction));
-  if (d.keypad) f.push_back({"keypad", *d.keypad ? "true" : "false", {}});
-  if (d.reset_time) f.push_back(time("reset_time", *d.reset_time));
+  own(false);
   return f;
 }
 

@@ -447,7 +447,7 @@ TEST(DriveRegistry, TheDissectorsKindsAreTheRegistrysCaptureKinds) {
   for (const DriveKind& k : drive_kinds()) {
     for (int ibcnf = 0; ibcnf <= 3; ++ibcnf) {
       DeviceSettings s;
-      s.ibcnf = ibcnf;
+      s.drive.set_integer("ibcnf", ibcnf);
       try {
         (void)k->configure(s);  // the writer asks for the format of configured settings only
       } catch (const SettingsError&) {
@@ -459,7 +459,7 @@ TEST(DriveRegistry, TheDissectorsKindsAreTheRegistrysCaptureKinds) {
   }
   EXPECT_EQ(find_drive_kind("vf1000")->capture->format(DeviceSettings{}).values, CaptureValues::hz_005);
   DeviceSettings q16;
-  q16.ibcnf = 2;
+  q16.drive.set_integer("ibcnf", 2);
   EXPECT_EQ(find_drive_kind("mc6000")->capture->format(q16).values, CaptureValues::q16);
 }
 

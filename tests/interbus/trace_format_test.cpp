@@ -12,7 +12,9 @@ namespace {
 // The names the layers above give the format (the drive registry's kinds, DRIVECOM's targets).
 constexpr std::string_view kDevices[] = {"vf1000", "mc6000"};
 constexpr std::string_view kTargets[] = {"start-up-inhibit", "ready", "on", "enabled"};
-const Vocabulary kVocabulary{kDevices, kTargets};
+// The drives' header settings (the registry gives their declarations' names).
+constexpr std::string_view kSettings[] = {"supi", "ibcnf"};
+const Vocabulary kVocabulary{kDevices, kTargets, kSettings};
 
 constexpr const char* kInquiry = R"(# format: ibs-trace 1
 # device: vf1000
@@ -36,8 +38,7 @@ TEST(TraceFormat, ReadsTheSpecExample) {
   EXPECT_EQ(t.header.request->parameter, 22);
   EXPECT_EQ(t.header.request_at, 1U);
   EXPECT_EQ(t.header.max_gap, 100000U);
-  EXPECT_EQ(t.header.supi, 11);
-  EXPECT_EQ(t.header.ibcnf, 2);
+  EXPECT_TRUE(t.header.settings.empty());  // none given: the drive's defaults apply
   ASSERT_EQ(t.rows.size(), 7U);
   EXPECT_EQ(t.rows[4].s2m[0].value, 0x88E8);
   EXPECT_EQ(t.rows[4].line, 9U);
@@ -208,6 +209,33 @@ TEST(TraceFormat, AHeaderGivenTwiceIsAnError) {
                                            first + ")");
     }
   }
+}
+
+// A drive's setting is `# NAME: VALUE`, any name the vocabulary lists: kept with its line, written
+// back in the vocabulary's order, so that a header written again reads byte for byte the same.
+TEST(TraceFormat, DriveSettingsAreHeadersOfTheVocabulary) {
+  const std::string text = "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n# ibcnf: 3\n# supi: 12\n0, 0000, 0000\n";
+  const Trace t = parse(text, "s.trace", kVocabulary);
+  ASSERT_EQ(t.header.settings.size(), 2U);
+  EXPECT_EQ(t.header.settings[0], (HeaderSetting{"supi", 12, 5}));
+  EXPECT_EQ(t.header.settings[1], (HeaderSetting{"ibcnf", 3, 4}));
+  EXPECT_EQ(write(t), "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n# supi: 12\n# ibcnf: 3\n0, 0000, 0000\n");
+  EXPECT_EQ(write(parse(write(t), "again.trace", kVocabulary)), write(t));
+  // A name the vocabulary does not list is no header at all.
+  try {
+    parse("# format: ibs-trace 1\n# device: mc6000\n# words: pd\n# keypad: 1\n0, 0000, 0000\n", "k.trace", kVocabulary);
+    ADD_FAILURE() << "accepted";
+  } catch (const TraceError& e) {
+    EXPECT_EQ(std::string(e.what()), "k.trace:4: unknown header 'keypad'");
+  }
+  // Set in code: appended, and written.
+  Trace u = t;
+  u.header.settings.clear();
+  u.header.set_setting("supi", 3);
+  u.header.set_setting("supi", 4);
+  ASSERT_EQ(u.header.settings.size(), 1U);
+  EXPECT_EQ(u.header.setting("supi")->value, 4);
+  EXPECT_EQ(u.header.setting("ibcnf"), nullptr);
 }
 
 // trace-format.md, "Events": `! fault` and `! fault-cleared` between two data rows.

@@ -45,8 +45,8 @@ LayoutOptions mc6000(int supi, int ibcnf, std::optional<std::string> bus = {},
                      bool as_json = false) {
   LayoutOptions o;
   o.device = "mc6000";
-  o.supi = supi;
-  o.ibcnf = ibcnf;
+  o.settings.set_integer("supi", supi);
+  o.settings.set_integer("ibcnf", ibcnf);
   o.bus = std::move(bus);
   o.json = as_json;
   return o;
@@ -336,7 +336,7 @@ TEST(LayoutCommand, RefusedPairsExitTwoWithTheManualsRange) {
 TEST(LayoutCommand, BadOptionsExitTwo) {
   LayoutOptions o;
   o.device = "mc6000";
-  o.supi = 11;
+  o.settings.set_integer("supi", 11);
   Outcome r = layout(o);
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err,

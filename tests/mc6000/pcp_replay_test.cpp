@@ -97,15 +97,15 @@ TEST(PcpTraceAdapters, RefuseHeadersTheyCannotServe) {
   h.words = trace::WordsKind::pd;
   EXPECT_THROW(make_pcp_device_side(h), std::invalid_argument);
   h.words = trace::WordsKind::pcp;
-  h.supi = 4;  // 1 process-data word, no PCP
+  h.set_setting("supi", 4);  // 1 process-data word, no PCP
   EXPECT_THROW(make_pcp_master_side(h), std::invalid_argument);
-  h.supi = 12;
+  h.set_setting("supi", 12);
   EXPECT_THROW(make_pcp_device_side(h), std::invalid_argument);
-  h.supi = 9;
+  h.set_setting("supi", 9);
   EXPECT_EQ(trace_channel_words(h), 2);
-  h.supi = 3;
+  h.set_setting("supi", 3);
   EXPECT_EQ(trace_channel_words(h), 4);
-  h.supi = 11;
+  h.set_setting("supi", 11);
   EXPECT_EQ(trace_channel_words(h), 1);
   auto master = make_pcp_master_side(h);
   trace::Request state;
@@ -120,7 +120,7 @@ TEST(PcpTraceExplainer, ReadsEveryFrameKind) {
   trace::Header h;
   h.device = "mc6000";
   h.words = trace::WordsKind::pcp;
-  h.supi = 3;
+  h.set_setting("supi", 3);
   auto e = make_pcp_explainer(h);
   const std::array<Word, 4> abort{0x0E00, 0, 0, 0};
   EXPECT_EQ(e->explain_m2s(abort), "M>S ABORT (resynchronise)");

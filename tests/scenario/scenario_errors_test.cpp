@@ -294,7 +294,7 @@ TEST(ScenarioErrors, Watchdogs) {
                              "the MC6000 always reports E-OP1 (seed 001, 3.2.4)"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nkeypad = true\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"keypad\": true}", 5,
-                             "device 'x': 'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times "
+                             "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times "
                              "have no KEYPAD row"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"vf1000\"\nreset_time = \"0 s\"\n", 11,
                              "{\"name\": \"x\", \"type\": \"vf1000\",\n \"reset_time\": \"0 s\"}", 5,

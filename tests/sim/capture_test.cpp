@@ -34,8 +34,7 @@ capture::Configuration two_devices() {
   mc.out = {0, 3};
   mc.pcp = {0, 1};
   mc.values = capture::Values::q16;
-  mc.supi = 11;
-  mc.ibcnf = 2;
+  mc.layout = {11, 2};  // 405-SUPI, 406-IBCNF
   mc.unit = "rpm";
   capture::Device vf;
   vf.name = "fan";

@@ -160,8 +160,8 @@ TEST(Recording, ADeviceWithoutProcessDataIsNotRecorded) {
   DeviceConfig pcp_only;
   pcp_only.name = "parameters";
   pcp_only.kind = "mc6000";
-  pcp_only.supi = 3;  // 4 PCP words, no process data
-  pcp_only.ibcnf = 0;
+  pcp_only.settings.set_integer("supi", 3);  // 4 PCP words, no process data
+  pcp_only.settings.set_integer("ibcnf", 0);
   DeviceConfig vf;
   vf.name = "inverter";
   vf.kind = "vf1000";
@@ -243,8 +243,8 @@ Scenario big_ring() {
     DeviceConfig d;
     d.name = "d" + std::to_string(i);
     d.kind = i % 10 == 9 ? "vf1000" : "mc6000";
-    d.supi = i % 10 == 8 ? 11 : 12;
-    d.ibcnf = 2;
+    d.settings.set_integer("supi", i % 10 == 8 ? 11 : 12);
+    d.settings.set_integer("ibcnf", 2);
     // Every third servo samples exactly at the cycle ends (4 ms, a whole number of periods):
     // those samples come after the exchange.
     d.phase = i % 3 == 0 ? Duration{0} : std::chrono::microseconds(37 * i);

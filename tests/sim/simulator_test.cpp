@@ -133,7 +133,7 @@ TEST(Simulator, Vf1000ChannelTransferTimesOfSection71MotorRunningAndKeypad) {
       s.duration = 4s;
       DeviceConfig v = vf1000();
       v.phase = phase;
-      v.keypad = row.keypad;  // the scenario key `keypad`
+      v.settings.set_boolean("keypad", row.keypad);  // the scenario key `keypad`
       s.devices = {v};
       s.timeline = {at(0s, "vf", Action::read, "", 0, 85),  // clears the power-on bit
                     at(0s, "vf", Action::state, "enabled"), at(0s, "vf", Action::frequency, "", 20),
@@ -399,7 +399,7 @@ TEST(Simulator, Vf1000ResetTimeFromTheScenario) {
   Scenario s;
   s.duration = 4s;
   DeviceConfig v = vf1000();
-  v.reset_time = 1500ms;
+  v.settings.set_duration("reset_time", 1500ms);
   s.devices = {v};
   s.timeline = {at(0s, "vf", Action::state, "enabled"), at(500ms, "vf", Action::fault_device, "", 0, 0, 100ms),
                 at(1000ms, "vf", Action::state, "enabled")};
@@ -458,8 +458,8 @@ TEST(Simulator, Mc6000ParametersThroughPcpInTheManualsTime) {
   Scenario s;
   s.duration = 2s;
   DeviceConfig m = mc6000();
-  m.supi = 9;
-  m.ibcnf = 1;
+  m.settings.set_integer("supi", 9);
+  m.settings.set_integer("ibcnf", 1);
   s.devices = {m};
   s.timeline = {at(0s, "mc", Action::read, "", 0, 85),             // Initiate, then clears SERR
                 at(400ms, "mc", Action::read, "", 0, 406),
@@ -504,13 +504,13 @@ TEST(Simulator, PcpTransferTimesPerChannelWidthAsDocumented) {
     s.duration = 4s;
     for (const Row& r : rows) {
       DeviceConfig m = mc6000("mc" + std::to_string(r.supi));
-      m.supi = r.supi;
-      m.ibcnf = r.ibcnf;
+      m.settings.set_integer("supi", r.supi);
+      m.settings.set_integer("ibcnf", r.ibcnf);
       s.devices.push_back(m);
     }
     for (int k = 0; full && k < 61; ++k) {
       DeviceConfig m = mc6000("fill" + std::to_string(k));
-      m.supi = 12;
+      m.settings.set_integer("supi", 12);
       s.devices.push_back(m);
     }
     for (const Row& r : rows) s.timeline.push_back(at(0s, "mc" + std::to_string(r.supi), Action::read, "", 0, 85));
@@ -544,8 +544,8 @@ TEST(Simulator, Mc6000SwitchedOnWithAnotherSupiNoLongerFitsTheRing) {
   Scenario s;
   s.duration = 2s;
   DeviceConfig m = mc6000();
-  m.supi = 9;
-  m.ibcnf = 1;
+  m.settings.set_integer("supi", 9);
+  m.settings.set_integer("ibcnf", 1);
   s.devices = {m};
   s.timeline = {at(0s, "mc", Action::read, "", 0, 85), at(300ms, "mc", Action::write, "", 12, 405),
                 at(300ms, "mc", Action::read, "", 0, 77), at(800ms, "mc", Action::fault_power_cycle)};
@@ -609,8 +609,8 @@ TEST(Simulator, ReportsProgressInSimulatedTime) {
 TEST(Simulator, RefusesAConfigurationTheBusOrTheDeviceRefuses) {
   Scenario s;
   DeviceConfig m = mc6000();
-  m.supi = 7;
-  m.ibcnf = 2;
+  m.settings.set_integer("supi", 7);
+  m.settings.set_integer("ibcnf", 2);
   s.devices = {m};
   try {
     Simulator sim(s);

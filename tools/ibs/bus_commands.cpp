@@ -50,7 +50,11 @@ namespace {
 std::string kinds_with_layout_options() {
   std::string s;
   for (const devices::DriveKind& k : devices::drive_kinds()) {
-    if (!k->check_layout_options(true, true, true)) s += (s.empty() ? "" : ", ") + std::string(k->name());
+    devices::SettingValues all;
+    for (const devices::SettingSpec& spec : k->settings()) {
+      if (spec.places_device) all.set(spec.name, spec.kind, spec.fallback);
+    }
+    if (!k->check_layout_options(all, true)) s += (s.empty() ? "" : ", ") + std::string(k->name());
   }
   return s;
 }
@@ -75,12 +79,18 @@ void add_bus_commands(CLI::App& app, BusCommandState& state) {
   state.layout = app.add_subcommand(
       "layout", "print a drive's ID code and the meaning of each process-data word");
   state.layout->add_option("DEVICE", lo.device, devices::drive_kind_names(", ", " or "))->required();
-  state.layout->add_option_function<int>(
-      "--supi", [&lo](const int& v) { lo.supi = v; },
-      "405-SUPI, 0..12: process data / PCP split (" + layout_kinds + ")");
-  state.layout->add_option_function<int>(
-      "--ibcnf", [&lo](const int& v) { lo.ibcnf = v; },
-      "406-IBCNF, 0..4: reference and actual format (" + layout_kinds + ")");
+  // One option per setting a kind declares as placing the device on the ring, its range and
+  // meaning from the declaration; the value's range is the drive's to judge (its words).
+  for (const std::string_view name : devices::declared_setting_names()) {
+    const devices::DriveKind* owner = nullptr;
+    const devices::SettingSpec& spec = *devices::any_declaration(name, &owner);
+    if (!spec.places_device || spec.kind != devices::SettingKind::integer) continue;
+    const std::string help = (spec.parameter.empty() ? "" : std::string(spec.parameter) + ", ") +
+                             std::string(spec.range) + ": " + std::string(spec.meaning) + " (" + layout_kinds + ")";
+    state.layout->add_option_function<int>(
+        "--" + std::string(spec.name), [&lo, name = spec.name](const int& v) { lo.settings.set_integer(name, v); },
+        help);
+  }
   state.layout->add_option_function<std::string>(
       "--bus", [&lo](const std::string& v) { lo.bus = v; },
       "local or remote (" + layout_kinds + "; default remote)");

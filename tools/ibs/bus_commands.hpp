@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ibs/base/time.hpp"
+#include "ibs/devices/settings.hpp"
 
 namespace CLI {
 class App;
@@ -16,13 +17,12 @@ class App;
 
 namespace ibs::cli {
 
-// `ibs layout DEVICE [--supi S --ibcnf C] [--bus local|remote] [--json]`, DEVICE a drive kind's
-// name; which options it takes is its descriptor's (the MC6000 needs --supi and --ibcnf, the
-// VF1000 takes none).
+// `ibs layout DEVICE [--SETTING VALUE...] [--bus local|remote] [--json]`, DEVICE a drive kind's
+// name; the options are the settings the kinds declare as placing the device on the ring
+// (devices/settings.hpp), and which of them a kind needs is its descriptor's.
 struct LayoutOptions {
   std::string device;              // the drive kind's name
-  std::optional<int> supi;         // 405-SUPI
-  std::optional<int> ibcnf;        // 406-IBCNF
+  devices::SettingValues settings;  // the --SETTING options given
   std::optional<std::string> bus;  // "local" or "remote" (default)
   bool json = false;
 };

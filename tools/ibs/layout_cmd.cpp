@@ -138,13 +138,12 @@ int layout_command(const LayoutOptions& o, std::ostream& out, std::ostream& err)
     return kExitBadInput;
   }
   const devices::DriveDescriptor& d = **kind;
-  if (const auto refusal = d.check_layout_options(o.supi.has_value(), o.ibcnf.has_value(), o.bus.has_value())) {
+  if (const auto refusal = d.check_layout_options(o.settings, o.bus.has_value())) {
     err << "ibs layout: " << *refusal << "\n";
     return kExitBadInput;
   }
   devices::DeviceSettings settings;
-  if (o.supi) settings.supi = *o.supi;
-  if (o.ibcnf) settings.ibcnf = *o.ibcnf;
+  settings.drive = o.settings;
   if (o.bus) {
     if (*o.bus == "local") {
       settings.bus = interbus::BusKind::local;

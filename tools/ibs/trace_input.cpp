@@ -55,8 +55,7 @@ void write_decoded_json(const trace::Trace& t, const trace::Explainer& e, std::o
   nlohmann::json header;
   header["device"] = h.device;
   header["words"] = std::string(trace::to_string(h.words));
-  if (h.supi_given) header["supi"] = h.supi;
-  if (h.ibcnf_given) header["ibcnf"] = h.ibcnf;
+  for (const trace::HeaderSetting& s : h.settings) header[s.key] = s.value;
   header["init"] = std::string(trace::to_string(h.init));
   if (h.request) {
     header["request"] = trace::to_string(*h.request);

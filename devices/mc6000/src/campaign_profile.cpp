@@ -13,6 +13,7 @@
 #include "ibs/devices/mc6000/driver.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/settings.hpp"
 #include "ibs/devices/mc6000/service.hpp"
 #include "ibs/pcp/client.hpp"
 #include "ibs/pcp/data_types.hpp"
@@ -55,8 +56,7 @@ class Profile final : public CampaignProfile {
     for (const auto& m : mcs) {
       CampaignRingDevice c;
       c.name = m.name;
-      c.settings.supi = m.supi;
-      c.settings.ibcnf = m.ibcnf;
+      set_layout(c.settings, m.supi, m.ibcnf);
       c.settings.bus = rng.chance(0.3) ? interbus::BusKind::local : interbus::BusKind::remote;
       c.phase = rng.between(Duration{0}, kSamplePeriod - Duration{1});
       c.jitter = std::string(m.name) == "mcpd" ? Duration{0} : rng.pick(std::vector<Duration>{0us, 20us, 50us, 100us});
@@ -75,7 +75,7 @@ class Profile final : public CampaignProfile {
     d.period = kSamplePeriod;
     d.has_channel = l.pcp_words > 0;
     d.has_pd = l.pd_words > 0;
-    d.description = "MC6000 SUPI " + std::to_string(s.supi) + " / IBCNF " + std::to_string(s.ibcnf) + ", " +
+    d.description = "MC6000 SUPI " + std::to_string(supi_of(s)) + " / IBCNF " + std::to_string(ibcnf_of(s)) + ", " +
                     std::to_string(l.pd_words) + " process-data word(s), " +
                     (d.has_channel ? "PCP " + std::to_string(l.pcp_words) + " word(s)" : std::string("no PCP")) +
                     ", " + (s.bus == interbus::BusKind::local ? "local" : "remote") + " bus, 409-BUTWD " +
@@ -87,14 +87,14 @@ class Profile final : public CampaignProfile {
     }
     d.watchdog_parameter = kButwd;
     // Seed 001 3.2.2 / 3.2.3: SUPI 0..12, IBCNF 0..3 (4, LISIM, the project does not support).
-    d.layout = {{kSupi, "405-SUPI", s.supi, 0, kSupiMax},
-                {kIbcnf, "406-IBCNF", s.ibcnf, 0, static_cast<int>(Ibcnf::speed_torque)}};
+    d.layout = {{kSupi, "405-SUPI", supi_of(s), 0, kSupiMax},
+                {kIbcnf, "406-IBCNF", ibcnf_of(s), 0, static_cast<int>(Ibcnf::speed_torque)}};
     for (const pcp::ParameterInfo& p : kParameters) {
       CampaignParam m;
       m.number = p.number;
       m.eeprom = p.category == pcp::Category::eeprom;
       m.factory = p.default_value;
-      m.initial = p.number == kSupi ? s.supi : p.number == kIbcnf ? s.ibcnf : p.number == kButwd ? *s.watchdog_ms
+      m.initial = p.number == kSupi ? supi_of(s) : p.number == kIbcnf ? ibcnf_of(s) : p.number == kButwd ? *s.watchdog_ms
                                                                                                  : p.default_value;
       m.min = p.min;
       m.max = p.max;
@@ -171,7 +171,7 @@ class Profile final : public CampaignProfile {
   void restore_layout(DeviceEmulator& emulator, const CampaignRingDevice& c) const override {
     // At the keypad: 405/406 back to the ring's configuration, in RAM and EEPROM.
     DriveParameters& ps = dynamic_cast<Mc6000Device&>(emulator).drive().parameters();
-    for (const auto& [number, v] : {std::pair<std::uint16_t, int>{kSupi, c.settings.supi}, {kIbcnf, c.settings.ibcnf}}) {
+    for (const auto& [number, v] : {std::pair<std::uint16_t, int>{kSupi, supi_of(c.settings)}, {kIbcnf, ibcnf_of(c.settings)}}) {
       ps.preset(number, v);
     }
   }

@@ -1,6 +1,7 @@
 #include "ibs/devices/mc6000/capture.hpp"
 
 #include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/settings.hpp"
 
 namespace ibs::devices::mc6000 {
 
@@ -10,11 +11,12 @@ namespace {
 // exchanges no process data (IBCNF 0) or is the LISIM one; seed 001 3.2.3.
 CaptureFormat format(const DeviceSettings& s) {
   CaptureFormat f;
-  f.supi = static_cast<std::uint8_t>(s.supi);
-  f.ibcnf = static_cast<std::uint8_t>(s.ibcnf);
+  const int supi = supi_of(s);
+  const int ibcnf = ibcnf_of(s);
+  f.layout = {static_cast<std::uint8_t>(supi), static_cast<std::uint8_t>(ibcnf)};
   // The non-throwing form: this is in the master library, which the embedded build compiles
   // without exceptions. Settings the servo refuses never reach a capture; none for them anyway.
-  const Expected<Layout> layout = try_make_layout(s.supi, s.ibcnf, interbus::BusKind::remote);
+  const Expected<Layout> layout = try_make_layout(supi, ibcnf, interbus::BusKind::remote);
   if (!layout) {
     f.values = CaptureValues::none;
     return f;

@@ -4,6 +4,7 @@
 
 #include "ibs/devices/mc6000/driver.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/settings.hpp"
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/pcp/parameters.hpp"
 
@@ -54,16 +55,19 @@ constexpr DriveFacts kFacts{
     .channel_words = trace::WordsKind::pcp,
 #endif
     .channel_name = "PCP",
+    .settings = kSettings,
 };
 
 // The layout of the settings; the refusal names 405-SUPI or 406-IBCNF (the other as fallback).
 Expected<Layout, SettingsRefusal> try_layout_of(const DeviceSettings& s) {
-  Expected<Layout> l = try_make_layout(s.supi, s.ibcnf, s.bus);
+  const int supi = supi_of(s);
+  Expected<Layout> l = try_make_layout(supi, ibcnf_of(s), s.bus);
   if (l) return std::move(l).value();
   // 405-SUPI is checked first (try_make_layout): only its own range makes a refusal about it.
   const bool about_supi = l.error().code == ErrorCode::layout_setting_out_of_range &&
-                          (s.supi < 0 || s.supi > kSupiMax);
-  return SettingsRefusal(l.error(), about_supi ? "supi" : "ibcnf", about_supi ? "ibcnf" : "supi");
+                          (supi < 0 || supi > kSupiMax);
+  const std::string_view first = about_supi ? kSupiSetting.name : kIbcnfSetting.name;
+  return SettingsRefusal(l.error(), first, about_supi ? kIbcnfSetting.name : kSupiSetting.name);
 }
 
 // The layout of a configuration try_configure gave: other settings throw SettingsError or, in the
@@ -130,21 +134,8 @@ class Descriptor final : public DriveDescriptor {
           "(seed 001, 3.2.4)",
           "watchdog_reaction");
     }
-    if (s.keypad) {
-      return refuse(
-          ErrorCode::setting_of_another_drive,
-          "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row",
-          "keypad");
-    }
-    if (s.reset_time) {
-      return refuse(ErrorCode::setting_of_another_drive,
-                    "'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)",
-                    "reset_time");
-    }
     return {};
   }
-
-  std::optional<std::string_view> refused_setting(std::string_view) const override { return std::nullopt; }
 
   std::optional<std::string> lacks(Capability c, const Configuration& config) const override {
     const Layout l = layout_of(config.settings);
@@ -175,14 +166,13 @@ class Descriptor final : public DriveDescriptor {
 #if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header& h) const override {
     DeviceSettings s;
-    s.supi = h.supi;
-    s.ibcnf = h.ibcnf;
+    for (const SettingSpec& spec : kSettings) {
+      if (const trace::HeaderSetting* given = h.setting(spec.name)) s.drive.set_integer(spec.name, given->value);
+    }
     return s;
   }
   void write_trace_settings(const Configuration& config, trace::Header& h) const override {
-    h.supi = config.settings.supi;
-    h.ibcnf = config.settings.ibcnf;
-    h.supi_given = h.ibcnf_given = true;
+    for (const SettingSpec& spec : kSettings) h.set_setting(spec.name, config.settings.drive.integer(spec));
   }
   std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config) const override {
     return mc6000::make_pd_master(layout_of(config.settings));
@@ -201,16 +191,24 @@ class Descriptor final : public DriveDescriptor {
   }
 #endif
 
-  std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool) const override {
-    if (supi && ibcnf) return std::nullopt;
-    return "mc6000 needs --supi (405-SUPI, 0..12) and --ibcnf (406-IBCNF, 0..4)";
+  std::optional<std::string> check_layout_options(const SettingValues& given, bool) const override {
+    // Both layout settings, as the servo reads both at power-on (3.2.2, 3.2.3).
+    std::string needs;
+    bool missing = false;
+    for (const SettingSpec& spec : kSettings) {
+      missing = missing || !given.given(spec.name);
+      needs += std::string(needs.empty() ? "" : " and ") + "--" + std::string(spec.name) + " (" +
+               std::string(spec.parameter) + ", " + std::string(spec.range) + ")";
+    }
+    if (!missing) return std::nullopt;
+    return std::string(kName) + " needs " + needs;
   }
 
   LayoutDescription layout(const Configuration& config) const override;
   Expected<RingEntry, SettingsRefusal> try_ring_entry(
       std::span<const std::string_view> fields) const override;
   std::string ring_spec(const DeviceSettings& s) const override {
-    return std::string(kName) + ":" + std::to_string(s.supi) + (s.bus == interbus::BusKind::local ? ":local" : "");
+    return std::string(kName) + ":" + std::to_string(supi_of(s)) + (s.bus == interbus::BusKind::local ? ":local" : "");
   }
 };
 
@@ -218,7 +216,9 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
   const Layout l = layout_of(config.settings);
   LayoutDescription r;
   const std::string meaning = ibcnf_meaning(l.ibcnf);
-  r.settings = {{"supi", l.supi, ""}, {"ibcnf", static_cast<int>(l.ibcnf), ""}, {"ibcnf_meaning", std::nullopt, meaning}};
+  r.settings = {{std::string(kSupiSetting.name), l.supi, ""},
+                {std::string(kIbcnfSetting.name), static_cast<int>(l.ibcnf), ""},
+                {std::string(kIbcnfSetting.name) + "_meaning", std::nullopt, meaning}};
   r.exchanges_data = l.exchanges_data;
   r.title = "MC6000 servo: 405-SUPI = " + std::to_string(l.supi) + ", 406-IBCNF = " +
             std::to_string(static_cast<int>(l.ibcnf)) + " (" +

@@ -8,6 +8,7 @@
 #include "ibs/devices/mc6000/layout.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/devices/mc6000/pcp_served.hpp"
+#include "ibs/devices/mc6000/settings.hpp"
 #include "ibs/pcp/client.hpp"
 #include "ibs/pcp/explain.hpp"
 #include "ibs/pcp/server.hpp"
@@ -203,16 +204,18 @@ class PcpExplainer final : public ibs::trace::Explainer {
 
 int trace_channel_words(const ibs::trace::Header& h) {
   check_header(h);
-  if (h.supi < 0 || h.supi > kSupiMax) {
-    throw std::invalid_argument("`supi: " + std::to_string(h.supi) +
+  const trace::HeaderSetting* given_supi = h.setting(kSupiSetting.name);
+  const int supi = given_supi != nullptr ? given_supi->value : static_cast<int>(kSupiSetting.fallback);
+  if (supi < 0 || supi > kSupiMax) {
+    throw std::invalid_argument("`supi: " + std::to_string(supi) +
                                 "` is outside 0..12 (seed 001 3.2.2)");
   }
-  if (h.ibcnf_given)
-    (void)make_layout(h.supi, h.ibcnf);  // throws LayoutError
-  const int words = kSupiTable[static_cast<std::size_t>(h.supi)].pcp_words;
-  if (h.supi == 0 || words == 0) {
+  if (const trace::HeaderSetting* ibcnf = h.setting(kIbcnfSetting.name))
+    (void)make_layout(supi, ibcnf->value);  // throws LayoutError
+  const int words = kSupiTable[static_cast<std::size_t>(supi)].pcp_words;
+  if (supi == 0 || words == 0) {
     throw std::invalid_argument(
-        "`supi: " + std::to_string(h.supi) +
+        "`supi: " + std::to_string(supi) +
         "` gives the MC6000 no PCP channel (seed 001 3.2.2); use 1, 2, 3, 5, 6, 8, 9 or 11");
   }
   return words;

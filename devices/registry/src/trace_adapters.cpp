@@ -35,15 +35,24 @@ const DriveKind& kind_of(const trace::Trace& t) {
 // The header's line a setting was given on; a refused setting is reported there, falling back to
 // the other setting's line and then to the device line.
 std::size_t line_of(const Header& h, std::string_view setting) {
-  if (setting == "supi") return h.lines.supi;
-  if (setting == "ibcnf") return h.lines.ibcnf;
-  return 0;
+  const trace::HeaderSetting* s = h.setting(setting);
+  return s != nullptr ? s->line : 0;
 }
 
 Configuration configuration_of(const trace::Trace& t, const DriveKind& k) {
   const Header& h = t.header;
+  // A setting the kind does not declare, on its line (a VF1000 has no 405-SUPI, seed 001 3.1.2).
+  for (const trace::HeaderSetting& s : h.settings) {
+    if (const auto refusal = refuse_setting_name(k, s.key)) {
+      throw TraceError(t.file, s.line != 0 ? s.line : h.lines.device, refusal->message);
+    }
+  }
   try {
-    return k->configure(k->trace_settings(h));
+    const DeviceSettings settings = k->trace_settings(h);
+    Configuration c = k->configure(settings);
+    // What the wing's own checks leave, against its declarations.
+    ibs::detail::require<SettingsError>(check_settings(k, settings.drive));
+    return c;
   } catch (const SettingsError& e) {
     const std::size_t first = line_of(h, e.setting());
     const std::size_t second = line_of(h, e.fallback());

@@ -7,6 +7,7 @@
 #include "ibs/devices/vf1000/channel.hpp"
 #include "ibs/devices/vf1000/driver.hpp"
 #include "ibs/devices/vf1000/parameters.hpp"
+#include "ibs/devices/vf1000/settings.hpp"
 #include "ibs/drivecom/control_word.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
 
@@ -65,6 +66,7 @@ constexpr DriveFacts kFacts{
     .channel_words = trace::WordsKind::comm,
 #endif
     .channel_name = "the communication word",
+    .settings = kSettings,
 };
 
 SettingsRefusal refuse(ErrorCode code, std::string message, std::string_view setting) {
@@ -97,20 +99,16 @@ class Descriptor final : public DriveDescriptor {
                         " is out of range (0..3, 907-IBCOD)",
                     "watchdog_reaction");
     }
-    if (s.reset_time && (*s.reset_time <= Duration::zero() || *s.reset_time > std::chrono::seconds(60))) {
-      return refuse(
-          ErrorCode::setting_out_of_range,
-          "'reset_time' must be above 0 s and at most 60 s (the self-test after RESET FAULT)",
-          "reset_time");
+    if (s.drive.given(kResetTimeSetting.name)) {
+      const Duration reset = s.drive.duration(kResetTimeSetting);
+      if (reset < Duration{kResetTimeSetting.min} || reset > Duration{kResetTimeSetting.max}) {
+        return refuse(ErrorCode::setting_out_of_range,
+                      "'" + std::string(kResetTimeSetting.name) + "' must be " +
+                          std::string(kResetTimeSetting.range) + " (the self-test after RESET FAULT)",
+                      kResetTimeSetting.name);
+      }
     }
     return {};
-  }
-
-  std::optional<std::string_view> refused_setting(std::string_view key) const override {
-    // The VF1000 has neither (seed 001, 3.1.2).
-    if (key == "supi") return "'supi' is an MC6000 setting; a VF1000 has no 405-SUPI";
-    if (key == "ibcnf") return "'ibcnf' is an MC6000 setting; a VF1000 has no 406-IBCNF";
-    return std::nullopt;
   }
 
   std::optional<std::string> lacks(Capability, const Configuration&) const override { return std::nullopt; }
@@ -143,8 +141,8 @@ class Descriptor final : public DriveDescriptor {
   }
 #endif
 
-  std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const override {
-    if (!supi && !ibcnf && !bus) return std::nullopt;
+  std::optional<std::string> check_layout_options(const SettingValues& given, bool bus) const override {
+    if (given.empty() && !bus) return std::nullopt;
     return "--supi, --ibcnf and --bus apply to the mc6000 only; the VF1000 always reports 33BH on the "
            "remote bus (seed 001 3.1.2)";
   }

@@ -103,8 +103,8 @@ namespace detail {
 // A value or the error that prevented it, for the configuration-time operations that build
 // something (C++20 has no std::expected). As std::expected, it converts to true when it holds
 // the value:
-//   auto layout = devices::mc6000::try_make_layout(supi, ibcnf);
-//   if (!layout) return layout.error();
+//   auto config = descriptor.try_configure(settings);
+//   if (!config) return config.error();
 template <typename T, typename E = Error>
 class [[nodiscard]] Expected {
  public:

@@ -6,6 +6,7 @@
 // free kind number and never reuses one, so existing captures keep decoding.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string_view>
 
@@ -25,8 +26,9 @@ enum class CaptureValues : std::uint8_t {
 // A device's value format in a capture, and the layout settings the dissector shows with it.
 struct CaptureFormat {
   CaptureValues values = CaptureValues::none;
-  std::uint8_t supi = 0;   // 0: the drive has no such setting
-  std::uint8_t ibcnf = 0;
+  // The two layout bytes the dissector shows (docs/pcap.md; the MC6000's 405-SUPI and 406-IBCNF):
+  // the drive's own settings that lay out its words, 0 where it has none.
+  std::array<std::uint8_t, 2> layout{};
 };
 
 struct CaptureFace {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "ibs/devices/driver.hpp"
+#include "ibs/devices/settings.hpp"
 #include "ibs/base/error.hpp"
 #include "ibs/interbus/id_code.hpp"
 #include "ibs/base/time.hpp"
@@ -33,25 +34,22 @@
 
 namespace ibs::devices {
 
-// The settings a scenario, a trace header or the command line gives one device. Which of them a
-// drive takes, and what they mean for it, is its descriptor's business (the MC6000 reads
-// 405-SUPI / 406-IBCNF at power-on; watchdog_ms is the VF1000's 906-IB-WD and the MC6000's
-// 409-BUTWD).
+// The settings a scenario, a trace header or the command line gives one device: the bus side and
+// the bus watchdog every drive has (watchdog_ms is the VF1000's 906-IB-WD and the MC6000's
+// 409-BUTWD; watchdog_reaction a drive's reaction to it where it has a choice), and the drive's
+// own settings by name, which its wing declares (DriveFacts::settings, settings.hpp) and reads.
 struct DeviceSettings {
-  int supi = 11;
-  int ibcnf = 2;
   interbus::BusKind bus = interbus::BusKind::remote;
   std::optional<int> watchdog_ms;
   std::optional<int> watchdog_reaction;
-  std::optional<bool> keypad;           // VF1000: a KEYPAD plugged in (seed 001, 7.1's other rows)
-  std::optional<Duration> reset_time;   // VF1000: the self-test after RESET FAULT (5.2.1, D13)
+  SettingValues drive;
 
   friend bool operator==(const DeviceSettings&, const DeviceSettings&) = default;
 };
 
 // A setting the drive refuses: the Error (ErrorCode::setting_*, or layout_* for an MC6000
-// layout) and the setting it is about. `setting` names it as the files do ("supi", "ibcnf", "bus",
-// "watchdog_ms", "watchdog_reaction", "keypad", "reset_time"), `fallback` the one to point at when
+// layout) and the setting it is about. `setting` names it as the files do ("bus", "watchdog_ms",
+// "watchdog_reaction" or a declared setting's name), `fallback` the one to point at when
 // the first is not in the file, so that a reader can name the line. No error: the settings suit.
 struct SettingsRefusal : Error {
   SettingsRefusal() = default;
@@ -152,6 +150,8 @@ struct DriveFacts {
   std::optional<trace::WordsKind> channel_words;
 #endif
   std::string_view channel_name;
+  // The drive's own settings (settings.hpp), in the order files and tables list them.
+  std::span<const SettingSpec> settings{};
 };
 
 class DriveDescriptor {
@@ -163,23 +163,24 @@ class DriveDescriptor {
 
   [[nodiscard]] const DriveFacts& facts() const { return facts_; }
   [[nodiscard]] std::string_view name() const { return facts_.name; }
+  // The drive's own settings, and one of them by name (nullptr: the drive has no such setting).
+  [[nodiscard]] std::span<const SettingSpec> settings() const { return facts_.settings; }
+  [[nodiscard]] const SettingSpec* setting(std::string_view name) const { return find_setting(settings(), name); }
 
   // --- configuration -------------------------------------------------------------------------
   // Where the settings place the device on the bus; refuses a bus side or a layout the drive
   // refuses.
   [[nodiscard]] virtual Expected<Configuration, SettingsRefusal> try_configure(
       const DeviceSettings& s) const = 0;
-  // Refuses a watchdog setting out of the drive's range, and a setting of another drive kind's
-  // (an MC6000 given the VF1000's watchdog_reaction, keypad or reset_time).
+  // Refuses a watchdog setting out of the drive's range (and a watchdog_reaction the drive does
+  // not take), and a value of its own settings the manual's words say more about than
+  // check_settings does (registry.hpp). A setting another kind declares is check_settings'.
   [[nodiscard]] virtual SettingsRefusal validate_watchdog(const DeviceSettings& s) const = 0;
 #if IBS_EXCEPTIONS
   // try_configure and validate_watchdog, throwing SettingsError for what they refuse.
   [[nodiscard]] Configuration configure(const DeviceSettings& s) const;
   void check_watchdog(const DeviceSettings& s) const;
 #endif
-  // The message for a setting the drive does not have at all ("'supi' is an MC6000 setting; a
-  // VF1000 has no 405-SUPI"), nullopt for one it takes.
-  [[nodiscard]] virtual std::optional<std::string_view> refused_setting(std::string_view key) const = 0;
   // Why the configured device lacks a capability ("has no PCP channel (405-SUPI 12)"), nullopt
   // when it has it.
   [[nodiscard]] virtual std::optional<std::string> lacks(Capability c, const Configuration& config) const = 0;
@@ -194,7 +195,7 @@ class DriveDescriptor {
 
 #if !IBS_EMBEDDED
   // --- traces (../shared/specs/trace-format.md) -------------------------------------------------
-  // The settings a trace header gives (supi, ibcnf); the headers a recording of the device writes.
+  // The settings a trace header gives; the headers a recording of the device writes.
   [[nodiscard]] virtual DeviceSettings trace_settings(const trace::Header& h) const = 0;
   virtual void write_trace_settings(const Configuration& config, trace::Header& h) const = 0;
   // `words: pd`: the master side and the explainer for the configured device.
@@ -209,7 +210,8 @@ class DriveDescriptor {
 
   // --- the command line ------------------------------------------------------------------------
   // `ibs layout`: a refusal of the options given (nullopt: they suit the drive), then the words.
-  [[nodiscard]] virtual std::optional<std::string> check_layout_options(bool supi, bool ibcnf, bool bus) const = 0;
+  // `given`: the declared settings the options gave; `bus`: whether --bus was given.
+  [[nodiscard]] virtual std::optional<std::string> check_layout_options(const SettingValues& given, bool bus) const = 0;
   [[nodiscard]] virtual LayoutDescription layout(const Configuration& config) const = 0;
   // `ibs timing`: the fields after the name in NAME[:FIELD...], or the refusal of them. ring_spec
   // writes the argument that stands for a device of these settings ("mc6000:11").

@@ -4,6 +4,7 @@
 
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/settings.hpp"
 
 namespace ibs::devices {
 
@@ -124,8 +125,8 @@ namespace mc6000 {
 std::unique_ptr<DeviceEmulator> make_emulator(const Configuration& config, DeviceStart start, Time now) {
   const DeviceSettings& s = config.settings;
   Mc6000DeviceConfig c;
-  c.supi = s.supi;
-  c.ibcnf = s.ibcnf;
+  c.supi = supi_of(s);
+  c.ibcnf = ibcnf_of(s);
   c.bus = s.bus;
   if (s.watchdog_ms) c.bus_watchdog = std::chrono::milliseconds(*s.watchdog_ms);
   return std::make_unique<Mc6000Device>(c, start, now);

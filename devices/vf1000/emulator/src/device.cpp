@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "ibs/devices/vf1000/parameters.hpp"
+#include "ibs/devices/vf1000/settings.hpp"
 #include "ibs/vf1000_channel/comm_word.hpp"
 
 namespace ibs::devices {
@@ -149,8 +150,8 @@ namespace vf1000 {
 std::unique_ptr<DeviceEmulator> make_emulator(const Configuration& config, DeviceStart start, Time now) {
   const DeviceSettings& s = config.settings;
   Vf1000DeviceConfig c;
-  if (s.keypad) c.keypad = *s.keypad;
-  if (s.reset_time) c.pd.reset_time = *s.reset_time;
+  c.keypad = s.drive.boolean(kKeypadSetting);
+  c.pd.reset_time = s.drive.duration(kResetTimeSetting);
   auto d = std::make_unique<Vf1000Device>(c, start, now);
   if (s.watchdog_ms) d->channel().set_value(pnr::kIbWd, static_cast<Word>(*s.watchdog_ms));
   if (s.watchdog_reaction) d->channel().set_value(pnr::kIbcod, static_cast<Word>(*s.watchdog_reaction));

@@ -91,13 +91,23 @@ struct Row {
 // samples and 23 hours of VF1000 samples, far beyond any table, and bound the replay's work.
 inline constexpr std::uint64_t kMaxGapLimit = 10'000'000;
 
+// A drive's own setting in the header, `# NAME: VALUE`: which names a drive kind takes, and in
+// what range, is its declarations' (devices/settings.hpp), checked by the replay adapters; the
+// format only knows an integer 0..255 and the line.
+struct HeaderSetting {
+  std::string key;
+  int value = 0;
+  std::size_t line = 0;  // 0: set in code
+
+  friend bool operator==(const HeaderSetting&, const HeaderSetting&) = default;
+};
+
 struct Header {
   std::string device;  // the drive kind's name ("vf1000", "mc6000")
   WordsKind words = WordsKind::pd;
-  int supi = 11;
-  int ibcnf = 2;
-  bool supi_given = false;
-  bool ibcnf_given = false;
+  // The drive's settings, in the vocabulary's order (as given, without one); written after
+  // `words`.
+  std::vector<HeaderSetting> settings;
   DeviceStart init = DeviceStart::operational;
   bool init_given = false;
   std::optional<Request> request;
@@ -108,9 +118,13 @@ struct Header {
   bool max_gap_given = false;
   // The line each header was read from (0 = not given), for errors found after parsing.
   struct Lines {
-    std::size_t device = 0, words = 0, supi = 0, ibcnf = 0, init = 0, request = 0, request_at = 0,
-                outcome = 0, max_gap = 0;
+    std::size_t device = 0, words = 0, init = 0, request = 0, request_at = 0, outcome = 0, max_gap = 0;
   } lines;
+
+  // A setting by name; nullptr when the header does not give it.
+  [[nodiscard]] const HeaderSetting* setting(std::string_view key) const;
+  // Gives (or replaces) a setting, appended after the others.
+  void set_setting(std::string_view key, int value);
 };
 
 struct Trace {
@@ -139,6 +153,9 @@ class TraceError : public std::runtime_error {
 struct Vocabulary {
   std::span<const std::string_view> devices;
   std::span<const std::string_view> targets;
+  // The drives' settings a header may give (`# NAME: VALUE`); empty: any key that is no other
+  // header.
+  std::span<const std::string_view> settings;
 };
 
 // Parses a whole trace; `file` names it in errors.

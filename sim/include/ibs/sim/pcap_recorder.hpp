@@ -6,6 +6,7 @@
 // implementation. Recording is not the cycle path: it allocates and throws.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <ostream>
@@ -54,8 +55,7 @@ struct Device {
   interbus::Slice out;          // in the OUT area (what the master sends)
   interbus::Slice pcp;          // in both PCP areas
   Values values = Values::none;
-  std::uint8_t supi = 0;   // layout settings of a drive that has them (CaptureFormat)
-  std::uint8_t ibcnf = 0;
+  std::array<std::uint8_t, 2> layout{};  // layout settings of a drive that has them (CaptureFormat)
   std::string unit;        // of the reference and actual value: "rpm", "Hz"
 };
 

@@ -20,8 +20,6 @@ namespace ibs::sim {
 struct DeviceConfig {
   std::string name;                 // unique in the scenario, 1..32 of [A-Za-z0-9_-]
   std::string kind;                 // the drive kind's name, the files' `type` (devices/registry.hpp)
-  int supi = 11;                    // MC6000 405-SUPI (read at power-on)
-  int ibcnf = 2;                    // MC6000 406-IBCNF
   interbus::BusKind bus = interbus::BusKind::remote;  // the VF1000 is always a remote-bus device
   Duration phase{0};                // first sample after start (0 <= phase < sample period)
   Duration jitter{0};               // each sample happens up to +-jitter from its nominal time
@@ -30,8 +28,9 @@ struct DeviceConfig {
                                     // power-on bit still set in 85-SIOF/SERR
   std::optional<int> watchdog_ms;   // MC6000 409-BUTWD (ms, 0 = off); VF1000 906-IB-WD (ms)
   std::optional<int> watchdog_reaction;  // VF1000 907-IBCOD (0..3)
-  std::optional<bool> keypad;            // VF1000: a KEYPAD plugged in (seed 001, 7.1)
-  std::optional<Duration> reset_time;    // VF1000: self-test after RESET FAULT (5.2.1; default 4 s)
+  // The drive's own settings, as its wing declares them (devices/settings.hpp); one not given
+  // holds the declaration's default.
+  devices::SettingValues settings;
 };
 
 // The settings the device's drive kind reads (devices/descriptor.hpp).
@@ -149,8 +148,9 @@ Scenario parse_scenario_json(const std::string& text, const std::string& file);
 std::string write_scenario_toml(const Scenario& s);
 std::string write_scenario_json(const Scenario& s);
 
-// Equality of meaning: fields that do not apply are not compared (settings the device's kind
-// refuses, e.g. a VF1000's supi/ibcnf; of an entry only the fields its action uses, never
+// Equality of meaning: fields that do not apply are not compared (a drive's own setting compares
+// as the drive reads it, its default when not given, and one its kind does not declare not at
+// all; of an entry only the fields its action uses, never
 // source_line), so every valid scenario survives
 // a write/parse round trip equal.
 bool operator==(const DeviceConfig& a, const DeviceConfig& b);

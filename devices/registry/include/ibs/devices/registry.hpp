@@ -7,6 +7,8 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <vector>
 #include <span>
 #include <string>
 #include <string_view>
@@ -42,6 +44,21 @@ const DriveKind* find_drive_kind(std::string_view name);
 // The kinds' names for messages: joined by `separator`, the last two by `last`, each in `quote`:
 // drive_kind_names(", ", " or ", "\"") = "\"mc6000\" or \"vf1000\"".
 std::string drive_kind_names(std::string_view separator, std::string_view last, std::string_view quote = "");
+
+// A device's own settings against its kind's declarations (settings.hpp): a name the kind does
+// not declare (ErrorCode::setting_of_another_drive, in the words of the kind that declares it, or
+// setting_invalid for a name no kind declares), a value of the wrong type (setting_invalid) or out
+// of the declared range (setting_out_of_range). Each message names the setting, the value and
+// the limit. No error: they suit. The wing's own checks (try_configure, validate_watchdog) give
+// the manual's words for its ranges; this is what every reader checks besides.
+SettingsRefusal check_settings(const DriveKind& kind, const SettingValues& values);
+// Only the name: what check_settings says about `name` for `kind`, nullopt when it declares it.
+std::optional<SettingsRefusal> refuse_setting_name(const DriveKind& kind, std::string_view name);
+// Every kind's declared settings' names, each once, the kinds in order (for a reader's list of
+// the keys it knows and its near-miss suggestions).
+std::vector<std::string_view> declared_setting_names();
+// The kind that declares `name` first in drive_kinds(), and its declaration; nullptr for none.
+const SettingSpec* any_declaration(std::string_view name, const DriveKind** owner = nullptr);
 
 // What the trace reader may accept (trace::Vocabulary): the kinds' names and DRIVECOM's targets.
 trace::Vocabulary trace_vocabulary();
