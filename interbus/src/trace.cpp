@@ -153,6 +153,31 @@ std::string hex4(unsigned v) {
   return s;
 }
 
+// Text of a file put into a message: a byte that is not printable is shown as \xNN (a NUL would
+// otherwise end the message where a reader sees it).
+std::string printable(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7F) {
+      out += c;
+    } else {
+      static constexpr std::string_view kHex = "0123456789ABCDEF";
+      out += "\\x";
+      out += kHex[u >> 4U];
+      out += kHex[u & 0xFU];
+    }
+  }
+  return out;
+}
+
+// A header name as the format writes them: lower-case letters, digits, '-' and '_'.
+bool header_name(std::string_view key) {
+  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+  });
+}
+
 // The line a header key was first given on (0: not yet).
 std::size_t* header_line(Header& h, std::string_view key) {
   auto& l = h.lines;
@@ -210,7 +235,7 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
                            std::to_string(kMaxGapLimit) + " steps a gap may stand for");
     }
     h.max_gap_given = true;
-  } else if (vocabulary.settings.empty() || known(key, vocabulary.settings)) {
+  } else if (header_name(key) && (vocabulary.settings.empty() || known(key, vocabulary.settings))) {
     // A drive's setting: its range is the drive's (the replay adapters check it); the format
     // holds 0..255.
     const auto n = parse_number(value);
@@ -228,7 +253,7 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
     }
     h.settings.insert(at, HeaderSetting{std::string(key), static_cast<int>(*n), line});
   } else {
-    fail(file, line, "unknown header '" + std::string(key) + "'");
+    fail(file, line, "unknown header '" + printable(key) + "'");
   }
 }
 

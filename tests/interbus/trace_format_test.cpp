@@ -238,6 +238,22 @@ TEST(TraceFormat, DriveSettingsAreHeadersOfTheVocabulary) {
   EXPECT_EQ(u.header.setting("ibcnf"), nullptr);
 }
 
+// Found by trace_fuzz after the settings became headers: with no vocabulary any key was taken as
+// a drive's setting, and a key of NUL bytes gave a message that ended before it began. A setting
+// is a header name; any other key is unknown, and the message shows what it holds.
+TEST(TraceFormat, AnUnprintableHeaderIsUnknownAndShownAsItIs) {
+  const std::string text = std::string("# format: ibs-trace 1\n# device: vf1000\n# words: pd\n#\t") +
+                           std::string("\0\0\0uest", 7) + ": state enabled\n0, 0000 0000 0000, 0240 0000 0000\n";
+  for (const Vocabulary& v : {Vocabulary{}, kVocabulary}) {
+    try {
+      parse(text, "n.trace", v);
+      ADD_FAILURE() << "accepted";
+    } catch (const TraceError& e) {
+      EXPECT_EQ(std::string(e.what()), "n.trace:4: unknown header '\\x00\\x00\\x00uest'");
+    }
+  }
+}
+
 // trace-format.md, "Events": `! fault` and `! fault-cleared` between two data rows.
 TEST(TraceFormat, EventLinesBetweenRowsAreReadAndWrittenBack) {
   const std::string head = "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n";
