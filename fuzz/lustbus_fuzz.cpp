@@ -180,11 +180,7 @@ void fuzz_host(In& in) {
     b.code = kPosmodCode;
     b.max_user_data = 80;
     b.error_read = make_value("1%RDF");
-    b.asks_answer = [](char first) -> std::optional<bool> {
-      const auto st = parse_posmod_status(first);
-      if (!st) return std::nullopt;
-      return st->request;
-    };
+    b.asks_answer = &posmod_asks_answer;
     return b;
   }();
   Time now{0};

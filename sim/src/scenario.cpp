@@ -27,24 +27,27 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::string read_file(const std::string& path) {
-  try {
-    return read_text_file(path);
-  } catch (const FileReadError& e) {
-    throw ScenarioError(path, 0, e.what());
-  }
-}
-
 }  // namespace
 
-Scenario load_scenario(const std::string& path) {
+detail::ScenarioText detail::read_scenario_file(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext != ".toml" && ext != ".json") {
     throw ScenarioError(path, 0,
                         "unknown scenario format: the file name must end in .toml or .json");
   }
-  const std::string text = read_file(path);
-  return ext == ".toml" ? parse_scenario_toml(text, path) : parse_scenario_json(text, path);
+  ScenarioText s;
+  s.format = ext == ".json" ? Format::json : Format::toml;
+  try {
+    s.text = read_text_file(path);
+  } catch (const FileReadError& e) {
+    throw ScenarioError(path, 0, e.what());
+  }
+  return s;
+}
+
+Scenario load_scenario(const std::string& path) {
+  const detail::ScenarioText s = detail::read_scenario_file(path);
+  return s.format == detail::Format::toml ? parse_scenario_toml(s.text, path) : parse_scenario_json(s.text, path);
 }
 
 void validate_scenario(const Scenario& s, const std::string& file) {

@@ -19,6 +19,15 @@ namespace ibs::sim::detail {
 
 enum class Format : std::uint8_t { toml, json };
 
+// A scenario file's format and text, whichever bus it is for: .toml or .json by the extension
+// (either case), a regular file of bounded size (base/text_file.hpp); a ScenarioError naming the
+// file otherwise.
+struct ScenarioText {
+  Format format = Format::toml;
+  std::string text;
+};
+ScenarioText read_scenario_file(const std::string& path);
+
 // A value of either format with the line it starts on (1-based).
 struct Node {
   enum class Kind : std::uint8_t {

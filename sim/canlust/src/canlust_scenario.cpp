@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "ibs/devices/cda3000/parameters.hpp"
-#include "ibs/base/text_file.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "canlust_reader.hpp"
 #include "scenario_internal.hpp"
@@ -17,16 +16,6 @@ namespace ibs::sim::canlust {
 namespace {
 
 using detail::Node;
-
-std::string read_file(const std::string& path) {
-  try {
-    return read_text_file(path);  // regular files of bounded size only (a FIFO would block)
-  } catch (const FileReadError& e) {
-    throw ScenarioError(path, 0, e.what());
-  }
-}
-
-bool json_path(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }
 
 const Node* child(const Node& table, std::string_view key, std::size_t* key_line = nullptr) {
   for (std::size_t i = 0; i < table.keys.size(); ++i) {
@@ -110,7 +99,8 @@ bool is_canlust_tree(const detail::Node& root) {
 }
 
 Scenario load_scenario(const std::string& path) {
-  Scenario s = parse_scenario(read_file(path), path, json_path(path));
+  const detail::ScenarioText file = detail::read_scenario_file(path);
+  Scenario s = parse_scenario(file.text, path, file.format == detail::Format::json);
   if (s.name.empty()) s.name = std::filesystem::path(path).stem().string();
   return s;
 }

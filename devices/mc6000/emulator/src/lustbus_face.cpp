@@ -40,14 +40,6 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
   return std::nullopt;
 }
 
-// 11.6.3: the status byte leads the user data; bit 0 set makes it a request telegram, whose
-// answer the host fetches with an ENQUIRY.
-std::optional<bool> posmod_asks_answer(char first) {
-  const auto st = lustbus::parse_posmod_status(first);
-  if (!st) return std::nullopt;
-  return st->request;
-}
-
 lustbus::DeviceProcedures make_procedures() {
   lustbus::DeviceProcedures p;
   // 11.4: SLOAD = -1 opens the download, -2 ends it; SLOAD then reads -1 while the servo tests
@@ -63,7 +55,7 @@ lustbus::DeviceProcedures make_procedures() {
   b.code = lustbus::kPosmodCode;
   b.max_user_data = 80;
   b.error_read = lustbus::make_value("1%RDF");
-  b.asks_answer = &posmod_asks_answer;
+  b.asks_answer = &lustbus::posmod_asks_answer;  // 11.6.3: the status byte leads the user data
   p.block_transfer = b;
   return p;
 }

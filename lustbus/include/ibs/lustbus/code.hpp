@@ -128,6 +128,14 @@ constexpr std::optional<PosmodStatus> parse_posmod_status(char c) {
   if ((b & 0xF2U) != 0x30U) return std::nullopt;
   return PosmodStatus{(b & 0x01U) != 0, (b & 0x04U) != 0};
 }
+// Whether user data led by status byte `first` is a request telegram, whose answer the host
+// fetches with an ENQUIRY (bit 0); nullopt when `first` is no status byte. The form a
+// BlockTransferProcedure's asks_answer takes.
+constexpr std::optional<bool> posmod_asks_answer(char first) {
+  const auto st = parse_posmod_status(first);
+  if (!st) return std::nullopt;
+  return st->request;
+}
 
 // Whether an ENQUIRY of `c` reads 85-SIOF/SERR (and so clears it, 9.2): 00085, 00185, 20085.
 constexpr bool reads_siof(Code c) {
