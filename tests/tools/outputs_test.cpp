@@ -359,8 +359,10 @@ TEST(OutputFileRules, ALinkIsFollowedAndAFifoWrittenThroughNeverReplaced) {
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_TRUE(contains(r.out, fifo + ": a FIFO that no process reads")) << r.out;
   // With a reader, the capture goes through the FIFO, which stays a FIFO.
-  r = run_shell("(cat " + fifo + " > " + dir + "/got.pcap) & sleep 0.2; " + std::string(IBS_CLI) + " run --pcap " +
-                fifo + " >/dev/null 2>&1; echo rc=$?; wait");
+  // The reader first, until it waits in the FIFO's open (a fixed sleep loses on a loaded machine).
+  r = run_shell("cat " + fifo + " > " + dir + "/got.pcap & reader=$!; for i in $(seq 1 200); do "
+                "[ \"$(cat /proc/$reader/comm 2>/dev/null)\" = cat ] && grep -q '^State:.*S' /proc/$reader/status && break; "
+                "sleep 0.05; done; " + std::string(IBS_CLI) + " run --pcap " + fifo + " >/dev/null 2>&1; echo rc=$?; wait");
   EXPECT_TRUE(contains(r.out, "rc=0")) << r.out;
   EXPECT_TRUE(fs::is_fifo(fifo));
   EXPECT_EQ(slurp(dir + "/got.pcap").substr(0, 4), std::string("\x4D\x3C\xB2\xA1", 4)) << "the reader got the capture";
