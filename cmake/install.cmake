@@ -84,11 +84,11 @@ function(ibs_install)
     # The hosts of the other buses with their transports (docs/embedding.md, "Hosts on the other
     # buses"), each library after the ones that need it, then the system's.
     ibs_host_pc(ibs-lustbus "ibs LUSTBUS host (seed 000) with serial ports and pseudo-terminals"
-                "ibs_lustbus ibs_serial ibs_drive ibs_base" "-lutil -pthread")
+                "ibs_lustbus_serial ibs_lustbus ibs_serial ibs_drive ibs_base" "-lutil -pthread")
     ibs_host_pc(ibs-canlust "ibs CANLust master side (seed 003) with CAN over UDP and SocketCAN"
                 "ibs_can_transport ibs_canlust ibs_base" "-lpcap")
     ibs_host_pc(ibs-dfs1 "ibs PowerTec DFS-1 host (seed 004) with serial ports and pseudo-terminals"
-                "ibs_dfs1 ibs_serial ibs_base" "-lutil -pthread")
+                "ibs_dfs1_serial ibs_dfs1 ibs_serial ibs_base" "-lutil -pthread")
   endif()
 endfunction()
 

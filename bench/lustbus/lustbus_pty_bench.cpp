@@ -1,5 +1,5 @@
 // LUSTBUS over a pseudo-terminal in real time (docs/performance.md, "LUSTBUS over a pty"): the
-// host (transact_lustbus) asks an emulated VF1000 (serial::serve, reaction time 0) for 91-TYPE.
+// host (serial::transact, transports/serial/lustbus_host.hpp) asks an emulated VF1000 (serial::serve, reaction time 0) for 91-TYPE.
 // Reported per ENQUIRY: the whole transaction (request out, answer in, closing EOT out) and the
 // host's turnaround of seed 000, 10 step 4 -- the last answer byte read to the EOT written --
 // taken from the host's byte log timestamps; p50 and p99 over all iterations.
@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "ibs/devices/vf1000/lustbus_device.hpp"
-#include "ibs/serial/byte_log.hpp"
 #include "ibs/lustbus/served_receiver.hpp"
+#include "ibs/serial/byte_log.hpp"
+#include "ibs/serial/lustbus_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
-#include "lustbus_cmd.hpp"
 
 namespace {
 
@@ -78,7 +78,7 @@ void BM_PtyEnquiryRoundTrip(benchmark::State& state) {
     std::vector<double> round_trips;
     for (auto _ : state) {
       const auto t0 = std::chrono::steady_clock::now();
-      const lb::Outcome o = ibs::cli::transact_lustbus(port, host, request);
+      const lb::Outcome o = ibs::serial::transact(port, host, request);
       const auto t1 = std::chrono::steady_clock::now();
       if (o.kind != lb::OutcomeKind::value) state.SkipWithError("no value");
       round_trips.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());

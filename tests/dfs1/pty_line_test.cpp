@@ -1,5 +1,6 @@
 // Host against emulated DFS-1 controllers over a real pseudo-terminal pair, through the serial
-// transport and the loops of `ibs dfs1` (serial::serve, transact_dfs1), in real time.
+// transport and the loops of `ibs dfs1` (serial::serve, serial::transact of dfs1_host.hpp), in real
+// time.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -7,8 +8,8 @@
 #include <thread>
 #include <vector>
 
-#include "dfs1_cmd.hpp"
 #include "ibs/devices/dfs1/served_controller.hpp"
+#include "ibs/serial/dfs1_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
 
@@ -38,7 +39,7 @@ class PtyLine : public ::testing::Test {
   }
   // Generous timeouts: a loaded machine may not schedule the serving thread for a while.
   proto::HostResult transact(const proto::Frame& f, Duration timeout = 2s) {
-    return transact_dfs1(*host_, f, {timeout, 500ms});
+    return serial::transact(*host_, f, {timeout, 500ms});
   }
 
   std::vector<std::unique_ptr<dev::Controller>> controllers_;

@@ -1,5 +1,6 @@
 // The host against the wings' LUSTBUS devices over a pseudo-terminal in process: serial::serve on
-// the master side, transact_lustbus on the slave, real time.
+// the master side, the host's loop serial::transact (transports/serial/lustbus_host.hpp) on the
+// slave, real time.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,9 +9,9 @@
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/lustbus/served_receiver.hpp"
+#include "ibs/serial/lustbus_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
-#include "lustbus_cmd.hpp"
 
 namespace ibs::cli {
 namespace {
@@ -43,19 +44,19 @@ TEST(LustbusPty, ReadWriteAndNakThroughTheHost) {
   lb::Host host(cfg);
   // 6.2.2 over the pty: the power-on bit makes the first SELECT a NAK, the host reads 85 and
   // repeats it (9.2).
-  auto o = transact_lustbus(bus.host_port, host,
+  auto o = serial::transact(bus.host_port, host,
                             lb::select(1, lb::make_code(105), lb::make_value("03E8")));
   EXPECT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);
   EXPECT_EQ(bus.vf.value(5), 0x03E8);
-  o = transact_lustbus(bus.host_port, host, lb::enquiry(3, lb::make_code(20091)));
+  o = serial::transact(bus.host_port, host, lb::enquiry(3, lb::make_code(20091)));
   ASSERT_EQ(o.kind, lb::OutcomeKind::value);
   EXPECT_EQ(o.value.view(), "1770");
-  transact_lustbus(bus.host_port, host, lb::enquiry(3, lb::make_code(85)));
-  o = transact_lustbus(bus.host_port, host,
+  serial::transact(bus.host_port, host, lb::enquiry(3, lb::make_code(85)));
+  o = serial::transact(bus.host_port, host,
                        lb::select(3, lb::make_code(20417), lb::make_value("9")));
   EXPECT_EQ(o.kind, lb::OutcomeKind::nak);
   EXPECT_EQ(o.siof, 0x80);
-  o = transact_lustbus(bus.host_port, host, lb::network_scan());
+  o = serial::transact(bus.host_port, host, lb::network_scan());
   ASSERT_EQ(o.kind, lb::OutcomeKind::scan);
   EXPECT_EQ(o.scan.count, 2);
 }
@@ -68,20 +69,20 @@ TEST(LustbusPty, BaudRateChangeOnlineOf115) {
   lb::HostConfig cfg;
   cfg.response_timeout = std::chrono::milliseconds(1000);
   lb::Host host(cfg);
-  transact_lustbus(bus.host_port, host, lb::enquiry(3, lb::make_code(85)));
-  auto o = transact_lustbus(bus.host_port, host, lb::select(3, lb::make_code(20081), lb::make_value("4B00")));
+  serial::transact(bus.host_port, host, lb::enquiry(3, lb::make_code(85)));
+  auto o = serial::transact(bus.host_port, host, lb::select(3, lb::make_code(20081), lb::make_value("4B00")));
   ASSERT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);  // 19200, not yet active
   EXPECT_EQ(bus.mc.line_baud(), 9600U);
-  o = transact_lustbus(bus.host_port, host, lb::enquiry(3, lb::make_code(20091)));
+  o = serial::transact(bus.host_port, host, lb::enquiry(3, lb::make_code(20091)));
   EXPECT_EQ(o.kind, lb::OutcomeKind::value);
-  o = transact_lustbus(bus.host_port, host, lb::select(3, lb::make_code(20004), lb::make_value("6F")));
+  o = serial::transact(bus.host_port, host, lb::select(3, lb::make_code(20004), lb::make_value("6F")));
   ASSERT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);  // 111: the ACK at 9600
   EXPECT_EQ(bus.mc.line_baud(), 19200U);
   cfg.response_timeout = std::chrono::milliseconds(150);
   lb::Host quick(cfg);
-  o = transact_lustbus(bus.host_port, quick, lb::enquiry(3, lb::make_code(20091)));
+  o = serial::transact(bus.host_port, quick, lb::enquiry(3, lb::make_code(20091)));
   EXPECT_EQ(o.kind, lb::OutcomeKind::no_answer);
-  o = transact_lustbus(bus.host_port, quick, lb::enquiry(1, lb::make_code(91)));
+  o = serial::transact(bus.host_port, quick, lb::enquiry(1, lb::make_code(91)));
   EXPECT_EQ(o.kind, lb::OutcomeKind::value);
 }
 
@@ -98,12 +99,12 @@ TEST(LustbusPty, LoneServoTakesThePortAlong) {
   lb::HostConfig cfg;
   cfg.response_timeout = std::chrono::milliseconds(1000);
   lb::Host host(cfg);
-  transact_lustbus(port, host, lb::enquiry(3, lb::make_code(85)));
-  transact_lustbus(port, host, lb::select(3, lb::make_code(20081), lb::make_value("9600")));  // 38400
-  const auto o = transact_lustbus(port, host, lb::select(3, lb::make_code(20004), lb::make_value("6F")));
+  serial::transact(port, host, lb::enquiry(3, lb::make_code(85)));
+  serial::transact(port, host, lb::select(3, lb::make_code(20081), lb::make_value("9600")));  // 38400
+  const auto o = serial::transact(port, host, lb::select(3, lb::make_code(20004), lb::make_value("6F")));
   EXPECT_EQ(o.kind, lb::OutcomeKind::acknowledged) << lb::describe(o);
   port.set_baud(38400);  // the host follows (a pty carries the bytes whatever the rate)
-  EXPECT_EQ(transact_lustbus(port, host, lb::enquiry(3, lb::make_code(20081))).value.view(), "9600");
+  EXPECT_EQ(serial::transact(port, host, lb::enquiry(3, lb::make_code(20081))).value.view(), "9600");
   stop = true;
   server.join();
   EXPECT_EQ(pair.master().baud(), 38400U);

@@ -1,17 +1,14 @@
-// The CLI11 wiring of `ibs dfs1 ...` (the emulator serves with serial::serve) and the host's
-// transaction loop over a serial port.
+// The CLI11 wiring of `ibs dfs1 ...`: the emulator serves with serial::serve, the client commands
+// ask through serial::transact (transports/serial/dfs1_host.hpp).
 #include "dfs1_cmd.hpp"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <array>
 #include <charconv>
 #include <chrono>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <span>
 #include <stdexcept>
 
 #include "ibs/devices/dfs1/parameters.hpp"
@@ -19,6 +16,7 @@
 #include "ibs/devices/dfs1/served_controller.hpp"
 #include "ibs/devices/dfs1/status.hpp"
 #include "ibs/serial/byte_log.hpp"
+#include "ibs/serial/dfs1_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
 #include "stop_signals.hpp"
@@ -30,13 +28,7 @@ namespace dev = ::ibs::devices::dfs1;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr Duration kInterByteTimeout = 20ms;
-
-Time since(Clock::time_point t0) {
-  return std::chrono::duration_cast<Duration>(Clock::now() - t0);
-}
 
 serial::PortOptions port_options(const Dfs1PortOptions& o) {
   serial::PortOptions p;
@@ -212,7 +204,7 @@ int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
   }
   port->set_log(log.get());
 
-  const proto::HostResult r = transact_dfs1(
+  const proto::HostResult r = serial::transact(
       *port, plan.request, {std::chrono::milliseconds(o.timeout_ms), kInterByteTimeout});
 
   nlohmann::json j;
@@ -322,28 +314,6 @@ void add_client_options(CLI::App* cmd, Dfs1ClientOptions& o) {
 }
 
 }  // namespace
-
-proto::HostResult transact_dfs1(serial::SerialPort& port, const proto::Frame& request,
-                                proto::HostTimeouts timeouts) {
-  const Clock::time_point t0 = Clock::now();
-  proto::HostTransaction t(timeouts);
-  if (t.start(request, since(t0)) != proto::StartStatus::accepted) {
-    throw std::invalid_argument("dfs1: request refused: " +
-                                std::string(proto::to_string(proto::check_request(request))));
-  }
-  port.discard_input();  // stale bytes are no answer to this request (nanoMODBUS flushes too)
-  port.write(t.tx());
-  t.transmitted(since(t0));
-  std::array<std::uint8_t, 256> buf{};
-  while (!t.done()) {
-    const Time now = since(t0);
-    const Duration wait = std::max(t.next_deadline().value_or(now) - now, Duration(100us));
-    const std::size_t n = port.read(buf, wait);
-    t.receive(std::span<const std::uint8_t>(buf.data(), n), since(t0));
-    t.poll(since(t0));
-  }
-  return *t.take_result();
-}
 
 void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
   state.dfs1 = app.add_subcommand("dfs1",

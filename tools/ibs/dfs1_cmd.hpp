@@ -75,11 +75,7 @@ std::optional<int> run_dfs1_commands(const Dfs1CommandState& state);
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
                                      std::ostream& err);
 
-// The host's loop, also for tests (the emulator serves with serial::serve through
-// devices::dfs1::ServedController).
-//
-// One transaction in real time: flushes the input, writes the request, waits for the outcome.
-::ibs::dfs1::HostResult transact_dfs1(serial::SerialPort& port, const ::ibs::dfs1::Frame& request,
-                                      ::ibs::dfs1::HostTimeouts timeouts);
+// The emulator serves with serial::serve through devices::dfs1::ServedController; the client
+// commands run their transaction with serial::transact (transports/serial/dfs1_host.hpp).
 
 }  // namespace ibs::cli

@@ -1,10 +1,10 @@
-// The CLI11 wiring of `ibs lustbus ...` (the emulator serves with serial::serve), the host's loop
-// over a serial port, and the file side of `ibs decode` for a byte log (lustbus::read_byte_log).
+// The CLI11 wiring of `ibs lustbus ...` (the emulator serves with serial::serve, the host commands
+// ask through serial::transact) and the file side of `ibs decode` for a byte log
+// (lustbus::read_byte_log).
 #include "lustbus_cmd.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <array>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -28,6 +28,7 @@
 #include "ibs/lustbus/siof.hpp"
 #include "ibs/lustbus/telegram.hpp"
 #include "ibs/serial/byte_log.hpp"
+#include "ibs/serial/lustbus_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
 #include "stop_signals.hpp"
@@ -37,13 +38,6 @@ namespace ibs::cli {
 namespace lb = ::ibs::lustbus;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-constexpr Duration kServePoll = 20ms;
-
-Time since(Clock::time_point t0) {
-  return std::chrono::duration_cast<Duration>(Clock::now() - t0);
-}
 
 // 2.1: 7 data bits, even parity, one stop bit; RS-485 direction by the driver where it can.
 serial::PortOptions port_options(const LustbusPortOptions& o) {
@@ -179,6 +173,16 @@ std::string hex_text(std::uint32_t v, unsigned digits) {
   char b[16];
   std::snprintf(b, sizeof b, "%0*X", static_cast<int>(digits), v);
   return b;
+}
+
+// One request through the host loop on the port (serial/lustbus_host.hpp); a request the host
+// refuses is bad input.
+lb::Outcome ask(serial::SerialPort& port, lb::Host& host, const lb::Request& request) {
+  try {
+    return serial::transact(port, host, request);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
 }
 
 // "vf1000@ADDR or mc6000@ADDR": the registry's LUSTBUS drives.
@@ -335,7 +339,7 @@ int download_file(const LustbusClientOptions& o, std::ostream& out, std::ostream
     cfg.response_timeout = std::chrono::milliseconds(o.timeout_ms);
     HostPort hp = open_host_port(o.port);
     lb::Host host(cfg);
-    const lb::Outcome r = transact_lustbus(
+    const lb::Outcome r = ask(
         *hp.port, host, lb::download(procedure, static_cast<lb::Address>(o.addr), records));
     nlohmann::json j;
     j["address"] = o.addr;
@@ -387,7 +391,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
     if (name == "scan") {
       HostPort hp = open_host_port(o.port);
       lb::Host host(cfg);
-      const lb::Outcome r = transact_lustbus(*hp.port, host, lb::network_scan());
+      const lb::Outcome r = ask(*hp.port, host, lb::network_scan());
       if (r.kind != lb::OutcomeKind::scan) return device_failure(name, "scan", r, j, o.json, out, err);
       j["devices"] = nlohmann::json::array();
       for (const lb::ScanEntry& e : r.scan.found()) {
@@ -431,7 +435,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
     }
     HostPort hp = open_host_port(o.port);
     lb::Host host(cfg);
-    const lb::Outcome r = transact_lustbus(*hp.port, host, req);
+    const lb::Outcome r = ask(*hp.port, host, req);
     const bool ok = name == "write" ? r.kind == lb::OutcomeKind::acknowledged
                                     : r.kind == lb::OutcomeKind::value;
     if (!ok) return device_failure(name, who, r, j, o.json, out, err);
@@ -565,31 +569,6 @@ std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out
   out << file << ": LUSTBUS byte log, host = " << (r.host_tx ? "tx" : "rx") << " (" << r.host_port << ")\n"
       << r.text;
   return kExitLustbusOk;
-}
-
-lb::Outcome transact_lustbus(serial::SerialPort& port, lb::Host& host, const lb::Request& request) {
-  const Clock::time_point t0 = Clock::now();
-  port.discard_input();  // stale bytes are no answer to this request
-  const lb::Submitted s = host.submit(request);
-  if (!s) throw BadInput("request refused: " + std::string(lb::to_string(s.error)));
-  std::array<std::uint8_t, 256> buf{};
-  while (!host.idle() || host.output_pending()) {
-    host.step(since(t0));
-    const auto tx = host.take_output();
-    if (!tx.empty()) {
-      port.write(tx);
-      host.output_done(since(t0));
-      continue;
-    }
-    const Time now = since(t0);
-    const Time next = host.next_deadline();
-    const Duration wait =
-        next == Time::max() ? kServePoll : std::clamp(next - now, Duration(100us), kServePoll);
-    const std::size_t n = port.read(buf, wait);
-    for (std::size_t i = 0; i < n; ++i) host.receive(buf[i], since(t0));
-  }
-  const lb::Outcome* o = host.outcome(s.id);
-  return o != nullptr ? *o : lb::Outcome{};
 }
 
 void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {

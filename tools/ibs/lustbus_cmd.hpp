@@ -80,14 +80,12 @@ std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::o
                                         std::ostream& err);
 
 // The emulator serves its drives with serial::serve (transports/serial/serve.hpp) through
-// lustbus::ServedReceiver.
+// lustbus::ServedReceiver; the host commands run their requests with serial::transact
+// (transports/serial/lustbus_host.hpp).
 //
 // `ibs decode FILE` for a byte log of `--log` (docs/lustbus.md, "Reading a byte log"): nullopt
 // when FILE is no byte log (the caller tries the other formats); otherwise every telegram and
 // answer explained, one per line, and the exit code (2: a malformed line, named file:line).
 std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out, std::ostream& err);
-// Runs one request of the host in real time until the host is idle (its closing EOT written).
-lustbus::Outcome transact_lustbus(serial::SerialPort& port, lustbus::Host& host,
-                                  const lustbus::Request& request);
 
 }  // namespace ibs::cli
