@@ -119,6 +119,7 @@ void Receiver::receive(std::uint8_t b, Time now) {
   }
   // 3: EOT sets the state machine back to its start; an answer not yet sent is dropped.
   if (b == kEot) {
+    if (answer_pending_ || state_ == ReceiverState::deferred) ++counters_.cut_answers;
     state_ = ReceiverState::idle;
     event_ = ReceiverEvent::reset;
     answer_pending_ = false;

@@ -284,6 +284,14 @@ TEST_F(ReceiverTest, EotBeforeTheAnswerIsSentDropsIt) {
   for (const auto b : enq(5, "00112")) rx.receive(b, Time{0});
   rx.receive(kEot, Time{10ms});
   EXPECT_TRUE(rx.take_answer(Time{1s}).empty());
+  EXPECT_EQ(rx.counters().cut_answers, 1U);
+  EXPECT_EQ(rx.counters().answers, 0U);
+  // An answer taken before the EOT is no cut one.
+  r.enquiry_answer = EnquiryAnswer::text(make_value("03E8"), 0ms);
+  EXPECT_EQ(feed(rx, enq(5, "00112"), Time{2s}).size(), 14U);
+  rx.receive(kEot, Time{3s});
+  EXPECT_EQ(rx.counters().cut_answers, 1U);
+  EXPECT_EQ(rx.counters().answers, 1U);
 }
 
 TEST_F(ReceiverTest, DeferredSelectAnswerIsDeliveredLater) {
@@ -302,6 +310,7 @@ TEST_F(ReceiverTest, DeferredAnswerAfterEotIsDropped) {
   rx.receive(kEot, Time{1ms});
   EXPECT_FALSE(rx.deliver_enquiry(EnquiryAnswer::text(make_value("0001")), Time{2ms}));
   EXPECT_TRUE(rx.take_answer(Time{1s}).empty());
+  EXPECT_EQ(rx.counters().cut_answers, 1U);
 }
 
 TEST_F(ReceiverTest, PowerOnForgetsEverything) {

@@ -88,6 +88,9 @@ struct ReceiverCounters {
   std::uint32_t dropped = 0;
   std::uint32_t answers = 0;
   std::uint32_t fragments = 0;  // telegram fragments dropped after a silence (LB-D23)
+  // Answers never sent: the host's EOT came before they were due or delivered (3: EOT drops an
+  // answer not yet sent) -- a host whose response timeout is shorter than the drive's reaction.
+  std::uint32_t cut_answers = 0;
 };
 
 class Receiver {
