@@ -410,6 +410,67 @@ TEST(DriveRegistry, TheByteLogLookupIsTheFacesTables) {
   EXPECT_FALSE(lookup(lustbus::Family::standard, 100).has_value()) << "2.4.1: two digits";
 }
 
+// The settings a LUSTBUS face takes are declared for LUSTBUS; a setting the drive's INTERBUS face
+// declares for LUSTBUS too is the same one in its LUSTBUS face's list, so that `ibs lustbus emulate`
+// and a scenario mean one thing by its name.
+TEST(DriveRegistry, LustbusFacesDeclareTheirSettingsForLustbus) {
+  for (const Drive* d : drives_on(Bus::lustbus)) {
+    SCOPED_TRACE(std::string(d->name));
+    for (const SettingSpec& s : d->lustbus->settings) {
+      EXPECT_TRUE(uses(s.faces, SettingFace::lustbus)) << s.name;
+      EXPECT_LE(s.min, s.fallback);
+      EXPECT_LE(s.fallback, s.max);
+      EXPECT_FALSE(s.seed.empty());
+      EXPECT_FALSE(s.meaning.empty());
+    }
+    if (d->interbus == nullptr) continue;
+    for (const SettingSpec& s : (*d->interbus)->settings()) {
+      EXPECT_TRUE(uses(s.faces, SettingFace::interbus)) << s.name << ": a scenario key must be INTERBUS's";
+      if (!uses(s.faces, SettingFace::lustbus)) continue;
+      const SettingSpec* l = find_setting(d->lustbus->settings, s.name);
+      ASSERT_NE(l, nullptr) << s.name << " is declared for LUSTBUS but not in the LUSTBUS face's list";
+      EXPECT_EQ(l->kind, s.kind);
+      EXPECT_EQ(l->fallback, s.fallback);
+    }
+  }
+}
+
+// Seed 000, 10: a KEYPAD widens each drive's reaction times (servo 1...25 -> 1...30 ms, inverter
+// 1...30 -> 1...60 ms); the face's declared `keypad` setting is what makes the drive draw them.
+TEST(DriveRegistry, AKeypadWidensTheLustbusReactionTimes) {
+  const std::map<std::string_view, std::pair<Duration, Duration>> table = {{"mc6000", {25ms, 30ms}},
+                                                                          {"vf1000", {30ms, 60ms}}};
+  for (const Drive* d : drives_on(Bus::lustbus)) {
+    SCOPED_TRACE(std::string(d->name));
+    const auto row = table.find(d->name);
+    ASSERT_NE(row, table.end()) << "a LUSTBUS drive without its row of 10's table here";
+    const SettingSpec* keypad = find_setting(d->lustbus->settings, "keypad");
+    ASSERT_NE(keypad, nullptr);
+    const auto code = lustbus::parameter_code(d->lustbus->family, 91, false);
+    ASSERT_TRUE(code.has_value());
+    for (const bool with : {false, true}) {
+      LustbusFaceOptions o;
+      o.seed = 7;
+      if (with) o.settings.set_boolean(keypad->name, true);
+      LustbusEmulated e = d->lustbus->make(o);
+      Duration longest{};
+      for (int i = 0; i < 400; ++i) {
+        const auto a = e.responder->enquiry(*code, lustbus::Context{1, Time{std::chrono::milliseconds(100 * i)}});
+        ASSERT_EQ(a.reply, lustbus::Reply::text);
+        longest = std::max(longest, a.reaction);
+      }
+      const Duration without_keypad = row->second.first;
+      const Duration with_keypad = row->second.second;
+      if (with) {
+        EXPECT_GT(longest, without_keypad);
+        EXPECT_LE(longest, with_keypad);
+      } else {
+        EXPECT_LE(longest, without_keypad);
+      }
+    }
+  }
+}
+
 // The `local NAME = { [0] = "...", ... }` table of the dissector, as number -> text.
 std::map<int, std::string> lua_table(const std::string& lua, const std::string& name) {
   std::smatch m;

@@ -8,13 +8,18 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
+#include <chrono>
 #include <cstdio>
+#include <fcntl.h>
 #include <fstream>
+#include <thread>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "ibs/devices/drives.hpp"
 #include "lustbus_cmd.hpp"
 
 #include "../support/cli_harness.hpp"
@@ -145,6 +150,149 @@ TEST(LustbusCli, BadInputExitsTwoWithAClearMessage) {
   r = run_cli({"lustbus", "emulate", "--pty", "vf1000@2", "mc6000@2"});
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("address 2 is given twice"), std::string::npos) << r.err;
+}
+
+// Issue: the drives' settings are the wings' declarations. `emulate` offers one option per setting a
+// LUSTBUS face declares, and --keypad (both drives' KEYPAD, seed 000 10) reaches them.
+TEST(LustbusCli, EmulateTakesTheSettingsTheLustbusFacesDeclare) {
+  for (const devices::Drive* d : devices::drives_on(devices::Bus::lustbus)) {
+    for (const devices::SettingSpec& spec : d->lustbus->settings) {
+      SCOPED_TRACE(std::string(d->name) + " " + std::string(spec.name));
+      CLI::App app{"test"};
+      LustbusCommandState state;
+      add_lustbus_commands(app, state);
+      const CLI::Option* option = state.emulate->get_option_no_throw("--" + std::string(spec.name));
+      ASSERT_NE(option, nullptr);
+      EXPECT_NE(option->get_description().find(std::string(spec.meaning)), std::string::npos)
+          << option->get_description();
+    }
+  }
+  CLI::App app{"test"};
+  LustbusCommandState state;
+  add_lustbus_commands(app, state);
+  std::vector<std::string> args = {"lustbus", "emulate", "--pty", "--keypad", "vf1000@1", "mc6000@3"};
+  std::reverse(args.begin(), args.end());
+  app.parse(args);
+  const devices::SettingValue* keypad = state.emulate_options.settings.find("keypad");
+  ASSERT_NE(keypad, nullptr);
+  EXPECT_EQ(keypad->value, 1);
+  // Both drives declare a KEYPAD for LUSTBUS (seed 000, 10): both take it.
+  const std::vector<ServedLustbusDrive> served = {
+      {"vf1000@1", devices::find_drive("vf1000", devices::Bus::lustbus)->lustbus},
+      {"mc6000@3", devices::find_drive("mc6000", devices::Bus::lustbus)->lustbus}};
+  const auto settings = lustbus_drive_settings(state.emulate_options.settings, served);
+  ASSERT_EQ(settings.size(), 2U);
+  for (const devices::SettingValues& s : settings) EXPECT_TRUE(s.given("keypad"));
+  // A setting of another face is no option of `emulate`: reset_time is the VF1000's INTERBUS one.
+  const CliRun r = run_cli({"lustbus", "emulate", "--pty", "--reset_time", "2", "vf1000@1"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("--reset_time"), std::string::npos) << r.err;
+}
+
+TEST(LustbusCli, EmulateWithAKeypadServes) {
+  test::ChildProcess emu({IBS_CLI, "lustbus", "emulate", "--pty", "--keypad", "vf1000@1", "mc6000@3"});
+  ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U) << emu.first_line();
+  CliRun r = run_cli(cmd({"read", "--addr", "1", "--device", "vf1000", "TYPE"}, emu.pty()));
+  EXPECT_EQ(r.rc, 0) << r.err;
+  r = run_cli(cmd({"read", "--addr", "3", "--device", "mc6000", "TYPE"}, emu.pty()));
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+// A setting goes to the drives whose face declares it; one that no served drive declares, or a
+// value out of its range, is refused naming it (faces of a test's own, so that one declares a
+// setting the other does not).
+TEST(LustbusCli, ADriveSettingGoesOnlyToTheDrivesThatDeclareIt) {
+  static constexpr devices::SettingSpec kLevel{.name = "level",
+                                               .kind = devices::SettingKind::integer,
+                                               .min = 0,
+                                               .max = 3,
+                                               .fallback = 0,
+                                               .unit = "",
+                                               .parameter = "",
+                                               .seed = "seed 000 10",
+                                               .faces = static_cast<std::uint8_t>(devices::SettingFace::lustbus),
+                                               .meaning = "a level",
+                                               .range = "0..3",
+                                               .elsewhere = ""};
+  static constexpr std::array kSettings{kLevel};
+  devices::LustbusFace with;
+  with.settings = kSettings;
+  const devices::LustbusFace without;
+  devices::SettingValues given;
+  given.set_integer("level", 2);
+  const std::vector<ServedLustbusDrive> both = {{"a@1", &with}, {"b@2", &without}};
+  const auto settings = lustbus_drive_settings(given, both);
+  ASSERT_EQ(settings.size(), 2U);
+  EXPECT_EQ(settings[0].value(kLevel), 2);
+  EXPECT_TRUE(settings[1].empty());
+  EXPECT_TRUE(lustbus_drive_settings({}, both)[0].empty());
+  const std::vector<ServedLustbusDrive> other = {{"b@2", &without}, {"b@3", &without}};
+  try {
+    (void)lustbus_drive_settings(given, other);
+    ADD_FAILURE() << "a setting no served drive declares was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--level applies to none of the drives served (b@2, b@3): no LUSTBUS face of theirs declares 'level'");
+  }
+  given.set_integer("level", 5);
+  try {
+    (void)lustbus_drive_settings(given, both);
+    ADD_FAILURE() << "a value out of range was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "device 'a@1': --level 5 is out of range (0..3, seed 000 10)");
+  }
+  given.set_boolean("level", true);
+  EXPECT_THROW((void)lustbus_drive_settings(given, both), std::invalid_argument);
+}
+
+// At its end `emulate` says on stderr, drive by drive, what its receiver took, answered and threw
+// away, as `ibs dfs1 emulate` does for its controllers: a SELECT with a wrong BCC (3: NAK), a
+// telegram whose host fell silent (LB-D23), an improper one (3: no answer), an answer the host's EOT
+// cut (3). The VF1000 at 1 hears them all; the MC6000 at 3 only the ENQUIRY addressed to it.
+TEST(LustbusCli, EmulateTellsWhatItServedAndDiscardedWhenItEnds) {
+  const std::string errors = ::testing::TempDir() + "lustbus_emulate_counts.txt";
+  // A reaction time of 200 ms: an EOT right after an ENQUIRY comes before its answer is due.
+  test::ChildProcess emu({"/bin/sh", "-c",
+                          std::string("exec ") + IBS_CLI + " lustbus emulate --pty --reaction-ms 200 vf1000@1 mc6000@3 2>" +
+                              errors});
+  ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U) << emu.first_line();
+  const std::string port = emu.pty();
+  // 9.2: the first SELECT after the start meets the power-on bit of 85-SIOF: NAK; the host reads
+  // 85 (an ENQUIRY, which clears it) and repeats the SELECT: 2 SELECTs, 1 ENQUIRY, 3 answers.
+  CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "23.15"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  r = run_cli(cmd({"read", "--addr", "3", "--device", "mc6000", "TYPE"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto raw = [&port](std::vector<std::uint8_t> bytes, std::chrono::milliseconds then) {
+    const int fd = ::open(port.c_str(), O_RDWR | O_NOCTTY);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::write(fd, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+    std::this_thread::sleep_for(then);  // longer than the reaction time and the fragment timeout
+    ::close(fd);
+  };
+  // EOT, 'A' (address 1), STX, 00105=03E8, ETX and a BCC that is not theirs: NAK after 200 ms.
+  raw({0x04, 0x41, 0x02, '0', '0', '1', '0', '5', '=', '0', '3', 'E', '8', 0x03, 0x00}, std::chrono::milliseconds(400));
+  // A SELECT begun and left (its host died): the next EOT, 400 ms later, finds it stale.
+  raw({0x04, 0x41, 0x02, '0', '0'}, std::chrono::milliseconds(400));
+  // An ADR followed by a character no telegram has there.
+  raw({0x04, 0x41, 'X'}, std::chrono::milliseconds(10));
+  // An ENQUIRY of 1-MODE and at once the EOT: the answer, due in 200 ms, is cut.
+  raw({0x04, 0x41, '0', '0', '1', '0', '1', 0x05, 0x04}, std::chrono::milliseconds(400));
+  ASSERT_EQ(emu.stop(SIGINT), 0);
+  std::ifstream in(errors);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("ibs lustbus emulate: vf1000@1: 2 ENQUIRY(s), 2 SELECT(s), 0 broadcast(s), 4 answer(s) sent, "
+                            "1 BCC error(s), 1 improper telegram(s) dropped, 1 fragment(s) dropped after silence, "
+                            "1 answer(s) cut by EOT\n"),
+            std::string::npos)
+      << text.str();
+  EXPECT_NE(text.str().find("ibs lustbus emulate: mc6000@3: 1 ENQUIRY(s), 0 SELECT(s), 0 broadcast(s), 1 answer(s) sent, "
+                            "0 BCC error(s), 0 improper telegram(s) dropped, 0 fragment(s) dropped after silence, "
+                            "0 answer(s) cut by EOT\n"),
+            std::string::npos)
+      << text.str();
 }
 
 // 11.4: a dataset file through the 80-SLOAD handshake; a dataset the servo rejects exits 1 with

@@ -206,6 +206,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   };
   if (o.pty == !o.port.port.empty()) return bad("give either --port PATH or --pty");
   if (o.devices.empty()) return bad("no device: give " + device_forms() + " (one or more)");
+  std::vector<ServedLustbusDrive> specs;
+  std::vector<lb::Address> addresses;
   std::vector<devices::LustbusEmulated> drives;
   std::vector<std::unique_ptr<lb::Receiver>> receivers;
   std::vector<lb::ServedReceiver> served;
@@ -217,18 +219,28 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
         throw BadInput("device '" + spec + "': address " + std::to_string(addr) +
                        " is given twice (9.1: both would answer at once)");
       }
+      specs.push_back({spec, face});
+      addresses.push_back(addr);
+    }
+    std::vector<devices::SettingValues> settings;
+    try {
+      settings = lustbus_drive_settings(o.settings, specs);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(e.what());
+    }
+    for (std::size_t i = 0; i < specs.size(); ++i) {
       devices::LustbusFaceOptions options;
-      options.keypad = o.keypad;
-      options.seed = o.seed + addr;
+      options.settings = std::move(settings[i]);
+      options.seed = o.seed + addresses[i];
       options.reaction_ms = o.reaction_ms;
       options.baud = o.port.baud;
       try {
-        drives.push_back(face->make(options));
+        drives.push_back(specs[i].face->make(options));
       } catch (const std::invalid_argument& e) {
-        throw BadInput("device '" + spec + "': " + e.what());
+        throw BadInput("device '" + specs[i].spec + "': " + e.what());
       }
       const devices::LustbusEmulated& d = drives.back();
-      receivers.push_back(std::make_unique<lb::Receiver>(*d.responder, addr));
+      receivers.push_back(std::make_unique<lb::Receiver>(*d.responder, addresses[i]));
       served.emplace_back(receivers.back().get(), d.advance, d.line_baud);
     }
   } catch (const BadInput& e) {
@@ -258,7 +270,74 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   std::vector<base::LineDevice*> lines;
   for (lb::ServedReceiver& d : served) lines.push_back(&d);
   serial::serve(port, lines, [&signals]() { return signals.raised(); });
+  // What each drive's receiver took, answered and threw away (3, LB-D23), as `ibs dfs1 emulate`
+  // tells its controllers'.
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const lb::ReceiverCounters& n = receivers[i]->counters();
+    err << "ibs lustbus emulate: " << specs[i].spec << ": " << n.enquiries << " ENQUIRY(s), " << n.selects
+        << " SELECT(s), " << n.broadcasts << " broadcast(s), " << n.answers << " answer(s) sent, "
+        << n.checksum_errors << " BCC error(s), " << n.dropped << " improper telegram(s) dropped, " << n.fragments
+        << " fragment(s) dropped after silence, " << n.cut_answers << " answer(s) cut by EOT\n";
+  }
   return kExitLustbusOk;
+}
+
+// The drives' own settings as options of `emulate`: one per name the LUSTBUS faces declare, its
+// help the declarations' meanings. Declarations of one name must agree on its type.
+void add_drive_setting_options(CLI::App* cmd, devices::SettingValues& values) {
+  struct Declared {
+    std::string_view name;
+    std::vector<std::pair<const devices::Drive*, const devices::SettingSpec*>> by;
+  };
+  std::vector<Declared> declared;
+  for (const devices::Drive* d : devices::drives_on(devices::Bus::lustbus)) {
+    for (const devices::SettingSpec& spec : d->lustbus->settings) {
+      auto it = std::find_if(declared.begin(), declared.end(), [&](const Declared& x) { return x.name == spec.name; });
+      if (it == declared.end()) it = declared.insert(declared.end(), Declared{spec.name, {}});
+      if (!it->by.empty() && it->by.front().second->kind != spec.kind) {
+        throw std::logic_error("LUSTBUS setting '" + std::string(spec.name) + "' is declared as " +
+                               std::string(devices::to_string(it->by.front().second->kind)) + " and as " +
+                               std::string(devices::to_string(spec.kind)));
+      }
+      it->by.emplace_back(d, &spec);
+    }
+  }
+  for (const Declared& x : declared) {
+    std::string help;
+    for (const auto& [drive, spec] : x.by) {
+      help += (help.empty() ? "" : "; ") + std::string(drive->name) + ": " + std::string(spec->meaning) + " (" +
+              std::string(spec->seed) + ")";
+    }
+    const devices::SettingSpec& first = *x.by.front().second;
+    const std::string option = "--" + std::string(x.name);
+    const std::string_view name = x.name;
+    switch (first.kind) {
+      case devices::SettingKind::boolean:
+        cmd->add_flag_function(option, [&values, name](std::int64_t n) { values.set_boolean(name, n > 0); }, help);
+        break;
+      case devices::SettingKind::integer:
+        cmd->add_option_function<std::int64_t>(
+            option, [&values, name](const std::int64_t& v) { values.set_integer(name, v); },
+            help + "; " + std::string(first.range));
+        break;
+      case devices::SettingKind::choice: {
+        std::vector<std::string> names(first.choices.begin(), first.choices.end());
+        cmd->add_option_function<std::string>(
+               option,
+               [&values, name, names](const std::string& v) {
+                 const auto at = std::find(names.begin(), names.end(), v);
+                 values.set(name, devices::SettingKind::choice, at - names.begin());
+               },
+               help)
+            ->check(CLI::IsMember(names));
+        break;
+      }
+      case devices::SettingKind::duration:
+        // No LUSTBUS face declares a time; the command line would need the scenario's time syntax.
+        throw std::logic_error("LUSTBUS setting '" + std::string(x.name) +
+                               "' is a time, which `ibs lustbus emulate` has no option form for");
+    }
+  }
 }
 
 // Opens the port and the log for a host command.
@@ -534,6 +613,36 @@ void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) 
 
 }  // namespace
 
+std::vector<devices::SettingValues> lustbus_drive_settings(const devices::SettingValues& given,
+                                                           std::span<const ServedLustbusDrive> served) {
+  std::vector<devices::SettingValues> out(served.size());
+  for (const devices::SettingValue& v : given.all()) {
+    bool taken = false;
+    for (std::size_t i = 0; i < served.size(); ++i) {
+      const devices::SettingSpec* spec = devices::find_setting(served[i].face->settings, v.name);
+      if (spec == nullptr) continue;
+      const std::string who = "device '" + served[i].spec + "': --" + v.name;
+      if (spec->kind != v.kind) {
+        throw std::invalid_argument(who + " must be " + std::string(devices::to_string(spec->kind)));
+      }
+      if (v.value < spec->min || v.value > spec->max) {
+        throw std::invalid_argument(who + " " + std::to_string(v.value) + " is out of range (" +
+                                    std::string(spec->range) + (spec->seed.empty() ? "" : ", ") +
+                                    std::string(spec->seed) + ")");
+      }
+      out[i].set(v.name, v.kind, v.value);
+      taken = true;
+    }
+    if (!taken) {
+      std::string specs;
+      for (const ServedLustbusDrive& d : served) specs += (specs.empty() ? "" : ", ") + d.spec;
+      throw std::invalid_argument("--" + v.name + " applies to none of the drives served (" + specs +
+                                  "): no LUSTBUS face of theirs declares '" + v.name + "'");
+    }
+  }
+  return out;
+}
+
 // How much of a file is read to tell its kind.
 constexpr std::size_t kSniffBytes = 64 * 1024;
 
@@ -584,9 +693,7 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
       ->required();
   state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
-  state.emulate->add_flag("--keypad", eo.keypad,
-                          "reaction times as with a KEYPAD attached (10: up to 30 ms servo, 60 ms "
-                          "inverter; without: 25 / 30 ms)");
+  add_drive_setting_options(state.emulate, eo.settings);
   state.emulate->add_option("--seed", eo.seed, "seed of the reaction times (default 1; + address)");
   state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time in ms instead")
       ->check(CLI::Range(0, 10000));

@@ -1,6 +1,7 @@
 // `ibs lustbus ...`: LUSTBUS (seed 000) over a serial port (docs/lustbus.md, "Command line").
 //
-//   ibs lustbus emulate (--port PATH | --pty) [--baud N] DEVICE...     vf1000@ADDR, mc6000@ADDR
+//   ibs lustbus emulate (--port PATH | --pty) [--baud N] [--SETTING...] DEVICE...
+//                                                  DEVICE: vf1000@ADDR, mc6000@ADDR
 //   ibs lustbus read     --port PATH --addr N --device vf1000|mc6000 PARAM
 //   ibs lustbus write    --port PATH --addr N --device vf1000|mc6000 PARAM VALUE
 //   ibs lustbus describe --port PATH --addr N --device vf1000|mc6000 PARAM
@@ -17,8 +18,12 @@
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "ibs/devices/lustbus_face.hpp"
+#include "ibs/devices/settings.hpp"
 
 #include "ibs/lustbus/host.hpp"
 #include "ibs/serial/serial_port.hpp"
@@ -43,9 +48,11 @@ struct LustbusEmulateOptions {
   LustbusPortOptions port;
   bool pty = false;
   std::vector<std::string> devices;  // vf1000@ADDR, mc6000@ADDR
-  // 10: reaction times drawn from the table with or without KEYPAD, seeded (seed + address per
-  // drive); reaction_ms >= 0 fixes them instead.
-  bool keypad = false;
+  // The drives' own settings given as options (--keypad, ...): one option per setting the
+  // LUSTBUS faces declare (LustbusFace::settings); each drive takes those its face declares.
+  devices::SettingValues settings;
+  // 10: reaction times drawn from the drive's table (which a setting such as a KEYPAD may widen),
+  // seeded (seed + address per drive); reaction_ms >= 0 fixes them instead.
   std::uint64_t seed = 1;
   int reaction_ms = -1;
 };
@@ -78,6 +85,18 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state);
 std::optional<int> run_lustbus_commands(const LustbusCommandState& state);
 std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::ostream& out,
                                         std::ostream& err);
+
+// One drive `emulate` serves: its DEVICE text ("vf1000@1") and its LUSTBUS face.
+struct ServedLustbusDrive {
+  std::string spec;
+  const devices::LustbusFace* face = nullptr;
+};
+// The drives' own settings given to `emulate`, drive by drive (in `served`'s order): each takes
+// the ones its face declares (LustbusFace::settings). Throws std::invalid_argument for a setting
+// none of the served faces declares ("--NAME applies to none of the drives served (...)"), one
+// declared as another type, or a value outside a declaration's range (naming the drive).
+std::vector<devices::SettingValues> lustbus_drive_settings(const devices::SettingValues& given,
+                                                           std::span<const ServedLustbusDrive> served);
 
 // The emulator serves its drives with serial::serve (transports/serial/serve.hpp) through
 // lustbus::ServedReceiver; the host commands run their requests with serial::transact

@@ -8,6 +8,7 @@
 
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
+#include "ibs/devices/mc6000/settings.hpp"
 
 namespace ibs::devices::mc6000 {
 
@@ -17,7 +18,7 @@ LustbusEmulated make(const LustbusFaceOptions& o) {
   LustbusTiming timing;
   // 10: up to 30 ms with a KEYPAD, 25 ms without, unless a fixed time is asked for.
   timing.reaction = o.reaction_ms >= 0 ? lustbus::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
-                                       : lustbus_reaction(o.keypad, o.seed);
+                                       : lustbus_reaction(o.settings.boolean(kLustbusKeypadSetting), o.seed);
   auto d = std::make_unique<LustbusDevice>(timing);
   if (!d->set_line_baud(o.baud)) {
     throw std::invalid_argument("an MC6000 runs at 2400..57600 baud (seed 000, 4), not " + std::to_string(o.baud));
@@ -69,7 +70,7 @@ const lustbus::DeviceProcedures& lustbus_procedures() {
 
 const LustbusFace& lustbus_face() {
   static const LustbusFace face{lustbus::Family::enhanced, &make, &find_parameter, "",
-                                &lustbus_procedures()};
+                                &lustbus_procedures(), kLustbusSettings};
   return face;
 }
 

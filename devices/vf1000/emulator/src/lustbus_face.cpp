@@ -8,6 +8,7 @@
 
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/parameters.hpp"
+#include "ibs/devices/vf1000/settings.hpp"
 
 namespace ibs::devices::vf1000 {
 
@@ -17,7 +18,7 @@ LustbusEmulated make(const LustbusFaceOptions& o) {
   LustbusTiming timing;
   // 10: "1...60 ms" with a KEYPAD, "1...30 ms" without, unless a fixed time is asked for.
   timing.reaction = o.reaction_ms >= 0 ? lustbus::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
-                                       : lustbus_reaction(o.keypad, o.seed);
+                                       : lustbus_reaction(o.settings.boolean(kKeypadSetting), o.seed);
   auto d = std::make_unique<LustbusDevice>(timing);
   if (!d->set_line_baud(o.baud)) {
     throw std::invalid_argument("a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not " +
@@ -45,7 +46,8 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
 }  // namespace
 
 const LustbusFace& lustbus_face() {
-  static const LustbusFace face{lustbus::Family::standard, &make, &find_parameter, " (1..99)"};
+  static const LustbusFace face{lustbus::Family::standard, &make, &find_parameter, " (1..99)", nullptr,
+                                kLustbusSettings};
   return face;
 }
 

@@ -11,10 +11,12 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
 #include "ibs/base/time.hpp"
+#include "ibs/devices/settings.hpp"
 #include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/responder.hpp"
 #include "ibs/lustbus/value.hpp"
@@ -23,7 +25,9 @@ namespace ibs::devices {
 
 // What `ibs lustbus emulate` gives every drive it serves (docs/lustbus.md, "Emulator").
 struct LustbusFaceOptions {
-  bool keypad = false;     // 10: the reaction times with a KEYPAD attached
+  // The drive's own settings, among those its face declares (LustbusFace::settings) and within
+  // their ranges (the caller checks); one not given reads as its declaration's fallback.
+  SettingValues settings;
   std::uint64_t seed = 1;  // of the drawn reaction times (the command adds the address)
   int reaction_ms = -1;    // >= 0: a fixed reaction time instead of the drawn ones
   std::uint32_t baud = 9600;  // the rate of the line (4)
@@ -62,6 +66,9 @@ struct LustbusFace {
   // The procedures of seed 000, 11 the drive offers a host (download, indexed texts, block
   // transfer), as lustbus::Host runs them; nullptr: none.
   const lustbus::DeviceProcedures* procedures = nullptr;
+  // The drive's own settings this face takes (settings.hpp, each with SettingFace::lustbus):
+  // `ibs lustbus emulate` offers them as options and gives each drive those its face declares.
+  std::span<const SettingSpec> settings{};
 };
 
 }  // namespace ibs::devices

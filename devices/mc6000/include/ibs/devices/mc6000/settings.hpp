@@ -1,6 +1,8 @@
 // The MC6000's own settings (devices/settings.hpp): 405-SUPI and 406-IBCNF, the two parameters
-// the servo reads at power-on to lay out its INTERBUS words (seed 001 3.2.2, 3.2.3). The scenario
-// reader, the trace header, `ibs layout` and the docs' tables take them from this list.
+// the servo reads at power-on to lay out its INTERBUS words (seed 001 3.2.2, 3.2.3), and on its
+// LUSTBUS face whether a KEYPAD is plugged in (seed 000, 10). The scenario reader, the trace
+// header, `ibs layout` and the docs' tables take the INTERBUS face's from kSettings; `ibs lustbus
+// emulate` takes the LUSTBUS face's from kLustbusSettings.
 #pragma once
 
 #include <array>
@@ -45,6 +47,25 @@ inline constexpr SettingSpec kIbcnfSetting{
     .places_device = true,
 };
 inline constexpr std::array kSettings{kSupiSetting, kIbcnfSetting};
+
+// A KEYPAD plugged in: seed 000, 10's table gives the servo reaction times of 1...30 ms with it,
+// 1...25 ms without. LUSTBUS only: seed 001 gives the servo's PCP times no KEYPAD row, so the
+// INTERBUS face does not declare it and a scenario or trace refuses it (in the VF1000's words).
+inline constexpr SettingSpec kLustbusKeypadSetting{
+    .name = "keypad",
+    .kind = SettingKind::boolean,
+    .min = 0,
+    .max = 1,
+    .fallback = 0,
+    .unit = "",
+    .parameter = "",
+    .seed = "seed 000 10",
+    .faces = static_cast<std::uint8_t>(SettingFace::lustbus),
+    .meaning = "a KEYPAD plugged in: LUSTBUS reaction times of 1...30 ms instead of 1...25 ms",
+    .range = "true or false",
+    .elsewhere = "'keypad' is an MC6000 setting on LUSTBUS only (seed 000, 10); {a} has no such setting",
+};
+inline constexpr std::array kLustbusSettings{kLustbusKeypadSetting};
 
 // The wing's typed reads (configuration time).
 inline int supi_of(const DeviceSettings& s) { return s.drive.integer(kSupiSetting); }

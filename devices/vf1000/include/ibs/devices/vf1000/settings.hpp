@@ -1,7 +1,7 @@
 // The VF1000's own settings (devices/settings.hpp): whether a KEYPAD is plugged in (seed 001 7.1's
 // KEYPAD rows; seed 000 10's reaction times) and how long the self-test after RESET FAULT lasts
-// (5.2.1, decision D13). The scenario reader, `ibs lustbus emulate` and the docs' tables take
-// them from this list.
+// (5.2.1, decision D13). The scenario reader and the docs' tables take them from kSettings (the
+// INTERBUS face's), `ibs lustbus emulate` from kLustbusSettings (the LUSTBUS face's).
 #pragma once
 
 #include <array>
@@ -22,7 +22,8 @@ inline constexpr SettingSpec kKeypadSetting{
     .parameter = "",
     .seed = "seed 001 7.1",
     .faces = SettingFace::interbus | SettingFace::lustbus,
-    .meaning = "a KEYPAD plugged in: the communication word's transfer times of 7.1's KEYPAD rows",
+    .meaning = "a KEYPAD plugged in: the communication word's transfer times of 7.1's KEYPAD rows; on "
+               "LUSTBUS reaction times of 1...60 ms instead of 1...30 ms (seed 000, 10)",
     .range = "true or false",
     .elsewhere = "'keypad' is a VF1000 setting (seed 001, 7.1); {the}'s PCP times have no KEYPAD row",
 };
@@ -42,5 +43,7 @@ inline constexpr SettingSpec kResetTimeSetting{
     .elsewhere = "'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)",
 };
 inline constexpr std::array kSettings{kKeypadSetting, kResetTimeSetting};
+// The LUSTBUS face's: the same KEYPAD (seed 000, 10: its reaction times).
+inline constexpr std::array kLustbusSettings{kKeypadSetting};
 
 }  // namespace ibs::devices::vf1000
