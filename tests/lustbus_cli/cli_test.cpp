@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fcntl.h>
+#include <poll.h>
 #include <fstream>
 #include <thread>
 #include <nlohmann/json.hpp>
@@ -264,21 +265,36 @@ TEST(LustbusCli, EmulateTellsWhatItServedAndDiscardedWhenItEnds) {
   ASSERT_EQ(r.rc, 0) << r.err;
   r = run_cli(cmd({"read", "--addr", "3", "--device", "mc6000", "TYPE"}, port));
   ASSERT_EQ(r.rc, 0) << r.err;
-  const auto raw = [&port](std::vector<std::uint8_t> bytes, std::chrono::milliseconds then) {
+  // Writes `bytes` as a host would, waits (up to 10 s, for a loaded machine) for `answer`, then
+  // stays silent for `then` -- longer than the fragment timeout where it matters -- and closes.
+  const auto raw = [&port](std::vector<std::uint8_t> bytes, std::vector<std::uint8_t> answer,
+                           std::chrono::milliseconds then) {
     const int fd = ::open(port.c_str(), O_RDWR | O_NOCTTY);
     ASSERT_GE(fd, 0);
     ASSERT_EQ(::write(fd, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
-    std::this_thread::sleep_for(then);  // longer than the reaction time and the fragment timeout
+    std::vector<std::uint8_t> got;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (got.size() < answer.size() && std::chrono::steady_clock::now() < until) {
+      pollfd p{fd, POLLIN, 0};
+      if (::poll(&p, 1, 50) <= 0) continue;
+      std::uint8_t b[64];
+      const ssize_t n = ::read(fd, b, sizeof b);
+      if (n > 0) got.insert(got.end(), b, b + n);
+    }
+    EXPECT_EQ(got, answer);
+    std::this_thread::sleep_for(then);
     ::close(fd);
   };
-  // EOT, 'A' (address 1), STX, 00105=03E8, ETX and a BCC that is not theirs: NAK after 200 ms.
-  raw({0x04, 0x41, 0x02, '0', '0', '1', '0', '5', '=', '0', '3', 'E', '8', 0x03, 0x00}, std::chrono::milliseconds(400));
-  // A SELECT begun and left (its host died): the next EOT, 400 ms later, finds it stale.
-  raw({0x04, 0x41, 0x02, '0', '0'}, std::chrono::milliseconds(400));
-  // An ADR followed by a character no telegram has there.
-  raw({0x04, 0x41, 'X'}, std::chrono::milliseconds(10));
-  // An ENQUIRY of 1-MODE and at once the EOT: the answer, due in 200 ms, is cut.
-  raw({0x04, 0x41, '0', '0', '1', '0', '1', 0x05, 0x04}, std::chrono::milliseconds(400));
+  // EOT, 'A' (address 1), STX, 00105=03E8, ETX and a BCC that is not theirs: NAK (3).
+  raw({0x04, 0x41, 0x02, '0', '0', '1', '0', '5', '=', '0', '3', 'E', '8', 0x03, 0x00}, {0x41, 0x15},
+      std::chrono::milliseconds(10));
+  // A SELECT begun and left (its host died): the next EOT, 400 ms later, finds it stale (LB-D23:
+  // 50 ms at 9600 Bd).
+  raw({0x04, 0x41, 0x02, '0', '0'}, {}, std::chrono::milliseconds(400));
+  // An ADR followed by a character no telegram has there: no answer (3).
+  raw({0x04, 0x41, 'X'}, {}, std::chrono::milliseconds(10));
+  // An ENQUIRY of 1-MODE and at once the EOT: the answer, due in 200 ms, is cut (3).
+  raw({0x04, 0x41, '0', '0', '1', '0', '1', 0x05, 0x04}, {}, std::chrono::milliseconds(400));
   ASSERT_EQ(emu.stop(SIGINT), 0);
   std::ifstream in(errors);
   std::stringstream text;
