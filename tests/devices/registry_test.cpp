@@ -367,8 +367,8 @@ void read_on_dfs1(const dfs1::Dfs1Face& face) {
 
 // CANLust: a commissioned CDA3000 at address 1 answers the parameter client's read of 360-DISP
 // (7.1.3) with its value, frames passed in memory.
-void read_on_canlust(const cda3000::CanlustFace& face) {
-  auto drive = face.make(cda3000::CanlustFaceOptions{});
+void read_on_canlust(const CanlustFace& face) {
+  auto drive = face.make(CanlustFaceOptions{});
   ASSERT_NE(drive, nullptr);
   drive->power_on(Time{0});
   canlust::ParameterClient client;
@@ -384,6 +384,73 @@ void read_on_canlust(const cda3000::CanlustFace& face) {
   ASSERT_EQ(p.state, canlust::RequestState::done);
   ASSERT_EQ(p.outcome->kind, canlust::OutcomeKind::done) << canlust::describe(*p.outcome);
   EXPECT_EQ(p.outcome->value, *drive->value(cda3000::kDisp));
+}
+
+// CANLust: what `ibs run` knows of a drive's parameters comes from its face, in the table's words
+// (seed 003, 4.3.1 / 5.5.5): names and numbers, read-only and text parameters, values parsed and
+// formatted; and the master the face makes drives the drives it makes to DRIVECOM "operation
+// enabled" (5.4.2) with a reference, frames passed in memory.
+TEST(DriveRegistry, CanlustFaceLooksParametersUpAndRunsItsDrives) {
+  const Drive* d = find_drive("cda3000", Bus::canlust);
+  ASSERT_NE(d, nullptr);
+  const CanlustFace& face = *d->canlust;
+  EXPECT_EQ(face.title, "CDA3000");
+  const auto cawdg = face.find_parameter("CAWDG");
+  ASSERT_TRUE(cawdg);
+  EXPECT_EQ(cawdg->number, 574);
+  EXPECT_EQ(cawdg->name, "574-CAWDG");
+  EXPECT_TRUE(cawdg->writable);
+  EXPECT_FALSE(cawdg->is_string);
+  EXPECT_EQ(face.find_parameter("574-CAWDG")->number, 574);
+  EXPECT_FALSE(face.find_parameter("CAWDX"));
+  EXPECT_FALSE(face.parameter(9999));
+  EXPECT_FALSE(face.parameter(cda3000::kReff)->writable);  // 406-REFF: the drive's actual reference
+  EXPECT_TRUE(face.parameter(cda3000::kName)->is_string);
+  EXPECT_EQ(face.parse_value(574, "300").error, "574-CAWDG: 300 ms is above the maximum 255 ms");
+  EXPECT_EQ(face.parse_value(cda3000::kReff, "20.5").wire, 0x00148000U);
+  EXPECT_EQ(face.format_value(cda3000::kReff, 0x00148000U), "20.5 Hz");
+
+  CanlustMasterOptions mo;
+  mo.drives = {{1, 2, 400.0}, {2, 2, 400.0}};
+  const auto master = face.make_master(mo);
+  std::vector<std::unique_ptr<CanlustDrive>> drives;
+  for (const std::uint8_t a : {std::uint8_t{1}, std::uint8_t{2}}) {
+    CanlustFaceOptions o;
+    o.address = a;
+    o.status_ms = 20;
+    drives.push_back(face.make(o));
+    drives.back()->power_on(Time{0});
+    EXPECT_EQ(drives.back()->address(), a);
+  }
+  EXPECT_EQ(*drives[0]->value(575), 20U);  // 575-CASCY as the options stored it
+  bool asked = false;
+  for (Time t{0}; t <= Time{2s}; t += 1ms) {
+    if (!asked && t >= Time{100ms}) {
+      master->system_start(t);
+      EXPECT_TRUE(master->request(1, drivecom::Target::enabled, t));
+      EXPECT_FALSE(master->set_reference_hz(1, 20.0));
+      asked = true;
+    }
+    master->cycle(t);
+    while (auto f = master->take_frame()) {
+      for (auto& x : drives) x->receive(*f, t);
+    }
+    for (auto& x : drives) {
+      x->step(t);
+      while (auto f = x->take_frame()) master->receive(*f, t);
+    }
+  }
+  EXPECT_EQ(drives[0]->system_state(), canlust::SystemState::start);
+  EXPECT_EQ(drives[0]->state(), drivecom::State::enabled);
+  EXPECT_DOUBLE_EQ(drives[0]->reference_hz(), 20.0);
+  EXPECT_EQ(master->set_reference_hz(7, 1.0), "not a configured drive");
+  EXPECT_FALSE(master->request(7, drivecom::Target::enabled, Time{2s}));
+  const auto status = master->status_text(1);
+  ASSERT_TRUE(status);
+  EXPECT_NE(status->find(std::string(drivecom::to_string(drivecom::State::enabled))), std::string::npos) << *status;
+  const CanlustSubmission refused = master->write(1, 574, "300");
+  EXPECT_FALSE(refused);
+  EXPECT_EQ(refused.error, "574-CAWDG: 300 ms is above the maximum 255 ms");
 }
 
 TEST(DriveRegistry, EveryDriveAnswersAParameterReadOnEveryBusItSpeaks) {

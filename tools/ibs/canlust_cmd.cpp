@@ -157,8 +157,8 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   };
   const std::string forms = devices::drive_names(devices::Bus::canlust, ", ", " or ", "@ADDR");
   if (o.devices.empty()) return bad("no device: give " + forms + " (one or more)");
-  std::vector<std::unique_ptr<dev::Cda3000>> drives;
-  std::vector<dev::Cda3000*> raw;
+  std::vector<std::unique_ptr<devices::CanlustDrive>> drives;
+  std::vector<devices::CanlustDrive*> raw;
   try {
     const cl::IdentifierMap ids = ids_for(o.bus);
     layout_for(o.bus);
@@ -178,7 +178,7 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
         return bad("device '" + spec + "': expected " + forms + " with ADDR " + (o.factory ? "0..7 (the connector's address, 2.1)" : "1..99 (571-CLADR)"));
       }
       if (!seen.insert(static_cast<unsigned>(*a)).second) return bad("device '" + spec + "': address given twice");
-      dev::CanlustFaceOptions c;
+      devices::CanlustFaceOptions c;
       c.ids = ids;
       c.watchdog_reaction = *reaction;
       c.factory = o.factory;
@@ -667,10 +667,10 @@ std::unique_ptr<can::CanTransport> open_bus(const std::string& spec) {
   return std::move(t.transport);
 }
 
-void serve_canlust(can::CanTransport& bus, std::span<dev::Cda3000* const> drives, FrameRecorder* recorder,
+void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* const> drives, FrameRecorder* recorder,
                    const std::function<bool()>& stop) {
   const Clock::time_point t0 = Clock::now();
-  for (dev::Cda3000* d : drives) d->power_on(Time{0});
+  for (devices::CanlustDrive* d : drives) d->power_on(Time{0});
   while (!stop()) {
     Time now = since(t0);
     for (std::size_t i = 0; i < drives.size(); ++i) {
@@ -684,14 +684,14 @@ void serve_canlust(can::CanTransport& bus, std::span<dev::Cda3000* const> drives
       }
     }
     Time next = Time::max();
-    for (const dev::Cda3000* d : drives) next = std::min(next, d->next_deadline());
+    for (const devices::CanlustDrive* d : drives) next = std::min(next, d->next_deadline());
     now = since(t0);
     const Duration wait = next <= now ? Duration::zero() : std::min<Duration>(next - now, kPoll);
     const can::Received r = bus.receive(wait);
     if (r.status != can::IoStatus::ok) continue;
     if (recorder != nullptr) recorder->record(r.frame);
     now = since(t0);
-    for (dev::Cda3000* d : drives) d->receive(r.frame, now);
+    for (devices::CanlustDrive* d : drives) d->receive(r.frame, now);
   }
 }
 

@@ -13,7 +13,8 @@
 // [--json] [--log FILE] (candump -l format) [--pcap FILE] (LINKTYPE_CAN_SOCKETCAN). Exit codes:
 // 0 ok, 1 the drive refused or did not answer (the decoded reason is printed), 2 bad input.
 // Floor 4: real time from the steady clock and real sockets around the sans-I/O machines of
-// canlust/ and devices/cda3000/.
+// canlust/: the emulated drives are the registry's CANLust faces (devices/drives.hpp), found by
+// the NAME of NAME@ADDR; the client commands read, write and explain in the CDA3000's table.
 #pragma once
 
 #include <chrono>
@@ -29,7 +30,7 @@
 
 #include "ibs/can/transport.hpp"
 #include "ibs/canlust/frame.hpp"
-#include "ibs/devices/cda3000/device.hpp"
+#include "ibs/devices/canlust_face.hpp"
 
 namespace CLI {
 class App;
@@ -113,9 +114,10 @@ class FrameRecorder {
 std::optional<int> decode_candump_log(const std::string& file, unsigned id_step, unsigned cacnf,
                                       std::ostream& out, std::ostream& err);
 
-// The emulator's loop: `drives` on `bus`, each frame one drive sends delivered to the others as
-// well (they share the bus); returns when stop() is true (asked at least every 20 ms).
-void serve_canlust(can::CanTransport& bus, std::span<devices::cda3000::Cda3000* const> drives,
+// The emulator's loop: `drives` (the registry's CANLust faces made them) on `bus`, each frame one
+// drive sends delivered to the others as well (they share the bus); returns when stop() is true
+// (asked at least every 20 ms).
+void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* const> drives,
                    FrameRecorder* recorder, const std::function<bool()>& stop);
 
 }  // namespace ibs::cli

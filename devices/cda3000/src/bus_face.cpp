@@ -1,10 +1,45 @@
+// The CDA3000's CANLust face: the wing's Cda3000 and Driver behind the registry's drive-neutral
+// CanlustDrive and CanlustMaster (ibs/devices/canlust_face.hpp), and its parameter table as the
+// face looks parameters up. The frame path forwards to the wing's own allocation-free calls.
 #include "ibs/devices/cda3000/bus_face.hpp"
+
+#include <memory>
+
+#include "ibs/devices/cda3000/descriptor.hpp"
+#include "ibs/devices/cda3000/device.hpp"
+#include "ibs/devices/cda3000/driver.hpp"
+#include "ibs/devices/cda3000/parameters.hpp"
 
 namespace ibs::devices::cda3000 {
 
 namespace {
 
-std::unique_ptr<Cda3000> make(const CanlustFaceOptions& o) {
+class EmulatedDrive final : public CanlustDrive {
+ public:
+  explicit EmulatedDrive(const DeviceConfig& c) : drive_(c) {}
+
+  void power_on(Time now) override { drive_.power_on(now); }
+  void power_off() override { drive_.power_off(); }
+  void receive(const canlust::CanFrame& f, Time now) override { drive_.receive(f, now); }
+  void step(Time now) override { drive_.step(now); }
+  std::optional<canlust::CanFrame> take_frame() override { return drive_.take_frame(); }
+  [[nodiscard]] Time next_deadline() const override { return drive_.next_deadline(); }
+
+  [[nodiscard]] canlust::Address address() const override { return drive_.address(); }
+  [[nodiscard]] canlust::SystemState system_state() const override { return drive_.system_state(); }
+  [[nodiscard]] drivecom::State state() const override { return drive_.state(); }
+  [[nodiscard]] double actual_hz(Time now) const override { return drive_.actual_hz(now); }
+  [[nodiscard]] double reference_hz() const override { return drive_.reference_hz(); }
+  [[nodiscard]] std::uint32_t watchdog_trips() const override { return drive_.counters().watchdog_trips; }
+  [[nodiscard]] std::optional<std::uint32_t> value(std::uint16_t number) const override {
+    return drive_.value(number);
+  }
+
+ private:
+  Cda3000 drive_;
+};
+
+std::unique_ptr<CanlustDrive> make(const CanlustFaceOptions& o) {
   DeviceConfig c;
   c.ids = o.ids;
   c.watchdog_reaction = o.watchdog_reaction;
@@ -13,13 +48,95 @@ std::unique_ptr<Cda3000> make(const CanlustFaceOptions& o) {
   } else {
     c.saved = commissioned_for_bus(o.address, o.cacnf);
   }
-  return std::make_unique<Cda3000>(c);
+  // 4.3.1: the bus settings are parameters; the constructor checks them like a write.
+  if (o.bitrate) c.saved.push_back({kClbdr, *o.bitrate / 1000});  // 489-CLBDR in kBaud
+  if (o.watchdog_ms) c.saved.push_back({kCawdg, *o.watchdog_ms});
+  if (o.status_ms) c.saved.push_back({kCascy, *o.status_ms});
+  return std::make_unique<EmulatedDrive>(c);
+}
+
+class Master final : public CanlustMaster {
+ public:
+  explicit Master(const DriverConfig& c) : driver_(c) {}
+
+  void receive(const canlust::CanFrame& f, Time now) override { driver_.receive(f, now); }
+  void cycle(Time now) override { driver_.cycle(now); }
+  std::optional<canlust::CanFrame> take_frame() override { return driver_.take_frame(); }
+  [[nodiscard]] Time next_deadline() const override { return driver_.next_deadline(); }
+  std::optional<canlust::ErrorEvent> take_error() override { return driver_.take_error(); }
+
+  void system_start(Time now) override { driver_.system_start(now); }
+  void system_stop(Time now) override { driver_.system_stop(now); }
+  bool request(canlust::Address a, drivecom::Target t, Time now) override { return driver_.request(a, t, now); }
+  bool set_easydrive(canlust::Address a, Word bits) override { return driver_.set_easydrive(a, bits); }
+  std::optional<std::string_view> set_reference_hz(canlust::Address a, double hz) override {
+    const ReferenceError e = driver_.set_reference_hz(a, hz);
+    if (e == ReferenceError::none) return std::nullopt;
+    return to_string(e);
+  }
+
+  CanlustSubmission read(canlust::Address a, std::uint16_t number) override {
+    return submitted(driver_.read(a, number), number);
+  }
+  CanlustSubmission write(canlust::Address a, std::uint16_t number, std::string_view value) override {
+    const ParameterInfo* p = find_parameter(number);
+    if (p != nullptr && p->is_string()) return submitted(driver_.write_text(a, number, value), number);
+    if (p == nullptr) return submitted(driver_.write(a, number, 0), number);  // refused: unknown_parameter
+    const ParsedValue v = parse_value(*p, value);
+    if (!v.wire) return {0, v.error};
+    return submitted(driver_.write(a, number, *v.wire), number);
+  }
+  [[nodiscard]] canlust::Poll poll(canlust::RequestId id) const override { return driver_.parameters().poll(id); }
+
+  [[nodiscard]] std::optional<std::string> status_text(canlust::Address a) const override {
+    const DriveReport seen = driver_.drive(a);
+    if (!seen.has_status) return std::nullopt;
+    return seen.easydrive ? "EasyDrive " + explain_easydrive_status(seen.status_word)
+                          : explain_status_word(seen.status_word);
+  }
+
+ private:
+  static CanlustSubmission submitted(const ParameterSubmission& s, std::uint16_t number) {
+    if (!s) return {0, describe(s, number)};
+    return {s.id, {}};
+  }
+
+  Driver driver_;
+};
+
+std::unique_ptr<CanlustMaster> make_master(const CanlustMasterOptions& o) {
+  DriverConfig c;
+  c.ids = o.ids;
+  c.control_period = o.control_period;
+  c.status_period = o.status_period;
+  for (const CanlustMasterDrive& d : o.drives) c.drives.push_back({d.address, d.cacnf, d.max_reference_hz});
+  return std::make_unique<Master>(c);
+}
+
+std::optional<CanlustParameter> as_face(const ParameterInfo* p) {
+  if (p == nullptr) return std::nullopt;
+  return CanlustParameter{p->number, display_name(*p), p->writable(), p->is_string()};
+}
+
+std::optional<CanlustParameter> find_by_text(std::string_view text) { return as_face(find_parameter(text)); }
+std::optional<CanlustParameter> find_by_number(std::uint16_t number) { return as_face(find_parameter(number)); }
+
+CanlustValue parse(std::uint16_t number, std::string_view text) {
+  const ParameterInfo* p = find_parameter(number);
+  if (p == nullptr) return {std::nullopt, "parameter " + std::to_string(number) + " is not in the CDA3000's table"};
+  ParsedValue v = parse_value(*p, text);
+  return {v.wire, std::move(v.error)};
+}
+
+std::string format(std::uint16_t number, std::uint32_t wire) {
+  const ParameterInfo* p = find_parameter(number);
+  return p != nullptr ? format_value(*p, wire) : std::to_string(wire);
 }
 
 }  // namespace
 
 const CanlustFace& bus_face() {
-  static const CanlustFace face{&make};
+  static const CanlustFace face{"CDA3000", &make, &make_master, &find_by_text, &find_by_number, &parse, &format};
   return face;
 }
 

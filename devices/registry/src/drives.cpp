@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "ibs/devices/cda3000/bus_face.hpp"
 #include "ibs/devices/mc6000/descriptor.hpp"
 #include "ibs/devices/mc6000/lustbus_face.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"

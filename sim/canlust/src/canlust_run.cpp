@@ -13,17 +13,14 @@
 #include "ibs/can/pcap_writer.hpp"
 #endif
 #include "ibs/can/virtual_bus.hpp"
-#include "ibs/devices/cda3000/descriptor.hpp"
-#include "ibs/devices/cda3000/device.hpp"
-#include "ibs/devices/cda3000/driver.hpp"
-#include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/devices/drives.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/scenario.hpp"
+#include "canlust_reader.hpp"
 #include "run_summary.hpp"
 
 namespace ibs::sim::canlust {
 
-namespace cda = devices::cda3000;
 namespace cl = ibs::canlust;
 
 namespace {
@@ -31,9 +28,9 @@ namespace {
 constexpr Duration kLoadWindow = std::chrono::milliseconds(100);
 
 struct Drive {
-  explicit Drive(const DriveSpec& s, const cda::DeviceConfig& c) : spec(s), device(c) {}
+  explicit Drive(const DriveSpec& s, std::unique_ptr<devices::CanlustDrive> d) : spec(s), device(std::move(d)) {}
   DriveSpec spec;
-  cda::Cda3000 device;
+  std::unique_ptr<devices::CanlustDrive> device;  // the drive's wing, found in the registry by its type
   can::NodeId bus_id = 0;
   bool on = false;
   std::optional<Time> power_on_at;  // pending mains on
@@ -45,7 +42,8 @@ struct Drive {
 struct PendingRead {
   std::size_t entry = 0;
   cl::RequestId id = 0;
-  const cda::ParameterInfo* parameter = nullptr;
+  std::uint16_t parameter = 0;
+  bool is_string = false;
   bool write = false;
 };
 
@@ -64,27 +62,32 @@ Report run(const Scenario& s, const std::string& pcap_path) {
   const can::NodeId master_id = bus.attach("master");
   const can::NodeId spy = bus.attach("spy");
 
-  cda::DriverConfig dc;
-  dc.ids.step = static_cast<std::uint8_t>(s.id_step);
-  dc.control_period = s.control_period;
+  // The drives and their master through the registry's CANLust face of the scenario's type (the
+  // reader took only drives that speak CANLust, all of one type: one master drives them).
+  if (s.drives.empty()) throw std::invalid_argument("scenario " + s.name + ": a CANLust bus needs at least one drive");
+  const devices::CanlustFace& face = canlust_face(s.drives.front().kind);
+  devices::CanlustMasterOptions mo;
+  mo.ids.step = static_cast<std::uint8_t>(s.id_step);
+  mo.control_period = s.control_period;
   std::uint16_t slowest_status = 1;
   for (const auto& d : s.drives) {
-    dc.drives.push_back({d.address, d.cacnf, 400.0});
+    mo.drives.push_back({d.address, d.cacnf, 400.0});
     slowest_status = std::max(slowest_status, d.status_ms);
   }
-  dc.status_period = std::chrono::milliseconds(slowest_status);
-  cda::Driver driver(dc);
+  mo.status_period = std::chrono::milliseconds(slowest_status);
+  const std::unique_ptr<devices::CanlustMaster> master = face.make_master(mo);
+  devices::CanlustMaster& driver = *master;
 
   std::vector<std::unique_ptr<Drive>> drives;
   for (const auto& d : s.drives) {
-    cda::DeviceConfig c;
+    devices::CanlustFaceOptions c;
     c.ids.step = static_cast<std::uint8_t>(s.id_step);
-    c.saved = cda::commissioned_for_bus(d.address, d.cacnf);
-    c.saved.push_back({cda::kClbdr, s.bitrate / 1000});
-    c.saved.push_back({cda::kCawdg, d.watchdog_ms});
-    c.saved.push_back({cda::kCascy, d.status_ms});
-    if (d.address == 0) c.connector_address = 0;
-    auto drive = std::make_unique<Drive>(d, c);
+    c.address = d.address;
+    c.cacnf = d.cacnf;
+    c.bitrate = s.bitrate;
+    c.watchdog_ms = d.watchdog_ms;
+    c.status_ms = d.status_ms;
+    auto drive = std::make_unique<Drive>(d, canlust_face(d.kind).make(c));
     drive->bus_id = bus.attach(d.name);
     drive->power_on_at = d.power_on;
     drive->result.name = d.name;
@@ -130,7 +133,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
   const auto next_time = [&]() {
     Time t = std::min(bus.next_event(), driver.next_deadline());
     for (const auto& d : drives) {
-      if (d->on) t = std::min(t, d->device.next_deadline());
+      if (d->on) t = std::min(t, d->device->next_deadline());
       if (d->power_on_at) t = std::min(t, *d->power_on_at);
     }
     if (next_entry < s.timeline.size()) t = std::min(t, s.timeline[next_entry].at);
@@ -190,39 +193,33 @@ Report run(const Scenario& s, const std::string& pcap_path) {
         char b[48];
         std::snprintf(b, sizeof b, " %.2f Hz", e.hz);
         r.what += b;
-        const auto err = driver.set_reference_hz(d.spec.address, e.hz);
-        r.ok = err == cda::ReferenceError::none;
-        r.outcome = r.ok ? "set" : "refused: " + std::string(cda::to_string(err));
+        const auto refusal = driver.set_reference_hz(d.spec.address, e.hz);
+        r.ok = !refusal;
+        r.outcome = r.ok ? "set" : "refused: " + std::string(*refusal);
         return;
       }
       case Action::read:
       case Action::write: {
-        const auto* p = cda::find_parameter(e.parameter);
-        r.what += " " + cda::display_name(*p) + (e.action == Action::write ? " := " + e.value : "");
-        cda::ParameterSubmission sub;
-        if (e.action == Action::read) {
-          sub = driver.read(d.spec.address, e.parameter);
-        } else if (p->is_string()) {
-          sub = driver.write_text(d.spec.address, e.parameter, e.value);
-        } else {
-          sub = driver.write(d.spec.address, e.parameter, *cda::parse_value(*p, e.value).wire);
-        }
+        const auto p = face.parameter(e.parameter);  // the reader took only the table's parameters
+        r.what += " " + p->name + (e.action == Action::write ? " := " + e.value : "");
+        const devices::CanlustSubmission sub = e.action == Action::read ? driver.read(d.spec.address, e.parameter)
+                                                                         : driver.write(d.spec.address, e.parameter, e.value);
         if (!sub) {
           r.ok = false;
-          r.outcome = "not sent: " + cda::describe(sub, e.parameter);
+          r.outcome = "not sent: " + sub.error;
           return;
         }
-        pending.push_back({i, sub.id, p, e.action == Action::write});
+        pending.push_back({i, sub.id, p->number, p->is_string, e.action == Action::write});
         r.outcome = "pending";
         return;
       }
       case Action::mains_reset:
-        d.device.power_on(now);
+        d.device->power_on(now);
         d.on = true;
         r.outcome = "done";
         return;
       case Action::mains_off:
-        d.device.power_off();
+        d.device->power_off();
         d.on = false;
         d.power_on_at.reset();
         r.outcome = "done";
@@ -239,19 +236,19 @@ Report run(const Scenario& s, const std::string& pcap_path) {
   const auto observe = [&]() {
     for (auto& d : drives) {
       if (!d->on) continue;
-      const drivecom::State st = d->device.state();
+      const drivecom::State st = d->device->state();
       if (!d->last_state || *d->last_state != st) {
         d->result.states.push_back({now, std::string(drivecom::to_string(st))});
         d->last_state = st;
       }
-      const cl::SystemState sys = d->device.system_state();
+      const cl::SystemState sys = d->device->system_state();
       if (sys == cl::SystemState::start && d->last_system != cl::SystemState::start && !d->result.started) {
         d->result.started = now;
       }
       d->last_system = sys;
     }
     for (auto it = pending.begin(); it != pending.end();) {
-      const auto poll = driver.parameters().poll(it->id);
+      const auto poll = driver.poll(it->id);
       if (poll.state != cl::RequestState::done || poll.outcome == nullptr) {
         ++it;
         continue;
@@ -261,10 +258,10 @@ Report run(const Scenario& s, const std::string& pcap_path) {
       r.ok = o.kind == cl::OutcomeKind::done;
       if (!r.ok) {
         r.outcome = cl::describe(o);
-      } else if (it->parameter->is_string()) {
+      } else if (it->is_string) {
         r.outcome = it->write ? "ok" : "\"" + std::string(o.text.view()) + "\"";
       } else {
-        r.outcome = (it->write ? "ok, " : "") + cda::format_value(*it->parameter, o.value);
+        r.outcome = (it->write ? "ok, " : "") + face.format_value(it->parameter, o.value);
       }
       r.outcome += " (" + seconds(o.finished) + ")";
       it = pending.erase(it);
@@ -275,7 +272,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     now = t;
     for (auto& d : drives) {
       if (d->power_on_at && now >= *d->power_on_at) {
-        d->device.power_on(*d->power_on_at);
+        d->device->power_on(*d->power_on_at);
         d->on = true;
         d->power_on_at.reset();
       }
@@ -284,7 +281,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     bus.advance(now);
     while (auto seen = bus.receive(spy)) {
       if (pcap) pcap->write(seen->frame, seen->start);
-      if (const auto c = dc.ids.classify(seen->frame.id); c && c->kind == cl::TelegramKind::logon) {
+      if (const auto c = mo.ids.classify(seen->frame.id); c && c->kind == cl::TelegramKind::logon) {
         for (auto& d : drives) {
           if (d->spec.address == c->address && !d->result.logon) d->result.logon = seen->start;
         }
@@ -293,7 +290,7 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     while (auto r = bus.receive(master_id)) driver.receive(r->frame, r->time);
     for (auto& d : drives) {
       while (auto r = bus.receive(d->bus_id)) {
-        if (d->on) d->device.receive(r->frame, r->time);
+        if (d->on) d->device->receive(r->frame, r->time);
       }
     }
     driver.cycle(now);
@@ -308,8 +305,8 @@ Report run(const Scenario& s, const std::string& pcap_path) {
     }
     for (auto& d : drives) {
       if (!d->on) continue;
-      d->device.step(now);
-      while (auto f = d->device.take_frame()) bus.send(d->bus_id, *f, now);
+      d->device->step(now);
+      while (auto f = d->device->take_frame()) bus.send(d->bus_id, *f, now);
     }
     bus.advance(now);
     observe();
@@ -342,15 +339,12 @@ Report run(const Scenario& s, const std::string& pcap_path) {
   std::optional<Time> last;
   for (auto& d : drives) {
     DriveResult& r = d->result;
-    r.system_state = d->on ? std::string(cl::to_string(d->device.system_state())) : "off";
-    r.state = d->on ? std::string(drivecom::to_string(d->device.state())) : "off";
-    r.actual_hz = d->on ? d->device.actual_hz(now) : 0.0;
-    r.reference_hz = d->on ? d->device.reference_hz() : 0.0;
-    r.watchdog_trips = d->device.counters().watchdog_trips;
-    const cda::DriveReport seen = driver.drive(d->spec.address);
-    r.status = !seen.has_status ? "none received"
-               : seen.easydrive ? "EasyDrive " + cda::explain_easydrive_status(seen.status_word)
-                                : cda::explain_status_word(seen.status_word);
+    r.system_state = d->on ? std::string(cl::to_string(d->device->system_state())) : "off";
+    r.state = d->on ? std::string(drivecom::to_string(d->device->state())) : "off";
+    r.actual_hz = d->on ? d->device->actual_hz(now) : 0.0;
+    r.reference_hz = d->on ? d->device->reference_hz() : 0.0;
+    r.watchdog_trips = d->device->watchdog_trips();
+    r.status = driver.status_text(d->spec.address).value_or("none received");
     if (r.started) {
       first = first ? std::min(*first, *r.started) : *r.started;
       last = last ? std::max(*last, *r.started) : *r.started;
@@ -377,7 +371,15 @@ Report run(const Scenario& s, const std::string& pcap_path) {
 std::string format_text(const Report& r) {
   std::ostringstream o;
   char b[256];
-  o << "scenario " << r.name << ": CANLust, " << r.drives.size() << " CDA3000 drive" << (r.drives.size() == 1 ? "" : "s")
+  // The drives by their manual's name ("CDA3000") when they are all of one registered type.
+  std::string title;
+  for (const auto& d : r.drives) {
+    const devices::Drive* drive = devices::find_drive(d.kind, devices::Bus::canlust);
+    const std::string t = drive != nullptr ? std::string(drive->canlust->title) : std::string();
+    title = &d == &r.drives.front() || t == title ? t : std::string();
+  }
+  o << "scenario " << r.name << ": CANLust, " << r.drives.size() << " " << (title.empty() ? "" : title + " ") << "drive"
+    << (r.drives.size() == 1 ? "" : "s")
     << ", " << r.bitrate / 1000 << " kbit/s, " << format_time(r.duration) << " simulated\n";
   std::snprintf(b, sizeof b, "bus: %llu frames, %llu bits (%llu stuff), load %.1f %% (busiest 100 ms: %.1f %%), "
                 "%llu arbitration losses, %llu overflows\n",

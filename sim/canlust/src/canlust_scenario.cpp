@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
-#include "ibs/devices/cda3000/parameters.hpp"
+#include "ibs/devices/drives.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "canlust_reader.hpp"
 #include "scenario_internal.hpp"
@@ -137,7 +139,8 @@ Scenario read_tree(const detail::Node& root, const std::string& file) {
 
   const Node* devices = child(root, "device");
   if (devices == nullptr || devices->kind != Node::Kind::array || devices->children.empty()) {
-    r.fail(root.line, "no [[device]]: a CANLust scenario needs at least one cda3000");
+    r.fail(root.line, "no [[device]]: a CANLust scenario needs at least one " +
+                          devices::drive_names(devices::Bus::canlust, ", ", " or "));
   }
   std::set<std::string> names;
   std::set<int> addresses;
@@ -152,10 +155,18 @@ Scenario read_tree(const detail::Node& root, const std::string& file) {
     spec.name = r.text(*name, "name");
     if (!names.insert(spec.name).second) r.fail(name->line, "device name '" + spec.name + "' is given twice");
     const Node* type = child(d, "type");
-    if (type == nullptr || r.text(*type, "type") != "cda3000") {
-      r.fail(type != nullptr ? type->line : d.line, "device '" + spec.name + "': type must be \"cda3000\" on a CANLust bus");
+    // The drive by its name in the registry, among those that speak CANLust.
+    if (type == nullptr || devices::find_drive(r.text(*type, "type"), devices::Bus::canlust) == nullptr) {
+      r.fail(type != nullptr ? type->line : d.line,
+             "device '" + spec.name + "': type must be \"" +
+                 devices::drive_names(devices::Bus::canlust, "\", \"", "\" or \"") + "\" on a CANLust bus");
     }
     spec.kind = r.text(*type, "type");
+    // One master drives the bus (canlust_run.cpp): it is the wing's of the drives' one type.
+    if (!s.drives.empty() && spec.kind != s.drives.front().kind) {
+      r.fail(type->line, "device '" + spec.name + "': type \"" + spec.kind + "\" differs from \"" +
+                             s.drives.front().kind + "\": the drives of one CANLust bus are of one type");
+    }
     const Node* addr = child(d, "address");
     if (addr == nullptr) r.fail(d.line, "device '" + spec.name + "' needs an address (571-CLADR)");
     spec.address = static_cast<std::uint8_t>(r.integer(*addr, "address", 0, max_address));
@@ -217,33 +228,42 @@ Scenario read_tree(const detail::Node& root, const std::string& file) {
         e.action = Action::reference;
         e.hz = r.number(*n, "reference_hz");
       }
+      // Parameters are the table of the drive the entry names (its [[device]]'s type); an entry
+      // that names no known device is refused below, before its parameter matters.
+      const devices::CanlustFace* face = nullptr;
+      for (const auto& d : s.drives) {
+        if (device != nullptr && d.name == e.device) face = &canlust_face(d.kind);
+      }
       const auto parameter = [&](const Node& n, const std::string& key) {
-        const auto* p = n.kind == Node::Kind::string ? devices::cda3000::find_parameter(n.text)
-                        : n.kind == Node::Kind::integer && n.integer >= 0 && n.integer <= 65535
-                            ? devices::cda3000::find_parameter(static_cast<std::uint16_t>(n.integer))
-                            : nullptr;
-        if (p == nullptr) r.fail(n.line, key + ": the CDA3000 has no such parameter");
+        std::optional<devices::CanlustParameter> p;
+        if (face == nullptr) return p;
+        if (n.kind == Node::Kind::string) {
+          p = face->find_parameter(n.text);
+        } else if (n.kind == Node::Kind::integer && n.integer >= 0 && n.integer <= 65535) {
+          p = face->parameter(static_cast<std::uint16_t>(n.integer));
+        }
+        if (!p) r.fail(n.line, key + ": the " + std::string(face->title) + " has no such parameter");
         return p;
       };
       if (const Node* n = child(t, "read")) {
         ++actions;
         e.action = Action::read;
-        e.parameter = parameter(*n, "read")->number;
+        if (const auto p = parameter(*n, "read")) e.parameter = p->number;
       }
       if (const Node* n = child(t, "write")) {
         ++actions;
         e.action = Action::write;
-        const auto* p = parameter(*n, "write");
-        e.parameter = p->number;
+        const auto p = parameter(*n, "write");
+        if (p) e.parameter = p->number;
         const Node* v = child(t, "value");
         if (v == nullptr) r.fail(t.line, "write needs a value");
         e.value = v->kind == Node::Kind::string ? v->text
                   : v->kind == Node::Kind::integer ? std::to_string(v->integer)
                   : v->kind == Node::Kind::floating ? detail::format_number(v->floating)
                                                     : (r.fail(v->line, "value: expected a number or a string"), "");
-        if (!p->writable()) r.fail(n->line, "write: " + devices::cda3000::display_name(*p) + " is read-only");
-        if (!p->is_string()) {
-          const auto parsed = devices::cda3000::parse_value(*p, e.value);
+        if (p && !p->writable) r.fail(n->line, "write: " + p->name + " is read-only");
+        if (p && !p->is_string) {
+          const auto parsed = face->parse_value(p->number, e.value);
           if (!parsed.wire) r.fail(v->line, parsed.error);
         }
       } else if (child(t, "value") != nullptr) {
@@ -291,6 +311,12 @@ Scenario read_tree(const detail::Node& root, const std::string& file) {
   std::stable_sort(s.timeline.begin(), s.timeline.end(), [](const Entry& a, const Entry& b) { return a.at < b.at; });
   (void)duration_line;
   return s;
+}
+
+const devices::CanlustFace& canlust_face(std::string_view kind) {
+  const devices::Drive* d = devices::find_drive(kind, devices::Bus::canlust);
+  if (d == nullptr) throw std::logic_error("no drive '" + std::string(kind) + "' speaks CANLust");
+  return *d->canlust;
 }
 
 }  // namespace ibs::sim::canlust

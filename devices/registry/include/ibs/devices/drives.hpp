@@ -1,8 +1,8 @@
 // The one registry of drive and bus: every drive the project knows, and for each bus it speaks
 // what that bus needs from it. INTERBUS: the drive kind (registry.hpp: descriptor, emulator
 // factory, capture facts); LUSTBUS: the drive's lustbus::Responder face, its protocol family and
-// its parameter lookup (lustbus_face.hpp); DFS-1: the controller factory; CANLust: the CDA3000
-// factory. Every emulator and host on every bus finds a drive here by the name the user gives
+// its parameter lookup (lustbus_face.hpp); DFS-1: the controller factory; CANLust: the emulated drive, the
+// master driver and the parameter lookup (canlust_face.hpp). Every emulator and host on every bus finds a drive here by the name the user gives
 // it. Each wing declares its faces in its own sources; the list in drives.cpp is where they meet
 // (docs/architecture.md, "The registry of drive and bus").
 #pragma once
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ibs/devices/cda3000/bus_face.hpp"
+#include "ibs/devices/canlust_face.hpp"
 #include "ibs/devices/dfs1/bus_face.hpp"
 #include "ibs/devices/lustbus_face.hpp"
 #include "ibs/devices/registry.hpp"
@@ -29,7 +29,7 @@ struct Drive {
   const DriveKind* interbus = nullptr;
   const LustbusFace* lustbus = nullptr;
   const dfs1::Dfs1Face* dfs1 = nullptr;
-  const cda3000::CanlustFace* canlust = nullptr;
+  const CanlustFace* canlust = nullptr;
 
   [[nodiscard]] bool speaks(Bus b) const;
 };
