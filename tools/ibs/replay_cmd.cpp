@@ -16,8 +16,9 @@ namespace {
 
 namespace capture = sim::capture;
 
-// What one trace step stands for in simulated time (the adapters' own step times).
+// What one trace step stands for in simulated time: its `step-time`, or the adapters' own.
 Duration step_period(const trace::Header& h) {
+  if (h.step_time) return *h.step_time;
   switch (h.words) {
     case trace::WordsKind::pd: {
       const devices::DriveKind* kind = devices::find_drive_kind(h.device);
