@@ -505,12 +505,12 @@ Trace parse(std::string_view text, const std::string& file, const Vocabulary& vo
       if (!kind) {
         fail(file, line_no, "unknown event '" + std::string(name) + "' (one of: " + choices(kEvents) + ")");
       }
-      std::string_view text = space == std::string_view::npos ? std::string_view{} : trim(body.substr(space));
+      std::string_view remark = space == std::string_view::npos ? std::string_view{} : trim(body.substr(space));
       std::uint64_t steps = 0;
       if (*kind == Event::Kind::no_data) {
         // `no-data N [text]`: N steps without valid data, 1..kMaxNoDataSteps.
-        const auto end = text.find_first_of(" \t");
-        const std::string_view count = text.substr(0, end);
+        const auto end = remark.find_first_of(" \t");
+        const std::string_view count = remark.substr(0, end);
         const auto n = parse_number(count);
         if (count.empty() || !n || *n < 1 || count.find_first_not_of("0123456789") != std::string_view::npos) {
           fail(file, line_no, "no-data: '" + printable(count) + "' is not a number of steps (N >= 1: `! no-data N`)");
@@ -520,9 +520,9 @@ Trace parse(std::string_view text, const std::string& file, const Vocabulary& vo
                                   std::to_string(kMaxNoDataSteps) + " steps one event may stand for");
         }
         steps = static_cast<std::uint64_t>(*n);
-        text = end == std::string_view::npos ? std::string_view{} : trim(text.substr(end));
+        remark = end == std::string_view::npos ? std::string_view{} : trim(remark.substr(end));
       }
-      pending_events.push_back({*kind, std::string(text), line_no, steps});
+      pending_events.push_back({*kind, std::string(remark), line_no, steps});
       continue;
     }
     // A data row.
