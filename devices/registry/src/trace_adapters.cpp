@@ -170,11 +170,13 @@ Duration pd_step(const trace::Trace& t, const DriveKind& k) {
 
 void validate_trace(const trace::Trace& t) {
   const Header& h = t.header;
-  trace::validate(t);
+  // The header's own lines first (drive, target, settings, request), then what ties it to the
+  // rows (request-at, outcome; trace::validate) and the rows themselves.
   const DriveKind& k = kind_of(t);
   if (h.words == WordsKind::pd) {
     const Configuration c = configuration_of(t, k);
     require_state_request(t);
+    trace::validate(t);
     // The device model acts on every event (trace-format.md, "Events").
     check_counts(t, c.pd_words, c.pd_words);
     return;
@@ -200,6 +202,7 @@ void validate_trace(const trace::Trace& t) {
                            " is its parameter channel alone and cannot act on it (events go in words: pd traces)");
     }
   }
+  trace::validate(t);
   const auto explainer = k->make_channel_explainer(h);
   check_counts(t, explainer->m2s_words(), explainer->s2m_words());
 }
