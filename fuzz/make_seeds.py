@@ -67,6 +67,14 @@ put("trace_fuzz", "pcp_state_request.trace", b"# format: ibs-trace 1\n# device: 
 put("trace_fuzz", "events.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: pd\n# init: operational\n"
     b"# request: state enabled\n0, 0000 0000 0000, 0240 0000 8000\n! fault\n1, 0006 0000 0000, 0208 0000 8000\n"
     b"! fault-cleared\n2, 0086 0000 0000, 0231 0000 8000\n")
+put("trace_fuzz", "no_data_watchdog.trace", b"# format: ibs-trace 1\n# device: mc6000\n# words: pd\n# supi: 11\n"
+    b"# ibcnf: 2\n# watchdog_ms: 5\n# step-time: 1 ms\n# init: operational\n0, 0000 0000 0000, 0240 0000 0000\n"
+    b"! no-data 3 corrupted cycles\n4, 0000 0000 0000, 0240 0000 0000\n! fault\n! no-data 4\n"
+    b"9, 0000 0000 0000, 0240 0000 0000\n")
+put("trace_fuzz", "step_time_vf1000.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: pd\n# watchdog_ms: 200\n"
+    b"# step-time: 8.2 ms\n0, 0000 0000 0000, 0240 0000 8000\n! no-data 30\n31, 0000 0000 0000, 0240 0000 8000\n")
+put("trace_fuzz", "comm_step_time.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# step-time: 726 us\n"
+    b"# request: read 0x16\n0, 0000, 8000\n1, 2416, 8000\n2, 2416, A003\n")
 
 # --- scenario_fuzz: byte 0 = format (bit 0 JSON, bit 1 also parse_time), then the file -----------
 for p in sorted((ROOT / "examples").glob("*")):

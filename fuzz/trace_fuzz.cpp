@@ -12,7 +12,7 @@
 // - a parsed trace has rows, and write() gives text that parses again and writes the same text
 //   (the writer's round trip);
 // - decode() gives a trace that write() and parse() accept;
-// - replay ends: it runs at most `rows + gaps * (max-gap + 1)` steps, and a trace that the reader
+// - replay ends: it runs at most `rows + gaps * (max-gap + 1) + no-data steps` steps, and a trace that the reader
 //   accepts must not allow more than 10^10 of them (hours of replay: it would never end).
 //   Each replay is given a budget of steps here so that an input runs in milliseconds; a replay
 //   that needs more stops quietly unless the trace allows the endless kind.
@@ -53,6 +53,12 @@ class CountingDevice final : public trace::DeviceSide {
     if (++steps_ > kStepBudget) throw BudgetExceeded{};
     d_.step(m2s, s2m);
   }
+  bool supports(trace::Event::Kind kind) const override { return d_.supports(kind); }
+  void apply(const trace::Event& e) override { d_.apply(e); }
+  void step_without_data(std::span<Word> s2m) override {
+    if (++steps_ > kStepBudget) throw BudgetExceeded{};
+    d_.step_without_data(s2m);
+  }
 
  private:
   trace::DeviceSide& d_;
@@ -80,8 +86,12 @@ class CountingMaster final : public trace::MasterSide {
 // The most steps a replay of `t` may take.
 double possible_steps(const trace::Trace& t) {
   double gaps = 0;
-  for (const trace::Row& r : t.rows) gaps += r.gap ? 1 : 0;
-  return static_cast<double>(t.rows.size()) + gaps * (static_cast<double>(t.header.max_gap) + 1.0);
+  double without_data = 0;  // the steps of `! no-data N`
+  for (const trace::Row& r : t.rows) {
+    gaps += r.gap ? 1 : 0;
+    for (const trace::Event& e : r.events_before) without_data += static_cast<double>(e.steps);
+  }
+  return static_cast<double>(t.rows.size()) + gaps * (static_cast<double>(t.header.max_gap) + 1.0) + without_data;
 }
 
 // Runs one stage; a refusal must be a TraceError naming this file and one of its lines.

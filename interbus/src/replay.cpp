@@ -71,7 +71,23 @@ ReplayResult failed(std::size_t n, std::string message) { return {false, n, std:
 
 }  // namespace
 
+void validate(const Trace& t) {
+  const Header& h = t.header;
+  if (h.outcome && !h.request) {
+    throw TraceError(t.file, h.lines.outcome, "header 'outcome' needs a 'request' to judge");
+  }
+  if (h.request) {
+    bool found = false;
+    for (const Row& r : t.rows) found = found || (!r.gap && r.step == h.request_at);
+    if (!found) {
+      throw TraceError(t.file, h.lines.request_at != 0 ? h.lines.request_at : h.lines.request,
+                       "request-at: step " + std::to_string(h.request_at) + " does not appear in the trace");
+    }
+  }
+}
+
 ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& e) {
+  validate(t);
   check_counts(t, device.m2s_words(), device.s2m_words());
   for (const Row& r : t.rows) {
     for (const Event& ev : r.events_before) {
@@ -103,9 +119,29 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
       pending_gap = true;
       continue;
     }
-    for (const Event& ev : r.events_before) device.apply(ev);
+    // The steps between the previous row and this one, in the file's order (trace-format.md,
+    // "Timing convention", "Events"): each step answers the m2s of the step before it -- the
+    // previous row's words first, then, for each step without data (`no-data N`), nothing the
+    // device may take. An event acts before the step that follows it.
+    bool data_pending = true;  // the step still to come answers the previous row's m2s
+    for (const Event& ev : r.events_before) {
+      if (ev.kind != Event::Kind::no_data) {
+        device.apply(ev);
+        continue;
+      }
+      for (std::uint64_t k = 0; k < ev.steps; ++k) {
+        if (data_pending) {
+          device.step(prev_m2s, s2m);
+        } else {
+          device.step_without_data(s2m);
+        }
+        data_pending = false;
+      }
+    }
     if (n == 0) {
       device.initial(s2m);
+    } else if (!data_pending) {
+      device.step_without_data(s2m);
     } else if (!pending_gap) {
       device.step(prev_m2s, s2m);
     } else {
@@ -145,20 +181,9 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
 }
 
 ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& e) {
+  validate(t);
   check_counts(t, master.m2s_words(), master.s2m_words());
   const Header& h = t.header;
-  if (h.outcome && !h.request) {
-    throw TraceError(t.file, h.lines.outcome, "header 'outcome' needs a 'request' to judge");
-  }
-  if (h.request) {
-    bool found = false;
-    for (const Row& r : t.rows) found = found || (!r.gap && r.step == h.request_at);
-    if (!found) {
- throw TraceError(t.file, h.lines.request_at != 0 ? h.lines.request_at : h.lines.request,
-                       "request-at: step " + std::to_string(h.request_at) +
-                           " does not appear in the trace");
-    }
-  }
   std::vector<Word> m2s(master.m2s_words());
   std::vector<Word> prev_s2m;
   const Row* prev_row = nullptr;
@@ -238,6 +263,7 @@ ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& 
 }
 
 Trace decode(const Trace& t, const Explainer& e) {
+  validate(t);
   check_counts(t, e.m2s_words(), e.s2m_words());
   Trace out = t;
   for (Row& r : out.rows) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "ibs/base/text_file.hpp"
+#include "ibs/base/time_text.hpp"
 
 namespace ibs::trace {
 
@@ -101,8 +102,8 @@ constexpr std::array<std::pair<std::string_view, DeviceStart>, 3> kInits{
     {{"operational", DeviceStart::operational},
      {"power-on", DeviceStart::initialised},
      {"fault", DeviceStart::fault}}};
-constexpr std::array<std::pair<std::string_view, Event::Kind>, 2> kEvents{
-    {{"fault", Event::Kind::fault}, {"fault-cleared", Event::Kind::fault_cleared}}};
+constexpr std::array<std::pair<std::string_view, Event::Kind>, 3> kEvents{
+    {{"fault", Event::Kind::fault}, {"fault-cleared", Event::Kind::fault_cleared}, {"no-data", Event::Kind::no_data}}};
 // A name from a vocabulary list, or any single word when the list is empty.
 bool known(std::string_view name, std::span<const std::string_view> names) {
   if (names.empty()) return !name.empty() && name.find_first_of(" \t") == std::string_view::npos;
@@ -188,6 +189,8 @@ std::size_t* header_line(Header& h, std::string_view key) {
   if (key == "request-at") return &l.request_at;
   if (key == "outcome") return &l.outcome;
   if (key == "max-gap") return &l.max_gap;
+  if (key == "watchdog_ms") return &l.watchdog_ms;
+  if (key == "step-time") return &l.step_time;
   return nullptr;
 }
 
@@ -235,6 +238,28 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
                            std::to_string(kMaxGapLimit) + " steps a gap may stand for");
     }
     h.max_gap_given = true;
+  } else if (key == "watchdog_ms") {
+    // Only an integer here: which values the device takes (its range, its "off") is the drive's,
+    // checked by the replay adapters against its wing's declarations.
+    h.lines.watchdog_ms = line;
+    const std::uint64_t ms = parse_count(value, key, file, line);
+    if (ms > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+      fail(file, line, "watchdog_ms: " + std::string(value) + " is not a watchdog time in ms of any device");
+    }
+    h.watchdog_ms = static_cast<int>(ms);
+  } else if (key == "step-time") {
+    h.lines.step_time = line;
+    Duration d{0};
+    try {
+      d = parse_time(value);
+    } catch (const std::invalid_argument& e) {
+      fail(file, line, std::string("step-time: ") + e.what());
+    }
+    if (d <= Duration{0} || d > kMaxStepTime) {
+      fail(file, line, "step-time: '" + std::string(value) + "' must lie above 0 s and be at most " +
+                           format_time(kMaxStepTime));
+    }
+    h.step_time = d;
   } else if (header_name(key) && (vocabulary.settings.empty() || known(key, vocabulary.settings))) {
     // A drive's setting: its range is the drive's (the replay adapters check it); the format
     // holds 0..255.
@@ -480,8 +505,24 @@ Trace parse(std::string_view text, const std::string& file, const Vocabulary& vo
       if (!kind) {
         fail(file, line_no, "unknown event '" + std::string(name) + "' (one of: " + choices(kEvents) + ")");
       }
-      pending_events.push_back(
-          {*kind, std::string(space == std::string_view::npos ? std::string_view{} : trim(body.substr(space))), line_no});
+      std::string_view remark = space == std::string_view::npos ? std::string_view{} : trim(body.substr(space));
+      std::uint64_t steps = 0;
+      if (*kind == Event::Kind::no_data) {
+        // `no-data N [text]`: N steps without valid data, 1..kMaxNoDataSteps.
+        const auto end = remark.find_first_of(" \t");
+        const std::string_view count = remark.substr(0, end);
+        const auto n = parse_number(count);
+        if (count.empty() || !n || *n < 1 || count.find_first_not_of("0123456789") != std::string_view::npos) {
+          fail(file, line_no, "no-data: '" + printable(count) + "' is not a number of steps (N >= 1: `! no-data N`)");
+        }
+        if (static_cast<std::uint64_t>(*n) > kMaxNoDataSteps) {
+          fail(file, line_no, "no-data: " + std::string(count) + " is more than the " +
+                                  std::to_string(kMaxNoDataSteps) + " steps one event may stand for");
+        }
+        steps = static_cast<std::uint64_t>(*n);
+        remark = end == std::string_view::npos ? std::string_view{} : trim(remark.substr(end));
+      }
+      pending_events.push_back({*kind, std::string(remark), line_no, steps});
       continue;
     }
     // A data row.
@@ -535,10 +576,15 @@ Trace parse(std::string_view text, const std::string& file, const Vocabulary& vo
     if (t.rows.empty()) {
       if (row.step != 0) fail(file, line_no, "the first row must be step 0, not " + std::to_string(row.step));
     } else if (!after_gap) {
-      const std::uint64_t want = t.rows.back().step + 1;
+      // Steps without data (`! no-data N`) count: the row after them is N steps further on.
+      std::uint64_t skipped = 0;
+      for (const Event& e : row.events_before) skipped += e.steps;
+      const std::uint64_t want = t.rows.back().step + 1 + skipped;
       if (row.step != want) {
         fail(file, line_no, "step " + std::to_string(row.step) + " should be " + std::to_string(want) +
-                                " (steps increase by one; use '...' for a gap)");
+                                (skipped == 0 ? " (steps increase by one; use '...' for a gap)"
+                                              : " (the step after the previous row's, plus the " +
+                                                    std::to_string(skipped) + " step(s) without data)"));
       }
     }
     after_gap = false;
@@ -586,10 +632,14 @@ std::string write(const Trace& t) {
   if (h.request_at_given) out += "# request-at: " + std::to_string(h.request_at) + "\n";
   if (h.outcome) out += "# outcome: " + to_string(*h.outcome) + "\n";
   if (h.max_gap_given) out += "# max-gap: " + std::to_string(h.max_gap) + "\n";
+  if (h.watchdog_ms) out += "# watchdog_ms: " + std::to_string(*h.watchdog_ms) + "\n";
+  if (h.step_time) out += "# step-time: " + format_time(*h.step_time) + "\n";
   for (const Row& r : t.rows) {
     for (const auto& c : r.comments_before) out += c + "\n";
     for (const Event& e : r.events_before) {
-      out += "! " + std::string(to_string(e.kind)) + (e.text.empty() ? "" : " " + e.text) + "\n";
+      out += "! " + std::string(to_string(e.kind));
+      if (e.kind == Event::Kind::no_data) out += " " + std::to_string(e.steps);
+      out += (e.text.empty() ? "" : " " + e.text) + "\n";
     }
     if (r.gap) {
       out += "...\n";

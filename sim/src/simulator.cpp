@@ -139,6 +139,12 @@ void Simulator::start(const SimOptions& options) {
       r.trace.header.device = std::string((*d->kind)->name());
       r.trace.header.words = trace::WordsKind::pd;
       (*d->kind)->write_trace_settings(d->configuration, r.trace.header);
+      // The watchdog as the scenario set it (without one the device's own default, which a
+      // replay takes without the header too); one step is one sample of the device, the time a
+      // row stands for (the bus cycle of the run is another: samples no cycle reached are the
+      // trace's steps without data).
+      r.trace.header.watchdog_ms = d->configuration.settings.watchdog_ms;
+      r.trace.header.step_time = d->period;
       // What a freshly started device of a trace `init` shows (record_sample starts on it).
       prototype(*d->kind, d->configuration, DeviceStart::initialised).output({d->fresh_initialised.data(), d->pd_words});
       prototype(*d->kind, d->configuration, DeviceStart::operational).output({d->fresh_operational.data(), d->pd_words});

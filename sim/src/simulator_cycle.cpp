@@ -23,7 +23,7 @@ void Simulator::cycle_exchange(Time t) {
       summary_.faults.push_back({t, d->cfg.name, "fault-cleared", "the fault's cause has gone"});
       if (!d->recordings.empty() && d->recording) {
         d->recordings.back().events_pending.push_back(
-            {trace::Event::Kind::fault_cleared, "at " + fmt_value(to_ms(t)) + " ms", 0});
+            {trace::Event::Kind::fault_cleared, "at " + fmt_value(to_ms(t)) + " ms", 0, 0});
       }
     }
     if (d->lost_until >= Time{0} && d->lost_until != Time::max() && t >= d->lost_until) {
@@ -58,10 +58,16 @@ void Simulator::cycle_exchange(Time t) {
       std::fill(d->in_slot.begin(), d->in_slot.end(), Word{0});  // no data from a device with a module error
       // A device that is on the ring but initialising (6.1) still takes the master's words into
       // its bus interface: it acts on the newest ones once it is ready, not on words from before.
-      if (!d->lost(t) && d->emu->takes_words_in_module_error()) copy_words(d->out, d->m2s.data());
+      if (!d->lost(t) && d->emu->takes_words_in_module_error()) {
+        copy_words(d->out, d->m2s.data());
+        // A recording cannot tell words taken without the watchdog fed from a valid cycle: the
+        // words matter once the device is ready, so the sample counts as one with data.
+        d->delivered = d->ever_delivered = true;
+      }
       continue;
     }
     copy_words(d->out, d->m2s.data());
+    d->delivered = d->ever_delivered = true;
     copy_words({d->s2m.data(), d->in.size()}, d->in.data());
     copy_words(d->pcp_out, d->pcp_m2s.data());
     copy_words({d->pcp_s2m.data(), d->pcp_in.size()}, d->pcp_in.data());

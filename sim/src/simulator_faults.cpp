@@ -113,7 +113,7 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
     }
   };
   auto event = [&](Device& d, trace::Event::Kind what, const std::string& text) {
-    if (!d.recordings.empty() && d.recording) d.recordings.back().events_pending.push_back({what, text, 0});
+    if (!d.recordings.empty() && d.recording) d.recordings.back().events_pending.push_back({what, text, 0, 0});
   };
   switch (kind) {
     case Action::fault_corrupt:

@@ -81,10 +81,12 @@ struct Simulator::Recording {
   trace::Trace trace;
   std::uint64_t step = 0;
   std::string remark;  // events to note on the next row
-  // Device faults as trace events: injected before the device's next sample, they show in the
-  // row after that sample's row (whose s2m is the first answer the fault can change).
+  // Device faults as trace events: injected before the device's next sample, they show after
+  // that sample's row (before the step whose s2m is the first answer the fault can change).
   std::vector<trace::Event> events_pending;
-  std::vector<trace::Event> events_ready;
+  // What goes between the last row and the next one, in order: those events and the samples
+  // without data (`! no-data N`, trace-format.md "Events").
+  std::vector<trace::Event> between;
   std::string file_name;
 };
 
@@ -101,6 +103,10 @@ struct Simulator::Device {
   // input slot, and the words it exchanges each way.
   std::span<Word> in_slot, in, out, pcp_in, pcp_out;
   std::array<Word, 4> m2s{};  // the master's process-data words as the bus last delivered them
+  // A valid cycle delivered the master's words since the device's last sample; one ever did.
+  // Recorded: a sample no valid cycle reached is a trace step without data.
+  bool delivered = false;
+  bool ever_delivered = false;
   std::array<Word, 4> pcp_m2s{};
   // What the device's sampling writes, in cache lines of its own: with several threads the
   // device is stepped on one while the cycle end runs on another.

@@ -7,8 +7,15 @@ using detail::fmt_value;
 
 void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time t) {
   // In the trace timing convention: this row's m2s is what the device read now, its s2m what the
-  // device showed before this sample (its answer to the previous row).
-  if (!d.recording && !d.module_error(t)) {
+  // device showed before this sample (its answer to the previous row). A sample that no valid
+  // cycle reached since the one before (a corrupted cycle and its recovery cycles, a lost device,
+  // a stopped bus, or a bus cycle slower than the device's samples) is a step without data: no
+  // row, counted in `! no-data N` -- replay runs the device without feeding its watchdog, as
+  // the run did. Before the device ever got data, its samples are rows as any other (they see
+  // the words it starts with; its watchdog is not yet armed).
+  const bool data = d.delivered || !d.ever_delivered;
+  d.delivered = false;
+  if (!d.recording && !d.module_error(t) && data) {
     // Start (again) once the device shows exactly what a freshly started device of a trace
     // `init` shows: initialised, START-UP INHIBIT after BLOCK POWER, channel at rest.
     const DeviceStart init = d.emu->trace_start();
@@ -18,7 +25,15 @@ void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time
       d.recordings.back().trace.header.init = init;
     }
   }
-  if (d.recording) {
+  if (d.recording && !data && !d.recordings.back().trace.rows.empty()) {
+    Recording& r = d.recordings.back();
+    ++r.step;
+    if (!r.between.empty() && r.between.back().kind == trace::Event::Kind::no_data) {
+      ++r.between.back().steps;
+    } else {
+      r.between.push_back({trace::Event::Kind::no_data, "", 0, 1});
+    }
+  } else if (d.recording && data) {
     Recording& r = d.recordings.back();
     trace::Row row;
     row.step = r.step++;
@@ -29,10 +44,15 @@ void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time
     row.remark = fmt_value(to_ms(t)) + " ms";
     if (!r.remark.empty()) row.remark += ": " + r.remark;
     r.remark.clear();
-    row.events_before = std::move(r.events_ready);
-    r.events_ready = std::move(r.events_pending);
-    r.events_pending.clear();
+    row.events_before = std::move(r.between);
+    r.between.clear();
     r.trace.rows.push_back(std::move(row));
+  }
+  if (d.recording && !d.recordings.back().trace.rows.empty()) {
+    // Injected before this sample: they act before the step after it.
+    Recording& r = d.recordings.back();
+    r.between.insert(r.between.end(), r.events_pending.begin(), r.events_pending.end());
+    r.events_pending.clear();
   }
 }
 

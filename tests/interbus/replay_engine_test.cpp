@@ -177,6 +177,47 @@ TEST(ReplayEngine, RequestAtAStepThatIsNotThereIsMalformed) {
   EXPECT_THROW(replay_master(make("# outcome: ok\n", "0, 0000, 0001\n"), m, HexExplainer{}), TraceError);
 }
 
+// Logs what the device is made to do: "d<m2s>" a step with data, "n" one without, "f"/"c" a
+// fault present/gone; shows the number of calls so far.
+struct LoggingDevice final : DeviceSide {
+  std::size_t m2s_words() const override { return 1; }
+  std::size_t s2m_words() const override { return 1; }
+  void initial(std::span<Word> s2m) override { s2m[0] = 0; }
+  void step(std::span<const Word> m2s, std::span<Word> s2m) override {
+    log += "d" + std::to_string(m2s[0]) + " ";
+    s2m[0] = ++calls;
+  }
+  void step_without_data(std::span<Word> s2m) override {
+    log += "n ";
+    s2m[0] = ++calls;
+  }
+  bool supports(Event::Kind) const override { return true; }
+  void apply(const Event& e) override { log += e.kind == Event::Kind::fault ? "f " : "c "; }
+  std::string log;
+  Word calls = 0;
+};
+
+// trace-format.md, "Events": `no-data N` runs N steps without data after the previous row's
+// step; the step after the previous row answers its m2s, each later one had no data; an event
+// acts before the step that follows it (the timing convention: s2m[k] = D(m2s[k-1])).
+TEST(ReplayEngine, StepsWithoutDataRunBetweenTheRowsInTheFilesOrder) {
+  const Trace t = make("", "0, 0005, 0000\n! fault\n! no-data 2\n! fault-cleared\n3, 0007, 0003\n"
+                           "! no-data 1\n5, 0001, 0005\n6, 0002, 0006\n");
+  LoggingDevice d;
+  const auto r = replay_device(t, d, HexExplainer{});
+  EXPECT_TRUE(r.matched) << r.message;
+  EXPECT_EQ(r.steps_matched, 4U);
+  // Row 3: the fault before the step answering row 0, two steps (the second without data), the
+  // clearing before the last step without data. Row 5: row 3's words, then one without.
+  EXPECT_EQ(d.log, "f d5 n c n d7 n d1 ");
+  // The master and decode keep the lines and do not act on them: one master step per row.
+  PlusTwoMaster m;
+  EXPECT_TRUE(replay_master(make("", "0, 0000, 0000\n! no-data 4\n5, 0000, 0001\n"), m, HexExplainer{}).matched);
+  EXPECT_EQ(m.steps, 1);
+  const Trace decoded = decode(t, HexExplainer{});
+  EXPECT_EQ(decoded.rows[1].events_before, t.rows[1].events_before);
+}
+
 TEST(ReplayEngine, DecodeExplainsEveryRowAndKeepsTheRemark) {
   const Trace t = make("", "0, 0005, 0000, first\n...\n1, 0007, 00??\n");
   const Trace d = decode(t, HexExplainer{});

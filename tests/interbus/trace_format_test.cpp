@@ -282,7 +282,7 @@ TEST(TraceFormat, EventLinesBetweenRowsAreReadAndWrittenBack) {
                     "5: an event must stand between two data rows; no row follows this one"),
             "");
   EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n! brownout\n1, 0000 0000 0000, 0240 0000 0000\n",
-                    "5: unknown event 'brownout' (one of: fault, fault-cleared)"),
+                    "5: unknown event 'brownout' (one of: fault, fault-cleared, no-data)"),
             "");
   EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n...\n! fault\n1, 0000 0000 0000, 0240 0000 0000\n",
                     "6: an event cannot follow a gap '...': it would happen at no known step"),
@@ -290,6 +290,64 @@ TEST(TraceFormat, EventLinesBetweenRowsAreReadAndWrittenBack) {
   EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n! fault\n...\n1, 0000 0000 0000, 0240 0000 0000\n",
                     "6: a gap '...' cannot follow an event (line 5): the event would happen at no known step"),
             "");
+}
+
+// trace-format.md: `watchdog_ms`, `step-time` and `! no-data N` (issue 23, item 16). The next
+// row's step number counts the steps without data; all three are written back as read.
+TEST(TraceFormat, WatchdogStepTimeAndStepsWithoutDataAreReadAndWrittenBack) {
+  const std::string head = "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n";
+  const std::string text = head + "# watchdog_ms: 100\n# step-time: 8.2 ms\n0, 0000 0000 0000, 0240 0000 0000\n"
+                                  "! no-data 3 bus corrupted\n! fault\n! no-data 2\n6, 0000 0000 0000, 0240 0000 0000\n"
+                                  "7, 0000 0000 0000, 0240 0000 0000\n";
+  const Trace t = parse(text, "w.trace");
+  EXPECT_EQ(t.header.watchdog_ms, 100);
+  EXPECT_EQ(t.header.lines.watchdog_ms, 4U);
+  EXPECT_EQ(t.header.step_time, std::chrono::microseconds(8200));
+  EXPECT_EQ(t.header.lines.step_time, 5U);
+  ASSERT_EQ(t.rows.size(), 3U);
+  ASSERT_EQ(t.rows[1].events_before.size(), 3U);
+  EXPECT_EQ(t.rows[1].events_before[0].kind, Event::Kind::no_data);
+  EXPECT_EQ(t.rows[1].events_before[0].steps, 3U);
+  EXPECT_EQ(t.rows[1].events_before[0].text, "bus corrupted");
+  EXPECT_EQ(t.rows[1].events_before[1].kind, Event::Kind::fault);
+  EXPECT_EQ(t.rows[1].events_before[1].steps, 0U);
+  EXPECT_EQ(t.rows[1].events_before[2].steps, 2U);
+  EXPECT_EQ(t.rows[1].step, 6U);
+  EXPECT_EQ(write(t), text);
+  // Without the headers: the device's own watchdog and the adapters' step time.
+  const Trace plain = parse(head + "0, 0000 0000 0000, 0240 0000 0000\n", "p.trace");
+  EXPECT_FALSE(plain.header.watchdog_ms);
+  EXPECT_FALSE(plain.header.step_time);
+  EXPECT_EQ(parse(head + "# step-time: 726 us\n0, 0000 0000 0000, 0240 0000 0000\n", "u").header.step_time,
+            std::chrono::microseconds(726));
+  const auto refused = [&](const std::string& body) {
+    try {
+      parse(head + body, "w.trace");
+      return std::string("accepted");
+    } catch (const TraceError& e) {
+      return std::string(e.what());
+    }
+  };
+  const std::string row0 = "0, 0000 0000 0000, 0240 0000 0000\n";
+  EXPECT_EQ(refused("# watchdog_ms: -1\n" + row0), "w.trace:4: watchdog_ms: '-1' is not a non-negative integer");
+  EXPECT_EQ(refused("# watchdog_ms: 1 s\n" + row0), "w.trace:4: watchdog_ms: '1 s' is not a non-negative integer");
+  EXPECT_EQ(refused("# watchdog_ms: 1\n# watchdog_ms: 2\n" + row0),
+            "w.trace:5: header 'watchdog_ms' given twice (first on line 4)");
+  EXPECT_EQ(refused("# step-time: 1 h\n" + row0), "w.trace:4: step-time: \"1 h\" has the unknown unit 'h' (ns, us, ms, s)");
+  EXPECT_EQ(refused("# step-time: 0 s\n" + row0), "w.trace:4: step-time: '0 s' must lie above 0 s and be at most 1 s");
+  EXPECT_EQ(refused("# step-time: 1.5 s\n" + row0), "w.trace:4: step-time: '1.5 s' must lie above 0 s and be at most 1 s");
+  EXPECT_EQ(refused(row0 + "! no-data\n1, 0000 0000 0000, 0240 0000 0000\n"),
+            "w.trace:5: no-data: '' is not a number of steps (N >= 1: `! no-data N`)");
+  EXPECT_EQ(refused(row0 + "! no-data 0\n1, 0000 0000 0000, 0240 0000 0000\n"),
+            "w.trace:5: no-data: '0' is not a number of steps (N >= 1: `! no-data N`)");
+  EXPECT_EQ(refused(row0 + "! no-data 2x\n3, 0000 0000 0000, 0240 0000 0000\n"),
+            "w.trace:5: no-data: '2x' is not a number of steps (N >= 1: `! no-data N`)");
+  EXPECT_EQ(refused(row0 + "! no-data 10000001\n10000002, 0000 0000 0000, 0240 0000 0000\n"),
+            "w.trace:5: no-data: 10000001 is more than the 10000000 steps one event may stand for");
+  EXPECT_EQ(refused(row0 + "! no-data 2\n1, 0000 0000 0000, 0240 0000 0000\n"),
+            "w.trace:6: step 1 should be 3 (the step after the previous row's, plus the 2 step(s) without data)");
+  EXPECT_EQ(refused(row0 + "! no-data 2\n...\n1, 0000 0000 0000, 0240 0000 0000\n"),
+            "w.trace:6: a gap '...' cannot follow an event (line 5): the event would happen at no known step");
 }
 
 // Issue 9, defect 4: max-gap is bounded (a gap that stands for 2^63 steps never ends).

@@ -158,6 +158,40 @@ TEST(Captures, AMismatchingReplayStillWritesItsCaptureUpToTheMismatch) {
   fs::remove_all(dir);
 }
 
+// docs/pcap.md: the steps of `! no-data N` are cycles without valid data (flags bit 0 clear),
+// one packet each, between the rows' packets, `step-time` apart.
+TEST(Captures, ADeviceReplayCapturesTheStepsWithoutDataAsInvalidCycles) {
+  const std::string dir = fresh_dir("no_data_pcap");
+  const std::string pcap = dir + "/watchdog.pcap";
+  const Result r = run("replay --emulate device " + data("mc6000_pd_watchdog_no_data.trace") + " --pcap " + pcap);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::string f = slurp(pcap);
+  ASSERT_GE(f.size(), 24U);
+  auto u32 = [&](std::size_t at) {  // the pcap headers are little-endian (the magic says so)
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(f[at])) |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(f[at + 1])) << 8U |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(f[at + 2])) << 16U |
+           static_cast<std::uint32_t>(static_cast<unsigned char>(f[at + 3])) << 24U;
+  };
+  std::string validity;  // per cycle packet: 'v' valid, '-' without data
+  std::vector<std::uint32_t> ns;
+  for (std::size_t at = 24; at + 16 <= f.size();) {
+    const std::uint32_t len = u32(at + 8);
+    const std::size_t packet = at + 16;
+    ASSERT_LE(packet + len, f.size());
+    if (len > 8 && f[packet + 3] == 2) {
+      validity += (static_cast<unsigned char>(f[packet + 8]) & 1U) != 0 ? 'v' : '-';
+      ns.push_back(u32(at + 4));
+    }
+    at = packet + len;
+  }
+  // Rows 0..2, the 25 steps without data (steps 3..27), rows 28 and 29.
+  EXPECT_EQ(validity, "vvv" + std::string(25, '-') + "vv");
+  ASSERT_EQ(ns.size(), 30U);
+  EXPECT_EQ(ns[29], 29'000'000U);  // step-time 1 ms
+  fs::remove_all(dir);
+}
+
 TEST(Captures, AMasterReplayCapturesThePcpChannel) {
   const std::string dir = fresh_dir("master_pcap");
   const std::string pcap = dir + "/read.pcap";

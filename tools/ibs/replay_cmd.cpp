@@ -16,8 +16,9 @@ namespace {
 
 namespace capture = sim::capture;
 
-// What one trace step stands for in simulated time (the adapters' own step times).
+// What one trace step stands for in simulated time: its `step-time`, or the adapters' own.
 Duration step_period(const trace::Header& h) {
+  if (h.step_time) return *h.step_time;
   switch (h.words) {
     case trace::WordsKind::pd: {
       const devices::DriveKind* kind = devices::find_drive_kind(h.device);
@@ -77,12 +78,14 @@ class CaptureWriter {
     file_.write(Time{0}, capture::encode_configuration(config_));
   }
 
-  void exchange(std::span<const Word> m2s, std::span<const Word> s2m) {
+  // `valid` false: a step of `! no-data N`, a cycle that brought the device no valid data (the
+  // master's words shown are the last the device took).
+  void exchange(std::span<const Word> m2s, std::span<const Word> s2m, bool valid = true) {
     ++step_;
     const bool pcp = config_.pcp_words > 0;
     std::copy(m2s.begin(), m2s.end(), pcp ? image_.pcp_out.begin() : image_.out.begin());
     std::copy(s2m.begin(), s2m.end(), pcp ? image_.pcp_in.begin() : image_.in.begin());
-    capture::encode_cycle(config_, step_, true, image_, buffer_);
+    capture::encode_cycle(config_, step_, valid, image_, buffer_);
     file_.write(period_ * (step_ - 1), buffer_);
   }
   void close() { file_.close(); }
@@ -110,6 +113,13 @@ class CapturingDevice final : public trace::DeviceSide {
     w_.exchange(m2s, shown_);  // the master's words of the step the device showed `shown_` in
     last_m2s_.assign(m2s.begin(), m2s.end());
     inner_.step(m2s, s2m);
+    shown_.assign(s2m.begin(), s2m.end());
+  }
+  void step_without_data(std::span<Word> s2m) override {
+    // The packet of a step of `! no-data N` (the step before this call, whose words the device
+    // shows now): a cycle without valid data, the master's words the last the device took.
+    w_.exchange(last_m2s_, shown_, false);
+    inner_.step_without_data(s2m);
     shown_.assign(s2m.begin(), s2m.end());
   }
   [[nodiscard]] bool supports(trace::Event::Kind kind) const override { return inner_.supports(kind); }

@@ -5,6 +5,7 @@
 
 #include "ibs/devices/trace_adapters.hpp"
 #include "ibs/base/text_file.hpp"
+#include "ibs/base/time_text.hpp"
 
 namespace ibs::cli {
 
@@ -63,6 +64,8 @@ void write_decoded_json(const trace::Trace& t, const trace::Explainer& e, std::o
   }
   if (h.outcome) header["outcome"] = trace::to_string(*h.outcome);
   header["max_gap"] = h.max_gap;
+  if (h.watchdog_ms) header["watchdog_ms"] = *h.watchdog_ms;
+  if (h.step_time) header["step_time"] = format_time(*h.step_time);
   nlohmann::json rows = nlohmann::json::array();
   for (const trace::Row& r : t.rows) {
     nlohmann::json row;
@@ -81,7 +84,9 @@ void write_decoded_json(const trace::Trace& t, const trace::Explainer& e, std::o
     if (!r.events_before.empty()) {
       nlohmann::json events = nlohmann::json::array();
       for (const trace::Event& ev : r.events_before) {
-        events.push_back({{"event", std::string(trace::to_string(ev.kind))}, {"text", ev.text}, {"line", ev.line}});
+        nlohmann::json event{{"event", std::string(trace::to_string(ev.kind))}, {"text", ev.text}, {"line", ev.line}};
+        if (ev.kind == trace::Event::Kind::no_data) event["steps"] = ev.steps;
+        events.push_back(std::move(event));
       }
       row["events"] = std::move(events);
     }

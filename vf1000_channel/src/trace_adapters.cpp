@@ -36,18 +36,19 @@ ServerStart start_of(DeviceStart s) {
 class CommDeviceSide final : public tr::DeviceSide {
  public:
   CommDeviceSide(const tr::Header& h, std::span<const drive::ParameterInfo> params, const ServerConfig& config)
-      : server_(config, start_of(h.init), Time{0}, params) {}
+      : server_(config, start_of(h.init), Time{0}, params), step_(h.step_time.value_or(kTraceStepPeriod)) {}
 
   [[nodiscard]] std::size_t m2s_words() const override { return 1; }
   [[nodiscard]] std::size_t s2m_words() const override { return 1; }
   void initial(std::span<Word> s2m) override { s2m[0] = server_.output(); }
   void step(std::span<const Word> m2s, std::span<Word> s2m) override {
     ++steps_;
-    s2m[0] = server_.step(m2s[0], kTraceStepPeriod * steps_, false);
+    s2m[0] = server_.step(m2s[0], step_ * steps_, false);
   }
 
  private:
   Server server_;
+  Duration step_;
   std::int64_t steps_ = 0;
 };
 
@@ -59,7 +60,7 @@ ClientConfig trace_client_config() {
 
 class CommMasterSide final : public tr::MasterSide {
  public:
-  CommMasterSide() : client_(trace_client_config()) {}
+  explicit CommMasterSide(Duration step) : client_(trace_client_config()), step_(step) {}
 
   [[nodiscard]] std::size_t m2s_words() const override { return 1; }
   [[nodiscard]] std::size_t s2m_words() const override { return 1; }
@@ -76,7 +77,7 @@ class CommMasterSide final : public tr::MasterSide {
             std::span<Word> m2s) override {
     // The communication word is protocol through and through: nothing is taken from the row.
     ++steps_;
-    m2s[0] = client_.step(s2m[0], kTraceStepPeriod * steps_);
+    m2s[0] = client_.step(s2m[0], step_ * steps_);
   }
   [[nodiscard]] std::optional<tr::Outcome> outcome() const override {
     if (id_ == 0) return std::nullopt;
@@ -87,6 +88,7 @@ class CommMasterSide final : public tr::MasterSide {
 
  private:
   Client client_;
+  Duration step_;
   RequestId id_ = 0;
   std::int64_t steps_ = 0;
 };
@@ -164,9 +166,13 @@ std::unique_ptr<tr::DeviceSide> make_comm_device_side(const tr::Header& header,
 }
 
 std::unique_ptr<tr::MasterSide> make_comm_master_side(const tr::Header& header) {
-  check_header(header, "vf1000 comm master");
+  check_comm_trace(header);
+  return std::make_unique<CommMasterSide>(header.step_time.value_or(kTraceStepPeriod));
+}
+
+void check_comm_trace(const tr::Header& header) {
+  check_header(header, "vf1000 comm");
   if (header.request) (void)to_channel_request(*header.request);
-  return std::make_unique<CommMasterSide>();
 }
 
 std::unique_ptr<tr::Explainer> make_comm_explainer() {

@@ -174,12 +174,13 @@ class Descriptor final : public DriveDescriptor {
   void write_trace_settings(const Configuration& config, trace::Header& h) const override {
     for (const SettingSpec& spec : kSettings) h.set_setting(spec.name, config.settings.drive.integer(spec));
   }
-  std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config) const override {
-    return mc6000::make_pd_master(layout_of(config.settings));
+  std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config, Duration step) const override {
+    return mc6000::make_pd_master(layout_of(config.settings), step);
   }
   std::unique_ptr<trace::Explainer> make_pd_explainer(const Configuration& config) const override {
     return mc6000::make_pd_explainer(layout_of(config.settings));
   }
+  void check_channel_trace(const trace::Header& h) const override { check_pcp_trace(h); }
   std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const override {
     return make_pcp_device_side(h);
   }

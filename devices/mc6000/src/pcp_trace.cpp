@@ -19,7 +19,9 @@ namespace {
 
 using namespace pcp;
 
-constexpr Duration kTraceStep = 1ms;
+constexpr Duration kTraceStep = 1ms;  // without a `step-time` header
+
+Duration step_of(const ibs::trace::Header& h) { return h.step_time.value_or(kTraceStep); }
 // DRIVECOM status words for the `init` states, as the device model will report them in
 // 408-IBSTA: START-UP INHIBIT 0240H (seed 001, 5.3.4, first row), FAULT 0208H (fault bit 3 and
 // remote bit 9 of 5.3.2).
@@ -36,7 +38,11 @@ void check_header(const ibs::trace::Header& h) {
 class PcpDeviceSide final : public ibs::trace::DeviceSide {
  public:
   explicit PcpDeviceSide(const ibs::trace::Header& h)
-      : words_(trace_channel_words(h)), drive_(drive_parameters_config()), served_(drive_), server_(config(h), served_) {
+      : words_(trace_channel_words(h)),
+        step_(step_of(h)),
+        drive_(drive_parameters_config()),
+        served_(drive_),
+        server_(config(h), served_) {
     // The trace's power-on start keeps the 85-SERR power-on bit; the others have read it.
     if (h.init != DeviceStart::initialised) drive_.read(now_, kSerr);
     drive_.parameters().set_reading(
@@ -49,7 +55,7 @@ class PcpDeviceSide final : public ibs::trace::DeviceSide {
   [[nodiscard]] std::size_t s2m_words() const override { return static_cast<std::size_t>(words_); }
   void initial(std::span<Word> s2m) override { server_.show(now_, s2m); }
   void step(std::span<const Word> m2s, std::span<Word> s2m) override {
-    now_ += kTraceStep;
+    now_ += step_;
     server_.step(now_, m2s, s2m);
   }
 
@@ -61,6 +67,7 @@ class PcpDeviceSide final : public ibs::trace::DeviceSide {
     return c;
   }
   int words_;
+  Duration step_;
   ParametersOnly drive_;
   PcpServed served_;
   Server server_;
@@ -88,7 +95,7 @@ std::size_t trace_value_bytes(std::uint16_t pnr, std::int64_t raw, std::span<std
 class PcpMasterSide final : public ibs::trace::MasterSide {
  public:
   explicit PcpMasterSide(const ibs::trace::Header& h)
-      : words_(trace_channel_words(h)), client_(config(h)) {
+      : words_(trace_channel_words(h)), step_(step_of(h)), client_(config(h)) {
     if (h.request) check_request(*h.request);
   }
   [[nodiscard]] std::size_t m2s_words() const override { return static_cast<std::size_t>(words_); }
@@ -113,7 +120,7 @@ class PcpMasterSide final : public ibs::trace::MasterSide {
 
   void step(std::span<const Word> s2m, std::span<const ibs::trace::WordPattern> /*row_m2s*/,
             std::span<Word> m2s) override {
-    now_ += kTraceStep;
+    now_ += step_;
     if (phase_ == Phase::initiate && client_.initiate(now_) == SubmitStatus::accepted) {
       phase_ = Phase::initiating;
     } else if (phase_ == Phase::request && submit_request() == SubmitStatus::accepted) {
@@ -177,6 +184,7 @@ class PcpMasterSide final : public ibs::trace::MasterSide {
   }
 
   int words_;
+  Duration step_;
   Client client_;
   Time now_{};
   ibs::trace::Request request_{};
@@ -219,6 +227,11 @@ int trace_channel_words(const ibs::trace::Header& h) {
         "` gives the MC6000 no PCP channel (seed 001 3.2.2); use 1, 2, 3, 5, 6, 8, 9 or 11");
   }
   return words;
+}
+
+void check_pcp_trace(const ibs::trace::Header& header) {
+  (void)trace_channel_words(header);
+  if (header.request) PcpMasterSide::check_request(*header.request);
 }
 
 std::unique_ptr<ibs::trace::DeviceSide> make_pcp_device_side(const ibs::trace::Header& header) {

@@ -22,7 +22,7 @@ std::string num(double v, int digits = 7) {
 
 class Master final : public trace::MasterSide {
  public:
-  explicit Master(const Layout& l) : master_(l) {}
+  Master(const Layout& l, Duration step) : step_(step), master_(l) {}
   std::size_t m2s_words() const override { return static_cast<std::size_t>(master_.layout().pd_words); }
   std::size_t s2m_words() const override { return m2s_words(); }
   void initial(std::span<Word> m2s) override { master_.initial(m2s); }
@@ -31,7 +31,7 @@ class Master final : public trace::MasterSide {
   }
   void step(std::span<const Word> s2m, std::span<const trace::WordPattern> row_m2s,
             std::span<Word> m2s) override {
-    now_ += kSamplePeriod;
+    now_ += step_;
     // The reference and the device bits of the control word are the application's: taken from
     // the file. The DRIVECOM bits 0-3 and 7 are the sequencer's and are computed.
     const auto& l = master_.layout();
@@ -51,6 +51,7 @@ class Master final : public trace::MasterSide {
   std::optional<trace::Outcome> outcome() const override { return trace_outcome(master_.sequencer().report()); }
 
  private:
+  Duration step_;
   Mc6000PdMaster master_;
   Time now_{0};
 };
@@ -87,7 +88,7 @@ class Explainer final : public trace::Explainer {
 
 }  // namespace
 
-std::unique_ptr<trace::MasterSide> make_pd_master(const Layout& l) { return std::make_unique<Master>(l); }
+std::unique_ptr<trace::MasterSide> make_pd_master(const Layout& l, Duration step) { return std::make_unique<Master>(l, step); }
 std::unique_ptr<trace::Explainer> make_pd_explainer(const Layout& l) { return std::make_unique<Explainer>(l); }
 
 }  // namespace ibs::devices::mc6000

@@ -1,6 +1,8 @@
 #include "ibs/devices/trace_adapters.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <vector>
 #include <string>
 
 #include "ibs/devices/registry.hpp"
@@ -35,8 +37,17 @@ const DriveKind& kind_of(const trace::Trace& t) {
 // The header's line a setting was given on; a refused setting is reported there, falling back to
 // the other setting's line and then to the device line.
 std::size_t line_of(const Header& h, std::string_view setting) {
+  if (setting == "watchdog_ms") return h.lines.watchdog_ms;
   const trace::HeaderSetting* s = h.setting(setting);
   return s != nullptr ? s->line : 0;
+}
+
+// The settings the header gives the device: the wing's own (supi, ibcnf) and the bus watchdog
+// every drive has (`watchdog_ms`; its range and "off" are the wing's, validate_watchdog).
+DeviceSettings settings_of(const trace::Trace& t, const DriveKind& k) {
+  DeviceSettings s = k->trace_settings(t.header);
+  s.watchdog_ms = t.header.watchdog_ms;
+  return s;
 }
 
 Configuration configuration_of(const trace::Trace& t, const DriveKind& k) {
@@ -48,7 +59,8 @@ Configuration configuration_of(const trace::Trace& t, const DriveKind& k) {
     }
   }
   try {
-    const DeviceSettings settings = k->trace_settings(h);
+    const DeviceSettings settings = settings_of(t, k);
+    k->check_watchdog(settings);
     Configuration c = k->configure(settings);
     // What the wing's own checks leave, against its declarations.
     ibs::detail::require<SettingsError>(check_settings(k, settings.drive));
@@ -70,28 +82,40 @@ void require_state_request(const trace::Trace& t) {
   }
 }
 
-// A device as the simulator runs it, one sample of its period per row and every row a valid bus
-// cycle: recorded simulator traces replay unchanged.
+// A device as the simulator runs it, one sample per row, `step-time` apart (by default its own
+// sample period): a row is a sample after a valid bus cycle, which feeds the bus watchdog; a step
+// of `! no-data N` is a sample without one, with the words the device last took -- what the
+// simulator does for a corrupted cycle or a lost device (sim/simulator_cycle.cpp: no
+// bus_cycle(), the master's words not copied). Recorded simulator traces replay unchanged.
 class EmulatedDeviceSide final : public trace::DeviceSide {
  public:
   EmulatedDeviceSide(std::size_t words, Duration period, std::unique_ptr<DeviceEmulator> device)
-      : words_(words), period_(period), device_(std::move(device)) {}
+      : words_(words), period_(period), device_(std::move(device)), taken_(words, Word{0}) {}
   std::size_t m2s_words() const override { return words_; }
   std::size_t s2m_words() const override { return words_; }
   void initial(std::span<Word> s2m) override { device_->output(s2m); }
   void step(std::span<const Word> m2s, std::span<Word> s2m) override {
     now_ += period_;
+    std::copy(m2s.begin(), m2s.end(), taken_.begin());
     device_->bus_cycle(now_);
-    device_->sample({m2s, s2m, {}, {}}, now_);
+    device_->sample({taken_, s2m, {}, {}}, now_);
   }
-  // The device faults a recording injects (trace-format.md, "Events").
+  void step_without_data(std::span<Word> s2m) override {
+    now_ += period_;
+    device_->sample({taken_, s2m, {}, {}}, now_);
+  }
+  // The device faults a recording injects and the steps without data (trace-format.md, "Events").
   bool supports(trace::Event::Kind) const override { return true; }
-  void apply(const trace::Event& e) override { device_->set_fault(e.kind == trace::Event::Kind::fault); }
+  void apply(const trace::Event& e) override {
+    if (e.kind == trace::Event::Kind::no_data) return;  // replay_device runs step_without_data()
+    device_->set_fault(e.kind == trace::Event::Kind::fault);
+  }
 
  private:
   std::size_t words_;
   Duration period_;
   std::unique_ptr<DeviceEmulator> device_;
+  std::vector<Word> taken_;  // the master's words as the last valid step delivered them
   Time now_{0};
 };
 
@@ -123,37 +147,91 @@ auto channel_adapter(const trace::Trace& t, F make) {
   }
 }
 
+// The rows' word counts against what the trace's kind exchanges.
+void check_counts(const trace::Trace& t, std::size_t m2s_words, std::size_t s2m_words) {
+  for (const trace::Row& r : t.rows) {
+    if (r.gap) continue;
+    if (r.m2s.size() != m2s_words || r.s2m.size() != s2m_words) {
+      throw TraceError(t.file, r.line,
+                       "this " + t.header.device + " with words: " + std::string(to_string(t.header.words)) +
+                           " exchanges " + std::to_string(m2s_words) + " m2s and " + std::to_string(s2m_words) +
+                           " s2m words per row; the row has " + std::to_string(r.m2s.size()) + " and " +
+                           std::to_string(r.s2m.size()));
+    }
+  }
+}
+
+// The step time of the device's model without a `step-time` header: one sample of its period.
+Duration pd_step(const trace::Trace& t, const DriveKind& k) {
+  return t.header.step_time.value_or(k->facts().sample_period);
+}
+
 }  // namespace
 
+void validate_trace(const trace::Trace& t) {
+  const Header& h = t.header;
+  // The header's own lines first (drive, target, settings, request), then what ties it to the
+  // rows (request-at, outcome; trace::validate) and the rows themselves.
+  const DriveKind& k = kind_of(t);
+  if (h.words == WordsKind::pd) {
+    const Configuration c = configuration_of(t, k);
+    require_state_request(t);
+    trace::validate(t);
+    // The device model acts on every event (trace-format.md, "Events").
+    check_counts(t, c.pd_words, c.pd_words);
+    return;
+  }
+  if (!is_channel(h, k)) unsupported(t);
+  channel_adapter(t, [&] {
+    k->check_channel_trace(h);
+    return 0;
+  });
+  // The emulated side of a channel trace is the parameter channel alone: no drive to fault, no
+  // bus watchdog to set or to run out.
+  if (h.watchdog_ms) {
+    throw TraceError(t.file, h.lines.watchdog_ms,
+                     "watchdog_ms: a words: " + std::string(to_string(h.words)) +
+                         " trace emulates the parameter channel alone, which has no bus watchdog; the "
+                         "watchdog belongs to words: pd traces");
+  }
+  for (const trace::Row& r : t.rows) {
+    for (const trace::Event& ev : r.events_before) {
+      throw TraceError(t.file, ev.line,
+                       "event '" + std::string(to_string(ev.kind)) + "': the emulated " + h.device +
+                           " with words: " + std::string(to_string(h.words)) +
+                           " is its parameter channel alone and cannot act on it (events go in words: pd traces)");
+    }
+  }
+  trace::validate(t);
+  const auto explainer = k->make_channel_explainer(h);
+  check_counts(t, explainer->m2s_words(), explainer->s2m_words());
+}
+
 std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
+  validate_trace(t);
   const Header& h = t.header;
   const DriveKind& k = kind_of(t);
   if (h.words == WordsKind::pd) {
     const Configuration c = configuration_of(t, k);
-    return std::make_unique<EmulatedDeviceSide>(c.pd_words, k->facts().sample_period,
-                                                k.make_emulator(c, h.init, Time{0}));
+    return std::make_unique<EmulatedDeviceSide>(c.pd_words, pd_step(t, k), k.make_emulator(c, h.init, Time{0}));
   }
-  if (is_channel(h, k)) return channel_adapter(t, [&] { return k->make_channel_device(h); });
-  unsupported(t);
+  return channel_adapter(t, [&] { return k->make_channel_device(h); });
 }
 
 std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t) {
+  validate_trace(t);
   const Header& h = t.header;
   const DriveKind& k = kind_of(t);
-  if (h.words == WordsKind::pd) {
-    require_state_request(t);
-    return k->make_pd_master(configuration_of(t, k));
-  }
-  if (is_channel(h, k)) return channel_adapter(t, [&] { return k->make_channel_master(h); });
-  unsupported(t);
+  if (h.words == WordsKind::pd) return k->make_pd_master(configuration_of(t, k), pd_step(t, k));
+  return channel_adapter(t, [&] { return k->make_channel_master(h); });
 }
 
 std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t) {
+  validate_trace(t);
   const Header& h = t.header;
   const DriveKind& k = kind_of(t);
   if (h.words == WordsKind::pd) return k->make_pd_explainer(configuration_of(t, k));
-  if (is_channel(h, k)) return channel_adapter(t, [&] { return k->make_channel_explainer(h); });
-  unsupported(t);
+  return channel_adapter(t, [&] { return k->make_channel_explainer(h); });
 }
 
 trace::Trace parse_trace(std::string_view text, const std::string& file) {

@@ -124,12 +124,13 @@ class Descriptor final : public DriveDescriptor {
 #if !IBS_EMBEDDED
   DeviceSettings trace_settings(const trace::Header&) const override { return {}; }
   void write_trace_settings(const Configuration&, trace::Header&) const override {}
-  std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration&) const override {
-    return vf1000::make_pd_master();
+  std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration&, Duration step) const override {
+    return vf1000::make_pd_master(step);
   }
   std::unique_ptr<trace::Explainer> make_pd_explainer(const Configuration&) const override {
     return vf1000::make_pd_explainer();
   }
+  void check_channel_trace(const trace::Header& h) const override { vf1000_channel::check_comm_trace(h); }
   std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const override {
     return vf1000_channel::make_comm_device_side(h, parameters(), server_config());
   }

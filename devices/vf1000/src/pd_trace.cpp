@@ -27,6 +27,7 @@ std::string hex4(Word w) {
 
 class Master final : public trace::MasterSide {
  public:
+  explicit Master(Duration step) : step_(step) {}
   std::size_t m2s_words() const override { return kWords; }
   std::size_t s2m_words() const override { return kWords; }
   void initial(std::span<Word> m2s) override { master_.initial(m2s); }
@@ -35,7 +36,7 @@ class Master final : public trace::MasterSide {
   }
   void step(std::span<const Word> s2m, std::span<const trace::WordPattern> row_m2s,
             std::span<Word> m2s) override {
-    now_ += kSamplePeriod;
+    now_ += step_;
     // Application data from the file: the ramp and direction bits of the control word and the
     // reference word; the DRIVECOM bits are computed by the sequencer.
     if (row_m2s[1].is_exact()) {
@@ -49,6 +50,7 @@ class Master final : public trace::MasterSide {
   std::optional<trace::Outcome> outcome() const override { return trace_outcome(master_.sequencer().report()); }
 
  private:
+  Duration step_;
   Vf1000PdMaster master_;
   Time now_{0};
 };
@@ -77,7 +79,7 @@ class Explainer final : public trace::Explainer {
 
 }  // namespace
 
-std::unique_ptr<trace::MasterSide> make_pd_master() { return std::make_unique<Master>(); }
+std::unique_ptr<trace::MasterSide> make_pd_master(Duration step) { return std::make_unique<Master>(step); }
 std::unique_ptr<trace::Explainer> make_pd_explainer() { return std::make_unique<Explainer>(); }
 
 }  // namespace ibs::devices::vf1000

@@ -198,11 +198,16 @@ class DriveDescriptor {
   // The settings a trace header gives; the headers a recording of the device writes.
   [[nodiscard]] virtual DeviceSettings trace_settings(const trace::Header& h) const = 0;
   virtual void write_trace_settings(const Configuration& config, trace::Header& h) const = 0;
-  // `words: pd`: the master side and the explainer for the configured device.
-  [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config) const = 0;
+  // `words: pd`: the master side (its timers run `step` per step: the trace's step-time) and the
+  // explainer for the configured device.
+  [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_pd_master(const Configuration& config,
+                                                                          Duration step) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_pd_explainer(const Configuration& config) const = 0;
-  // The parameter channel's words (facts().channel_words): both sides and the explainer. They
-  // throw std::invalid_argument for a header the channel cannot serve.
+  // The parameter channel's words (facts().channel_words): what the channel cannot serve of a
+  // header (its words, its configuration, a request it cannot carry), thrown as
+  // std::invalid_argument -- the trace validation asks it (trace_adapters.hpp) -- then both sides
+  // and the explainer, which throw the same for such a header.
+  virtual void check_channel_trace(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const = 0;

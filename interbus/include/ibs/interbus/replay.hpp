@@ -34,10 +34,15 @@ class DeviceSide {
   [[nodiscard]] virtual std::size_t s2m_words() const = 0;
   virtual void initial(std::span<Word> s2m) = 0;
   virtual void step(std::span<const Word> m2s, std::span<Word> s2m) = 0;
-  // Events (trace-format.md, "Events") the side can act on; replay refuses a trace with others.
+  // Events (trace-format.md, "Events") the side can act on; the trace validation refuses a trace
+  // with others (devices/trace_adapters.hpp).
   [[nodiscard]] virtual bool supports(Event::Kind /*kind*/) const { return false; }
-  // The event happens now: after the previous row's step, before the next one's.
+  // The event happens now: after the previous row's step, before the next one's. `no-data` is
+  // not applied: replay_device runs its steps through step_without_data().
   virtual void apply(const Event& /*event*/) {}
+  // One step in which no valid data came from the master (`! no-data N`): the device keeps the
+  // words it last took, its timers run on. Only called when supports(Event::Kind::no_data).
+  virtual void step_without_data(std::span<Word> /*s2m*/) {}
 };
 
 // The master side of a trace: m2s[0] = initial(); m2s[k] = step(s2m[k-1]).
@@ -68,6 +73,11 @@ struct ReplayResult {
   std::size_t steps_matched = 0;  // rows compared and matched
   std::string message;            // the mismatch report, or `replay: N steps matched`
 };
+
+// What a trace must be whichever side is emulated and whether it is decoded: an `outcome` needs
+// a `request`, and the `request-at` step must be a row of the file. Throws TraceError naming the
+// header's line. The devices' trace validation (devices/trace_adapters.hpp) calls it.
+void validate(const Trace& t);
 
 // Replays the trace against the device side; the trace's m2s column drives it.
 // Throws TraceError when the trace does not fit the adapter (word counts, '?' in driving words).

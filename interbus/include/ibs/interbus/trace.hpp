@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "ibs/interbus/device_start.hpp"
+#include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
 
 namespace ibs::trace {
@@ -66,13 +67,18 @@ std::string format_patterns(std::span<const WordPattern> words);
 // Something that happened to the device that its words cannot show (trace-format.md, "Events"):
 // a `! EVENT [text]` line between two data rows, after the previous row's step and before the
 // next row's.
+// `no-data N` stands for N steps (rows not written) in which the device got no valid data from the
+// master; its timers run on.
 struct Event {
-  enum class Kind { fault, fault_cleared };
+  enum class Kind { fault, fault_cleared, no_data };
   Kind kind = Kind::fault;
-  std::string text;      // the free text after the event's name (may be empty)
-  std::size_t line = 0;  // 1-based line in the file (0 when built in memory)
+  std::string text;         // the free text after the event's name (and no-data's N; may be empty)
+  std::size_t line = 0;     // 1-based line in the file (0 when built in memory)
+  std::uint64_t steps = 0;  // no-data: N, 1..kMaxNoDataSteps; 0 for the other kinds
 
-  friend bool operator==(const Event& a, const Event& b) { return a.kind == b.kind && a.text == b.text; }
+  friend bool operator==(const Event& a, const Event& b) {
+    return a.kind == b.kind && a.text == b.text && a.steps == b.steps;
+  }
 };
 std::string_view to_string(Event::Kind k);
 
@@ -90,6 +96,12 @@ struct Row {
 // The most steps a `...` row may stand for (`max-gap`): 10 million steps are 2.8 hours of MC6000
 // samples and 23 hours of VF1000 samples, far beyond any table, and bound the replay's work.
 inline constexpr std::uint64_t kMaxGapLimit = 10'000'000;
+// The most steps one `! no-data N` may stand for: the same bound as a gap's, for the same reason
+// (it bounds the replay's work; 10 million steps are hours of any bus).
+inline constexpr std::uint64_t kMaxNoDataSteps = kMaxGapLimit;
+// `step-time` lies above 0 and is at most 1 s, the bounds of a scenario's bus cycle
+// (docs/scenarios.md): an INTERBUS cycle or a drive's sample takes milliseconds.
+inline constexpr Duration kMaxStepTime = std::chrono::seconds(1);
 
 // A drive's own setting in the header, `# NAME: VALUE`: which names a drive kind takes, and in
 // what range, is its declarations' (devices/settings.hpp), checked by the replay adapters; the
@@ -116,9 +128,16 @@ struct Header {
   std::optional<Outcome> outcome;
   std::uint64_t max_gap = 100000;
   bool max_gap_given = false;
+  // `watchdog_ms`: the device's bus watchdog as the recording ran it (the drive's range and "off"
+  // value are its wing's, checked by the replay adapters); nullopt: the device's own default.
+  std::optional<int> watchdog_ms;
+  // `step-time`: the time one step stands for; nullopt: the adapters' own step time
+  // (docs/replay.md, "What one step is").
+  std::optional<Duration> step_time;
   // The line each header was read from (0 = not given), for errors found after parsing.
   struct Lines {
-    std::size_t device = 0, words = 0, init = 0, request = 0, request_at = 0, outcome = 0, max_gap = 0;
+    std::size_t device = 0, words = 0, init = 0, request = 0, request_at = 0, outcome = 0, max_gap = 0,
+                watchdog_ms = 0, step_time = 0;
   } lines;
 
   // A setting by name; nullptr when the header does not give it.

@@ -14,6 +14,7 @@
 #include "ibs/devices/descriptor.hpp"
 #include "ibs/interbus/id_code.hpp"
 #include "ibs/base/time.hpp"
+#include "ibs/base/time_text.hpp"
 
 namespace ibs::sim {
 
@@ -125,12 +126,10 @@ class ScenarioError : public std::runtime_error {
 // source_line, 0 elsewhere); throws ScenarioError naming `file`.
 void validate_scenario(const Scenario& s, const std::string& file = "scenario");
 
-// Times in scenario files: a decimal number, optional spaces and a unit (ns, us, ms, s), e.g.
-// "6 s", "250 ms", "8.2 ms"; a whole number of nanoseconds, 0 .. 24 h. parse_time throws
-// std::invalid_argument saying what is wrong; format_time writes the largest unit that keeps the
-// number at least 1 ("1.5 s", "8.2 ms", "726 us", "0 s"), which parse_time reads back exactly.
-Duration parse_time(std::string_view text);
-std::string format_time(Duration d);
+// Times in scenario files (base/time_text.hpp): "6 s", "250 ms", "8.2 ms"; a whole number of
+// nanoseconds, 0 .. 24 h. parse_time throws std::invalid_argument saying what is wrong.
+using ibs::format_time;
+using ibs::parse_time;
 
 // Names for reports: bus sides as the files spell them ("remote"), actions as their enumerators
 // ("fault_corrupt"; the files write fault = "corrupt").

@@ -14,7 +14,7 @@
 
 namespace ibs::vf1000_channel {
 
-// Simulated time per trace row: two VF1000 samples of 8.2 ms. With it the manual's tables take the times of
+// Simulated time per trace row without a `step-time` header: two VF1000 samples of 8.2 ms. With it the manual's tables take the times of
 // seed 001, 7.1 (a value inquiry's 6 rows ~100 ms, a value transfer's 8 rows ~131 ms).
 inline constexpr Duration kTraceStepPeriod = 16400us;
 
@@ -37,6 +37,11 @@ std::unique_ptr<ibs::trace::DeviceSide> make_comm_device_side(const ibs::trace::
 std::unique_ptr<ibs::trace::MasterSide> make_comm_master_side(const ibs::trace::Header& header);
 
 std::unique_ptr<ibs::trace::Explainer> make_comm_explainer();
+
+// What the adapters cannot serve of a header: not `words: comm`, a request the channel cannot
+// carry (a DRIVECOM `state`, a parameter above 3FFH, a value beyond 16 bits). Throws
+// std::invalid_argument; the trace validation (devices/trace_adapters.hpp) calls it.
+void check_comm_trace(const ibs::trace::Header& header);
 
 // The trace request as a channel request (throws std::invalid_argument as above).
 Request to_channel_request(const ibs::trace::Request& r);

@@ -13,9 +13,18 @@
 
 namespace ibs::devices {
 
-// The emulated device / master / explainer for a trace. Throw trace::TraceError naming the
-// header's line for an unknown drive or target, a combination the project does not serve or a
-// refused configuration.
+// How every command judges a trace (`ibs replay` with either side, `ibs decode`): the format's
+// own rules (trace::validate), the drive and DRIVECOM target the header names, the settings the
+// drive takes (supi/ibcnf, watchdog_ms in its range), the words it serves, a request the emulated
+// side can carry (`state` in a pd trace, read/write/describe in a channel's), events only where
+// the emulated side can act on them (pd traces: the device model), and the rows' word counts.
+// Throws trace::TraceError `FILE:LINE` naming the offending line. Only what depends on the side
+// a replay emulates stays with it: m2s patterns cannot drive a device (--emulate device), and
+// --emulate master needs a `request` (tools/ibs/replay_cmd.cpp).
+void validate_trace(const trace::Trace& t);
+
+// The emulated device / master / explainer for a trace; each validates the trace first
+// (validate_trace) and throws its TraceError.
 std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t);
 std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t);
 std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t);

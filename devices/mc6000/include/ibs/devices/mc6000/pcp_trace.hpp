@@ -18,6 +18,10 @@ namespace ibs::devices::mc6000 {
 
 // The PCP channel width for a trace header (405-SUPI, seed 001 3.2.2).
 int trace_channel_words(const ibs::trace::Header& header);
+// What the PCP adapters cannot serve of a header: not `words: pcp`, a SUPI without PCP words, a
+// request the channel cannot carry (`state`: DRIVECOM states travel in `words: pd`). Throws
+// std::invalid_argument; the trace validation (devices/trace_adapters.hpp) calls it.
+void check_pcp_trace(const ibs::trace::Header& header);
 
 // The servo's PCP server; honours `init` (operational: running, SERR clear; power-on: restarted,
 // SERR power-on bit, the link announces the restart; fault: running with a device fault).

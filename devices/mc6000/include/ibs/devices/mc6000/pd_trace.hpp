@@ -11,7 +11,7 @@ namespace ibs::devices::mc6000 {
 
 // The master: the DRIVECOM sequencer computes bits 0-3 and 7; the device bits and the reference
 // come from the file.
-std::unique_ptr<trace::MasterSide> make_pd_master(const Layout& l);
+std::unique_ptr<trace::MasterSide> make_pd_master(const Layout& l, Duration step);
 std::unique_ptr<trace::Explainer> make_pd_explainer(const Layout& l);
 
 }  // namespace ibs::devices::mc6000
