@@ -243,6 +243,41 @@ TEST_F(ReceiverTest, AFragmentFollowedBySilenceIsDroppedAndCounted) {
   EXPECT_EQ(rx.counters().fragments, 1U);
 }
 
+// The attack of issue 23 at every byte position: a host dies after any byte of a SELECT (here
+// the one whose BCC would be EOT) and the next host sends its own after the silence. The next
+// host's SELECT is the one taken and answered; the dead host's value never reaches the drive.
+TEST(ReceiverCuts, ASelectCutAtAnyByteIsNeverCompletedByTheNextHost) {
+  const auto dead = select_whose_bcc_is_eot();
+  ASSERT_FALSE(dead.empty());
+  for (std::size_t cut = 1; cut < dead.size(); ++cut) {
+    RecordingResponder r;
+    Receiver rx{r, 5};
+    Time now{0};
+    for (std::size_t i = 0; i < cut; ++i) rx.receive(dead[i], now);
+    now += rx.inter_char_timeout() + 1ms;
+    EXPECT_EQ(feed(rx, sel(5, 105, "03E8"), now), ack(5)) << "cut after byte " << cut;
+    EXPECT_EQ(r.selects, 1) << "cut after byte " << cut;
+    EXPECT_EQ(r.last_value.view(), "03E8") << "cut after byte " << cut;
+    // A fragment is a telegram whose ADR came: a lone EOT is none.
+    EXPECT_EQ(rx.counters().fragments, cut >= 2 ? 1U : 0U) << "cut after byte " << cut;
+  }
+}
+
+// Likewise an ENQUIRY cut at any byte: the next host's ENQUIRY is answered, once.
+TEST(ReceiverCuts, AnEnquiryCutAtAnyByteLeavesTheNextHostsAnswered) {
+  const auto dead = enq(5, "00105");
+  for (std::size_t cut = 1; cut < dead.size(); ++cut) {
+    RecordingResponder r;
+    Receiver rx{r, 5};
+    Time now{0};
+    for (std::size_t i = 0; i < cut; ++i) rx.receive(dead[i], now);
+    now += rx.inter_char_timeout() + 1ms;
+    EXPECT_EQ(feed(rx, enq(5, "00112"), now).size(), 14U) << "cut after byte " << cut;
+    EXPECT_EQ(r.enquiries, 1) << "cut after byte " << cut;
+    EXPECT_EQ(rx.counters().fragments, cut >= 2 ? 1U : 0U) << "cut after byte " << cut;
+  }
+}
+
 TEST_F(ReceiverTest, SilenceOutsideAFragmentDropsNothing) {
   Time now{0};
   EXPECT_EQ(feed(rx, enq(5, "00112"), now).size(), 14U);
