@@ -10,7 +10,9 @@
 //   global 83 nor a frame for another UID;
 // - the host never reports ACK or NAK from a frame with another UID, an ACK's data length is the
 //   command's, a NAK carries one byte, and every transaction ends by the response timeout
-//   (bytes arrive 1 ms apart; an inter-byte gap counts from the last byte).
+//   (bytes arrive 1 ms apart; an inter-byte gap counts from the last byte);
+// - a silence longer than the fragment timeout before any byte drops what was begun and nothing
+//   else: the same invariants hold on the rest of the line, and no fragment is dropped without one.
 //
 // Input: byte 0 the controller's UID (0 taken as 1), byte 1 the host's UID, byte 2 the host's
 // command (index into the command table); the rest is the line.
@@ -75,48 +77,60 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (decoder.push(b).status == proto::DecodeStatus::frame) check_frame(decoder.frame());
   }
 
-  // 2. The controller side, one byte per millisecond.
-  devices::dfs1::Controller controller({controller_uid});
-  proto::FrameDecoder seen;  // what the controller has been told, to judge its replies
-  Time now{};
-  for (std::uint8_t b : line) {
-    now += 1ms;
-    const std::uint8_t uid_before = controller.uid();
-    const std::uint64_t requests_before = controller.counters().requests;
-    const std::uint64_t globals_before = controller.counters().globals;
-    const std::optional<Time> deadline_before = controller.next_deadline();
-    controller.receive(b, now);
-    const bool frame = seen.push(b).status == proto::DecodeStatus::frame;
-    if (controller.counters().requests != requests_before) {
-      IBS_FUZZ_REQUIRE(frame, "a request handled without a frame");
-      const bool global = controller.counters().globals != globals_before;
-      IBS_FUZZ_REQUIRE(global ? seen.frame().uid == 0 : seen.frame().uid == uid_before,
-                       "handled a frame for another UID");
-      IBS_FUZZ_REQUIRE(!global || controller.next_deadline() == deadline_before,
-                       "answered the global 83");
-    } else if (frame) {
-      IBS_FUZZ_REQUIRE(seen.frame().uid != uid_before || seen.frame().code == proto::kAck ||
-                           seen.frame().code == proto::kNak,
-                       "a frame for us was not handled");
-    }
-    if (auto due = controller.next_deadline(); due && *due <= now) {
-      const auto reply = controller.pending(now);
-      proto::FrameDecoder rd;
-      int frames = 0;
-      for (std::uint8_t r : reply) {
-        const proto::DecodeResult res = rd.push(r);
-        IBS_FUZZ_REQUIRE(res.status != proto::DecodeStatus::error, "reply does not decode");
-        if (res.status == proto::DecodeStatus::frame) {
-          ++frames;
-          const proto::Frame& f = rd.frame();
-          IBS_FUZZ_REQUIRE(f.is_ack() || f.is_nak(), "reply is neither ACK nor NAK");
-          if (f.is_nak()) {
-            IBS_FUZZ_REQUIRE(f.size == 1 && f.data[0] >= 0x80 && f.data[0] <= 0x86, "NAK code");
+  // 2. The controller side, one byte per millisecond; a second time with a silence longer than
+  // the fragment timeout before the byte at `cut` (a host that died there, D13): what came
+  // before it is dropped, so the judge's own decoder forgets it too.
+  const std::size_t cut = data[1] % (line.size() + 1);
+  for (const bool silent : {false, true}) {
+    devices::dfs1::Controller controller({controller_uid});
+    proto::FrameDecoder seen;  // what the controller has been told, to judge its replies
+    Time now{};
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const std::uint8_t b = line[i];
+      now += 1ms;
+      if (silent && i == cut) now += proto::fragment_timeout(9600) + 1ms;
+      const std::uint8_t uid_before = controller.uid();
+      const std::uint64_t requests_before = controller.counters().requests;
+      const std::uint64_t globals_before = controller.counters().globals;
+      const std::uint64_t fragments_before = controller.counters().fragments;
+      const std::optional<Time> deadline_before = controller.next_deadline();
+      controller.receive(b, now);
+      if (controller.counters().fragments != fragments_before) {
+        IBS_FUZZ_REQUIRE(silent && i == cut, "a fragment dropped without a silence");
+        seen.reset();
+      }
+      const bool frame = seen.push(b).status == proto::DecodeStatus::frame;
+      if (controller.counters().requests != requests_before) {
+        IBS_FUZZ_REQUIRE(frame, "a request handled without a frame");
+        const bool global = controller.counters().globals != globals_before;
+        IBS_FUZZ_REQUIRE(global ? seen.frame().uid == 0 : seen.frame().uid == uid_before,
+                         "handled a frame for another UID");
+        IBS_FUZZ_REQUIRE(!global || controller.next_deadline() == deadline_before,
+                         "answered the global 83");
+      } else if (frame) {
+        IBS_FUZZ_REQUIRE(seen.frame().uid != uid_before || seen.frame().code == proto::kAck ||
+                             seen.frame().code == proto::kNak,
+                         "a frame for us was not handled");
+      }
+      if (auto due = controller.next_deadline(); due && *due <= now) {
+        const auto reply = controller.pending(now);
+        proto::FrameDecoder rd;
+        int frames = 0;
+        for (std::uint8_t r : reply) {
+          const proto::DecodeResult res = rd.push(r);
+          IBS_FUZZ_REQUIRE(res.status != proto::DecodeStatus::error, "reply does not decode");
+          if (res.status == proto::DecodeStatus::frame) {
+            ++frames;
+            const proto::Frame& f = rd.frame();
+            IBS_FUZZ_REQUIRE(f.is_ack() || f.is_nak(), "reply is neither ACK nor NAK");
+            if (f.is_nak()) {
+              IBS_FUZZ_REQUIRE(f.size == 1 && f.data[0] >= 0x80 && f.data[0] <= 0x86, "NAK code");
+            }
           }
         }
+        IBS_FUZZ_REQUIRE(frames == 1, "a reply is not exactly one frame");
+        controller.consume(reply.size());
       }
-      IBS_FUZZ_REQUIRE(frames == 1, "a reply is not exactly one frame");
-      controller.consume(reply.size());
     }
   }
 

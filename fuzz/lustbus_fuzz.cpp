@@ -9,10 +9,13 @@
 //   the responder only when the bytes since the last EOT are exactly EOT? ADR STX CODE = VALUE ETX
 //   BCC for that code and value with the right BCC (so no value is ever taken from a broken
 //   telegram); an ENQUIRY only after ADR CODE ENQ; never at another address; broadcast never
-//   answered; every answer is a well-formed answer (decodes) to the telegram just received.
+//   answered; every answer is a well-formed answer (decodes) to the telegram just received; a
+//   telegram begun and followed by a silence longer than the inter-character timeout is dropped
+//   (LB-D23) and never completed by what follows, and nothing is dropped without such a silence.
 // - host: requests and arbitrary answer bytes at arbitrary times into a Host. Asserts: every
 //   request ends within a bound of simulated time; a value outcome holds only VALUE characters;
 //   the host's output is always EOT-led telegrams or a lone EOT; nothing is sent while awaiting.
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -138,6 +141,7 @@ void fuzz_receiver(In& in) {
   r.own = static_cast<Address>(in.ConsumeIntegralInRange<int>(0, 30));
   Receiver rx(r, r.own);
   Time now{0};
+  Time last_at{0};
   while (in.remaining_bytes() > 0) {
     const auto b = in.ConsumeIntegral<std::uint8_t>();
     const bool bcc_position = rx.state() == ReceiverState::select_bcc;
@@ -146,8 +150,19 @@ void fuzz_receiver(In& in) {
     } else {
       r.since_eot.push_back(b);
     }
+    const std::uint32_t fragments_before = rx.counters().fragments;
     rx.receive(b, now);
-    now += Duration{in.ConsumeIntegral<std::uint16_t>()};
+    if (rx.counters().fragments != fragments_before) {
+      // LB-D23: the receiver dropped a fragment after a silence and took `b` afresh, as after EOT.
+      if (now - last_at <= rx.inter_char_timeout()) fail("a fragment dropped within the inter-character timeout");
+      r.since_eot.assign(1, kEot);
+      if (b != kEot) r.since_eot.push_back(b);
+    }
+    last_at = now;
+    // Mostly gaps of 0..60 us between characters; the top values are silences of 1..5535 ms, which
+    // cut a telegram where they fall (a host that died there).
+    const auto gap = in.ConsumeIntegral<std::uint16_t>();
+    now += gap < 60000 ? Duration{gap} : Duration{std::chrono::milliseconds(gap - 60000)};
     const auto due = rx.answer_due();
     if (!due) continue;
     const auto answer = rx.take_answer(*due);

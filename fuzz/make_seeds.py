@@ -260,4 +260,46 @@ put("sequencer_fuzz", "fault_covered", bytes([0x02, 20]) + u16(0x0070) + cycles(
 put("sequencer_fuzz", "timeouts_restart", bytes([0x01]) + bytes([5] * 16) + u16(0xF870) + cycles(
     (REQ_READY, 0x0240, 1000), (NONE, 0x0240, 6000), (NONE, 0x0001, 1000), (0x50, 0x0231, 1000))
     + bytes([0x60]) + u16(0x1234, 0x0240, 0) + cycles((0x02, 0x0231, 1000), (NONE, 0x0233, 1000), (0x00, 0x0233, 1000)))
+
+# --- cut frames (issue 23): a host that dies mid-telegram, the next host after the silence -------
+# lustbus_fuzz reads its integers with libFuzzer's FuzzedDataProvider, which takes them from the
+# END of the input: the values are listed in the order the target consumes them and reversed.
+def fdp_from_end(*values):
+    out = []
+    for v, size in values:
+        out += list(v.to_bytes(size, "big"))  # the first byte consumed is the most significant
+    return bytes(reversed(out))
+
+
+EOT, STX, ETX, ENQ = 0x04, 0x02, 0x03, 0x05
+
+
+def lustbus_receiver(own, chars):
+    """chars: (byte, gap) pairs; gap >= 60000 is a silence of gap - 60000 ms (fuzz/lustbus_fuzz.cpp).
+    A (byte, gap, answer_bool) triple is a character that completes a telegram; its Responder
+    call takes one bool (true: NAK) before the gap."""
+    values = [(1, 1), (own, 1)]
+    for c in chars:
+        values.append((c[0], 1))
+        if len(c) == 3:
+            values.append((c[2], 1))
+        values.append((c[1], 2))
+    return fdp_from_end(*values)
+
+
+ADR5 = 0x40 + 5
+dead_select = [EOT, ADR5, STX] + list(b"00005=0068") + [ETX]  # without its BCC: the host died
+next_enquiry = [EOT, ADR5] + list(b"00112")
+put("lustbus_fuzz", "receiver_cut_select_then_enquiry", lustbus_receiver(
+    5, [(b, 0) for b in dead_select[:-1]] + [(dead_select[-1], 60000 + 100)]
+    + [(b, 0) for b in next_enquiry] + [(ENQ, 0, 1)]))
+put("lustbus_fuzz", "receiver_cut_after_address", lustbus_receiver(
+    5, [(EOT, 0), (ADR5, 60000 + 60)] + [(b, 0) for b in next_enquiry] + [(ENQ, 0, 1)]))
+
+# dfs1_frame_fuzz: [controller UID][host UID = the byte before which the second pass is silent]
+# [command] then the line: P6 := 99 cut after 8 of its 13 bytes (issue 23, defect 1), then a
+# whole status request of the next host.
+p6_cut = bytes([0x10, 0x02, 0x01, 0x86, 0x06, 0x00, 0x00, 0x00])
+status_request = bytes([0x10, 0x02, 0x01, 0x81, 0x10, 0x03, 0x7E])
+put("dfs1_frame_fuzz", "cut_write_then_status", bytes([0x01, len(p6_cut), 0x00]) + p6_cut + status_request)
 print("seeds written to", CORPUS)
