@@ -453,6 +453,54 @@ TEST(DriveRegistry, CanlustFaceLooksParametersUpAndRunsItsDrives) {
   EXPECT_EQ(refused.error, "574-CAWDG: 300 ms is above the maximum 255 ms");
 }
 
+// What `ibs canlust read|write|describe|start|stop|monitor` and `ibs decode` take from the face
+// instead of the wing: the JSON number, the longer wait for SAVE/PROG (4.3.3), the description
+// items (D29), the status word, the actual frequency (5.5.6, D25) and a frame in words.
+TEST(DriveRegistry, CanlustFaceGivesTheClientCommandsTheirWords) {
+  const std::vector<const Drive*> on = drives_on(Bus::canlust);
+  ASSERT_EQ(on.size(), 1U);  // the client commands take the one drive; a second needs --drive
+  const CanlustFace& face = *on.front()->canlust;
+  EXPECT_EQ(face.short_title, "CDA");
+  EXPECT_EQ(face.parameter(cda3000::kReff)->type, canlust::DataType::int32q16);
+  EXPECT_EQ(face.parameter(574)->type, canlust::DataType::usign8);
+  EXPECT_EQ(face.number_of(cda3000::kReff, 0xFFEB8000U), -0x148000);  // -20.5 Hz, raw Q16
+  EXPECT_EQ(face.number_of(574, 200), 200);
+  EXPECT_EQ(face.number_of(9999, 0xFFFFFFFFU), 0xFFFFFFFFLL);  // not in the table: the wire image
+  EXPECT_EQ(face.write_timeout(cda3000::kSave), Duration(2s));
+  EXPECT_EQ(face.write_timeout(cda3000::kProg), Duration(2s));
+  EXPECT_FALSE(face.write_timeout(574));
+
+  const std::array<std::uint32_t, 8> items = {static_cast<std::uint32_t>(canlust::DataType::usign8), 0, 255, 0,
+                                              0x03,  // writable, flash
+                                              0x44574143U /* "CAWD" */, 0x47U /* "G" */, 0x736DU /* "ms" */};
+  const auto d = face.read_description(items);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->type, canlust::DataType::usign8);
+  EXPECT_EQ(d->max, 255U);
+  EXPECT_TRUE(d->writable);
+  EXPECT_TRUE(d->flash);
+  EXPECT_FALSE(d->after_mains_reset);
+  EXPECT_EQ(d->short_name, "CAWDG");
+  EXPECT_EQ(d->unit, "ms");
+  EXPECT_FALSE(face.read_description(std::span(items).first(3)));
+
+  EXPECT_EQ(face.explain_status_word(0x0637), "0637 ENABLED, remote, reference reached");
+  EXPECT_DOUBLE_EQ(face.hz_from_wire(canlust::ValueWidth::int32q16, 0x148000), 20.5);
+  EXPECT_DOUBLE_EQ(face.hz_from_wire(canlust::ValueWidth::int16q0, -20), -20.0);
+
+  const canlust::IdentifierMap ids{};
+  canlust::CanFrame f;
+  f.id = 663;
+  f.dlc = 6;
+  f.data = {0x01, 0x00, 0x00, 0x80, 0x14, 0x00, 0, 0};
+  const CanlustFrameText e = face.explain_frame(f, ids, *canlust::process_layout_for_cacnf(4));
+  ASSERT_TRUE(e.id);
+  EXPECT_EQ(e.id->address, 1U);
+  EXPECT_EQ(e.text, "control CDA 1: EasyDrive 0001 STR; reference 20.5 Hz");
+  f.id = 0x7F0;
+  EXPECT_FALSE(face.explain_frame(f, ids, *canlust::process_layout_for_cacnf(2)).id);
+}
+
 TEST(DriveRegistry, EveryDriveAnswersAParameterReadOnEveryBusItSpeaks) {
   for (const DriveOnBus& p : drive_bus_pairs()) {
     SCOPED_TRACE(std::string(p.drive->name) + " on " + std::string(to_string(p.bus)));

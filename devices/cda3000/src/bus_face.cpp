@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "ibs/devices/cda3000/description.hpp"
 #include "ibs/devices/cda3000/descriptor.hpp"
 #include "ibs/devices/cda3000/device.hpp"
 #include "ibs/devices/cda3000/driver.hpp"
@@ -115,7 +116,7 @@ std::unique_ptr<CanlustMaster> make_master(const CanlustMasterOptions& o) {
 
 std::optional<CanlustParameter> as_face(const ParameterInfo* p) {
   if (p == nullptr) return std::nullopt;
-  return CanlustParameter{p->number, display_name(*p), p->writable(), p->is_string()};
+  return CanlustParameter{p->number, display_name(*p), p->writable(), p->is_string(), p->type};
 }
 
 std::optional<CanlustParameter> find_by_text(std::string_view text) { return as_face(find_parameter(text)); }
@@ -133,10 +134,42 @@ std::string format(std::uint16_t number, std::uint32_t wire) {
   return p != nullptr ? format_value(*p, wire) : std::to_string(wire);
 }
 
+std::int64_t number(std::uint16_t n, std::uint32_t wire) {
+  const ParameterInfo* p = find_parameter(n);
+  return p != nullptr ? number_of(*p, wire) : static_cast<std::int64_t>(wire);
+}
+
+// 4.3.3 / 1.x: SAVE backs the settings up in flash and PROG resets them to the factory's before
+// the drive answers, longer than the client's default for a parameter request.
+std::optional<Duration> write_timeout(std::uint16_t n) {
+  if (n == kSave || n == kProg) return Duration(2s);
+  return std::nullopt;
+}
+
+// D29 (docs/canlust.md "Descriptions"): the items this drive answers.
+std::optional<CanlustDescription> description(std::span<const std::uint32_t> items) {
+  const std::optional<Description> d = read_description(items);
+  if (!d) return std::nullopt;
+  return CanlustDescription{d->type,       d->min,   d->max,      d->factory, d->writable(), d->flash(),
+                            d->after_mains_reset(), d->short_name, d->unit};
+}
+
+std::string status_word(Word status) { return explain_status_word(status); }
+
+double hz(canlust::ValueWidth w, std::int32_t raw) { return hz_from_wire(w, raw); }
+
+CanlustFrameText frame_text(const canlust::CanFrame& f, const canlust::IdentifierMap& ids,
+                            const canlust::ProcessLayout& layout) {
+  FrameExplanation e = explain_frame(f, ids, layout);
+  return {e.id, std::move(e.text)};
+}
+
 }  // namespace
 
 const CanlustFace& bus_face() {
-  static const CanlustFace face{"CDA3000", &make, &make_master, &find_by_text, &find_by_number, &parse, &format};
+  static const CanlustFace face{"CDA3000", &make,   &make_master, &find_by_text, &find_by_number, &parse,
+                                &format,   "CDA",   &number,      &write_timeout, &description,   &status_word,
+                                &hz,       &frame_text};
   return face;
 }
 

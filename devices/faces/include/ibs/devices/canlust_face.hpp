@@ -14,12 +14,14 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
+#include "ibs/canlust/data_types.hpp"
 #include "ibs/canlust/errors.hpp"
 #include "ibs/canlust/frame.hpp"
 #include "ibs/canlust/identifiers.hpp"
@@ -82,11 +84,33 @@ struct CanlustParameter {
   std::string name;  // as reports show it: "574-CAWDG"
   bool writable = true;
   bool is_string = false;  // read and written as text
+  canlust::DataType type = canlust::DataType::usign32;  // how the wire image codes the value
 };
 
 struct CanlustValue {
   std::optional<std::uint32_t> wire;
   std::string error;  // why `wire` is nullopt: "574-CAWDG: 300 ms is above the maximum 255 ms"
+};
+
+// A parameter's description as the drive answers it item by item (mode 04; seed 003 leaves the
+// items to the drive, decision D10), read back by `ibs canlust describe`.
+struct CanlustDescription {
+  canlust::DataType type = canlust::DataType::usign32;
+  std::uint32_t min = 0;  // on the wire, as `type` codes them
+  std::uint32_t max = 0;
+  std::uint32_t factory = 0;
+  bool writable = false;
+  bool flash = false;              // kept in flash (else RAM)
+  bool after_mains_reset = false;  // a write acts after a mains reset
+  std::string short_name;
+  std::string unit;
+};
+
+// A frame in words, for the monitor and `ibs decode`: its kind and drive (nullopt: not a CANLust
+// identifier on this map) and the words and values with what they mean.
+struct CanlustFrameText {
+  std::optional<canlust::Classified> id;
+  std::string text;
 };
 
 // One drive the master drives.
@@ -156,6 +180,26 @@ struct CanlustFace {
   // A value parameter's value from the user's text, and its wire image for reports ("20.50 Hz").
   CanlustValue (*parse_value)(std::uint16_t number, std::string_view text) = nullptr;
   std::string (*format_value)(std::uint16_t number, std::uint32_t wire) = nullptr;
+
+  // ---- for the client commands (`ibs canlust read|write|describe|start|stop|monitor`, `ibs
+  // decode`), which talk to a real or emulated drive over the bus --------------------------------
+  // How reports name one drive of these on the bus: "CDA" in "CDA 3: ...".
+  std::string_view short_title;
+  // The number a value parameter's wire image stands for (sign-extended for the signed types;
+  // INT32Q16 as the raw Q16), for JSON; the wire image itself for numbers not in the table.
+  std::int64_t (*number_of)(std::uint16_t number, std::uint32_t wire) = nullptr;
+  // How long a write of `number` may take before the drive answers; nullopt: the parameter
+  // client's default. A drive that backs up or resets its settings on a write needs longer.
+  std::optional<Duration> (*write_timeout)(std::uint16_t number) = nullptr;
+  // The description the items of a mode-04 exchange say; nullopt when they are not this drive's.
+  std::optional<CanlustDescription> (*read_description)(std::span<const std::uint32_t> items) = nullptr;
+  // A DRIVECOM status word with the bits the drive adds, in words: "0237 ENABLED, remote".
+  std::string (*explain_status_word)(Word status) = nullptr;
+  // The frequency in Hz of a status or control telegram's value as the telegram layout codes it.
+  double (*hz_from_wire)(canlust::ValueWidth width, std::int32_t raw) = nullptr;
+  // A frame explained with the drive's parameter names and word meanings.
+  CanlustFrameText (*explain_frame)(const canlust::CanFrame& f, const canlust::IdentifierMap& ids,
+                                    const canlust::ProcessLayout& layout) = nullptr;
 };
 
 }  // namespace ibs::devices
