@@ -24,9 +24,6 @@
 #include "ibs/can/socketcan.hpp"
 #include "ibs/can/udp.hpp"
 #include "ibs/canlust/parameter_client.hpp"
-#include "ibs/devices/cda3000/description.hpp"
-#include "ibs/devices/cda3000/descriptor.hpp"
-#include "ibs/devices/cda3000/parameters.hpp"
 #include "ibs/devices/drives.hpp"
 #include "stop_signals.hpp"
 #ifdef IBS_HAVE_PCAP
@@ -36,7 +33,6 @@
 namespace ibs::cli {
 
 namespace cl = ::ibs::canlust;
-namespace dev = ::ibs::devices::cda3000;
 using Clock = std::chrono::steady_clock;
 using Wall = std::chrono::system_clock;
 
@@ -205,21 +201,40 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
 
 // ---- the client commands --------------------------------------------------------------------
 
+// The drive the client commands talk to: its parameter table names PARAM and formats values, its
+// words explain status telegrams and frames. The registry has one drive that speaks CANLust, so it
+// is the default and there is no --drive option; a second one would make every client command
+// ambiguous, and then it needs one (`emulate` already names its drives: DRIVE@ADDR).
+const devices::CanlustFace& client_face() {
+  const std::vector<const devices::Drive*> on = devices::drives_on(devices::Bus::canlust);
+  if (on.size() != 1) {
+    throw std::logic_error(std::to_string(on.size()) + " drives speak CANLust (" +
+                           devices::drive_names(devices::Bus::canlust, ", ", " and ") +
+                           "); the client commands know which one only when there is exactly one");
+  }
+  return *on.front()->canlust;
+}
+
 struct Target {
   std::uint16_t number = 0;
-  const dev::ParameterInfo* info = nullptr;  // nullptr: not in the table; asked as a raw number
+  std::optional<devices::CanlustParameter> info;  // nullopt: not in the table; asked as a raw number
 };
 
-Target resolve(const std::string& text) {
-  if (const dev::ParameterInfo* p = dev::find_parameter(text)) return {p->number, p};
+Target resolve(const devices::CanlustFace& face, const std::string& text) {
+  if (auto p = face.find_parameter(text)) return {p->number, std::move(p)};
   const auto n = parse_int(text);
-  if (n && *n >= 0 && *n <= 0xFFFF) return {static_cast<std::uint16_t>(*n), nullptr};
-  throw std::invalid_argument("PARAM '" + text +
-                              "' is not a CDA3000 parameter (give NUMBER, NAME or NUMBER-NAME, e.g. 574-CAWDG)");
+  if (n && *n >= 0 && *n <= 0xFFFF) return {static_cast<std::uint16_t>(*n), std::nullopt};
+  throw std::invalid_argument("PARAM '" + text + "' is not a " + std::string(face.title) +
+                              " parameter (give NUMBER, NAME or NUMBER-NAME, e.g. 574-CAWDG)");
 }
 
 std::string target_name(const Target& t) {
-  return t.info != nullptr ? dev::display_name(*t.info) : "parameter " + std::to_string(t.number);
+  return t.info ? t.info->name : "parameter " + std::to_string(t.number);
+}
+
+// "CDA 3".
+std::string drive_label(const devices::CanlustFace& face, unsigned address) {
+  return std::string(face.short_title) + " " + std::to_string(address);
 }
 
 // One parameter request in real time: submit, then frames out and in until its outcome.
@@ -239,11 +254,11 @@ cl::Outcome transact(Session& s, cl::ParameterClient& client, const cl::Request&
   }
 }
 
-std::string value_text(const Target& t, std::uint32_t v) {
-  return t.info != nullptr ? dev::format_value(*t.info, v) : std::to_string(v);
+std::string value_text(const devices::CanlustFace& face, const Target& t, std::uint32_t v) {
+  return t.info ? face.format_value(t.number, v) : std::to_string(v);
 }
 
-int report_outcome(const std::string& cmd, int address, const Target& t, const cl::Outcome& o,
+int report_outcome(const devices::CanlustFace& face, const std::string& cmd, int address, const Target& t, const cl::Outcome& o,
                    nlohmann::json& j, bool json, std::ostream& out, std::ostream& err) {
   j["outcome"] = std::string(cl::to_string(o.kind));
   j["elapsed_ms"] = to_ms(o.finished - o.started);
@@ -253,7 +268,7 @@ int report_outcome(const std::string& cmd, int address, const Target& t, const c
     j["status_text"] = o.status == cl::kStatusListEnd ? std::string("List_End") : cl::describe_status(o.status);
   }
   if (json) out << j.dump() << "\n";
-  err << "ibs canlust " << cmd << ": CDA " << address << " " << target_name(t) << ": " << cl::describe(o) << "\n";
+  err << "ibs canlust " << cmd << ": " << drive_label(face, static_cast<unsigned>(address)) << " " << target_name(t) << ": " << cl::describe(o) << "\n";
   return kExitCanDevice;
 }
 
@@ -263,63 +278,63 @@ cl::ParameterClient make_client(const CanBusOptions& o) {
   return cl::ParameterClient(c);
 }
 
-int read_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
-  const Target t = resolve(o.parameter);
+int read_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const Target t = resolve(face, o.parameter);
   Session s(o.bus);
   cl::ParameterClient client = make_client(o.bus);
   const auto a = static_cast<cl::Address>(o.address);
-  cl::Request r = (t.info != nullptr && t.info->is_string()) ? cl::read_string(a, t.number) : cl::read(a, t.number);
+  cl::Request r = (t.info && t.info->is_string) ? cl::read_string(a, t.number) : cl::read(a, t.number);
   if (o.timeout_ms > 0) r.timeout = std::chrono::milliseconds(o.timeout_ms);
   const cl::Outcome res = transact(s, client, r);
   nlohmann::json j;
   j["address"] = o.address;
   j["command"] = "read";
   j["parameter"] = t.number;
-  if (t.info != nullptr) j["name"] = dev::display_name(*t.info);
-  if (const int rc = report_outcome("read", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
+  if (t.info) j["name"] = t.info->name;
+  if (const int rc = report_outcome(face, "read", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
   std::string text;
   if (r.kind == cl::RequestKind::read_string) {
     text = std::string(res.text.view());
     j["value"] = text;
   } else {
-    text = value_text(t, res.value);
-    j["value"] = t.info != nullptr ? nlohmann::json(dev::number_of(*t.info, res.value)) : nlohmann::json(res.value);
-    if (t.info != nullptr && t.info->type == cl::DataType::int32q16) j["value"] = cl::double_from_q16(static_cast<std::int32_t>(res.value));
+    text = value_text(face, t, res.value);
+    j["value"] = t.info ? nlohmann::json(face.number_of(t.number, res.value)) : nlohmann::json(res.value);
+    if (t.info && t.info->type == cl::DataType::int32q16) j["value"] = cl::double_from_q16(static_cast<std::int32_t>(res.value));
   }
   j["text"] = text;
   if (o.bus.json) {
     out << j.dump() << "\n";
   } else {
-    out << "CDA " << o.address << " " << target_name(t) << ": " << text << "\n";
+    out << drive_label(face, static_cast<unsigned>(o.address)) << " " << target_name(t) << ": " << text << "\n";
   }
   return kExitCanOk;
 }
 
-int write_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
-  const Target t = resolve(o.parameter);
+int write_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const Target t = resolve(face, o.parameter);
   const auto a = static_cast<cl::Address>(o.address);
   cl::Request r;
   std::string shown;
-  if (t.info != nullptr && t.info->is_string()) {
-    if (!t.info->writable()) throw std::invalid_argument(dev::display_name(*t.info) + " is read-only");
+  if (t.info && t.info->is_string) {
+    if (!t.info->writable) throw std::invalid_argument(t.info->name + " is read-only");
     if (o.value.size() > cl::kMaxStringChars) {
-      throw std::invalid_argument(dev::display_name(*t.info) + ": the text has " + std::to_string(o.value.size()) +
+      throw std::invalid_argument(t.info->name + ": the text has " + std::to_string(o.value.size()) +
                                   " characters, at most 99 fit (4.1.1: 100 bytes with the terminator)");
     }
     r = cl::write_string(a, t.number, o.value);
     shown = o.value;
-  } else if (t.info != nullptr) {
-    if (!t.info->writable()) throw std::invalid_argument(dev::display_name(*t.info) + " is read-only");
-    const dev::ParsedValue v = dev::parse_value(*t.info, o.value);
+  } else if (t.info) {
+    if (!t.info->writable) throw std::invalid_argument(t.info->name + " is read-only");
+    const devices::CanlustValue v = face.parse_value(t.number, o.value);
     if (!v.wire) throw std::invalid_argument(v.error);
     r = cl::write(a, t.number, *v.wire);
-    shown = dev::format_value(*t.info, *v.wire);
-    if (t.number == dev::kSave || t.number == dev::kProg) r.timeout = 2s;
+    shown = face.format_value(t.number, *v.wire);
+    if (const auto timeout = face.write_timeout(t.number)) r.timeout = *timeout;
   } else {
     const auto v = parse_int(o.value);
     if (!v || *v < -2147483648LL || *v > 4294967295LL) {
       throw std::invalid_argument("parameter " + std::to_string(t.number) + ": VALUE '" + o.value +
-                                  "' is not a 32-bit number (the parameter is not in the CDA3000 table)");
+                                  "' is not a 32-bit number (the parameter is not in the " + std::string(face.title) + " table)");
     }
     r = cl::write(a, t.number, static_cast<std::uint32_t>(static_cast<std::uint64_t>(*v) & 0xFFFFFFFFULL));
     shown = o.value;
@@ -332,24 +347,24 @@ int write_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& er
   j["address"] = o.address;
   j["command"] = "write";
   j["parameter"] = t.number;
-  if (t.info != nullptr) j["name"] = dev::display_name(*t.info);
+  if (t.info) j["name"] = t.info->name;
   j["text"] = shown;
   if (r.kind == cl::RequestKind::write_string) {
     j["value"] = o.value;
   } else {
     j["value"] = r.value;
   }
-  if (const int rc = report_outcome("write", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
+  if (const int rc = report_outcome(face, "write", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
   if (o.bus.json) {
     out << j.dump() << "\n";
   } else {
-    out << "CDA " << o.address << " " << target_name(t) << " = " << shown << ": done\n";
+    out << drive_label(face, static_cast<unsigned>(o.address)) << " " << target_name(t) << " = " << shown << ": done\n";
   }
   return kExitCanOk;
 }
 
-int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
-  const Target t = resolve(o.parameter);
+int describe_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const Target t = resolve(face, o.parameter);
   Session s(o.bus);
   cl::ParameterClient client = make_client(o.bus);
   const auto a = static_cast<cl::Address>(o.address);
@@ -358,20 +373,20 @@ int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream&
   j["address"] = o.address;
   j["command"] = "describe";
   j["parameter"] = t.number;
-  if (t.info != nullptr) j["name"] = dev::display_name(*t.info);
+  if (t.info) j["name"] = t.info->name;
   // D10: one item per request until the drive answers List_End.
   for (std::uint8_t item = 0; item < 32; ++item) {
     cl::Request r = cl::describe(a, t.number, item);
     if (o.timeout_ms > 0) r.timeout = std::chrono::milliseconds(o.timeout_ms);
     const cl::Outcome res = transact(s, client, r);
     if (res.kind == cl::OutcomeKind::refused && res.status == cl::kStatusListEnd && item > 0) break;
-    if (const int rc = report_outcome("describe", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
+    if (const int rc = report_outcome(face, "describe", o.address, t, res, j, o.bus.json, out, err); rc >= 0) return rc;
     items.push_back(res.value);
   }
   j["items"] = items;
-  // D29: the CDA3000's items.
-  std::string text = "CDA " + std::to_string(o.address) + " " + target_name(t) + ":";
-  if (const auto d = dev::read_description(items)) {
+  // D29: the drive's items, as its face reads them.
+  std::string text = drive_label(face, static_cast<unsigned>(o.address)) + " " + target_name(t) + ":";
+  if (const auto d = face.read_description(items)) {
     const cl::DataType type = d->type;
     const bool is_signed = type == cl::DataType::int8 || type == cl::DataType::int16 ||
                            type == cl::DataType::int32 || type == cl::DataType::int32q16;
@@ -384,16 +399,16 @@ int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream&
     j["min"] = num(d->min);
     j["max"] = num(d->max);
     j["factory"] = num(d->factory);
-    j["writable"] = d->writable();
-    j["flash"] = d->flash();
-    j["after_mains_reset"] = d->after_mains_reset();
+    j["writable"] = d->writable;
+    j["flash"] = d->flash;
+    j["after_mains_reset"] = d->after_mains_reset;
     j["short_name"] = d->short_name;
     j["unit"] = d->unit;
     const std::string unit = d->unit.empty() ? "" : " " + d->unit;
     text += " " + d->short_name + ", " + j["type"].get<std::string>() + ", " + j["min"].dump() + ".." +
             j["max"].dump() + unit + ", factory " + j["factory"].dump() + unit + ", " +
-            (d->writable() ? "writable" : "read-only") + (d->flash() ? ", flash" : ", RAM") +
-            (d->after_mains_reset() ? ", acts after a mains reset" : "");
+            (d->writable ? "writable" : "read-only") + (d->flash ? ", flash" : ", RAM") +
+            (d->after_mains_reset ? ", acts after a mains reset" : "");
   } else {
     for (std::size_t i = 0; i < items.size(); ++i) text += " item " + std::to_string(i) + " = " + hex(items[i], 8) + "H";
   }
@@ -405,7 +420,7 @@ int describe_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream&
   return kExitCanOk;
 }
 
-int system_cmd(bool start, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+int system_cmd(const devices::CanlustFace& face, bool start, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
   (void)err;
   const cl::IdentifierMap ids = ids_for(o.bus);
   const cl::ProcessLayout layout = layout_for(o.bus);
@@ -433,14 +448,14 @@ int system_cmd(bool start, const CanlustClientOptions& o, std::ostream& out, std
   j["logons"] = logons;
   if (!o.bus.json) out << (start ? "System Start" : "System Stop") << " sent\n";
   for (const auto& [a, st] : last) {
-    const std::string words = layout.mode == cl::WordMode::drivecom ? dev::explain_status_word(st.word)
+    const std::string words = layout.mode == cl::WordMode::drivecom ? face.explain_status_word(st.word)
                                                                     : "EasyDrive word " + hex(st.word, 4);
-    const double hz = dev::hz_from_wire(layout.actual, st.actual);
+    const double hz = face.hz_from_wire(layout.actual, st.actual);
     j["drives"].push_back({{"address", a}, {"status_word", st.word}, {"status", words}, {"actual_hz", hz}});
-    if (!o.bus.json) out << "CDA " << a << ": status " << words << "; actual " << hz << " Hz\n";
+    if (!o.bus.json) out << drive_label(face, a) << ": status " << words << "; actual " << hz << " Hz\n";
   }
   if (!o.bus.json) {
-    for (const unsigned a : logons) out << "CDA " << a << ": logging on (System Logon)\n";
+    for (const unsigned a : logons) out << drive_label(face, a) << ": logging on (System Logon)\n";
     if (last.empty() && logons.empty()) out << "no drive answered within " << o.listen_ms << " ms\n";
   }
   if (o.bus.json) out << j.dump() << "\n";
@@ -453,7 +468,7 @@ std::string data_hex(const cl::CanFrame& f) {
   return s;
 }
 
-int monitor_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+int monitor_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
   (void)err;
   const cl::IdentifierMap ids = ids_for(o.bus);
   const cl::ProcessLayout layout = layout_for(o.bus);
@@ -468,7 +483,7 @@ int monitor_cmd(const CanlustClientOptions& o, std::ostream& out, std::ostream& 
     const auto f = s.receive(left);
     if (!f) continue;
     const double t = to_ms(since(t0)) / 1000.0;
-    const auto e = dev::explain_frame(*f, ids, layout);
+    const auto e = face.explain_frame(*f, ids, layout);
     if (o.bus.json) {
       nlohmann::json j;
       j["time"] = t;
@@ -504,12 +519,13 @@ int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& o
       }
       if (o.timeout_ms < 0) throw std::invalid_argument("--timeout-ms must be positive");
     }
-    if (name == "read") return read_cmd(o, out, err);
-    if (name == "write") return write_cmd(o, out, err);
-    if (name == "describe") return describe_cmd(o, out, err);
-    if (name == "start") return system_cmd(true, o, out, err);
-    if (name == "stop") return system_cmd(false, o, out, err);
-    return monitor_cmd(o, out, err);
+    const devices::CanlustFace& face = client_face();
+    if (name == "read") return read_cmd(face, o, out, err);
+    if (name == "write") return write_cmd(face, o, out, err);
+    if (name == "describe") return describe_cmd(face, o, out, err);
+    if (name == "start") return system_cmd(face, true, o, out, err);
+    if (name == "stop") return system_cmd(face, false, o, out, err);
+    return monitor_cmd(face, o, out, err);
   } catch (const std::invalid_argument& e) {
     err << "ibs canlust " << name << ": " << e.what() << "\n";
     return kExitCanBadInput;
@@ -643,12 +659,13 @@ std::optional<int> decode_candump_log(const std::string& file, unsigned id_step,
     err << file << ":" << log.error->line << ": not a candump log line: '" << log.error->text << "'\n";
     return kExitCanBadInput;
   }
+  const devices::CanlustFace& face = client_face();
   std::string text;
   for (const can::CandumpEntry& e : log.entries) {
     std::string line = e.text;
     line.resize(std::max<std::size_t>(line.size(), 44), ' ');
     text += line + "  " +
-            (e.record.classic ? dev::explain_frame(e.record.frame, ids, layout).text
+            (e.record.classic ? face.explain_frame(e.record.frame, ids, layout).text
                               : std::string("extended or CAN FD frame: not CANLust")) + "\n";
   }
   out << text;
