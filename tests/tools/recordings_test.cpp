@@ -5,6 +5,7 @@
 // ../shared/specs/trace-format.md gives them. And `ibs decode` judges a file as `ibs replay`
 // does: one validation, the same FILE:LINE message and exit 2 (docs/replay.md, "Errors").
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -30,8 +31,14 @@ std::string read(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// A name of this test process's own under the temporary directory: two test runs on one machine
+// (a developer's and CI's) must not write into each other's recordings.
+fs::path scratch(const std::string& name) {
+  return fs::path(::testing::TempDir()) / ("ibs" + std::to_string(::getpid()) + "_" + name);
+}
+
 std::string temp_file(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = scratch(name).string();
   std::ofstream(path) << text;
   return path;
 }
@@ -55,7 +62,7 @@ TEST(RecordingsReplay, EveryExampleScenarioRecordsTracesThatReplayWithTheDeviceM
   std::size_t without_data = 0;
   for (const fs::path& scenario : examples) {
     SCOPED_TRACE(scenario.filename().string());
-    const fs::path dir = fs::path(::testing::TempDir()) / ("recordings_" + scenario.stem().string());
+    const fs::path dir = scratch("recordings_" + scenario.stem().string());
     fs::remove_all(dir);
     const Result r = run("run " + scenario.string() + " --trace " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -85,6 +92,7 @@ TEST(RecordingsReplay, EveryExampleScenarioRecordsTracesThatReplayWithTheDeviceM
         EXPECT_NE(master.out.find("no `request` header"), std::string::npos) << master.out;
       }
     }
+    fs::remove_all(dir);
   }
   EXPECT_GE(traces, examples.size());
   // The faults of examples/faults.toml (and a 2 ms cycle slower than the MC6000's samples) give
@@ -94,7 +102,7 @@ TEST(RecordingsReplay, EveryExampleScenarioRecordsTracesThatReplayWithTheDeviceM
 
 TEST(RecordingsReplay, ACanlustRunWritesNoCycleTraces) {
   const fs::path scenario = fs::path(IBS_SOURCE_DIR) / "examples" / "canlust" / "conveyors.toml";
-  const fs::path dir = fs::path(::testing::TempDir()) / "recordings_canlust";
+  const fs::path dir = scratch("recordings_canlust");
   fs::remove_all(dir);
   const Result r = run("run " + scenario.string() + " --trace " + dir.string());
   // The cycle trace format is INTERBUS's: a CANLust run refuses --trace or writes none.
@@ -103,6 +111,7 @@ TEST(RecordingsReplay, ACanlustRunWritesNoCycleTraces) {
   } else {
     EXPECT_EQ(r.exit_code, 2) << r.out;
   }
+  fs::remove_all(dir);
 }
 
 // A servo whose data stop for longer than its 409-BUTWD: the watchdog trips in the replay at the
@@ -127,7 +136,7 @@ device = "servo"
 fault = "lost"
 duration = "100 ms"
 )");
-  const fs::path dir = fs::path(::testing::TempDir()) / "recordings_watchdog_trip";
+  const fs::path dir = scratch("recordings_watchdog_trip");
   fs::remove_all(dir);
   const Result r = run("run " + scenario + " --trace " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
@@ -153,6 +162,7 @@ duration = "100 ms"
   other.replace(other.find("# watchdog_ms: 20"), 17, "# watchdog_ms: 0");  // 409-BUTWD 0: off
   const Result off = run("replay --emulate device " + temp_file("watchdog_off.trace", other));
   EXPECT_EQ(off.exit_code, 1) << off.out;
+  fs::remove_all(dir);
 }
 
 // Files that replay refuses (exit 2) are refused by decode with the same FILE:LINE message.
