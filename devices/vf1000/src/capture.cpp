@@ -6,7 +6,7 @@ namespace {
 
 // docs/pcap.md, "Values": the reference frequency in 0.05 Hz per bit with the direction in the control
 // word, the actual frequency signed in 0.05 Hz; no layout settings.
-CaptureFormat format(const DeviceSettings& /*settings*/) { return {CaptureValues::hz_005, 0, 0}; }
+CaptureFormat format(const DeviceSettings& /*settings*/) { return {CaptureValues::hz_005, {0, 0}}; }
 
 }  // namespace
 
