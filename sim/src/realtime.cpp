@@ -66,6 +66,7 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
     const std::int64_t woke = monotonic_ns();
     wake.push_back(static_cast<std::uint32_t>(std::clamp<std::int64_t>(woke - deadline, 0, 0xFFFFFFFF)));
     sim.run_until(t, options);
+    if (realtime.each_cycle) realtime.each_cycle(sim.now());
     if (realtime.stop && (index & 63U) == 0 && realtime.stop()) {
       stopped = true;
       break;

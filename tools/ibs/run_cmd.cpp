@@ -193,7 +193,7 @@ int run(const RunOptions& o) {
   StopSignals signals;
   bool interrupted = false;
   if (o.realtime) {
-    sim::RealtimeOptions rt{o.rt_priority, [&signals, &interrupted] { return interrupted = signals.raised(); }};
+    sim::RealtimeOptions rt{o.rt_priority, [&signals, &interrupted] { return interrupted = signals.raised(); }, {}};
     sim::run_realtime(*simulator, rt, options);
   } else {
     for (Time t = Time{0} + kRunSlice; simulator->run_until(t, options); t += kRunSlice) {

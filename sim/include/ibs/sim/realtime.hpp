@@ -30,6 +30,11 @@ struct RealtimeOptions {
   // Asked every 64 cycles between two deadlines; true ends the run there (`ibs run` on SIGINT or
   // SIGTERM). The simulator is then left part-way: its summary is not final.
   std::function<bool()> stop;
+  // Called after every cycle's work with the simulated time reached, before the runner sleeps to
+  // the next deadline (the test bench serves its ports and reads its control channel here, on the
+  // simulator's own thread: nothing is shared, nothing locks). Its time counts into the cycle's:
+  // an overrun it causes is counted like any other.
+  std::function<void(Time now)> each_cycle;
 };
 
 // Runs `sim` from its start to the end of its scenario in real time. Allocates only before the

@@ -21,6 +21,13 @@ inline constexpr Duration kServePoll = 20ms;
 // whose line_baud() is not the port's hears nothing (on a real line it would see garbage); a
 // lone device that changes its rate takes the port with it once nothing of its is due (LUSTBUS
 // 11.5: its answer goes out at the old rate first).
+// One turn of that loop at `now` that never waits for the port: what has already arrived goes to
+// the devices, then their bytes due at `now` go out (written as SerialPort::write does: on a real
+// port it waits until the driver has sent them). For a loop with other work between two turns:
+// the test bench's real-time runner (`ibs run --realtime`) turns once per bus cycle with the
+// simulator's time. Returns the bytes read.
+std::size_t serve_turn(SerialPort& port, std::span<base::LineDevice* const> devices, Time now);
+
 void serve(SerialPort& port, std::span<base::LineDevice* const> devices, const std::function<bool()>& stop);
 
 }  // namespace ibs::serial
