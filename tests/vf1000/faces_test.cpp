@@ -56,6 +56,10 @@ struct Rig {
   explicit Rig(bool interbus = true, bool serial = true,
                DeviceStart start = DeviceStart::operational)
       : drive(std::make_shared<vf::Drive>(vf::DriveConfig{}, start, Time{0})) {
+    // Seed 001, 6.1 (VF-E16): on the INTERBUS with the factory 1-MODE = 4 the serial interface
+    // cannot be used; a rig that reaches the drive through both faces runs it at another MODE
+    // (the INTERBUS words still control: VF-E16).
+    if (interbus && serial) drive->set_value(pnr::kMode, 1);
     if (interbus) ib = std::make_unique<Vf1000Device>(Vf1000DeviceConfig{}, drive, Time{0});
     if (serial) {
       lbd = std::make_unique<vf::LustbusDevice>(drive);
@@ -412,6 +416,23 @@ TEST(Vf1000Faces, TheSerialInterfaceControlsOnlyWhenModeAndCselGiveItControl) {
   EXPECT_EQ(r.lb_read(pnr::kStat).value, vf::kStatReady | vf::kStatRunning);
   EXPECT_EQ(r.ib_read(pnr::kFout).value, 100);
   EXPECT_EQ(r.lb_read(pnr::kFout).value, 100);
+}
+
+TEST(Vf1000Faces, Mode4LocksTheSerialInterfaceWhileTheDriveIsOnInterbus) {
+  // Seed 001, 6.1: "During operation on the INTERBUS-S (01-MODE = 4) the serial interface of the
+  // inverter cannot be used." (VF-E16.) A service PC's ENQUIRY goes unanswered then; once the
+  // master writes another MODE the drive answers, and at MODE 4 again it is deaf again.
+  Rig r;
+  ASSERT_EQ(r.ib_write(pnr::kMode, 4).kind, "written");
+  EXPECT_EQ(r.lb_read(pnr::kFout).kind, "no_answer");
+  EXPECT_EQ(r.lb_write(pnr::kFssio, 100).kind, "no_answer");
+  ASSERT_EQ(r.ib_write(pnr::kMode, 2).kind, "written");
+  EXPECT_EQ(r.lb_read(pnr::kMode).kind, "value");
+  EXPECT_EQ(r.lb_read(pnr::kMode).value, 2);
+  // Without the INTERBUS face (the drive served on LUSTBUS alone) MODE 4 locks nothing.
+  Rig alone(false, true);
+  ASSERT_EQ(alone.drive->value(pnr::kMode), 4);
+  EXPECT_EQ(alone.lb_read(pnr::kMode).kind, "value");
 }
 
 TEST(Vf1000Faces, AResetOnOneFaceIsASelfTestOnTheOther) {

@@ -12,6 +12,9 @@ namespace {
 // the reference from 5-FSSIO; 3-CNTL 80H starts clockwise (7.1.1), 40H counter-clockwise (LB-D19).
 constexpr Word kModeSio = 0;
 constexpr Word kCselSio = 3;
+// Seed 001, 6.1: "During operation on the INTERBUS-S (01-MODE = 4) the serial interface of the
+// inverter cannot be used" (decision VF-E16).
+constexpr Word kModeInterbus = 4;
 constexpr Word kFsselFssio = 8;
 constexpr Word kStartClockwise = 0x80;
 constexpr Word kStartCounterClockwise = 0x40;
@@ -146,6 +149,10 @@ void Drive::attach(Face f) {
 void Drive::detach(Face f) {
   int& n = f == Face::interbus ? faces_.interbus : faces_.serial;
   if (n > 0) --n;
+}
+
+bool Drive::serial_locked() const {
+  return attached(Face::interbus) && value(pnr::kMode) == kModeInterbus;
 }
 
 bool Drive::serial_has_control() const {

@@ -106,6 +106,9 @@ class Drive final : public drive::ParameterAccess {
   // 5-FSSIO with 4-FSSEL = 8); it can only where a serial face is attached. Otherwise the
   // INTERBUS words control (seed 001, 6.1: INTERBUS operation).
   [[nodiscard]] bool serial_has_control() const;
+  // Seed 001, 6.1: during operation on the INTERBUS (an INTERBUS face attached and 1-MODE = 4, the
+  // factory value) the serial interface cannot be used: the LUSTBUS face hears nothing (VF-E16).
+  [[nodiscard]] bool serial_locked() const;
 
   // --- Time -----------------------------------------------------------------------------------
   // Time passes (a face calls it before it acts). While an INTERBUS face is attached its samples

@@ -63,8 +63,11 @@ class LustbusDevice final : public lustbus::Responder {
   // A new start without the initialisation time: EEPROM values back, RAM values to their
   // defaults, the power-on bit set, 81-SIOC's rate taken (11.5).
   void restart(Time now);
-  // 8.1.1: deaf while the drive initialises or boots after a reset.
-  [[nodiscard]] bool listening(Time now) const override { return !drive_->initialising(now); }
+  // 8.1.1: deaf while the drive initialises or boots after a reset; seed 001, 6.1: deaf while the
+  // drive operates on the INTERBUS with 1-MODE = 4 (VF-E16).
+  [[nodiscard]] bool listening(Time now) const override {
+    return !drive_->initialising(now) && !drive_->serial_locked();
+  }
   // In the self-test after a reset; at its end the drive is back as after power-on.
   [[nodiscard]] bool booting() const { return drive_->starting(); }
   // A fault of the inverter (tests, the emulator): the power stage blocks (8), 11-STAT shows it.
