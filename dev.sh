@@ -19,8 +19,9 @@ packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-de
 # without its setuid question: DEBIAN_FRONTEND=noninteractive keeps the default, no setuid);
 # gtkwave opens a run's save file headless under Xvfb (xvfb-run needs xauth); gnuplot draws the
 # plots of `ibs run --plot`; pkgconf links a program against the installed master
-# (tools/check_install.sh).
-test_packages=(tshark gtkwave xvfb xauth gnuplot-nox pkgconf)
+# (tools/check_install.sh); python3 runs the test bench example, a user's own host test written with
+# the standard library only (examples/testbench/, docs/testbench.md).
+test_packages=(tshark gtkwave xvfb xauth gnuplot-nox pkgconf python3)
 # The fuzz targets only: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 

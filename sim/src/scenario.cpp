@@ -84,7 +84,7 @@ bool operator==(const DeviceConfig& a, const DeviceConfig& b) {
   }
   return a.name == b.name && a.kind == b.kind && settings_equal && a.bus == b.bus &&
          a.phase == b.phase && a.jitter == b.jitter && a.initialised == b.initialised &&
-         a.watchdog_ms == b.watchdog_ms && a.watchdog_reaction == b.watchdog_reaction;
+         a.watchdog_ms == b.watchdog_ms && a.watchdog_reaction == b.watchdog_reaction && a.lustbus == b.lustbus;
 }
 
 bool operator==(const TimelineEntry& a, const TimelineEntry& b) {
@@ -118,7 +118,8 @@ bool operator==(const TimelineEntry& a, const TimelineEntry& b) {
 
 bool operator==(const Scenario& a, const Scenario& b) {
   return a.name == b.name && a.duration == b.duration && a.bus == b.bus && a.devices == b.devices &&
-         a.timeline == b.timeline && a.random == b.random;
+         a.timeline == b.timeline && a.random == b.random && a.lustbus == b.lustbus && a.dfs1 == b.dfs1 &&
+         a.dfs1_controllers == b.dfs1_controllers;
 }
 
 Scenario default_scenario() {

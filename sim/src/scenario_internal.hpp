@@ -65,6 +65,7 @@ struct DeviceLines {
   std::size_t jitter = 0;
   std::size_t watchdog_ms = 0;
   std::size_t watchdog_reaction = 0;
+  std::size_t lustbus = 0;
   std::vector<std::pair<std::string, std::size_t>> settings;  // the drive's own, by name
 
   // The line of a setting by its name, generic or the drive's own; 0 when not in the file.
@@ -75,6 +76,7 @@ struct DeviceLines {
     if (setting == "jitter") return jitter;
     if (setting == "watchdog_ms") return watchdog_ms;
     if (setting == "watchdog_reaction") return watchdog_reaction;
+    if (setting == "lustbus") return lustbus;
     for (const auto& [key, line] : settings) {
       if (key == setting) return line;
     }
@@ -104,6 +106,14 @@ struct SourceMap {
   std::size_t rates[5] = {};  // corrupt, power_cycle, device_fault, lost, master_restart
   std::vector<DeviceLines> devices;
   std::vector<EntryLines> entries;
+  // The test bench's tables: [lustbus] and [dfs1] and their keys.
+  struct Line {
+    std::size_t table = 0;
+    std::size_t pty = 0;
+    std::size_t port = 0;
+    std::size_t baud = 0;
+  } lustbus, dfs1;
+  std::vector<std::size_t> controller_uids;  // the line of each controller's uid
 };
 
 // The schema: tree -> Scenario, refusing unknown keys, wrong types and values the data model
@@ -144,5 +154,7 @@ std::vector<OutField> bus_fields(const BusSettings& b);
 std::vector<OutField> device_fields(const DeviceConfig& d);
 std::vector<OutField> entry_fields(const TimelineEntry& e);
 std::vector<OutField> random_fields(const RandomFaults& r);  // empty for the defaults
+std::vector<OutField> line_fields(const ServedLine& l);          // [lustbus], [dfs1] (docs/testbench.md)
+std::vector<OutField> controller_fields(const Dfs1Controller& c);
 
 }  // namespace ibs::sim::detail

@@ -17,15 +17,19 @@ namespace {
 
 using Kind = Node::Kind;
 
-const std::vector<std::string_view> kTopKeys = {"name",   "duration", "bus",
-                                                "device", "timeline", "random_faults"};
+const std::vector<std::string_view> kTopKeys = {"name",     "duration",      "bus",     "device",
+                                                "timeline", "random_faults", "lustbus", "dfs1"};
+// The test bench's served lines (docs/testbench.md).
+const std::vector<std::string_view> kLineKeys = {"pty", "port", "baud"};
+const std::vector<std::string_view> kDfs1Keys = {"pty", "port", "baud", "controller"};
+const std::vector<std::string_view> kControllerKeys = {"name", "uid"};
 const std::vector<std::string_view> kBusKeys = {"cycle_time", "baud", "software_time",
                                                 "recovery_cycles"};
 // A device's keys every kind takes; each kind's own settings come from its declarations
 // (devices/settings.hpp), read by device_keys().
 const std::vector<std::string_view> kGenericDeviceKeys = {"name",        "type",        "bus",
                                                           "phase",       "jitter",      "initialised",
-                                                          "watchdog_ms", "watchdog_reaction"};
+                                                          "watchdog_ms", "watchdog_reaction", "lustbus"};
 const std::vector<std::string_view>& device_keys() {
   static const std::vector<std::string_view> keys = [] {
     std::vector<std::string_view> k = kGenericDeviceKeys;
@@ -278,6 +282,14 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
     } else if (key == "watchdog_reaction") {
       d.watchdog_reaction = r.int_value(v, key, 0, 3);
       l.watchdog_reaction = v.line;
+    } else if (key == "lustbus") {
+      // Seed 000, 9.1: a drive's LUSTBUS address is 1..30 (0 is the broadcast, 31 not used).
+      d.lustbus = r.int_value(v, key, 1, 30);
+      if (*d.lustbus < 1 || *d.lustbus > 30) {
+        r.fail(v.line, "'lustbus' = " + std::to_string(*d.lustbus) +
+                           " is not a drive's LUSTBUS address (1..30, seed 000 9.1)");
+      }
+      l.lustbus = v.line;
     } else {
       // A drive's own setting: read by the device's kind's declaration when the type came first,
       // else by the first kind's that declares it; whether the kind has it is checked below.
@@ -461,6 +473,60 @@ void read_random(const Reader& r, const Node& n, RandomFaults& rf, SourceMap& li
             });
 }
 
+// [lustbus] / [dfs1]: a new pty or a named port, and its rate; [dfs1] also lists its controllers.
+void read_line(const Reader& r, const Node& n, std::string_view key, ServedLine& line, SourceMap::Line& lines,
+               Scenario* dfs1, SourceMap* map) {
+  r.expect_table(n, key);
+  lines.table = n.line;
+  const std::string where = "in [" + std::string(key) + "]";
+  r.members(n, dfs1 != nullptr ? kDfs1Keys : kLineKeys, where, [&](const std::string& k, std::size_t, const Node& v) {
+    if (k == "pty") {
+      line.pty = r.boolean(v, k);
+      lines.pty = v.line;
+    } else if (k == "port") {
+      line.port = r.string(v, k);
+      lines.port = v.line;
+    } else if (k == "baud") {
+      line.baud = static_cast<std::uint32_t>(r.integer(v, k, 1, 4'000'000));
+      lines.baud = v.line;
+    } else {
+      if (v.kind != Kind::array) {
+        r.fail(v.line, "'controller' must be an array ([[dfs1.controller]] in TOML, [ ... ] in JSON), not " +
+                           r.kind_name(v));
+      }
+      for (const Node& c : v.children) {
+        if (c.kind != Kind::table) {
+          r.fail(c.line, "each 'controller' must be " + r.table_word() + ", not " + r.kind_name(c));
+        }
+        Dfs1Controller ctl;
+        ctl.source_line = c.line;
+        bool has_name = false;
+        bool has_uid = false;
+        std::size_t uid_line = c.line;
+        r.members(c, kControllerKeys, "in a DFS-1 controller", [&](const std::string& ck, std::size_t, const Node& cv) {
+          if (ck == "name") {
+            ctl.name = r.string(cv, ck);
+            has_name = true;
+          } else {
+            // Seed 004: a controller's unit id is 1..255 (0 is nobody's).
+            ctl.uid = static_cast<int>(r.integer(cv, ck, 1, 255));
+            uid_line = cv.line;
+            has_uid = true;
+          }
+        });
+        if (!has_name) r.fail(c.line, "a DFS-1 controller needs a 'name'");
+        if (!has_uid) r.fail(c.line, "DFS-1 controller '" + ctl.name + "' needs a 'uid' (1..255, its unit id)");
+        dfs1->dfs1_controllers.push_back(std::move(ctl));
+        map->controller_uids.push_back(uid_line);
+      }
+    }
+  });
+  if (line.pty == !line.port.empty()) {
+    r.fail(n.line, "[" + std::string(key) + "] needs either pty = true (a new pseudo-terminal) or port = \"PATH\" "
+                       "(a serial port), not " + (line.pty ? "both" : "neither"));
+  }
+}
+
 template <typename T, typename L, typename F>
 void read_array(const Reader& r, const Node& n, std::string_view key, std::string_view toml_form,
                 std::vector<T>& out, std::vector<L>& lines, F&& read_one) {
@@ -508,6 +574,10 @@ Scenario read_tree(const Node& root, Format format, const std::string& file, Sou
               [&](const Node& n, TimelineEntry& e, EntryLines& l) { read_entry(r, n, e, l); });
         } else if (key == "random_faults") {
           read_random(r, v, s.random, lines);
+        } else if (key == "lustbus") {
+          read_line(r, v, key, s.lustbus.emplace(), lines.lustbus, nullptr, nullptr);
+        } else if (key == "dfs1") {
+          read_line(r, v, key, s.dfs1.emplace(), lines.dfs1, &s, &lines);
         }
       });
   if (!has_duration) {

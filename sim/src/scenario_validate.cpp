@@ -82,6 +82,7 @@ class Validator {
     check_top();
     check_bus();
     check_devices();
+    check_bench();
     check_random();
     check_timeline();
   }
@@ -201,7 +202,88 @@ class Validator {
     } catch (const devices::SettingsError& e) {
       refuse(e);
     }
+    if (d.lustbus) {
+      const std::size_t line = pick(l.lustbus, table);
+      if (!s_.lustbus) {
+        fail(line, who + "'lustbus' = " + std::to_string(*d.lustbus) +
+                       " needs the line it answers on: a [lustbus] table with pty = true or port = \"PATH\"");
+      }
+      if (*d.lustbus < 1 || *d.lustbus > 30) {
+        fail(line, who + "'lustbus' = " + std::to_string(*d.lustbus) +
+                       " is not a drive's LUSTBUS address (1..30, seed 000 9.1)");
+      }
+      for (const Known& o : known_) {
+        if (o.config->lustbus == d.lustbus) {
+          fail(line, who + "LUSTBUS address " + std::to_string(*d.lustbus) + " is already device '" +
+                         o.config->name + "''s (line " + std::to_string(o.line) +
+                         "): both would answer at once (seed 000, 9.1)");
+        }
+      }
+    }
     known_.push_back(known);
+  }
+
+  // The test bench's lines (docs/testbench.md): each serves somebody, on a pty or a named port at a
+  // rate its protocol runs at; the DFS-1 controllers have names of their own and unit ids once.
+  void check_bench() const {
+    const auto check_line = [&](const std::optional<ServedLine>& line, const SourceMap::Line& l, std::string_view key) {
+      if (!line) return;
+      const std::size_t table = pick(l.table, m_.root);
+      if (line->pty == !line->port.empty()) {
+        fail(table, "[" + std::string(key) + "] needs either pty = true (a new pseudo-terminal) or port = \"PATH\" "
+                        "(a serial port), not " + (line->pty ? "both" : "neither"));
+      }
+      // Which rates a drive runs at is its own (seed 000, 4: the VF1000 up to 9600, the MC6000 up
+      // to 57600); the bench asks each drive's face when it makes it.
+      if (line->baud == 0) fail(pick(l.baud, table), "[" + std::string(key) + "] baud must not be 0");
+    };
+    check_line(s_.lustbus, m_.lustbus, "lustbus");
+    check_line(s_.dfs1, m_.dfs1, "dfs1");
+    if (s_.lustbus && std::none_of(s_.devices.begin(), s_.devices.end(), [](const DeviceConfig& d) { return d.lustbus.has_value(); })) {
+      fail(pick(m_.lustbus.table, m_.root),
+           "[lustbus] serves no device: give the devices that answer on it their address (lustbus = 1..30)");
+    }
+    if (!s_.dfs1 && !s_.dfs1_controllers.empty()) {
+      fail(pick(s_.dfs1_controllers.front().source_line, m_.root),
+           "DFS-1 controllers need their line: [dfs1] with pty = true or port = \"PATH\"");
+    }
+    if (s_.dfs1 && s_.dfs1_controllers.empty()) {
+      fail(pick(m_.dfs1.table, m_.root),
+           "[dfs1] serves no controller: list them as [[dfs1.controller]] with a name and a uid (1..255)");
+    }
+    for (std::size_t i = 0; i < s_.dfs1_controllers.size(); ++i) {
+      const Dfs1Controller& c = s_.dfs1_controllers[i];
+      const std::size_t line = pick(c.source_line, m_.root);
+      if (c.name.empty() || c.name.size() > kMaxNameLength || !std::all_of(c.name.begin(), c.name.end(), is_name_char)) {
+        fail(line, "controller name '" + c.name + "' must be 1.." + std::to_string(kMaxNameLength) +
+                       " letters, digits, '_' or '-'");
+      }
+      if (const Known* k = find(c.name)) {
+        fail(line, "controller name '" + c.name + "' is already a device's (line " + std::to_string(k->line) + ")");
+      }
+      if (c.uid < 1 || c.uid > 255) {
+        fail(i < m_.controller_uids.size() ? m_.controller_uids[i] : line,
+             "controller '" + c.name + "': uid " + std::to_string(c.uid) + " is not a unit id (1..255, seed 004)");
+      }
+      for (std::size_t j = 0; j < i; ++j) {
+        const Dfs1Controller& o = s_.dfs1_controllers[j];
+        if (o.name == c.name) {
+          fail(line, "controller name '" + c.name + "' is already used (line " + std::to_string(o.source_line) + ")");
+        }
+        if (o.uid == c.uid) {
+          fail(i < m_.controller_uids.size() ? m_.controller_uids[i] : line,
+               "controller '" + c.name + "': uid " + std::to_string(c.uid) + " is already controller '" + o.name +
+                   "''s (line " + std::to_string(o.source_line) + "): both would answer at once");
+        }
+      }
+    }
+  }
+
+  const Dfs1Controller* find_controller(const std::string& name) const {
+    for (const Dfs1Controller& c : s_.dfs1_controllers) {
+      if (c.name == name) return &c;
+    }
+    return nullptr;
   }
 
   // The INTERBUS limits (devices, remote bus devices, local bus segments, PCP devices, process
@@ -297,6 +379,14 @@ class Validator {
       }
     } else if (e.device.empty()) {
       fail(l.table, what + " needs a 'device'");
+    }
+    // A DFS-1 controller of the bench takes the events of a drive without a master here.
+    if (!bus_wide && find(e.device) == nullptr && find_controller(e.device) != nullptr) {
+      if (e.action != Action::fault_device && e.action != Action::fault_power_cycle) {
+        fail(action_line, "'" + e.device + "' is a DFS-1 controller of the bench, not on the INTERBUS ring: " + what +
+                              " is not for it (it takes fault = \"device\" or \"power-cycle\")");
+      }
+      return;
     }
     const Known* k = bus_wide ? nullptr : find(e.device);
     if (!bus_wide && k == nullptr) {

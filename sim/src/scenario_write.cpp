@@ -88,6 +88,7 @@ std::vector<OutField> device_fields(const DeviceConfig& d) {
   f.push_back({"initialised", d.initialised ? "true" : "false", {}});
   if (d.watchdog_ms) f.push_back(integer("watchdog_ms", *d.watchdog_ms));
   if (d.watchdog_reaction) f.push_back(integer("watchdog_reaction", *d.watchdog_reaction));
+  if (d.lustbus) f.push_back(integer("lustbus", *d.lustbus));
   own(false);
   return f;
 }
@@ -144,6 +145,18 @@ std::vector<OutField> entry_fields(const TimelineEntry& e) {
       break;
   }
   return f;
+}
+
+std::vector<OutField> line_fields(const ServedLine& l) {
+  std::vector<OutField> f;
+  if (l.pty) f.push_back(yes("pty"));
+  if (!l.port.empty()) f.push_back(text("port", l.port));
+  f.push_back(integer("baud", l.baud));
+  return f;
+}
+
+std::vector<OutField> controller_fields(const Dfs1Controller& c) {
+  return {text("name", c.name), integer("uid", c.uid)};
 }
 
 std::vector<OutField> random_fields(const RandomFaults& r) {
@@ -211,6 +224,11 @@ std::string write_scenario_toml(const Scenario& s) {
   }
   const std::vector<OutField> random = detail::random_fields(s.random);
   if (!random.empty()) out += "\n[random_faults]\n" + toml_lines(random);
+  if (s.lustbus) out += "\n[lustbus]\n" + toml_lines(detail::line_fields(*s.lustbus));
+  if (s.dfs1) out += "\n[dfs1]\n" + toml_lines(detail::line_fields(*s.dfs1));
+  for (const Dfs1Controller& c : s.dfs1_controllers) {
+    out += "\n[[dfs1.controller]]\n" + toml_lines(detail::controller_fields(c));
+  }
   return out;
 }
 
@@ -224,6 +242,12 @@ std::string write_scenario_json(const Scenario& s) {
   out += "  \"timeline\": " + json_array(s.timeline, detail::entry_fields);
   const std::vector<OutField> random = detail::random_fields(s.random);
   if (!random.empty()) out += ",\n  \"random_faults\": " + json_object(random);
+  if (s.lustbus) out += ",\n  \"lustbus\": " + json_object(detail::line_fields(*s.lustbus));
+  if (s.dfs1) {
+    std::string line = json_object(detail::line_fields(*s.dfs1));
+    line.pop_back();  // the closing brace: the controllers go inside
+    out += ",\n  \"dfs1\": " + line + ", \"controller\": " + json_array(s.dfs1_controllers, detail::controller_fields) + "}";
+  }
   return out + "\n}\n";
 }
 

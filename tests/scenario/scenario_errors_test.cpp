@@ -23,7 +23,7 @@ TEST(ScenarioErrors, UnknownTopLevelKeys) {
   EXPECT_TRUE(refused(tdoc::top("duration = \"1 s\"\ncolour = \"red\"\n"), 2,
                       jdoc::top(" \"duration\": \"1 s\",\n \"colour\": \"red\",\n"), 3,
                       "unknown key 'colour' at the top level (known: name, duration, bus, "
-                      "device, timeline, random_faults)"));
+                      "device, timeline, random_faults, lustbus, dfs1)"));
   EXPECT_TRUE(refused(tdoc::top("duration = \"1 s\"\ndevices = []\n"), 2,
                       jdoc::top(" \"duration\": \"1 s\",\n \"devices\": [],\n"), 3,
                       "unknown key 'devices' at the top level (did you mean 'device'?)"));
@@ -658,7 +658,7 @@ TEST(ScenarioErrors, FormatProblemsComeBeforeMeaningAndInFileOrder) {
                        "type = \"mc6000\"\nsupi = 99\n"),
             at_toml(2,
                     "unknown key 'colour' at the top level (known: name, duration, bus, "
-                    "device, timeline, random_faults)"));
+                    "device, timeline, random_faults, lustbus, dfs1)"));
   // Two type errors: the earlier line is reported although toml++ sorts keys by name.
   EXPECT_EQ(toml_error("name = 1\nbus = 2\nduration = \"1 s\"\n"),
             at_toml(1, "'name' must be a string, not an integer"));

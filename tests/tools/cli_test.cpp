@@ -453,6 +453,16 @@ TEST(Cli, RealtimeOptionsAreChecked) {
   EXPECT_NE(r.out.find("--realtime is for INTERBUS scenarios"), std::string::npos) << r.out;
 }
 
+// The test bench (docs/testbench.md): a scenario that serves a line runs only in real time, and
+// says so before anything is opened or written.
+TEST(Cli, AScenarioThatServesALineNeedsRealtime) {
+  const std::string bench = std::string(IBS_SOURCE_DIR) + "/examples/testbench/bench.toml";
+  const Result r = run("run " + bench);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.out, bench + ": [lustbus] serves a line to your own host software, which talks in real time: run it "
+                           "with --realtime\n");
+}
+
 }  // namespace
 
 // Issue 23, defect 13: a seed of -1 or one past 2^64 - 1 ran as 18446744073709551615 and exited 0.

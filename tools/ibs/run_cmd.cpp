@@ -15,6 +15,7 @@
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "stop_signals.hpp"
+#include "ibs/sim/bench.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
@@ -104,6 +105,13 @@ int run(const RunOptions& o) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
   }
+  // The test bench's lines (docs/testbench.md) are served while the scenario runs in real time:
+  // faster than real time, a user's host on the port would see the drives' minutes pass in seconds.
+  if (scenario.serves_lines() && !o.realtime) {
+    std::cerr << o.scenario << ": [" << (scenario.lustbus ? "lustbus" : "dfs1")
+              << "] serves a line to your own host software, which talks in real time: run it with --realtime\n";
+    return kExitBadInput;
+  }
   // A plot that cannot be drawn fails before the run.
   std::optional<sim::PlotFormat> format;
   if (!o.plot_file.empty()) {
@@ -124,6 +132,16 @@ int run(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     std::cerr << (o.scenario.empty() ? std::string("default scenario") : o.scenario) << ": " << e.what() << "\n";
     return kExitBadInput;
+  }
+  // The bench's faces share the simulator's drive cores; its lines open before anything is written.
+  std::unique_ptr<sim::Bench> bench;
+  if (scenario.serves_lines()) {
+    try {
+      bench = std::make_unique<sim::Bench>(*simulator, scenario, o.scenario);
+    } catch (const std::exception& e) {
+      std::cerr << e.what() << "\n";
+      return kExitBadInput;
+    }
   }
   // Every output is written under a temporary name and renamed into place only when all of them
   // have been written; a path that cannot be created fails before the run.
@@ -194,6 +212,13 @@ int run(const RunOptions& o) {
   bool interrupted = false;
   if (o.realtime) {
     sim::RealtimeOptions rt{o.rt_priority, [&signals, &interrupted] { return interrupted = signals.raised(); }, {}};
+    if (bench) {
+      // The words a script waits for, before the first cycle: one line per served line, flushed.
+      for (const std::string& line : bench->ready_lines()) std::cout << line << "\n";
+      std::cout << std::flush;
+      for (const std::string& note : bench->notes()) std::cerr << "ibs run: " << note << "\n";
+      rt.each_cycle = [&bench](Time now) { bench->turn(now); };
+    }
     sim::run_realtime(*simulator, rt, options);
   } else {
     for (Time t = Time{0} + kRunSlice; simulator->run_until(t, options); t += kRunSlice) {
@@ -263,7 +288,16 @@ int run(const RunOptions& o) {
 
   // The summary only once every file is in place: a run that could not be saved says nothing else.
   const sim::Summary& summary = simulator->summary();
-  std::cout << (o.json ? sim::format_json(summary) : sim::format_text(summary));
+  if (o.json && bench) {
+    // The bench's part joins the summary's object.
+    std::string json = sim::format_json(summary);
+    const auto close = json.rfind('}');
+    json.insert(close, ",\n  \"bench\": " + sim::format_bench_json(bench->report()) + "\n");
+    std::cout << json;
+  } else {
+    std::cout << (o.json ? sim::format_json(summary) : sim::format_text(summary));
+  }
+  if (!o.json && bench) std::cout << sim::format_bench_text(bench->report());
   if (!o.json) {
     for (const auto& path : written) std::cout << "trace written: " << path << "\n";
     if (vcd) {

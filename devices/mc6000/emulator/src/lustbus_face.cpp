@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ibs/devices/mc6000/device.hpp"
 #include "ibs/devices/mc6000/lustbus_device.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/devices/mc6000/settings.hpp"
@@ -14,17 +15,27 @@ namespace ibs::devices::mc6000 {
 
 namespace {
 
-LustbusEmulated make(const LustbusFaceOptions& o) {
+// On a drive of its own (`drive` empty) or on an existing one (the bench: `drive` is its INTERBUS
+// face's).
+LustbusEmulated make_on(std::shared_ptr<Drive> drive, const LustbusFaceOptions& o) {
   LustbusTiming timing;
   // 10: up to 30 ms with a KEYPAD, 25 ms without, unless a fixed time is asked for.
   timing.reaction = o.reaction_ms >= 0 ? lustbus::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
                                        : lustbus_reaction(o.settings.boolean(kLustbusKeypadSetting), o.seed);
-  auto d = std::make_unique<LustbusDevice>(timing);
+  auto d = drive ? std::make_unique<LustbusDevice>(std::move(drive), timing) : std::make_unique<LustbusDevice>(timing);
   if (!d->set_line_baud(o.baud)) {
     throw std::invalid_argument("an MC6000 runs at 2400..57600 baud (seed 000, 4), not " + std::to_string(o.baud));
   }
   LustbusDevice* p = d.get();
   return {std::move(d), [p](Time t) { p->advance(t); }, [p]() { return p->line_baud(); }};
+}
+
+LustbusEmulated make(const LustbusFaceOptions& o) { return make_on(nullptr, o); }
+
+LustbusEmulated attach(DeviceEmulator& interbus, const LustbusFaceOptions& o) {
+  auto* face = dynamic_cast<Mc6000Device*>(&interbus);
+  if (face == nullptr) throw std::invalid_argument("not an MC6000's INTERBUS face: no LUSTBUS face can share its drive");
+  return make_on(face->shared_drive(), o);
 }
 
 std::optional<LustbusParameter> find_parameter(std::string_view text) {
@@ -69,7 +80,7 @@ const lustbus::DeviceProcedures& lustbus_procedures() {
 }
 
 const LustbusFace& lustbus_face() {
-  static const LustbusFace face{lustbus::Family::enhanced, &make, &find_parameter, "",
+  static const LustbusFace face{lustbus::Family::enhanced, &make, &attach, &find_parameter, "",
                                 &lustbus_procedures(), kLustbusSettings};
   return face;
 }

@@ -29,6 +29,10 @@ struct DeviceConfig {
                                     // power-on bit still set in 85-SIOF/SERR
   std::optional<int> watchdog_ms;   // MC6000 409-BUTWD (ms, 0 = off); VF1000 906-IB-WD (ms)
   std::optional<int> watchdog_reaction;  // VF1000 907-IBCOD (0..3)
+  // The test bench (docs/testbench.md): the drive's address on the scenario's LUSTBUS line
+  // (Scenario::lustbus), 1..30 (seed 000, 9.1); the drive then answers there too, one drive
+  // core behind both faces. Only for a kind that speaks LUSTBUS.
+  std::optional<int> lustbus;
   // The drive's own settings, as its wing declares them (devices/settings.hpp); one not given
   // holds the declaration's default.
   devices::SettingValues settings;
@@ -46,6 +50,28 @@ struct BusSettings {
   int recovery_cycles = 5;             // cycles without valid data after a corrupted cycle
 
   friend bool operator==(const BusSettings&, const BusSettings&) = default;
+};
+
+// A line the test bench serves while the scenario runs in real time (docs/testbench.md): a new
+// pseudo-terminal, or a serial port the user names, at a rate.
+struct ServedLine {
+  bool pty = false;        // a new pseudo-terminal (its path is printed before the run)
+  std::string port;        // else: this serial port
+  std::uint32_t baud = 9600;
+
+  friend bool operator==(const ServedLine&, const ServedLine&) = default;
+};
+
+// A DFS-1 controller the bench serves on the scenario's DFS-1 line: not on the INTERBUS ring (seed
+// 004 knows no INTERBUS), reached by the timeline's and the control channel's events by name.
+struct Dfs1Controller {
+  std::string name;  // unique among the scenario's devices and controllers
+  int uid = 1;       // 1..255 (seed 004)
+  std::size_t source_line = 0;
+
+  friend bool operator==(const Dfs1Controller& a, const Dfs1Controller& b) {
+    return a.name == b.name && a.uid == b.uid;
+  }
 };
 
 // What a timeline entry does.
@@ -103,6 +129,14 @@ struct Scenario {
   std::vector<DeviceConfig> devices;  // ring order
   std::vector<TimelineEntry> timeline;  // in time order
   RandomFaults random;
+  // The test bench's lines (`ibs run --realtime` only): the devices with `lustbus = ADDR` answer
+  // on `lustbus`; the controllers answer on `dfs1`.
+  std::optional<ServedLine> lustbus;
+  std::optional<ServedLine> dfs1;
+  std::vector<Dfs1Controller> dfs1_controllers;
+
+  // True when the scenario serves a line (and so needs a real-time run).
+  [[nodiscard]] bool serves_lines() const { return lustbus.has_value() || dfs1.has_value(); }
 };
 
 // The built-in scenario of `ibs run` without arguments: an MC6000 (SUPI 11 / IBCNF 2) and a

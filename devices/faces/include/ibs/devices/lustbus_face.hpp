@@ -23,6 +23,8 @@
 
 namespace ibs::devices {
 
+class DeviceEmulator;
+
 // What `ibs lustbus emulate` gives every drive it serves (docs/lustbus.md, "Emulator").
 struct LustbusFaceOptions {
   // The drive's own settings, among those its face declares (LustbusFace::settings) and within
@@ -59,6 +61,10 @@ struct LustbusFace {
   // The drive's Responder; throws std::invalid_argument "a <TITLE> runs at ... baud (seed 000,
   // 4), not <baud>" for a rate the drive does not run at.
   LustbusEmulated (*make)(const LustbusFaceOptions& options) = nullptr;
+  // The test bench (docs/testbench.md): the LUSTBUS face of the drive behind `interbus`, an
+  // emulator the same wing's INTERBUS factory made (registry.hpp), so that one drive core answers
+  // on both buses. Throws std::invalid_argument as make() does, and for another wing's emulator.
+  LustbusEmulated (*attach)(DeviceEmulator& interbus, const LustbusFaceOptions& options) = nullptr;
   // PARAM by number or by name (case-sensitive, as the table spells it); nullopt for none.
   std::optional<LustbusParameter> (*find_parameter)(std::string_view text) = nullptr;
   // What a refusal of an unknown parameter adds: the numbers the CODE can carry (" (1..99)").

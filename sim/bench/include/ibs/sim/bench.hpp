@@ -1,0 +1,76 @@
+// The test bench (docs/testbench.md): while `ibs run --realtime` runs a scenario, the devices that
+// have `lustbus = ADDR` answer on the scenario's LUSTBUS line too, and its DFS-1 controllers on
+// their line -- a new pseudo-terminal or a serial port the user names. A drive served on both buses
+// is one drive: its LUSTBUS face is attached to the drive core of the simulator's own emulator
+// (LustbusFace::attach), so that what one bus writes the other reads. The lines are served from the
+// simulator's thread once per bus cycle (turn(), called by the real-time runner's each_cycle hook
+// between two deadlines): nothing is shared between threads, nothing locks. Floor 4: it opens the
+// ports; the faces and the controllers stay sans-I/O.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ibs/base/time.hpp"
+#include "ibs/sim/scenario.hpp"
+#include "ibs/sim/simulator.hpp"
+
+namespace ibs::sim {
+
+// What one served drive or controller heard and answered, for the run summary.
+struct BenchDeviceReport {
+  std::string name;
+  std::string line;   // "lustbus" or "dfs1"
+  int address = 0;    // LUSTBUS address or DFS-1 unit id
+  std::uint64_t telegrams = 0;   // requests taken (LUSTBUS: ENQUIRY + SELECT + broadcasts)
+  std::uint64_t answers = 0;     // answers sent
+  std::uint64_t errors = 0;      // check-character errors
+  std::uint64_t dropped = 0;     // improper or cut telegrams thrown away (fragments after silence included)
+};
+
+struct BenchReport {
+  std::vector<std::string> lines;  // as ready_lines() said them
+  std::vector<BenchDeviceReport> devices;
+  std::vector<std::string> events;  // controllers' timeline events as applied ("1.000 s press: ...")
+};
+
+class Bench {
+ public:
+  // After `sim` is built and before it runs. Makes the faces on the simulator's drive cores and
+  // the controllers, and opens the lines; throws std::invalid_argument naming `file` for a rate a
+  // drive does not run at, a port that cannot be opened, a drive that does not speak LUSTBUS.
+  Bench(Simulator& sim, const Scenario& scenario, const std::string& file);
+  ~Bench();
+  Bench(const Bench&) = delete;
+  Bench& operator=(const Bench&) = delete;
+
+  // One line per served line, the words a script waits for: "lustbus pty: /dev/pts/3",
+  // "dfs1 port: /dev/ttyUSB0".
+  [[nodiscard]] std::vector<std::string> ready_lines() const;
+  // Notes the ports gave when opened (RS-485 refused by the driver ...).
+  [[nodiscard]] std::vector<std::string> notes() const;
+
+  // One turn of every line at `now` (the simulator's time): what arrived is heard, what is due
+  // goes out; the controllers' timeline entries due by `now` are applied first. Allocates
+  // nothing on the way; writes wait for the driver as SerialPort::write does (on a pty: at once).
+  void turn(Time now);
+
+  // A timeline or control entry for a DFS-1 controller of the bench, applied at `now`: true when
+  // `e.device` is one (and the entry was applied), false when it is not the bench's.
+  bool apply(const TimelineEntry& e, Time now);
+
+  [[nodiscard]] BenchReport report() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The report as the run summary's text ("test bench" section) and as a JSON object.
+std::string format_bench_text(const BenchReport& r);
+std::string format_bench_json(const BenchReport& r);
+
+}  // namespace ibs::sim

@@ -1,0 +1,263 @@
+#include "ibs/sim/bench.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "ibs/devices/dfs1/served_controller.hpp"
+#include "ibs/devices/drives.hpp"
+#include "ibs/lustbus/receiver.hpp"
+#include "ibs/lustbus/served_receiver.hpp"
+#include "ibs/serial/pty.hpp"
+#include "ibs/serial/serial_port.hpp"
+#include "ibs/serial/serve.hpp"
+
+namespace ibs::sim {
+
+namespace {
+
+// A served line: a new pty or a named port, and the devices on it.
+struct Line {
+  std::string key;   // "lustbus", "dfs1"
+  std::string path;  // the port named (empty for a pty)
+  std::optional<serial::PtyPair> pair;
+  std::optional<serial::SerialPort> opened;
+  std::vector<base::LineDevice*> devices;
+
+  serial::SerialPort& port() { return pair ? pair->master() : *opened; }
+  std::vector<std::string> notes;  // what the port refused when opened
+  [[nodiscard]] std::string ready() const {
+    return key + (pair ? " pty: " + pair->slave_path() : " port: " + path);
+  }
+};
+
+void open_line(Line& line, const ServedLine& config, const serial::PortOptions& options, const std::string& file) {
+  try {
+    if (config.pty) {
+      line.pair.emplace(serial::PtyPair::open(options));
+    } else {
+      line.opened.emplace(serial::SerialPort::open(config.port, options));
+      line.path = config.port;
+    }
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(file + ": [" + line.key + "]: " + e.what());
+  }
+  for (const std::string& n : line.port().notes()) line.notes.push_back(line.key + ": " + n);
+}
+
+std::string seconds(Time t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f s", static_cast<double>(t.count()) / 1e9);
+  return buf;
+}
+
+}  // namespace
+
+struct Bench::Impl {
+  // LUSTBUS: one face per served drive on the simulator's drive core, its receiver at its address.
+  struct LustbusDrive {
+    std::string name;
+    int address = 0;
+    devices::LustbusEmulated face;
+    std::unique_ptr<lustbus::Receiver> receiver;
+    std::unique_ptr<lustbus::ServedReceiver> served;
+  };
+  struct Controller {
+    std::string name;
+    int uid = 0;
+    std::unique_ptr<devices::dfs1::Controller> controller;
+    std::unique_ptr<devices::dfs1::ServedController> served;
+  };
+  std::vector<LustbusDrive> lustbus_drives;
+  std::vector<Controller> controllers;
+  std::optional<Line> lustbus;
+  std::optional<Line> dfs1;
+  // The controllers' timeline entries, in time order, and the next one due.
+  std::vector<TimelineEntry> controller_entries;
+  std::size_t next_entry = 0;
+  std::vector<std::string> events;
+  std::uint32_t dfs1_baud = 9600;
+};
+
+Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  if (scenario.lustbus) {
+    for (std::size_t i = 0; i < scenario.devices.size(); ++i) {
+      const DeviceConfig& d = scenario.devices[i];
+      if (!d.lustbus) continue;
+      const devices::Drive* drive = devices::find_drive(d.kind, devices::Bus::lustbus);
+      const std::string who = file + ": device '" + d.name + "': ";
+      if (drive == nullptr || drive->lustbus->attach == nullptr) {
+        throw std::invalid_argument(who + "a " + d.kind + " does not answer on LUSTBUS: it takes no 'lustbus'");
+      }
+      devices::LustbusFaceOptions options;
+      // The drive's own settings its LUSTBUS face declares (a KEYPAD slows both faces, seed 000 10
+      // and 001 7.1): the scenario gives them once, for the drive.
+      for (const devices::SettingValue& v : d.settings.all()) {
+        const devices::SettingSpec* spec = devices::find_setting(drive->lustbus->settings, v.name);
+        if (spec != nullptr && spec->kind == v.kind) options.settings.set(v.name, v.kind, v.value);
+      }
+      options.seed = 1 + static_cast<std::uint64_t>(*d.lustbus);
+      options.baud = scenario.lustbus->baud;
+      Impl::LustbusDrive served;
+      served.name = d.name;
+      served.address = *d.lustbus;
+      try {
+        served.face = drive->lustbus->attach(sim.emulator(i), options);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(who + e.what());
+      }
+      served.receiver = std::make_unique<lustbus::Receiver>(*served.face.responder,
+                                                            static_cast<lustbus::Address>(*d.lustbus));
+      served.served = std::make_unique<lustbus::ServedReceiver>(served.receiver.get(), served.face.advance,
+                                                                 served.face.line_baud);
+      m.lustbus_drives.push_back(std::move(served));
+    }
+    m.lustbus.emplace();
+    m.lustbus->key = "lustbus";
+    // Seed 000, 4: 7 data bits, even parity, 1 stop bit on RS-485 (as `ibs lustbus emulate`).
+    serial::PortOptions options;
+    options.baud = scenario.lustbus->baud;
+    options.framing = serial::k7E1;
+    options.rs485 = true;
+    open_line(*m.lustbus, *scenario.lustbus, options, file);
+    for (Impl::LustbusDrive& d : m.lustbus_drives) m.lustbus->devices.push_back(d.served.get());
+  }
+  if (scenario.dfs1) {
+    const devices::Drive* drive = devices::drives_on(devices::Bus::dfs1).front();
+    m.dfs1_baud = scenario.dfs1->baud;
+    for (const Dfs1Controller& c : scenario.dfs1_controllers) {
+      Impl::Controller ctl;
+      ctl.name = c.name;
+      ctl.uid = c.uid;
+      try {
+        ctl.controller = drive->dfs1->make(static_cast<std::uint8_t>(c.uid), scenario.dfs1->baud);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(file + ": controller '" + c.name + "': " + e.what());
+      }
+      ctl.served = std::make_unique<devices::dfs1::ServedController>(*ctl.controller);
+      m.controllers.push_back(std::move(ctl));
+    }
+    m.dfs1.emplace();
+    m.dfs1->key = "dfs1";
+    // docs/dfs1.md, decision D9: binary data needs 8 data bits; no parity, 1 stop bit.
+    serial::PortOptions options;
+    options.baud = scenario.dfs1->baud;
+    options.framing = serial::k8N1;
+    open_line(*m.dfs1, *scenario.dfs1, options, file);
+    for (Impl::Controller& c : m.controllers) m.dfs1->devices.push_back(c.served.get());
+    for (const TimelineEntry& e : scenario.timeline) {
+      for (const Dfs1Controller& c : scenario.dfs1_controllers) {
+        if (c.name == e.device) m.controller_entries.push_back(e);
+      }
+    }
+  }
+}
+
+Bench::~Bench() = default;
+
+std::vector<std::string> Bench::ready_lines() const {
+  std::vector<std::string> out;
+  if (impl_->lustbus) out.push_back(impl_->lustbus->ready());
+  if (impl_->dfs1) out.push_back(impl_->dfs1->ready());
+  return out;
+}
+
+std::vector<std::string> Bench::notes() const {
+  std::vector<std::string> out;
+  for (const std::optional<Line>* l : {&impl_->lustbus, &impl_->dfs1}) {
+    if (!*l) continue;
+    out.insert(out.end(), (*l)->notes.begin(), (*l)->notes.end());
+  }
+  return out;
+}
+
+void Bench::turn(Time now) {
+  Impl& m = *impl_;
+  while (m.next_entry < m.controller_entries.size() && m.controller_entries[m.next_entry].at <= now) {
+    apply(m.controller_entries[m.next_entry++], now);
+  }
+  for (std::optional<Line>* l : {&m.lustbus, &m.dfs1}) {
+    if (*l) serial::serve_turn((*l)->port(), (*l)->devices, now);
+  }
+}
+
+bool Bench::apply(const TimelineEntry& e, Time now) {
+  Impl& m = *impl_;
+  for (Impl::Controller& c : m.controllers) {
+    if (c.name != e.device) continue;
+    std::string what;
+    switch (e.action) {
+      case Action::fault_power_cycle: {
+        // Switched off and on: a new controller at its unit id, as at power-on (seed 004).
+        const devices::Drive* drive = devices::drives_on(devices::Bus::dfs1).front();
+        c.controller = drive->dfs1->make(static_cast<std::uint8_t>(c.uid), m.dfs1_baud);
+        *c.served = devices::dfs1::ServedController(*c.controller);
+        what = "switched off and on";
+        break;
+      }
+      default:
+        return false;
+    }
+    m.events.push_back(seconds(now) + " " + c.name + ": " + what);
+    return true;
+  }
+  return false;
+}
+
+BenchReport Bench::report() const {
+  const Impl& m = *impl_;
+  BenchReport r;
+  r.lines = ready_lines();
+  for (const Impl::LustbusDrive& d : m.lustbus_drives) {
+    const lustbus::ReceiverCounters& n = d.receiver->counters();
+    r.devices.push_back({d.name, "lustbus", d.address, n.enquiries + n.selects + n.broadcasts, n.answers,
+                         n.checksum_errors, n.dropped + n.fragments});
+  }
+  for (const Impl::Controller& c : m.controllers) {
+    const auto& n = c.controller->counters();
+    // Every request is answered (an ACK, data or a NAK) but a global one (seed 004: UID 0 gets no
+    // reply) and one overtaken by the next request.
+    r.devices.push_back({c.name, "dfs1", c.uid, n.requests, n.requests - n.globals - n.dropped_replies,
+                         n.decode_errors, n.fragments});
+  }
+  r.events = m.events;
+  return r;
+}
+
+std::string format_bench_text(const BenchReport& r) {
+  std::string out = "test bench:\n";
+  for (const std::string& l : r.lines) out += "  served " + l + "\n";
+  for (const BenchDeviceReport& d : r.devices) {
+    out += "  " + d.name + " (" + d.line + " " + (d.line == "dfs1" ? "uid " : "address ") + std::to_string(d.address) +
+           "): " + std::to_string(d.telegrams) + " telegram(s), " + std::to_string(d.answers) + " answer(s), " +
+           std::to_string(d.errors) + " check error(s), " + std::to_string(d.dropped) + " dropped\n";
+  }
+  for (const std::string& e : r.events) out += "  " + e + "\n";
+  return out;
+}
+
+std::string format_bench_json(const BenchReport& r) {
+  const auto quote = [](const std::string& s) {
+    std::string q = "\"";
+    for (const char c : s) {
+      if (c == '"' || c == '\\') q += '\\';
+      q += c;
+    }
+    return q + "\"";
+  };
+  std::string out = "{\"lines\": [";
+  for (std::size_t i = 0; i < r.lines.size(); ++i) out += (i ? ", " : "") + quote(r.lines[i]);
+  out += "], \"devices\": [";
+  for (std::size_t i = 0; i < r.devices.size(); ++i) {
+    const BenchDeviceReport& d = r.devices[i];
+    out += std::string(i ? ", " : "") + "{\"name\": " + quote(d.name) + ", \"line\": " + quote(d.line) +
+           ", \"address\": " + std::to_string(d.address) + ", \"telegrams\": " + std::to_string(d.telegrams) +
+           ", \"answers\": " + std::to_string(d.answers) + ", \"errors\": " + std::to_string(d.errors) +
+           ", \"dropped\": " + std::to_string(d.dropped) + "}";
+  }
+  out += "], \"events\": [";
+  for (std::size_t i = 0; i < r.events.size(); ++i) out += (i ? ", " : "") + quote(r.events[i]);
+  return out + "]}";
+}
+
+}  // namespace ibs::sim
