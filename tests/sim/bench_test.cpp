@@ -164,6 +164,86 @@ TEST(Bench, OneServoAnswersOnInterbusAndLustbusWithOneState) {
   EXPECT_EQ(report.devices[0].errors, 0U);
 }
 
+// The inverter: its serial interface opens once the master has written 1-MODE <> 4 (seed 001,
+// 6.1; VF-E16); then the communication word's write is what LUSTBUS reads, and LUSTBUS's write is
+// what the communication word reads.
+TEST(Bench, OneInverterAnswersOnTheCommunicationWordAndLustbusWithOneStore) {
+  const Scenario s = parse_scenario_toml(R"(
+name = "fan"
+duration = "3 s"
+
+[[device]]
+name = "fan"
+type = "vf1000"
+lustbus = 2
+
+[lustbus]
+pty = true
+
+[[timeline]]
+at = "0 s"
+device = "fan"
+read = 85
+
+[[timeline]]
+at = "100 ms"
+device = "fan"
+write = { parameter = 1, value = 1 }
+
+[[timeline]]
+at = "600 ms"
+device = "fan"
+write = { parameter = 22, value = 900 }
+
+[[timeline]]
+at = "2500 ms"
+device = "fan"
+read = 22
+)",
+                                         "fan.toml");
+  Simulator sim(s);
+  Bench bench(sim, s, "fan.toml");
+  const std::string path = bench.ready_lines().at(0).substr(std::string("lustbus pty: ").size());
+  std::optional<std::uint32_t> locked, fmax;
+  lb::OutcomeKind written = lb::OutcomeKind::no_answer;
+  std::thread host_thread([&] {
+    serial::SerialPort port = serial::SerialPort::open(path, {9600, serial::k7E1, false});
+    lb::HostConfig c;
+    c.response_timeout = std::chrono::milliseconds(100);
+    c.enquiry_retries = 0;  // one ENQUIRY is one look at the drive
+    lb::Host host(c);
+    const auto read22 = [&]() -> std::optional<std::uint32_t> {
+      const lb::Outcome o = serial::transact(port, host, lb::enquiry(2, *lb::vf_code(22)));
+      if (o.kind != lb::OutcomeKind::value) return std::nullopt;
+      const auto raw = lb::parse_raw(lb::Family::standard, o.value.view());
+      return raw.ok() ? std::optional<std::uint32_t>(raw.value) : std::nullopt;
+    };
+    const auto t0 = Clock::now();
+    locked = read22();  // at once: 1-MODE is still 4, the drive hears nothing
+    while (Clock::now() < t0 + std::chrono::milliseconds(2200)) {
+      fmax = read22();
+      if (fmax == 900U) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    // 10, exception 4: the ACK of a changed EEPROM value comes after storing (~120 ms more).
+    lb::Host writer{};
+    written = serial::transact(port, writer, lb::select(2, *lb::vf_code(22), lb::make_value("044C"))).kind;  // 1100
+  });
+  RealtimeOptions rt;
+  rt.each_cycle = [&bench](Time now) { bench.turn(now); };
+  run_realtime(sim, rt);
+  host_thread.join();
+
+  EXPECT_FALSE(locked.has_value()) << "answered at 1-MODE = 4";
+  ASSERT_TRUE(fmax.has_value());
+  EXPECT_EQ(*fmax, 900U) << "the communication word's write of 22-FMAX1 is what LUSTBUS reads";
+  EXPECT_EQ(written, lb::OutcomeKind::acknowledged);
+  const TransactionRecord& last = sim.summary().transactions.back();
+  ASSERT_EQ(last.number, 22);
+  EXPECT_EQ(last.kind, devices::ParamKind::value) << last.result;
+  EXPECT_EQ(last.result_value, 1100) << "LUSTBUS's write is what the communication word reads";
+}
+
 TEST(Bench, AServedLineIsRefusedForADriveThatDoesNotRunAtItsRate) {
   std::string text = kScenario;
   text.replace(text.find("pty = true"), 10, "pty = true\nbaud = 57600");
