@@ -1,6 +1,8 @@
 #include "ibs/sim/bench.hpp"
 
 #include <cstdio>
+
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "ibs/devices/dfs1/served_controller.hpp"
@@ -237,27 +239,17 @@ std::string format_bench_text(const BenchReport& r) {
 }
 
 std::string format_bench_json(const BenchReport& r) {
-  const auto quote = [](const std::string& s) {
-    std::string q = "\"";
-    for (const char c : s) {
-      if (c == '"' || c == '\\') q += '\\';
-      q += c;
-    }
-    return q + "\"";
-  };
-  std::string out = "{\"lines\": [";
-  for (std::size_t i = 0; i < r.lines.size(); ++i) out += (i ? ", " : "") + quote(r.lines[i]);
-  out += "], \"devices\": [";
-  for (std::size_t i = 0; i < r.devices.size(); ++i) {
-    const BenchDeviceReport& d = r.devices[i];
-    out += std::string(i ? ", " : "") + "{\"name\": " + quote(d.name) + ", \"line\": " + quote(d.line) +
-           ", \"address\": " + std::to_string(d.address) + ", \"telegrams\": " + std::to_string(d.telegrams) +
-           ", \"answers\": " + std::to_string(d.answers) + ", \"errors\": " + std::to_string(d.errors) +
-           ", \"dropped\": " + std::to_string(d.dropped) + "}";
+  nlohmann::json devices = nlohmann::json::array();
+  for (const BenchDeviceReport& d : r.devices) {
+    devices.push_back({{"name", d.name},
+                       {"line", d.line},
+                       {"address", d.address},
+                       {"telegrams", d.telegrams},
+                       {"answers", d.answers},
+                       {"errors", d.errors},
+                       {"dropped", d.dropped}});
   }
-  out += "], \"events\": [";
-  for (std::size_t i = 0; i < r.events.size(); ++i) out += (i ? ", " : "") + quote(r.events[i]);
-  return out + "]}";
+  return nlohmann::json{{"lines", r.lines}, {"devices", devices}, {"events", r.events}}.dump();
 }
 
 }  // namespace ibs::sim
