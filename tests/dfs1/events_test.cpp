@@ -112,9 +112,14 @@ TEST(Dfs1Events, EveryFaultCauseShowsInTheStatusTheHostReads) {
     EXPECT_EQ(s.st2 & kSt2Fault, kSt2Fault);
     EXPECT_EQ(s.st2 & kSt2MicroFault, row.st2);
     EXPECT_EQ(s.st2 & kSt2Enabled, 0);
-    const auto printed = row.st1 != 0 ? st1_flags(s.st1) : std::vector<std::string_view>{};
-    if (row.st1 != 0) EXPECT_EQ(printed, std::vector<std::string_view>{row.printed});
-    // The motor coasts (D15): nothing drives it any more.
+    if (row.st1 != 0) {
+      EXPECT_EQ(st1_flags(s.st1), std::vector<std::string_view>{row.printed});
+    } else {
+      EXPECT_EQ(st2_flags(s.st2 & kSt2MicroFault), std::vector<std::string_view>{row.printed});
+    }
+    // The motor coasts (D15): nothing drives it any more, it takes no current (D18).
+    EXPECT_EQ(s.load, 0U);
+    EXPECT_GT(s.actual, 0);
     b.run_for(10s);
     EXPECT_EQ(b.status().actual, 0);
   }

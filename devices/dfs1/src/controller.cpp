@@ -221,13 +221,13 @@ std::uint8_t Controller::st2() const {
 std::uint32_t Controller::load_percent() const {
   // Invented (D3): the share of the maximum speed still to go, as a stand-in for the current.
   const double max = static_cast<double>(values_[index(kMaxSpeed)]);
+  // D18: only a driven motor takes current: a coasting one (fault, E-stop, stop) shows none.
+  if (!enabled()) return 0;
   const double gap = std::abs(target_speed(now_) - plant_.speed());
   const double accelerating = std::min(100.0, 100.0 * gap / max);
-  // D18: the speed loop holds the speed against the load; the current it takes shows as load %
-  // while the motor is driven.
-  const double carried = enabled() ? static_cast<double>(load_) : 0.0;
+  // D18: the speed loop holds the speed against the load; the current it takes shows as load %.
   return static_cast<std::uint32_t>(
-      std::lround(std::min(static_cast<double>(kMaxLoadPercent), accelerating + carried)));
+      std::lround(std::min(static_cast<double>(kMaxLoadPercent), accelerating + static_cast<double>(load_))));
 }
 
 Reply Controller::status_reply() const {
