@@ -46,6 +46,12 @@ void ControllerReceiver::receive(std::span<const std::uint8_t> bytes, Time now,
   for (std::uint8_t b : bytes) receive(b, now, handler);
 }
 
+void ControllerReceiver::restart() {
+  decoder_.reset();
+  reply_ = EncodedFrame{};
+  sent_ = 0;
+}
+
 void ControllerReceiver::on_frame(const Frame& f, Time now, RequestHandler& handler) {
   const bool global = f.uid == kGlobalUid;
   const CommandInfo* row = find_command(f.code);

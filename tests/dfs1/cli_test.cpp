@@ -8,6 +8,8 @@
 #include <poll.h>
 #include <pty.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -246,6 +248,162 @@ TEST(Dfs1Cli, LogRecordsEveryByteWithTimeAndDirection) {
   EXPECT_EQ(rx.rfind(" 10 02 01 06", 0), 0U) << rx;
   EXPECT_EQ(emu.stop(SIGTERM), 0);
   std::remove(log.c_str());
+}
+
+// --- `emulate --control` (docs/dfs1.md, "Faults on demand") ---
+
+// `sh -c "exec ibs dfs1 emulate --pty ARGS 2>ERR [<<here-document]"`: the emulator as the child
+// itself (exec), its standard error in a file the test reads.
+class ControlledEmulator : public test::ChildProcess {
+ public:
+  ControlledEmulator(const std::string& args, const std::string& err_file, const std::string& stdin_text = "")
+      : ChildProcess({"/bin/sh", "-c", command(args, err_file, stdin_text)}), err_file_(err_file) {}
+  std::string err() const {
+    std::ifstream in(err_file_);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  // Waits up to 5 s for `text` on standard error.
+  bool err_has(const std::string& text) const {
+    for (int i = 0; i < 250; ++i) {
+      if (err().find(text) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+
+ private:
+  static std::string command(const std::string& args, const std::string& err_file, const std::string& stdin_text) {
+    std::string c = std::string("exec ") + IBS_DFS1_CLI + " dfs1 emulate --pty " + args + " 2>" + err_file;
+    if (!stdin_text.empty()) c += " <<'IBS_EOF'\n" + stdin_text + "IBS_EOF\n";
+    return c;
+  }
+  std::string err_file_;
+};
+
+// Connects to the control socket at `path` and sends `text`; closes when `close` (end of input).
+int send_control(const std::string& path, const std::string& text, int fd = -1) {
+  if (fd < 0) {
+    fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path.c_str());
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
+      ::close(fd);
+      return -1;
+    }
+  }
+  if (::write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+// The status the host reads, in JSON, once `pred` holds on it (or after 5 s).
+template <typename Pred>
+nlohmann::json status_until(const std::string& port, int uid, Pred pred) {
+  nlohmann::json j;
+  for (int i = 0; i < 100; ++i) {
+    const CliRun r =
+        run_cli({"dfs1", "status", "--port", port, "--uid", std::to_string(uid), "--json", "--timeout-ms", "3000"});
+    if (r.rc == 0) {
+      j = nlohmann::json::parse(r.out);
+      if (pred(j)) return j;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return j;
+}
+
+std::string unique_path(const std::string& what) {
+  return "/tmp/ibs-dfs1-" + what + "-" + std::to_string(::getpid());
+}
+
+TEST(Dfs1Cli, AFaultSentOnTheControlSocketShowsInTheStatusTheHostReads) {
+  const std::string sock = unique_path("control.sock");
+  const std::string err = unique_path("emulator.err");
+  ::unlink(sock.c_str());
+  ControlledEmulator emu("--control unix:" + sock + " dfs1@1 dfs1@7", err);
+  ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U) << emu.first_line();
+  const std::string port = emu.pty();
+
+  // A bad line first: reported with its number, skipped; the emulator goes on serving.
+  int fd = send_control(sock, "{\"device\": \"dfs1@7\", \"fault\": \"melt\"}\n");
+  ASSERT_GE(fd, 0);
+  EXPECT_TRUE(emu.err_has("control:1: \"fault\": \"melt\" is no DFS-1 fault event; allowed: \"device\", "
+                          "\"power-cycle\"\n"))
+      << emu.err();
+  ASSERT_GE(send_control(sock, "not json\n", fd), 0);
+  EXPECT_TRUE(emu.err_has("control:2: not JSON: ")) << emu.err();
+  ASSERT_GE(send_control(sock, "{\"fault\": \"device\", \"cause\": \"IOC\"}\n", fd), 0);
+  EXPECT_TRUE(emu.err_has("control:3: no \"device\": 2 controllers are served (dfs1@1, dfs1@7); name one"))
+      << emu.err();
+
+  ASSERT_GE(send_control(sock, "{\"device\": \"dfs1@7\", \"fault\": \"device\", \"cause\": \"Overvolt\"}\n", fd), 0);
+  ::close(fd);  // end of this client's input: the emulator serves on
+  const auto j = status_until(port, 7, [](const nlohmann::json& s) { return s["st1"] == 0x02; });
+  EXPECT_EQ(j["st1"], 0x02) << j.dump();
+  EXPECT_EQ(j["st1_flags"], nlohmann::json::array({"overvolt"})) << j.dump();
+  EXPECT_EQ(j["st2"].get<int>() & 0x08, 0x08) << j.dump();  // ST2 fault
+  // The applied event on standard error: time, controller, what happened.
+  EXPECT_TRUE(emu.err_has(": dfs1@7: fault Overvolt, its cause gone at once; the motor coasts, the fault is latched"))
+      << emu.err();
+  // The other controller is untouched.
+  EXPECT_EQ(status_until(port, 1, [](const nlohmann::json&) { return true; })["st1"], 0);
+
+  // The next client: line numbers go on; the E-stop opened resets the fault.
+  fd = send_control(sock, "{\"device\": 7, \"input\": \"E-stop\", \"level\": \"low\"}\n{\"device\": 9, \"mains\": \"off\"}\n");
+  ASSERT_GE(fd, 0);
+  EXPECT_TRUE(emu.err_has("control:6: \"device\": UID 9 is not served here; served: dfs1@1, dfs1@7")) << emu.err();
+  EXPECT_EQ(status_until(port, 7, [](const nlohmann::json& s) { return s["st1"] == 0; })["st1"], 0);
+  ::close(fd);
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+  ::unlink(err.c_str());
+  // The socket is removed at exit.
+  EXPECT_NE(::access(sock.c_str(), F_OK), 0);
+}
+
+TEST(Dfs1Cli, EndOfStandardInputDoesNotEndTheEmulator) {
+  const std::string err = unique_path("stdin.err");
+  ControlledEmulator emu("--control - dfs1@4", err, "{\"mains\": \"off\"}\n{\"load\": 300}\n");
+  ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U) << emu.first_line();
+  const auto j = status_until(emu.pty(), 4, [](const nlohmann::json& s) { return s["st1"] == 0x80; });
+  EXPECT_EQ(j["st1_flags"], nlohmann::json::array({"bus-not-charged"})) << j.dump();
+  EXPECT_TRUE(emu.err_has("control:2: \"load\": 300; allowed: a whole number of percent of the drive's rating, 0..200"))
+      << emu.err();
+  EXPECT_TRUE(emu.err_has(": dfs1@4: mains off; the bus is not charged")) << emu.err();
+  // Standard input has ended long ago; the emulator still answers.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(run_cli({"dfs1", "status", "--port", emu.pty(), "--uid", "4", "--timeout-ms", "3000"}).rc, 0);
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+  ::unlink(err.c_str());
+}
+
+TEST(Dfs1Cli, AControlSocketPathThatExistsIsRefused) {
+  const std::string path = unique_path("exists");
+  { std::ofstream(path) << "x"; }
+  const CliRun r = run_cli({"dfs1", "emulate", "--pty", "--control", "unix:" + path, "dfs1@1"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find(path + " exists"), std::string::npos) << r.err;
+  std::remove(path.c_str());
+  const CliRun bad = run_cli({"dfs1", "emulate", "--pty", "--control", "tcp:1234", "dfs1@1"});
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("give - (standard input) or unix:PATH"), std::string::npos) << bad.err;
+}
+
+TEST(Dfs1Cli, ControlLinesAreJsonObjects) {
+  EXPECT_TRUE(parse_dfs1_control_line(R"({"device": "dfs1@7", "fault": "device", "cause": "IOC", "duration": "0.5 s"})")
+                  .event);
+  EXPECT_EQ(parse_dfs1_control_line("[1]").error,
+            "expected a JSON object like {\"fault\": \"device\", \"cause\": \"IOC\"}, got an array");
+  EXPECT_EQ(parse_dfs1_control_line("\"mains\"").error,
+            "expected a JSON object like {\"fault\": \"device\", \"cause\": \"IOC\"}, got a string");
+  EXPECT_EQ(parse_dfs1_control_line("{\"mains\": \"off\"").error.rfind("not JSON: ", 0), 0U);
+  EXPECT_EQ(parse_dfs1_control_line(R"({"load": true})").error,
+            "\"load\": expected a whole number of percent of the drive's rating, 0..200, got a boolean");
+  EXPECT_EQ(parse_dfs1_control_line(R"({"input": [3], "level": "high"})").error.rfind("\"input\": expected ", 0), 0U);
+  EXPECT_EQ(parse_dfs1_control_line(R"({"mains": "off", "colour": {}})").error,
+            "unknown key \"colour\"; a DFS-1 control line takes device, fault, cause, duration, mains, input, level, load");
 }
 
 }  // namespace

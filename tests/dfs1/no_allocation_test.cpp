@@ -5,6 +5,7 @@
 
 #include "../support/counting_new.hpp"
 #include "ibs/devices/dfs1/line.hpp"
+#include "ibs/devices/dfs1/served_controller.hpp"
 #include "ibs/dfs1/host.hpp"
 
 namespace ibs::devices::dfs1 {
@@ -42,6 +43,25 @@ TEST(Dfs1CyclePath, AllocatesNothing) {
   EXPECT_EQ(counting.count(), 0);
   EXPECT_EQ(acks, 50U * 5U);
   EXPECT_EQ(others, 50U * 3U);
+}
+
+// Events (events.hpp) are applied inside the serve loop's turn: no allocation there either.
+TEST(Dfs1CyclePath, ApplyingAndServingEventsAllocatesNothing) {
+  Controller c({1});
+  ServedController d{c};
+  test::AllocationCounter counting;
+  Time t{};
+  for (int i = 0; i < 20; ++i) {
+    (void)c.apply(Event::fault(FaultCause::stall, 10ms), t += 1ms);
+    (void)c.apply(Event::mains(i % 2 == 0), t += 1ms);
+    (void)c.apply(Event::input_level(1, i % 2 == 0), t += 1ms);
+    (void)c.apply(Event::load(static_cast<std::uint32_t>(i)), t += 1ms);
+    (void)c.apply(Event::power_cycle(), t += 1ms);
+    (void)d.post(Event::fault(FaultCause::micro_fault));
+    d.advance(t += 1ms);
+    (void)d.take_report();
+  }
+  EXPECT_EQ(counting.count(), 0);
 }
 
 }  // namespace

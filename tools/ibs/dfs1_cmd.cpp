@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <chrono>
+#include <cstdio>
+#include <deque>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -19,6 +21,7 @@
 #include "ibs/serial/dfs1_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
+#include "control_input.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -72,6 +75,95 @@ std::string join(const std::vector<std::string_view>& v) {
   return s;
 }
 
+const char* json_kind(const nlohmann::json& v) {
+  switch (v.type()) {
+    case nlohmann::json::value_t::null:
+      return "null";
+    case nlohmann::json::value_t::boolean:
+      return "a boolean";
+    case nlohmann::json::value_t::array:
+      return "an array";
+    case nlohmann::json::value_t::object:
+      return "an object";
+    default:
+      return "a value of another kind";
+  }
+}
+
+std::string seconds(Time t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f s", std::chrono::duration<double>(t).count());
+  return buf;
+}
+
+// The control channel of `emulate --control`: lines are parsed as they come, their events posted
+// to the controller they name and applied at the serve loop's next turn with its time; what each
+// did is printed once applied. A bad line is reported and skipped; nothing here ends the run.
+class EmulatorControl {
+ public:
+  EmulatorControl(std::unique_ptr<ControlInput> input, const std::vector<std::string>& names,
+                  const std::vector<std::uint8_t>& uids, const std::vector<std::unique_ptr<dev::ServedController>>& served,
+                  std::ostream& err)
+      : input_(std::move(input)), names_(names), uids_(uids), served_(served), err_(err) {}
+
+  // Called from the serve loop's stop(): what the last turn applied, then the new lines.
+  void turn() {
+    print_reports();
+    input_->poll([this](std::size_t n, std::string_view text) { take(n, text); },
+                 [this](std::size_t n, std::string_view what) { bad(n, what); });
+    while (!waiting_.empty() && served_[waiting_.front().first]->post(waiting_.front().second)) waiting_.pop_front();
+  }
+  void print_reports() {
+    for (std::size_t i = 0; i < served_.size(); ++i) {
+      while (const auto r = served_[i]->take_report()) {
+        err_ << "ibs dfs1 emulate: " << seconds(r->at) << ": " << names_[i] << ": " << dev::to_string(*r) << "\n";
+      }
+    }
+  }
+
+ private:
+  void bad(std::size_t n, std::string_view what) { err_ << "control:" << n << ": " << what << "\n"; }
+
+  void take(std::size_t n, std::string_view text) {
+    const dev::ParsedControl p = parse_dfs1_control_line(text);
+    if (!p.event) return bad(n, p.error);
+    std::optional<std::size_t> which;
+    if (!p.event->uid) {
+      if (served_.size() != 1) {
+        return bad(n, "no \"device\": " + std::to_string(served_.size()) + " controllers are served (" + served() +
+                          "); name one");
+      }
+      which = 0;
+    } else {
+      // The UID the controller answers to now (parameter 1 may have changed it, D5), else the one
+      // of the command line.
+      for (std::size_t i = 0; i < served_.size() && !which; ++i) {
+        if (served_[i]->controller().uid() == *p.event->uid) which = i;
+      }
+      for (std::size_t i = 0; i < uids_.size() && !which; ++i) {
+        if (uids_[i] == *p.event->uid) which = i;
+      }
+      if (!which) {
+        return bad(n, "\"device\": UID " + std::to_string(*p.event->uid) + " is not served here; served: " + served());
+      }
+    }
+    waiting_.emplace_back(*which, p.event->event);
+  }
+
+  std::string served() const {
+    std::string s;
+    for (const auto& n : names_) s += (s.empty() ? "" : ", ") + n;
+    return s;
+  }
+
+  std::unique_ptr<ControlInput> input_;
+  const std::vector<std::string>& names_;
+  const std::vector<std::uint8_t>& uids_;
+  const std::vector<std::unique_ptr<dev::ServedController>>& served_;
+  std::ostream& err_;
+  std::deque<std::pair<std::size_t, dev::Event>> waiting_;  // posted once their controller has room
+};
+
 int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   if (o.pty == !o.port.port.empty()) {
     err << "ibs dfs1 emulate: give either --port PATH or --pty\n";
@@ -85,6 +177,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   std::vector<std::unique_ptr<dev::ServedController>> served;
   std::vector<base::LineDevice*> raw;
   std::set<std::uint8_t> uids;
+  std::vector<std::uint8_t> uid_order;
   serial::PortOptions popts;
   try {
     popts = port_options(o.port);
@@ -94,6 +187,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
         throw std::invalid_argument("device '" + spec + "': UID " + std::to_string(uid) +
                                     " is given twice");
       }
+      uid_order.push_back(uid);
       controllers.push_back(face->make(uid, o.port.baud));
       served.push_back(std::make_unique<dev::ServedController>(*controllers.back()));
       raw.push_back(served.back().get());
@@ -101,6 +195,18 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   } catch (const std::invalid_argument& e) {
     err << "ibs dfs1 emulate: " << e.what() << "\n";
     return kExitDfs1BadInput;
+  }
+
+  // The control channel exists before `pty: PATH` is printed: whoever reads that line may connect.
+  std::optional<EmulatorControl> control;
+  if (!o.control.empty()) {
+    std::string why;
+    auto input = ControlInput::open(o.control, why);
+    if (!input) {
+      err << "ibs dfs1 emulate: " << why << "\n";
+      return kExitDfs1BadInput;
+    }
+    control.emplace(std::move(input), o.devices, uid_order, served, err);
   }
 
   // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
@@ -131,7 +237,11 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   }
   port.set_log(log.get());
 
-  serial::serve(port, raw, [&signals]() { return signals.raised(); });
+  serial::serve(port, raw, [&signals, &control]() {
+    if (control) control->turn();
+    return signals.raised();
+  });
+  if (control) control->print_reports();
   // What each controller heard, and what it threw away (D13: fragments a silent host left).
   for (const auto& c : controllers) {
     const auto& n = c->counters();
@@ -328,6 +438,9 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
   state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
   add_port_options(state.emulate, eo.port);
+  state.emulate->add_option("--control", eo.control,
+                            "faults and plant events as JSON lines from - (standard input) or unix:PATH "
+                            "(a socket it creates); docs/dfs1.md, \"Faults on demand\"");
 
   Dfs1ClientOptions& co = state.client_options;
   state.status = state.dfs1->add_subcommand("status", "command 81: speeds, load, ST2 and ST1");
@@ -368,6 +481,37 @@ std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream
     if (c->parsed()) return client(*c, state.client_options, out, err);
   }
   return kExitDfs1BadInput;
+}
+
+dev::ParsedControl parse_dfs1_control_line(std::string_view text) {
+  dev::ParsedControl bad;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann's message begins "[json.exception.parse_error.101] parse error at line 1, ...".
+    std::string what = e.what();
+    const auto at = what.find("] ");
+    if (at != std::string::npos) what = what.substr(at + 2);
+    bad.error = "not JSON: " + what;
+    return bad;
+  }
+  if (!j.is_object()) {
+    bad.error = std::string("expected a JSON object like {\"fault\": \"device\", \"cause\": \"IOC\"}, got ") +
+                (j.is_string() ? "a string" : j.is_number() ? "a number" : json_kind(j));
+    return bad;
+  }
+  dev::ControlFields fields;
+  for (const auto& [key, v] : j.items()) {
+    if (v.is_string()) {
+      fields.emplace_back(key, dev::ControlValue::string(v.get<std::string>()));
+    } else if (v.is_number()) {
+      fields.emplace_back(key, dev::ControlValue::of_number(v.get<double>()));
+    } else {
+      fields.emplace_back(key, dev::ControlValue::other(json_kind(v)));
+    }
+  }
+  return dev::parse_event(fields);
 }
 
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state) {

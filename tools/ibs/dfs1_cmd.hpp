@@ -1,6 +1,6 @@
 // `ibs dfs1 ...`: the PowerTec DFS-1 over a serial port (docs/dfs1.md, "Command line").
 //
-//   ibs dfs1 emulate (--port PATH | --pty) [--baud N] dfs1@UID...
+//   ibs dfs1 emulate (--port PATH | --pty) [--baud N] [--control SPEC] dfs1@UID...
 //   ibs dfs1 status --port PATH --uid N
 //   ibs dfs1 read   --port PATH --uid N PARAM
 //   ibs dfs1 write  --port PATH --uid N PARAM VALUE
@@ -16,8 +16,10 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "ibs/devices/dfs1/events.hpp"
 #include "ibs/dfs1/host.hpp"
 #include "ibs/serial/serial_port.hpp"
 
@@ -43,6 +45,7 @@ struct Dfs1EmulateOptions {
   Dfs1PortOptions port;
   bool pty = false;
   std::vector<std::string> devices;  // dfs1@UID
+  std::string control;               // --control: "-" or "unix:PATH"; empty: none
 };
 
 struct Dfs1ClientOptions {
@@ -74,6 +77,11 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state);
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state);
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
                                      std::ostream& err);
+
+// One line of a DFS-1 control channel (docs/dfs1.md, "Faults on demand"): a JSON object whose
+// keys devices::dfs1::parse_event() reads; `error` says what is wrong (not JSON, not an object, or
+// the key and value). For `ibs dfs1 emulate --control` and any run that drives DFS-1 controllers.
+devices::dfs1::ParsedControl parse_dfs1_control_line(std::string_view text);
 
 // The emulator serves with serial::serve through devices::dfs1::ServedController; the client
 // commands run their transaction with serial::transact (transports/serial/dfs1_host.hpp).

@@ -75,7 +75,99 @@ void Controller::receive(std::span<const std::uint8_t> bytes, Time now) {
 }
 
 void Controller::set_digital_input(std::uint8_t channel, bool closed) {
-  if (channel >= 1 && channel <= kDigitalInputs) terminal_inputs_[channel - 1U] = closed;
+  if (channel < 1 || channel > kDigitalInputs) return;
+  terminal_inputs_[channel - 1U] = closed;
+  // D19: an E-stop ends the run; closing it again does not restart the motor by itself.
+  if (channel == kEstopInput && !closed) running_ = false;
+  settle();
+}
+
+void Controller::set_faults(std::uint8_t st1) {
+  latched_st1_ = st1;
+  if (st1 != 0) running_ = false;
+  settle();
+}
+
+std::uint8_t Controller::st1() const {
+  // D17: without mains the DC bus is not charged; the bit goes when the mains return.
+  return static_cast<std::uint8_t>(latched_st1_ | (mains_on_ ? 0U : kSt1BusNotCharged));
+}
+
+bool Controller::cause_present(FaultCause cause) const {
+  return now_ < cause_until_[static_cast<std::size_t>(cause)];
+}
+
+void Controller::settle() {
+  if (estop_closed() || !fault_latched()) return;
+  for (const FaultCauseInfo& f : fault_causes()) {
+    if (cause_present(f.cause)) return;
+  }
+  latched_st1_ = 0;
+  latched_micro_ = false;
+}
+
+void Controller::power_on_reset(Time now) {
+  // D20: what a power cycle loses. The parameters are the controller's setup and stay (the
+  // receiver already runs with their UID, turnaround and fragment timeout); terminals, mains,
+  // load and the motor's own speed are outside the controller and stay too.
+  receiver_.restart();
+  preset_speed_ = 0;
+  commanded_speed_ = 0;
+  running_ = false;
+  contactor_closes_at_ = now;
+  operational_mode_ = 0;
+  application_mode_ = 0;
+  application_value_ = 0;
+  analog_out_ = {};
+  digital_out_ = {};
+  // The fault memory is cleared; a cause still present trips the controller again at once.
+  latched_st1_ = 0;
+  latched_micro_ = false;
+  for (const FaultCauseInfo& f : fault_causes()) {
+    if (cause_present(f.cause)) {
+      latched_st1_ |= f.st1_bit;
+      if (f.st2_bit != 0) latched_micro_ = true;
+    }
+  }
+}
+
+EventReport Controller::apply(const Event& e, Time now) {
+  step(now);
+  switch (e.kind) {
+    case Event::Kind::fault: {
+      // D15, D16: the fault bit of the cause is latched and the motor coasts; the cause lasts
+      // `duration` (the longer of two overlapping ones).
+      const FaultCauseInfo& f = info(e.cause);
+      auto& until = cause_until_[static_cast<std::size_t>(e.cause)];
+      until = std::max(until, now_ + std::max(e.duration, Duration::zero()));
+      latched_st1_ |= f.st1_bit;
+      if (f.st2_bit != 0) latched_micro_ = true;
+      running_ = false;
+      break;
+    }
+    case Event::Kind::power_cycle:
+      power_on_reset(now_);
+      break;
+    case Event::Kind::mains:
+      mains_on_ = e.on;
+      if (!e.on) running_ = false;  // D17: the motor coasts; it needs a new start
+      break;
+    case Event::Kind::input:
+      set_digital_input(e.input, e.on);
+      break;
+    case Event::Kind::load:
+      load_ = std::min(e.load_percent, kMaxLoadPercent);
+      break;
+  }
+  settle();
+  EventReport r;
+  r.at = now_;
+  r.event = e;
+  r.st2 = st2();
+  r.st1 = st1();
+  r.load_percent = load_percent();
+  r.latched = fault_latched();
+  return r;
 }
 
 void Controller::set_analog_input(std::uint8_t channel, std::uint32_t value) {
@@ -92,13 +184,11 @@ bool Controller::digital_input(std::uint8_t channel) const {
 }
 
 bool Controller::enabled() const {
-  return terminal_inputs_[kEstopInput - 1U] && st1_ == 0 && running_ &&
-         now_ >= contactor_closes_at_;
+  return estop_closed() && !faulted() && running_ && now_ >= contactor_closes_at_;
 }
 
 double Controller::target_speed(Time now) const {
-  const bool on =
-      terminal_inputs_[kEstopInput - 1U] && st1_ == 0 && running_ && now >= contactor_closes_at_;
+  const bool on = estop_closed() && !faulted() && running_ && now >= contactor_closes_at_;
   return on ? static_cast<double>(commanded_speed_) : 0.0;
 }
 
@@ -110,6 +200,7 @@ void Controller::step(Time now) {
   }
   plant_.step(now - now_, target_speed(now_));
   now_ = now;
+  settle();  // a cause whose time is over may let an open E-stop reset the fault (D16)
 }
 
 std::uint8_t Controller::st2() const {
@@ -120,8 +211,9 @@ std::uint8_t Controller::st2() const {
   if (application_mode_ == 1) s |= kSt2Slave;
   if (std::abs(actual - target_speed(now_)) <= band) s |= kSt2AtSpeed;
   if (commanded_speed_ >= 0) s |= kSt2Forward;
-  if (st1_ != 0) s |= kSt2Fault;
+  if (faulted()) s |= kSt2Fault;
   if (enabled()) s |= kSt2Enabled;
+  if (latched_micro_) s |= kSt2MicroFault;
   if (std::abs(actual) < 1.0) s |= kSt2ZeroSpeed;
   return s;
 }
@@ -129,8 +221,13 @@ std::uint8_t Controller::st2() const {
 std::uint32_t Controller::load_percent() const {
   // Invented (D3): the share of the maximum speed still to go, as a stand-in for the current.
   const double max = static_cast<double>(values_[index(kMaxSpeed)]);
+  // D18: only a driven motor takes current: a coasting one (fault, E-stop, stop) shows none.
+  if (!enabled()) return 0;
   const double gap = std::abs(target_speed(now_) - plant_.speed());
-  return static_cast<std::uint32_t>(std::lround(std::min(100.0, 100.0 * gap / max)));
+  const double accelerating = std::min(100.0, 100.0 * gap / max);
+  // D18: the speed loop holds the speed against the load; the current it takes shows as load %.
+  return static_cast<std::uint32_t>(
+      std::lround(std::min(static_cast<double>(kMaxLoadPercent), accelerating + static_cast<double>(load_))));
 }
 
 Reply Controller::status_reply() const {
@@ -140,7 +237,7 @@ Reply Controller::status_reply() const {
   proto::put_u32(at(0), proto::to_unsigned(commanded_speed_));
   proto::put_u32(at(4), proto::to_unsigned(static_cast<std::int32_t>(std::lround(plant_.speed()))));
   proto::put_u32(at(8), load_percent());
-  proto::put_u32(at(12), (std::uint32_t{st2()} << 8) | st1_);
+  proto::put_u32(at(12), (std::uint32_t{st2()} << 8) | st1());
   return Reply::ack(d);
 }
 
@@ -156,7 +253,9 @@ Reply Controller::speed_command(Command c, std::int32_t rpm, Time now) {
   }
   if (c != Command::set_speed) {
     commanded_speed_ = preset_speed_;
-    const bool run = commanded_speed_ != 0;
+    // D16, D17, D19: a start is taken (the seed has no error for it) but does not run the motor
+    // while the E-stop is open, a fault is latched or the bus is not charged.
+    const bool run = commanded_speed_ != 0 && estop_closed() && !faulted();
     if (run && !running_) {
       contactor_closes_at_ = now + values_[index(kContactorDelay)] * kContactorStep;
     }

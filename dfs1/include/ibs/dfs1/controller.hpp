@@ -66,6 +66,10 @@ class ControllerReceiver {
   // When a reply becomes due; nullopt when none waits.
   std::optional<Time> next_deadline() const;
   bool replying() const { return sent_ < reply_.size; }
+  // The controller was switched off and on: a frame being received and a reply not yet sent are
+  // lost (what a power cycle does to a UART and its buffers); UID, turnaround, fragment timeout
+  // and the counters stay, they belong to whoever owns the receiver.
+  void restart();
 
   std::uint8_t uid() const { return uid_; }
   void set_uid(std::uint8_t uid) { uid_ = uid; }

@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 
+#include "ibs/devices/dfs1/events.hpp"
 #include "ibs/devices/dfs1/parameters.hpp"
 #include "ibs/dfs1/controller.hpp"
 #include "ibs/dfs1/frame.hpp"
@@ -79,9 +80,15 @@ class Controller final : public ::ibs::dfs1::RequestHandler {
   void step(Time now);
 
   // The hardware side (terminal strip), for tests and scenarios.
-  void set_digital_input(std::uint8_t channel, bool closed);  // 1..7; 1 is the E-stop
+  // 1..7; 1 is the E-stop: opening it stops the motor and drops the run command (D19).
+  void set_digital_input(std::uint8_t channel, bool closed);
   void set_analog_input(std::uint8_t channel, std::uint32_t value);
-  void set_faults(std::uint8_t st1) { st1_ = st1; }
+  // Latches exactly these ST1 bits (a fault without a lasting cause, D16); any bit set stops the
+  // motor and drops the run command.
+  void set_faults(std::uint8_t st1);
+  // A plant or fault event at `now` (events.hpp; decisions D15-D20): the plant is stepped to `now`
+  // first. Returns what a host reads right after it.
+  EventReport apply(const Event& event, Time now);
   // A parameter set at the keypad: the same checks as a write (82, 83), nullopt when accepted.
   std::optional<::ibs::dfs1::ErrorCode> set_parameter(std::uint8_t number, std::uint32_t value);
 
@@ -92,8 +99,14 @@ class Controller final : public ::ibs::dfs1::RequestHandler {
   std::int32_t commanded_speed() const { return commanded_speed_; }  // executed by 83/84
   double actual_speed() const { return plant_.speed(); }
   std::uint8_t st2() const;
-  std::uint8_t st1() const { return st1_; }
+  std::uint8_t st1() const;
   std::uint32_t load_percent() const;
+  // A fault latched (ST1 bits or the uP fault; not the bus-not-charged of mains off, D17).
+  bool fault_latched() const { return latched_st1_ != 0 || latched_micro_; }
+  // The cause of a fault still present (its duration not over) at the controller's time.
+  bool cause_present(FaultCause cause) const;
+  bool mains_on() const { return mains_on_; }
+  std::uint32_t load() const { return load_; }  // the load event's %, D18
   std::uint16_t operational_mode() const { return operational_mode_; }
   std::uint8_t application_mode() const { return application_mode_; }
   bool digital_input(std::uint8_t channel) const;  // effective: terminal or remote (8D)
@@ -109,6 +122,11 @@ class Controller final : public ::ibs::dfs1::RequestHandler {
   std::size_t index(std::uint8_t number) const;
   bool remote(std::uint32_t functions) const;
   double target_speed(Time now) const;
+  bool faulted() const { return st1() != 0 || latched_micro_; }
+  bool estop_closed() const { return terminal_inputs_[kEstopInput - 1U]; }
+  // D16: a latched fault is reset while the E-stop is open and no cause is present.
+  void settle();
+  void power_on_reset(Time now);
   ::ibs::dfs1::Reply speed_command(::ibs::dfs1::Command c, std::int32_t rpm, Time now);
   ::ibs::dfs1::Reply write_parameter(std::uint8_t number, std::uint32_t value);
   ::ibs::dfs1::Reply status_reply() const;
@@ -121,7 +139,11 @@ class Controller final : public ::ibs::dfs1::RequestHandler {
   std::int32_t commanded_speed_ = 0;
   Time contactor_closes_at_{};  // when a start from rest may drive the motor (parameter 62)
   bool running_ = false;
-  std::uint8_t st1_ = 0;
+  std::uint8_t latched_st1_ = 0;
+  bool latched_micro_ = false;
+  std::array<Time, kFaultCauses> cause_until_{};  // a cause is present while now_ < its time
+  bool mains_on_ = true;
+  std::uint32_t load_ = 0;
   std::uint16_t operational_mode_ = 0;
   std::uint8_t application_mode_ = 0;
   std::uint32_t application_value_ = 0;
