@@ -51,21 +51,6 @@ std::string check(const CanlustEvent& e) {
   return {};
 }
 
-std::string event_text(const CanlustEvent& e) {
-  using K = CanlustEvent::Kind;
-  switch (e.kind) {
-    case K::fault: return "fault " + e.cause;
-    case K::load: {
-      char b[48];
-      std::snprintf(b, sizeof b, "load %.1f %%", e.load);
-      return b;
-    }
-    case K::input: return "input " + e.input + (e.level ? " high" : " low");
-    default: return std::string(to_string(e.kind));
-  }
-}
-
-
 class EmulatedDrive final : public CanlustDrive {
  public:
   explicit EmulatedDrive(const DeviceConfig& c) : drive_(c) {}
@@ -87,41 +72,45 @@ class EmulatedDrive final : public CanlustDrive {
     return drive_.value(number);
   }
 
+  // The outcome in words; the caller names the event ("left: device fault E-OTI: ...").
   CanlustEventResult apply(const CanlustEvent& e, Time now) override {
     using K = CanlustEvent::Kind;
     if (const std::string why = check(e); !why.empty()) return {false, why};
-    const std::string what = event_text(e);
     switch (e.kind) {
       case K::fault: {
         const std::uint8_t n = *find_cause(e.cause);
-        if (!drive_.inject_fault(n, now)) return {false, what + ": the drive is off (mains)"};
+        if (!drive_.inject_fault(n, now)) return {false, "the drive is off (mains)"};
         const auto info = canlust::find_error(n);
-        return {true, what + ": " + std::to_string(n) + " " + std::string(info->name) + " (" + std::string(info->cause) +
-                          "), " + std::string(drivecom::to_string(drive_.state())) + ", error telegram sent"};
+        return {true, std::to_string(n) + " " + std::string(info->name) + " (" + std::string(info->cause) + "), " +
+                          std::string(drivecom::to_string(drive_.state())) + ", error telegram sent"};
       }
       case K::mains_off:
         drive_.power_off();
-        return {true, what + ": the drive is off"};
+        return {true, "off"};
       case K::mains_on:
-        if (drive_.powered()) return {true, what + ": already on"};
+        if (drive_.powered()) return {true, "already on"};
         drive_.power_on(now);
-        return {true, what + ": System Logon"};
+        return {true, "on, System Logon"};
       case K::power_cycle:
         drive_.power_off();
         drive_.power_on(now);
-        return {true, what + ": restarted from its stored settings"};
-      case K::load:
+        return {true, "restarted from its stored settings, System Logon"};
+      case K::load: {
         drive_.set_load(e.load, now);
-        return {true, what + " of the rated torque"};
+        char b[96];
+        std::snprintf(b, sizeof b, "set: the motor slips %.2f Hz below the output frequency",
+                      std::fabs(e.load) / 100.0 * drive_.config().plant.rated_slip_hz);
+        return {true, b};
+      }
       case K::input: {
         const Input i = *find_input(e.input);
         drive_.set_input(i, e.level, now);
-        if (i == Input::isd00) return {true, what + " (seed 003 gives the terminal no function)"};
-        return {true, what + (e.level ? ": the power stage may be enabled"
-                                      : ": the power stage is blocked, " + std::string(drivecom::to_string(drive_.state())))};
+        if (i == Input::isd00) return {true, "kept (seed 003 gives the terminal no function)"};
+        return {true, e.level ? "the power stage may be enabled"
+                              : "the power stage is blocked, " + std::string(drivecom::to_string(drive_.state()))};
       }
     }
-    return {false, what + ": unknown event"};
+    return {false, "unknown event"};
   }
 
  private:
