@@ -355,7 +355,7 @@ TEST(Candump, DecodeSaysWhereALineIsBad) {
 // ---- the test bench (issue 24) ---------------------------------------------------------------
 
 std::string write_file(const std::string& name, const std::string& text) {
-  const std::string path = temp_path(name);
+  const std::string path = temp_path(name) + ".toml";
   std::ofstream(path) << text;
   return path;
 }
@@ -369,7 +369,7 @@ const std::string kBenchDrive = "[[device]]\nname = \"a\"\ntype = \"cda3000\"\na
 TEST(CanlustBench, ServedScenarioAnswersAClientAndShowsAnInjectedFault) {
   const std::uint16_t client = free_udp_port();
   const std::string file =
-      write_file("bench_served.toml", kBenchHead + "bus = \"udp:0:127.0.0.1:" + std::to_string(client) + "\"\n" +
+      write_file("bench_served", kBenchHead + "bus = \"udp:0:127.0.0.1:" + std::to_string(client) + "\"\n" +
                                           kBenchDrive + "[[timeline]]\nat = \"1.5 s\"\ndevice = \"a\"\nfault = "
                                           "\"device\"\ncause = \"E-OTI\"\n");
   test::ChildProcess run({IBS_CLI, "run", "--realtime", file});
@@ -398,7 +398,7 @@ TEST(CanlustBench, ServedScenarioAnswersAClientAndShowsAnInjectedFault) {
 
 // What a served bus and --control need, refused with why (exit 2).
 TEST(CanlustBench, ServedBusAndControlNeedRealtime) {
-  const std::string served = write_file("bench_norealtime.toml", kBenchHead + "bus = \"udp:0:127.0.0.1:0\"\n" + kBenchDrive);
+  const std::string served = write_file("bench_norealtime", kBenchHead + "bus = \"udp:0:127.0.0.1:0\"\n" + kBenchDrive);
   auto r = test::run_shell(std::string(IBS_CLI) + " run " + served + " 2>&1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, served + ":5: bus = \"udp:0:127.0.0.1:0\" serves the drives to your own master in real time: run it "
@@ -414,7 +414,7 @@ TEST(CanlustBench, ServedBusAndControlNeedRealtime) {
 // one reported as control:LINE and skipped; the end of input does not end the run.
 TEST(CanlustBench, ControlLinesFromStandardInput) {
   const std::string file =
-      write_file("bench_control.toml", "name = \"ctl\"\nduration = \"600 ms\"\n[bus]\nprotocol = \"canlust\"\n" +
+      write_file("bench_control", "name = \"ctl\"\nduration = \"600 ms\"\n[bus]\nprotocol = \"canlust\"\n" +
                                            kBenchDrive + "[[timeline]]\nat = \"10 ms\"\nsystem = \"start\"\n");
   const auto r = test::run_shell("{ sleep 0.2; printf '%s\\n' '{\"device\": \"a\", \"fault\": \"device\", \"cause\": "
                                  "\"E-PAR\"}' '{\"device\": \"a\", \"at\": \"1 s\", \"load\": 5}' 'nonsense'; } | " +
