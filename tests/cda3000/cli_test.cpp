@@ -408,6 +408,14 @@ TEST(CanlustBench, ServedBusAndControlNeedRealtime) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "--control - needs --realtime: control entries apply at once, and only a run in real time has a now\n");
   std::remove(served.c_str());
+  // A bus that does not open: exit 2 with the transport's reason (this kernel has no CAN at all,
+  // a kernel with CAN has no interface of this name).
+  const std::string none = write_file("bench_nocan", kBenchHead + "bus = \"socketcan:ibsnocan0\"\n" + kBenchDrive);
+  r = test::run_shell(std::string(IBS_CLI) + " run --realtime " + none + " 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out.rfind(none + ": bus = \"socketcan:ibsnocan0\": ", 0), 0U) << r.out;
+  EXPECT_EQ(r.out.find("canlust socketcan:"), std::string::npos) << r.out;  // nothing served, nothing announced
+  std::remove(none.c_str());
 }
 
 // `ibs run --realtime --control -`: a good line is applied at once and listed with its time, a bad
@@ -435,20 +443,37 @@ TEST(CanlustBench, EmulateControlSocketInjectsAFault) {
   const Ports p;
   const std::string socket_path = temp_path("emulate_control") + ".sock";
   std::remove(socket_path.c_str());
-  Emulator emu({"--bus", p.emulator_bus(), "--control", "unix:" + socket_path, "cda3000@1"});
+  const std::string err_path = temp_path("emulate_control") + ".err";
+  // Through bash for its standard error, where the applied events and the bad lines go.
+  test::ChildProcess emu({"/bin/bash", "-c",
+                          "exec " + std::string(IBS_CLI) + " canlust emulate --bus " + p.emulator_bus() +
+                              " --control unix:" + socket_path + " cda3000@1 2> " + err_path});
   ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U) << emu.first_line();
   const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
   sockaddr_un a{};
   a.sun_family = AF_UNIX;
   std::snprintf(a.sun_path, sizeof a.sun_path, "%s", socket_path.c_str());
   ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0) << std::strerror(errno);
-  const std::string lines = "{\"fault\": \"device\", \"cause\": \"E-PLS\"}\n{\"device\": 1, \"load\": 50}\n";
+  const std::string lines =
+      "{\"fault\": \"device\", \"cause\": \"E-PLS\"}\n{\"device\": 1, \"load\": 50}\n{\"at\": \"1 s\", \"load\": 5}\n"
+      "{\"device\": \"cda3000@1\", \"fault\": \"device\", \"cause\": \"E-XYZ\"}\n{\"device\": 7, \"mains\": \"off\"}\n";
   ASSERT_EQ(::write(fd, lines.data(), lines.size()), static_cast<ssize_t>(lines.size()));
   std::this_thread::sleep_for(200ms);
   const auto r = run_cli({"canlust", "read", "--bus", p.client_bus(), "--address", "1", "ERR1"});
   EXPECT_EQ(r.out, "CDA 1 95-ERR1: 9 E-PLS at location 0, 0 h\n") << r.err;
   ::close(fd);
   EXPECT_EQ(emu.stop(SIGTERM), 0);
+  std::ifstream in(err_path);
+  const std::string err((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(err,
+            "control:1: cda3000@1: fault E-PLS: 9 E-PLS (plausibility error in parameter or program sequence), FAULT, "
+            "error telegram sent\n"
+            "control:2: cda3000@1: load 50.0 %: set: the motor slips 1.50 Hz below the output frequency\n"
+            "control:3: control entries apply at once: no 'at'\n"
+            "control:4: cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
+            "11 E-FLT, 12 E-PWR, 16 E-OP2\n"
+            "control:5: device 7 is not served (give its address or NAME@ADDR as on the command line)\n");
+  std::remove(err_path.c_str());
 }
 
 }  // namespace

@@ -182,6 +182,7 @@ std::string parse_control_event(std::string_view text, const std::vector<std::st
     return std::string("not JSON: ") + e.what();
   }
   if (!j.is_object()) return "expected a JSON object, e.g. {\"device\": 1, \"fault\": \"device\", \"cause\": \"E-OTI\"}";
+  if (j.contains("at")) return "control entries apply at once: no 'at'";
   static const std::set<std::string> known{"device", "fault", "cause", "mains", "load", "input", "level"};
   for (const auto& [k, v] : j.items()) {
     (void)v;
@@ -190,7 +191,6 @@ std::string parse_control_event(std::string_view text, const std::vector<std::st
              "master commands need a master)";
     }
   }
-  if (j.contains("at")) return "control entries apply at once: no 'at'";
   if (!j.contains("device")) {
     if (drives.size() != 1) return "device is needed: " + std::to_string(drives.size()) + " drives are served";
     out.drive = 0;

@@ -113,171 +113,172 @@ devices::CanlustEvent event_of(const Entry& e) {
 namespace {
 
 Entry read_entry(const Reader& r, const Node& t, const Scenario& s, bool control) {
-    if (t.kind != Node::Kind::table) r.fail(t.line, "[[timeline]] must be a table");
-    r.only(t, {"at", "device", "system", "state", "easydrive", "reference_hz", "read", "write", "value", "fault",
-               "duration", "cause", "mains", "load", "input", "level"},
-           control ? "a control entry" : "[[timeline]]");
-    Entry e;
-    e.line = t.line;
-    const Node* at = child(t, "at");
-    if (control) {
-      if (at != nullptr) r.fail(at->line, "control entries apply at once: no 'at'");
-    } else {
-      if (at == nullptr) r.fail(t.line, "[[timeline]] needs at");
-      e.at = r.time(*at, "at");
-      if (e.at >= s.duration) r.fail(at->line, "at = " + format_time(e.at) + " is not inside the duration " + format_time(s.duration));
-    }
-    int actions = 0;
-    const Node* device = child(t, "device");
-    if (device != nullptr) e.device = r.text(*device, "device");
-    if (const Node* n = child(t, "system")) {
-      ++actions;
-      const std::string v = r.text(*n, "system");
-      if (v != "start" && v != "stop") r.fail(n->line, "system = \"" + v + "\": expected \"start\" or \"stop\"");
-      e.action = v == "start" ? Action::start : Action::stop;
-    }
-    if (const Node* n = child(t, "state")) {
-      ++actions;
-      e.action = Action::state;
-      const std::string v = r.text(*n, "state");
-      bool found = false;
-      for (std::size_t i = 0; i < drivecom::kTargetKeys.size(); ++i) {
-        if (drivecom::kTargetKeys[i] == v) {
-          e.target = drivecom::kTargets[i];
-          found = true;
-        }
+  if (t.kind != Node::Kind::table) r.fail(t.line, "[[timeline]] must be a table");
+  r.only(t, {"at", "device", "system", "state", "easydrive", "reference_hz", "read", "write", "value", "fault",
+             "duration", "cause", "mains", "load", "input", "level"},
+         control ? "a control entry" : "[[timeline]]");
+  Entry e;
+  e.line = t.line;
+  const Node* at = child(t, "at");
+  if (control) {
+    if (at != nullptr) r.fail(at->line, "control entries apply at once: no 'at'");
+  } else {
+    if (at == nullptr) r.fail(t.line, "[[timeline]] needs at");
+    e.at = r.time(*at, "at");
+    if (e.at >= s.duration) r.fail(at->line, "at = " + format_time(e.at) + " is not inside the duration " + format_time(s.duration));
+  }
+  int actions = 0;
+  const Node* device = child(t, "device");
+  if (device != nullptr) e.device = r.text(*device, "device");
+  if (const Node* n = child(t, "system")) {
+    ++actions;
+    const std::string v = r.text(*n, "system");
+    if (v != "start" && v != "stop") r.fail(n->line, "system = \"" + v + "\": expected \"start\" or \"stop\"");
+    e.action = v == "start" ? Action::start : Action::stop;
+  }
+  if (const Node* n = child(t, "state")) {
+    ++actions;
+    e.action = Action::state;
+    const std::string v = r.text(*n, "state");
+    bool found = false;
+    for (std::size_t i = 0; i < drivecom::kTargetKeys.size(); ++i) {
+      if (drivecom::kTargetKeys[i] == v) {
+        e.target = drivecom::kTargets[i];
+        found = true;
       }
-      if (!found) r.fail(n->line, "state = \"" + v + "\": expected start_up_inhibit, ready, on or enabled");
     }
-    if (const Node* n = child(t, "easydrive")) {
-      ++actions;
-      e.action = Action::easydrive;
-      e.bits = static_cast<std::uint16_t>(r.integer(*n, "easydrive", 0, 65535));
+    if (!found) r.fail(n->line, "state = \"" + v + "\": expected start_up_inhibit, ready, on or enabled");
+  }
+  if (const Node* n = child(t, "easydrive")) {
+    ++actions;
+    e.action = Action::easydrive;
+    e.bits = static_cast<std::uint16_t>(r.integer(*n, "easydrive", 0, 65535));
+  }
+  if (const Node* n = child(t, "reference_hz")) {
+    ++actions;
+    e.action = Action::reference;
+    e.hz = r.number(*n, "reference_hz");
+  }
+  // Parameters are the table of the drive the entry names (its [[device]]'s type); an entry
+  // that names no known device is refused below, before its parameter matters.
+  const devices::CanlustFace* face = nullptr;
+  for (const auto& d : s.drives) {
+    if (device != nullptr && d.name == e.device) face = &canlust_face(d.kind);
+  }
+  const auto parameter = [&](const Node& n, const std::string& key) {
+    std::optional<devices::CanlustParameter> p;
+    if (face == nullptr) return p;
+    if (n.kind == Node::Kind::string) {
+      p = face->find_parameter(n.text);
+    } else if (n.kind == Node::Kind::integer && n.integer >= 0 && n.integer <= 65535) {
+      p = face->parameter(static_cast<std::uint16_t>(n.integer));
     }
-    if (const Node* n = child(t, "reference_hz")) {
-      ++actions;
-      e.action = Action::reference;
-      e.hz = r.number(*n, "reference_hz");
+    if (!p) r.fail(n.line, key + ": the " + std::string(face->title) + " has no such parameter");
+    return p;
+  };
+  if (const Node* n = child(t, "read")) {
+    ++actions;
+    e.action = Action::read;
+    if (const auto p = parameter(*n, "read")) e.parameter = p->number;
+  }
+  if (const Node* n = child(t, "write")) {
+    ++actions;
+    e.action = Action::write;
+    const auto p = parameter(*n, "write");
+    if (p) e.parameter = p->number;
+    const Node* v = child(t, "value");
+    if (v == nullptr) r.fail(t.line, "write needs a value");
+    e.value = v->kind == Node::Kind::string ? v->text
+              : v->kind == Node::Kind::integer ? std::to_string(v->integer)
+              : v->kind == Node::Kind::floating ? detail::format_number(v->floating)
+                                                : (r.fail(v->line, "value: expected a number or a string"), "");
+    if (p && !p->writable) r.fail(n->line, "write: " + p->name + " is read-only");
+    if (p && !p->is_string) {
+      const auto parsed = face->parse_value(p->number, e.value);
+      if (!parsed.wire) r.fail(v->line, parsed.error);
     }
-    // Parameters are the table of the drive the entry names (its [[device]]'s type); an entry
-    // that names no known device is refused below, before its parameter matters.
-    const devices::CanlustFace* face = nullptr;
+  } else if (child(t, "value") != nullptr) {
+    r.fail(t.line, "value belongs to a write");
+  }
+  if (const Node* n = child(t, "fault")) {
+    ++actions;
+    const std::string v = r.text(*n, "fault");
+    if (v == "mains_reset") e.action = Action::mains_reset;
+    else if (v == "mains_off") e.action = Action::mains_off;
+    else if (v == "mains_on") e.action = Action::mains_on;
+    else if (v == "master_silent") e.action = Action::master_silent;
+    else if (v == "device") e.action = Action::device_fault;
+    else r.fail(n->line, "fault = \"" + v + "\": expected device, mains_reset, mains_off, mains_on or master_silent");
+  }
+  if (const Node* n = child(t, "mains")) {
+    ++actions;
+    const std::string v = r.text(*n, "mains");
+    if (v != "off" && v != "on") r.fail(n->line, "mains = \"" + v + "\": expected \"off\" or \"on\"");
+    e.action = v == "off" ? Action::mains_off : Action::mains_on;
+  }
+  if (const Node* n = child(t, "load")) {
+    ++actions;
+    e.action = Action::load;
+    e.load = r.number(*n, "load");
+  }
+  if (const Node* n = child(t, "input")) {
+    ++actions;
+    e.action = Action::input;
+    e.input = r.text(*n, "input");
+    const Node* level = child(t, "level");
+    if (level == nullptr) r.fail(t.line, "input needs a level (\"high\" or \"low\")");
+    const std::string v = r.text(*level, "level");
+    if (v != "high" && v != "low") r.fail(level->line, "level = \"" + v + "\": expected \"high\" or \"low\"");
+    e.level = v == "high";
+  } else if (const Node* level = child(t, "level")) {
+    r.fail(level->line, "level belongs to an input");
+  }
+  if (const Node* n = child(t, "cause")) {
+    if (e.action != Action::device_fault) r.fail(n->line, "cause belongs to fault = \"device\"");
+    e.cause = n->kind == Node::Kind::integer ? std::to_string(n->integer) : r.text(*n, "cause");
+  } else if (e.action == Action::device_fault && actions == 1) {
+    r.fail(t.line, "fault = \"device\" needs a cause (an error of the drive's table, by name or number)");
+  }
+  if (actions != 1) {
+    r.fail(t.line, std::string(control ? "a control entry" : "[[timeline]]") +
+                       " needs exactly one of system, state, easydrive, reference_hz, read, write, fault, mains, load, "
+                       "input");
+  }
+  // The drive checks its own events: its error numbers, its terminals, its load range.
+  if (face != nullptr && (e.action == Action::device_fault || e.action == Action::load || e.action == Action::input)) {
+    const std::string why = face->check_event(event_of(e));
+    if (!why.empty()) r.fail(t.line, why);
+  }
+  if (!s.bus.empty() && is_master_command(e.action)) {
+    r.fail(t.line, std::string(to_string(e.action)) + ": with bus = \"" + s.bus +
+                       "\", your own master drives the bus; the timeline holds drive events only (fault, mains, load, "
+                       "input)");
+  }
+  const bool global = e.action == Action::start || e.action == Action::stop || e.action == Action::master_silent;
+  if (global && device != nullptr) r.fail(device->line, std::string(to_string(e.action)) + " concerns the whole bus: no device");
+  if (!global) {
+    if (device == nullptr) r.fail(t.line, std::string(to_string(e.action)) + " needs a device");
+    bool known = false;
+    for (const auto& d : s.drives) known = known || d.name == e.device;
+    if (!known) r.fail(device->line, "device '" + e.device + "' is not among the [[device]] tables");
     for (const auto& d : s.drives) {
-      if (device != nullptr && d.name == e.device) face = &canlust_face(d.kind);
-    }
-    const auto parameter = [&](const Node& n, const std::string& key) {
-      std::optional<devices::CanlustParameter> p;
-      if (face == nullptr) return p;
-      if (n.kind == Node::Kind::string) {
-        p = face->find_parameter(n.text);
-      } else if (n.kind == Node::Kind::integer && n.integer >= 0 && n.integer <= 65535) {
-        p = face->parameter(static_cast<std::uint16_t>(n.integer));
+      if (d.name != e.device) continue;
+      if (e.action == Action::state && d.cacnf == 4) {
+        r.fail(t.line, "device '" + e.device + "' runs EasyDrive (cacnf = 4): give easydrive bits, not a DRIVECOM state");
       }
-      if (!p) r.fail(n.line, key + ": the " + std::string(face->title) + " has no such parameter");
-      return p;
-    };
-    if (const Node* n = child(t, "read")) {
-      ++actions;
-      e.action = Action::read;
-      if (const auto p = parameter(*n, "read")) e.parameter = p->number;
-    }
-    if (const Node* n = child(t, "write")) {
-      ++actions;
-      e.action = Action::write;
-      const auto p = parameter(*n, "write");
-      if (p) e.parameter = p->number;
-      const Node* v = child(t, "value");
-      if (v == nullptr) r.fail(t.line, "write needs a value");
-      e.value = v->kind == Node::Kind::string ? v->text
-                : v->kind == Node::Kind::integer ? std::to_string(v->integer)
-                : v->kind == Node::Kind::floating ? detail::format_number(v->floating)
-                                                  : (r.fail(v->line, "value: expected a number or a string"), "");
-      if (p && !p->writable) r.fail(n->line, "write: " + p->name + " is read-only");
-      if (p && !p->is_string) {
-        const auto parsed = face->parse_value(p->number, e.value);
-        if (!parsed.wire) r.fail(v->line, parsed.error);
-      }
-    } else if (child(t, "value") != nullptr) {
-      r.fail(t.line, "value belongs to a write");
-    }
-    if (const Node* n = child(t, "fault")) {
-      ++actions;
-      const std::string v = r.text(*n, "fault");
-      if (v == "mains_reset") e.action = Action::mains_reset;
-      else if (v == "mains_off") e.action = Action::mains_off;
-      else if (v == "mains_on") e.action = Action::mains_on;
-      else if (v == "master_silent") e.action = Action::master_silent;
-      else if (v == "device") e.action = Action::device_fault;
-      else r.fail(n->line, "fault = \"" + v + "\": expected device, mains_reset, mains_off, mains_on or master_silent");
-    }
-    if (const Node* n = child(t, "mains")) {
-      ++actions;
-      const std::string v = r.text(*n, "mains");
-      if (v != "off" && v != "on") r.fail(n->line, "mains = \"" + v + "\": expected \"off\" or \"on\"");
-      e.action = v == "off" ? Action::mains_off : Action::mains_on;
-    }
-    if (const Node* n = child(t, "load")) {
-      ++actions;
-      e.action = Action::load;
-      e.load = r.number(*n, "load");
-    }
-    if (const Node* n = child(t, "input")) {
-      ++actions;
-      e.action = Action::input;
-      e.input = r.text(*n, "input");
-      const Node* level = child(t, "level");
-      if (level == nullptr) r.fail(t.line, "input needs a level (\"high\" or \"low\")");
-      const std::string v = r.text(*level, "level");
-      if (v != "high" && v != "low") r.fail(level->line, "level = \"" + v + "\": expected \"high\" or \"low\"");
-      e.level = v == "high";
-    } else if (const Node* level = child(t, "level")) {
-      r.fail(level->line, "level belongs to an input");
-    }
-    if (const Node* n = child(t, "cause")) {
-      if (e.action != Action::device_fault) r.fail(n->line, "cause belongs to fault = \"device\"");
-      e.cause = n->kind == Node::Kind::integer ? std::to_string(n->integer) : r.text(*n, "cause");
-    } else if (e.action == Action::device_fault && actions == 1) {
-      r.fail(t.line, "fault = \"device\" needs a cause (an error of the drive's table, by name or number)");
-    }
-    if (actions != 1) {
-      r.fail(t.line, "[[timeline]] needs exactly one of system, state, easydrive, reference_hz, read, write, fault, "
-                     "mains, load, input");
-    }
-    // The drive checks its own events: its error numbers, its terminals, its load range.
-    if (face != nullptr && (e.action == Action::device_fault || e.action == Action::load || e.action == Action::input)) {
-      const std::string why = face->check_event(event_of(e));
-      if (!why.empty()) r.fail(t.line, why);
-    }
-    if (!s.bus.empty() && is_master_command(e.action)) {
-      r.fail(t.line, std::string(to_string(e.action)) + ": with bus = \"" + s.bus +
-                         "\", your own master drives the bus; the timeline holds drive events only (fault, mains, load, "
-                         "input)");
-    }
-    const bool global = e.action == Action::start || e.action == Action::stop || e.action == Action::master_silent;
-    if (global && device != nullptr) r.fail(device->line, std::string(to_string(e.action)) + " concerns the whole bus: no device");
-    if (!global) {
-      if (device == nullptr) r.fail(t.line, std::string(to_string(e.action)) + " needs a device");
-      bool known = false;
-      for (const auto& d : s.drives) known = known || d.name == e.device;
-      if (!known) r.fail(device->line, "device '" + e.device + "' is not among the [[device]] tables");
-      for (const auto& d : s.drives) {
-        if (d.name != e.device) continue;
-        if (e.action == Action::state && d.cacnf == 4) {
-          r.fail(t.line, "device '" + e.device + "' runs EasyDrive (cacnf = 4): give easydrive bits, not a DRIVECOM state");
-        }
-        if (e.action == Action::easydrive && d.cacnf != 4) {
-          r.fail(t.line, "device '" + e.device + "' runs DRIVECOM (cacnf " + std::to_string(d.cacnf) +
-                             "): easydrive needs cacnf = 4");
-        }
+      if (e.action == Action::easydrive && d.cacnf != 4) {
+        r.fail(t.line, "device '" + e.device + "' runs DRIVECOM (cacnf " + std::to_string(d.cacnf) +
+                           "): easydrive needs cacnf = 4");
       }
     }
-    if (const Node* n = child(t, "duration")) {
-      if (e.action != Action::master_silent) r.fail(n->line, "duration belongs to fault = \"master_silent\"");
-      e.duration = r.time(*n, "duration");
-    } else if (e.action == Action::master_silent) {
-      r.fail(t.line, "master_silent needs a duration");
-    }
-    return e;
+  }
+  if (const Node* n = child(t, "duration")) {
+    if (e.action != Action::master_silent) r.fail(n->line, "duration belongs to fault = \"master_silent\"");
+    e.duration = r.time(*n, "duration");
+  } else if (e.action == Action::master_silent) {
+    r.fail(t.line, "master_silent needs a duration");
+  }
+  return e;
 }
 
 }  // namespace
