@@ -9,6 +9,7 @@
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,7 +21,10 @@
 #include <map>
 #include <regex>
 #include <sstream>
+#include <cerrno>
+#include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "canlust_cmd.hpp"
@@ -29,6 +33,7 @@
 #include "ibs/devices/cda3000/driver.hpp"
 
 #include "../support/cli_harness.hpp"
+#include "../support/run_shell.hpp"
 
 namespace ibs::cli {
 namespace {
@@ -345,6 +350,130 @@ TEST(Candump, DecodeSaysWhereALineIsBad) {
   EXPECT_EQ(decode_candump_log(path, 2, 2, out, err), 2);
   EXPECT_EQ(err.str(), path + ":2: not a candump log line: '(2.000000) can0 zz#00'\n");
   std::remove(path.c_str());
+}
+
+// ---- the test bench (issue 24) ---------------------------------------------------------------
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = temp_path(name) + ".toml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+const std::string kBenchHead = "name = \"bench\"\nduration = \"3 s\"\n[bus]\nprotocol = \"canlust\"\n";
+const std::string kBenchDrive = "[[device]]\nname = \"a\"\ntype = \"cda3000\"\naddress = 1\n";
+
+// `ibs run --realtime` with bus = "udp:...": the first line names the port bound; `ibs canlust
+// read` (the client commands in this process) reads a drive's value from it; a device fault of
+// the timeline shows in 95-ERR1 and in the status telegram; the summary counts the frames.
+TEST(CanlustBench, ServedScenarioAnswersAClientAndShowsAnInjectedFault) {
+  const std::uint16_t client = free_udp_port();
+  const std::string file =
+      write_file("bench_served", kBenchHead + "bus = \"udp:0:127.0.0.1:" + std::to_string(client) + "\"\n" +
+                                          kBenchDrive + "[[timeline]]\nat = \"1.5 s\"\ndevice = \"a\"\nfault = "
+                                          "\"device\"\ncause = \"E-OTI\"\n");
+  test::ChildProcess run({IBS_CLI, "run", "--realtime", file});
+  ASSERT_EQ(run.first_line().rfind("canlust udp: ", 0), 0U) << run.first_line();
+  const std::string port = run.first_line().substr(std::string("canlust udp: ").size());
+  const std::string bus = "udp:" + std::to_string(client) + ":127.0.0.1:" + port;
+  auto r = run_cli({"canlust", "read", "--bus", bus, "--address", "1", "360"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "CDA 1 360-DISP: 406\n");
+  r = run_cli({"canlust", "read", "--bus", bus, "--address", "1", "ERR1"});
+  EXPECT_EQ(r.out, "CDA 1 95-ERR1: 0 (no error)\n") << r.err;
+  std::this_thread::sleep_for(1600ms);  // past the fault at 1.5 s
+  r = run_cli({"canlust", "read", "--bus", bus, "--address", "1", "ERR1"});
+  EXPECT_EQ(r.out, "CDA 1 95-ERR1: 8 E-OTI at location 0, 0 h\n") << r.err;
+  r = run_cli({"canlust", "start", "--bus", bus, "--listen-ms", "200"});
+  EXPECT_NE(r.out.find("CDA 1: status "), std::string::npos) << r.out << r.err;
+  EXPECT_NE(r.out.find("FAULT"), std::string::npos) << r.out;
+  std::string summary;
+  EXPECT_EQ(run.wait(summary), 0);
+  EXPECT_NE(summary.find("real time: served on udp: " + port + " for your master, "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("a (address 1): System Start, FAULT"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("  frames: received "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("1.500 s  a: device fault E-OTI: 8 E-OTI (drive unit overheating), FAULT"), std::string::npos) << summary;
+  std::remove(file.c_str());
+}
+
+// What a served bus and --control need, refused with why (exit 2).
+TEST(CanlustBench, ServedBusAndControlNeedRealtime) {
+  const std::string served = write_file("bench_norealtime", kBenchHead + "bus = \"udp:0:127.0.0.1:0\"\n" + kBenchDrive);
+  auto r = test::run_shell(std::string(IBS_CLI) + " run " + served + " 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, served + ":5: bus = \"udp:0:127.0.0.1:0\" serves the drives to your own master in real time: run it "
+                            "with --realtime\n");
+  r = test::run_shell(std::string(IBS_CLI) + " run " + std::string(IBS_SOURCE_DIR) +
+                      "/examples/canlust/conveyors.toml --control - < /dev/null 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "--control - needs --realtime: control entries apply at once, and only a run in real time has a now\n");
+  std::remove(served.c_str());
+  // A bus that does not open: exit 2 with the transport's reason (this kernel has no CAN at all,
+  // a kernel with CAN has no interface of this name).
+  const std::string none = write_file("bench_nocan", kBenchHead + "bus = \"socketcan:ibsnocan0\"\n" + kBenchDrive);
+  r = test::run_shell(std::string(IBS_CLI) + " run --realtime " + none + " 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out.rfind(none + ": bus = \"socketcan:ibsnocan0\": ", 0), 0U) << r.out;
+  EXPECT_EQ(r.out.find("canlust socketcan:"), std::string::npos) << r.out;  // nothing served, nothing announced
+  std::remove(none.c_str());
+}
+
+// `ibs run --realtime --control -`: a good line is applied at once and listed with its time, a bad
+// one reported as control:LINE and skipped; the end of input does not end the run.
+TEST(CanlustBench, ControlLinesFromStandardInput) {
+  const std::string file =
+      write_file("bench_control", "name = \"ctl\"\nduration = \"600 ms\"\n[bus]\nprotocol = \"canlust\"\n" +
+                                           kBenchDrive + "[[timeline]]\nat = \"10 ms\"\nsystem = \"start\"\n");
+  const auto r = test::run_shell("{ sleep 0.2; printf '%s\\n' '{\"device\": \"a\", \"fault\": \"device\", \"cause\": "
+                                 "\"E-PAR\"}' '{\"device\": \"a\", \"at\": \"1 s\", \"load\": 5}' 'nonsense'; } | " +
+                                 std::string(IBS_CLI) + " run --realtime --control - " + file + " 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("control:2: control entries apply at once: no 'at'\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("control:3: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  a: device fault E-PAR: 10 E-PAR (faulty parameter setting), FAULT"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("a (address 1): System Start, FAULT"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("real time: 601 steps of 1 ms, "), std::string::npos) << r.out;
+  std::remove(file.c_str());
+}
+
+// `ibs canlust emulate --control unix:PATH`: a fault sent on the socket is seen by `ibs canlust read`.
+TEST(CanlustBench, EmulateControlSocketInjectsAFault) {
+  const Ports p;
+  const std::string socket_path = temp_path("emulate_control") + ".sock";
+  std::remove(socket_path.c_str());
+  const std::string err_path = temp_path("emulate_control") + ".err";
+  // Through bash for its standard error, where the applied events and the bad lines go.
+  test::ChildProcess emu({"/bin/bash", "-c",
+                          "exec " + std::string(IBS_CLI) + " canlust emulate --bus " + p.emulator_bus() +
+                              " --control unix:" + socket_path + " cda3000@1 2> " + err_path});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U) << emu.first_line();
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un a{};
+  a.sun_family = AF_UNIX;
+  std::snprintf(a.sun_path, sizeof a.sun_path, "%s", socket_path.c_str());
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0) << std::strerror(errno);
+  const std::string lines =
+      "{\"fault\": \"device\", \"cause\": \"E-PLS\"}\n{\"device\": 1, \"load\": 50}\n{\"at\": \"1 s\", \"load\": 5}\n"
+      "{\"device\": \"cda3000@1\", \"fault\": \"device\", \"cause\": \"E-XYZ\"}\n{\"device\": 7, \"mains\": \"off\"}\n";
+  ASSERT_EQ(::write(fd, lines.data(), lines.size()), static_cast<ssize_t>(lines.size()));
+  std::this_thread::sleep_for(200ms);
+  const auto r = run_cli({"canlust", "read", "--bus", p.client_bus(), "--address", "1", "ERR1"});
+  EXPECT_EQ(r.out, "CDA 1 95-ERR1: 9 E-PLS at location 0, 0 h\n") << r.err;
+  ::close(fd);
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+  std::ifstream in(err_path);
+  const std::string err((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(err,
+            "control:1: cda3000@1: fault E-PLS: 9 E-PLS (plausibility error in parameter or program sequence), FAULT, "
+            "error telegram sent\n"
+            "control:2: cda3000@1: load 50.0 %: set: the motor slips 1.50 Hz below the output frequency\n"
+            "control:3: control entries apply at once: no 'at'\n"
+            "control:4: cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
+            "11 E-FLT, 12 E-PWR, 16 E-OP2\n"
+            "control:5: device 7 is not served (give its address or NAME@ADDR as on the command line)\n");
+  std::remove(err_path.c_str());
 }
 
 }  // namespace

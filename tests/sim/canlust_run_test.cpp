@@ -230,5 +230,185 @@ TEST(CanlustRun, ErrorsNameFileAndLine) {
                "exactly one of");
 }
 
+// Issue 24: the drive events of the timeline, each in the scenario's own style, checked at load.
+TEST(CanlustEvents, KeysAndTheirErrors) {
+  const std::string head = "name = \"x\"\nduration = \"1 s\"\n[bus]\nprotocol = \"canlust\"\n";
+  const std::string dev = "[[device]]\nname = \"a\"\ntype = \"cda3000\"\naddress = 1\n";  // lines 5-8
+  const std::string tl = "[[timeline]]\nat = \"0.5 s\"\ndevice = \"a\"\n";               // lines 9-11
+  const Scenario s = parse_scenario(head + dev + tl + "fault = \"device\"\ncause = \"E-OTI\"\n" + tl +
+                                        "mains = \"off\"\n" + tl + "mains = \"on\"\n" + tl + "load = 80\n" + tl +
+                                        "input = \"ENPO\"\nlevel = \"low\"\n" + tl + "fault = \"device\"\ncause = 12\n",
+                                    "ok.toml", false);
+  ASSERT_EQ(s.timeline.size(), 6U);
+  EXPECT_EQ(s.timeline[0].action, Action::device_fault);
+  EXPECT_EQ(s.timeline[0].cause, "E-OTI");
+  EXPECT_EQ(s.timeline[1].action, Action::mains_off);
+  EXPECT_EQ(s.timeline[2].action, Action::mains_on);
+  EXPECT_EQ(s.timeline[3].action, Action::load);
+  EXPECT_DOUBLE_EQ(s.timeline[3].load, 80.0);
+  EXPECT_EQ(s.timeline[4].action, Action::input);
+  EXPECT_EQ(s.timeline[4].input, "ENPO");
+  EXPECT_FALSE(s.timeline[4].level);
+  EXPECT_EQ(s.timeline[5].cause, "12");
+
+  expect_error(head + dev + tl + "fault = \"device\"\n", 9, "fault = \"device\" needs a cause");
+  expect_error(head + dev + tl + "fault = \"device\"\ncause = \"E-XYZ\"\n", 9,
+               "cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI");
+  expect_error(head + dev + tl + "mains = \"down\"\n", 12, "mains = \"down\": expected \"off\" or \"on\"");
+  expect_error(head + dev + tl + "load = 400\n", 9, "the CDA3000 takes -300 .. 300 %");
+  expect_error(head + dev + tl + "input = \"X1\"\nlevel = \"high\"\n", 9, "input 'X1'");
+  expect_error(head + dev + tl + "input = \"ENPO\"\n", 9, "input needs a level");
+  expect_error(head + dev + tl + "input = \"ENPO\"\nlevel = \"1\"\n", 13, "level = \"1\"");
+  expect_error(head + dev + tl + "load = 10\ncause = \"E-OTI\"\n", 13, "cause belongs to fault = \"device\"");
+  expect_error(head + dev + tl + "load = 10\nmains = \"off\"\n", 9, "exactly one of");
+}
+
+// The events in a run: the fault shows in the master's view of the drive (FAULT in its status
+// telegram, an error telegram), the load lowers the actual value, the summary lists each entry.
+TEST(CanlustEvents, FaultAndLoadInARun) {
+  const Scenario s = parse_scenario(R"(name = "ev"
+duration = "3 s"
+[bus]
+protocol = "canlust"
+[[device]]
+name = "a"
+type = "cda3000"
+address = 1
+[[timeline]]
+at = "0.1 s"
+system = "start"
+[[timeline]]
+at = "0.1 s"
+device = "a"
+state = "enabled"
+[[timeline]]
+at = "0.1 s"
+device = "a"
+reference_hz = 20
+[[timeline]]
+at = "1.2 s"
+device = "a"
+load = 100
+[[timeline]]
+at = "2.5 s"
+device = "a"
+read = "ERR1"
+[[timeline]]
+at = "2.4 s"
+device = "a"
+fault = "device"
+cause = "E-OTI"
+)",
+                                    "ev.toml", false);
+  const Report r = run(s);
+  const DriveResult& a = drive(r, "a");
+  EXPECT_EQ(a.state, "FAULT");
+  EXPECT_EQ(a.errors, 1U);
+  EXPECT_NE(a.status.find("FAULT"), std::string::npos) << a.status;
+  ASSERT_EQ(r.entries.size(), 6U);
+  EXPECT_EQ(r.entries[3].what, "a: load 100.0 %");
+  EXPECT_EQ(r.entries[3].outcome, "set: the motor slips 3.00 Hz below the output frequency");
+  EXPECT_EQ(r.entries[4].what, "a: device fault E-OTI");
+  EXPECT_EQ(r.entries[4].type, "fault");
+  EXPECT_EQ(r.entries[4].outcome, "8 E-OTI (drive unit overheating), FAULT, error telegram sent");
+  EXPECT_EQ(r.entries[5].outcome.rfind("8 E-OTI at location 0, 0 h (", 0), 0U) << r.entries[5].outcome;
+  // 100 % load: 3 Hz of slip (D35) before the fault at 2.4 s.
+  const auto at_fault = first_state(a, "FAULT");
+  ASSERT_TRUE(at_fault);
+  EXPECT_EQ(*at_fault, Time{0} + 2400ms);
+}
+
+// With bus = ..., the user's master drives: master commands are refused at load, with why.
+TEST(CanlustServed, BusKeyAndMasterCommandsRefused) {
+  const std::string head = "name = \"x\"\nduration = \"1 s\"\n[bus]\nprotocol = \"canlust\"\n";
+  const std::string dev = "[[device]]\nname = \"a\"\ntype = \"cda3000\"\naddress = 1\n";  // lines 6-9
+  const Scenario s = parse_scenario(head + "bus = \"udp:0:127.0.0.1:0\"\n" + dev, "ok.toml", false);
+  EXPECT_EQ(s.bus, "udp:0:127.0.0.1:0");
+  EXPECT_EQ(s.bus_line, 5U);
+  EXPECT_EQ(parse_scenario(head + "bus = \"socketcan:vcan0\"\n" + dev, "ok.toml", false).bus, "socketcan:vcan0");
+  expect_error(head + "bus = \"tcp:1\"\n" + dev, 5, "expected \"udp:LOCALPORT:HOST:PORT\" or \"socketcan:IFACE\"");
+  expect_error(head + "bus = \"udp:1:2\"\n" + dev, 5, "expected \"udp:LOCALPORT:HOST:PORT\"");
+  for (const std::string entry : {"system = \"start\"\n", "device = \"a\"\nstate = \"enabled\"\n",
+                                  "device = \"a\"\nread = 575\n", "fault = \"master_silent\"\nduration = \"1 ms\"\n"}) {
+    expect_error(head + "bus = \"udp:0:127.0.0.1:0\"\n" + dev + "[[timeline]]\nat = \"0 s\"\n" + entry, 10,
+                 "with bus = \"udp:0:127.0.0.1:0\", your own master drives the bus; the timeline holds drive events "
+                 "only");
+  }
+  EXPECT_NO_THROW(parse_scenario(head + "bus = \"udp:0:127.0.0.1:0\"\n" + dev +
+                                     "[[timeline]]\nat = \"0 s\"\ndevice = \"a\"\nfault = \"device\"\ncause = 9\n",
+                                 "ok.toml", false));
+}
+
+// A control line is a timeline entry without `at`, read by the same reader; errors name the line.
+TEST(CanlustControl, LinesAreEntriesWithoutAt) {
+  const Scenario s = parse_scenario(
+      "name = \"x\"\nduration = \"1 s\"\n[bus]\nprotocol = \"canlust\"\n[[device]]\nname = \"a\"\ntype = "
+      "\"cda3000\"\naddress = 1\n",
+      "ok.toml", false);
+  const Entry e = parse_control_entry(s, R"({"device": "a", "fault": "device", "cause": "E-PAR"})", 3);
+  EXPECT_EQ(e.action, Action::device_fault);
+  EXPECT_EQ(e.cause, "E-PAR");
+  EXPECT_EQ(parse_control_entry(s, R"({"system": "start"})", 1).action, Action::start);
+  const auto expect_bad = [&](const std::string& line, const std::string& what) {
+    try {
+      parse_control_entry(s, line, 7);
+      ADD_FAILURE() << "accepted: " << line;
+    } catch (const ScenarioError& err) {
+      EXPECT_EQ(std::string(err.what()).rfind("control:7: ", 0), 0U) << err.what();
+      EXPECT_NE(std::string(err.what()).find(what), std::string::npos) << err.what();
+    }
+  };
+  expect_bad(R"({"at": "1 s", "system": "start"})", "control entries apply at once: no 'at'");
+  expect_bad(R"({"device": "b", "load": 1})", "device 'b' is not among");
+  expect_bad(R"({"device": "a", "fault": "device", "cause": "E-XYZ"})", "cause 'E-XYZ'");
+  expect_bad(R"({"device": "a", "lod": 1})", "unknown key 'lod' in a control entry (did you mean 'load'?)");
+  expect_bad(R"({"device": )", "");
+  expect_bad(R"([1, 2])", "a control line is a JSON object");
+}
+
+// run_realtime on the simulated bus: paced at 1 ms steps, control entries applied at the step
+// they arrive and listed with their time; the summary has the real-time counts.
+TEST(CanlustControl, RealtimeRunAppliesControlEntries) {
+  const Scenario s = parse_scenario(R"(name = "rt"
+duration = "300 ms"
+[bus]
+protocol = "canlust"
+[[device]]
+name = "a"
+type = "cda3000"
+address = 1
+[[timeline]]
+at = "10 ms"
+system = "start"
+)",
+                                    "rt.toml", false);
+  RealtimeOptions o;
+  bool sent = false;
+  o.each_step = [&](Time now, std::vector<Entry>& out) {
+    if (!sent && now >= Time{0} + 100ms) {
+      out.push_back(parse_control_entry(s, R"({"device": "a", "fault": "device", "cause": "E-FLT"})", 1));
+      sent = true;
+    }
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  const Report r = run_realtime(s, o);
+  EXPECT_GE(std::chrono::steady_clock::now() - t0, 300ms);  // paced in real time
+  ASSERT_TRUE(r.realtime);
+  EXPECT_EQ(r.realtime->cycles, 301U);
+  EXPECT_TRUE(r.realtime->served.empty());
+  ASSERT_EQ(r.entries.size(), 2U);
+  EXPECT_EQ(r.entries[1].at, Time{0} + 100ms);
+  EXPECT_EQ(r.entries[1].what, "a: device fault E-FLT");
+  EXPECT_TRUE(r.entries[1].ok) << r.entries[1].outcome;
+  EXPECT_EQ(drive(r, "a").state, "FAULT");
+  EXPECT_EQ(drive(r, "a").errors, 1U);
+  const std::string text = format_text(r);
+  EXPECT_NE(text.find("real time: 301 steps of 1 ms, "), std::string::npos) << text;
+  EXPECT_NE(text.find("0.100 s  a: device fault E-FLT: 11 E-FLT (floating point error), FAULT"), std::string::npos) << text;
+  const auto j = nlohmann::json::parse(format_json(r));
+  EXPECT_EQ(j["bus"]["realtime"]["cycles"], 301);
+  EXPECT_TRUE(j["bus"]["realtime"].contains("overruns"));
+}
+
 }  // namespace
 }  // namespace ibs::sim::canlust

@@ -95,6 +95,16 @@ class ChildProcess {
     pid_ = -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
+  // Reads standard output to its end into `rest` and waits for the exit: the exit code (-1: not a
+  // normal exit). For a child that ends by itself (`ibs run --realtime` at the end of its run).
+  int wait(std::string& rest) {
+    char buf[4096];
+    while (const std::size_t n = std::fread(buf, 1, sizeof buf, out_)) rest.append(buf, n);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
 
  private:
   pid_t pid_ = -1;

@@ -25,6 +25,7 @@
 #include "ibs/can/udp.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/devices/drives.hpp"
+#include "control_input.hpp"
 #include "stop_signals.hpp"
 #ifdef IBS_HAVE_PCAP
 #include "ibs/can/pcap_writer.hpp"
@@ -144,6 +145,120 @@ struct Session {
   }
 };
 
+// ---- emulate --control ----------------------------------------------------------------------
+
+struct ControlEvent {
+  std::size_t drive = 0;  // index into the served drives
+  devices::CanlustEvent event;
+};
+
+// "fault E-OTI", "load 80.0 %", "input ENPO low", "mains off", "power cycle".
+std::string event_words(const devices::CanlustEvent& e) {
+  using K = devices::CanlustEvent::Kind;
+  switch (e.kind) {
+    case K::fault: return "fault " + e.cause;
+    case K::load: {
+      char b[48];
+      std::snprintf(b, sizeof b, "load %.1f %%", e.load);
+      return b;
+    }
+    case K::input: return "input " + e.input + (e.level ? " high" : " low");
+    default: return std::string(devices::to_string(e.kind));
+  }
+}
+
+// One control line of `emulate --control`: a JSON object with the scenario's drive-event keys
+// (docs/canlust.md, "Live control"): `device` (the address as a number, or NAME@ADDR as given;
+// optional with one drive) and one of fault = "device" + cause, fault = "mains_reset" |
+// "mains_off" | "mains_on", mains = "off" | "on", load = NUMBER, input = NAME + level. Empty
+// when it is good, else what is wrong.
+std::string parse_control_event(std::string_view text, const std::vector<std::string>& specs,
+                                std::span<devices::CanlustDrive* const> drives, ControlEvent& out) {
+  using K = devices::CanlustEvent::Kind;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    return std::string("not JSON: ") + e.what();
+  }
+  if (!j.is_object()) return "expected a JSON object, e.g. {\"device\": 1, \"fault\": \"device\", \"cause\": \"E-OTI\"}";
+  if (j.contains("at")) return "control entries apply at once: no 'at'";
+  static const std::set<std::string> known{"device", "fault", "cause", "mains", "load", "input", "level"};
+  for (const auto& [k, v] : j.items()) {
+    (void)v;
+    if (known.count(k) == 0) {
+      return "unknown key '" + k + "' (expected device and one of fault (+ cause), mains, load, input (+ level); "
+             "master commands need a master)";
+    }
+  }
+  if (!j.contains("device")) {
+    if (drives.size() != 1) return "device is needed: " + std::to_string(drives.size()) + " drives are served";
+    out.drive = 0;
+  } else {
+    const nlohmann::json& d = j["device"];
+    bool found = false;
+    for (std::size_t i = 0; i < drives.size() && !found; ++i) {
+      if ((d.is_number_unsigned() && d.get<std::uint64_t>() == drives[i]->address()) ||
+          (d.is_string() && d.get<std::string>() == specs[i])) {
+        out.drive = i;
+        found = true;
+      }
+    }
+    if (!found) return "device " + d.dump() + " is not served (give its address or NAME@ADDR as on the command line)";
+  }
+  int actions = 0;
+  const auto str = [&](const char* key, std::string& v) -> std::string {
+    if (!j[key].is_string()) return std::string(key) + ": expected a string";
+    v = j[key].get<std::string>();
+    return {};
+  };
+  std::string v;
+  if (j.contains("fault")) {
+    ++actions;
+    if (auto e = str("fault", v); !e.empty()) return e;
+    if (v == "device") out.event.kind = K::fault;
+    else if (v == "mains_reset") out.event.kind = K::power_cycle;
+    else if (v == "mains_off") out.event.kind = K::mains_off;
+    else if (v == "mains_on") out.event.kind = K::mains_on;
+    else return "fault = \"" + v + "\": expected device, mains_reset, mains_off or mains_on";
+  }
+  if (j.contains("cause")) {
+    if (!j.contains("fault") || out.event.kind != K::fault) return "cause belongs to fault = \"device\"";
+    const auto& c = j["cause"];
+    if (c.is_number_unsigned()) out.event.cause = std::to_string(c.get<std::uint64_t>());
+    else if (c.is_string()) out.event.cause = c.get<std::string>();
+    else return "cause: expected the error's name or number";
+  } else if (j.contains("fault") && out.event.kind == K::fault) {
+    return "fault = \"device\" needs a cause (an error of the drive's table, by name or number)";
+  }
+  if (j.contains("mains")) {
+    ++actions;
+    if (auto e = str("mains", v); !e.empty()) return e;
+    if (v != "off" && v != "on") return "mains = \"" + v + "\": expected \"off\" or \"on\"";
+    out.event.kind = v == "off" ? K::mains_off : K::mains_on;
+  }
+  if (j.contains("load")) {
+    ++actions;
+    if (!j["load"].is_number()) return "load: expected a number (% of the rated torque)";
+    out.event.kind = K::load;
+    out.event.load = j["load"].get<double>();
+  }
+  if (j.contains("input")) {
+    ++actions;
+    if (auto e = str("input", v); !e.empty()) return e;
+    out.event.kind = K::input;
+    out.event.input = v;
+    if (!j.contains("level")) return "input needs a level (\"high\" or \"low\")";
+    if (auto e = str("level", v); !e.empty()) return e;
+    if (v != "high" && v != "low") return "level = \"" + v + "\": expected \"high\" or \"low\"";
+    out.event.level = v == "high";
+  } else if (j.contains("level")) {
+    return "level belongs to an input";
+  }
+  if (actions != 1) return "needs exactly one of fault, mains, load, input";
+  return {};
+}
+
 // ---- emulate --------------------------------------------------------------------------------
 
 int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err) {
@@ -194,8 +309,37 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   } catch (const std::invalid_argument& e) {
     return bad(e.what());
   }
+  std::unique_ptr<ControlInput> control;
+  if (!o.control.empty()) {
+    std::string error;
+    control = ControlInput::open(o.control, error);
+    if (!control) return bad("--control " + o.control + ": " + error);
+  }
   out << "bus: " << s->bus->name() << "\n" << std::flush;
-  serve_canlust(*s->bus, raw, s->recorder.get(), [&signals]() { return signals.raised(); });
+  std::function<void(Time)> each_turn;
+  if (control) {
+    each_turn = [&](Time now) {
+      control->poll(
+          [&](std::size_t number, std::string_view text) {
+            const std::string where = "control:" + std::to_string(number) + ": ";
+            ControlEvent ev;
+            const std::string why = parse_control_event(text, o.devices, raw, ev);
+            if (!why.empty()) {
+              err << where << why << "\n" << std::flush;
+              return;
+            }
+            const devices::CanlustEventResult r = raw[ev.drive]->apply(ev.event, now);
+            // A refused event is a bad line: its text says why (the drive's own check).
+            if (r.ok) err << where << o.devices[ev.drive] << ": " << event_words(ev.event) << ": ";
+            else err << where;
+            err << r.text << "\n" << std::flush;
+          },
+          [&](std::size_t number, std::string_view what) {
+            err << "control:" << number << ": " << what << "\n" << std::flush;
+          });
+    };
+  }
+  serve_canlust(*s->bus, raw, s->recorder.get(), [&signals]() { return signals.raised(); }, each_turn);
   return kExitCanOk;
 }
 
@@ -685,11 +829,12 @@ std::unique_ptr<can::CanTransport> open_bus(const std::string& spec) {
 }
 
 void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* const> drives, FrameRecorder* recorder,
-                   const std::function<bool()>& stop) {
+                   const std::function<bool()>& stop, const std::function<void(Time now)>& each_turn) {
   const Clock::time_point t0 = Clock::now();
   for (devices::CanlustDrive* d : drives) d->power_on(Time{0});
   while (!stop()) {
     Time now = since(t0);
+    if (each_turn) each_turn(now);
     for (std::size_t i = 0; i < drives.size(); ++i) {
       drives[i]->step(now);
       while (auto f = drives[i]->take_frame()) {
@@ -726,6 +871,9 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
                             "the drives' reaction when 574-CAWDG runs out: wrn, stop, quick-stop, disable-power (default)");
   state.emulate->add_flag("--factory", eo.factory,
                           "factory settings (CLSEL TERM, CLADR 0): ADDR is the connector's address 0..7");
+  state.emulate->add_option("--control", eo.control,
+                            "live control: - (standard input) or unix:PATH; JSON lines, each a drive event "
+                            "(fault with cause, mains, load, input; docs/canlust.md)");
   add_bus_options(state.emulate, eo.bus);
 
   CanlustClientOptions& co = state.client_options;

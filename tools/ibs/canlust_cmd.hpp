@@ -56,6 +56,7 @@ struct CanlustEmulateOptions {
   std::vector<std::string> devices;  // cda3000@ADDR
   std::string watchdog_reaction = "disable-power";
   bool factory = false;  // factory settings (CLADR 0, CLSEL TERM): ADDR is the connector's, 0..7
+  std::string control;   // live control channel: "-" or "unix:PATH" (control_input.hpp); empty: none
 };
 
 struct CanlustClientOptions {
@@ -117,7 +118,10 @@ std::optional<int> decode_candump_log(const std::string& file, unsigned id_step,
 // The emulator's loop: `drives` (the registry's CANLust faces made them) on `bus`, each frame one
 // drive sends delivered to the others as well (they share the bus); returns when stop() is true
 // (asked at least every 20 ms).
+// `each_turn(now)`, when given, runs once per turn of the loop (at least every 20 ms), on the
+// loop's own thread: the control channel of `emulate --control` is read there.
 void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* const> drives,
-                   FrameRecorder* recorder, const std::function<bool()>& stop);
+                   FrameRecorder* recorder, const std::function<bool()>& stop,
+                   const std::function<void(Time now)>& each_turn = {});
 
 }  // namespace ibs::cli

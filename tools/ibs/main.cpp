@@ -65,6 +65,8 @@ int run_ibs(int argc, char** argv) {
                   "with --realtime: SCHED_FIFO at this priority (1..99) and memory locked (mlockall); "
                   "refusals are noted and the run goes on")
       ->check(CLI::Range(1, 99));
+  run->add_option("--control", run_options.control,
+                  "live control: - (standard input) or unix:PATH; JSON lines, each a timeline entry without 'at' (needs --realtime)");
 
   std::string emulate;
   std::vector<std::string> replay_files;

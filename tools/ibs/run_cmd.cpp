@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "control_input.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "stop_signals.hpp"
@@ -44,13 +45,35 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
   return std::nullopt;
 }
 
-// A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation.
+// A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation, in
+// simulated time, or with --realtime paced at absolute deadlines, its drives served on the
+// scenario's `bus` for the user's master when it names one, with entries from --control between.
 int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
                                     {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1},
-                                    {"--realtime", o.realtime}}) {
+                                    {"--rt-priority", o.rt_priority != 0}}) {
     if (given) {
-      std::cerr << o.scenario << ": " << flag << " is for INTERBUS scenarios; a CANLust run has --json and --pcap\n";
+      std::cerr << o.scenario << ": " << flag
+                << " is for INTERBUS scenarios; a CANLust run has --json, --pcap, --realtime and --control\n";
+      return kExitBadInput;
+    }
+  }
+  if (!scenario.bus.empty() && !o.realtime) {
+    std::cerr << o.scenario << ":" << scenario.bus_line << ": bus = \"" << scenario.bus
+              << "\" serves the drives to your own master in real time: run it with --realtime\n";
+    return kExitBadInput;
+  }
+  if (!o.control.empty() && !o.realtime) {
+    std::cerr << "--control " << o.control
+              << " needs --realtime: control entries apply at once, and only a run in real time has a now\n";
+    return kExitBadInput;
+  }
+  std::unique_ptr<ControlInput> control;
+  if (!o.control.empty()) {
+    std::string error;
+    control = ControlInput::open(o.control, error);
+    if (!control) {
+      std::cerr << "--control " << o.control << ": " << error << "\n";
       return kExitBadInput;
     }
   }
@@ -69,12 +92,35 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   }
   sim::canlust::Report report;
   try {
-    report = sim::canlust::run(scenario, pcap_path);
+    if (o.realtime) {
+      StopSignals signals;
+      sim::canlust::RealtimeOptions rt;
+      rt.ready = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
+      rt.stop = [&signals]() { return signals.raised(); };
+      if (control) {
+        rt.each_step = [&](Time, std::vector<sim::canlust::Entry>& out) {
+          control->poll(
+              [&](std::size_t number, std::string_view text) {
+                try {
+                  out.push_back(sim::canlust::parse_control_entry(scenario, std::string(text), number));
+                } catch (const sim::ScenarioError& e) {
+                  std::cerr << e.what() << "\n";  // "control:LINE: what is wrong"; the run goes on
+                }
+              },
+              [](std::size_t number, std::string_view what) {
+                std::cerr << "control:" << number << ": " << what << "\n";
+              });
+        };
+      }
+      report = sim::canlust::run_realtime(scenario, rt, pcap_path);
+    } else {
+      report = sim::canlust::run(scenario, pcap_path);
+    }
   } catch (const std::exception& e) {
     std::string what = e.what();
     // Name the capture as the user gave it, not its temporary.
     if (!pcap_path.empty() && what.rfind(pcap_path, 0) == 0) what = o.pcap_file + what.substr(pcap_path.size());
-    std::cerr << what << "\n";
+    std::cerr << (o.scenario.empty() ? std::string() : o.scenario + ": ") << what << "\n";
     return kExitBadInput;
   }
   if (!outputs.commit(error)) {

@@ -3,7 +3,11 @@
 // face looks parameters up. The frame path forwards to the wing's own allocation-free calls.
 #include "ibs/devices/cda3000/bus_face.hpp"
 
+#include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <memory>
+#include <string>
 
 #include "ibs/devices/cda3000/description.hpp"
 #include "ibs/devices/cda3000/descriptor.hpp"
@@ -14,6 +18,38 @@
 namespace ibs::devices::cda3000 {
 
 namespace {
+
+// A fault's cause as table 5.9 writes it (6.2): "E-OTI", "OTI" or the number "8".
+std::optional<std::uint8_t> find_cause(std::string_view text) {
+  std::string up(text);
+  for (char& c : up) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (const auto& e : canlust::kErrorTable) {
+    if (up == e.name || "E-" + up == e.name || up == std::to_string(e.number)) return e.number;
+  }
+  return std::nullopt;
+}
+
+std::string causes() {
+  std::string list;
+  for (const auto& e : canlust::kErrorTable) {
+    list += (list.empty() ? "" : ", ") + std::to_string(e.number) + " " + std::string(e.name);
+  }
+  return list;
+}
+
+std::string check(const CanlustEvent& e) {
+  using K = CanlustEvent::Kind;
+  if (e.kind == K::fault && !find_cause(e.cause)) {
+    return "cause '" + e.cause + "': the CDA3000's errors (seed 003, table 5.9) are " + causes();
+  }
+  if (e.kind == K::input && !find_input(e.input)) {
+    return "input '" + e.input + "': the CDA3000's terminals in seed 003 are ENPO (X2-8) and ISD00 (X2-9)";
+  }
+  if (e.kind == K::load && !(std::fabs(e.load) <= kMaxLoadPercent)) {
+    return "load " + std::to_string(e.load) + " %: the CDA3000 takes -300 .. 300 % of the rated torque";
+  }
+  return {};
+}
 
 class EmulatedDrive final : public CanlustDrive {
  public:
@@ -34,6 +70,47 @@ class EmulatedDrive final : public CanlustDrive {
   [[nodiscard]] std::uint32_t watchdog_trips() const override { return drive_.counters().watchdog_trips; }
   [[nodiscard]] std::optional<std::uint32_t> value(std::uint16_t number) const override {
     return drive_.value(number);
+  }
+
+  // The outcome in words; the caller names the event ("left: device fault E-OTI: ...").
+  CanlustEventResult apply(const CanlustEvent& e, Time now) override {
+    using K = CanlustEvent::Kind;
+    if (const std::string why = check(e); !why.empty()) return {false, why};
+    switch (e.kind) {
+      case K::fault: {
+        const std::uint8_t n = *find_cause(e.cause);
+        if (!drive_.inject_fault(n, now)) return {false, "the drive is off (mains)"};
+        const auto info = canlust::find_error(n);
+        return {true, std::to_string(n) + " " + std::string(info->name) + " (" + std::string(info->cause) + "), " +
+                          std::string(drivecom::to_string(drive_.state())) + ", error telegram sent"};
+      }
+      case K::mains_off:
+        drive_.power_off();
+        return {true, "off"};
+      case K::mains_on:
+        if (drive_.powered()) return {true, "already on"};
+        drive_.power_on(now);
+        return {true, "on, System Logon"};
+      case K::power_cycle:
+        drive_.power_off();
+        drive_.power_on(now);
+        return {true, "restarted from its stored settings, System Logon"};
+      case K::load: {
+        drive_.set_load(e.load, now);
+        char b[96];
+        std::snprintf(b, sizeof b, "set: the motor slips %.2f Hz below the output frequency",
+                      std::fabs(e.load) / 100.0 * drive_.config().plant.rated_slip_hz);
+        return {true, b};
+      }
+      case K::input: {
+        const Input i = *find_input(e.input);
+        drive_.set_input(i, e.level, now);
+        if (i == Input::isd00) return {true, "kept (seed 003 gives the terminal no function)"};
+        return {true, e.level ? "the power stage may be enabled"
+                              : "the power stage is blocked, " + std::string(drivecom::to_string(drive_.state()))};
+      }
+    }
+    return {false, "unknown event"};
   }
 
  private:
@@ -167,9 +244,9 @@ CanlustFrameText frame_text(const canlust::CanFrame& f, const canlust::Identifie
 }  // namespace
 
 const CanlustFace& bus_face() {
-  static const CanlustFace face{"CDA3000", &make,   &make_master, &find_by_text, &find_by_number, &parse,
-                                &format,   "CDA",   &number,      &write_timeout, &description,   &status_word,
-                                &hz,       &frame_text};
+  static const CanlustFace face{"CDA3000", &make,   &make_master,   &find_by_text, &find_by_number, &parse,
+                                &format,   &check,  "CDA",          &number,       &write_timeout,  &description,
+                                &status_word,       &hz,            &frame_text};
   return face;
 }
 

@@ -1,6 +1,8 @@
 #include "ibs/devices/cda3000/device.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -70,6 +72,7 @@ std::optional<std::uint32_t> Cda3000::value(std::uint16_t number) const {
   const auto i = parameter_index(number);
   if (!i || kParameters[*i].is_string()) return std::nullopt;
   if (number == kReff) return static_cast<std::uint32_t>(q16_from_double(reference_hz()));
+  if (number == kErr1) return wire_from_err_struc(last_error_);
   return current_[*i];
 }
 
@@ -148,6 +151,7 @@ canlust::SystemState Cda3000::system_state() const {
 }
 
 void Cda3000::power_on(Time now) {
+  if (!first_power_on_) first_power_on_ = now;
   current_ = saved_;
   easy_word_ = 0;
   name_ = name_saved_;
@@ -195,7 +199,9 @@ void Cda3000::sample(Time now) {
                            : std::fabs(plant_.hz(now)) <= config_.plant.stop_threshold_hz;
   if (layout_.mode == canlust::WordMode::easydrive) control_ = easydrive_control(stopped);
   drivecom::DeviceInputs in;
-  in.control = control_;
+  // 2.3 Figure 2-5 / 3.1: without ENPO (X2-8) the power stage cannot be enabled; the drive
+  // takes it as DRIVECOM's "block power" (bit 1 clear): START-UP INHIBIT, the motor coasts (D36).
+  in.control = enpo_ ? control_ : static_cast<ibs::Word>(control_ & ~ibs::Word{0x0002});
   in.fault_present = fault_.has_value();
   in.fault_reaction_done = !fault_ || *fault_ == ErrorReaction::disable_power || stopped;
   in.stopped = stopped;
@@ -210,10 +216,15 @@ void Cda3000::drive_plant(Time now) {
   double target = 0.0;
   Duration tau = pc.coast_time_constant;
   switch (sm_.state()) {
-    case drivecom::State::enabled:
-      target = reference_hz();
+    case drivecom::State::enabled: {
+      // D35: a load torque makes the motor slip below the output frequency (linear, rated slip
+      // at 100 %); a load larger than the drive can turn holds the motor at 0 Hz.
+      const double r = reference_hz();
+      const double slipped = r - std::copysign(load_percent_ / 100.0 * pc.rated_slip_hz, r);
+      target = r == 0.0 || (slipped > 0.0) != (r > 0.0) ? 0.0 : slipped;
       tau = pc.time_constant;
       break;
+    }
     case drivecom::State::emergency_stop_active: tau = pc.quick_stop_time_constant; break;
     case drivecom::State::fault_response_active:
       if (fault_ == ErrorReaction::stop) tau = pc.time_constant;
@@ -255,6 +266,50 @@ ibs::Word Cda3000::status_word() const {
   x.limit_value = get(kRssl1) == kOptn2Code && std::fabs(reference_hz_) > config_.plant.fmax_hz;
   // Bit 10 needs the actual frequency at the time of asking: status(now) adds it.
   return drivecom::status_word(sm_.state(), sm_.last_control(), x);
+}
+
+// ---- plant and fault events ----------------------------------------------------------------
+
+std::optional<Input> find_input(std::string_view name) {
+  std::string up(name);
+  for (char& c : up) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (up == "ENPO") return Input::enpo;
+  if (up == "ISD00") return Input::isd00;
+  return std::nullopt;
+}
+
+std::string_view to_string(Input i) { return i == Input::enpo ? "ENPO" : "ISD00"; }
+
+bool Cda3000::inject_fault(std::uint8_t number, Time now) {
+  if (!node_ || !canlust::find_error(number)) return false;
+  advance(now);
+  ++counters_.device_faults;
+  // 6.1: "the drive unit disables the power stage if the default error response is set" -- the
+  // seed prints no other response for these errors (D34).
+  fault_ = ErrorReaction::disable_power;
+  const auto hours = std::chrono::duration_cast<std::chrono::hours>(now - first_power_on_.value_or(now)).count();
+  last_error_ = {number, 0, static_cast<std::uint16_t>(std::min<long long>(hours, 0xFFFF))};
+  sample(now);
+  // 5.5 / 6.2: the error message (441 + address) carries the number of table 5.9.
+  node_->report_error({number, 0, static_cast<std::uint8_t>(ErrorReaction::disable_power)}, now);
+  return true;
+}
+
+void Cda3000::set_load(double percent, Time now) {
+  advance(now);
+  load_percent_ = std::clamp(percent, -kMaxLoadPercent, kMaxLoadPercent);
+  if (node_) drive_plant(now);
+}
+
+void Cda3000::set_input(Input i, bool high, Time now) {
+  if (i == Input::isd00) {
+    isd00_ = high;  // seed 003 names the terminal only (2.3.2: "X2 9 ISD00 digital input")
+    return;
+  }
+  enpo_ = high;
+  if (!node_) return;
+  advance(now);
+  sample(now);
 }
 
 // ---- DriveProcess ----------------------------------------------------------------------------

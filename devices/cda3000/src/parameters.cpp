@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ibs/canlust/errors.hpp"
+
 namespace ibs::devices::cda3000 {
 
 namespace {
@@ -130,6 +132,14 @@ ValueCheck check_value(const ParameterInfo& p, std::uint32_t wire) {
 }
 
 std::string format_value(const ParameterInfo& p, std::uint32_t wire) {
+  if (p.type == DataType::err_struc) {
+    // 4.1.1: error number, location, operating hours; the number named as table 5.9 does (6.2).
+    const canlust::ErrStruc e = canlust::err_struc_from_wire(wire);
+    if (e.number == 0) return "0 (no error)";
+    const auto info = canlust::find_error(e.number);
+    return std::to_string(e.number) + (info ? " " + std::string(info->name) : std::string()) + " at location " +
+           std::to_string(e.location) + ", " + std::to_string(e.hours) + " h";
+  }
   const std::string v = number_text(p, number_of(p, wire));
   if (const Choice* c = find_choice(p, wire)) return v + " (" + std::string(c->name) + ")";
   return with_unit(p, v);

@@ -50,6 +50,36 @@ struct CanlustFaceOptions {
   std::optional<std::uint16_t> status_ms;    // the cyclic status telegram's period
 };
 
+// A plant or fault event for an emulated drive (issue 24, the test bench): from a scenario's
+// timeline or a live control channel. What each event does is the drive's (its wing cites its
+// manual); the simulator and the command line name no drive. Configuration time: it may allocate.
+struct CanlustEvent {
+  enum class Kind : std::uint8_t { fault, mains_off, mains_on, power_cycle, load, input };
+  Kind kind = Kind::fault;
+  std::string cause;   // fault: the drive's error as its manual writes it ("E-OTI") or its number ("8")
+  double load = 0.0;   // load: the load torque in % of the motor's rated torque
+  std::string input;   // input: the terminal as the manual names it ("ENPO")
+  bool level = false;  // input: true = high
+};
+inline std::string_view to_string(CanlustEvent::Kind k) {
+  switch (k) {
+    case CanlustEvent::Kind::fault: return "fault";
+    case CanlustEvent::Kind::mains_off: return "mains off";
+    case CanlustEvent::Kind::mains_on: return "mains on";
+    case CanlustEvent::Kind::power_cycle: return "power cycle";
+    case CanlustEvent::Kind::load: return "load";
+    case CanlustEvent::Kind::input: return "input";
+  }
+  return "?";
+}
+
+// What an event did ("E-OTI (drive unit overheating): FAULT, error telegram sent"), or why the
+// drive refused it (ok false).
+struct CanlustEventResult {
+  bool ok = true;
+  std::string text;
+};
+
 // An emulated drive on a CANLust bus. Mains off until power_on().
 class CanlustDrive {
  public:
@@ -76,6 +106,11 @@ class CanlustDrive {
   [[nodiscard]] virtual std::uint32_t watchdog_trips() const = 0;
   // A parameter's setting as the bus reads it (the wire image); nullopt for numbers it lacks.
   [[nodiscard]] virtual std::optional<std::uint32_t> value(std::uint16_t number) const = 0;
+
+  // ---- plant and fault events (issue 24) ------------------------------------------------------
+  // Applies `e` at `now`: a device fault with its cause, mains off / on, a power cycle, the load
+  // torque, a digital input. Not the frame path (it may allocate for its text).
+  virtual CanlustEventResult apply(const CanlustEvent& e, Time now) = 0;
 };
 
 // A parameter of the drive's table as a scenario names it.
@@ -180,6 +215,9 @@ struct CanlustFace {
   // A value parameter's value from the user's text, and its wire image for reports ("20.50 Hz").
   CanlustValue (*parse_value)(std::uint16_t number, std::string_view text) = nullptr;
   std::string (*format_value)(std::uint16_t number, std::uint32_t wire) = nullptr;
+  // Checks an event before a run applies it (a scenario's load, a control line): empty when the
+  // drive takes it, else why not ("cause 'E-XYZ': the CDA3000's errors are 8 E-OTI, ...").
+  std::string (*check_event)(const CanlustEvent& e) = nullptr;
 
   // ---- for the client commands (`ibs canlust read|write|describe|start|stop|monitor`, `ibs
   // decode`), which talk to a real or emulated drive over the bus --------------------------------

@@ -59,7 +59,17 @@ struct DeviceCounters {
   std::uint32_t controls_ignored = 0;   // 260-CLSEL is not OPTN2: the bus is not the control location
   std::uint32_t watchdog_trips = 0;
   std::uint32_t writes = 0;             // accepted value and string writes
+  std::uint32_t device_faults = 0;      // faults injected with inject_fault
 };
+
+// The terminals of X2 that seed 003 names (2.3, 3.1, 7.1.2 step 6): ENPO (X2-8) the hardware
+// enable of the power stage, ISD00 (X2-9) a digital input whose function the seed does not give.
+enum class Input : std::uint8_t { enpo, isd00 };
+std::optional<Input> find_input(std::string_view name);  // "ENPO", "ISD00" (any case)
+std::string_view to_string(Input i);
+
+// Load torque limits (D35): +-300 % of the motor's rated torque.
+inline constexpr double kMaxLoadPercent = 300.0;
 
 class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAccess {
  public:
@@ -83,6 +93,21 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   // 489-CLBDR in bit/s as the node runs (from the last power-on).
   [[nodiscard]] std::uint32_t bitrate() const { return bitrate_; }
   [[nodiscard]] canlust::SystemState system_state() const;
+
+  // ---- plant and fault events (issue 24; D34-D36) ---------------------------------------------
+  // A device fault with its cause, an error number of table 5.9 (6.2): the drive takes its
+  // default error response (6.1: the power stage is disabled, DRIVECOM FAULT), sends the error
+  // telegram (number, location 0, reaction) and keeps it in 95-ERR1. false: mains off or a number
+  // the table lacks (nothing changes).
+  bool inject_fault(std::uint8_t number, Time now);
+  // The load torque in % of the motor's rated torque (D35): the motor slips below the output
+  // frequency, 3 Hz at 100 %; kept over mains resets (it is mechanical).
+  void set_load(double percent, Time now);
+  [[nodiscard]] double load() const { return load_percent_; }
+  // A terminal's level; kept over mains resets (it is wiring).
+  void set_input(Input i, bool high, Time now);
+  [[nodiscard]] bool input(Input i) const { return i == Input::enpo ? enpo_ : isd00_; }
+  [[nodiscard]] canlust::ErrStruc last_error() const { return last_error_; }
   [[nodiscard]] drivecom::State state() const { return sm_.state(); }
   // When the DRIVECOM state last changed.
   [[nodiscard]] Time state_since() const { return state_since_; }
@@ -147,6 +172,11 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   bool warning_ = false;
   std::optional<canlust::ErrorReaction> fault_;
   DeviceCounters counters_{};
+  double load_percent_ = 0.0;
+  bool enpo_ = true;   // 7.1.2 step 6: the hardware enable is wired for bus operation
+  bool isd00_ = false;
+  canlust::ErrStruc last_error_{};
+  std::optional<Time> first_power_on_;  // the operating hours of 95-ERR1 count from here
 };
 
 }  // namespace ibs::devices::cda3000

@@ -57,6 +57,7 @@ struct ParameterInfo {
 // Numbers with behaviour beyond storing a value.
 inline constexpr std::uint16_t kProg = 4;      // 1.x exceptions: 1 = factory settings
 inline constexpr std::uint16_t kName = 90;     // invented: a user text (a writable string)
+inline constexpr std::uint16_t kErr1 = 95;     // invented: the last error as ERR_STRUC (D34)
 inline constexpr std::uint16_t kFisa0 = 180;
 inline constexpr std::uint16_t kSave = 150;    // 3.5.1 / 4.3.3
 inline constexpr std::uint16_t kAstpr = 151;   // 4.2 table: original application data set
@@ -126,7 +127,7 @@ inline constexpr std::int64_t kQ16Min = -2147483648LL;
 inline constexpr std::int64_t kQ16Max = 2147483647LL;
 
 // clang-format off
-inline constexpr std::array<ParameterInfo, 18> kParameters{{
+inline constexpr std::array<ParameterInfo, 19> kParameters{{
   {kProg, "PROG", "reset to factory settings", DataType::usign8, 0, 1, 0, "",
    Memory::ram, Access::read_write, Effect::at_once, kChoicesProg, true,
    "seed 003 p. 13: 1 makes the drive overwrite all settings with their defaults, the reply "
@@ -134,6 +135,10 @@ inline constexpr std::array<ParameterInfo, 18> kParameters{{
   {kName, "NAME", "device name (user text)", DataType::string, 0, 99, 0, "",
    Memory::flash, Access::read_write, Effect::at_once, {}, true,
    "invented: seed 003 names no string parameter that can be written (D24)"},
+  {kErr1, "ERR1", "last error (number, location, operating hours)", DataType::err_struc, 0,
+   0xFFFFFFFFLL, 0, "", Memory::ram, Access::read_only, Effect::at_once, {}, true,
+   "seed 003 4.1.1 gives the ERR_STRUC type (E-OP2 at 172 after 85 h = 10 AC 55 00) and 6.2 "
+   "the error numbers; the parameter's number and name invented (D34)"},
   {kSave, "SAVE", "back up the settings in the device", DataType::usign8, 0, 1, 0, "",
    Memory::ram, Access::read_write, Effect::at_once, kChoicesSave, true,
    "seed 003 3.5.1: '150-SAVE = 1 START', 'takes a few hundred milliseconds', 7.1.1 step 4 "

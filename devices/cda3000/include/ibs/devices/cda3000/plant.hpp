@@ -18,6 +18,7 @@ struct PlantConfig {
   Duration coast_time_constant = 2s;  // power stage off: the motor runs out
   double stop_threshold_hz = 0.1;     // at or below: stopped (transition 12, the STOP reactions)
   double reached_window_hz = 0.5;     // status bit 10: |actual - reference| within this
+  double rated_slip_hz = 3.0;         // D35: the motor's slip at its rated torque (100 % load)
 };
 
 class SpeedPlant {
