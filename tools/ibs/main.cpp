@@ -65,6 +65,9 @@ int run_ibs(int argc, char** argv) {
                   "with --realtime: SCHED_FIFO at this priority (1..99) and memory locked (mlockall); "
                   "refusals are noted and the run goes on")
       ->check(CLI::Range(1, 99));
+  run->add_option("--control", run_options.control,
+                  "with --realtime: a live control channel, '-' (standard input) or unix:PATH, of JSON "
+                  "lines, each a timeline entry without 'at' applied at once (docs/scenarios.md)");
 
   std::string emulate;
   std::vector<std::string> replay_files;

@@ -1,4 +1,5 @@
-// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--pcap FILE] [--plot FILE] [--threads N]`:
+// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--pcap FILE] [--plot FILE] [--threads N]
+// [--realtime [--rt-priority N] [--control SPEC]]`:
 // the main job.
 #include <unistd.h>
 
@@ -7,11 +8,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <optional>
+#include <string_view>
 #include <variant>
 
 #include "commands.hpp"
+#include "control_input.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "stop_signals.hpp"
@@ -39,6 +44,26 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
   if (ext == ".svg") return sim::PlotFormat::svg;
   if (ext == ".png") return sim::PlotFormat::png;
   return std::nullopt;
+}
+
+// The live control channel of `ibs run --realtime --control SPEC`: once per cycle, every line that
+// has arrived is read as a timeline entry without `at` and applied at the simulated time reached;
+// a bad one is reported on stderr as `control:LINE: what is wrong` and skipped.
+std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator& simulator,
+                                             const sim::Scenario& scenario) {
+  return [&input, &simulator, &scenario](Time) {
+    input.poll(
+        [&](std::size_t number, std::string_view text) {
+          try {
+            simulator.control(sim::parse_control_line(std::string(text), number, scenario));
+          } catch (const sim::ScenarioError& e) {
+            std::cerr << e.what() << "\n";
+          }
+        },
+        [](std::size_t number, std::string_view what) {
+          std::cerr << "control:" << number << ": " << what << "\n";
+        });
+  };
 }
 
 // A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation.
@@ -103,6 +128,22 @@ int run(const RunOptions& o) {
   } catch (const sim::ScenarioError& e) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;
+  }
+  // A live entry needs wall-clock time to land in: without --realtime the simulation runs as
+  // fast as it can and is over before anyone could type.
+  std::unique_ptr<ControlInput> control;
+  if (!o.control.empty()) {
+    if (!o.realtime) {
+      std::cerr << "--control needs --realtime: without it the simulation runs faster than real time, so a "
+                   "live entry would have no time to land in\n";
+      return kExitBadInput;
+    }
+    std::string error;
+    control = ControlInput::open(o.control, error);
+    if (!control) {
+      std::cerr << "--control " << o.control << ": " << error << "\n";
+      return kExitBadInput;
+    }
   }
   // A plot that cannot be drawn fails before the run.
   std::optional<sim::PlotFormat> format;
@@ -194,6 +235,7 @@ int run(const RunOptions& o) {
   bool interrupted = false;
   if (o.realtime) {
     sim::RealtimeOptions rt{o.rt_priority, [&signals, &interrupted] { return interrupted = signals.raised(); }, {}};
+    if (control) rt.each_cycle = control_each_cycle(*control, *simulator, scenario);
     sim::run_realtime(*simulator, rt, options);
   } else {
     for (Time t = Time{0} + kRunSlice; simulator->run_until(t, options); t += kRunSlice) {
