@@ -418,7 +418,8 @@ class Validator {
       case Action::load: {
         const devices::EventFacts& f = k->kind->facts().events;
         if (f.load_unit.empty()) {
-          fail(action_line, "'load' is not for " + who + ", " + a_kind(*k->kind) + ": " + std::string(f.no_load));
+          fail(action_line, "'load' is not for " + who + ", " + a_kind(*k->kind) + ": " +
+                                std::string(f.no_load.empty() ? "its manuals give it no load" : f.no_load));
         }
         finite(e.number, action_line);
         break;
@@ -426,7 +427,8 @@ class Validator {
       case Action::input: {
         const devices::EventFacts& f = k->kind->facts().events;
         if (f.inputs.empty()) {
-          fail(action_line, "'input' is not for " + who + ", " + a_kind(*k->kind) + ": " + std::string(f.no_inputs));
+          fail(action_line, "'input' is not for " + who + ", " + a_kind(*k->kind) + ": " +
+                                std::string(f.no_inputs.empty() ? "its manuals name no input" : f.no_inputs));
         }
         if (!devices::find_input(f, e.value)) {
           fail(action_line, "'input' = \"" + e.value + "\" is not an input of the " + kind_text(*k->kind) + " " +

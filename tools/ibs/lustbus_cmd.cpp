@@ -321,7 +321,8 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     c.text = "mains " + m;
   } else if (action == "load") {
     if (facts.load_unit.empty()) {
-      throw std::invalid_argument("'load' is not for the " + title + ": " + std::string(facts.no_load));
+      throw std::invalid_argument("'load' is not for the " + title + ": " +
+                                  std::string(facts.no_load.empty() ? "its manuals give it no load" : facts.no_load));
     }
     if (!j["load"].is_number() || !std::isfinite(j["load"].get<double>())) {
       throw std::invalid_argument("'load' must be a number (" + std::string(facts.load_unit) + ")");
@@ -331,7 +332,8 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     c.text = "load " + j["load"].dump() + " " + std::string(facts.load_unit);
   } else {
     if (facts.inputs.empty()) {
-      throw std::invalid_argument("'input' is not for the " + title + ": " + std::string(facts.no_inputs));
+      throw std::invalid_argument("'input' is not for the " + title + ": " +
+                                  std::string(facts.no_inputs.empty() ? "its manuals name no input" : facts.no_inputs));
     }
     const std::string name = string_of("input");
     const auto input = devices::find_input(facts, name);
