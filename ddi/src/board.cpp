@@ -57,6 +57,9 @@ sim::Scenario board_scenario(const std::string& path) {
       case sim::Action::fault_device:
       case sim::Action::fault_lost:
       case sim::Action::master_restart:
+      case sim::Action::mains:
+      case sim::Action::load:
+      case sim::Action::input:
         break;
       default:
         throw sim::ScenarioError(path, e.source_line,

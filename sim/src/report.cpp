@@ -125,6 +125,13 @@ std::string format_text(const Summary& s) {
                        f.kind.c_str()) +
          f.detail + "\n";
   }
+  if (!s.control.empty()) {
+    // The control channel's entries (`ibs run --control`), as applied, like timeline entries.
+    o += "\ncontrol entries\n";
+    for (const ControlRecord& c : s.control) {
+      o += printf_string("  %10s  line %-5zu ", ms(c.at).c_str(), c.line) + c.entry + "\n";
+    }
+  }
   if (s.master.cycles > 0) {
     o += printf_string("\nmaster processing per cycle (%zu driver(s)): median %.0f ns, p99 %.0f ns, p99.9 %.0f ns, "
                        "max %.0f ns (cycle %llu at %s) over %llu cycles\n",
@@ -234,6 +241,15 @@ std::string format_json(const Summary& s) {
                                   {"what", f.kind},
                                   {"outcome", f.detail},
                                   {"ok", true}});
+  }
+  for (const ControlRecord& c : s.control) {
+    timed.emplace_back(c.at, json{{"at_ms", to_ms(c.at)},
+                                  {"device", c.device},
+                                  {"type", "control"},
+                                  {"what", c.entry},
+                                  {"outcome", "applied"},
+                                  {"ok", true},
+                                  {"line", c.line}});
   }
   std::stable_sort(timed.begin(), timed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   json events = json::array();

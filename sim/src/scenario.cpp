@@ -105,8 +105,15 @@ bool operator==(const TimelineEntry& a, const TimelineEntry& b) {
     case Action::fault_corrupt:
       return a.count == b.count;
     case Action::fault_device:
+      return a.duration == b.duration && a.cause == b.cause;
     case Action::fault_lost:
       return a.duration == b.duration;
+    case Action::mains:
+      return a.value == b.value;
+    case Action::load:
+      return a.number == b.number;
+    case Action::input:
+      return a.value == b.value && a.level == b.level;
     case Action::emergency_stop:
     case Action::block_power:
     case Action::fault_power_cycle:

@@ -91,6 +91,8 @@ struct EntryLines {
   std::size_t parameter = 0;
   std::size_t value = 0;     // write's value
   std::size_t modifier = 0;  // timeout, count or duration
+  std::size_t cause = 0;     // fault = "device"'s cause
+  std::size_t level = 0;     // input's level
 };
 struct SourceMap {
   std::size_t root = 0;
@@ -119,6 +121,9 @@ struct SourceMap {
 // The schema: tree -> Scenario, refusing unknown keys, wrong types and values the data model
 // cannot hold. `name` defaults to the file name's stem.
 Scenario read_tree(const Node& root, Format format, const std::string& file, SourceMap& lines);
+
+// One control line's tree (a JSON object) as an entry without `at` (parse_control_line).
+TimelineEntry read_control_entry(const Node& n, const std::string& file, EntryLines& lines);
 
 // The meaning: ranges, device names and kinds, layouts, bus limits, the timeline.
 void validate(const Scenario& s, const SourceMap& lines, const std::string& file);

@@ -198,6 +198,33 @@ Node json_tree(const std::string& text, const std::string& file) {
 
 }  // namespace detail
 
+TimelineEntry parse_control_line(const std::string& text, std::size_t line, const Scenario& running) {
+  const std::string file = "control";
+  try {
+    const detail::Node root = detail::json_tree(text, file);
+    detail::EntryLines entry_lines;
+    TimelineEntry e = detail::read_control_entry(root, file, entry_lines);
+    // Checked as an entry of the running scenario at its start: the same validator as the files'.
+    Scenario probe;
+    probe.name = running.name;
+    probe.duration = running.duration;
+    probe.bus = running.bus;
+    probe.devices = running.devices;
+    probe.timeline = {e};
+    detail::SourceMap lines;
+    lines.entries = {entry_lines};
+    detail::validate(probe, lines, file);
+    e.source_line = line;
+    return e;
+  } catch (const ScenarioError& err) {
+    // The text is one line: its own line 1 is the channel's line `line`.
+    std::string what = err.what();
+    const std::string prefix = file + ":" + std::to_string(err.line()) + ": ";
+    if (what.starts_with(prefix)) what.erase(0, prefix.size());
+    throw ScenarioError(file, line, what);
+  }
+}
+
 Scenario parse_scenario_json(const std::string& text, const std::string& file) {
   const detail::Node root = detail::json_tree(text, file);
   detail::SourceMap lines;

@@ -40,11 +40,11 @@ const std::vector<std::string_view>& device_keys() {
 }
 const std::vector<std::string_view> kActionKeys = {
     "state", "emergency_stop", "block_power", "speed", "frequency",     "read",
-    "write", "describe",       "wait_state",  "fault", "master_restart"};
+    "write", "describe",       "wait_state",  "fault", "master_restart", "mains", "load", "input"};
 const std::vector<std::string_view> kEntryKeys = [] {
   std::vector<std::string_view> keys{"at", "device"};
   keys.insert(keys.end(), kActionKeys.begin(), kActionKeys.end());
-  keys.insert(keys.end(), {"timeout", "count", "duration"});
+  keys.insert(keys.end(), {"timeout", "count", "duration", "cause", "level"});
   return keys;
 }();
 const std::vector<std::string_view> kWriteKeys = {"parameter", "value"};
@@ -311,9 +311,12 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
   }
 }
 
-void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l) {
+// `control`: a line of the control channel, which applies at once and so has no `at`.
+void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l, bool control = false) {
   if (n.kind != Kind::table) {
-    r.fail(n.line, "each 'timeline' entry must be " + r.table_word() + ", not " + r.kind_name(n));
+    r.fail(n.line, control ? "a control line must be a JSON object (a timeline entry without 'at'), not " +
+                                 r.kind_name(n)
+                           : "each 'timeline' entry must be " + r.table_word() + ", not " + r.kind_name(n));
   }
   l.table = n.line;
   e.source_line = n.line;
@@ -324,6 +327,7 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l)
       n, kEntryKeys, "in a timeline entry",
       [&](const std::string& key, std::size_t key_line, const Node& v) {
         if (key == "at") {
+          if (control) r.fail(key_line, "control entries apply at once: no 'at'");
           e.at = r.time(v, key);
           l.at = v.line;
           has_at = true;
@@ -332,6 +336,29 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l)
         if (key == "device") {
           e.device = r.string(v, key);
           l.device = v.line;
+          return;
+        }
+        if (key == "cause") {
+          // The drive's error as its manual writes it: a name ("E-IBS") or a number; checked
+          // against the drive's list by the validator.
+          if (v.kind == Kind::integer) {
+            e.cause = std::to_string(v.integer);
+          } else if (v.kind == Kind::string) {
+            e.cause = v.text;
+            if (e.cause.empty()) r.fail(v.line, "'cause' must not be empty (leave it out for a generic fault)");
+          } else {
+            r.fail(v.line, "'cause' must be the drive's error number or name, not " + r.kind_name(v));
+          }
+          l.cause = v.line;
+          return;
+        }
+        if (key == "level") {
+          const std::string level = r.string(v, key);
+          if (level != "high" && level != "low") {
+            r.fail(v.line, "'level' must be \"high\" or \"low\", not \"" + level + "\"");
+          }
+          e.level = level == "high";
+          l.level = v.line;
           return;
         }
         if (key == "timeout" || key == "count" || key == "duration") {
@@ -390,6 +417,18 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l)
                     });
           if (!has_parameter) r.fail(v.line, "'write' needs a 'parameter' (its number)");
           if (!has_value) r.fail(v.line, "'write' needs a 'value' (the raw value)");
+        } else if (key == "mains") {
+          e.action = Action::mains;
+          e.value = r.string(v, key);
+          if (e.value != "off" && e.value != "on") {
+            r.fail(v.line, "'mains' must be \"off\" or \"on\", not \"" + e.value + "\"");
+          }
+        } else if (key == "load") {
+          e.action = Action::load;
+          e.number = r.number(v, key);
+        } else if (key == "input") {
+          e.action = Action::input;
+          e.value = r.string(v, key);
         } else if (key == "fault") {
           const std::string fault = r.string(v, key);
           if (fault == "corrupt") {
@@ -407,10 +446,18 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l)
           }
         }
       });
-  if (!has_at) r.fail(n.line, "a timeline entry needs 'at' (its time, e.g. at = \"250 ms\")");
+  if (!has_at && !control) r.fail(n.line, "a timeline entry needs 'at' (its time, e.g. at = \"250 ms\")");
   if (action_key.empty()) {
-    r.fail(n.line, "a timeline entry needs an action (one of: " + join(kActionKeys) + ")");
+    r.fail(n.line, std::string(control ? "a control line" : "a timeline entry") +
+                       " needs an action (one of: " + join(kActionKeys) + ")");
   }
+  if (l.cause != 0 && e.action != Action::fault_device) {
+    r.fail(l.cause, "'cause' goes with fault = \"device\" only");
+  }
+  if (e.action == Action::input && l.level == 0) {
+    r.fail(l.action, "'input' needs 'level' (\"high\" or \"low\")");
+  }
+  if (l.level != 0 && e.action != Action::input) r.fail(l.level, "'level' goes with 'input' only");
   // Which modifier belongs to which action.
   std::string_view wanted;  // the modifier this action takes, if any
   switch (e.action) {
@@ -540,6 +587,13 @@ void read_array(const Reader& r, const Node& n, std::string_view key, std::strin
 }
 
 }  // namespace
+
+TimelineEntry read_control_entry(const Node& n, const std::string& file, EntryLines& lines) {
+  const Reader r(Format::json, file);
+  TimelineEntry e;
+  read_entry(r, n, e, lines, true);
+  return e;
+}
 
 Scenario read_tree(const Node& root, Format format, const std::string& file, SourceMap& lines) {
   const Reader r(format, file);

@@ -48,6 +48,12 @@ std::string_view to_string(Action a) {
       return "fault_lost";
     case Action::master_restart:
       return "master_restart";
+    case Action::mains:
+      return "mains";
+    case Action::load:
+      return "load";
+    case Action::input:
+      return "input";
   }
   return "?";
 }

@@ -98,7 +98,7 @@ class Validator {
   EntryLines entry_lines(std::size_t i) const {
     if (i < m_.entries.size()) return m_.entries[i];
     const std::size_t l = s_.timeline[i].source_line;
-    return {l, l, l, l, l, l, l};
+    return {l, l, l, l, l, l, l, l, l};
   }
 
   void check_top() const {
@@ -497,7 +497,35 @@ class Validator {
         if (e.duration < Duration::zero()) {
           fail(pick(l.modifier, action_line), "'duration' must not be negative");
         }
+        if (!e.cause.empty()) {
+          // The drive's own error list (its descriptor's EventFacts).
+          const devices::CauseCheck c = devices::check_cause(k->kind->facts().events, kind_text(*k->kind), e.cause);
+          if (!c.number) fail(pick(l.cause, action_line), "'cause' of " + who + ": " + c.error);
+        }
         break;
+      case Action::mains:
+        break;
+      case Action::load: {
+        const devices::EventFacts& f = k->kind->facts().events;
+        if (f.load_unit.empty()) {
+          fail(action_line, "'load' is not for " + who + ", " + a_kind(*k->kind) + ": " +
+                                std::string(f.no_load.empty() ? "its manuals give it no load" : f.no_load));
+        }
+        finite(e.number, action_line);
+        break;
+      }
+      case Action::input: {
+        const devices::EventFacts& f = k->kind->facts().events;
+        if (f.inputs.empty()) {
+          fail(action_line, "'input' is not for " + who + ", " + a_kind(*k->kind) + ": " +
+                                std::string(f.no_inputs.empty() ? "its manuals name no input" : f.no_inputs));
+        }
+        if (!devices::find_input(f, e.value)) {
+          fail(action_line, "'input' = \"" + e.value + "\" is not an input of the " + kind_text(*k->kind) + " " +
+                                who + " (" + devices::input_names(f) + ")");
+        }
+        break;
+      }
       case Action::fault_lost:
         if (e.duration <= Duration::zero()) {
           fail(pick(l.modifier, action_line),

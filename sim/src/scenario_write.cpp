@@ -138,6 +138,17 @@ std::vector<OutField> entry_fields(const TimelineEntry& e) {
     case Action::fault_device:
       f.push_back(text("fault", fault_name(e.action)));
       if (e.duration != Duration::zero()) f.push_back(time("duration", e.duration));
+      if (!e.cause.empty()) f.push_back(text("cause", e.cause));
+      break;
+    case Action::mains:
+      f.push_back(text("mains", e.value));
+      break;
+    case Action::load:
+      f.push_back(number("load", e.number));
+      break;
+    case Action::input:
+      f.push_back(text("input", e.value));
+      f.push_back(text("level", e.level ? "high" : "low"));
       break;
     case Action::fault_lost:
       f.push_back(text("fault", fault_name(e.action)));
@@ -230,6 +241,12 @@ std::string write_scenario_toml(const Scenario& s) {
     out += "\n[[dfs1.controller]]\n" + toml_lines(detail::controller_fields(c));
   }
   return out;
+}
+
+std::string write_control_line(const TimelineEntry& e) {
+  std::vector<OutField> fields = detail::entry_fields(e);
+  fields.erase(fields.begin());  // `at`: a control entry applies when it arrives
+  return json_object(fields);
 }
 
 std::string write_scenario_json(const Scenario& s) {

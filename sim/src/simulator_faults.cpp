@@ -22,6 +22,7 @@ void Simulator::apply_timeline(Time t) {
   for (auto it = deferred_.begin(); it != deferred_.end();) {
     if (!waiting(**it)) {
       apply(**it, t);
+      record_control(**it, t);
       it = deferred_.erase(it);
     } else {
       ++it;
@@ -33,6 +34,29 @@ void Simulator::apply_timeline(Time t) {
       deferred_.push_back(&e);
     } else {
       apply(e, t);
+    }
+  }
+}
+
+void Simulator::control(const TimelineEntry& e) {
+  control_entries_.push_back(e);
+  const TimelineEntry& kept = control_entries_.back();
+  if (!kept.device.empty()) {
+    const auto i = index_of(kept.device);
+    if (i && devices_[*i]->waiting_for.has_value()) {
+      deferred_.push_back(&kept);
+      return;
+    }
+  }
+  apply(kept, now_);
+  record_control(kept, now_);
+}
+
+void Simulator::record_control(const TimelineEntry& e, Time t) {
+  for (const TimelineEntry& c : control_entries_) {
+    if (&c == &e) {
+      summary_.control.push_back({t, e.source_line, write_control_line(e), e.device});
+      return;
     }
   }
 }
@@ -97,12 +121,47 @@ void Simulator::apply(const TimelineEntry& e, Time t) {
     case Action::fault_device:
     case Action::fault_lost:
     case Action::master_restart:
-      fault(t, idx.value_or(devices_.size()), e.action, e.duration, e.count);
+    case Action::mains:
+    case Action::load:
+    case Action::input:
+      fault(t, idx.value_or(devices_.size()), e.action, e.duration, e.count, &e);
       break;
   }
 }
 
-void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int count) {
+void Simulator::plant(Time t, std::size_t i, const TimelineEntry& e, FaultRecord& f) {
+  // The drive's own events (devices/plant_event.hpp), as its descriptor's EventFacts allow them
+  // (the validator checked the entry against them).
+  Device& d = *devices_[i];
+  const devices::EventFacts& facts = (*d.kind)->facts().events;
+  devices::PlantEvent ev;
+  switch (e.action) {
+    case Action::mains:
+      ev.kind = e.value == "off" ? devices::PlantEvent::Kind::mains_off : devices::PlantEvent::Kind::mains_on;
+      f.kind = e.value == "off" ? "mains-off" : "mains-on";
+      f.detail = e.value == "off" ? "mains lost: the drive is off" : "mains back: the drive starts as at power-on";
+      break;
+    case Action::load:
+      ev.kind = devices::PlantEvent::Kind::load;
+      ev.value = e.number;
+      f.kind = "load";
+      f.detail = "load torque " + fmt_value(e.number) + " " + std::string(facts.load_unit);
+      break;
+    case Action::input:
+      ev.kind = devices::PlantEvent::Kind::input;
+      ev.input = devices::find_input(facts, e.value).value_or(0);
+      ev.level = e.level;
+      f.kind = "input";
+      f.detail = "input " + e.value + (e.level ? " high" : " low");
+      break;
+    default:
+      return;
+  }
+  if (!d.emu->apply_event(ev, t)) f.detail += " (not taken by the drive)";
+}
+
+void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int count,
+                      const TimelineEntry* entry) {
   FaultRecord f;
   f.at = t;
   if (i < devices_.size()) f.device = devices_[i]->cfg.name;
@@ -147,7 +206,22 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
       f.kind = "device-fault";
       f.detail = "fault present for " + fmt_value(to_ms(duration)) + " ms";
       d.fault_until = t + std::max(duration, d.period);
-      d.emu->set_fault(true);
+      const devices::EventFacts& facts = (*d.kind)->facts().events;
+      const std::optional<int> cause =
+          entry != nullptr && !entry->cause.empty()
+              ? devices::check_cause(facts, (*d.kind)->facts().title, entry->cause).number
+              : std::nullopt;
+      if (cause) {
+        // The drive shows its own error (seed 000 8; docs/errata.md VF-E17, MC-D6).
+        devices::PlantEvent ev;
+        ev.cause = cause;
+        d.emu->apply_event(ev, t);
+        const std::string error = "error " + devices::cause_text(facts, *cause);
+        f.detail += ", " + error;
+        summary_.devices[d.index].errors.push_back(fmt_value(to_ms(t)) + " ms: " + error + ": device fault injected");
+      } else {
+        d.emu->set_fault(true);
+      }
       note(d, "device fault injected");
       event(d, trace::Event::Kind::fault, "injected at " + fmt_value(to_ms(t)) + " ms");
       break;
@@ -169,6 +243,13 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
       } else {
         loop_->restart(t);
       }
+      break;
+    case Action::mains:
+    case Action::load:
+    case Action::input:
+      if (entry == nullptr || i >= devices_.size()) return;
+      plant(t, i, *entry, f);
+      if (kind == Action::mains) note(*devices_[i], f.detail);
       break;
     default: return;
   }

@@ -406,7 +406,7 @@ TEST(CanlustBench, ServedBusAndControlNeedRealtime) {
   r = test::run_shell(std::string(IBS_CLI) + " run " + std::string(IBS_SOURCE_DIR) +
                       "/examples/canlust/conveyors.toml --control - < /dev/null 2>&1");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.out, "--control - needs --realtime: control entries apply at once, and only a run in real time has a now\n");
+  EXPECT_EQ(r.out, "--control - needs --realtime: without it the simulation runs faster than real time, so a live entry would have no time to land in\n");
   std::remove(served.c_str());
   // A bus that does not open: exit 2 with the transport's reason (this kernel has no CAN at all,
   // a kernel with CAN has no interface of this name).

@@ -5,6 +5,8 @@
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -53,6 +55,62 @@ std::vector<std::string> cmd(std::vector<std::string> a, const std::string& port
   v.insert(v.end(), a.begin(), a.end());
   v.insert(v.end(), {"--port", port, "--timeout-ms", "2000"});
   return v;
+}
+
+// Writes `text` to the Unix socket at `path` as one client (connects, writes, closes).
+bool send_to_socket(const std::string& path, const std::string& text) {
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  if (fd < 0) return false;
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", path.c_str());
+  bool ok = false;
+  for (int i = 0; i < 100 && !ok; ++i) {
+    ok = ::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0;
+    if (!ok) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ok = ok && ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ::close(fd);
+  return ok;
+}
+
+// A parameter's raw value read with `ibs lustbus read --json` until `done(raw)` (up to 3 s).
+template <typename F>
+long read_until(const std::string& port, std::vector<std::string> what, F&& done) {
+  long raw = -1;
+  for (int i = 0; i < 30; ++i) {
+    std::vector<std::string> a = {"read"};
+    a.insert(a.end(), what.begin(), what.end());
+    a.push_back("--json");
+    const CliRun r = run_cli(cmd(a, port));
+    if (r.rc == 0) {
+      raw = nlohmann::json::parse(r.out)["raw"].get<long>();
+      if (done(raw)) return raw;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return raw;
+}
+
+// Issue 24: `emulate --control unix:PATH` takes events for the drives it serves; a device fault
+// injected over the socket is what the host then reads as the drive's error (11-STAT 80H, seed
+// 000 8.1.1), an MC6000 input shows in 408-IBSTA bit 14 (seed 001 5.3.2).
+TEST(LustbusCli, EmulateTakesEventsOnItsControlSocket) {
+  const std::string socket = ::testing::TempDir() + "lustbus_control_" + std::to_string(::getpid()) + ".sock";
+  ::unlink(socket.c_str());
+  Emulator emu({"--control", "unix:" + socket, "vf1000@1", "mc6000@3"});
+  ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U) << emu.first_line();
+  const std::string port = emu.pty();
+  const auto stat_error = [](long raw) { return (raw & 0x80) != 0; };
+  EXPECT_FALSE(stat_error(read_until(port, {"--addr", "1", "--device", "vf1000", "STAT"}, [](long) { return true; })));
+  ASSERT_TRUE(send_to_socket(socket, "{\"device\": 1, \"fault\": \"device\", \"cause\": \"E-IBS\"}\n"
+                                     "{\"device\": \"mc6000@3\", \"input\": \"IS00\", \"level\": \"high\"}\n"));
+  EXPECT_TRUE(stat_error(read_until(port, {"--addr", "1", "--device", "vf1000", "STAT"}, stat_error)))
+      << "11-STAT shows the injected error";
+  const long ibsta = read_until(port, {"--addr", "3", "--device", "mc6000", "408"}, [](long raw) { return (raw & 0x4000) != 0; });
+  EXPECT_EQ(ibsta & 0x4000, 0x4000) << "IS00 in 408-IBSTA bit 14";
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+  EXPECT_NE(::access(socket.c_str(), F_OK), 0) << "the socket is removed at exit";
 }
 
 TEST(LustbusCli, EmulatePrintsThePtyFirstAndExitsZeroOnSignals) {

@@ -405,3 +405,90 @@ TEST(Mc6000Faces, CloneOfAFaceClonesItsCore) {
 }
 
 }  // namespace
+
+// --- Plant and fault events (issue 24; devices/plant_event.hpp), once in the core ---------------
+
+ibs::devices::PlantEvent event(ibs::devices::PlantEvent::Kind k) {
+  ibs::devices::PlantEvent e;
+  e.kind = k;
+  return e;
+}
+using Kind = ibs::devices::PlantEvent::Kind;
+
+TEST(Mc6000Events, ADeviceFaultWithItsCauseShowsOnBothFaces) {
+  // Seed 000 8: the servo shows an error in its status word on every bus; 408-IBSTA mirrors it
+  // for LUSTBUS (seed 001 4.2.1). The cause is its error number, 16 = E-OP1 (seed 001 3.2.4).
+  Servo s;
+  auto e = event(Kind::fault);
+  e.cause = 16;
+  ASSERT_TRUE(s.interbus().apply_event(e, s.now()));
+  s.idle(5ms);
+  EXPECT_EQ(s.core().fault_cause(), 16);
+  EXPECT_EQ(s.core().state(), State::fault);
+  EXPECT_NE(s.interbus().status_word() & 0x0008U, 0U) << "DRIVECOM bit 3: fault";
+  EXPECT_NE(s.read(Face::lustbus, mc::kIbsta).raw & 0x0008U, 0U);
+  EXPECT_NE(s.read(Face::pcp, mc::kIbsta).raw & 0x0008U, 0U);
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::fault_clear), s.now()));
+  EXPECT_EQ(s.core().fault_cause(), std::nullopt);
+}
+
+TEST(Mc6000Events, InputsShowInStatusBits14And15WhileTheirSelectorIsRopt1) {
+  // Seed 001 5.3.2: "Bit 14 reflects the actual state of input IS00 when parameter 439-FIS00 =
+  // ROPT1", bit 15 IS01 with 440-FIS01; the seeds give the inputs no other effect.
+  Servo s;
+  auto in = event(Kind::input);
+  in.input = 0;
+  in.level = true;
+  ASSERT_TRUE(s.interbus().apply_event(in, s.now()));
+  s.idle(2ms);
+  EXPECT_EQ(s.interbus().status_word() & 0xC000U, 0x4000U);
+  EXPECT_EQ(s.read(Face::lustbus, mc::kIbsta).raw & 0xC000U, 0x4000U);
+  in.input = 1;
+  ASSERT_TRUE(s.interbus().apply_event(in, s.now()));
+  s.idle(2ms);
+  EXPECT_EQ(s.interbus().status_word() & 0xC000U, 0xC000U);
+  // Another function on 439: bit 14 no longer shows IS00.
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kFis00, mc::kFunctionOff).ok);
+  s.idle(2ms);
+  EXPECT_EQ(s.interbus().status_word() & 0xC000U, 0x8000U);
+  in.level = false;
+  ASSERT_TRUE(s.interbus().apply_event(in, s.now()));
+  s.idle(2ms);
+  EXPECT_EQ(s.interbus().status_word() & 0xC000U, 0x0000U);
+}
+
+TEST(Mc6000Events, ALoadTorqueIsHeldByTheSpeedLoop) {
+  // The load goes into the plant (plant.hpp, Nm): enabled at 0 rpm, the speed loop answers a
+  // braking load with the same torque; without one it holds no torque.
+  Servo s;
+  s.set_control_word(0x0006);
+  s.idle(5ms);
+  s.set_control_word(0x000F);
+  s.idle(200ms);
+  ASSERT_EQ(s.core().state(), State::enabled);
+  EXPECT_NEAR(s.core().torque_nm(), 0.0, 0.05);
+  auto load = event(Kind::load);
+  load.value = 2.0;
+  ASSERT_TRUE(s.interbus().apply_event(load, s.now()));
+  EXPECT_EQ(s.core().load_torque(), 2.0);
+  s.idle(500ms);
+  EXPECT_NEAR(s.core().torque_nm(), 2.0, 0.2) << "the drive's torque balances the load";
+  EXPECT_NEAR(s.core().actual_rpm(), 0.0, 5.0);
+}
+
+TEST(Mc6000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
+  // MC-D6: mains lost = the servo off (a module error, no LUSTBUS answer); back = a power-on
+  // with the 85-SERR power-on bit (seed 000 9.2).
+  Servo s;
+  s.read(Face::lustbus, mc::kSerr);  // clears the power-on bit of the start
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::mains_off), s.now()));
+  s.idle(5ms);
+  EXPECT_TRUE(s.interbus().module_error(s.now()));
+  EXPECT_FALSE(s.read(Face::lustbus, mc::kSerr).ok) << "no answer without mains";
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::mains_on), s.now()));
+  s.idle(5ms);
+  EXPECT_FALSE(s.interbus().module_error(s.now()));
+  const Answer serr = s.read(Face::lustbus, mc::kSerr);
+  ASSERT_TRUE(serr.ok);
+  EXPECT_EQ(serr.raw & mc::kSerrPowerOn, mc::kSerrPowerOn);
+}

@@ -97,6 +97,20 @@ Scenario everything() {
   auto device_fault_short = entry(4s, "axis_1", Action::fault_device);
   auto lost = entry(5s, "Conveyor-2", Action::fault_lost);
   lost.duration = 24h;
+  // Issue 24's plant events: a cause by name and by number, mains, load, an input.
+  auto device_fault_cause = entry(4s, "axis_1", Action::fault_device);
+  device_fault_cause.cause = "E-OP1";
+  auto device_fault_number = entry(4s, "Conveyor-2", Action::fault_device);
+  device_fault_number.cause = "14";
+  auto mains_off = entry(5s, "axis_1", Action::mains);
+  mains_off.value = "off";
+  auto mains_on = entry(5s, "axis_1", Action::mains);
+  mains_on.value = "on";
+  auto load = entry(5s, "axis_1", Action::load);
+  load.number = -0.125;
+  auto input = entry(5s, "axis_1", Action::input);
+  input.value = "IS01";
+  input.level = true;
   s.timeline = {state,
                 wait,
                 entry(0s, "axis_1", Action::emergency_stop),
@@ -113,7 +127,13 @@ Scenario everything() {
                 device_fault,
                 device_fault_short,
                 entry(4s, "Conveyor-2", Action::fault_power_cycle),
+                device_fault_cause,
+                device_fault_number,
                 lost,
+                mains_off,
+                mains_on,
+                load,
+                input,
                 entry(90s + 1ns, "", Action::master_restart)};
   s.random.seed = 9223372036854775807ULL;
   s.random.corrupt_per_s = 1000.0;

@@ -647,3 +647,95 @@ TEST(Simulator, RefusesADriveKindTheRegistryDoesNotKnow) {
 
 }  // namespace
 }  // namespace ibs::sim
+
+namespace ibs::sim {
+namespace {
+
+// Issue 24: a device fault with its cause reaches the drive's core, the master sees FAULT in the
+// status word, and the summary names the drive's own error.
+TEST(SimulatorPlantEvents, ADeviceFaultWithItsCauseShowsInTheStatusAndTheSummary) {
+  Scenario s;
+  s.duration = 2s;
+  s.devices = {mc6000()};
+  TimelineEntry f = at(500ms, "mc", Action::fault_device, "", 0, 0, 200ms);
+  f.cause = "E-OP1";
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), f};
+  Simulator sim(s);
+  sim.run_until(600ms);
+  EXPECT_EQ(sim.device_state(0), State::fault);
+  EXPECT_EQ(dynamic_cast<devices::Mc6000Device&>(sim.emulator(0)).drive().fault_cause(), 16);
+  sim.run();
+  const Summary& r = sim.summary();
+  EXPECT_NE(find_event(r.devices[0], "FAULT"), nullptr) << "the master saw the fault in the status word";
+  ASSERT_FALSE(r.faults.empty());
+  EXPECT_EQ(r.faults[0].kind, "device-fault");
+  EXPECT_NE(r.faults[0].detail.find("error 16 (E-OP1)"), std::string::npos) << r.faults[0].detail;
+  ASSERT_FALSE(r.devices[0].errors.empty());
+  EXPECT_NE(r.devices[0].errors[0].find("error 16 (E-OP1): device fault injected"), std::string::npos);
+}
+
+TEST(SimulatorPlantEvents, MainsLossAndLoadAndInputFromTheTimeline) {
+  Scenario s;
+  s.duration = 2s;
+  s.devices = {mc6000()};
+  TimelineEntry input = at(100ms, "mc", Action::input, "IS00");
+  input.level = true;
+  s.timeline = {input, at(200ms, "mc", Action::load, "", 1.5), at(300ms, "mc", Action::mains, "off"),
+                at(800ms, "mc", Action::mains, "on")};
+  Simulator sim(s);
+  sim.run_until(250ms);
+  auto& servo = dynamic_cast<devices::Mc6000Device&>(sim.emulator(0));
+  EXPECT_NE(servo.status_word() & 0x4000U, 0U) << "IS00 in status bit 14 (seed 001 5.3.2)";
+  EXPECT_EQ(servo.drive().load_torque(), 1.5);
+  sim.run_until(400ms);
+  EXPECT_TRUE(sim.module_error(0, sim.now()));
+  sim.run();
+  EXPECT_FALSE(sim.module_error(0, sim.now()));
+  std::vector<std::string> kinds;
+  for (const FaultRecord& f : sim.summary().faults) kinds.push_back(f.kind);
+  EXPECT_EQ(kinds, (std::vector<std::string>{"input", "load", "mains-off", "mains-on"}));
+}
+
+// The control channel's entries: applied at the time reached, recorded with their line.
+TEST(SimulatorControl, AnEntryAppliesAtTheTimeReachedAndIsListed) {
+  Scenario s;
+  s.duration = 2s;
+  s.devices = {mc6000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled")};
+  Simulator sim(s);
+  sim.run_until(700ms);
+  const Time when = sim.now();
+  sim.control(parse_control_line(R"({"device": "mc", "speed": 500})", 4, s));
+  sim.run_until(1500ms);
+  EXPECT_NEAR(sim.device_actual(0), 500.0, 5.0);
+  sim.control(parse_control_line(R"({"device": "mc", "fault": "device", "cause": 16})", 6, s));
+  sim.run();
+  const Summary& r = sim.summary();
+  ASSERT_EQ(r.control.size(), 2U);
+  EXPECT_EQ(r.control[0].at, when);
+  EXPECT_EQ(r.control[0].line, 4U);
+  EXPECT_EQ(r.control[0].entry, R"({"device": "mc", "speed": 500.0})");
+  EXPECT_EQ(r.control[1].line, 6U);
+  EXPECT_EQ(sim.device_state(0), State::fault);
+}
+
+// A control entry for a device that waits for a state waits like a timeline entry.
+TEST(SimulatorControl, AnEntryForAWaitingDeviceIsDeferred) {
+  Scenario s;
+  s.duration = 3s;
+  s.devices = {mc6000()};
+  // Waits for a FAULT that does not come: up to its timeout, 1 s after 10 ms.
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), at(10ms, "mc", Action::wait_state, "fault", 0, 0, 1s)};
+  Simulator sim(s);
+  sim.run_until(500ms);
+  sim.control(parse_control_line(R"({"device": "mc", "speed": 100})", 1, s));
+  sim.run_until(1000ms);
+  EXPECT_TRUE(sim.summary().control.empty()) << "deferred while the device waits";
+  sim.run();
+  ASSERT_EQ(sim.summary().control.size(), 1U);
+  EXPECT_GE(sim.summary().control[0].at, Time{1010ms});
+  EXPECT_LT(sim.summary().control[0].at, Time{1100ms});
+}
+
+}  // namespace
+}  // namespace ibs::sim

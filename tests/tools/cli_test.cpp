@@ -464,6 +464,36 @@ TEST(Cli, AScenarioThatServesALineNeedsRealtime) {
                            "with --realtime\n");
 }
 
+// Issue 24: `ibs run --realtime --control -` takes timeline entries without `at` on standard
+// input while the run goes on; a bad line is reported and skipped; the summary lists the others.
+TEST(Cli, RunControlAppliesLinesFromStandardInput) {
+  const std::string scenario = temp_file("control_run.toml",
+                                         "duration = \"1500 ms\"\n[[device]]\nname = \"servo\"\ntype = \"mc6000\"\n"
+                                         "[[timeline]]\nat = \"0 s\"\ndevice = \"servo\"\nstate = \"enabled\"\n");
+  const Result r = run_shell(
+      "printf '{\"device\": \"servo\", \"speed\": 500}\\n{\"device\": \"servo\", \"speed\": }\\n"
+      "{\"at\": \"1 s\", \"device\": \"servo\", \"speed\": 5}\\n"
+      "{\"device\": \"servo\", \"fault\": \"device\", \"cause\": \"E-OP1\", \"duration\": \"0.5 s\"}\\n' | " +
+      std::string(IBS_CLI) + " run " + scenario + " --realtime --control - 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("control:2: JSON syntax error"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("control:3: control entries apply at once: no 'at'"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("control entries"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"(line 1     {"device": "servo", "speed": 500.0})"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"(line 4     {"device": "servo", "fault": "device", "duration": "500 ms", "cause": "E-OP1"})"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("error 16 (E-OP1)"), std::string::npos) << r.out;
+}
+
+TEST(Cli, RunControlNeedsRealtime) {
+  const Result r = run("run --control -");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("needs --realtime: without it the simulation runs faster than real time"),
+            std::string::npos)
+      << r.out;
+}
+
 }  // namespace
 
 // Issue 23, defect 13: a seed of -1 or one past 2^64 - 1 ran as 18446744073709551615 and exited 0.

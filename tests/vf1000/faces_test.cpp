@@ -6,6 +6,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "../lustbus_devices/support.hpp"
@@ -500,3 +501,67 @@ TEST(Vf1000Faces, ACopyOfAFaceIsAnIndependentDrive) {
 }
 
 }  // namespace
+
+// --- Plant and fault events (issue 24; devices/plant_event.hpp) -------------------------------
+
+ibs::devices::PlantEvent fault_event(std::optional<int> cause) {
+  ibs::devices::PlantEvent e;
+  e.kind = ibs::devices::PlantEvent::Kind::fault;
+  e.cause = cause;
+  return e;
+}
+
+TEST(Vf1000Events, ADeviceFaultWithItsCauseShowsOnBothFaces) {
+  // Seed 001 4.1.3.3: the inverter's error codes are 00H..0EH; seed 000 8: errors show in the
+  // status word and, over LUSTBUS, in 11-STAT's error bit 80H (LB-D19).
+  Rig r(true, true);
+  ASSERT_TRUE(r.ib->apply_event(fault_event(12), r.now));
+  r.wait(50ms);
+  EXPECT_EQ(r.drive->fault_cause(), 12);
+  EXPECT_EQ(r.drive->state(), State::fault);
+  EXPECT_NE(r.ib->status_word() & 0x0008U, 0U) << "DRIVECOM status word bit 3: fault (seed 001 5.2.2)";
+  EXPECT_EQ(r.lb_read(pnr::kStat).value & vf::kStatError, vf::kStatError);
+  EXPECT_EQ(r.ib_read(pnr::kStat).value & vf::kStatError, vf::kStatError);
+  // The cause goes with the fault; the latched FAULT stays until its reset (8.1.1).
+  ibs::devices::PlantEvent clear;
+  clear.kind = ibs::devices::PlantEvent::Kind::fault_clear;
+  ASSERT_TRUE(r.ib->apply_event(clear, r.now));
+  r.wait(20ms);
+  EXPECT_EQ(r.drive->fault_cause(), std::nullopt);
+  EXPECT_EQ(r.drive->state(), State::fault);
+}
+
+TEST(Vf1000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
+  // VF-E17: mains lost = the inverter off: a module error on INTERBUS, no LUSTBUS answer; back =
+  // a new start with 6.1's initialisation and the power-on bit (seed 000 9.2, "a power failure").
+  Rig r(true, true);
+  ibs::devices::PlantEvent off;
+  off.kind = ibs::devices::PlantEvent::Kind::mains_off;
+  ASSERT_TRUE(r.ib->apply_event(off, r.now));
+  r.wait(100ms);
+  EXPECT_TRUE(r.ib->module_error(r.now));
+  EXPECT_NE(r.lb_read(pnr::kStat).kind, "value") << "no answer without mains";
+  r.wait(10s);
+  EXPECT_TRUE(r.ib->module_error(r.now)) << "off stays off until the mains return";
+  ibs::devices::PlantEvent on;
+  on.kind = ibs::devices::PlantEvent::Kind::mains_on;
+  ASSERT_TRUE(r.ib->apply_event(on, r.now));
+  EXPECT_TRUE(r.ib->module_error(r.now)) << "initialising after the return";
+  r.wait(r.drive->config().pd.init_time + 100ms);
+  EXPECT_FALSE(r.ib->module_error(r.now));
+  const Result siof = r.lb_read(pnr::kSiof);
+  EXPECT_EQ(siof.kind, "value");
+  EXPECT_EQ(siof.value & 0x01U, 0x01U) << "the power-on bit tells the host of the power failure";
+}
+
+TEST(Vf1000Events, NoLoadAndNoInputs) {
+  // VF-E17: the seeds give the VF1000 no load model and no input with a readable state.
+  Rig r(true, false);
+  ibs::devices::PlantEvent load;
+  load.kind = ibs::devices::PlantEvent::Kind::load;
+  load.value = 1.0;
+  EXPECT_FALSE(r.ib->apply_event(load, r.now));
+  ibs::devices::PlantEvent input;
+  input.kind = ibs::devices::PlantEvent::Kind::input;
+  EXPECT_FALSE(r.ib->apply_event(input, r.now));
+}

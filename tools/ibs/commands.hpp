@@ -22,7 +22,7 @@ struct RunOptions {
   unsigned threads = 1;   // device-stepping threads (sim::SimOptions::threads): 0 = automatic
   bool realtime = false;  // the master paced at the bus cycle in real time (sim/realtime.hpp)
   int rt_priority = 0;    // with realtime: SCHED_FIFO priority 1..99 and mlockall
-  std::string control;    // live control channel: "-" or "unix:PATH" (control_input.hpp); empty: none
+  std::string control;    // with realtime: the live control channel ("-", "unix:PATH"); empty: none
 };
 
 struct CampaignOptions {

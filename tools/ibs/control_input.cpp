@@ -20,32 +20,32 @@ std::unique_ptr<ControlInput> ControlInput::open(const std::string& spec, std::s
     return c;
   }
   if (spec.rfind("unix:", 0) != 0 || spec.size() == 5) {
-    error = "--control " + spec + ": give - (standard input) or unix:PATH (a socket to create)";
+    error = "give - (standard input) or unix:PATH (a socket to create)";
     return nullptr;
   }
   const std::string path = spec.substr(5);
   sockaddr_un addr{};
   if (path.size() >= sizeof(addr.sun_path)) {
-    error = "--control " + spec + ": the socket path is " + std::to_string(path.size()) +
+    error = "the socket path is " + std::to_string(path.size()) +
             " characters long; a Unix socket's path holds at most " + std::to_string(sizeof(addr.sun_path) - 1);
     return nullptr;
   }
   // Never replace anything: a path that exists (a file, a socket of another run) is refused.
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0) {
-    error = "--control " + spec + ": " + path + " exists; remove it or name another path (the socket is created "
+    error = path + " exists; remove it or name another path (the socket is created "
             "anew and removed at exit)";
     return nullptr;
   }
   const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (fd < 0) {
-    error = "--control " + spec + ": cannot make a socket: " + std::strerror(errno);
+    error = "cannot make a socket: " + std::strerror(errno);
     return nullptr;
   }
   addr.sun_family = AF_UNIX;
   std::memcpy(addr.sun_path, path.c_str(), path.size() + 1);
   if (::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof(addr)) != 0 || ::listen(fd, 4) != 0) {
-    error = "--control " + spec + ": cannot listen on " + path + ": " + std::strerror(errno);
+    error = "cannot listen on " + path + ": " + std::strerror(errno);
     ::close(fd);
     return nullptr;
   }

@@ -22,7 +22,8 @@ class ControlInput {
   static constexpr std::size_t kMaxLine = 4096;
 
   // Opens `spec` ("-" or "unix:PATH"); nullptr with `error` saying why (a PATH that exists, a
-  // socket that cannot be made, another form of spec).
+  // socket that cannot be made, another form of spec), for the caller to print after
+  // "--control SPEC: ".
   static std::unique_ptr<ControlInput> open(const std::string& spec, std::string& error);
   ~ControlInput();
   ControlInput(const ControlInput&) = delete;

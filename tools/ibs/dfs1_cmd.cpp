@@ -203,7 +203,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
     std::string why;
     auto input = ControlInput::open(o.control, why);
     if (!input) {
-      err << "ibs dfs1 emulate: " << why << "\n";
+      err << "ibs dfs1 emulate: --control " << o.control << ": " << why << "\n";
       return kExitDfs1BadInput;
     }
     control.emplace(std::move(input), o.devices, uid_order, served, err);

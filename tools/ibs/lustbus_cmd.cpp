@@ -18,7 +18,10 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "control_input.hpp"
 #include "ibs/base/text_file.hpp"
+#include "ibs/base/time_text.hpp"
+#include "ibs/devices/plant_event.hpp"
 #include "ibs/devices/drives.hpp"
 #include "ibs/lustbus/byte_log.hpp"
 #include "ibs/lustbus/code.hpp"
@@ -199,6 +202,158 @@ std::pair<const devices::LustbusFace*, lb::Address> parse_device(const std::stri
   return {d->lustbus, static_cast<lb::Address>(a)};
 }
 
+// One served drive as the control channel names it: `NAME@ADDR` as given, or the address.
+struct ControlledDrive {
+  std::string spec;
+  lb::Address address = 0;
+  const devices::DriveFacts* facts = nullptr;  // its descriptor's facts (EventFacts), if any
+  devices::LustbusEmulated* drive = nullptr;
+};
+
+// A control line's event for one drive, and when a device fault's cause goes (duration).
+struct ControlEvent {
+  std::size_t drive = 0;
+  devices::PlantEvent event;
+  std::optional<Duration> clear_after;
+  std::string text;  // what happened, for the one line on stderr
+};
+
+// Reads one line of `emulate --control`: the timeline's keys for the events that make sense
+// without a master (device fault with cause and duration, power cycle, mains, load, input), the
+// same words as the scenario files (docs/scenarios.md). Throws std::invalid_argument with what
+// is wrong.
+ControlEvent parse_emulate_control(std::string_view text, std::span<const ControlledDrive> drives) {
+  using nlohmann::json;
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument(std::string("not a JSON object: ") + e.what());
+  }
+  if (!j.is_object()) throw std::invalid_argument("a control line must be a JSON object");
+  const auto string_of = [&](const char* key) {
+    if (!j[key].is_string()) throw std::invalid_argument(std::string("'") + key + "' must be a string");
+    return j[key].get<std::string>();
+  };
+  ControlEvent c;
+  std::string action;
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();
+    if (key == "at") throw std::invalid_argument("control entries apply at once: no 'at'");
+    if (key == "fault" || key == "mains" || key == "load" || key == "input") {
+      if (!action.empty()) {
+        throw std::invalid_argument("a control line holds one action: '" + action + "' and '" + key + "'");
+      }
+      action = key;
+    } else if (key != "device" && key != "cause" && key != "duration" && key != "level") {
+      throw std::invalid_argument("unknown key '" + key +
+                                  "' (the emulator takes: device, fault, cause, duration, mains, load, input, level)");
+    }
+  }
+  if (action.empty()) throw std::invalid_argument("a control line needs an action: fault, mains, load or input");
+  // Which drive: its address, or NAME@ADDR as given on the command line; alone, it may go unsaid.
+  if (!j.contains("device")) {
+    if (drives.size() != 1) throw std::invalid_argument("give 'device' (the drive's address or NAME@ADDR)");
+  } else {
+    const json& d = j["device"];
+    bool found = false;
+    for (std::size_t i = 0; i < drives.size() && !found; ++i) {
+      if ((d.is_number_unsigned() && d.get<unsigned>() == drives[i].address) ||
+          (d.is_string() && d.get<std::string>() == drives[i].spec)) {
+        c.drive = i;
+        found = true;
+      }
+    }
+    if (!found) {
+      std::string known;
+      for (const ControlledDrive& x : drives) known += (known.empty() ? "" : ", ") + x.spec;
+      throw std::invalid_argument("unknown device " + d.dump() + " (served: " + known + ")");
+    }
+  }
+  const ControlledDrive& who = drives[c.drive];
+  const devices::EventFacts none{};
+  const devices::EventFacts& facts = who.facts != nullptr ? who.facts->events : none;
+  const std::string title = who.facts != nullptr ? std::string(who.facts->title) : who.spec;
+  const auto only_with = [&](const char* key, const char* with) {
+    if (j.contains(key)) throw std::invalid_argument(std::string("'") + key + "' goes with " + with + " only");
+  };
+  if (action != "fault") {
+    only_with("cause", "fault = \"device\"");
+    only_with("duration", "fault = \"device\"");
+  }
+  if (action != "input") only_with("level", "'input'");
+  if (action == "fault") {
+    const std::string fault = string_of("fault");
+    if (fault == "power-cycle") {
+      only_with("cause", "fault = \"device\"");
+      only_with("duration", "fault = \"device\"");
+      c.event.kind = devices::PlantEvent::Kind::power_cycle;
+      c.text = "power cycle";
+    } else if (fault == "device") {
+      c.event.kind = devices::PlantEvent::Kind::fault;
+      c.text = "device fault";
+      if (j.contains("cause")) {
+        const json& v = j["cause"];
+        const std::string given = v.is_string() ? v.get<std::string>() : v.is_number_integer() ? v.dump() : "";
+        if (given.empty()) throw std::invalid_argument("'cause' must be the drive's error number or name");
+        const devices::CauseCheck check = devices::check_cause(facts, title, given);
+        if (!check.number) throw std::invalid_argument("'cause': " + check.error);
+        c.event.cause = check.number;
+        c.text += ", error " + devices::cause_text(facts, *check.number);
+      }
+      if (j.contains("duration")) {
+        try {
+          c.clear_after = parse_time(string_of("duration"));
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(std::string("'duration': ") + e.what());
+        }
+        c.text += " for " + format_time(*c.clear_after);
+      }
+    } else {
+      throw std::invalid_argument("fault = \"" + fault +
+                                  "\" is not for an emulated drive on its own: it takes \"device\" or "
+                                  "\"power-cycle\" (\"corrupt\" and \"lost\" are INTERBUS faults of `ibs run`)");
+    }
+  } else if (action == "mains") {
+    const std::string m = string_of("mains");
+    if (m != "off" && m != "on") throw std::invalid_argument("'mains' must be \"off\" or \"on\", not \"" + m + "\"");
+    c.event.kind = m == "off" ? devices::PlantEvent::Kind::mains_off : devices::PlantEvent::Kind::mains_on;
+    c.text = "mains " + m;
+  } else if (action == "load") {
+    if (facts.load_unit.empty()) {
+      throw std::invalid_argument("'load' is not for the " + title + ": " +
+                                  std::string(facts.no_load.empty() ? "its manuals give it no load" : facts.no_load));
+    }
+    if (!j["load"].is_number() || !std::isfinite(j["load"].get<double>())) {
+      throw std::invalid_argument("'load' must be a number (" + std::string(facts.load_unit) + ")");
+    }
+    c.event.kind = devices::PlantEvent::Kind::load;
+    c.event.value = j["load"].get<double>();
+    c.text = "load " + j["load"].dump() + " " + std::string(facts.load_unit);
+  } else {
+    if (facts.inputs.empty()) {
+      throw std::invalid_argument("'input' is not for the " + title + ": " +
+                                  std::string(facts.no_inputs.empty() ? "its manuals name no input" : facts.no_inputs));
+    }
+    const std::string name = string_of("input");
+    const auto input = devices::find_input(facts, name);
+    if (!input) {
+      throw std::invalid_argument("'input' = \"" + name + "\" is not an input of the " + title + " (" +
+                                  devices::input_names(facts) + ")");
+    }
+    if (!j.contains("level")) throw std::invalid_argument("'input' needs 'level' (\"high\" or \"low\")");
+    const std::string level = string_of("level");
+    if (level != "high" && level != "low") {
+      throw std::invalid_argument("'level' must be \"high\" or \"low\", not \"" + level + "\"");
+    }
+    c.event.kind = devices::PlantEvent::Kind::input;
+    c.event.input = *input;
+    c.event.level = level == "high";
+    c.text = "input " + name + " " + level;
+  }
+  return c;
+}
+
 int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err) {
   const auto bad = [&](const std::string& what) {
     err << "ibs lustbus emulate: " << what << "\n";
@@ -246,6 +401,20 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   } catch (const BadInput& e) {
     return bad(e.what());
   }
+  // The control channel, opened before the port so that a bad spec serves nothing.
+  std::unique_ptr<ControlInput> control;
+  std::vector<ControlledDrive> controlled;
+  if (!o.control.empty()) {
+    std::string error;
+    control = ControlInput::open(o.control, error);
+    if (!control) return bad("--control " + o.control + ": " + error);
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const std::string name = specs[i].spec.substr(0, specs[i].spec.find('@'));
+      const devices::Drive* d = devices::find_drive(name, devices::Bus::lustbus);
+      const devices::DriveFacts* facts = d != nullptr && d->interbus != nullptr ? &(*d->interbus)->facts() : nullptr;
+      controlled.push_back({specs[i].spec, addresses[i], facts, &drives[i]});
+    }
+  }
 
   // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
   StopSignals signals;
@@ -269,7 +438,47 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   port.set_log(log.get());
   std::vector<base::LineDevice*> lines;
   for (lb::ServedReceiver& d : served) lines.push_back(&d);
-  serial::serve(port, lines, [&signals]() { return signals.raised(); });
+  // Control lines are read between two turns of the serve loop (every kServePoll at the most), at
+  // the time since it began; a device fault with a duration clears when that has passed.
+  struct PendingClear {
+    std::size_t drive;
+    Time at;
+  };
+  std::vector<PendingClear> clears;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto poll_control = [&]() {
+    const Time now{std::chrono::duration_cast<Duration>(std::chrono::steady_clock::now() - t0)};
+    for (auto it = clears.begin(); it != clears.end();) {
+      if (it->at > now) {
+        ++it;
+        continue;
+      }
+      devices::PlantEvent clear;
+      clear.kind = devices::PlantEvent::Kind::fault_clear;
+      if (controlled[it->drive].drive->apply_event) controlled[it->drive].drive->apply_event(clear, now);
+      err << "ibs lustbus emulate: " << controlled[it->drive].spec << ": device fault's cause gone\n" << std::flush;
+      it = clears.erase(it);
+    }
+    control->poll(
+        [&](std::size_t number, std::string_view text) {
+          try {
+            const ControlEvent c = parse_emulate_control(text, controlled);
+            const ControlledDrive& d = controlled[c.drive];
+            const bool taken = d.drive->apply_event && d.drive->apply_event(c.event, now);
+            err << "ibs lustbus emulate: control:" << number << ": " << d.spec << ": " << c.text
+                << (taken ? "" : " (not taken by the drive)") << "\n"
+                << std::flush;
+            if (taken && c.clear_after) clears.push_back({c.drive, now + *c.clear_after});
+          } catch (const std::invalid_argument& e) {
+            err << "control:" << number << ": " << e.what() << "\n" << std::flush;
+          }
+        },
+        [&](std::size_t number, std::string_view what) { err << "control:" << number << ": " << what << "\n"; });
+  };
+  serial::serve(port, lines, [&]() {
+    if (control) poll_control();
+    return signals.raised();
+  });
   // What each drive's receiver took, answered and threw away (3, LB-D23), as `ibs dfs1 emulate`
   // tells its controllers'.
   for (std::size_t i = 0; i < specs.size(); ++i) {
@@ -698,6 +907,9 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
   state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time in ms instead")
       ->check(CLI::Range(0, 10000));
   add_port_options(state.emulate, eo.port);
+  state.emulate->add_option("--control", eo.control,
+                            "a live control channel, '-' (standard input) or unix:PATH: JSON lines of "
+                            "events (fault, mains, load, input) for the drives served");
 
   LustbusClientOptions& co = state.client_options;
   state.read = state.lustbus->add_subcommand("read", "ENQUIRY: read a parameter's value");

@@ -1,6 +1,6 @@
 // `ibs lustbus ...`: LUSTBUS (seed 000) over a serial port (docs/lustbus.md, "Command line").
 //
-//   ibs lustbus emulate (--port PATH | --pty) [--baud N] [--SETTING...] DEVICE...
+//   ibs lustbus emulate (--port PATH | --pty) [--baud N] [--SETTING...] [--control SPEC] DEVICE...
 //                                                  DEVICE: vf1000@ADDR, mc6000@ADDR
 //   ibs lustbus read     --port PATH --addr N --device vf1000|mc6000 PARAM
 //   ibs lustbus write    --port PATH --addr N --device vf1000|mc6000 PARAM VALUE
@@ -55,6 +55,9 @@ struct LustbusEmulateOptions {
   // seeded (seed + address per drive); reaction_ms >= 0 fixes them instead.
   std::uint64_t seed = 1;
   int reaction_ms = -1;
+  // A live control channel ("-", "unix:PATH"; empty: none): JSON lines of plant and fault events
+  // for the drives (docs/lustbus.md, "Events on demand").
+  std::string control;
 };
 
 struct LustbusClientOptions {

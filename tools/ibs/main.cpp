@@ -66,7 +66,8 @@ int run_ibs(int argc, char** argv) {
                   "refusals are noted and the run goes on")
       ->check(CLI::Range(1, 99));
   run->add_option("--control", run_options.control,
-                  "live control: - (standard input) or unix:PATH; JSON lines, each a timeline entry without 'at' (needs --realtime)");
+                  "with --realtime: a live control channel, '-' (standard input) or unix:PATH, of JSON "
+                  "lines, each a timeline entry without 'at' applied at once (docs/scenarios.md)");
 
   std::string emulate;
   std::vector<std::string> replay_files;

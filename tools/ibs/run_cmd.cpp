@@ -1,4 +1,5 @@
-// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--pcap FILE] [--plot FILE] [--threads N]`:
+// `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--pcap FILE] [--plot FILE] [--threads N]
+// [--realtime [--rt-priority N] [--control SPEC]]`:
 // the main job.
 #include <unistd.h>
 
@@ -7,8 +8,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <optional>
+#include <string_view>
 #include <variant>
 
 #include <nlohmann/json.hpp>
@@ -45,6 +49,29 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
   return std::nullopt;
 }
 
+// The live control channel of `ibs run --realtime --control SPEC`: once per cycle, every line that
+// has arrived is read as a timeline entry without `at` and applied at the simulated time reached;
+// a bad one is reported on stderr as `control:LINE: what is wrong` and skipped.
+// An entry for a DFS-1 controller of the test bench goes to the bench, which lists it in its part
+// of the summary; every other to the simulator.
+std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator& simulator,
+                                             const sim::Scenario& scenario, sim::Bench* bench) {
+  return [&input, &simulator, &scenario, bench](Time now) {
+    input.poll(
+        [&](std::size_t number, std::string_view text) {
+          try {
+            sim::TimelineEntry e = sim::parse_control_line(std::string(text), number, scenario);
+            if (bench == nullptr || !bench->apply(e, now)) simulator.control(std::move(e));
+          } catch (const sim::ScenarioError& e) {
+            std::cerr << e.what() << "\n";
+          }
+        },
+        [](std::size_t number, std::string_view what) {
+          std::cerr << "control:" << number << ": " << what << "\n";
+        });
+  };
+}
+
 // A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation, in
 // simulated time, or with --realtime paced at absolute deadlines, its drives served on the
 // scenario's `bus` for the user's master when it names one, with entries from --control between.
@@ -65,7 +92,8 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   }
   if (!o.control.empty() && !o.realtime) {
     std::cerr << "--control " << o.control
-              << " needs --realtime: control entries apply at once, and only a run in real time has a now\n";
+              << " needs --realtime: without it the simulation runs faster than real time, so a live entry would "
+                 "have no time to land in\n";
     return kExitBadInput;
   }
   std::unique_ptr<ControlInput> control;
@@ -159,6 +187,23 @@ int run(const RunOptions& o) {
     std::cerr << o.scenario << ": [" << (scenario.lustbus ? "lustbus" : "dfs1")
               << "] serves a line to your own host software, which talks in real time: run it with --realtime\n";
     return kExitBadInput;
+  }
+  // A live entry needs wall-clock time to land in: without --realtime the simulation runs as
+  // fast as it can and is over before anyone could type.
+  std::unique_ptr<ControlInput> control;
+  if (!o.control.empty()) {
+    if (!o.realtime) {
+      std::cerr << "--control " << o.control
+                << " needs --realtime: without it the simulation runs faster than real time, so a live entry would "
+                   "have no time to land in\n";
+      return kExitBadInput;
+    }
+    std::string error;
+    control = ControlInput::open(o.control, error);
+    if (!control) {
+      std::cerr << "--control " << o.control << ": " << error << "\n";
+      return kExitBadInput;
+    }
   }
   // A plot that cannot be drawn fails before the run.
   std::optional<sim::PlotFormat> format;
@@ -265,7 +310,15 @@ int run(const RunOptions& o) {
       for (const std::string& line : bench->ready_lines()) std::cout << line << "\n";
       std::cout << std::flush;
       for (const std::string& note : bench->notes()) std::cerr << "ibs run: " << note << "\n";
-      rt.each_cycle = [&bench](Time now) { bench->turn(now); };
+    }
+    // One hook, on the simulator's thread: the bench's lines turn, then the control lines land.
+    std::function<void(Time)> control_turn;
+    if (control) control_turn = control_each_cycle(*control, *simulator, scenario, bench.get());
+    if (bench || control) {
+      rt.each_cycle = [&bench, &control_turn](Time now) {
+        if (bench) bench->turn(now);
+        if (control_turn) control_turn(now);
+      };
     }
     sim::run_realtime(*simulator, rt, options);
   } else {

@@ -31,6 +31,12 @@ namespace {
 // 409-BUTWD in ms, 0 = off (3.2.4), an Unsigned 16.
 constexpr int kMaxWatchdogMs = 0xFFFF;
 
+// The servo's error numbers: one byte (seed 000 3, PT_MC_ERROR: "Error number 1 Byte"); the one
+// the seeds name is 16, E-OP1 (seed 001 3.2.4). Its inputs IS00 and IS01 (seed 001 5.3.2) and a
+// load torque on its plant (plant.hpp, Nm).
+constexpr ErrorCause kErrors[] = {{kWatchdogError, "E-OP1"}};
+constexpr std::string_view kInputs[] = {"IS00", "IS01"};
+
 constexpr DriveFacts kFacts{
     .name = kName,
     .title = "MC6000",
@@ -56,6 +62,17 @@ constexpr DriveFacts kFacts{
 #endif
     .channel_name = "PCP",
     .settings = kSettings,
+    .events =
+        {
+            .min_error = 0,
+            .max_error = 255,
+            .errors = kErrors,
+            .error_source = "seed 000 3: one byte",
+            .inputs = kInputs,
+            .no_inputs = {},
+            .load_unit = "Nm",
+            .no_load = {},
+        },
 };
 
 // The layout of the settings; the refusal names 405-SUPI or 406-IBCNF (the other as fallback).

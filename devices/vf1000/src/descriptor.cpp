@@ -43,6 +43,11 @@ constexpr int kMaxWatchdogReaction = 3;
 // The reference word: 0.05 Hz per bit, an absolute value (5.2.3).
 constexpr double kMaxFrequencyHz = 65535 * kHzPerBit;
 
+// The inverter's error numbers: seed 001 4.1.3.3, "valid error codes are 00H-0EH; no error
+// corresponds to value 0FH" (seed 000 3, PT_VF_ERROR, agrees); the only one the seeds name is 12,
+// E-IBS (seed 001 4.1.1, 907-IBCOD = 1).
+constexpr ErrorCause kErrors[] = {{kWatchdogError, "E-IBS"}};
+
 constexpr DriveFacts kFacts{
     .name = kName,
     .title = "VF1000",
@@ -67,6 +72,20 @@ constexpr DriveFacts kFacts{
 #endif
     .channel_name = "the communication word",
     .settings = kSettings,
+    .events =
+        {
+            .min_error = 0,
+            .max_error = 14,
+            .errors = kErrors,
+            .error_source = "seed 001 4.1.3.3: 00H..0EH",
+            .inputs = {},
+            .no_inputs = "the seeds name the VF1000's inputs STR, STL, S1IND and S2IND only as control word "
+                         "bits 12..15 that stand in for them (seed 001 5.2.1), with no parameter that shows "
+                         "the terminals (docs/errata.md VF-E17)",
+            .load_unit = {},
+            .no_load = "the VF1000 is an inverter without a motor model here: its frequency follows the ramp, "
+                       "whatever the load (docs/errata.md VF-E17)",
+        },
 };
 
 SettingsRefusal refuse(ErrorCode code, std::string message, std::string_view setting) {

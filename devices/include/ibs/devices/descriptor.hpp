@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "ibs/devices/driver.hpp"
+#include "ibs/devices/plant_event.hpp"
 #include "ibs/devices/settings.hpp"
 #include "ibs/base/error.hpp"
 #include "ibs/interbus/id_code.hpp"
@@ -152,6 +153,8 @@ struct DriveFacts {
   std::string_view channel_name;
   // The drive's own settings (settings.hpp), in the order files and tables list them.
   std::span<const SettingSpec> settings{};
+  // The plant and fault events it takes (plant_event.hpp): its error list, inputs, load.
+  EventFacts events{};
 };
 
 class DriveDescriptor {

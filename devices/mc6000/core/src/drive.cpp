@@ -85,7 +85,7 @@ Duration Drive::bus_watchdog() const { return std::chrono::milliseconds(params_.
 void Drive::refresh_readings() {
   // 408-IBSTA mirrors the status word (seed 001, 4.2.1), 77-SPEED the motor speed as Q16 rpm
   // (seed 000, 6.1.1.2).
-  params_.set_reading(kIbsta, pd_.status_word());
+  params_.set_reading(kIbsta, status_word());
   params_.set_reading(kSpeed, static_cast<std::uint32_t>(to_q16(pd_.actual_rpm())));
 }
 
@@ -126,7 +126,67 @@ void Drive::power_on(Time now) {
   refresh_readings();
 }
 
+void Drive::mains_off(Time now) {
+  advance(now);
+  powered_ = false;
+  pd_.power_on();  // NOT READY: no power stage, nothing to show
+  external_fault_ = false;
+  fault_cause_.reset();
+  refresh_readings();
+}
+
+void Drive::mains_on(Time now) {
+  if (powered_) return;
+  powered_ = true;
+  power_on(now);  // seed 000, 9.2: the power-on bit tells the host of the power failure
+}
+
+bool Drive::apply(const PlantEvent& e, Time now) {
+  switch (e.kind) {
+    case PlantEvent::Kind::fault:
+      set_external_fault(true, e.cause);
+      return true;
+    case PlantEvent::Kind::fault_clear:
+      set_external_fault(false);
+      return true;
+    case PlantEvent::Kind::power_cycle:
+      power_on(now);
+      return true;
+    case PlantEvent::Kind::mains_off:
+      mains_off(now);
+      return true;
+    case PlantEvent::Kind::mains_on:
+      mains_on(now);
+      return true;
+    case PlantEvent::Kind::load:
+      set_load_torque(e.value);
+      return true;
+    case PlantEvent::Kind::input:
+      set_input(e.input, e.level);
+      return true;
+  }
+  return false;
+}
+
+void Drive::set_input(std::size_t input, bool high) {
+  if (input < 2) inputs_[input] = high;
+  refresh_readings();
+}
+
+Word Drive::status_word() const {
+  Word w = pd_.status_word();
+  // Seed 001, 5.3.2: "Bit 14 reflects the actual state of input IS00 when parameter 439-FIS00 =
+  // ROPT1", bit 15 likewise IS01 with 440-FIS01.
+  if (inputs_[0] && params_.raw(kFis00) == static_cast<std::uint32_t>(kFunctionRopt1)) w |= 0x4000;
+  if (inputs_[1] && params_.raw(kFis01) == static_cast<std::uint32_t>(kFunctionRopt1)) w |= 0x8000;
+  return w;
+}
+
 void Drive::sample_one(Time now, Word control, double reference_rpm) {
+  if (!powered_) {
+    sampled_until_ = now;
+    return;
+  }
   params_.advance(now);
   check_serial_watchdog(now);
   // Seed 001, 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16
@@ -149,6 +209,10 @@ void Drive::sample_one(Time now, Word control, double reference_rpm) {
 }
 
 void Drive::watch(Time now) {
+  if (!powered_) {
+    sampled_until_ = now;
+    return;
+  }
   params_.advance(now);
   check_serial_watchdog(now);
   const Duration butwd = bus_watchdog();
@@ -160,6 +224,10 @@ void Drive::watch(Time now) {
 
 void Drive::sample(Time first, Duration period, std::uint32_t count, Word control, double reference_rpm) {
   if (count == 0) return;
+  if (!powered_) {
+    sampled_until_ = first + static_cast<std::int64_t>(count - 1) * period;
+    return;
+  }
   if (count == 1 || period <= Duration{0} || serial_control() || bus_fault_ || serial_fault_ ||
       params_.downloading() || params_.raw(kSwdgt) != 0 || reset_pending_) {
     for (std::uint32_t k = 0; k < count; ++k) sample_one(first + static_cast<std::int64_t>(k) * period, control, reference_rpm);
@@ -208,6 +276,10 @@ void Drive::advance(Time now) {
   params_.advance(now);
   check_serial_watchdog(now);
   if (fieldbus_sampling_) return;  // the fieldbus face samples (MC-D4)
+  if (!powered_) {
+    sampled_until_ = now;
+    return;
+  }
   // Without a fieldbus face the drive samples itself up to `now` (7.2: the plant under the
   // serial control location), then lets a command that just arrived take effect at once.
   if (now > sampled_until_) {

@@ -79,6 +79,18 @@ void Mc6000Device::power_cycle(Time now) {
                             static_cast<int>(params.raw(devices::mc6000::kIbcnf)) != static_cast<int>(layout_.ibcnf);
 }
 
+bool Mc6000Device::apply_event(const PlantEvent& e, Time now) {
+  // A power cycle and the mains' return start the INTERBUS card and PCP over with the servo.
+  const bool was_powered = drive_->powered();
+  if (e.kind == PlantEvent::Kind::power_cycle ||
+      (e.kind == PlantEvent::Kind::mains_on && !was_powered)) {
+    if (e.kind == PlantEvent::Kind::mains_on) drive_->mains_on(now);
+    power_cycle(now);
+    return true;
+  }
+  return drive_->apply(e, now);
+}
+
 void Mc6000Device::output(std::span<Word> pd_s2m) const {
   write_pd_words(layout_, drive_->status_word(), drive_->actual_rpm(), drive_->torque_percent(), pd_s2m);
 }

@@ -372,8 +372,45 @@ void Drive::restart(Time now) {
   apply_parameters();
 }
 
-void Drive::set_fault(bool present, Time now) {
+void Drive::mains_off(Time now) {
+  power_cycle(now);
+  ready_at_ = Time::max();  // no end of the start until the mains return
+  powered_ = false;
+  external_fault_ = false;
+  fault_cause_.reset();
+}
+
+void Drive::mains_on(Time now) {
+  if (powered_) return;
+  powered_ = true;
+  power_cycle(now);
+}
+
+bool Drive::apply(const PlantEvent& e, Time now) {
+  switch (e.kind) {
+    case PlantEvent::Kind::fault:
+    case PlantEvent::Kind::fault_clear:
+      set_fault(e.kind == PlantEvent::Kind::fault, now, e.cause);
+      return true;
+    case PlantEvent::Kind::power_cycle:
+      power_cycle(now);
+      return true;
+    case PlantEvent::Kind::mains_off:
+      mains_off(now);
+      return true;
+    case PlantEvent::Kind::mains_on:
+      mains_on(now);
+      return true;
+    case PlantEvent::Kind::load:
+    case PlantEvent::Kind::input:
+      return false;
+  }
+  return false;
+}
+
+void Drive::set_fault(bool present, Time now, std::optional<int> cause) {
   external_fault_ = present;
+  fault_cause_ = present ? cause : std::nullopt;
   // Without an INTERBUS face the drive samples itself: the fault acts at once (8). With one, at
   // its next sample.
   if (!attached(Face::interbus)) sample_now(now);

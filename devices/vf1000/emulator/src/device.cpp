@@ -85,6 +85,20 @@ bool Vf1000Device::sync(Time now) {
   return true;
 }
 
+bool Vf1000Device::apply_event(const PlantEvent& e, Time now) {
+  if (e.kind == PlantEvent::Kind::power_cycle) {
+    power_cycle(now);
+    return true;
+  }
+  // A fault acts at the drive's next sample (the time of its last one, as set_fault); mains off
+  // and on are new starts, which the channel follows at once.
+  const bool taken = drive_->apply(e, e.kind == PlantEvent::Kind::fault || e.kind == PlantEvent::Kind::fault_clear
+                                              ? last_sample_
+                                              : now);
+  sync(now);
+  return taken;
+}
+
 void Vf1000Device::power_cycle(Time now) {
   drive_->power_cycle(now);
   reset_channel(now);

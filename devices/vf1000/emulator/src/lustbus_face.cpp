@@ -28,7 +28,12 @@ LustbusEmulated make_on(std::shared_ptr<Drive> drive, const LustbusFaceOptions& 
                                 std::to_string(o.baud));
   }
   LustbusDevice* p = d.get();
-  return {std::move(d), [p](Time t) { p->advance(t); }, [p]() { return p->line_baud(); }};
+  // Events act on the core the face serves, at the time given (the face advances it first).
+  return {std::move(d), [p](Time t) { p->advance(t); }, [p]() { return p->line_baud(); },
+          [p](const PlantEvent& e, Time t) {
+            p->advance(t);
+            return p->drive().apply(e, t);
+          }};
 }
 
 LustbusEmulated make(const LustbusFaceOptions& o) { return make_on(nullptr, o); }

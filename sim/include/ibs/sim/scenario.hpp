@@ -90,6 +90,10 @@ enum class Action : std::uint8_t {
   fault_device,   // a device fault (FAULT RESPONSE ACTIVE -> FAULT); duration: how long the cause stays
   fault_lost,     // the device drops off the bus (module error) for `duration`
   master_restart, // the master restarts: drivers and channels start over
+  // Plant events (devices/plant_event.hpp), each as the drive's descriptor allows it:
+  mains,          // value: "off" | "on" (mains lost / back)
+  load,           // load torque in the drive's unit (number; DriveFacts::events.load_unit)
+  input,          // digital input `value` (its manual's name) to `level`
 };
 
 struct TimelineEntry {
@@ -107,6 +111,9 @@ struct TimelineEntry {
   Duration duration{0};       // fault_device: how long the cause stays (0: it clears at once);
                               // fault_lost: how long the device is off the bus (> 0);
                               // wait_state: timeout (0: wait up to the end of the run)
+  std::string cause;          // fault_device: the drive's error as written ("12", "E-IBS"); empty:
+                              // a generic external fault
+  bool level = false;         // input: true = high
   std::size_t source_line = 0;  // where it was read from (0 = built in)
 };
 
@@ -177,6 +184,14 @@ std::string_view to_string(Action a);
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario_toml(const std::string& text, const std::string& file);
 Scenario parse_scenario_json(const std::string& text, const std::string& file);
+// One line of a live control channel (`ibs run --control`, docs/scenarios.md "Control channel"):
+// a JSON object that is a timeline entry without `at`, read and checked as the files' entries
+// are, against the devices of `running`. Throws ScenarioError whose what() is
+// `control:LINE: what is wrong`. The entry's `at` is 0 (it applies when it arrives) and its
+// source_line is `line`.
+TimelineEntry parse_control_line(const std::string& text, std::size_t line, const Scenario& running);
+// An entry as a control line (JSON, without `at`): parse_control_line reads it back equal.
+std::string write_control_line(const TimelineEntry& e);
 // Writes a valid scenario so that the parsers read it back equal (operator== below).
 std::string write_scenario_toml(const Scenario& s);
 std::string write_scenario_json(const Scenario& s);

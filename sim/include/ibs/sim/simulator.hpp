@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -52,6 +53,14 @@ struct FaultRecord {
   std::string kind;    // corrupt, power-cycle, device-fault, fault-cleared, lost, back, master-restart,
                        // watchdog
   std::string detail;
+};
+
+// An entry of the live control channel that was applied (`ibs run --control`).
+struct ControlRecord {
+  Time at{0};              // when it was applied (deferred ones: when their device's wait ended)
+  std::size_t line = 0;    // its line on the channel
+  std::string entry;       // as a control line (write_control_line)
+  std::string device;      // its device; empty: bus-wide
 };
 
 // The master's sequencer failed a request (drivecom::Failure): it then sends BLOCK POWER until
@@ -120,6 +129,7 @@ struct Summary {
   std::vector<DeviceReport> devices;
   std::vector<TransactionRecord> transactions;
   std::vector<FaultRecord> faults;
+  std::vector<ControlRecord> control;  // the control channel's entries, as applied
   TimingStats master;  // wall-clock processing time of the master's cycle (both drivers)
   double wall_seconds = 0.0;
   unsigned threads = 1;  // that stepped the devices
@@ -220,6 +230,10 @@ class Simulator {
   // end on), fault_power_cycle, fault_device (duration), fault_lost (duration) of device `i`,
   // master_restart (i ignored). Other actions are ignored. Used by the fault campaign.
   void inject_fault(Action kind, std::size_t i, Duration duration = Duration{0}, int count = 1);
+  // A control channel's entry (parse_control_line) at the simulated time reached: by the same
+  // path as a timeline entry at that time, deferred like one while its device waits for a state.
+  // Recorded in the summary's `control` when it is applied.
+  void control(const TimelineEntry& e);
 
  private:
   struct Device;
@@ -245,7 +259,10 @@ class Simulator {
   void apply_timeline(Time t);
   void apply(const TimelineEntry& e, Time t);
   void apply_random_faults(Time t);
-  void fault(Time t, std::size_t i, Action kind, Duration duration, int count);
+  void fault(Time t, std::size_t i, Action kind, Duration duration, int count,
+             const TimelineEntry* entry = nullptr);
+  void plant(Time t, std::size_t i, const TimelineEntry& e, FaultRecord& f);
+  void record_control(const TimelineEntry& e, Time t);
   void observe_master(Time t);
   void observe_driver(Device& d, Time t);  // what ibs's driver of `d` saw, into the summary
   Time next_sample_time(Device& d);
@@ -273,6 +290,8 @@ class Simulator {
   int recovery_left_ = 0;
   std::size_t timeline_next_ = 0;
   std::vector<const TimelineEntry*> deferred_;  // entries of devices waiting for a state
+  // The control channel's entries, kept here so that the pointers in deferred_ stay valid.
+  std::deque<TimelineEntry> control_entries_;
   std::mt19937_64 rng_;
   struct RandomNext {
     Time corrupt, power_cycle, device_fault, lost, master_restart;

@@ -11,6 +11,7 @@
 #include <span>
 #include <string_view>
 
+#include "ibs/devices/plant_event.hpp"
 #include "ibs/drivecom/status_word.hpp"
 #include "ibs/interbus/device_start.hpp"
 #include "ibs/base/time.hpp"
@@ -62,6 +63,22 @@ class DeviceEmulator {
   virtual void power_cycle(Time now) = 0;
   // A device fault (e.g. overcurrent) present or gone.
   virtual void set_fault(bool present) = 0;
+  // A plant or fault event (plant_event.hpp), checked against the kind's EventFacts beforehand;
+  // false: the drive does not take it. By default a drive takes a fault without a cause and a
+  // power cycle; a wing with more overrides it.
+  virtual bool apply_event(const PlantEvent& e, Time now) {
+    switch (e.kind) {
+      case PlantEvent::Kind::fault:
+      case PlantEvent::Kind::fault_clear:
+        set_fault(e.kind == PlantEvent::Kind::fault);
+        return true;
+      case PlantEvent::Kind::power_cycle:
+        power_cycle(now);
+        return true;
+      default:
+        return false;
+    }
+  }
   // The bus reports a module error for the device (initialising, or a configuration the running
   // ring cannot carry).
   [[nodiscard]] virtual bool module_error(Time now) const = 0;

@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "ibs/base/time.hpp"
+#include "ibs/devices/plant_event.hpp"
 #include "ibs/devices/settings.hpp"
 #include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/responder.hpp"
@@ -41,6 +42,9 @@ struct LustbusEmulated {
   std::unique_ptr<lustbus::Responder> responder;
   std::function<void(Time)> advance;
   std::function<std::uint32_t()> line_baud;
+  // A plant or fault event (plant_event.hpp) on the drive's core, checked against its descriptor's
+  // EventFacts beforehand: `ibs lustbus emulate --control`. False: the drive does not take it.
+  std::function<bool(const PlantEvent&, Time)> apply_event;
 };
 
 // A parameter of the drive's table as a LUSTBUS host sees it.

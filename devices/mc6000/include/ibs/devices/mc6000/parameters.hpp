@@ -42,6 +42,8 @@ inline constexpr std::uint16_t kRssl2 = 418;
 inline constexpr std::uint16_t kRssl3 = 419;
 inline constexpr std::uint16_t kRssl4 = 420;
 inline constexpr std::uint16_t kRsio = 428;   // seed 000, 7.2.1
+inline constexpr std::uint16_t kFis00 = 439;  // seed 001, 3.2.1, 5.3.2
+inline constexpr std::uint16_t kFis01 = 440;
 
 // 85-SERR bits (seed 000, 9.2): the family's 85-SIOF bits (drive/siof.hpp).
 inline constexpr std::uint8_t kSerrPowerOn = drive::siof_mask(drive::SiofBit::power_on);

@@ -17,12 +17,14 @@
 // The cycle path (sample, advance, read, write) allocates nothing, throws nothing, reads no clock.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
 #include "ibs/devices/mc6000/drive_parameters.hpp"
+#include "ibs/devices/plant_event.hpp"
 #include "ibs/devices/mc6000/pd_device.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
 #include "ibs/interbus/device_start.hpp"
@@ -78,10 +80,33 @@ class Drive final : public DriveAccess {
   // and the DRIVECOM machine gets its RESET FAULT edge in the next sample, whichever interface
   // has the control location.
   void fault_reset(Time now);
-  void set_external_fault(bool present) { external_fault_ = present; }
-  void set_load_torque(double nm) { pd_.set_load_torque(nm); }
+  // A device fault present or gone; `cause` the error number it shows (nullopt: a generic
+  // external fault, no number).
+  void set_external_fault(bool present, std::optional<int> cause = std::nullopt) {
+    external_fault_ = present;
+    fault_cause_ = present ? cause : std::nullopt;
+  }
+  [[nodiscard]] std::optional<int> fault_cause() const { return fault_cause_; }
+  // A load torque in Nm on the shaft, positive opposing positive speed (plant.hpp).
+  void set_load_torque(double nm) {
+    load_nm_ = nm;
+    pd_.set_load_torque(nm);
+  }
+  [[nodiscard]] double load_torque() const { return load_nm_; }
   // Switched off and on.
   void power_on(Time now);
+  // Mains lost: the servo is switched off (docs/errata.md MC-D6: the seeds name no undervoltage
+  // error; seed 000 9.2 names a power failure as a new start): it neither samples nor answers
+  // until the mains return, which is a power-on.
+  void mains_off(Time now);
+  void mains_on(Time now);
+  [[nodiscard]] bool powered() const { return powered_; }
+  // The digital inputs IS00 (0) and IS01 (1): seed 001, 5.3.2, status word bits 14 and 15
+  // reflect them when 439-FIS00 / 440-FIS01 = ROPT1; the seeds give them no other effect.
+  void set_input(std::size_t input, bool high);
+  [[nodiscard]] bool input(std::size_t input) const { return input < 2 && inputs_[input]; }
+  // A plant or fault event (plant_event.hpp) by the calls above (power_cycle: power_on).
+  bool apply(const PlantEvent& e, Time now);
 
   // Readings.
   [[nodiscard]] drivecom::State state() const { return pd_.state(); }
@@ -90,7 +115,8 @@ class Drive final : public DriveAccess {
   [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
   [[nodiscard]] double torque_nm() const { return pd_.torque_nm(); }
   [[nodiscard]] double torque_percent() const { return pd_.torque_percent(); }
-  [[nodiscard]] Word status_word() const { return pd_.status_word(); }
+  // DRIVECOM's status word with the inputs' bits 14 and 15 (seed 001, 5.3.2).
+  [[nodiscard]] Word status_word() const;
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
   // The speed reference of the serial control location: 428-RSIO once per selector 417..420 that
   // says RSIO (7.2.1); RCON and the option give 0 here.
@@ -118,6 +144,10 @@ class Drive final : public DriveAccess {
   Time last_telegram_{};
   bool serial_fault_ = false;
   bool external_fault_ = false;
+  std::optional<int> fault_cause_;
+  double load_nm_ = 0.0;
+  bool powered_ = true;
+  bool inputs_[2] = {false, false};
   bool reset_pending_ = false;
   Time sampled_until_{};
 };

@@ -86,13 +86,18 @@ class Mc6000Device final : public DeviceEmulator {
   void bus_cycle(Time now) override { drive_->fieldbus_cycle(now); }
   void power_cycle(Time now) override;
   void set_fault(bool present) override { drive_->set_external_fault(present); }
+  // Plant and fault events (plant_event.hpp): the core's, once for every face.
+  bool apply_event(const PlantEvent& e, Time now) override;
   void set_load_torque(double nm) { drive_->set_load_torque(nm); }
   void set_bus_watchdog(Duration d);
 
   // A servo switched on with other 405-SUPI / 406-IBCNF values than the ring was configured for
   // shows another ID code: the master's configuration no longer fits it and the bus reports a
   // module error until the ring is configured again (a new run).
-  [[nodiscard]] bool module_error(Time /*now*/) const override { return configuration_mismatch_; }
+  // Without mains the INTERBUS card of the servo is off too (MC-D6): a module error.
+  [[nodiscard]] bool module_error(Time /*now*/) const override {
+    return configuration_mismatch_ || !drive_->powered();
+  }
   [[nodiscard]] bool configuration_mismatch() const { return configuration_mismatch_; }
   [[nodiscard]] drivecom::State state() const override { return drive_->state(); }
   [[nodiscard]] double actual_rpm() const { return drive_->actual_rpm(); }

@@ -55,6 +55,8 @@ class LustbusDevice final : public lustbus::Responder {
                                const lustbus::Context& ctx) override;
   void checksum_error(const lustbus::Context& ctx) override;
   void telegram_received(const lustbus::Context& ctx) override;
+  // Without mains the servo answers nothing (MC-D6).
+  [[nodiscard]] bool listening(Time /*now*/) const override { return drive_->powered(); }
 
   // Time passes without a telegram: the watchdog of 5.2, the end of a download test.
   void advance(Time now);

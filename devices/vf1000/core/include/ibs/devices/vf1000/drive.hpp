@@ -16,6 +16,7 @@
 
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
+#include "ibs/devices/plant_event.hpp"
 #include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/devices/vf1000/pd_device.hpp"
 #include "ibs/drive/parameter_access.hpp"
@@ -133,8 +134,20 @@ class Drive final : public drive::ParameterAccess {
   void power_cycle(Time now);
   // A new start without the initialisation time (the LUSTBUS face's restart).
   void restart(Time now);
-  // A device fault (e.g. overcurrent) present or gone.
-  void set_fault(bool present, Time now);
+  // A device fault (e.g. overcurrent) present or gone; `cause` the error number (00H..0EH, seed
+  // 001 4.1.3.3) it shows, nullopt for a generic external fault.
+  void set_fault(bool present, Time now, std::optional<int> cause = std::nullopt);
+  [[nodiscard]] std::optional<int> fault_cause() const { return fault_cause_; }
+  // Mains lost: the inverter is switched off (docs/errata.md VF-E17: the seeds name no
+  // undervoltage error; seed 000 9.2 names a power failure as a new start): a module error on
+  // INTERBUS, no answer on LUSTBUS, until the mains return, which is a power-on (6.1's
+  // initialisation, the power-on bit).
+  void mains_off(Time now);
+  void mains_on(Time now);
+  [[nodiscard]] bool powered() const { return powered_; }
+  // A plant or fault event (plant_event.hpp) by the calls above; false for one the inverter does
+  // not take (a load, an input: DriveFacts::events says why).
+  bool apply(const PlantEvent& e, Time now);
 
   // --- State ----------------------------------------------------------------------------------
   // Counts every new start (power cycle, restart, software reset): a face that sees it change
@@ -204,6 +217,8 @@ class Drive final : public drive::ParameterAccess {
   std::uint32_t starts_ = 0;
   std::uint32_t software_resets_ = 0;
   bool external_fault_ = false;
+  std::optional<int> fault_cause_;
+  bool powered_ = true;
   // 906/907.
   bool ib_armed_ = false;
   Time ib_last_cycle_{0};

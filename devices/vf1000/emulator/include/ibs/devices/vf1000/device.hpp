@@ -87,6 +87,8 @@ class Vf1000Device final : public DeviceEmulator {
   [[nodiscard]] bool keypad() const { return config_.keypad; }
   // A device fault (e.g. overcurrent) present or gone.
   void set_fault(bool present) override { drive_->set_fault(present, last_sample_); }
+  // Plant and fault events (plant_event.hpp): the core's, once for every face.
+  bool apply_event(const PlantEvent& e, Time now) override;
 
   // The bus shows a module error for this device (initialisation, 6.1); meanwhile its bus
   // interface still takes the master's words, and it acts on the newest ones once it is ready.
