@@ -382,9 +382,12 @@ class Validator {
     }
     // A DFS-1 controller of the bench takes the events of a drive without a master here.
     if (!bus_wide && find(e.device) == nullptr && find_controller(e.device) != nullptr) {
-      if (e.action != Action::fault_device && e.action != Action::fault_power_cycle) {
+      // Its causes, inputs and load range are the DFS-1 wing's: the bench checks them against the
+      // wing's own reader when it is made (sim/bench.hpp), with this entry's line.
+      if (e.action != Action::fault_device && e.action != Action::fault_power_cycle && e.action != Action::mains &&
+          e.action != Action::load && e.action != Action::input) {
         fail(action_line, "'" + e.device + "' is a DFS-1 controller of the bench, not on the INTERBUS ring: " + what +
-                              " is not for it (it takes fault = \"device\" or \"power-cycle\")");
+                              " is not for it (it takes fault = \"device\" or \"power-cycle\", mains, load, input)");
       }
       return;
     }

@@ -97,7 +97,7 @@ TEST(ScenarioBench, EachRefusalNamesItsLine) {
             "b.toml:29: controller 'saw': uid 7 is already controller 'press''s (line 18): both would answer at once");
   EXPECT_EQ(error_of(with(kToml, "fault = \"power-cycle\"", "speed = 100")),
             "b.toml:25: 'press' is a DFS-1 controller of the bench, not on the INTERBUS ring: 'speed' is not for it "
-            "(it takes fault = \"device\" or \"power-cycle\")");
+            "(it takes fault = \"device\" or \"power-cycle\", mains, load, input)");
   const std::string two = with(kToml, "[lustbus]", "[[device]]\nname = \"fan\"\ntype = \"vf1000\"\nlustbus = 1\n\n[lustbus]");
   EXPECT_EQ(error_of(two), "b.toml:14: device 'fan': LUSTBUS address 1 is already device 'servo''s (line 4): both would "
                            "answer at once (seed 000, 9.1)");

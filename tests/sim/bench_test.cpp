@@ -10,11 +10,14 @@
 #include <chrono>
 #include <thread>
 
+#include "ibs/devices/dfs1/controller.hpp"
+#include "ibs/dfs1/host.hpp"
 #include "ibs/lustbus/host.hpp"
 #include "ibs/sim/bench.hpp"
 #include "ibs/sim/realtime.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
+#include "ibs/serial/dfs1_host.hpp"
 #include "ibs/serial/lustbus_host.hpp"
 #include "ibs/serial/serial_port.hpp"
 
@@ -242,6 +245,77 @@ read = 22
   ASSERT_EQ(last.number, 22);
   EXPECT_EQ(last.kind, devices::ParamKind::value) << last.result;
   EXPECT_EQ(last.result_value, 1100) << "LUSTBUS's write is what the communication word reads";
+}
+
+// A DFS-1 controller of the bench: not on the ring, on its own line; the timeline's fault with a
+// cause of seed 004's status list shows in the status a host reads (command 81, ST1), and a cause
+// the wing does not know is refused with the entry's line.
+TEST(Bench, ADfs1ControllerTakesTheTimelinesFaultOnItsOwnLine) {
+  const std::string text = R"(name = "press"
+duration = "2 s"
+
+[[device]]
+name = "servo"
+type = "mc6000"
+
+[dfs1]
+pty = true
+
+[[dfs1.controller]]
+name = "press"
+uid = 7
+
+[[timeline]]
+at = "1 s"
+device = "press"
+fault = "device"
+cause = "IOC"
+)";
+  const Scenario s = parse_scenario_toml(text, "press.toml");
+  Simulator sim(s);
+  Bench bench(sim, s, "press.toml");
+  ASSERT_EQ(bench.ready_lines().size(), 1U);
+  const std::string path = bench.ready_lines()[0].substr(std::string("dfs1 pty: ").size());
+  std::optional<std::uint8_t> before, after;
+  std::thread host_thread([&] {
+    serial::SerialPort port = serial::SerialPort::open(path, {9600, serial::k8N1, false});
+    const auto st1 = [&]() -> std::optional<std::uint8_t> {
+      const ::ibs::dfs1::HostResult r = serial::transact(port, ::ibs::dfs1::request::status(7), {});
+      if (r.outcome != ::ibs::dfs1::Outcome::ack) return std::nullopt;
+      return r.response.data[15];
+    };
+    const auto t0 = Clock::now();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    before = st1();
+    while (Clock::now() < t0 + std::chrono::milliseconds(1900)) {
+      after = st1();
+      if (after && *after != 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  RealtimeOptions rt;
+  rt.each_cycle = [&bench](Time now) { bench.turn(now); };
+  run_realtime(sim, rt);
+  host_thread.join();
+  ASSERT_TRUE(before.has_value());
+  EXPECT_EQ(*before, 0) << "no fault before 1 s";
+  ASSERT_TRUE(after.has_value());
+  EXPECT_EQ(*after, devices::dfs1::kSt1Ioc);
+  const BenchReport report = bench.report();
+  ASSERT_EQ(report.events.size(), 1U);
+  EXPECT_EQ(report.events[0].rfind("1.000 s press: fault IOC", 0), 0U) << report.events[0];
+
+  std::string bad = text;
+  bad.replace(bad.find("\"IOC\""), 5, "\"E-OC\"");
+  const Scenario b = parse_scenario_toml(bad, "press.toml");
+  Simulator sim2(b);
+  try {
+    Bench refused(sim2, b, "press.toml");
+    FAIL() << "a cause the DFS-1 does not know was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("press.toml:15: controller 'press': ", 0), 0U) << e.what();
+    EXPECT_NE(std::string(e.what()).find("E-OC"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Bench, AServedLineIsRefusedForADriveThatDoesNotRunAtItsRate) {

@@ -39,7 +39,7 @@ std::unique_ptr<ControlInput> ControlInput::open(const std::string& spec, std::s
   }
   const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (fd < 0) {
-    error = "cannot make a socket: " + std::strerror(errno);
+    error = std::string("cannot make a socket: ") + std::strerror(errno);
     return nullptr;
   }
   addr.sun_family = AF_UNIX;

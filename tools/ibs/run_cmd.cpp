@@ -61,7 +61,15 @@ std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator
         [&](std::size_t number, std::string_view text) {
           try {
             sim::TimelineEntry e = sim::parse_control_line(std::string(text), number, scenario);
-            if (bench == nullptr || !bench->apply(e, now)) simulator.control(std::move(e));
+            if (bench != nullptr && bench->serves_controller(e.device)) {
+              if (const auto why = bench->check(e)) {
+                std::cerr << "control:" << number << ": " << *why << "\n";
+              } else {
+                bench->apply(e, now);
+              }
+            } else {
+              simulator.control(std::move(e));
+            }
           } catch (const sim::ScenarioError& e) {
             std::cerr << e.what() << "\n";
           }

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "ibs/devices/dfs1/events.hpp"
 #include "ibs/devices/dfs1/served_controller.hpp"
 #include "ibs/devices/drives.hpp"
 #include "ibs/lustbus/receiver.hpp"
@@ -52,6 +53,44 @@ std::string seconds(Time t) {
   return buf;
 }
 
+// A timeline or control entry for a DFS-1 controller as the wing's own control parser reads it
+// (devices/dfs1/events.hpp): one reader of the events, whether they come from `ibs dfs1 emulate
+// --control` or from a scenario. Either the event or what is wrong with it.
+devices::dfs1::ParsedControl controller_event(const TimelineEntry& e) {
+  using devices::dfs1::ControlValue;
+  devices::dfs1::ControlFields f;
+  switch (e.action) {
+    case Action::fault_device:
+      f.emplace_back("fault", ControlValue::string("device"));
+      if (!e.cause.empty()) f.emplace_back("cause", ControlValue::string(e.cause));
+      if (e.duration > Duration{0}) f.emplace_back("duration", ControlValue::string(format_time(e.duration)));
+      break;
+    case Action::fault_power_cycle: f.emplace_back("fault", ControlValue::string("power-cycle")); break;
+    case Action::mains: f.emplace_back("mains", ControlValue::string(e.value)); break;
+    case Action::load: f.emplace_back("load", ControlValue::of_number(e.number)); break;
+    case Action::input:
+      f.emplace_back("input", ControlValue::string(e.value));
+      f.emplace_back("level", ControlValue::string(e.level ? "high" : "low"));
+      break;
+    default: {
+      devices::dfs1::ParsedControl bad;
+      bad.error = "a DFS-1 controller of the bench takes the events of a drive without a master: fault = \"device\" "
+                  "(with its 'cause') or \"power-cycle\", mains, load, input";
+      return bad;
+    }
+  }
+  if (e.action == Action::fault_device && e.cause.empty()) {
+    devices::dfs1::ParsedControl bad;
+    bad.error = "fault = \"device\" on a DFS-1 controller needs its 'cause' (one of the status bits of seed 004: ";
+    for (std::size_t i = 0; i < devices::dfs1::fault_causes().size(); ++i) {
+      bad.error += (i == 0 ? "" : ", ") + std::string(devices::dfs1::fault_causes()[i].seed_name);
+    }
+    bad.error += ")";
+    return bad;
+  }
+  return devices::dfs1::parse_event(f);
+}
+
 }  // namespace
 
 struct Bench::Impl {
@@ -77,7 +116,6 @@ struct Bench::Impl {
   std::vector<TimelineEntry> controller_entries;
   std::size_t next_entry = 0;
   std::vector<std::string> events;
-  std::uint32_t dfs1_baud = 9600;
 };
 
 Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) : impl_(std::make_unique<Impl>()) {
@@ -126,7 +164,6 @@ Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) 
   }
   if (scenario.dfs1) {
     const devices::Drive* drive = devices::drives_on(devices::Bus::dfs1).front();
-    m.dfs1_baud = scenario.dfs1->baud;
     for (const Dfs1Controller& c : scenario.dfs1_controllers) {
       Impl::Controller ctl;
       ctl.name = c.name;
@@ -149,7 +186,12 @@ Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) 
     for (Impl::Controller& c : m.controllers) m.dfs1->devices.push_back(c.served.get());
     for (const TimelineEntry& e : scenario.timeline) {
       for (const Dfs1Controller& c : scenario.dfs1_controllers) {
-        if (c.name == e.device) m.controller_entries.push_back(e);
+        if (c.name != e.device) continue;
+        if (const auto parsed = controller_event(e); !parsed.event) {
+          throw std::invalid_argument(file + ":" + std::to_string(e.source_line) + ": controller '" + c.name +
+                                      "': " + parsed.error);
+        }
+        m.controller_entries.push_back(e);
       }
     }
   }
@@ -183,24 +225,30 @@ void Bench::turn(Time now) {
   }
 }
 
+bool Bench::serves_controller(const std::string& name) const {
+  for (const Impl::Controller& c : impl_->controllers) {
+    if (c.name == name) return true;
+  }
+  return false;
+}
+
+std::optional<std::string> Bench::check(const TimelineEntry& e) const {
+  if (!serves_controller(e.device)) return std::nullopt;
+  const auto parsed = controller_event(e);
+  if (parsed.event) return std::nullopt;
+  return "controller '" + e.device + "': " + parsed.error;
+}
+
 bool Bench::apply(const TimelineEntry& e, Time now) {
   Impl& m = *impl_;
   for (Impl::Controller& c : m.controllers) {
     if (c.name != e.device) continue;
-    std::string what;
-    switch (e.action) {
-      case Action::fault_power_cycle: {
-        // Switched off and on: a new controller at its unit id, as at power-on (seed 004).
-        const devices::Drive* drive = devices::drives_on(devices::Bus::dfs1).front();
-        c.controller = drive->dfs1->make(static_cast<std::uint8_t>(c.uid), m.dfs1_baud);
-        *c.served = devices::dfs1::ServedController(*c.controller);
-        what = "switched off and on";
-        break;
-      }
-      default:
-        return false;
-    }
-    m.events.push_back(seconds(now) + " " + c.name + ": " + what);
+    const auto parsed = controller_event(e);
+    if (!parsed.event) return true;  // check() says why; nothing to apply
+    // The plant is stepped to `now` first (Controller::apply); the report is the status a host
+    // reads right after it.
+    const devices::dfs1::EventReport r = c.controller->apply(parsed.event->event, now);
+    m.events.push_back(seconds(now) + " " + c.name + ": " + devices::dfs1::to_string(r));
     return true;
   }
   return false;

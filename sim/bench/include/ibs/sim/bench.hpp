@@ -58,8 +58,15 @@ class Bench {
   // nothing on the way; writes wait for the driver as SerialPort::write does (on a pty: at once).
   void turn(Time now);
 
-  // A timeline or control entry for a DFS-1 controller of the bench, applied at `now`: true when
-  // `e.device` is one (and the entry was applied), false when it is not the bench's.
+  // Whether `name` is one of the bench's DFS-1 controllers.
+  [[nodiscard]] bool serves_controller(const std::string& name) const;
+  // What is wrong with an entry for one of them (its event as the DFS-1 wing reads control lines:
+  // a cause of seed 004, an input, a load in range), nullopt when nothing is or the entry is not
+  // a controller's.
+  [[nodiscard]] std::optional<std::string> check(const TimelineEntry& e) const;
+  // A timeline or control entry for a DFS-1 controller of the bench, applied at `now` (an entry
+  // check() refuses is not applied): true when `e.device` is one, false when it is not the bench's.
+  // Allocates (the summary's line): the control channel's and the timeline's rare events only.
   bool apply(const TimelineEntry& e, Time now);
 
   [[nodiscard]] BenchReport report() const;
