@@ -103,5 +103,23 @@ TEST(ScenarioBench, EachRefusalNamesItsLine) {
                            "answer at once (seed 000, 9.1)");
 }
 
+// A control line of a running bench is checked against the whole running scenario: its devices
+// keep their LUSTBUS addresses (with the line they need) and its DFS-1 controllers are named.
+TEST(ScenarioBench, AControlLineOfABenchIsCheckedAgainstItsLinesAndControllers) {
+  const Scenario s = parse_scenario_toml(kToml, "b.toml");
+  const TimelineEntry servo =
+      parse_control_line(R"({"device": "servo", "fault": "device", "cause": "E-OP1"})", 1, s);
+  EXPECT_EQ(servo.device, "servo");
+  const TimelineEntry press = parse_control_line(R"({"device": "press", "mains": "off"})", 2, s);
+  EXPECT_EQ(press.action, Action::mains);
+  EXPECT_EQ(press.value, "off");
+  try {
+    (void)parse_control_line(R"({"device": "press", "speed": 5})", 3, s);
+    FAIL() << "a speed for a DFS-1 controller of the bench was taken";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("control:3: 'press' is a DFS-1 controller of the bench", 0), 0U) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace ibs::sim
