@@ -125,8 +125,8 @@ bool operator==(const TimelineEntry& a, const TimelineEntry& b) {
 
 bool operator==(const Scenario& a, const Scenario& b) {
   return a.name == b.name && a.duration == b.duration && a.bus == b.bus && a.devices == b.devices &&
-         a.timeline == b.timeline && a.random == b.random && a.lustbus == b.lustbus && a.dfs1 == b.dfs1 &&
-         a.dfs1_controllers == b.dfs1_controllers;
+         a.timeline == b.timeline && a.random == b.random && a.lustbus == b.lustbus && a.controller_line == b.controller_line &&
+         a.controllers == b.controllers;
 }
 
 Scenario default_scenario() {

@@ -114,7 +114,7 @@ struct SourceMap {
     std::size_t pty = 0;
     std::size_t port = 0;
     std::size_t baud = 0;
-  } lustbus, dfs1;
+  } lustbus, controller_line;
   std::vector<std::size_t> controller_uids;  // the line of each controller's uid
 };
 
@@ -160,6 +160,6 @@ std::vector<OutField> device_fields(const DeviceConfig& d);
 std::vector<OutField> entry_fields(const TimelineEntry& e);
 std::vector<OutField> random_fields(const RandomFaults& r);  // empty for the defaults
 std::vector<OutField> line_fields(const ServedLine& l);          // [lustbus], [dfs1] (docs/testbench.md)
-std::vector<OutField> controller_fields(const Dfs1Controller& c);
+std::vector<OutField> controller_fields(const LineController& c);
 
 }  // namespace ibs::sim::detail

@@ -213,8 +213,8 @@ TimelineEntry parse_control_line(const std::string& text, std::size_t line, cons
     // The bench's lines and controllers too: a device's lustbus address needs its line, and an
     // entry may name a DFS-1 controller.
     probe.lustbus = running.lustbus;
-    probe.dfs1 = running.dfs1;
-    probe.dfs1_controllers = running.dfs1_controllers;
+    probe.controller_line = running.controller_line;
+    probe.controllers = running.controllers;
     probe.timeline = {e};
     detail::SourceMap lines;
     lines.entries = {entry_lines};

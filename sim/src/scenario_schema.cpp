@@ -21,7 +21,7 @@ const std::vector<std::string_view> kTopKeys = {"name",     "duration",      "bu
                                                 "timeline", "random_faults", "lustbus", "dfs1"};
 // The test bench's served lines (docs/testbench.md).
 const std::vector<std::string_view> kLineKeys = {"pty", "port", "baud"};
-const std::vector<std::string_view> kDfs1Keys = {"pty", "port", "baud", "controller"};
+const std::vector<std::string_view> kControllerLineKeys = {"pty", "port", "baud", "controller"};
 const std::vector<std::string_view> kControllerKeys = {"name", "uid"};
 const std::vector<std::string_view> kBusKeys = {"cycle_time", "baud", "software_time",
                                                 "recovery_cycles"};
@@ -522,11 +522,11 @@ void read_random(const Reader& r, const Node& n, RandomFaults& rf, SourceMap& li
 
 // [lustbus] / [dfs1]: a new pty or a named port, and its rate; [dfs1] also lists its controllers.
 void read_line(const Reader& r, const Node& n, std::string_view key, ServedLine& line, SourceMap::Line& lines,
-               Scenario* dfs1, SourceMap* map) {
+               Scenario* controllers, SourceMap* map) {
   r.expect_table(n, key);
   lines.table = n.line;
   const std::string where = "in [" + std::string(key) + "]";
-  r.members(n, dfs1 != nullptr ? kDfs1Keys : kLineKeys, where, [&](const std::string& k, std::size_t, const Node& v) {
+  r.members(n, controllers != nullptr ? kControllerLineKeys : kLineKeys, where, [&](const std::string& k, std::size_t, const Node& v) {
     if (k == "pty") {
       line.pty = r.boolean(v, k);
       lines.pty = v.line;
@@ -545,7 +545,7 @@ void read_line(const Reader& r, const Node& n, std::string_view key, ServedLine&
         if (c.kind != Kind::table) {
           r.fail(c.line, "each 'controller' must be " + r.table_word() + ", not " + r.kind_name(c));
         }
-        Dfs1Controller ctl;
+        LineController ctl;
         ctl.source_line = c.line;
         bool has_name = false;
         bool has_uid = false;
@@ -563,7 +563,7 @@ void read_line(const Reader& r, const Node& n, std::string_view key, ServedLine&
         });
         if (!has_name) r.fail(c.line, "a DFS-1 controller needs a 'name'");
         if (!has_uid) r.fail(c.line, "DFS-1 controller '" + ctl.name + "' needs a 'uid' (1..255, its unit id)");
-        dfs1->dfs1_controllers.push_back(std::move(ctl));
+        controllers->controllers.push_back(std::move(ctl));
         map->controller_uids.push_back(uid_line);
       }
     }
@@ -631,7 +631,7 @@ Scenario read_tree(const Node& root, Format format, const std::string& file, Sou
         } else if (key == "lustbus") {
           read_line(r, v, key, s.lustbus.emplace(), lines.lustbus, nullptr, nullptr);
         } else if (key == "dfs1") {
-          read_line(r, v, key, s.dfs1.emplace(), lines.dfs1, &s, &lines);
+          read_line(r, v, key, s.controller_line.emplace(), lines.controller_line, &s, &lines);
         }
       });
   if (!has_duration) {

@@ -238,21 +238,21 @@ class Validator {
       if (line->baud == 0) fail(pick(l.baud, table), "[" + std::string(key) + "] baud must not be 0");
     };
     check_line(s_.lustbus, m_.lustbus, "lustbus");
-    check_line(s_.dfs1, m_.dfs1, "dfs1");
+    check_line(s_.controller_line, m_.controller_line, "dfs1");
     if (s_.lustbus && std::none_of(s_.devices.begin(), s_.devices.end(), [](const DeviceConfig& d) { return d.lustbus.has_value(); })) {
       fail(pick(m_.lustbus.table, m_.root),
            "[lustbus] serves no device: give the devices that answer on it their address (lustbus = 1..30)");
     }
-    if (!s_.dfs1 && !s_.dfs1_controllers.empty()) {
-      fail(pick(s_.dfs1_controllers.front().source_line, m_.root),
+    if (!s_.controller_line && !s_.controllers.empty()) {
+      fail(pick(s_.controllers.front().source_line, m_.root),
            "DFS-1 controllers need their line: [dfs1] with pty = true or port = \"PATH\"");
     }
-    if (s_.dfs1 && s_.dfs1_controllers.empty()) {
-      fail(pick(m_.dfs1.table, m_.root),
+    if (s_.controller_line && s_.controllers.empty()) {
+      fail(pick(m_.controller_line.table, m_.root),
            "[dfs1] serves no controller: list them as [[dfs1.controller]] with a name and a uid (1..255)");
     }
-    for (std::size_t i = 0; i < s_.dfs1_controllers.size(); ++i) {
-      const Dfs1Controller& c = s_.dfs1_controllers[i];
+    for (std::size_t i = 0; i < s_.controllers.size(); ++i) {
+      const LineController& c = s_.controllers[i];
       const std::size_t line = pick(c.source_line, m_.root);
       if (c.name.empty() || c.name.size() > kMaxNameLength || !std::all_of(c.name.begin(), c.name.end(), is_name_char)) {
         fail(line, "controller name '" + c.name + "' must be 1.." + std::to_string(kMaxNameLength) +
@@ -266,7 +266,7 @@ class Validator {
              "controller '" + c.name + "': uid " + std::to_string(c.uid) + " is not a unit id (1..255, seed 004)");
       }
       for (std::size_t j = 0; j < i; ++j) {
-        const Dfs1Controller& o = s_.dfs1_controllers[j];
+        const LineController& o = s_.controllers[j];
         if (o.name == c.name) {
           fail(line, "controller name '" + c.name + "' is already used (line " + std::to_string(o.source_line) + ")");
         }
@@ -279,8 +279,8 @@ class Validator {
     }
   }
 
-  const Dfs1Controller* find_controller(const std::string& name) const {
-    for (const Dfs1Controller& c : s_.dfs1_controllers) {
+  const LineController* find_controller(const std::string& name) const {
+    for (const LineController& c : s_.controllers) {
       if (c.name == name) return &c;
     }
     return nullptr;
@@ -383,7 +383,7 @@ class Validator {
     // A DFS-1 controller of the bench takes the events of a drive without a master here.
     if (!bus_wide && find(e.device) == nullptr && find_controller(e.device) != nullptr) {
       // Its causes, inputs and load range are the DFS-1 wing's: the bench checks them against the
-      // wing's own reader when it is made (sim/bench.hpp), with this entry's line.
+      // wing's own reader when it is made (tools/ibs/bench.hpp), with this entry's line.
       if (e.action != Action::fault_device && e.action != Action::fault_power_cycle && e.action != Action::mains &&
           e.action != Action::load && e.action != Action::input) {
         fail(action_line, "'" + e.device + "' is a DFS-1 controller of the bench, not on the INTERBUS ring: " + what +

@@ -166,7 +166,7 @@ std::vector<OutField> line_fields(const ServedLine& l) {
   return f;
 }
 
-std::vector<OutField> controller_fields(const Dfs1Controller& c) {
+std::vector<OutField> controller_fields(const LineController& c) {
   return {text("name", c.name), integer("uid", c.uid)};
 }
 
@@ -236,8 +236,8 @@ std::string write_scenario_toml(const Scenario& s) {
   const std::vector<OutField> random = detail::random_fields(s.random);
   if (!random.empty()) out += "\n[random_faults]\n" + toml_lines(random);
   if (s.lustbus) out += "\n[lustbus]\n" + toml_lines(detail::line_fields(*s.lustbus));
-  if (s.dfs1) out += "\n[dfs1]\n" + toml_lines(detail::line_fields(*s.dfs1));
-  for (const Dfs1Controller& c : s.dfs1_controllers) {
+  if (s.controller_line) out += "\n[dfs1]\n" + toml_lines(detail::line_fields(*s.controller_line));
+  for (const LineController& c : s.controllers) {
     out += "\n[[dfs1.controller]]\n" + toml_lines(detail::controller_fields(c));
   }
   return out;
@@ -260,10 +260,10 @@ std::string write_scenario_json(const Scenario& s) {
   const std::vector<OutField> random = detail::random_fields(s.random);
   if (!random.empty()) out += ",\n  \"random_faults\": " + json_object(random);
   if (s.lustbus) out += ",\n  \"lustbus\": " + json_object(detail::line_fields(*s.lustbus));
-  if (s.dfs1) {
-    std::string line = json_object(detail::line_fields(*s.dfs1));
+  if (s.controller_line) {
+    std::string line = json_object(detail::line_fields(*s.controller_line));
     line.pop_back();  // the closing brace: the controllers go inside
-    out += ",\n  \"dfs1\": " + line + ", \"controller\": " + json_array(s.dfs1_controllers, detail::controller_fields) + "}";
+    out += ",\n  \"dfs1\": " + line + ", \"controller\": " + json_array(s.controllers, detail::controller_fields) + "}";
   }
   return out + "\n}\n";
 }

@@ -58,12 +58,12 @@ TEST(ScenarioBench, TheKeysAreReadAndWrittenBackEqualInBothFormats) {
   ASSERT_TRUE(s.lustbus.has_value());
   EXPECT_TRUE(s.lustbus->pty);
   EXPECT_EQ(s.lustbus->baud, 9600U);
-  ASSERT_TRUE(s.dfs1.has_value());
-  EXPECT_EQ(s.dfs1->port, "/dev/ttyUSB1");
-  EXPECT_EQ(s.dfs1->baud, 19200U);
-  ASSERT_EQ(s.dfs1_controllers.size(), 1U);
-  EXPECT_EQ(s.dfs1_controllers[0].name, "press");
-  EXPECT_EQ(s.dfs1_controllers[0].uid, 7);
+  ASSERT_TRUE(s.controller_line.has_value());
+  EXPECT_EQ(s.controller_line->port, "/dev/ttyUSB1");
+  EXPECT_EQ(s.controller_line->baud, 19200U);
+  ASSERT_EQ(s.controllers.size(), 1U);
+  EXPECT_EQ(s.controllers[0].name, "press");
+  EXPECT_EQ(s.controllers[0].uid, 7);
   EXPECT_EQ(s.devices[0].lustbus, 1);
   EXPECT_TRUE(s.serves_lines());
   EXPECT_EQ(parse_scenario_toml(write_scenario_toml(s), "w.toml"), s);

@@ -13,7 +13,7 @@
 #include "ibs/devices/dfs1/controller.hpp"
 #include "ibs/dfs1/host.hpp"
 #include "ibs/lustbus/host.hpp"
-#include "ibs/sim/bench.hpp"
+#include "bench.hpp"
 #include "ibs/sim/realtime.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
@@ -23,6 +23,9 @@
 
 namespace ibs::sim {
 namespace {
+
+using cli::Bench;
+using cli::BenchReport;
 
 namespace lb = ::ibs::lustbus;
 using Clock = std::chrono::steady_clock;

@@ -17,12 +17,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench.hpp"
 #include "commands.hpp"
 #include "control_input.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "stop_signals.hpp"
-#include "ibs/sim/bench.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
@@ -55,7 +55,7 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
 // An entry for a DFS-1 controller of the test bench goes to the bench, which lists it in its part
 // of the summary; every other to the simulator.
 std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator& simulator,
-                                             const sim::Scenario& scenario, sim::Bench* bench) {
+                                             const sim::Scenario& scenario, Bench* bench) {
   return [&input, &simulator, &scenario, bench](Time now) {
     input.poll(
         [&](std::size_t number, std::string_view text) {
@@ -235,10 +235,10 @@ int run(const RunOptions& o) {
     return kExitBadInput;
   }
   // The bench's faces share the simulator's drive cores; its lines open before anything is written.
-  std::unique_ptr<sim::Bench> bench;
+  std::unique_ptr<Bench> bench;
   if (scenario.serves_lines()) {
     try {
-      bench = std::make_unique<sim::Bench>(*simulator, scenario, o.scenario);
+      bench = std::make_unique<Bench>(*simulator, scenario, o.scenario);
     } catch (const std::exception& e) {
       std::cerr << e.what() << "\n";
       return kExitBadInput;
@@ -400,12 +400,12 @@ int run(const RunOptions& o) {
   if (o.json && bench) {
     // The bench's part joins the summary's object (docs/testbench.md), printed as the summary is.
     nlohmann::json json = nlohmann::json::parse(sim::format_json(summary));
-    json["bench"] = nlohmann::json::parse(sim::format_bench_json(bench->report()));
+    json["bench"] = nlohmann::json::parse(format_bench_json(bench->report()));
     std::cout << json.dump(2) << "\n";
   } else {
     std::cout << (o.json ? sim::format_json(summary) : sim::format_text(summary));
   }
-  if (!o.json && bench) std::cout << sim::format_bench_text(bench->report());
+  if (!o.json && bench) std::cout << format_bench_text(bench->report());
   if (!o.json) {
     for (const auto& path : written) std::cout << "trace written: " << path << "\n";
     if (vcd) {

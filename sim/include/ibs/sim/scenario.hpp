@@ -62,14 +62,16 @@ struct ServedLine {
   friend bool operator==(const ServedLine&, const ServedLine&) = default;
 };
 
-// A DFS-1 controller the bench serves on the scenario's DFS-1 line: not on the INTERBUS ring (seed
-// 004 knows no INTERBUS), reached by the timeline's and the control channel's events by name.
-struct Dfs1Controller {
+// A stand-alone controller the bench serves on the scenario's controller line (the file's
+// [dfs1] table and its [[dfs1.controller]] entries: the controllers of seed 004): not on the
+// INTERBUS ring, reached by the timeline's and the control channel's events by name. Which drive
+// it is, is the registry's (the one that speaks that bus); the scenario names none.
+struct LineController {
   std::string name;  // unique among the scenario's devices and controllers
   int uid = 1;       // 1..255 (seed 004)
   std::size_t source_line = 0;
 
-  friend bool operator==(const Dfs1Controller& a, const Dfs1Controller& b) {
+  friend bool operator==(const LineController& a, const LineController& b) {
     return a.name == b.name && a.uid == b.uid;
   }
 };
@@ -137,13 +139,13 @@ struct Scenario {
   std::vector<TimelineEntry> timeline;  // in time order
   RandomFaults random;
   // The test bench's lines (`ibs run --realtime` only): the devices with `lustbus = ADDR` answer
-  // on `lustbus`; the controllers answer on `dfs1`.
+  // on `lustbus` ([lustbus]); the controllers answer on `controller_line` ([dfs1]).
   std::optional<ServedLine> lustbus;
-  std::optional<ServedLine> dfs1;
-  std::vector<Dfs1Controller> dfs1_controllers;
+  std::optional<ServedLine> controller_line;
+  std::vector<LineController> controllers;
 
   // True when the scenario serves a line (and so needs a real-time run).
-  [[nodiscard]] bool serves_lines() const { return lustbus.has_value() || dfs1.has_value(); }
+  [[nodiscard]] bool serves_lines() const { return lustbus.has_value() || controller_line.has_value(); }
 };
 
 // The built-in scenario of `ibs run` without arguments: an MC6000 (SUPI 11 / IBCNF 2) and a

@@ -1,4 +1,4 @@
-#include "ibs/sim/bench.hpp"
+#include "bench.hpp"
 
 #include <cstdio>
 
@@ -14,7 +14,15 @@
 #include "ibs/serial/serial_port.hpp"
 #include "ibs/serial/serve.hpp"
 
-namespace ibs::sim {
+namespace ibs::cli {
+
+using sim::Action;
+using sim::DeviceConfig;
+using sim::LineController;
+using sim::Scenario;
+using sim::ServedLine;
+using sim::Simulator;
+using sim::TimelineEntry;
 
 namespace {
 
@@ -111,7 +119,7 @@ struct Bench::Impl {
   std::vector<LustbusDrive> lustbus_drives;
   std::vector<Controller> controllers;
   std::optional<Line> lustbus;
-  std::optional<Line> dfs1;
+  std::optional<Line> controller_line;
   // The controllers' timeline entries, in time order, and the next one due.
   std::vector<TimelineEntry> controller_entries;
   std::size_t next_entry = 0;
@@ -162,30 +170,30 @@ Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) 
     open_line(*m.lustbus, *scenario.lustbus, options, file);
     for (Impl::LustbusDrive& d : m.lustbus_drives) m.lustbus->devices.push_back(d.served.get());
   }
-  if (scenario.dfs1) {
+  if (scenario.controller_line) {
     const devices::Drive* drive = devices::drives_on(devices::Bus::dfs1).front();
-    for (const Dfs1Controller& c : scenario.dfs1_controllers) {
+    for (const LineController& c : scenario.controllers) {
       Impl::Controller ctl;
       ctl.name = c.name;
       ctl.uid = c.uid;
       try {
-        ctl.controller = drive->dfs1->make(static_cast<std::uint8_t>(c.uid), scenario.dfs1->baud);
+        ctl.controller = drive->dfs1->make(static_cast<std::uint8_t>(c.uid), scenario.controller_line->baud);
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(file + ": controller '" + c.name + "': " + e.what());
       }
       ctl.served = std::make_unique<devices::dfs1::ServedController>(*ctl.controller);
       m.controllers.push_back(std::move(ctl));
     }
-    m.dfs1.emplace();
-    m.dfs1->key = "dfs1";
+    m.controller_line.emplace();
+    m.controller_line->key = "dfs1";
     // docs/dfs1.md, decision D9: binary data needs 8 data bits; no parity, 1 stop bit.
     serial::PortOptions options;
-    options.baud = scenario.dfs1->baud;
+    options.baud = scenario.controller_line->baud;
     options.framing = serial::k8N1;
-    open_line(*m.dfs1, *scenario.dfs1, options, file);
-    for (Impl::Controller& c : m.controllers) m.dfs1->devices.push_back(c.served.get());
+    open_line(*m.controller_line, *scenario.controller_line, options, file);
+    for (Impl::Controller& c : m.controllers) m.controller_line->devices.push_back(c.served.get());
     for (const TimelineEntry& e : scenario.timeline) {
-      for (const Dfs1Controller& c : scenario.dfs1_controllers) {
+      for (const LineController& c : scenario.controllers) {
         if (c.name != e.device) continue;
         if (const auto parsed = controller_event(e); !parsed.event) {
           throw std::invalid_argument(file + ":" + std::to_string(e.source_line) + ": controller '" + c.name +
@@ -202,13 +210,13 @@ Bench::~Bench() = default;
 std::vector<std::string> Bench::ready_lines() const {
   std::vector<std::string> out;
   if (impl_->lustbus) out.push_back(impl_->lustbus->ready());
-  if (impl_->dfs1) out.push_back(impl_->dfs1->ready());
+  if (impl_->controller_line) out.push_back(impl_->controller_line->ready());
   return out;
 }
 
 std::vector<std::string> Bench::notes() const {
   std::vector<std::string> out;
-  for (const std::optional<Line>* l : {&impl_->lustbus, &impl_->dfs1}) {
+  for (const std::optional<Line>* l : {&impl_->lustbus, &impl_->controller_line}) {
     if (!*l) continue;
     out.insert(out.end(), (*l)->notes.begin(), (*l)->notes.end());
   }
@@ -220,7 +228,7 @@ void Bench::turn(Time now) {
   while (m.next_entry < m.controller_entries.size() && m.controller_entries[m.next_entry].at <= now) {
     apply(m.controller_entries[m.next_entry++], now);
   }
-  for (std::optional<Line>* l : {&m.lustbus, &m.dfs1}) {
+  for (std::optional<Line>* l : {&m.lustbus, &m.controller_line}) {
     if (*l) serial::serve_turn((*l)->port(), (*l)->devices, now);
   }
 }
@@ -300,4 +308,4 @@ std::string format_bench_json(const BenchReport& r) {
   return nlohmann::json{{"lines", r.lines}, {"devices", devices}, {"events", r.events}}.dump();
 }
 
-}  // namespace ibs::sim
+}  // namespace ibs::cli

@@ -5,7 +5,8 @@
 // (LustbusFace::attach), so that what one bus writes the other reads. The lines are served from the
 // simulator's thread once per bus cycle (turn(), called by the real-time runner's each_cycle hook
 // between two deadlines): nothing is shared between threads, nothing locks. Floor 4: it opens the
-// ports; the faces and the controllers stay sans-I/O.
+// ports; the faces and the controllers stay sans-I/O. The command line's: it builds each line's
+// drives through their wings' faces, as the emulate commands do.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +19,8 @@
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
 
-namespace ibs::sim {
+
+namespace ibs::cli {
 
 // What one served drive or controller heard and answered, for the run summary.
 struct BenchDeviceReport {
@@ -42,7 +44,7 @@ class Bench {
   // After `sim` is built and before it runs. Makes the faces on the simulator's drive cores and
   // the controllers, and opens the lines; throws std::invalid_argument naming `file` for a rate a
   // drive does not run at, a port that cannot be opened, a drive that does not speak LUSTBUS.
-  Bench(Simulator& sim, const Scenario& scenario, const std::string& file);
+  Bench(sim::Simulator& sim, const sim::Scenario& scenario, const std::string& file);
   ~Bench();
   Bench(const Bench&) = delete;
   Bench& operator=(const Bench&) = delete;
@@ -63,11 +65,11 @@ class Bench {
   // What is wrong with an entry for one of them (its event as the DFS-1 wing reads control lines:
   // a cause of seed 004, an input, a load in range), nullopt when nothing is or the entry is not
   // a controller's.
-  [[nodiscard]] std::optional<std::string> check(const TimelineEntry& e) const;
+  [[nodiscard]] std::optional<std::string> check(const sim::TimelineEntry& e) const;
   // A timeline or control entry for a DFS-1 controller of the bench, applied at `now` (an entry
   // check() refuses is not applied): true when `e.device` is one, false when it is not the bench's.
   // Allocates (the summary's line): the control channel's and the timeline's rare events only.
-  bool apply(const TimelineEntry& e, Time now);
+  bool apply(const sim::TimelineEntry& e, Time now);
 
   [[nodiscard]] BenchReport report() const;
 
@@ -80,4 +82,4 @@ class Bench {
 std::string format_bench_text(const BenchReport& r);
 std::string format_bench_json(const BenchReport& r);
 
-}  // namespace ibs::sim
+}  // namespace ibs::cli
