@@ -494,6 +494,19 @@ TEST(Cli, RunControlNeedsRealtime) {
       << r.out;
 }
 
+// A control line with a number no double holds ("1e400", nlohmann's out_of_range, not a syntax
+// error) is a bad line like any other: reported with its line and skipped, the emulators go on
+// (the LUSTBUS and the DFS-1 emulator ended on it with exit 2; control_fuzz found it).
+TEST(Cli, AnOverflowingNumberOnTheControlChannelIsABadLineNotTheEnd) {
+  const std::string lines = "(echo 1e400; echo '{\"device\": 1, \"fault\": \"power-cycle\"}'; sleep 1) | timeout 3 ";
+  const Result lb = run_shell(lines + IBS_CLI + " lustbus emulate --pty vf1000@1 --control - 2>&1");
+  EXPECT_NE(lb.out.find("control:1: not a JSON object: number overflow parsing '1e400'"), std::string::npos) << lb.out;
+  EXPECT_NE(lb.out.find("control:2: vf1000@1: power cycle"), std::string::npos) << lb.out;
+  const Result d = run_shell(lines + IBS_CLI + " dfs1 emulate --pty dfs1@1 --control - 2>&1");
+  EXPECT_NE(d.out.find("control:1: not JSON: number overflow parsing '1e400'"), std::string::npos) << d.out;
+  EXPECT_NE(d.out.find("dfs1@1: power cycle"), std::string::npos) << d.out;
+}
+
 }  // namespace
 
 // Issue 23, defect 13: a seed of -1 or one past 2^64 - 1 ran as 18446744073709551615 and exited 0.

@@ -179,7 +179,12 @@ std::string parse_control_event(std::string_view text, const std::vector<std::st
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    return std::string("not JSON: ") + e.what();
+    // nlohmann's text begins "[json.exception....] ": the what is the rest.
+    std::string what = e.what();
+    if (const auto at = what.find("] "); !what.empty() && what.front() == '[' && at != std::string::npos) {
+      what.erase(0, at + 2);
+    }
+    return "not JSON: " + what;
   }
   if (!j.is_object()) return "expected a JSON object, e.g. {\"device\": 1, \"fault\": \"device\", \"cause\": \"E-OTI\"}";
   if (j.contains("at")) return "control entries apply at once: no 'at'";

@@ -488,8 +488,9 @@ dev::ParsedControl parse_dfs1_control_line(std::string_view text) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message begins "[json.exception.parse_error.101] parse error at line 1, ...".
+  } catch (const nlohmann::json::exception& e) {
+    // A syntax error, or a number no double holds (out_of_range.406, "1e400"): the line is bad,
+    // the emulator goes on. nlohmann's message begins "[json.exception.parse_error.101] ...".
     std::string what = e.what();
     const auto at = what.find("] ");
     if (at != std::string::npos) what = what.substr(at + 2);

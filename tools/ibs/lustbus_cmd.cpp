@@ -227,8 +227,14 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument(std::string("not a JSON object: ") + e.what());
+  } catch (const json::exception& e) {
+    // A syntax error, or a number no double holds (out_of_range.406, "1e400"): the line is bad,
+    // the emulator goes on. nlohmann's text begins "[json.exception....] ".
+    std::string what = e.what();
+    if (const auto at = what.find("] "); !what.empty() && what.front() == '[' && at != std::string::npos) {
+      what.erase(0, at + 2);
+    }
+    throw std::invalid_argument("not a JSON object: " + what);
   }
   if (!j.is_object()) throw std::invalid_argument("a control line must be a JSON object");
   const auto string_of = [&](const char* key) {
