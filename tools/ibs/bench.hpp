@@ -56,8 +56,9 @@ class Bench {
   [[nodiscard]] std::vector<std::string> notes() const;
 
   // One turn of every line at `now` (the simulator's time): what arrived is heard, what is due
-  // goes out; the controllers' timeline entries due by `now` are applied first. Allocates
-  // nothing on the way; writes wait for the driver as SerialPort::write does (on a pty: at once).
+  // goes out; the controllers' timeline entries due by `now` are applied first. Allocates nothing
+  // but the summary's line of such an entry (a rare event, not the cycle's work); writes wait for
+  // the driver as SerialPort::write does (on a pty: at once).
   void turn(Time now);
 
   // Whether `name` is one of the bench's DFS-1 controllers.
