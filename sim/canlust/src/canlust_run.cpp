@@ -165,6 +165,37 @@ void observe_drive(Drive& d, Time now) {
   d.last_system = sys;
 }
 
+// A run's capture (docs/pcap.md), the same for the simulated bus and a served one: nullptr
+// without a path; a build without libpcap refuses a path.
+#if defined(IBS_HAVE_PCAP)
+using Capture = can::PcapWriter;
+std::unique_ptr<Capture> open_capture(const std::string& pcap_path) {
+  if (pcap_path.empty()) return nullptr;
+  auto opened = can::PcapWriter::open(pcap_path);
+  if (!opened) throw std::runtime_error(pcap_path + ": " + opened.error);
+  return std::move(opened.transport);
+}
+#else
+struct Capture {
+  void write(const cl::CanFrame&, Time) {}
+};
+std::unique_ptr<Capture> open_capture(const std::string& pcap_path) {
+  if (!pcap_path.empty()) throw std::runtime_error(pcap_path + ": this build has no libpcap (libpcap-dev)");
+  return nullptr;
+}
+#endif
+
+// The report's head, the same for either engine: the scenario's name, duration and rate, one
+// result per timeline entry.
+Report report_head(const Scenario& s) {
+  Report r;
+  r.name = s.name;
+  r.duration = s.duration;
+  r.bitrate = s.bitrate;
+  r.entries.resize(s.timeline.size());
+  return r;
+}
+
 void finish_drive(Drive& d, Time now) {
   DriveResult& r = d.result;
   r.system_state = d.on ? std::string(cl::to_string(d.device->system_state())) : "off";
@@ -200,19 +231,8 @@ class Simulation {
     master_ = face_->make_master(mo_);
     drives_ = make_drives(s, &bus_);
 
-#if defined(IBS_HAVE_PCAP)
-    if (!pcap_path.empty()) {
-      auto opened = can::PcapWriter::open(pcap_path);
-      if (!opened) throw std::runtime_error(pcap_path + ": " + opened.error);
-      pcap_ = std::move(opened.transport);
-    }
-#else
-    if (!pcap_path.empty()) throw std::runtime_error(pcap_path + ": this build has no libpcap (libpcap-dev)");
-#endif
-    report_.name = s.name;
-    report_.duration = s.duration;
-    report_.bitrate = s.bitrate;
-    report_.entries.resize(s.timeline.size());
+    pcap_ = open_capture(pcap_path);
+    report_ = report_head(s);
   }
 
   // Everything due up to `t`, then the state at `t`.
@@ -435,14 +455,7 @@ class Simulation {
   devices::CanlustMasterOptions mo_;
   std::unique_ptr<devices::CanlustMaster> master_;
   std::vector<std::unique_ptr<Drive>> drives_;
-#if defined(IBS_HAVE_PCAP)
-  std::unique_ptr<can::PcapWriter> pcap_;
-#else
-  struct NoPcap {
-    void write(const cl::CanFrame&, Time) {}
-  };
-  std::unique_ptr<NoPcap> pcap_;
-#endif
+  std::unique_ptr<Capture> pcap_;
   Report report_;
   std::vector<PendingRead> pending_;
   std::size_t next_entry_ = 0;
@@ -517,19 +530,8 @@ class Served {
       ready_ = "canlust socketcan: " + iface;
       bus_ = std::move(opened.transport);
     }
-#if defined(IBS_HAVE_PCAP)
-    if (!pcap_path.empty()) {
-      auto opened = can::PcapWriter::open(pcap_path);
-      if (!opened) throw std::runtime_error(pcap_path + ": " + opened.error);
-      pcap_ = std::move(opened.transport);
-    }
-#else
-    if (!pcap_path.empty()) throw std::runtime_error(pcap_path + ": this build has no libpcap (libpcap-dev)");
-#endif
-    report_.name = s.name;
-    report_.duration = s.duration;
-    report_.bitrate = s.bitrate;
-    report_.entries.resize(s.timeline.size());
+    pcap_ = open_capture(pcap_path);
+    report_ = report_head(s);
     last_status_.resize(drives_.size());
   }
 
@@ -627,14 +629,7 @@ class Served {
   cl::IdentifierMap ids_{};
   std::unique_ptr<can::CanTransport> bus_;
   std::string ready_;
-#if defined(IBS_HAVE_PCAP)
-  std::unique_ptr<can::PcapWriter> pcap_;
-#else
-  struct NoPcap {
-    void write(const cl::CanFrame&, Time) {}
-  };
-  std::unique_ptr<NoPcap> pcap_;
-#endif
+  std::unique_ptr<Capture> pcap_;
   Report report_;
   std::vector<std::optional<Word>> last_status_;
   std::size_t next_entry_ = 0;
