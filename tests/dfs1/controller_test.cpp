@@ -152,6 +152,43 @@ TEST(Dfs1Controller, StatusCarriesSpeedsLoadAndBothStatusBytes) {
   EXPECT_EQ(r->data[15], kSt1Overvolt);
 }
 
+// 004, status list: "at speed" is the drive at its commanded speed (issue 25.12, DFS1-D21). The
+// reply's first value is that commanded speed, its second the actual one: the bit says they agree.
+TEST(Dfs1Controller, AtSpeedMeansAtTheCommandedSpeedNotAtRestAfterAStart) {
+  Controller c = remote_controller();
+  struct Row {
+    Time at;
+    bool at_speed;
+    bool zero_speed;
+    const char* why;
+  };
+  expect_ack(c, request::set_speed(1, -500), 0ms);
+  expect_ack(c, request::execute_speed(1), 0ms);
+  const Row rows[] = {
+      {0ms, false, true, "right after Execute Speed -500 from rest: actual 0"},
+      {50ms, false, true, "the contactor is still closing (parameter 62 = 4: 100 ms)"},
+      {600ms, false, false, "one time constant after the contactor closed: about -316 rpm"},
+      {10s, true, false, "settled at -500 rpm"},
+  };
+  for (const Row& row : rows) {
+    const auto r = exchange(c, request::status(1), row.at);
+    ASSERT_TRUE(r && r->is_ack()) << row.why;
+    EXPECT_EQ(proto::to_signed(r->value_at(0)), -500) << row.why;
+    EXPECT_EQ((r->data[14] & kSt2AtSpeed) != 0, row.at_speed) << row.why;
+    EXPECT_EQ((r->data[14] & kSt2ZeroSpeed) != 0, row.zero_speed) << row.why;
+  }
+  // A fault stops the motor but not the command: at 0 rpm with -500 commanded it is not at speed.
+  c.set_faults(kSt1Overvolt);
+  auto r = exchange(c, request::status(1), 30s);
+  ASSERT_TRUE(r && r->is_ack());
+  EXPECT_EQ(r->data[14] & (kSt2AtSpeed | kSt2ZeroSpeed), kSt2ZeroSpeed);
+  // Commanding 0 makes standstill the commanded speed again.
+  expect_ack(c, request::set_and_execute_speed(1, 0), 30s);
+  r = exchange(c, request::status(1), 30s);
+  ASSERT_TRUE(r && r->is_ack());
+  EXPECT_EQ(r->data[14] & (kSt2AtSpeed | kSt2ZeroSpeed), kSt2AtSpeed | kSt2ZeroSpeed);
+}
+
 TEST(Dfs1Controller, AnalogAndDigitalIo) {
   Controller c = remote_controller();
   c.set_analog_input(2, 512);

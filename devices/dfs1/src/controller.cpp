@@ -209,7 +209,10 @@ std::uint8_t Controller::st2() const {
   std::uint8_t s = 0;
   if (values_[index(kRemoteFunctions)] != 0) s |= kSt2Remote;
   if (application_mode_ == 1) s |= kSt2Slave;
-  if (std::abs(actual - target_speed(now_)) <= band) s |= kSt2AtSpeed;
+  // At speed means at the commanded speed the same reply carries (issue 25.12, DFS1-D21): not at
+  // the plant's momentary target, which is 0 while the contactor closes, a fault is latched or the
+  // E-stop is open; a start from rest is not at speed until the motor gets there.
+  if (std::abs(actual - static_cast<double>(commanded_speed_)) <= band) s |= kSt2AtSpeed;
   if (commanded_speed_ >= 0) s |= kSt2Forward;
   if (faulted()) s |= kSt2Fault;
   if (enabled()) s |= kSt2Enabled;
