@@ -10,6 +10,7 @@
 # serial port); REASON is printed. A block right after `<!-- check-docs: script -->` runs as one
 # shell script, so that its lines share variables and background jobs (an emulator started with
 # `&` and stopped with `kill %1`); each of its lines is still checked for its exit status.
+# A command whose output says "No tests were found" (a ctest that selects nothing) fails.
 # `./dev.sh test` lines are not run again: .ci/run runs them itself. Each command (or script) has
 # 20 minutes.
 set -uo pipefail
@@ -34,6 +35,12 @@ run_one() {  # file line command
   ran=$((ran + 1))
   timeout 1200 bash -c "$cmd" >"$log" 2>&1 </dev/null
   local rc=$?
+  # A ctest that selects nothing exits 0 (CMake 3.25 has no CTEST_NO_TESTS_ACTION): a documented
+  # test command that runs no test is a failure all the same.
+  if ((rc == 0)) && grep -q '^No tests were found' "$log"; then
+    rc=8
+    echo "    (ran no test)" >>"$log"
+  fi
   if ((rc != want)); then
     failed=$((failed + 1))
     echo "check-docs: $file:$line: FAILED (exit $rc, expected $want): $cmd"
@@ -61,6 +68,10 @@ run_script() {  # file first-line
   ran=$((ran + 1))
   timeout 1200 bash -c "__failed=0"$'\n'"$script"$'\n'"wait; exit \$__failed" >"$log" 2>&1 </dev/null
   local rc=$?
+  if ((rc == 0)) && grep -q '^No tests were found' "$log"; then
+    rc=8
+    echo "check-docs: a ctest in the script ran no test" >>"$log"
+  fi
   if ((rc != 0)); then
     failed=$((failed + 1))
     echo "check-docs: $file:$line: FAILED (script of $script_lines commands, exit $rc)"
