@@ -123,6 +123,11 @@ devices::DeviceEmulator& Simulator::emulator(std::size_t i) { return *devices_[i
 
 const devices::DeviceEmulator& Simulator::emulator(std::size_t i) const { return *devices_[i]->emu; }
 
+devices::LayoutDescription Simulator::layout(std::size_t i) const {
+  const Device& d = *devices_[i];
+  return d.kind->descriptor->layout(d.configuration);
+}
+
 void Simulator::start(const SimOptions& options) {
   options_ = options;
   started_ = true;

@@ -25,10 +25,29 @@ std::string signal_name(const std::string& device) {
   return n;
 }
 
+// The wire names of one direction's words: each word's role in the device's layout (`ibs
+// layout`: control_word, reference, status_word, actual, reference_q16_high, ...), else
+// `<fallback>N`. A name the scope already has gets the direction appended (`no_data_out`).
+std::vector<std::string> word_names(const std::vector<devices::WordMeaning>& meanings, std::size_t count,
+                                    const char* fallback, const char* direction, std::vector<std::string>& taken) {
+  std::vector<std::string> names;
+  for (std::size_t w = 0; w < count; ++w) {
+    std::string n = fallback + std::to_string(w + 1);
+    for (const devices::WordMeaning& m : meanings) {
+      if (m.word == static_cast<int>(w + 1) && !m.role.empty()) n = signal_name(m.role);
+    }
+    if (std::find(taken.begin(), taken.end(), n) != taken.end()) n += direction;
+    while (std::find(taken.begin(), taken.end(), n) != taken.end()) n += "_";
+    taken.push_back(n);
+    names.push_back(n);
+  }
+  return names;
+}
+
 }  // namespace
 
-VcdRecorder::VcdRecorder(Simulator& sim, std::ostream& out)
-    : sim_(sim), writer_(out, vcd::VcdHeader{"", "", "ibs cycle simulator"}) {
+VcdRecorder::VcdRecorder(Simulator& sim, std::ostream& out, std::string date)
+    : sim_(sim), writer_(out, vcd::VcdHeader{std::move(date), "", "ibs cycle simulator"}) {
   writer_.begin_scope("bus");
   valid_ = writer_.add_wire("cycle_valid", 1, 1);
   cycles_ = writer_.add_wire("cycles", 32, 0);
@@ -38,12 +57,16 @@ VcdRecorder::VcdRecorder(Simulator& sim, std::ostream& out)
     const interbus::Device& d = cfg.devices[i];
     DeviceSignals s;
     writer_.begin_scope(signal_name(d.name));
-    for (std::size_t w = 0; w < d.pd_out_words; ++w) {
-      s.device_in.push_back(writer_.add_wire("m2s_w" + std::to_string(w + 1), 16));
+    // The names the scope's other signals take; the words must not collide with them.
+    std::vector<std::string> taken{"master_control", "master_status", "module_error", "state"};
+    const devices::LayoutDescription layout = sim_.layout(i);
+    for (const std::string& n : word_names(layout.out_words, d.pd_out_words, "m2s_w", "_out", taken)) {
+      s.device_in.push_back(writer_.add_wire(n, 16));
     }
-    for (std::size_t w = 0; w < d.pd_in_words; ++w) {
-      s.device_out.push_back(writer_.add_wire("s2m_w" + std::to_string(w + 1), 16));
+    for (const std::string& n : word_names(layout.in_words, d.pd_in_words, "s2m_w", "_in", taken)) {
+      s.device_out.push_back(writer_.add_wire(n, 16));
     }
+    s.unit = std::string(sim_.driver(i).unit());
     s.control = writer_.add_wire("master_control", 16);
     s.status = writer_.add_wire("master_status", 16);
     s.module_error = writer_.add_wire("module_error", 1);
@@ -103,6 +126,10 @@ std::string VcdRecorder::save_file(const std::string& dump_file, const std::stri
     g.open_scope(signal_name(d.name));
     g.comment(d.name + " (ID code " + interbus::to_hex(d.id) + ")");
     g.add(s.state, filter_file);
+    // Each analog row spans its own values over the whole run (gtkwave's Resizing > All Data), so
+    // its height means the same wherever the window is scrolled; the line above names the unit (short:
+    // gtkwave widens the signal pane to its longest line).
+    g.comment("reference, actual: " + s.unit);
     g.add(s.reference);
     g.add(s.actual);
     g.add(s.control);

@@ -216,12 +216,25 @@ TEST(Pictures, RunVcdWritesASaveFileBesideIt) {
   EXPECT_TRUE(contains(r.out, "VCD written: " + vcd + " (open it with: gtkwave " + vcd + ".gtkw;")) << r.out;
   const std::string g = slurp(vcd + ".gtkw");
   for (const std::string& what : std::vector<std::string>{"[dumpfile] \"" + vcd + "\"\n", "[savefile] \"" + vcd + ".gtkw\"\n", "[timestart] 0\n",
-        "@2022\n^1 " + vcd + ".states.txt\nmc6000.state[3:0]\n", "@8420\nmc6000.reference_rpm\n@20000\n-\n-\n",
-        "@8420\nmc6000.actual_rpm\n", "vf1000.reference_Hz\n", "vf1000.actual_Hz\n",
+        "@2022\n^1 " + vcd + ".states.txt\nmc6000.state[3:0]\n", "@200\n-reference, actual: rpm\n@88420\nmc6000.reference_rpm\n@20000\n-\n-\n",
+        "@88420\nmc6000.actual_rpm\n", "-reference, actual: Hz\n", "vf1000.reference_Hz\n", "vf1000.actual_Hz\n",
         "@22\nvf1000.master_control[15:0]\nvf1000.master_status[15:0]\n", "@28\nbus.cycle_valid\n",
         "-mc6000 (ID code 4DBH)\n", "-vf1000 (ID code 33BH)\n"}) {
     EXPECT_TRUE(contains(g, what)) << what << "\n" << g;
   }
+  // The dump itself: the words by their meaning in each layout, and when the run was made.
+  const std::string v = slurp(vcd);
+  for (const std::string& what : std::vector<std::string>{
+           " control_word $end", " reference_q16_high $end", " status_word $end", " actual_q16_high $end",
+           " frequency_reference $end", " communication_word $end", " actual_frequency $end"}) {
+    EXPECT_TRUE(contains(v, what)) << what << "\n" << v.substr(0, 2000);
+  }
+  EXPECT_FALSE(contains(v, " m2s_w")) << v.substr(0, 2000);
+  const auto date = v.find("$date\n\t");
+  ASSERT_NE(date, std::string::npos) << v.substr(0, 300);
+  int y = 0, mo = 0, d = 0, h = 0, mi = 0, sec = 0;
+  EXPECT_EQ(std::sscanf(v.c_str() + date + 7, "%4d-%2d-%2d %2d:%2d:%2d UTC", &y, &mo, &d, &h, &mi, &sec), 6) << v.substr(date, 60);
+  EXPECT_GE(y, 2026);
   fs::remove_all(dir);
 }
 
@@ -256,11 +269,13 @@ TEST(Pictures, GtkwaveOpensTheRunReadyToRead) {
   const std::vector<std::string> want{
       "bus.cycle_valid|40|1",                        // flags 28H: binary
       "mc6000.state[3:0]|8226|ENABLED",              // 2022H: hex through the filter, by name
-      "mc6000.reference_rpm|33824|2500.25",          // 8420H: analog step
+      "mc6000.reference_rpm|558112|2500.25",         // 88420H: analog step, full scale
       "mc6000.master_control[15:0]|34|000F",         // 22H: hex
       "mc6000.master_status[15:0]|34|0637",
       "vf1000.state[3:0]|8226|ENABLED",
-      "vf1000.reference_Hz|33824|50",
+      "vf1000.reference_Hz|558112|50",
+      "mc6000.control_word[15:0]|34|000F",           // the words by their meaning in the layout
+      "vf1000.frequency_reference[15:0]|34|03E8",      // 50 Hz in 0.05 Hz steps
   };
   for (const auto& w : want) EXPECT_NE(std::find(lines.begin(), lines.end(), w), lines.end()) << w << "\n" << slurp(out);
   fs::remove_all(dir);

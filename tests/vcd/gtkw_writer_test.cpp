@@ -83,7 +83,7 @@ TEST(GtkwSave, ListsEverySignalInItsFormat) {
       "@2022",  // translated through filter 1, hex
       "^1 /runs/run.vcd.states.txt",
       "servo.state[3:0]",
-      "@8420",  // analog step, signed
+      "@88420",  // analog step over the whole dump's range, signed
       "servo.speed_rpm",
       "@20000",  // two more rows for the analog trace
       "-",

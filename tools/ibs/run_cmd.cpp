@@ -6,6 +6,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -259,7 +260,12 @@ int run(const RunOptions& o) {
       std::cerr << error << "\n";
       return kExitBadInput;
     }
-    vcd = std::make_unique<sim::VcdRecorder>(*simulator, *vcd_stream);
+    // $date: when the run was made, as VCD writers put it (IEEE 1364-2005, 18.2.3.1), in UTC.
+    const std::time_t started = std::time(nullptr);
+    std::tm utc{};
+    char date[40] = "";
+    if (gmtime_r(&started, &utc) != nullptr) std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", &utc);
+    vcd = std::make_unique<sim::VcdRecorder>(*simulator, *vcd_stream, date);
     simulator->add_observer(vcd.get());
   }
   std::unique_ptr<sim::PcapRecorder> pcap;

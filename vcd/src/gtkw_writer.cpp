@@ -44,7 +44,7 @@ void GtkwSave::add(WireSignal s) {
 }
 
 void GtkwSave::add(RealSignal s, int rows) {
-  flags(gtkw_flags::kAnalogStep | gtkw_flags::kSigned | gtkw_flags::kRightJustify);
+  flags(gtkw_flags::kAnalogStep | gtkw_flags::kAnalogFullscale | gtkw_flags::kSigned | gtkw_flags::kRightJustify);
   traces_ += vcd_.path(s);
   traces_ += '\n';
   if (rows > 1) {

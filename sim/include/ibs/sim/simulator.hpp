@@ -222,6 +222,8 @@ class Simulator {
   [[nodiscard]] double device_actual(std::size_t i) const;
   devices::DeviceEmulator& emulator(std::size_t i);
   [[nodiscard]] const devices::DeviceEmulator& emulator(std::size_t i) const;
+  // The device's process-data words as `ibs layout` describes them (roles and meanings).
+  [[nodiscard]] devices::LayoutDescription layout(std::size_t i) const;
   [[nodiscard]] std::optional<std::size_t> index_of(const std::string& name) const;
   // The bus reports a module error for the device (lost, or initialising).
   [[nodiscard]] bool module_error(std::size_t i, Time t) const;

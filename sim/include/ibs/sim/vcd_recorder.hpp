@@ -1,5 +1,6 @@
 // Records a simulated run as a VCD file for gtkwave (docs/vcd.md): per device the words on the
-// bus as vectors and its DRIVECOM state, reference and actual value as named signals.
+// bus as vectors named by their meaning in the device's layout (control_word, reference,
+// status_word, actual, ...) and its DRIVECOM state, reference and actual value as named signals.
 #pragma once
 
 #include <ostream>
@@ -14,8 +15,9 @@ namespace ibs::sim {
 
 class VcdRecorder final : public Observer {
  public:
-  // Declares every signal of the simulator's ring; add it with Simulator::add_observer.
-  VcdRecorder(Simulator& sim, std::ostream& out);
+  // Declares every signal of the simulator's ring; add it with Simulator::add_observer. `date`
+  // goes into the header's $date (the run's wall-clock start; empty: no $date).
+  VcdRecorder(Simulator& sim, std::ostream& out, std::string date = {});
 
   void on_cycle(Time at, bool valid, const interbus::ProcessImage& image) override;
   void on_sample(Time at, std::size_t device, std::span<const Word> m2s, std::span<const Word> s2m) override;
@@ -25,7 +27,8 @@ class VcdRecorder final : public Observer {
   [[nodiscard]] std::string state_filter() const;
   // The gtkwave save file (docs/vcd.md, "The save file"): the bus, then per device its state by
   // name (through `filter_file`, the state_filter() text), reference and actual value as analog
-  // traces, the master's control and status words and the device's words in hex; zoomed to the
+  // traces under a line naming their unit and scale, the master's control and status words and
+  // the device's words in hex; zoomed to the
   // whole run, 0..`end`. The paths are written as given.
   [[nodiscard]] std::string save_file(const std::string& dump_file, const std::string& filter_file,
                                       const std::string& save_file, Time end) const;
@@ -40,6 +43,7 @@ class VcdRecorder final : public Observer {
     vcd::StateSignal state;
     vcd::RealSignal reference;
     vcd::RealSignal actual;
+    std::string unit;
   };
   void at(Time t);
 

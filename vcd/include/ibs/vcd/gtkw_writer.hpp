@@ -26,6 +26,8 @@ inline constexpr std::uint32_t kSigned = 0x400;
 inline constexpr std::uint32_t kTranslated = 0x2000;  // through a translate filter file
 inline constexpr std::uint32_t kAnalogStep = 0x8000;
 inline constexpr std::uint32_t kAnalogBlankStretch = 0x20000;  // the rows that make an analog trace taller
+// Resizing > All Data: an analog trace scaled to its values over the whole dump, not the window's.
+inline constexpr std::uint32_t kAnalogFullscale = 0x80000;
 }  // namespace gtkw_flags
 
 struct GtkwLayout {
