@@ -65,6 +65,23 @@ std::string hex2(std::uint8_t b) {
   return t;
 }
 
+// A shared CODE (00081..00085, 2.4.2 and 5.2) is answered by either family, each in its own VALUE
+// form: the VF1000's 85-SIOF as four characters, the MC6000's 85-SERR as two hex digits (a binary
+// value of 8 bits, 2.4.2). The log does not say which drive sits at the address, so the answer's
+// form does: one the standard family cannot read but the enhanced one can is the MC6000's.
+Named answered_by(Named n, std::string_view v, const Code& c, const ParameterLookup& lookup) {
+  if (!n.param || n.description || n.family != Family::standard) return n;
+  if (parse_typed(Family::standard, n.param->type, v).ok()) return n;
+  const auto vf = as_vf_code(c);
+  if (!vf || !is_shared_parameter(vf->parameter) || !lookup) return n;
+  const auto mc = lookup(Family::enhanced, vf->parameter);
+  if (!mc || !parse_typed(Family::enhanced, mc->type, v).ok()) return n;
+  n.family = Family::enhanced;
+  n.param = mc;
+  n.text = "MC6000 " + label(*mc) + " (shared CODE)";
+  return n;
+}
+
 // The VALUE as the parameter's type reads it.
 std::string explain_value(const Named& n, std::string_view v) {
   if (!n.param || n.description) return "";
@@ -120,7 +137,6 @@ class LogReader {
       out_ << answer_at_ << " drive broken answer (" << to_string(decoder_.error()) << "): " << printable(raw_) << "\n";
       return;
     }
-    const Named n = name_code(code_, lookup_);
     switch (decoder_.kind()) {
       case AnswerKind::ack:
         out_ << answer_at_ << " drive " << address_char(addr_) << " ACK\n";
@@ -133,6 +149,7 @@ class LogReader {
         return;
       default: {
         const std::string v(decoder_.value().view());
+        const Named n = answered_by(name_code(code_, lookup_), v, code_, lookup_);
         out_ << answer_at_ << " drive " << address_char(addr_) << " " << code_.text() << "=" << printable(v)
              << " BCC ok: " << n.text << (n.param && !n.description ? " =" : "") << explain_value(n, v);
         if (reads_siof(code_)) {

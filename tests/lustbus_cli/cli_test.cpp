@@ -439,6 +439,34 @@ TEST(LustbusLogDecode, ExplainsTelegramByTelegram) {
   EXPECT_NE(text.find("0.071000 host  broken telegram (EOT before its end): A001"), std::string::npos) << text;
 }
 
+// After a NAK the host reads the cause with the shared CODE 00085 (2.4.2, 9.2), which both families
+// answer, each in its own form: the MC6000's 85-SERR as two hex digits, the VF1000's 85-SIOF as
+// four characters. The log does not say which drive is at the address; the answer's form does.
+TEST(LustbusLogDecode, TheSharedCode85IsReadInTheFormOfTheDriveThatAnswered) {
+  const std::string file = ::testing::TempDir() + "lustbus-decode-85.log";
+  {
+    std::ofstream f(file);
+    f << "ibs-serial-log 1\n"
+         // An MC6000 at C refuses 428-RSIO := 1 while its power-on bit is set; the host reads 00085.
+         "0.000355 tx /dev/pts/0 04 43 02 32 30 34 32 38 3D 31 30 30 30 30 03 33\n"
+         "0.024734 rx /dev/pts/0 43 15\n"
+         "0.024875 tx /dev/pts/0 04\n"
+         "0.024888 tx /dev/pts/0 04 43 30 30 30 38 35 05\n"
+         "0.042101 rx /dev/pts/0 43 02 30 30 30 38 35 3D 30 31 03 02\n"
+         "0.042163 tx /dev/pts/0 04\n";
+  }
+  std::ostringstream out;
+  std::ostringstream err;
+  const auto rc = decode_lustbus_log(file, out, err);
+  ASSERT_TRUE(rc);
+  EXPECT_EQ(*rc, 0) << err.str();
+  const std::string text = out.str();
+  EXPECT_NE(text.find("0.042101 drive C 00085=01 BCC ok: MC6000 85-SERR (shared CODE) = 1 (01H: power on)"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("not exactly four characters"), std::string::npos) << text;
+}
+
 TEST(LustbusLogDecode, BadLinesAndOtherFiles) {
   const std::string dir = ::testing::TempDir();
   std::ostringstream out;
