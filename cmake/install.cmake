@@ -39,6 +39,8 @@ endfunction()
 function(ibs_install)
   get_property(targets GLOBAL PROPERTY IBS_EXPORTED_TARGETS)
   get_property(header_dirs GLOBAL PROPERTY IBS_HEADER_DIRS)
+  # Several targets share a header folder (base/include by many): install each folder once.
+  list(REMOVE_DUPLICATES header_dirs)
   install(TARGETS ${targets} EXPORT ibs-targets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -89,14 +91,36 @@ function(ibs_install)
                 "ibs_can_transport ibs_canlust ibs_base" "-lpcap")
     ibs_host_pc(ibs-dfs1 "ibs PowerTec DFS-1 host (seed 004) with serial ports and pseudo-terminals"
                 "ibs_dfs1_serial ibs_dfs1 ibs_serial ibs_base" "-lutil -pthread")
+    # The cycle simulator and the drives' emulators (ibs::sim), in the link order CMake derives for
+    # ibs::sim (tools/check_install.sh links a program through this file and runs it).
+    set(sim_requires "eigen3 tomlplusplus")
+    if(IBS_PCAP_INCLUDE_DIR AND IBS_PCAP_LIBRARY)
+      string(APPEND sim_requires " libpcap")
+    endif()
+    ibs_host_pc(ibs-sim "ibs cycle simulator and the drives' emulators (INTERBUS, with captures and VCD)"
+                "ibs_sim ibs_master ibs_scenario ibs_devices ibs_vf1000_device ibs_vf1000_master ibs_vf1000_channel
+                 ibs_vf1000_core ibs_vf1000_table ibs_mc6000_device ibs_plant ibs_mc6000_master ibs_mc6000_core ibs_pcp
+                 ibs_drive ibs_devices_api ibs_drivecom ibs_interbus_bus ibs_vcd ibs_interbus_core ibs_base"
+                "-pthread" REQUIRES "${sim_requires}")
+    # The Wireshark dissectors, laid out as a Wireshark plugin folder (docs/pcap.md, "Installed").
+    install(FILES ${PROJECT_SOURCE_DIR}/tools/wireshark/interbus.lua ${PROJECT_SOURCE_DIR}/tools/wireshark/canlust.lua
+            DESTINATION ${CMAKE_INSTALL_DATADIR}/ibs/wireshark/plugins)
   endif()
 endfunction()
 
-# ibs_host_pc(NAME DESCRIPTION "LIB..." "SYSTEM-FLAGS"): NAME.pc for a bus host's libraries.
+# ibs_host_pc(NAME DESCRIPTION "LIB..." "SYSTEM-FLAGS" [REQUIRES "PKG..."]): NAME.pc for a bus
+# host's libraries; REQUIRES names the pkg-config packages they need.
 function(ibs_host_pc name description libs system)
+  cmake_parse_arguments(arg "" "REQUIRES" "" ${ARGN})
+  set(IBS_PC_REQUIRES "")
+  if(arg_REQUIRES)
+    set(IBS_PC_REQUIRES "Requires: ${arg_REQUIRES}")
+  endif()
   set(IBS_PC_NAME ${name})
   set(IBS_PC_DESCRIPTION ${description})
   set(IBS_PC_LIBS "")
+  string(REGEX REPLACE "[ \t\n]+" " " libs "${libs}")
+  string(STRIP "${libs}" libs)
   separate_arguments(libs)
   foreach(lib IN LISTS libs)
     string(APPEND IBS_PC_LIBS " -l${lib}")

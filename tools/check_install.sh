@@ -10,7 +10,10 @@
 #     must export the DDI_* calls only;
 #  4. examples/hosts, a LUSTBUS, a CANLust and a DFS-1 host as a user's own programs, built with
 #     CMake (ibs::lustbus, ibs::canlust, ibs::dfs1 and their transports) and run against the
-#     installed tool's emulators, then built through pkg-config (ibs-lustbus, ibs-canlust, ibs-dfs1).
+#     installed tool's emulators, then built through pkg-config (ibs-lustbus, ibs-canlust, ibs-dfs1);
+#  5. the package is relocatable (installed, moved, used), each header installed once, the Lua
+#     dissectors in share/ibs/wireshark/plugins, and the simulator linked through pkg-config (ibs-sim);
+#     the .pc files force no -std on a program, and an older standard gets a clear message.
 # Usage: tools/check_install.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -57,11 +60,42 @@ int main() {
 CPP
 export PKG_CONFIG_PATH="$work/master/lib/pkgconfig:$work/master/lib/x86_64-linux-gnu/pkgconfig"
 # shellcheck disable=SC2046
-g++ "$work/master_only.cpp" -o "$work/master_only" $(pkg-config --cflags --libs ibs-master)
+g++ -std="$(pkg-config --variable=cxx_std ibs-master)" "$work/master_only.cpp" -o "$work/master_only" \
+  $(pkg-config --cflags --libs ibs-master)
 "$work/master_only"
+# The .pc files do not force a standard on the user's program; built with an older one, the
+# headers say what they need at once.
+# shellcheck disable=SC2046
+if g++ -std=c++17 -c "$work/master_only.cpp" -o "$work/old.o" $(pkg-config --cflags ibs-master) 2>"$work/old.txt"; then
+  echo "check_install: a C++17 build of the master compiled" >&2
+  exit 1
+fi
+grep -q "ibs needs C++20 or later" "$work/old.txt" || { echo "check_install: no clear message for a C++17 build" >&2; exit 1; }
 
-echo "check_install: the whole package from $built, examples/embed against it" >&2
-cmake --install "$built" --prefix "$work/full" >/dev/null
+echo "check_install: the whole package from $built, moved after installing, examples/embed against it" >&2
+# Installed in one place and used from another: the package must be relocatable (no absolute
+# path of the build machine in its CMake files or .pc files).
+cmake --install "$built" --prefix "$work/full-installed" >/dev/null
+mv "$work/full-installed" "$work/full"
+if grep -rlE "$work/full-installed|$PWD|/usr/lib/[^ \"]*\.so" "$work/full"/lib*/cmake "$work"/full/lib*/pkgconfig \
+    "$work"/full/lib/*/cmake "$work"/full/lib/*/pkgconfig 2>/dev/null; then
+  echo "check_install: the installed package names absolute paths (files above)" >&2
+  exit 1
+fi
+# Each header once: a folder shared by several libraries is installed once.
+if cmake --install "$built" --prefix "$work/again" | sed 's/^-- [A-Za-z-]*: //' | sort | uniq -d | grep -q '\.hpp$'; then
+  echo "check_install: a header is installed twice" >&2
+  exit 1
+fi
+rm -rf "$work/again"
+# The Wireshark dissectors, as a plugin folder (docs/pcap.md, "Installed dissectors").
+for lua in interbus canlust; do
+  [[ -f "$work/full/share/ibs/wireshark/plugins/$lua.lua" ]] || { echo "check_install: $lua.lua not installed" >&2; exit 1; }
+done
+if command -v tshark >/dev/null; then
+  tshark -X lua_script:"$work/full/share/ibs/wireshark/plugins/interbus.lua" -G protocols 2>/dev/null | grep -q $'\tinterbus$' \
+    || { echo "check_install: tshark does not load the installed interbus.lua" >&2; exit 1; }
+fi
 cmake -S examples/embed -B "$work/embed-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/embed-build" -j "$jobs" >/dev/null
 "$work/embed-build/embed"
@@ -120,11 +154,27 @@ grep -qx "CDA 1 parameter 360: 406" "$work/canlust_read.txt"  # 360-DISP, as doc
 # links them.
 export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu/pkgconfig"
 # shellcheck disable=SC2046
-g++ examples/hosts/lustbus_read.cpp -o "$work/lustbus_read_pc" $(pkg-config --cflags --libs ibs-lustbus)
+g++ -std=c++20 examples/hosts/lustbus_read.cpp -o "$work/lustbus_read_pc" $(pkg-config --cflags --libs ibs-lustbus)
 "$work/lustbus_read_pc" "$lustbus_pty" 1 00004 >/dev/null
 # shellcheck disable=SC2046
-g++ examples/hosts/dfs1_status.cpp -o "$work/dfs1_status_pc" $(pkg-config --cflags --libs ibs-dfs1)
+g++ -std=c++20 examples/hosts/dfs1_status.cpp -o "$work/dfs1_status_pc" $(pkg-config --cflags --libs ibs-dfs1)
 # shellcheck disable=SC2046
-g++ examples/hosts/canlust_read.cpp -o "$work/canlust_read_pc" $(pkg-config --cflags --libs ibs-canlust)
+g++ -std=c++20 examples/hosts/canlust_read.cpp -o "$work/canlust_read_pc" $(pkg-config --cflags --libs ibs-canlust)
 stop_emulators
+# The simulator through pkg-config (ibs-sim): the default scenario run by a user's program.
+cat >"$work/sim_pc.cpp" <<'CPP'
+#include <cstdio>
+#include "ibs/sim/scenario.hpp"
+#include "ibs/sim/simulator.hpp"
+int main() {
+  ibs::sim::Simulator sim(ibs::sim::default_scenario());
+  sim.run();
+  const auto& summary = sim.summary();
+  std::printf("%zu devices simulated\n", summary.devices.size());
+  return summary.devices.size() == 2 ? 0 : 1;
+}
+CPP
+# shellcheck disable=SC2046
+g++ -std=c++20 "$work/sim_pc.cpp" -o "$work/sim_pc" $(pkg-config --cflags --libs ibs-sim)
+"$work/sim_pc"
 echo "check_install: passed" >&2
