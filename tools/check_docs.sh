@@ -10,6 +10,9 @@
 # serial port); REASON is printed. A block right after `<!-- check-docs: script -->` runs as one
 # shell script, so that its lines share variables and background jobs (an emulator started with
 # `&` and stopped with `kill %1`); each of its lines is still checked for its exit status.
+# A ```cpp block right after `<!-- check-docs: cpp PREFIX PACKAGE -->` is a complete program: it is
+# compiled with `g++ -std=c++20 -Wall -Wextra -Werror` and `pkg-config PACKAGE` of the installation
+# under PREFIX (an earlier block of the same pages installs it), then run; it must exit 0.
 # A command whose output says "No tests were found" (a ctest that selects nothing) fails.
 # `./dev.sh test` lines are not run again: .ci/run runs them itself. Each command (or script) has
 # 20 minutes.
@@ -48,6 +51,35 @@ run_one() {  # file line command
   else
     echo "check-docs: $file:$line: ok: $cmd"
   fi
+}
+
+# A program block: compiled against an installation and run (the `cpp PREFIX PACKAGE` marker).
+program=""
+compile_one() {  # file line prefix package
+  local file=$1 line=$2 prefix=$3 package=$4 dir
+  ran=$((ran + 1))
+  dir=$(mktemp -d)
+  printf '%s' "$program" >"$dir/program.cpp"
+  local pc="$prefix/lib/pkgconfig:$prefix/lib/x86_64-linux-gnu/pkgconfig"
+  # shellcheck disable=SC2046
+  if ! (export PKG_CONFIG_PATH=$pc && g++ -std=c++20 -Wall -Wextra -Werror "$dir/program.cpp" -o "$dir/program" \
+          $(pkg-config --cflags --libs "$package")) >"$log" 2>&1; then
+    failed=$((failed + 1))
+    echo "check-docs: $file:$line: FAILED to compile against $package in $prefix"
+    tail -n 20 "$log" | sed 's/^/    /'
+  else
+    timeout 120 "$dir/program" >"$log" 2>&1 </dev/null
+    local rc=$?
+    if ((rc != 0)); then
+      failed=$((failed + 1))
+      echo "check-docs: $file:$line: FAILED: the program exited $rc"
+      tail -n 20 "$log" | sed 's/^/    /'
+    else
+      echo "check-docs: $file:$line: ok: program compiled against $package and run"
+    fi
+  fi
+  rm -rf "$dir"
+  program=""
 }
 
 # A script block: every command followed by a check of its exit status; `cmd &` is not checked.
@@ -91,6 +123,8 @@ for file in "${files[@]}"; do
   skip_block=0
   script_next=0
   script_block=0
+  cpp_next=""
+  cpp_block=""
   block_line=0
   pending=""
   pending_line=0
@@ -107,6 +141,18 @@ for file in "${files[@]}"; do
         script_next=1
         continue
       fi
+      if [[ $text =~ ^[[:space:]]*\<\!--[[:space:]]*check-docs:[[:space:]]*cpp[[:space:]]+([^[:space:]]+)[[:space:]]+([^[:space:]]+)[[:space:]]*--\>[[:space:]]*$ ]]; then
+        cpp_next="${BASH_REMATCH[1]} ${BASH_REMATCH[2]}"
+        continue
+      fi
+      if [[ -n $cpp_next && $text =~ ^[[:space:]]*\`\`\`cpp[[:space:]]*$ ]]; then
+        in_block=1
+        block_line=$n
+        cpp_block=$cpp_next
+        cpp_next=""
+        skip_block=0
+        continue
+      fi
       if [[ $text =~ ^[[:space:]]*\`\`\`(sh|bash)[[:space:]]*$ ]]; then
         in_block=1
         block_line=$n
@@ -120,6 +166,18 @@ for file in "${files[@]}"; do
       elif [[ -n ${text// /} ]]; then
         skip_next=0
         script_next=0
+        cpp_next=""
+      fi
+      continue
+    fi
+    if [[ -n $cpp_block ]]; then
+      if [[ $text =~ ^[[:space:]]*\`\`\`[[:space:]]*$ ]]; then
+        in_block=0
+        # shellcheck disable=SC2086
+        compile_one "$file" "$block_line" $cpp_block
+        cpp_block=""
+      else
+        program+="$text"$'\n'
       fi
       continue
     fi

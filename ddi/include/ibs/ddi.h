@@ -63,6 +63,13 @@ typedef int32_t IBDDIRET; /* ERR_OK or one of the codes below */
 #pragma pack(push, 2)
 #endif
 
+/* A DTI access. The devices' process data lie in ring order, each device's words after those of
+ * the devices before it; the PCP channel is the mailbox's, not the image's. The default bus: bytes
+ * 0-5 the MC6000 (control word, reference Q16 high, low / status word, actual Q16 high, low),
+ * bytes 6-11 the VF1000 (control word, frequency reference, communication word / status word,
+ * actual frequency, communication word); docs/ddi.md, "Where each drive's bytes lie".
+ * In real-time mode the image changes at every bus cycle, on the board's thread: read what belongs
+ * together in one access, which a bus cycle never splits. */
 typedef struct {
   uint16_t length;   /* bytes */
   uint16_t address;  /* byte address in the image: byte 2k is the high byte of word k */
