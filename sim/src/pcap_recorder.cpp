@@ -1,6 +1,7 @@
 #include "ibs/sim/pcap_recorder.hpp"
 
 #include <cstdio>
+#include <chrono>
 #include <limits>
 
 #include "ibs/devices/registry.hpp"
@@ -184,7 +185,8 @@ struct PcapFile::Handles {
   }
 };
 
-PcapFile::PcapFile(std::ostream& out, int linktype) : h_(std::make_unique<Handles>()), out_(out) {
+PcapFile::PcapFile(std::ostream& out, int linktype, Time epoch)
+    : h_(std::make_unique<Handles>()), out_(out), epoch_(epoch) {
   h_->pcap = pcap_open_dead_with_tstamp_precision(linktype, 65535, PCAP_TSTAMP_PRECISION_NANO);
   if (h_->pcap == nullptr) throw PcapError("libpcap: pcap_open_dead(" + std::to_string(linktype) + ") failed");
   cookie_io_functions_t io{};
@@ -204,7 +206,7 @@ PcapFile::~PcapFile() = default;
 void PcapFile::write(Time at, std::span<const std::uint8_t> packet) {
   if (h_->dumper == nullptr) throw PcapError("the capture was closed already");
   pcap_pkthdr hdr{};
-  const auto ns = at.count() < 0 ? 0 : at.count();
+  const auto ns = (at.count() < 0 ? 0 : at.count()) + (epoch_.count() < 0 ? 0 : epoch_.count());
   hdr.ts.tv_sec = ns / 1'000'000'000;
   hdr.ts.tv_usec = ns % 1'000'000'000;  // nanoseconds in this precision
   hdr.caplen = static_cast<bpf_u_int32>(packet.size());
@@ -227,7 +229,7 @@ bool pcap_available() { return false; }
 
 struct PcapFile::Handles {};
 
-PcapFile::PcapFile(std::ostream& out, int /*linktype*/) : out_(out) {
+PcapFile::PcapFile(std::ostream& out, int /*linktype*/, Time epoch) : out_(out), epoch_(epoch) {
   throw PcapError("this ibs was built without libpcap (Debian package libpcap-dev): no captures");
 }
 PcapFile::~PcapFile() = default;
@@ -236,8 +238,12 @@ void PcapFile::close() {}
 
 #endif
 
-PcapRecorder::PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out)
-    : config_(capture::configuration_of(sim, scenario)), file_(out, kLinktypeInterbus) {
+Time wall_clock_epoch() {
+  return std::chrono::duration_cast<Time>(std::chrono::system_clock::now().time_since_epoch());
+}
+
+PcapRecorder::PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out, Time epoch)
+    : config_(capture::configuration_of(sim, scenario)), file_(out, kLinktypeInterbus, epoch) {
   file_.write(Time{0}, capture::encode_configuration(config_));
 }
 

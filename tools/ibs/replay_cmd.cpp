@@ -74,7 +74,7 @@ capture::Configuration trace_configuration(const trace::Trace& t, capture::Sourc
 class CaptureWriter {
  public:
   CaptureWriter(const trace::Trace& t, capture::Source source, std::ostream& out)
-      : config_(trace_configuration(t, source)), period_(config_.cycle_time), file_(out, sim::kLinktypeInterbus) {
+      : config_(trace_configuration(t, source)), period_(config_.cycle_time), file_(out, sim::kLinktypeInterbus, sim::wall_clock_epoch()) {
     file_.write(Time{0}, capture::encode_configuration(config_));
   }
 

@@ -173,6 +173,9 @@ std::unique_ptr<Capture> open_capture(const std::string& pcap_path) {
   if (pcap_path.empty()) return nullptr;
   auto opened = can::PcapWriter::open(pcap_path);
   if (!opened) throw std::runtime_error(pcap_path + ": " + opened.error);
+  // The run's time counts from its wall-clock start in the capture (not from 1970).
+  opened.transport->set_epoch(
+      std::chrono::duration_cast<Time>(std::chrono::system_clock::now().time_since_epoch()));
   return std::move(opened.transport);
 }
 #else

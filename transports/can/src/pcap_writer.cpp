@@ -52,7 +52,7 @@ void PcapWriter::write(const canlust::CanFrame& f, Time at) {
   std::uint8_t rec[16];
   const std::size_t n = socketcan_record(f, rec);
   pcap_pkthdr hdr{};
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(at).count();
+  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(epoch_ + at).count();
   hdr.ts.tv_sec = us / 1'000'000;
   hdr.ts.tv_usec = us % 1'000'000;
   hdr.caplen = static_cast<bpf_u_int32>(n);

@@ -94,12 +94,17 @@ class PcapError : public std::runtime_error {
 // Whether this build writes pcap files (libpcap was found at configuration time).
 bool pcap_available();
 
+// Now as nanoseconds since 1970 (the system clock), for PcapFile's epoch: read once, at a run's start.
+Time wall_clock_epoch();
+
 // A pcap file with nanosecond timestamps under `linktype`, written through libpcap to `out`
-// (an OutputFiles stream, so that the file appears all or nothing). Throws PcapError when
-// libpcap refuses or this build has no libpcap.
+// (an OutputFiles stream, so that the file appears all or nothing). A packet's timestamp is
+// `epoch` (the wall-clock start of the run, as nanoseconds since 1970; 0 writes the bare run time)
+// plus its time in the run, so that Wireshark's absolute view shows when it happened. Throws
+// PcapError when libpcap refuses or this build has no libpcap.
 class PcapFile {
  public:
-  PcapFile(std::ostream& out, int linktype);
+  PcapFile(std::ostream& out, int linktype, Time epoch = Time{0});
   ~PcapFile();
   PcapFile(const PcapFile&) = delete;
   PcapFile& operator=(const PcapFile&) = delete;
@@ -113,6 +118,7 @@ class PcapFile {
   struct Handles;
   std::unique_ptr<Handles> h_;
   std::ostream& out_;
+  Time epoch_{0};
   std::uint64_t packets_ = 0;
 };
 
@@ -121,7 +127,8 @@ class PcapFile {
 // the master wrote it for the next one) and the cycle's validity.
 class PcapRecorder final : public Observer {
  public:
-  PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out);
+  // `epoch`: the run's wall-clock start (PcapFile).
+  PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out, Time epoch = Time{0});
 
   void on_cycle(Time at, bool valid, const interbus::ProcessImage& image) override;
   void on_sample(Time /*at*/, std::size_t /*device*/, std::span<const Word> /*m2s*/,

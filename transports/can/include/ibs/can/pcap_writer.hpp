@@ -23,7 +23,11 @@ class PcapWriter {
   PcapWriter(const PcapWriter&) = delete;
   PcapWriter& operator=(const PcapWriter&) = delete;
 
+  // A frame at `at`: the time since the epoch given (set_epoch), by default since 1970.
   void write(const canlust::CanFrame& f, Time at);
+  // Times passed to write() count from `epoch` (nanoseconds since 1970): a run in its own time
+  // gives its wall-clock start, so that Wireshark's absolute view shows when it happened.
+  void set_epoch(Time epoch) { epoch_ = epoch; }
   void flush();
   [[nodiscard]] std::size_t records() const { return records_; }
 
@@ -31,6 +35,7 @@ class PcapWriter {
   struct Handles;
   explicit PcapWriter(std::unique_ptr<Handles> h);
   std::unique_ptr<Handles> h_;
+  Time epoch_{0};
   std::size_t records_ = 0;
 };
 
