@@ -1,5 +1,7 @@
 #include "ibs/sim/report.hpp"
 
+#include "ibs/base/number_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
@@ -106,8 +108,9 @@ std::string format_text(const Summary& s) {
     for (const StateRecord& r : d.states) o += printf_string("  %10s  ", ms(r.at).c_str()) + r.what + "\n";
     for (const std::string& e : d.errors) o += "  error: " + e + "\n";
     for (const FailureRecord& f : d.failures) o += "  failure at " + ms(f.at) + ": " + f.what + "\n";
-    o += printf_string("  final: %s, reference %.6g %s, actual %.6g %s, %llu samples\n", d.final_state.c_str(),
-                       d.final_reference, d.unit.c_str(), d.final_actual, d.unit.c_str(),
+    o += printf_string("  final: %s, reference %s %s, actual %s %s, %llu samples\n", d.final_state.c_str(),
+                       quantity_text(d.final_reference, d.unit).c_str(), d.unit.c_str(),
+                       quantity_text(d.final_actual, d.unit).c_str(), d.unit.c_str(),
                        static_cast<unsigned long long>(d.samples));
   }
   o += "\nparameter transactions\n";

@@ -1,5 +1,6 @@
 // The cycle end: the bus exchange with the emulated devices (the far side of the master's bus seam,
 // master/bus.hpp), then the master's half of the cycle and what the summary takes from it.
+#include "ibs/base/number_text.hpp"
 #include "simulator_internal.hpp"
 
 namespace ibs::sim {
@@ -139,8 +140,9 @@ void Simulator::observe_driver(Device& d, Time t) {
   if (!d.reached_reported && !in.empty() && seen == State::enabled &&
       bit(in[0], drivecom::sw::kReferenceReached) && at_reference) {
     d.reached_reported = true;
+    // Numbers a person reads (base/number_text.hpp): "reference 1000 rpm reached (actual 994.60)".
     states.push_back({t, "reference " + fmt_value(d.reached_for) + " " + std::string(drv.unit()) +
-                             " reached (actual " + fmt_value(drv.actual()) + ")"});
+                             " reached (actual " + quantity_text(drv.actual(), drv.unit()) + ")"});
   }
   if (d.waiting_for && (seen == d.waiting_for || t >= d.wait_deadline)) {
     if (seen != d.waiting_for) {

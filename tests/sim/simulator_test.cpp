@@ -2,6 +2,9 @@
 // the VF1000 parameter channel (seed 001, 7.1), watchdogs and every fault kind.
 #include <gtest/gtest.h>
 
+#include "ibs/base/number_text.hpp"
+#include "ibs/sim/report.hpp"
+
 #include <algorithm>
 
 #include "ibs/devices/mc6000/device.hpp"
@@ -82,6 +85,37 @@ TEST(Simulator, BringsBothDrivesUpRunsThemAndStopsThem) {
   EXPECT_EQ(r.cycle_time, 726us);
   EXPECT_EQ(r.cycles, r.valid_cycles);
   EXPECT_EQ(r.cycles, static_cast<std::uint64_t>(6s / 726us));
+}
+
+// Numbers a person reads (issue 27.9): the summary's values in fixed decimals by unit, never an
+// exponent or a negative zero, whatever the plant's last step left (8.7e-09 rpm, -0.0984 rpm).
+TEST(NumberText, FixedDecimalsByUnitWithoutExponentOrNegativeZero) {
+  EXPECT_EQ(quantity_text(8.73332e-09, "rpm"), "0.00");
+  EXPECT_EQ(quantity_text(-0.09841918945, "rpm"), "-0.10");
+  EXPECT_EQ(quantity_text(-0.0049, "Hz"), "0.00");
+  EXPECT_EQ(quantity_text(994.5975647, "rpm"), "994.60");
+  EXPECT_EQ(quantity_text(2500.25, "rpm"), "2500.25");
+  EXPECT_EQ(quantity_text(31.98000000000012, "Hz"), "31.98");
+  EXPECT_EQ(quantity_text(12.345, "%"), "12.3");
+  EXPECT_EQ(quantity_text(1.0 / 3.0, "Nm"), "0.333");
+  EXPECT_EQ(fixed_text(1e300, 0).find('e'), std::string::npos);
+}
+
+TEST(NumberText, TheRunSummaryPrintsItsValuesThatWay) {
+  Scenario s;
+  s.duration = 6s;
+  s.devices = {mc6000(), vf1000()};
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), at(0s, "vf", Action::state, "enabled"),
+                at(200ms, "mc", Action::speed, "", 1000.0), at(200ms, "vf", Action::frequency, "", 25.0),
+                at(3s, "mc", Action::speed, "", 0.0), at(3s, "vf", Action::frequency, "", 0.0)};
+  Simulator sim(s);
+  sim.run();
+  const std::string text = format_text(sim.summary());
+  EXPECT_EQ(text.find("e-"), std::string::npos) << text;
+  EXPECT_EQ(text.find("-0.00"), std::string::npos) << text;
+  EXPECT_NE(text.find("final: ENABLED, reference 0.00 rpm, actual 0.00 rpm"), std::string::npos) << text;
+  EXPECT_NE(text.find("final: ENABLED, reference 0.00 Hz, actual 0.00 Hz"), std::string::npos) << text;
+  EXPECT_NE(text.find("reference 1000 rpm reached (actual "), std::string::npos) << text;
 }
 
 // Seed 001, 7.1, "Without KEYPAD, motor stopped": value inquiry 100 ms, value transfer 124 ms
