@@ -58,6 +58,10 @@ TEST(Dfs1Cli, EmulatePrintsThePtyFirstAndExitsZeroOnSigterm) {
   EXPECT_NE(r.out.find("uid 2: commanded 0 rpm, actual 0 rpm, load 0 %"), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("ST2 31H: at-speed forward zero-speed"), std::string::npos) << r.out;
+  // The address is -a/--address on every bus (issue 27.2); --uid, the seed's word, stays.
+  const CliRun s = run_cli({"dfs1", "status", "-p", emu.pty(), "-a", "2", "-j", "--timeout-ms", "3000"});
+  EXPECT_EQ(s.rc, 0) << s.err;
+  EXPECT_NE(s.out.find("\"uid\":2"), std::string::npos) << s.out;
   EXPECT_EQ(emu.stop(SIGTERM), 0);
 }
 

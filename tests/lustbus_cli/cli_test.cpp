@@ -2,6 +2,7 @@
 // SIGTERM and SIGINT), read / write / describe / scan in process against it, JSON, a NAK exiting 1
 // with its cause, bad input exiting 2 with the parameter, value and limit, and the byte log.
 #include <gtest/gtest.h>
+#include <filesystem>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -122,6 +123,56 @@ TEST(LustbusCli, EmulatePrintsThePtyFirstAndExitsZeroOnSignals) {
   EXPECT_EQ(b.stop(SIGINT), 0);
 }
 
+// --pty-link PATH (socat's pty,link=): a stable name for the pty while the emulator runs, removed
+// at exit; a PATH that exists is refused before anything is served, and left as it was.
+TEST(LustbusCli, PtyLinkNamesThePtyWhileItRunsAndNeverReplacesAFile) {
+  const std::string dir = ::testing::TempDir() + "lustbus_pty_link";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string link = dir + "/drive";
+  {
+    test::ChildProcess emu({IBS_CLI, "lustbus", "emulate", "--pty-link", link, "vf1000@1"});
+    ASSERT_EQ(emu.first_line().rfind("pty: /dev/pts/", 0), 0U) << emu.first_line();
+    ASSERT_TRUE(std::filesystem::is_symlink(link));
+    EXPECT_EQ(std::filesystem::read_symlink(link).string(), emu.pty());
+    // A host uses the link as its port.
+    const CliRun r = run_cli(cmd({"read", "--addr", "1", "--device", "vf1000", "FSSEL"}, link));
+    EXPECT_EQ(r.rc, 0) << r.err;
+    // One name for one thing (issue 27.2): -a/--address (--addr stays), -p/--port, -j/--json.
+    for (const std::vector<std::string>& a :
+         {std::vector<std::string>{"lustbus", "read", "-p", link, "-a", "1", "--device", "vf1000", "FSSEL", "-j"},
+          std::vector<std::string>{"lustbus", "read", "--port", link, "--address", "1", "--device", "vf1000", "FSSEL", "--json"}}) {
+      const CliRun s = run_cli(a);
+      ASSERT_EQ(s.rc, 0) << s.err;
+      EXPECT_EQ(nlohmann::json::parse(s.out)["address"], 1) << s.out;
+    }
+    // Polling (issue 27.4, mbpoll's -1/-l): one JSON object per reading, the count at the end.
+    const CliRun polled =
+        run_cli({"lustbus", "read", "-p", link, "-a", "1", "--device", "vf1000", "FSSEL", "-j", "--repeat", "3", "--interval", "20"});
+    ASSERT_EQ(polled.rc, 0) << polled.err;
+    std::istringstream lines(polled.out);
+    int objects = 0;
+    for (std::string line; std::getline(lines, line);) {
+      EXPECT_EQ(nlohmann::json::parse(line)["raw"], 25) << line;  // 4-FSSEL's factory value
+      ++objects;
+    }
+    EXPECT_EQ(objects, 3) << polled.out;
+    EXPECT_NE(polled.err.find("ibs lustbus read: 3 readings, 3 ok, 0 failed"), std::string::npos) << polled.err;
+    EXPECT_EQ(emu.stop(SIGTERM), 0);
+  }
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link))) << "the link stays after exit";
+  // A path that exists is never replaced.
+  { std::ofstream(link) << "mine\n"; }
+  const CliRun r = run_cli({"lustbus", "emulate", "--pty-link", link, "vf1000@1"});
+  EXPECT_EQ(r.rc, kExitLustbusBadInput);
+  EXPECT_NE(r.err.find("--pty-link " + link + ": exists already"), std::string::npos) << r.err;
+  std::ifstream in(link);
+  std::string text;
+  std::getline(in, text);
+  EXPECT_EQ(text, "mine");
+  std::filesystem::remove_all(dir);
+}
+
 TEST(LustbusCli, ReadWriteDescribeScanWithJsonAndLog) {
   Emulator emu({"vf1000@1", "mc6000@3"});
   const std::string port = emu.pty();
@@ -147,6 +198,13 @@ TEST(LustbusCli, ReadWriteDescribeScanWithJsonAndLog) {
   j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["value"]["name"], "RSSL1");
   EXPECT_EQ(j["value"]["max"], "7");
+  // The description's binary VALUE goes out as hex bytes: no JSON string holds a NUL (issue 27.7).
+  EXPECT_EQ(r.out.find("\\u0000"), std::string::npos) << r.out;
+  EXPECT_FALSE(j.contains("raw")) << r.out;
+  EXPECT_EQ(j["raw_hex"].get<std::string>().rfind("52 53 53 4C 31 ", 0), 0U) << r.out;  // "RSSL1"
+  for (const auto& [key, v] : j["value"].items()) {
+    if (v.is_string()) EXPECT_EQ(v.get<std::string>().find('\0'), std::string::npos) << key;
+  }
   r = run_cli({"lustbus", "scan", "--port", port});
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(r.out,

@@ -165,8 +165,9 @@ class EmulatorControl {
 };
 
 int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
-  if (o.pty == !o.port.port.empty()) {
-    err << "ibs dfs1 emulate: give either --port PATH or --pty\n";
+  const bool pty = o.pty || !o.pty_link.empty();  // --pty-link implies --pty
+  if (pty == !o.port.port.empty()) {
+    err << "ibs dfs1 emulate: give either --port PATH or --pty (or --pty-link PATH)\n";
     return kExitDfs1BadInput;
   }
   if (o.devices.empty()) {
@@ -212,10 +213,12 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
   StopSignals signals;
   std::optional<serial::PtyPair> pair;
+  std::optional<serial::PtyLink> link;
   std::optional<serial::SerialPort> opened;
   try {
-    if (o.pty) {
+    if (pty) {
       pair.emplace(serial::PtyPair::open(popts));
+      if (!o.pty_link.empty()) link.emplace(o.pty_link, pair->slave_path());
     } else {
       opened.emplace(serial::SerialPort::open(o.port.port, popts));
     }
@@ -225,7 +228,9 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
   // The first line says where it serves: the new pty, or the port it opened.
-  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n" << std::flush;
+  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
+  if (link) out << "pty link: " << link->path() << "\n";
+  out << std::flush;
   for (const std::string& n : port.notes()) err << "ibs dfs1 emulate: " << n << "\n";
 
   std::unique_ptr<serial::ByteLog> log;
@@ -415,11 +420,11 @@ void add_port_options(CLI::App* cmd, Dfs1PortOptions& p) {
 }
 
 void add_client_options(CLI::App* cmd, Dfs1ClientOptions& o) {
-  cmd->add_option("--port", o.port.port, "the serial port (e.g. /dev/ttyUSB0 or a pty)")
+  cmd->add_option("-p,--port", o.port.port, "the serial port (e.g. /dev/ttyUSB0 or a pty)")
       ->required();
-  cmd->add_option("--uid", o.uid, "the controller's unit ID, 1..255")->required();
+  cmd->add_option("-a,--address,--uid", o.uid, "the controller's unit ID, 1..255")->required();
   cmd->add_option("--timeout-ms", o.timeout_ms, "response timeout in ms (default 200)");
-  cmd->add_flag("--json", o.json, "print JSON");
+  cmd->add_flag("-j,--json", o.json, "print JSON");
   add_port_options(cmd, o.port);
 }
 
@@ -435,8 +440,11 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
   state.emulate = state.dfs1->add_subcommand(
       "emulate", "emulate DFS-1 controllers on a port or a new pty until SIGINT/SIGTERM");
   state.emulate->add_option("DEVICE", eo.devices, device_forms() + ", one per controller")->required();
-  state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
+  state.emulate->add_option("-p,--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
+  state.emulate->add_option("--pty-link", eo.pty_link,
+                            "with --pty (implied): a symbolic link PATH to the pty, as socat's pty,link=PATH; "
+                            "a PATH that exists is refused, the link is removed at exit");
   add_port_options(state.emulate, eo.port);
   state.emulate->add_option("--control", eo.control,
                             "faults and plant events as JSON lines from - (standard input) or unix:PATH "
@@ -445,6 +453,7 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
   Dfs1ClientOptions& co = state.client_options;
   state.status = state.dfs1->add_subcommand("status", "command 81: speeds, load, ST2 and ST1");
   add_client_options(state.status, co);
+  add_repeat_options(state.status, co.repeat);
 
   state.read = state.dfs1->add_subcommand("read", "command 85: read a parameter");
   state.read
@@ -452,6 +461,7 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
           "PARAM", [&co](const long long& v) { co.parameter = v; }, "parameter number")
       ->required();
   add_client_options(state.read, co);
+  add_repeat_options(state.read, co.repeat);
 
   state.write = state.dfs1->add_subcommand("write", "command 86: write a parameter");
   state.write
@@ -477,7 +487,17 @@ std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream
                                      std::ostream& err) {
   if (state.dfs1 == nullptr || !state.dfs1->parsed()) return std::nullopt;
   if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
-  for (const CLI::App* c : {state.status, state.read, state.write, state.speed}) {
+  for (const CLI::App* c : {state.status, state.read}) {
+    if (c->parsed()) {
+      return repeat_readings(state.client_options.repeat, "ibs dfs1 " + c->get_name(), err, kExitDfs1BadInput,
+                             [&] {
+                               const int rc = client(*c, state.client_options, out, err);
+                               out.flush();  // a pipe sees each reading as it comes
+                               return rc;
+                             });
+    }
+  }
+  for (const CLI::App* c : {state.write, state.speed}) {
     if (c->parsed()) return client(*c, state.client_options, out, err);
   }
   return kExitDfs1BadInput;

@@ -12,6 +12,8 @@
 // the sans-I/O ones of dfs1/ and devices/dfs1/.
 #pragma once
 
+#include "repeat.hpp"
+
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
@@ -44,6 +46,7 @@ struct Dfs1PortOptions {
 struct Dfs1EmulateOptions {
   Dfs1PortOptions port;
   bool pty = false;
+  std::string pty_link;  // --pty-link PATH: a stable link to the pty (implies --pty), removed at exit
   std::vector<std::string> devices;  // dfs1@UID
   std::string control;               // --control: "-" or "unix:PATH"; empty: none
 };
@@ -57,6 +60,7 @@ struct Dfs1ClientOptions {
   std::optional<long long> value;      // write; speed: RPM
   bool set_only = false;               // speed --set: 82
   bool execute_only = false;           // speed --execute: 83 (UID 0 allowed)
+  RepeatOptions repeat;                // status, read: --repeat N, --interval MS
 };
 
 struct Dfs1CommandState {

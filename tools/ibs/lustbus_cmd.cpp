@@ -365,7 +365,8 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
     err << "ibs lustbus emulate: " << what << "\n";
     return kExitLustbusBadInput;
   };
-  if (o.pty == !o.port.port.empty()) return bad("give either --port PATH or --pty");
+  const bool pty = o.pty || !o.pty_link.empty();  // --pty-link implies --pty
+  if (pty == !o.port.port.empty()) return bad("give either --port PATH or --pty (or --pty-link PATH)");
   if (o.devices.empty()) return bad("no device: give " + device_forms() + " (one or more)");
   std::vector<ServedLustbusDrive> specs;
   std::vector<lb::Address> addresses;
@@ -425,11 +426,13 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
   StopSignals signals;
   std::optional<serial::PtyPair> pair;
+  std::optional<serial::PtyLink> link;
   std::optional<serial::SerialPort> opened;
   std::unique_ptr<serial::ByteLog> log;
   try {
-    if (o.pty) {
+    if (pty) {
       pair.emplace(serial::PtyPair::open(port_options(o.port)));
+      if (!o.pty_link.empty()) link.emplace(o.pty_link, pair->slave_path());
     } else {
       opened.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
     }
@@ -439,7 +442,9 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
   // The first line says where it serves: the new pty, or the port it opened.
-  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n" << std::flush;
+  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
+  if (link) out << "pty link: " << link->path() << "\n";
+  out << std::flush;
   for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
   port.set_log(log.get());
   std::vector<base::LineDevice*> lines;
@@ -736,7 +741,14 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
     j["outcome"] = std::string(lb::to_string(r.kind));
 
     if (name == "describe") {
-      j["raw"] = std::string(r.value.view());
+      // The VALUE of a description is binary (names padded with NUL, 11.2): in JSON its bytes in
+      // hex, "53 50 45 45 44 00 ...", so that no string carries a NUL or a control character.
+      std::string raw_hex;
+      for (const char c : r.value.view()) {
+        if (!raw_hex.empty()) raw_hex += ' ';
+        raw_hex += hex_text(static_cast<unsigned char>(c), 2);
+      }
+      j["raw_hex"] = raw_hex;
       if (family == lb::Family::standard) {
         const auto d = lb::parse_vf_description(r.value.view());
         if (!d.ok()) throw std::runtime_error("description: " + std::string(lb::to_string(d.error)));
@@ -811,10 +823,10 @@ void add_port_options(CLI::App* cmd, LustbusPortOptions& p) {
 }
 
 void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) {
-  cmd->add_option("--port", o.port.port, "the serial port (e.g. /dev/ttyUSB0 or a pty)")
+  cmd->add_option("-p,--port", o.port.port, "the serial port (e.g. /dev/ttyUSB0 or a pty)")
       ->required();
   if (parameter) {
-    cmd->add_option("--addr", o.addr, "the device's address, 1..30 (0: the only device)")
+    cmd->add_option("-a,--address,--addr", o.addr, "the device's address, 1..30 (0: the only device)")
         ->required();
     cmd->add_option("--device", o.device,
                     devices::drive_names(devices::Bus::lustbus, ", ", " or ") + ": the parameter table to use")
@@ -822,7 +834,7 @@ void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) 
     cmd->add_option("PARAM", o.parameter, "parameter number or name")->required();
   }
   cmd->add_option("--timeout-ms", o.timeout_ms, "response timeout in ms (default 250)");
-  cmd->add_flag("--json", o.json, "print JSON");
+  cmd->add_flag("-j,--json", o.json, "print JSON");
   add_port_options(cmd, o.port);
 }
 
@@ -906,8 +918,11 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
       "emulate", "emulate drives on a port or a new pty until SIGINT/SIGTERM");
   state.emulate->add_option("DEVICE", eo.devices, device_forms() + ", one per drive")
       ->required();
-  state.emulate->add_option("--port", eo.port.port, "the serial port to serve");
+  state.emulate->add_option("-p,--port", eo.port.port, "the serial port to serve");
   state.emulate->add_flag("--pty", eo.pty, "create a pseudo-terminal and print `pty: PATH` first");
+  state.emulate->add_option("--pty-link", eo.pty_link,
+                            "with --pty (implied): a symbolic link PATH to the pty, as socat's pty,link=PATH; "
+                            "a PATH that exists is refused, the link is removed at exit");
   add_drive_setting_options(state.emulate, eo.settings);
   state.emulate->add_option("--seed", eo.seed, "seed of the reaction times (default 1; + address)");
   state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time in ms instead")
@@ -920,6 +935,7 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
   LustbusClientOptions& co = state.client_options;
   state.read = state.lustbus->add_subcommand("read", "ENQUIRY: read a parameter's value");
   add_client_options(state.read, co, true);
+  add_repeat_options(state.read, co.repeat);
   state.write = state.lustbus->add_subcommand("write", "SELECT: write a parameter's value");
   add_client_options(state.write, co, true);
   state.write
@@ -933,12 +949,12 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
   state.download = state.lustbus->add_subcommand(
       "download", "11.4: send a parameter dataset file (PARAM VALUE lines) to an MC6000 through "
                   "the 80-SLOAD handshake");
-  state.download->add_option("--port", co.port.port, "the serial port")->required();
-  state.download->add_option("--addr", co.addr, "the servo's address, 1..30")->required();
+  state.download->add_option("-p,--port", co.port.port, "the serial port")->required();
+  state.download->add_option("-a,--address,--addr", co.addr, "the servo's address, 1..30")->required();
   state.download->add_option("FILE", co.parameter, "the dataset: `PARAM VALUE` per line")
       ->required();
   state.download->add_option("--timeout-ms", co.timeout_ms, "response timeout in ms (default 250)");
-  state.download->add_flag("--json", co.json, "print JSON");
+  state.download->add_flag("-j,--json", co.json, "print JSON");
   add_port_options(state.download, co.port);
   state.scan = state.lustbus->add_subcommand(
       "scan", "ENQUIRY of 91-TYPE at 1..30, telling inverters from servos (5.2)");
@@ -950,7 +966,15 @@ std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::o
   if (state.lustbus == nullptr || !state.lustbus->parsed()) return std::nullopt;
   if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
   if (state.download->parsed()) return download_file(state.client_options, out, err);
-  for (const CLI::App* c : {state.read, state.write, state.describe, state.scan}) {
+  if (state.read->parsed()) {
+    return repeat_readings(state.client_options.repeat, "ibs lustbus read", err, kExitLustbusBadInput,
+                           [&] {
+                             const int rc = client(*state.read, state.client_options, out, err);
+                             out.flush();  // a pipe sees each reading as it comes
+                             return rc;
+                           });
+  }
+  for (const CLI::App* c : {state.write, state.describe, state.scan}) {
     if (c->parsed()) return client(*c, state.client_options, out, err);
   }
   return kExitLustbusBadInput;

@@ -15,6 +15,8 @@
 // steady clock and real ports around the sans-I/O Host, Receiver and the wings' Responders.
 #pragma once
 
+#include "repeat.hpp"
+
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
@@ -47,6 +49,7 @@ struct LustbusPortOptions {
 struct LustbusEmulateOptions {
   LustbusPortOptions port;
   bool pty = false;
+  std::string pty_link;  // --pty-link PATH: a stable link to the pty (implies --pty), removed at exit
   std::vector<std::string> devices;  // vf1000@ADDR, mc6000@ADDR
   // The drives' own settings given as options (--keypad, ...): one option per setting the
   // LUSTBUS faces declare (LustbusFace::settings); each drive takes those its face declares.
@@ -68,6 +71,7 @@ struct LustbusClientOptions {
   std::optional<std::string> value;
   int timeout_ms = 250;
   bool json = false;
+  RepeatOptions repeat;  // read: --repeat N, --interval MS
 };
 
 struct LustbusCommandState {

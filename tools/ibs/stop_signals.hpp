@@ -27,6 +27,8 @@ class StopSignals {
     ::close(fd_);
     pthread_sigmask(SIG_SETMASK, &old_, nullptr);
   }
+  // Readable when a signal is pending: poll it to wait for a time or a signal, whichever first.
+  [[nodiscard]] int fd() const { return fd_; }
   // Takes the signal (so that unblocking it later does not deliver it again).
   bool raised() {
     signalfd_siginfo info{};

@@ -53,4 +53,22 @@ PtyPair::~PtyPair() {
   if (slave_fd_ >= 0) ::close(slave_fd_);
 }
 
+PtyLink::PtyLink(std::string link, std::string target) : link_(std::move(link)), target_(std::move(target)) {
+  if (link_.empty()) throw std::runtime_error("--pty-link: give a path");
+  // symlink() never replaces: an existing path (a dangling link too) fails with EEXIST.
+  if (::symlink(target_.c_str(), link_.c_str()) != 0) {
+    const int e = errno;
+    throw std::runtime_error("--pty-link " + link_ + ": " +
+                             (e == EEXIST ? std::string("exists already (give a path that does not exist; nothing was replaced)")
+                                          : std::string("cannot make the link: ") + std::strerror(e)));
+  }
+}
+
+PtyLink::~PtyLink() {
+  // Only our link: still a symbolic link to the same pty (someone may have put a file there).
+  std::array<char, 512> now{};
+  const ssize_t n = ::readlink(link_.c_str(), now.data(), now.size() - 1);
+  if (n >= 0 && std::string(now.data(), static_cast<std::size_t>(n)) == target_) ::unlink(link_.c_str());
+}
+
 }  // namespace ibs::serial

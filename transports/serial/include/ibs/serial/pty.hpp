@@ -31,4 +31,23 @@ class PtyPair {
   std::string slave_path_;
 };
 
+// A stable name for a pty's changing /dev/pts/N, as socat's `pty,link=PATH` gives one: a symbolic
+// link made when the pty is, removed when this is destroyed. It never replaces anything: a path
+// that exists (a file, a link, even a dangling one) is refused, and at the end the link is removed
+// only while it is still the one made here (a link to the same pty), never a file put in its place.
+class PtyLink {
+ public:
+  // Throws std::runtime_error naming `link` and the reason (it exists; its folder is missing; ...).
+  PtyLink(std::string link, std::string target);
+  PtyLink(const PtyLink&) = delete;
+  PtyLink& operator=(const PtyLink&) = delete;
+  ~PtyLink();
+
+  const std::string& path() const { return link_; }
+
+ private:
+  std::string link_;
+  std::string target_;
+};
+
 }  // namespace ibs::serial
