@@ -88,6 +88,12 @@ if cmake --install "$built" --prefix "$work/again" | sed 's/^-- [A-Za-z-]*: //' 
   exit 1
 fi
 rm -rf "$work/again"
+# The man page (help2man) and the bash completion, where man and bash-completion look.
+[[ -s "$work/full/share/man/man1/ibs.1" ]] || { echo "check_install: no man page share/man/man1/ibs.1" >&2; exit 1; }
+man -l "$work/full/share/man/man1/ibs.1" 2>/dev/null | grep -q "lustbus" \
+  || { echo "check_install: the man page does not read" >&2; exit 1; }
+bash -c "source '$work/full/share/bash-completion/completions/ibs' && COMP_WORDS=(ibs ru) && COMP_CWORD=1 && _ibs && [[ \${COMPREPLY[*]} == run ]]" \
+  || { echo "check_install: the bash completion does not complete 'ibs ru'" >&2; exit 1; }
 # The Wireshark dissectors, as a plugin folder (docs/pcap.md, "Installed dissectors").
 for lua in interbus canlust; do
   [[ -f "$work/full/share/ibs/wireshark/plugins/$lua.lua" ]] || { echo "check_install: $lua.lua not installed" >&2; exit 1; }

@@ -35,6 +35,66 @@ TEST(Cli, VersionPrintsTheProjectVersionAndExitsZero) {
   const Result r = run("--version");
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(r.out, std::string("ibs ") + IBS_VERSION + "\n");
+  EXPECT_EQ(run("-V").out, r.out);  // as most tools spell it (issue 27.2)
+}
+
+// Help a user can act on (issue 27.6): usage says `ibs`, values are named by what they are, and
+// every command's help ends with two examples and its exit codes.
+TEST(Cli, HelpEndsWithExamplesAndExitCodes) {
+  for (const std::string path : {"", "run", "replay", "decode", "campaign", "layout", "timing", "lustbus emulate",
+                                 "lustbus read", "lustbus write", "lustbus describe", "lustbus scan",
+                                 "lustbus download", "dfs1 emulate", "dfs1 status", "dfs1 read", "dfs1 write",
+                                 "dfs1 speed", "completion"}) {
+    const Result r = run(path + " --help");
+    EXPECT_EQ(r.exit_code, 0) << path << "\n" << r.out;
+    EXPECT_NE(r.out.find("Usage: ibs " + path), std::string::npos) << path << "\n" << r.out;
+    const auto examples = r.out.find("Examples:\n  ibs ");
+    ASSERT_NE(examples, std::string::npos) << path << "\n" << r.out;
+    EXPECT_NE(r.out.find("\n  ibs ", examples + 12), std::string::npos) << path << ": two examples\n" << r.out;
+    EXPECT_NE(r.out.find("Exit codes: 0 "), std::string::npos) << path << "\n" << r.out;
+    for (const char* parser : {" TEXT", " INT", " UINT", " FLOAT"}) {
+      EXPECT_EQ(r.out.find(parser), std::string::npos) << path << ": '" << parser << "'\n" << r.out;
+    }
+  }
+  const Result read = run("lustbus read --help");
+  EXPECT_NE(read.out.find("-p,--port PORT"), std::string::npos) << read.out;
+  EXPECT_NE(read.out.find("-a,--address,--addr ADDR"), std::string::npos) << read.out;
+  EXPECT_NE(read.out.find("--timeout-ms MS"), std::string::npos) << read.out;
+}
+
+// `ibs completion bash` completes subcommands and options from the command tree itself.
+TEST(Cli, BashCompletionCompletesCommandsAndOptions) {
+  const std::string script = ::testing::TempDir() + "ibs-completion.bash";
+  ASSERT_EQ(run_shell(std::string(IBS_CLI) + " completion bash > " + script).exit_code, 0);
+  const auto complete = [&script](const std::string& words, int cword) {
+    return run_shell("bash -c 'source " + script + "; COMP_WORDS=(" + words + "); COMP_CWORD=" + std::to_string(cword) +
+                     "; _ibs; echo ${COMPREPLY[@]}'")
+        .out;
+  };
+  EXPECT_EQ(complete("ibs lu", 1), "lustbus\n");
+  EXPECT_EQ(complete("ibs lustbus re", 2), "read\n");
+  EXPECT_EQ(complete("ibs lustbus read --tim", 3), "--timeout-ms\n");
+  EXPECT_EQ(complete("ibs dfs1 status --addr", 3), "--address\n");
+  EXPECT_EQ(run("completion zsh").exit_code, 2);
+}
+
+// Progress a pipe can see (issue 27.8): with --progress a line every second on standard error
+// wherever it goes; -q says nothing but the summary. The run takes long enough: 5 minutes of the
+// default bus simulated (seconds of wall time even on a fast machine).
+TEST(Cli, ProgressShowsInAPipeAndQuietSilencesIt) {
+  std::ifstream in(std::string(IBS_SOURCE_DIR) + "/examples/default.toml");
+  std::string toml{std::istreambuf_iterator<char>(in), {}};
+  const auto at = toml.find("duration = \"8 s\"");
+  ASSERT_NE(at, std::string::npos);
+  toml.replace(at, std::string("duration = \"8 s\"").size(), "duration = \"300 s\"");
+  const std::string file = temp_file("progress.toml", toml);
+  Result r = run_shell(std::string(IBS_CLI) + " run " + file + " --progress 2>&1 >/dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("ibs run: simulated "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" s of 300.0 s ("), std::string::npos) << r.out;
+  r = run_shell(std::string(IBS_CLI) + " run " + file + " -q --progress 2>&1 >/dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, "");
 }
 
 TEST(Cli, ReplayAndDecodeReadStandardInputForDash) {
@@ -434,11 +494,15 @@ TEST(Cli, DecodeDispatchesCandumpAndByteLogs) {
   r = run("decode " + log);
   EXPECT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("MC6000 77-SPEED = 1274.25"), std::string::npos) << r.out;
+  // With --json a log gets JSON or an error, never the text decode first (issue 27.7).
   r = run("decode --json " + log);
   EXPECT_EQ(r.exit_code, 2) << r.out;
   EXPECT_NE(r.out.find("--json is for traces"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("77-SPEED"), std::string::npos) << r.out;
   r = run("decode --json " + candump);
   EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("--json is for traces"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("System Start"), std::string::npos) << r.out;
 }
 
 // `ibs run --realtime`: --rt-priority needs it; a CANLust run in real time paces itself without

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -75,7 +76,58 @@ TEST(Captures, RunWritesOnePacketPerCycleAndSaysSo) {
   ASSERT_GE(f.size(), 24U);
   EXPECT_EQ(f.substr(0, 4), std::string("\x4D\x3C\xB2\xA1", 4));  // nanosecond pcap, little-endian
   EXPECT_EQ(static_cast<unsigned char>(f[20]), 147U);           // LINKTYPE_USER0
+  // The first packet's timestamp is when the run started (not 1970): seconds at bytes 24..27,
+  // little-endian, within the minute around this test's run; the next packet one cycle later.
+  ASSERT_GE(f.size(), 28U);
+  const auto le32 = [&f](std::size_t at) {
+    return std::uint32_t{static_cast<unsigned char>(f[at])} | std::uint32_t{static_cast<unsigned char>(f[at + 1])} << 8U |
+           std::uint32_t{static_cast<unsigned char>(f[at + 2])} << 16U |
+           std::uint32_t{static_cast<unsigned char>(f[at + 3])} << 24U;
+  };
+  const auto now = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+  EXPECT_LE(static_cast<long long>(le32(24)), now);
+  EXPECT_GE(static_cast<long long>(le32(24)), now - 60);
   fs::remove_all(dir);
+}
+
+// `-` is standard output (tshark's -w -, issue 27.1): the capture or the dump goes there, the
+// summary to standard error; two outputs cannot both take it.
+TEST(Captures, DashWritesTheCaptureToStandardOutputAndTheSummaryToStandardError) {
+  const std::string dir = fresh_dir("dash_pcap");
+  const std::string cli(IBS_CLI);
+  Result r = run_shell(cli + " run --pcap - > " + dir + "/out.pcap 2> " + dir + "/err.txt");
+  ASSERT_EQ(r.exit_code, 0) << slurp(dir + "/err.txt");
+  const std::string f = slurp(dir + "/out.pcap");
+  ASSERT_GE(f.size(), 24U);
+  EXPECT_EQ(f.substr(0, 4), std::string("\x4D\x3C\xB2\xA1", 4));
+  EXPECT_TRUE(contains(slurp(dir + "/err.txt"), "capture written: standard output (11020 packets)"));
+  EXPECT_FALSE(fs::exists(dir + "/-"));
+  r = run_shell(cli + " run --vcd - 2>/dev/null | grep -c enddefinitions");
+  EXPECT_EQ(r.out, "1\n");
+  r = run(" run --vcd - --pcap - ");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, "-: standard output is given for two outputs")) << r.out;
+  if (have("tshark")) {
+    r = run_shell(cli + " run --pcap - 2>/dev/null | tshark -X lua_script:" + std::string(IBS_SOURCE_DIR) +
+                  "/tools/wireshark/interbus.lua -r - -c 3 -Y interbus 2>/dev/null | wc -l");
+    EXPECT_EQ(r.out, "3\n");
+  }
+  fs::remove_all(dir);
+}
+
+// `ibs run -` reads the scenario from standard input in the format --format gives.
+TEST(Captures, RunDashReadsTheScenarioFromStandardInput) {
+  const std::string cli(IBS_CLI);
+  const std::string faults = std::string(IBS_SOURCE_DIR) + "/examples/faults.toml";
+  Result r = run_shell(cli + " run - --format toml < " + faults + " 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "ibs run: scenario \"faults\", 12.000 s simulated")) << r.out;
+  r = run_shell(cli + " run - < " + faults + " 2>&1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, "<stdin>:0: give the format of a scenario on standard input: --format toml or --format json")) << r.out;
+  r = run_shell("printf 'duration = \"1 s\"\\n[[device]]\\nname = 7\\n' | " + cli + " run - --format toml 2>&1");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, "<stdin>:")) << r.out;
 }
 
 TEST(Captures, ABadPathFailsBeforeTheRunAndLeavesNothing) {

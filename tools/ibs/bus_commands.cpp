@@ -94,7 +94,7 @@ void add_bus_commands(CLI::App& app, BusCommandState& state) {
   state.layout->add_option_function<std::string>(
       "--bus", [&lo](const std::string& v) { lo.bus = v; },
       "local or remote (" + layout_kinds + "; default remote)");
-  state.layout->add_flag("--json", lo.json, "print JSON");
+  state.layout->add_flag("-j,--json", lo.json, "print JSON");
 
   TimingOptions& to = state.timing_options;
   state.timing = app.add_subcommand(
@@ -104,7 +104,7 @@ void add_bus_commands(CLI::App& app, BusCommandState& state) {
   state.timing->add_option_function<double>(
       "--sw-us", [&to](const double& v) { to.software_time_us = v; },
       "master software time SW in microseconds (default 200)");
-  state.timing->add_flag("--json", to.json, "print JSON");
+  state.timing->add_flag("-j,--json", to.json, "print JSON");
 }
 
 std::optional<int> run_bus_commands(const BusCommandState& state, std::ostream& out,

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "ibs/sim/campaign.hpp"
 
 namespace ibs::cli {
@@ -38,10 +39,13 @@ int campaign(const CampaignOptions& o) {
   opt.seed = o.seed;
   opt.transactions = o.transactions;
   opt.enable_during_download = o.enable_during_download;
-  if (isatty(fileno(stderr)) != 0) {
-    opt.progress = [&o](std::uint64_t done, Time t) {
-      std::cerr << "\r" << done << " / " << o.transactions << " transactions, " << fixed(to_ms(t) / 1000.0, 0)
-                << " s simulated" << std::flush;
+  // Progress on standard error (progress.hpp): in place on a terminal, a line every few seconds
+  // elsewhere, nothing with -q.
+  Progress progress(o.progress, "ibs campaign");
+  if (progress.enabled()) {
+    opt.progress = [&o, &progress](std::uint64_t done, Time t) {
+      progress.report(std::to_string(done) + " / " + std::to_string(o.transactions) + " transactions, " +
+                      fixed(to_ms(t) / 1000.0, 0) + " s simulated");
     };
   }
   sim::CampaignResult r;
@@ -51,7 +55,7 @@ int campaign(const CampaignOptions& o) {
     std::cerr << "campaign: " << e.what() << "\n";
     return kExitBadInput;
   }
-  if (opt.progress) std::cerr << "\r" << std::string(70, ' ') << "\r";
+  progress.finish();
   if (o.json) {
     nlohmann::json j;
     j["seed"] = r.seed;

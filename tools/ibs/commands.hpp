@@ -1,6 +1,8 @@
 // The `ibs` subcommands. Each returns the process exit code.
 #pragma once
 
+#include "progress.hpp"
+
 #include <cstdint>
 #include <string>
 
@@ -13,7 +15,8 @@ inline constexpr int kExitBadInput = 2;  // malformed file, bad option, refused 
 inline constexpr int kExitInterrupted = 130;  // run: SIGINT / SIGTERM; nothing written (128 + SIGINT)
 
 struct RunOptions {
-  std::string scenario;   // empty: the built-in default scenario
+  std::string scenario;   // empty: the built-in default scenario; "-": standard input
+  std::string format;     // --format toml|json: the scenario's format (required for "-")
   bool json = false;
   std::string trace_dir;  // empty: no traces
   std::string vcd_file;   // empty: no VCD (else also FILE.states.txt and FILE.gtkw)
@@ -23,6 +26,7 @@ struct RunOptions {
   bool realtime = false;  // the master paced at the bus cycle in real time (sim/realtime.hpp)
   int rt_priority = 0;    // with realtime: SCHED_FIFO priority 1..99 and mlockall
   std::string control;    // with realtime: the live control channel ("-", "unix:PATH"); empty: none
+  ProgressOptions progress;  // -q, --progress (progress.hpp)
 };
 
 struct CampaignOptions {
@@ -30,6 +34,7 @@ struct CampaignOptions {
   std::uint64_t transactions = 100000;
   bool json = false;
   bool enable_during_download = false;
+  ProgressOptions progress;  // -q, --progress (progress.hpp)
 };
 
 // `pcap_file` (may be empty): the replay as a capture for Wireshark, a ring of one (docs/pcap.md).

@@ -6,11 +6,13 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "bus_commands.hpp"
 #include "canlust_cmd.hpp"
 #include "dfs1_cmd.hpp"
+#include "help.hpp"
 #include "lustbus_cmd.hpp"
 #include "commands.hpp"
 #include "trace_input.hpp"
@@ -35,16 +37,23 @@ CLI::Validator unsigned_decimal(std::uint64_t max) {
 }
 
 int run_ibs(int argc, char** argv) {
-  CLI::App app{"ibs: LUST drives (VF1000, MC6000, CDA3000) and the PowerTec DFS-1 on INTERBUS-S, LUSTBUS, CANLust and the DFS-1 link: masters, emulated drives, the INTERBUS cycle simulator"};
+  // Named "ibs" whatever path started it: usage lines show the command a user types.
+  CLI::App app{"ibs: LUST drives (VF1000, MC6000, CDA3000) and the PowerTec DFS-1 on INTERBUS-S, LUSTBUS, CANLust and the DFS-1 link: masters, emulated drives, the INTERBUS cycle simulator",
+               "ibs"};
   // `ibs --version`: the project's version from CMake (project(ibs VERSION ...)).
-  app.set_version_flag("--version", std::string("ibs ") + IBS_VERSION);
+  app.set_version_flag("-V,--version", std::string("ibs ") + IBS_VERSION);
   app.require_subcommand(1);
 
   ibs::cli::RunOptions run_options;
   auto* run = app.add_subcommand(
       "run", "simulate a bus: the built-in default (an MC6000 and a VF1000 brought up, run and stopped) or a scenario file");
-  run->add_option("SCENARIO", run_options.scenario, "a scenario file (.toml or .json, docs/scenarios.md)");
-  run->add_flag("--json", run_options.json, "print the summary as JSON");
+  run->add_option("SCENARIO", run_options.scenario, "a scenario file (.toml or .json, docs/scenarios.md); - reads it from standard input (with --format)");
+  run->add_option("--format", run_options.format, "the scenario's format, toml or json: required for -, else the file's extension gives it")
+      ->check(CLI::IsMember({"toml", "json"}));
+  run->add_flag("-j,--json", run_options.json, "print the summary as JSON");
+  run->add_flag("-q,--quiet", run_options.progress.quiet, "no progress on standard error");
+  run->add_flag("--progress", run_options.progress.always,
+                "progress on standard error every second, as lines, even where it is not a terminal");
   run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory");
   run->add_option("--vcd", run_options.vcd_file,
                   "write the run as a VCD file for gtkwave, with FILE.gtkw to open it ready to read");
@@ -88,7 +97,7 @@ int run_ibs(int argc, char** argv) {
       "decode", "print a trace with every word explained in the remark, a CANLust candump log with every frame explained, or a LUSTBUS byte log (--log) telegram by telegram");
   decode->add_option("FILE", decode_files, "trace files, candump -l logs or byte logs of --log; - reads a trace from standard input")
       ->required();
-  decode->add_flag("--json", decode_json, "traces: one JSON object per file, each on one line (docs/replay.md)");
+  decode->add_flag("-j,--json", decode_json, "traces: one JSON object per file, each on one line (docs/replay.md)");
   decode->add_option("--id-step", decode_id_step, "candump log: CANLust identifier step (default 2)")
       ->check(unsigned_decimal(std::numeric_limits<unsigned>::max()));
   decode->add_option("--cacnf", decode_cacnf, "candump log: the drives' 492-CACNF (default 2)")
@@ -103,7 +112,10 @@ int run_ibs(int argc, char** argv) {
                        "parameter transactions to run (default 100000, at most 100 million)")
       ->check(unsigned_decimal(std::numeric_limits<std::uint64_t>::max()))
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100000000}));
-  campaign->add_flag("--json", campaign_options.json, "print the result as JSON");
+  campaign->add_flag("-j,--json", campaign_options.json, "print the result as JSON");
+  campaign->add_flag("-q,--quiet", campaign_options.progress.quiet, "no progress on standard error");
+  campaign->add_flag("--progress", campaign_options.progress.always,
+                     "progress on standard error every second, as lines, even where it is not a terminal");
   campaign->add_flag("--enable-during-download", campaign_options.enable_during_download,
                      "also request ENABLED while an 80-SLOAD download is open (the servo must refuse)");
 
@@ -116,6 +128,11 @@ int run_ibs(int argc, char** argv) {
   ibs::cli::CanlustCommandState canlust_state;
   ibs::cli::add_canlust_commands(app, canlust_state);
 
+  std::string completion_shell;
+  auto* completion = app.add_subcommand("completion", "print the shell completion script for ibs (bash)");
+  completion->add_option("SHELL", completion_shell, "bash")->required()->check(CLI::IsMember({"bash"}));
+  ibs::cli::polish_help(app);  // after every command: metavariables, examples and exit codes
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -127,6 +144,10 @@ int run_ibs(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return ibs::cli::kExitBadInput;
+  }
+  if (completion->parsed()) {
+    std::cout << ibs::cli::bash_completion(app);
+    return ibs::cli::kExitOk;
   }
   if (const auto rc = ibs::cli::run_bus_commands(bus_state)) return *rc;
   if (const auto rc = ibs::cli::run_dfs1_commands(dfs1_state)) return *rc;
@@ -151,20 +172,26 @@ int run_ibs(int argc, char** argv) {
       int rc = ibs::cli::kExitOk;
       if (replay->parsed()) {
         rc = ibs::cli::replay(emulate, file, replay_pcap);
-      } else if (const auto log = file == "-" ? std::nullopt
-                                              : ibs::cli::decode_lustbus_log(file, std::cout, std::cerr)) {
+      } else if (std::ostringstream text; const auto log = file == "-" ? std::nullopt
+                                                  : ibs::cli::decode_lustbus_log(file, text, std::cerr)) {
+        // A log is explained as text; with --json the output is JSON or an error, never the text
+        // first (the text is held until it is known which).
         rc = *log;
-        if (decode_json && rc == ibs::cli::kExitOk) {
-          std::cerr << file << ": --json is for traces; a byte log is explained as text\n";
+        if (decode_json) {
+          std::cerr << file << ": --json is for traces; a byte log is explained as text (leave out --json)\n";
           rc = ibs::cli::kExitBadInput;
+        } else {
+          std::cout << text.str() << std::flush;
         }
-      } else if (const auto candump = file == "-" ? std::nullopt
+      } else if (std::ostringstream text; const auto candump = file == "-" ? std::nullopt
                                                   : ibs::cli::decode_candump_log(file, decode_id_step, decode_cacnf,
-                                                                                 std::cout, std::cerr)) {
+                                                                                 text, std::cerr)) {
         rc = *candump;
-        if (decode_json && rc == ibs::cli::kExitOk) {
-          std::cerr << file << ": --json is for traces; a candump log is explained as text\n";
+        if (decode_json) {
+          std::cerr << file << ": --json is for traces; a candump log is explained as text (leave out --json)\n";
           rc = ibs::cli::kExitBadInput;
+        } else {
+          std::cout << text.str() << std::flush;
         }
       } else {
         rc = ibs::cli::decode(file, decode_json);

@@ -47,7 +47,31 @@ bool OutputFiles::make_directory(const std::filesystem::path& dir, std::string& 
   return true;
 }
 
+bool OutputFiles::take_stdout(std::string& error) {
+  if (stdout_used_) {
+    error = "-: standard output is given for two outputs; nothing was written";
+    return false;
+  }
+  stdout_used_ = true;
+  return true;
+}
+
 std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::string& error) {
+  if (final_path == "-") {
+    if (!take_stdout(error)) return nullptr;
+    File f;
+    f.final_path = final_path;
+    f.target = final_path;
+    // Appended to, never truncated: a file the shell redirected stdout to is written from where
+    // it stands, as a plain write(1, ...) would.
+    f.stream = std::make_unique<std::ofstream>("/dev/stdout", std::ios::binary | std::ios::app);
+    if (!*f.stream) {
+      error = "-: cannot write to standard output: " + std::string(std::strerror(errno));
+      return nullptr;
+    }
+    files_.push_back(std::move(f));
+    return files_.back().stream.get();
+  }
   if (!place(final_path, error)) return nullptr;
   File& f = files_.back();
   f.stream = std::make_unique<std::ofstream>(f.temp_path.empty() ? f.target : f.temp_path,
@@ -61,6 +85,10 @@ std::ostream* OutputFiles::open(const std::filesystem::path& final_path, std::st
 }
 
 std::optional<std::filesystem::path> OutputFiles::reserve(const std::filesystem::path& final_path, std::string& error) {
+  if (final_path == "-") {  // libpcap's pcap_dump_open() takes "-" for standard output itself
+    if (!take_stdout(error)) return std::nullopt;
+    return final_path;
+  }
   if (!place(final_path, error)) return std::nullopt;
   const File& f = files_.back();
   return f.temp_path.empty() ? f.target : f.temp_path;

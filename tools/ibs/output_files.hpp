@@ -3,6 +3,9 @@
 // final names. Whatever fails, no partial or half-written file is left under a final name, the
 // temporaries are removed, and a directory made for the outputs is removed again if it stays empty.
 //
+// `-` is standard output (tshark's `-w -`): written through as the run goes, at most one output
+// per command; a command whose output goes there prints its own report on standard error.
+//
 // An output never replaces what is not a regular file (docs/robustness.md, "Output files"): a
 // symbolic link is followed (its target is written, the link stays), a FIFO or a device is written
 // through in place (no temporary, no rename; a FIFO nobody reads is refused at once instead of
@@ -40,6 +43,8 @@ class OutputFiles {
   // Closes every stream, checks that everything was written, then renames all to their final
   // names. False with `error` (naming the file) on the first failure; nothing is renamed then.
   bool commit(std::string& error);
+  // Whether an output is `-`: the command's own report then goes to standard error.
+  [[nodiscard]] bool uses_stdout() const { return stdout_used_; }
 
  private:
   struct File {
@@ -51,10 +56,13 @@ class OutputFiles {
   };
   // Checks `final_path` and adds its File (no stream yet); false with `error` set.
   bool place(const std::filesystem::path& final_path, std::string& error);
+  // `-`: standard output, once per command; false with `error` set when it is taken already.
+  bool take_stdout(std::string& error);
 
   std::vector<File> files_;
   std::vector<std::filesystem::path> made_dirs_;  // deepest last
   bool committed_ = false;
+  bool stdout_used_ = false;
 };
 
 }  // namespace ibs::cli

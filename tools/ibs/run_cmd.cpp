@@ -23,7 +23,10 @@
 #include "control_input.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
+#include "progress.hpp"
 #include "stop_signals.hpp"
+#include "trace_input.hpp"
+#include "ibs/base/text_file.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
@@ -81,6 +84,37 @@ std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator
   };
 }
 
+// The scenario of `ibs run`: a file (its extension gives the format unless --format does), or
+// standard input for `-` (--format required); every problem a sim::ScenarioError naming
+// FILE:LINE (`<stdin>:LINE` for `-`).
+sim::AnyScenario load_run_scenario(const RunOptions& o) {
+  const auto format = [&o]() {
+    return o.format == "json" ? sim::ScenarioFormat::json : sim::ScenarioFormat::toml;
+  };
+  if (o.scenario != "-") {
+    if (o.format.empty()) return sim::load_any_scenario(o.scenario);
+    try {
+      return sim::load_any_scenario_text(read_text_file(o.scenario), format(), o.scenario);
+    } catch (const FileReadError& e) {
+      throw sim::ScenarioError(o.scenario, 0, e.what());
+    }
+  }
+  if (o.format.empty()) {
+    throw sim::ScenarioError(kStdinName, 0, "give the format of a scenario on standard input: --format toml or --format json");
+  }
+  std::string text;
+  std::string chunk(64 * 1024, '\0');
+  while (std::cin.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || std::cin.gcount() > 0) {
+    text.append(chunk.data(), static_cast<std::size_t>(std::cin.gcount()));
+    if (text.size() > kMaxInputFileBytes) {
+      throw sim::ScenarioError(kStdinName, 0,
+                               "more than " + std::to_string(kMaxInputFileBytes >> 20U) + " MiB: not a scenario");
+    }
+  }
+  if (std::cin.bad()) throw sim::ScenarioError(kStdinName, 0, "cannot read standard input");
+  return sim::load_any_scenario_text(text, format(), kStdinName);
+}
+
 // A scenario with a CANLust bus (docs/scenarios.md, "A CANLust bus"): its own simulation, in
 // simulated time, or with --realtime paced at absolute deadlines, its drives served on the
 // scenario's `bus` for the user's master when it names one, with entries from --control between.
@@ -120,6 +154,10 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   std::string error;
   std::string pcap_path;
   if (!o.pcap_file.empty()) {
+    if (o.pcap_file == "-" && ::isatty(STDOUT_FILENO) != 0) {
+      std::cerr << "--pcap -: standard output is a terminal; pipe the capture on (| tshark -r -) or give a file\n";
+      return kExitBadInput;
+    }
     const auto path = outputs.reserve(o.pcap_file, error);
     if (!path) {
       std::cerr << error << "\n";
@@ -132,7 +170,8 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
     if (o.realtime) {
       StopSignals signals;
       sim::canlust::RealtimeOptions rt;
-      rt.ready = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
+      std::ostream& ready = outputs.uses_stdout() ? std::cerr : std::cout;
+      rt.ready = [&ready](const std::string& line) { ready << line << "\n" << std::flush; };
       rt.stop = [&signals]() { return signals.raised(); };
       if (control) {
         rt.each_step = [&](Time, std::vector<sim::canlust::Entry>& out) {
@@ -164,8 +203,12 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
     std::cerr << error << "\n";
     return kExitBadInput;
   }
-  std::cout << (o.json ? sim::canlust::format_json(report) : sim::canlust::format_text(report));
-  if (!o.json && !o.pcap_file.empty()) std::cout << "capture written: " << o.pcap_file << "\n";
+  // With the capture on standard output (`-`), the report goes to standard error.
+  std::ostream& say = outputs.uses_stdout() ? std::cerr : std::cout;
+  say << (o.json ? sim::canlust::format_json(report) : sim::canlust::format_text(report));
+  if (!o.json && !o.pcap_file.empty()) {
+    say << "capture written: " << (o.pcap_file == "-" ? std::string("standard output") : o.pcap_file) << "\n";
+  }
   return kExitOk;
 }
 
@@ -182,7 +225,7 @@ int run(const RunOptions& o) {
     if (o.scenario.empty()) {
       scenario = sim::default_scenario();
     } else {
-      sim::AnyScenario any = sim::load_any_scenario(o.scenario);
+      sim::AnyScenario any = load_run_scenario(o);
       if (const auto* canlust = std::get_if<sim::canlust::Scenario>(&any)) return run_canlust(o, *canlust);
       scenario = std::move(std::get<sim::Scenario>(any));
     }
@@ -270,13 +313,17 @@ int run(const RunOptions& o) {
   }
   std::unique_ptr<sim::PcapRecorder> pcap;
   if (!o.pcap_file.empty()) {
+    if (o.pcap_file == "-" && ::isatty(STDOUT_FILENO) != 0) {
+      std::cerr << "--pcap -: standard output is a terminal; pipe the capture on (| tshark -r -) or give a file\n";
+      return kExitBadInput;
+    }
     std::ostream* pcap_stream = outputs.open(o.pcap_file, error);
     if (pcap_stream == nullptr) {
       std::cerr << error << "\n";
       return kExitBadInput;
     }
     try {
-      pcap = std::make_unique<sim::PcapRecorder>(*simulator, scenario, *pcap_stream);
+      pcap = std::make_unique<sim::PcapRecorder>(*simulator, scenario, *pcap_stream, sim::wall_clock_epoch());
     } catch (const std::exception& e) {
       std::cerr << o.pcap_file << ": " << e.what() << "\n";
       return kExitBadInput;
@@ -298,19 +345,15 @@ int run(const RunOptions& o) {
   sim::SimOptions options;
   options.record_traces = !o.trace_dir.empty();
   options.threads = o.threads;
-  // A long run shows its progress on a terminal (never in pipes or files).
-  const bool tty = isatty(fileno(stderr)) != 0;
-  auto last = std::chrono::steady_clock::now();
-  bool shown = false;
-  if (tty) {
-    options.progress = [&](Time now, Duration total) {
-      const auto w = std::chrono::steady_clock::now();
-      if (w - last < std::chrono::milliseconds(250)) return;
-      last = w;
-      shown = true;
-      std::fprintf(stderr, "\r  simulated %.1f s of %.1f s (%3.0f %%)", to_ms(now) / 1000.0, to_ms(total) / 1000.0,
-                   100.0 * to_ms(now) / to_ms(total));
-      std::fflush(stderr);
+  // A long run shows its progress on standard error (progress.hpp): in place on a terminal, a
+  // line every few seconds elsewhere, nothing with -q.
+  Progress progress(o.progress, "ibs run");
+  if (progress.enabled()) {
+    options.progress = [&progress](Time now, Duration total) {
+      char text[96];
+      std::snprintf(text, sizeof text, "simulated %.1f s of %.1f s (%.0f %%)", to_ms(now) / 1000.0,
+                    to_ms(total) / 1000.0, 100.0 * to_ms(now) / to_ms(total));
+      progress.report(text);
     };
   }
   // SIGINT and SIGTERM end the run between two slices of simulated time; then nothing is written
@@ -321,8 +364,9 @@ int run(const RunOptions& o) {
     sim::RealtimeOptions rt{o.rt_priority, [&signals, &interrupted] { return interrupted = signals.raised(); }, {}};
     if (bench) {
       // The words a script waits for, before the first cycle: one line per served line, flushed.
-      for (const std::string& line : bench->ready_lines()) std::cout << line << "\n";
-      std::cout << std::flush;
+      std::ostream& ready = outputs.uses_stdout() ? std::cerr : std::cout;
+      for (const std::string& line : bench->ready_lines()) ready << line << "\n";
+      ready << std::flush;
       for (const std::string& note : bench->notes()) std::cerr << "ibs run: " << note << "\n";
     }
     // One hook, on the simulator's thread: the bench's lines turn, then the control lines land.
@@ -343,7 +387,7 @@ int run(const RunOptions& o) {
       }
     }
   }
-  if (shown) std::fprintf(stderr, "\r%60s\r", "");
+  progress.finish();
   if (interrupted) {
     std::cerr << "ibs run: interrupted by a signal after " << to_ms(simulator->now()) / 1000.0 << " s of "
               << to_ms(scenario.duration) / 1000.0 << " s simulated; no output was written\n";
@@ -358,14 +402,16 @@ int run(const RunOptions& o) {
     }
     // The state names for gtkwave's translate filter and the save file that opens the dump ready
     // to read (docs/vcd.md), beside the VCD file; the save file names both by absolute path.
+    // A dump on standard output has no place beside it: it goes alone.
     const std::string filter_file = o.vcd_file + ".states.txt";
     const std::string save_file = o.vcd_file + ".gtkw";
     const auto absolute = [](const std::string& p) { return std::filesystem::absolute(p).lexically_normal().string(); };
-    if (!outputs.write(filter_file, vcd->state_filter(), error) ||
-        !outputs.write(save_file,
-                       vcd->save_file(absolute(o.vcd_file), absolute(filter_file), absolute(save_file),
-                                      scenario.duration),
-                       error)) {
+    if (o.vcd_file != "-" &&
+        (!outputs.write(filter_file, vcd->state_filter(), error) ||
+         !outputs.write(save_file,
+                        vcd->save_file(absolute(o.vcd_file), absolute(filter_file), absolute(save_file),
+                                       scenario.duration),
+                        error))) {
       std::cerr << error << "\n";
       return kExitBadInput;
     }
@@ -402,24 +448,29 @@ int run(const RunOptions& o) {
   }
 
   // The summary only once every file is in place: a run that could not be saved says nothing else.
+  // With an output on standard output (`-`), the summary goes to standard error.
+  std::ostream& say = outputs.uses_stdout() ? std::cerr : std::cout;
+  const auto written_to = [](const std::string& f) { return f == "-" ? std::string("standard output") : f; };
   const sim::Summary& summary = simulator->summary();
   if (o.json && bench) {
     // The bench's part joins the summary's object (docs/testbench.md), printed as the summary is.
     nlohmann::json json = nlohmann::json::parse(sim::format_json(summary));
     json["bench"] = nlohmann::json::parse(format_bench_json(bench->report()));
-    std::cout << json.dump(2) << "\n";
+    say << json.dump(2) << "\n";
   } else {
-    std::cout << (o.json ? sim::format_json(summary) : sim::format_text(summary));
+    say << (o.json ? sim::format_json(summary) : sim::format_text(summary));
   }
-  if (!o.json && bench) std::cout << format_bench_text(bench->report());
+  if (!o.json && bench) say << format_bench_text(bench->report());
   if (!o.json) {
-    for (const auto& path : written) std::cout << "trace written: " << path << "\n";
-    if (vcd) {
-      std::cout << "VCD written: " << o.vcd_file << " (open it with: gtkwave " << o.vcd_file
-                << ".gtkw; state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
+    for (const auto& path : written) say << "trace written: " << path << "\n";
+    if (vcd && o.vcd_file == "-") {
+      say << "VCD written: standard output\n";
+    } else if (vcd) {
+      say << "VCD written: " << o.vcd_file << " (open it with: gtkwave " << o.vcd_file
+          << ".gtkw; state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
     }
-    if (pcap) std::cout << "capture written: " << o.pcap_file << " (" << pcap->packets() << " packets)\n";
-    if (plot) std::cout << "plot written: " << o.plot_file << "\n";
+    if (pcap) say << "capture written: " << written_to(o.pcap_file) << " (" << pcap->packets() << " packets)\n";
+    if (plot) say << "plot written: " << o.plot_file << "\n";
   }
   return kExitOk;
 }

@@ -7,10 +7,9 @@
 
 namespace ibs::sim {
 
-AnyScenario load_any_scenario(const std::string& path) {
-  const detail::ScenarioText file = detail::read_scenario_file(path);
-  const detail::Format format = file.format;
-  const std::string& text = file.text;
+namespace {
+
+AnyScenario read_any(const std::string& text, detail::Format format, const std::string& path) {
   const detail::Node root =
       format == detail::Format::json ? detail::json_tree(text, path) : detail::toml_tree(text, path);
   if (canlust::is_canlust_tree(root)) {
@@ -23,6 +22,17 @@ AnyScenario load_any_scenario(const std::string& path) {
   Scenario s = detail::read_tree(root, format, path, lines);
   detail::validate(s, lines, path);
   return s;
+}
+
+}  // namespace
+
+AnyScenario load_any_scenario(const std::string& path) {
+  const detail::ScenarioText file = detail::read_scenario_file(path);
+  return read_any(file.text, file.format, path);
+}
+
+AnyScenario load_any_scenario_text(const std::string& text, ScenarioFormat format, const std::string& name) {
+  return read_any(text, format == ScenarioFormat::json ? detail::Format::json : detail::Format::toml, name);
 }
 
 }  // namespace ibs::sim

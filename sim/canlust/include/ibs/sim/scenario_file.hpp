@@ -5,6 +5,7 @@
 // (scenario.hpp). Every error is a sim::ScenarioError naming file:line, as either reader's own.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <variant>
 
@@ -16,5 +17,10 @@ namespace ibs::sim {
 using AnyScenario = std::variant<Scenario, canlust::Scenario>;
 
 AnyScenario load_any_scenario(const std::string& path);
+
+// The same for a text already read (`ibs run -`: standard input), in the format given; `name`
+// stands for the file in messages (`<stdin>:12: ...`) and names the scenario when it has no name.
+enum class ScenarioFormat : std::uint8_t { toml, json };
+AnyScenario load_any_scenario_text(const std::string& text, ScenarioFormat format, const std::string& name);
 
 }  // namespace ibs::sim

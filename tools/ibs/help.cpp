@@ -1,0 +1,187 @@
+#include "help.hpp"
+
+#include <map>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+namespace ibs::cli {
+
+namespace {
+
+// What a value is, by the option's long name; one not listed is named after itself (--id-step:
+// ID_STEP). The parser's own names (TEXT, INT, UINT, FLOAT) never reach the user.
+std::string metavariable(const std::string& long_name) {
+  static const std::map<std::string, std::string, std::less<>> names = {
+      {"port", "PORT"},         {"address", "ADDR"},        {"addr", "ADDR"},          {"uid", "ADDR"},
+      {"device", "DRIVE"},      {"baud", "BAUD"},           {"log", "FILE"},           {"pcap", "FILE"},
+      {"vcd", "FILE"},          {"plot", "FILE"},           {"trace", "DIR"},          {"timeout-ms", "MS"},
+      {"interval", "MS"},       {"reaction-ms", "MS"},      {"repeat", "N"},           {"seed", "N"},
+      {"threads", "N"},         {"transactions", "N"},      {"rt-priority", "PRIO"},   {"control", "SPEC"},
+      {"pty-link", "LINK"},     {"framing", "FRAMING"},     {"format", "FORMAT"},      {"bus", "BUS"},
+      {"sw-us", "US"},          {"supi", "N"},              {"ibcnf", "N"},            {"emulate", "SIDE"},
+  };
+  if (const auto it = names.find(long_name); it != names.end()) return it->second;
+  std::string n;
+  for (const char c : long_name) n += c == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return n;
+}
+
+bool parser_name(const std::string& t) {
+  for (const std::string_view p : {"TEXT", "INT", "UINT", "FLOAT", "NUMBER", "BOOLEAN", "UINT:INT", "INT:INT"}) {
+    if (t == p || t.rfind(std::string(p) + " ", 0) == 0) return true;
+  }
+  return t.find("TEXT") != std::string::npos || t.find("INT") != std::string::npos ||
+         t.find("FLOAT") != std::string::npos;
+}
+
+struct Footer {
+  const char* path;  // "lustbus read"
+  const char* text;  // examples and exit codes
+};
+
+// Two examples that run as written (after `./dev.sh run`, ibs on the PATH or as
+// ./build/release/tools/ibs/ibs) and the exit codes; tools/check_docs.sh does not run them, the
+// CLI tests run the ones marked there (tests/tools/cli_test.cpp, Cli.HelpEndsWithExamplesAndExitCodes).
+constexpr Footer kFooters[] = {
+    {"", "Examples:\n  ibs run --pcap /tmp/run.pcap\n  ibs lustbus emulate --pty-link /tmp/drive vf1000@1\n"
+         "Every command has --help; docs/ in the source explains each bus.\n"
+         "Exit codes: 0 ok; 1 a device refused or did not answer, a replay or check failed; 2 bad input; 130 interrupted"},
+    {"run", "Examples:\n  ibs run --trace /tmp/traces --vcd /tmp/run.vcd\n  ibs run - --format toml < my.toml --json\n"
+            "Exit codes: 0 ok; 2 bad input (FILE:LINE: what); 130 interrupted, nothing written"},
+    {"replay", "Examples:\n  ibs run --trace /tmp/traces && ibs replay --emulate device /tmp/traces/mc6000.trace\n"
+               "  ibs replay --emulate master - < /tmp/traces/vf1000.trace\n"
+               "Exit codes: 0 every row matched; 1 a row did not match; 2 bad input"},
+    {"decode", "Examples:\n  ibs run --trace /tmp/traces && ibs decode /tmp/traces/mc6000.trace\n"
+               "  ibs decode /tmp/lustbus.log   (a byte log of ibs lustbus ... --log)\n"
+               "Exit codes: 0 ok; 2 bad input"},
+    {"campaign", "Examples:\n  ibs campaign --transactions 1000\n  ibs campaign --seed 7 --json\n"
+                 "Exit codes: 0 no violation; 1 a check failed; 2 bad input"},
+    {"layout", "Examples:\n  ibs layout mc6000 --supi 11 --ibcnf 2\n  ibs layout vf1000 --json\n"
+               "Exit codes: 0 ok; 2 bad input"},
+    {"timing", "Examples:\n  ibs timing\n  ibs timing mc6000:11 mc6000:5:local vf1000 --baud 2M --json\n"
+               "Exit codes: 0 ok; 2 bad input"},
+    {"lustbus emulate", "Examples:\n  ibs lustbus emulate --pty vf1000@1 mc6000@3\n"
+                        "  ibs lustbus emulate --pty-link /tmp/drive --control unix:/tmp/drive.ctl vf1000@1\n"
+                        "Exit codes: 0 ended by SIGINT/SIGTERM; 2 bad input"},
+    {"lustbus read", "Examples:\n  ibs lustbus read -p /tmp/drive -a 1 --device vf1000 FSSEL\n"
+                     "  ibs lustbus read -p /dev/ttyUSB0 -a 3 --device mc6000 77 -j --repeat 10 --interval 500\n"
+                     "Exit codes: 0 ok; 1 NAK (the 85 cause is printed), no or a broken answer; 2 bad input"},
+    {"lustbus write", "Examples:\n  ibs lustbus write -p /tmp/drive -a 1 --device vf1000 FSSIO 50\n"
+                      "  ibs lustbus write -p /dev/ttyUSB0 -a 3 --device mc6000 RSIO 132.15 --log /tmp/lustbus.log\n"
+                      "Exit codes: 0 ok; 1 NAK (the 85 cause is printed), no or a broken answer; 2 bad input"},
+    {"lustbus describe", "Examples:\n  ibs lustbus describe -p /tmp/drive -a 1 --device vf1000 VB2\n"
+                         "  ibs lustbus describe -p /dev/ttyUSB0 -a 3 --device mc6000 RSIO -j\n"
+                         "Exit codes: 0 ok; 1 NAK, no or a broken answer; 2 bad input"},
+    {"lustbus scan", "Examples:\n  ibs lustbus scan -p /tmp/drive\n  ibs lustbus scan -p /dev/ttyUSB0 --baud 19200 -j\n"
+                     "Exit codes: 0 ok; 1 the line did not answer as a bus does; 2 bad input"},
+    {"lustbus download", "Examples:\n  ibs lustbus download -p /tmp/drive -a 3 dataset.txt\n"
+                         "  ibs lustbus download -p /dev/ttyUSB0 -a 3 dataset.txt -j\n"
+                         "Exit codes: 0 downloaded; 1 refused (the step and the 85 cause) or no answer; 2 bad input"},
+    {"dfs1 emulate", "Examples:\n  ibs dfs1 emulate --pty dfs1@1 dfs1@2\n"
+                     "  ibs dfs1 emulate --pty-link /tmp/dfs1 --control - dfs1@7\n"
+                     "Exit codes: 0 ended by SIGINT/SIGTERM; 2 bad input"},
+    {"dfs1 status", "Examples:\n  ibs dfs1 status -p /tmp/dfs1 -a 1\n  ibs dfs1 status -p /dev/ttyUSB0 -a 7 -j --repeat 0 --interval 250\n"
+                    "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
+    {"dfs1 read", "Examples:\n  ibs dfs1 read -p /tmp/dfs1 -a 1 6\n  ibs dfs1 read -p /dev/ttyUSB0 -a 7 6 -j\n"
+                  "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
+    {"dfs1 write", "Examples:\n  ibs dfs1 write -p /tmp/dfs1 -a 1 3 15\n  ibs dfs1 write -p /dev/ttyUSB0 -a 7 6 1500 -j\n"
+                   "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
+    {"dfs1 speed", "Examples:\n  ibs dfs1 speed -p /tmp/dfs1 -a 1 1000\n  ibs dfs1 speed -p /tmp/dfs1 -a 0 --execute\n"
+                   "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
+    {"completion", "Examples:\n  ibs completion bash > ~/.local/share/bash-completion/completions/ibs\n"
+                   "  source <(ibs completion bash)\n"
+                   "Exit codes: 0 ok; 2 bad input"},
+};
+
+std::string path_of(const CLI::App* app) {
+  std::vector<std::string> parts;
+  for (const CLI::App* a = app; a != nullptr && a->get_parent() != nullptr; a = a->get_parent()) {
+    parts.insert(parts.begin(), a->get_name());
+  }
+  std::string p;
+  for (const std::string& s : parts) p += (p.empty() ? "" : " ") + s;
+  return p;
+}
+
+void polish(CLI::App* app) {
+  for (CLI::Option* opt : app->get_options()) {
+    if (opt->get_type_size() == 0) continue;  // a flag takes no value
+    if (opt->get_positional() && opt->get_lnames().empty()) {
+      opt->type_name("");  // a positional's name says what it is already (PARAM, FILE, DEVICE)
+      continue;
+    }
+    if (!parser_name(opt->get_type_name())) continue;  // named already (N, MS, UINT by a validator)
+    const auto& longs = opt->get_lnames();
+    if (!longs.empty()) opt->type_name(metavariable(longs.front()));
+  }
+  const std::string path = path_of(app);
+  for (const Footer& f : kFooters) {
+    if (path == f.path) app->footer(f.text);
+  }
+  for (CLI::App* sub : app->get_subcommands({})) polish(sub);
+}
+
+void completion_case(const CLI::App* app, const std::string& path, std::ostringstream& s) {
+  std::string words;
+  for (const CLI::App* sub : app->get_subcommands({})) words += sub->get_name() + " ";
+  std::string files;
+  for (const CLI::Option* opt : app->get_options()) {
+    for (const std::string& l : opt->get_lnames()) words += "--" + l + " ";
+    for (const std::string& sn : opt->get_snames()) words += "-" + sn + " ";
+    const std::string t = opt->get_type_name();
+    if (t == "FILE" || t == "DIR" || t == "PORT" || t == "LINK") {
+      for (const std::string& l : opt->get_lnames()) files += (files.empty() ? "" : "|") + ("--" + l);
+      for (const std::string& sn : opt->get_snames()) files += (files.empty() ? "" : "|") + ("-" + sn);
+    }
+  }
+  s << "    \"" << path << "\")\n";
+  if (!files.empty()) {
+    s << "      case \"$prev\" in " << files << ") COMPREPLY=($(compgen -f -- \"$cur\")); return ;; esac\n";
+  }
+  s << "      COMPREPLY=($(compgen -W \"" << words << "\" -- \"$cur\"))\n";
+  s << "      [ ${#COMPREPLY[@]} -eq 0 ] && COMPREPLY=($(compgen -f -- \"$cur\"))\n";
+  s << "      ;;\n";
+  for (const CLI::App* sub : app->get_subcommands({})) {
+    completion_case(sub, path.empty() ? sub->get_name() : path + " " + sub->get_name(), s);
+  }
+}
+
+}  // namespace
+
+void polish_help(CLI::App& app) { polish(&app); }
+
+std::string bash_completion(const CLI::App& app) {
+  std::ostringstream s;
+  s << "# bash completion for ibs, made by `ibs completion bash` from the command tree itself.\n"
+    << "_ibs() {\n"
+    << "  local cur prev path w i\n"
+    << "  cur=\"${COMP_WORDS[COMP_CWORD]}\"\n"
+    << "  prev=\"${COMP_WORDS[COMP_CWORD-1]}\"\n"
+    << "  path=\"\"\n"
+    << "  # The command path so far: the words that name a subcommand at their level.\n"
+    << "  for ((i = 1; i < COMP_CWORD; i++)); do\n"
+    << "    w=\"${COMP_WORDS[i]}\"\n"
+    << "    case \"$path:$w\" in\n";
+  // The known paths: each subcommand word that extends the path before it.
+  std::vector<std::pair<std::string, const CLI::App*>> stack{{"", &app}};
+  while (!stack.empty()) {
+    const auto [path, a] = stack.back();
+    stack.pop_back();
+    for (const CLI::App* sub : a->get_subcommands({})) {
+      const std::string next = path.empty() ? sub->get_name() : path + " " + sub->get_name();
+      s << "      \"" << path << ":" << sub->get_name() << "\") path=\"" << next << "\" ;;\n";
+      stack.emplace_back(next, sub);
+    }
+  }
+  s << "    esac\n"
+    << "  done\n"
+    << "  case \"$path\" in\n";
+  completion_case(&app, "", s);
+  s << "  esac\n"
+    << "}\n"
+    << "complete -F _ibs ibs\n";
+  return s.str();
+}
+
+}  // namespace ibs::cli
