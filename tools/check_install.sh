@@ -111,13 +111,14 @@ cmake --build "$work/ddi-build" -j "$jobs" >/dev/null
 # (ibs_util.h) and nothing else: the legacy helpers (ddi_macr.h) are macros, as in Phoenix's SDK,
 # so nothing of them is linked. pkg-config finds it for a C build.
 if nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
-    | awk '$2 == "T" && $3 !~ /^DDI_/ && $3 != "GetIBSDiagnostic" && $3 != "GetIBSDiagnosticEx"' | grep -q .; then
+    | awk '{ sub(/@.*/, "", $3) } $2 == "T" && $3 !~ /^DDI_/ && $3 != "GetIBSDiagnostic" && $3 != "GetIBSDiagnosticEx"' \
+    | grep -q .; then
   echo "check_install: libibs-ddi.so exports more than the DDI_* calls and GetIBSDiagnostic(Ex)" >&2
   exit 1
 fi
 for sym in GetIBSDiagnostic GetIBSDiagnosticEx; do
   nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
-    | awk -v s="$sym" '$2 == "T" && $3 == s' | grep -q . \
+    | awk -v s="$sym" '{ sub(/@.*/, "", $3) } $2 == "T" && $3 == s' | grep -q . \
     || { echo "check_install: libibs-ddi.so does not export $sym" >&2; exit 1; }
 done
 export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu/pkgconfig"
