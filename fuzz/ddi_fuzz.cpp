@@ -48,8 +48,9 @@ struct Session {
     if ((code & DDI_CONFIRMATION_BIT) != 0) {
       IBS_FUZZ_REQUIRE(a.msgType == DDI_MSG_CONFIRMATION, "a confirmation not typed as one");
       IBS_FUZZ_REQUIRE(sent.count(static_cast<std::uint16_t>(code & 0x7FFFU)) == 1, "a confirmation of nothing sent");
-      if (code == (S_READ_VALUE | DDI_CONFIRMATION_BIT) && word(2) == RES_OK && a.msgLength >= 10) {
-        for (std::size_t k = 0; k < word(3) && 4 + k < a.msgLength / 2U; ++k) (void)word(4 + k);
+      if (code == (S_READ_VALUE | DDI_CONFIRMATION_BIT) && word(2) == RES_OK) {
+        // [result][count] and (ID, value) per variable.
+        IBS_FUZZ_REQUIRE(a.msgLength == 8U + 4U * word(3), "a Read_Value confirmation not of its count's length");
       }
     } else {
       IBS_FUZZ_REQUIRE(code == S_PCP_ABORT_IND || code == S_PCP_INFO_REPORT_IND, "an unknown indication");
@@ -73,8 +74,8 @@ struct Session {
       IBS_FUZZ_REQUIRE(one_of(rr, {ERR_OK, ERR_NO_MSG, ERR_IBS_SYSFAIL}), "receive refused oddly");
       if (rr != ERR_OK) return;
       check_message(m, a);
-      if (a.msgLength == 10 && m[0] == 0x83 && m[1] == 0x51) {
-        const auto status = static_cast<std::uint16_t>((m[8] << 8U) | m[9]);
+      if (a.msgLength == 12 && m[0] == 0x83 && m[1] == 0x51 && m[8] == 0x22 && m[9] == 0x22) {  // VAR_DIAG_STATUS
+        const auto status = static_cast<std::uint16_t>((m[10] << 8U) | m[11]);
         if ((status & DIAG_CTRL) != 0) {
           IBS_FUZZ_REQUIRE(status == DIAG_CTRL, "CTRL with other bits");
         } else {

@@ -5,9 +5,11 @@
 #     (ibs-master) runs the master loop over the in-memory bus;
 #  2. the whole project installed from a built tree (default build/debug) into another prefix;
 #     examples/embed configured with find_package(ibs) against it, built and run: it must exit 0;
-#  3. examples/ddi, a C master against the virtual board (libibs-ddi), built with CMake and run
-#     in real time, then built through pkg-config (ibs-ddi) and run stepped; the shared library
-#     must export the DDI_* calls only;
+#  3. examples/ddi, C masters against the virtual board (libibs-ddi): ddi_master (ibs/ddi.h) and
+#     ibs_hli (Phoenix's legacy header names), built with CMake and run in real time, then built
+#     through pkg-config (ibs-ddi, C99, -Wall -Wextra -Werror) and run stepped; the shared library
+#     must export the DDI_* calls and the two legacy diagnostic readings only (the legacy helpers
+#     are macros);
 #  4. examples/hosts, a LUSTBUS, a CANLust and a DFS-1 host as a user's own programs, built with
 #     CMake (ibs::lustbus, ibs::canlust, ibs::dfs1 and their transports) and run against the
 #     installed tool's emulators, then built through pkg-config (ibs-lustbus, ibs-canlust, ibs-dfs1);
@@ -110,17 +112,32 @@ echo "check_install: examples/ddi (C, the virtual board's DDI) against the same 
 cmake -S examples/ddi -B "$work/ddi-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/ddi-build" -j "$jobs" >/dev/null
 "$work/ddi-build/ddi_master"
-# The shared library gives the DDI's calls and nothing else; pkg-config finds it for a C build.
+"$work/ddi-build/ibs_hli"
+# The shared library gives the DDI's calls and the legacy headers' two register readings
+# (ibs_util.h) and nothing else: the legacy helpers (ddi_macr.h) are macros, as in Phoenix's SDK,
+# so nothing of them is linked. pkg-config finds it for a C build.
 if nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
-    | awk '$2 == "T" && $3 !~ /^DDI_/' | grep -q .; then
-  echo "check_install: libibs-ddi.so exports more than the DDI_* calls" >&2
+    | awk '{ sub(/@.*/, "", $3) } $2 == "T" && $3 !~ /^DDI_/ && $3 != "GetIBSDiagnostic" && $3 != "GetIBSDiagnosticEx"' \
+    | grep -q .; then
+  echo "check_install: libibs-ddi.so exports more than the DDI_* calls and GetIBSDiagnostic(Ex)" >&2
   exit 1
 fi
+for sym in GetIBSDiagnostic GetIBSDiagnosticEx; do
+  nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
+    | awk -v s="$sym" '{ sub(/@.*/, "", $3) } $2 == "T" && $3 == s' | grep -q . \
+    || { echo "check_install: libibs-ddi.so does not export $sym" >&2; exit 1; }
+done
 export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu/pkgconfig"
 # shellcheck disable=SC2046
 gcc -std=c99 -Wall -Werror examples/ddi/ddi_master.c -o "$work/ddi_pc" $(pkg-config --cflags --libs ibs-ddi) \
   -Wl,-rpath,"$(pkg-config --variable=libdir ibs-ddi)"
 IBS_DDI_MODE=stepped "$work/ddi_pc"
+# The legacy-style master unchanged: Phoenix's header names from the installed ibs/phoenix folder.
+# shellcheck disable=SC2046
+gcc -std=c99 -Wall -Wextra -Werror examples/ddi/ibs_hli.c -o "$work/ibs_hli_pc" $(pkg-config --cflags --libs ibs-ddi) \
+  -Wl,-rpath,"$(pkg-config --variable=libdir ibs-ddi)"
+IBS_DDI_MODE=stepped "$work/ibs_hli_pc" | tee "$work/ibs_hli.txt"
+grep -qx "done" "$work/ibs_hli.txt"
 echo "check_install: examples/hosts (LUSTBUS, CANLust and DFS-1 hosts) against the same installation" >&2
 cmake -S examples/hosts -B "$work/hosts-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/hosts-build" -j "$jobs" >/dev/null

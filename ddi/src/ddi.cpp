@@ -13,6 +13,7 @@
 
 #include "board.hpp"
 #include "ibs/ddi.h"
+#include "ibs_util.h"  // the legacy diagnostic calls (ddi/include/ibs/phoenix)
 
 namespace {
 
@@ -35,16 +36,34 @@ Driver& driver() {
   return d;
 }
 
-// "IBB<board>N<node>_<D|M>".
+// A board or node number: one or two digits whose value is 1 ("1", "01"), the forms of the ISA /
+// PCI boards' names (IBB1N1_D) and of the Ethernet controllers' (IBETH01N1_D).
+bool is_one(std::string_view digits) { return digits == "1" || digits == "01"; }
+
+bool all_digits(std::string_view s) {
+  return !s.empty() && s.size() <= 2 && s.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+// "IBB<board>N<node>_<D|M>" or "IBETH<board>N<node>_<D|M>" (docs/ddi.md, "Calls").
 IBDDIRET parse_name(std::string_view name, int& kind) {
-  if (name.size() < 8 || name.substr(0, 3) != "IBB") return ERR_INVLD_PARAM;
-  const std::size_t n = name.find('N', 3);
-  const std::size_t u = name.find('_', 3);
+  std::size_t prefix = 0;
+  if (name.substr(0, 5) == "IBETH") {
+    prefix = 5;
+  } else if (name.substr(0, 3) == "IBB") {
+    prefix = 3;
+  } else {
+    return ERR_INVLD_PARAM;
+  }
+  const std::size_t n = name.find('N', prefix);
+  const std::size_t u = name.find('_', prefix);
   if (n == std::string_view::npos || u == std::string_view::npos || u < n || u + 2 != name.size()) {
     return ERR_INVLD_PARAM;
   }
-  if (name.substr(3, n - 3) != "1") return ERR_INVLD_BOARD_NUM;
-  if (name.substr(n + 1, u - n - 1) != "1") return ERR_INVLD_NODE_NUM;
+  const std::string_view board = name.substr(prefix, n - prefix);
+  const std::string_view node = name.substr(n + 1, u - n - 1);
+  if (!all_digits(board) || !all_digits(node)) return ERR_INVLD_PARAM;
+  if (!is_one(board)) return ERR_INVLD_BOARD_NUM;
+  if (!is_one(node)) return ERR_INVLD_NODE_NUM;
   if (name[u + 1] == 'D') {
     kind = DDI_NODE_DATA;
   } else if (name[u + 1] == 'M') {
@@ -212,6 +231,36 @@ IBDDIRET DDI_GetInfo(IBDDIHND handle, T_DDI_INFO* info) {
       static_cast<std::uint32_t>(std::chrono::duration_cast<std::chrono::microseconds>(b.cycle_time()).count());
   info->cycles = static_cast<std::uint32_t>(d.board->firmware().cycles());
   return ERR_OK;
+}
+
+// The legacy headers' register reading (ibs_util.h): a register, not a service -- no message and
+// no bus cycle, whatever the mode.
+IBDDIRET GetIBSDiagnosticEx(IBDDIHND handle, T_IBS_DIAG_EX* info) {
+  Driver& d = driver();
+  const std::lock_guard<std::mutex> lock(d.mutex);
+  if (d.nodes.find(handle) == d.nodes.end() || !d.board) return ERR_INVLD_NODE_HD;
+  if (info == nullptr) return ERR_INVLD_PARAM;
+  const std::lock_guard<std::mutex> board(d.board->mutex());
+  info->state = d.board->firmware().diag_status();
+  info->diagPara = d.board->firmware().diag_parameter();
+  info->addInfo = 0;
+  return ERR_OK;
+}
+
+IBDDIRET GetIBSDiagnostic(IBDDIHND handle, T_IBS_DIAG* info) {
+  if (info == nullptr) {
+    // The handle is checked first, as by the Ex form.
+    T_IBS_DIAG_EX probe{};
+    const IBDDIRET r = GetIBSDiagnosticEx(handle, &probe);
+    return r == ERR_OK ? ERR_INVLD_PARAM : r;
+  }
+  T_IBS_DIAG_EX ex{};
+  const IBDDIRET r = GetIBSDiagnosticEx(handle, &ex);
+  if (r == ERR_OK) {
+    info->state = ex.state;
+    info->diagPara = ex.diagPara;
+  }
+  return r;
 }
 
 }  // extern "C"

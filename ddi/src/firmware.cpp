@@ -248,14 +248,20 @@ void Firmware::service(std::span<const std::uint16_t> words, std::uint16_t user_
       stop_transfer(kAbortTransferStopped);
       return confirm(code, user_id, RES_OK);
     case S_READ_VALUE: {
-      // [count][variable IDs]; confirmed with [count][values].
+      // [count][variable IDs]; confirmed with [count] and (ID, value) per variable: the layout a
+      // public sample program reads (the first value as parameter 4, after result, count and ID;
+      // docs/ddi.md, "Legacy headers").
       if (p.empty() || p[0] == 0 || p[0] != p.size() - 1) return confirm(code, user_id, RES_INVALID_PARAMETER);
       std::vector<std::uint16_t> values{p[0]};
       for (const std::uint16_t id : p.subspan(1)) {
+        values.push_back(id);
         switch (id) {
           case VAR_DIAG_STATUS: values.push_back(diag_status()); break;
           case VAR_DIAG_PARAMETER: values.push_back(diag_parameter_); break;
           case VAR_DEVICE_COUNT: values.push_back(static_cast<std::uint16_t>(config_.devices.size())); break;
+          // The configuration is the scenario's ring, never read in by plug & play: the mode is off,
+          // so the application may write process data.
+          case VAR_PLUG_AND_PLAY_MODE: values.push_back(0); break;
           case VAR_CYCLE_TIME_US:
             values.push_back(static_cast<std::uint16_t>(std::min<std::int64_t>(
                 std::chrono::duration_cast<std::chrono::microseconds>(cycle_time_).count(), 0xFFFF)));

@@ -70,7 +70,8 @@ static int service(uint16_t code) {
 
 static uint16_t diagnostic_status(void) {
   uint16_t req[4] = {S_READ_VALUE, 2, 1, VAR_DIAG_STATUS}, ans[8];
-  return request(req, 4, ans, 8) == 5 ? ans[4] : 0;
+  /* Confirmed with [result][count] and (ID, value) per variable. */
+  return request(req, 4, ans, 8) == 6 && ans[4] == VAR_DIAG_STATUS ? ans[5] : 0;
 }
 
 int main(void) {

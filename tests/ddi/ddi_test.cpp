@@ -99,11 +99,11 @@ class Ddi : public ::testing::Test {
   }
   std::uint16_t diag() {
     const Words c = call({S_READ_VALUE, 2, 1, VAR_DIAG_STATUS});
-    return c.size() == 5 ? c[4] : 0xFFFF;
+    return c.size() == 6 && c[4] == VAR_DIAG_STATUS ? c[5] : 0xFFFF;
   }
   std::uint16_t diag_parameter() {
     const Words c = call({S_READ_VALUE, 2, 1, VAR_DIAG_PARAMETER});
-    return c.size() == 5 ? c[4] : 0xFFFF;
+    return c.size() == 6 && c[4] == VAR_DIAG_PARAMETER ? c[5] : 0xFFFF;
   }
   void start(std::uint16_t devices = 2) {
     ASSERT_EQ(call({S_ACTIVATE_CONFIGURATION, 0}), (Words{0x8711, 2, RES_OK, devices}));
@@ -233,7 +233,9 @@ TEST_F(Ddi, StartUpSequenceAndTheDiagnosticRegister) {
   EXPECT_EQ(diag(), DIAG_READY | DIAG_ACTIVE);
   EXPECT_EQ(call({S_START_DATA_TRANSFER, 0}), (Words{0x8701, 1, RES_OK}));
   EXPECT_EQ(diag(), DIAG_READY | DIAG_ACTIVE | DIAG_RUN);
-  EXPECT_EQ(call({S_READ_VALUE, 3, 2, VAR_DEVICE_COUNT, VAR_CYCLE_TIME_US}), (Words{0x8351, 4, RES_OK, 2, 2, 726}));
+  // Each value after its variable's ID.
+  EXPECT_EQ(call({S_READ_VALUE, 3, 2, VAR_DEVICE_COUNT, VAR_CYCLE_TIME_US}),
+            (Words{0x8351, 6, RES_OK, 2, VAR_DEVICE_COUNT, 2, VAR_CYCLE_TIME_US, 726}));
   EXPECT_EQ(call({S_ACTIVATE_CONFIGURATION, 0}), (Words{0x8711, 1, RES_WRONG_STATE}));  // not while running
   EXPECT_EQ(call({S_CREATE_CONFIGURATION, 0}), (Words{0x8710, 1, RES_WRONG_STATE}));
   EXPECT_EQ(call({S_STOP_DATA_TRANSFER, 0}), (Words{0x8702, 1, RES_OK}));
@@ -270,7 +272,7 @@ TEST_F(Ddi, MailboxChecksMessages) {
   EXPECT_EQ(DDI_MXI_RcvMessage(mbx_, &small), ERR_MSG_TO_LONG);
   std::uint16_t type = 0;
   std::uint16_t user = 0;
-  EXPECT_EQ(receive(1, &type, &user), (Words{0x8351, 3, RES_OK, 1, DIAG_READY}));
+  EXPECT_EQ(receive(1, &type, &user), (Words{0x8351, 4, RES_OK, 1, VAR_DIAG_STATUS, DIAG_READY}));
   EXPECT_EQ(type, DDI_MSG_CONFIRMATION);
   EXPECT_EQ(user, 0x4242);
   // The board's outgoing mailbox fills up when nobody reads it.

@@ -144,11 +144,12 @@ IBDDIRET DDI_GetInfo(IBDDIHND handle, T_DDI_INFO* info);
 #define RES_INVALID_PARAMETER 0x0903
 #define RES_UNKNOWN_DEVICE 0x0904
 
-/* Read_Value variables. */
+/* Read_Value variables; the confirmation carries (ID, value) per variable. */
 #define VAR_DIAG_STATUS 0x2222
 #define VAR_DIAG_PARAMETER 0x2223
 #define VAR_DEVICE_COUNT 0x2230
 #define VAR_CYCLE_TIME_US 0x2231
+#define VAR_PLUG_AND_PLAY_MODE 0x2240 /* 0: off (the virtual board's configuration is the scenario's) */
 
 /* The diagnostic status register. */
 #define DIAG_USER 0x0001   /* a service was refused; the parameter register holds its result */
