@@ -1,9 +1,10 @@
 // The MC6000 drive core: the servo itself, knowing no bus (docs/architecture.md, "One drive, many
 // faces"). It owns the parameters (drive_parameters.hpp: the one store, 85-SERR, EEPROM, 4-PROG,
 // 80-SLOAD), the DRIVECOM device machine with the servo plant (Mc6000PdDevice), the external
-// fault and the fault reset, the bus watchdog 409-BUTWD (seed 001, 3.2.4: error 16 E-OP1 at
-// location 1) and the serial watchdog 84-SWDGT (seed 000, 5.2), and the readings every face
-// shows (77-SPEED, 408-IBSTA).
+// fault, each error's programmed reaction and the fault reset (seed 000, 8, 8.1.2; MC-D7), the
+// digital inputs and outputs (seed 001, 5.3.1, 5.3.2), the bus watchdog 409-BUTWD (seed 001,
+// 3.2.4: error 16 E-OP1 at location 1) and the serial watchdog 84-SWDGT (seed 000, 5.2), and the
+// readings every face shows (77-SPEED, 408-IBSTA).
 //
 // Faces are thin: the INTERBUS face (device.hpp) decodes its SUPI/IBCNF words and runs PCP, the
 // LUSTBUS face (lustbus_device.hpp) parses telegrams; both read and write through this object and

@@ -97,6 +97,8 @@ class LustbusDevice final : public lustbus::Responder {
   lustbus::EnquiryAnswer describe(const pcp::ParameterInfo& p);
   lustbus::EnquiryAnswer substitution_text(std::uint16_t parameter);
   Duration reaction() { return reactions_.next(); }
+  // The servo started anew (restart, or a reaction-5 reset's boot): what the face takes then.
+  void started(Time now);
 
   std::shared_ptr<Drive> drive_;
   lustbus::ReactionTimes reactions_;
