@@ -278,6 +278,35 @@ TEST(Mc6000Lustbus, WatchdogAndSctl1Reset) {
   EXPECT_TRUE(f.dev.running());
 }
 
+// 5.2: "For servocontrollers, the additional possibility exists to program the error reaction of
+// the device via parameter" (511-RESIO, MC-D7); 8.1.2 on a servo with its serial interface alone:
+// with 5 (RESET) the watchdog's fault reset by 416-SCTL1 bit 7 boots the servo -- the ACK cut to
+// its ADR, no answer during the boot, then the power-on bit in 85-SERR (9.2).
+TEST(Mc6000Lustbus, WatchdogWithReactionResetBootsTheServoOnItsReset) {
+  Fresh f;
+  const auto ack = Bytes{}(0x43)(6).v;
+  ASSERT_EQ(f.send(sel(3, 20511, "5")).answer, ack);
+  f.control_on_sio();
+  Time t = f.t + 1s;
+  ASSERT_EQ(feed(f.rx, sel(3, 84, "32"), t).answer, ack);  // 50 ms
+  ASSERT_EQ(feed(f.rx, sel(3, 20416, "1"), t + 40ms).answer, ack);
+  EXPECT_TRUE(f.dev.running());
+  f.dev.advance(t + 135ms);
+  ASSERT_TRUE(f.dev.watchdog_fault());
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::fault) << "the power stage off at once";
+  EXPECT_EQ(feed(f.rx, enq(3, 85), t + 140ms).answer,
+            bytes(encode_text_answer(3, make_code(85), make_value("02")).span()));
+  ASSERT_EQ(feed(f.rx, sel(3, 84, "0"), t + 150ms).answer, ack);
+  EXPECT_EQ(feed(f.rx, sel(3, 20416, "81"), t + 200ms).answer, (Bytes{}(0x43).v))
+      << "8.1.2: the ACK-answer telegram is not sent in full";
+  EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::not_ready);
+  EXPECT_TRUE(feed(f.rx, enq(3, 85), t + 400ms).answer.empty()) << "the connection is broken for the boot";
+  EXPECT_EQ(feed(f.rx, enq(3, 85), t + 800ms).answer,
+            bytes(encode_text_answer(3, make_code(85), make_value("01")).span()));
+  EXPECT_FALSE(f.dev.watchdog_fault());
+  EXPECT_FALSE(f.dev.running()) << "416-SCTL1 is RAM: the boot does not start the drive";
+}
+
 // 5.2 (LB-E13): the scan's ENQUIRY of 91-TYPE at 1..30 is answered with the value (6.1), not the
 // "ACK" 5.2 says; the 20091 probe tells the servo (it answers) from the inverter (NAK, LB-D6).
 TEST(LustbusWings, NetworkScanTellsInvertersFromServos) {

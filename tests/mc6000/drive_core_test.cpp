@@ -85,6 +85,22 @@ class Servo {
     while (now_ < end) tick();
   }
   void set_control_word(Word w) { pd_m2s_[0] = w; }
+  void set_reference(Word rpm) { pd_m2s_[1] = rpm; }  // IBCNF 1: a 16-bit speed in rpm
+  // Ring cycles that never reach the servo: its bus watchdog runs (seed 001, 3.2.4).
+  void silent(Duration d) {
+    const Time end = now_ + d;
+    while (now_ < end) {
+      now_ += 1ms;
+      interbus_.sample(pd_m2s_, pd_s2m_, now_, m2s_, s2m_);
+    }
+  }
+  // A LUSTBUS SELECT and its answer as it went out: ADR ACK, ADR NAK, the ADR alone of a cut ACK
+  // (seed 000, 8.1.2), or nothing.
+  std::vector<std::uint8_t> select_answer(std::uint16_t number, std::uint32_t raw) {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%X", raw);
+    return telegram(lb::encode_select(3, lb::make_code(20000 + number), lb::make_value(hex)).span()).bytes;
+  }
 
   Answer read(Face f, std::uint16_t number) {
     if (f == Face::pcp) {
@@ -491,4 +507,257 @@ TEST(Mc6000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
   const Answer serr = s.read(Face::lustbus, mc::kSerr);
   ASSERT_TRUE(serr.ok);
   EXPECT_EQ(serr.raw & mc::kSerrPowerOn, mc::kSerrPowerOn);
+}
+
+// --- Programmable error reactions (seed 000, 5.2, 8, 8.1.2; docs/errata.md MC-D7) -------------
+
+namespace {
+
+// The servo running at 1000 rpm under the control of face `f`'s interface: the fieldbus's control
+// word for PCP, 416-SCTL1 / 428-RSIO with 402-CLSEL = SIO for LUSTBUS (seed 000, 7.2.1). 512-REDEV
+// (the reaction to a device fault numbered other than 16) is programmed to `reaction` through the
+// same face, at standstill (an EEPROM value).
+void run_with_reaction(Servo& s, Face f, std::uint32_t reaction) {
+  ASSERT_TRUE(s.write(f, mc::kRedev, reaction).ok) << name(f) << " " << reaction;
+  s.idle(40ms);  // the EEPROM save (15 ms per byte)
+  if (f == Face::pcp) {
+    s.set_reference(1000);
+    s.set_control_word(0x0006);
+    s.idle(5ms);
+    s.set_control_word(0x000F);
+  } else {
+    ASSERT_TRUE(s.write(f, mc::kClsel, mc::kClselSio).ok);
+    s.idle(40ms);
+    ASSERT_TRUE(s.write(f, mc::kRssl1, mc::kRsslRsio).ok);
+    s.idle(40ms);
+    ASSERT_TRUE(s.write(f, mc::kRsio, 1000U << 16U).ok);
+    ASSERT_TRUE(s.write(f, mc::kSctl1, mc::kSctl1Start).ok);
+  }
+  s.idle(400ms);
+  ASSERT_EQ(s.core().state(), State::enabled) << name(f);
+  ASSERT_NEAR(s.core().actual_rpm(), 1000.0, 20.0) << name(f);
+}
+
+enum class AfterReset { runs_on, out_of_fault, still_fault, boots };
+
+struct ReactionRow {
+  std::uint32_t reaction;
+  const char* name;
+  State during;       // 2 ms after the fault came, at 1000 rpm
+  bool alarm;         // status word bit 7 (seed 001, 5.1.3) while the cause lasts
+  bool brakes;        // the motor is braked (torque against the motion) rather than coasting
+  AfterReset reset;   // the cause gone, the fault reset given through the face
+};
+
+// Seed 000, 8: "The error reaction of the MasterControl servocontroller is programmable, in five
+// steps, for every error"; 8.1.2 names step 5, RESET; steps 1-4 are MC-D7's decision.
+constexpr ReactionRow kReactionTable[] = {
+    {1, "WARN", State::enabled, true, false, AfterReset::runs_on},
+    {2, "STOP", State::fault_response_active, false, true, AfterReset::out_of_fault},
+    {3, "OFF", State::fault, false, false, AfterReset::out_of_fault},
+    {4, "LOCK", State::fault, false, false, AfterReset::still_fault},
+    {5, "RESET", State::fault, false, false, AfterReset::boots},
+};
+
+}  // namespace
+
+TEST(Mc6000Reactions, FiveStepsAndTheirResetThroughEitherFace) {
+  for (const Face f : kFaces) {
+    for (const ReactionRow& row : kReactionTable) {
+      SCOPED_TRACE(name(f) + " " + row.name);
+      Servo s;
+      run_with_reaction(s, f, row.reaction);
+      ASSERT_EQ(s.read(f, mc::kSerr).raw, 0U);
+      auto e = event(Kind::fault);
+      e.cause = 7;
+      ASSERT_TRUE(s.interbus().apply_event(e, s.now()));
+      s.idle(2ms);
+      EXPECT_EQ(s.core().state(), row.during);
+      EXPECT_EQ((s.core().status_word() & 0x0080U) != 0, row.alarm) << "bit 7, alarm";
+      EXPECT_EQ(s.core().torque_nm() < -1.0, row.brakes) << s.core().torque_nm() << " Nm";
+      if (!row.brakes && row.reaction != 1) {
+        EXPECT_NEAR(s.core().torque_nm(), 0.0, 0.5) << "the power stage is off: the motor coasts";
+      }
+      s.idle(300ms);
+      if (row.reaction == 1) {
+        EXPECT_NEAR(s.core().actual_rpm(), 1000.0, 20.0) << "a warning: the drive runs on";
+      } else {
+        EXPECT_EQ(s.core().state(), State::fault);
+      }
+      ASSERT_TRUE(s.interbus().apply_event(event(Kind::fault_clear), s.now()));
+      s.idle(2ms);
+      EXPECT_EQ(s.core().status_word() & 0x0080U, 0U) << "the alarm goes with its cause";
+
+      // 8.1.2: 416-SCTL1 bit 7 over LUSTBUS (bit 0 kept: the drive may start again), control word
+      // bit 7 over INTERBUS (with ENABLE) -- each from its control location (MC-D4).
+      std::vector<std::uint8_t> answer;
+      if (f == Face::pcp) {
+        s.set_control_word(0x008F);
+        s.tick();
+      } else {
+        answer = s.select_answer(mc::kSctl1, 0x81);
+        const std::size_t full = row.reset == AfterReset::boots ? 1U : 2U;
+        ASSERT_EQ(answer.size(), full) << "8.1.2: the ACK of a reset that boots is not sent in full";
+        EXPECT_EQ(answer[0], 3U + 64U) << "ADR";
+        if (full == 2) {
+          EXPECT_EQ(answer[1], lb::kAck);
+        }
+      }
+      s.idle(2ms);
+      switch (row.reset) {
+        case AfterReset::runs_on:
+          EXPECT_EQ(s.core().state(), State::enabled);
+          break;
+        case AfterReset::out_of_fault:
+          EXPECT_NE(s.core().state(), State::fault);
+          EXPECT_NE(s.core().state(), State::not_ready);
+          EXPECT_EQ(s.core().parameters().serr(), 0U) << "no new start";
+          break;
+        case AfterReset::still_fault:
+          EXPECT_EQ(s.core().state(), State::fault) << "LOCK: the reset does not end it";
+          s.idle(600ms);
+          EXPECT_EQ(s.core().state(), State::fault);
+          // Only a power-on does.
+          ASSERT_TRUE(s.interbus().apply_event(event(Kind::power_cycle), s.now()));
+          s.idle(600ms);
+          EXPECT_NE(s.core().state(), State::fault);
+          break;
+        case AfterReset::boots: {
+          EXPECT_EQ(s.core().state(), State::not_ready) << "the servo boots";
+          EXPECT_EQ(s.core().parameters().serr(), mc::kSerrPowerOn) << "9.2: power-on bit after a reset";
+          // "The connection ... is broken for the duration of the boot-up".
+          EXPECT_FALSE(s.read(Face::lustbus, mc::kSerr).ok);
+          s.idle(600ms);
+          EXPECT_NE(s.core().state(), State::not_ready) << "booted";
+          EXPECT_NE(s.core().state(), State::fault);
+          // "The SERR parameter (powerdown-report) must be read ... before the next SELECT".
+          EXPECT_FALSE(s.write(Face::lustbus, 83, 1).ok);
+          const Answer serr = s.read(Face::lustbus, mc::kSerr);
+          ASSERT_TRUE(serr.ok);
+          EXPECT_EQ(serr.raw, mc::kSerrPowerOn);
+          EXPECT_TRUE(s.write(Face::lustbus, 83, 1).ok);
+          EXPECT_EQ(s.core().held_reaction(), std::nullopt);
+          break;
+        }
+      }
+    }
+  }
+}
+
+TEST(Mc6000Reactions, FactoryReactionIsStopForEveryError) {
+  // The factory value of every reaction parameter is STOP (2): a reset clears the fault with a
+  // full ACK and 85-SERR stays 00H -- the behaviour before the reactions were programmable.
+  for (const std::uint16_t n : {mc::kReop1, mc::kResio, mc::kRedev}) {
+    const auto* p = ibs::pcp::find_parameter(mc::kParameters, n);
+    ASSERT_NE(p, nullptr) << n;
+    EXPECT_EQ(p->default_value, mc::kReactionStop) << n;
+    EXPECT_EQ(p->category, ibs::pcp::Category::eeprom) << n;
+  }
+}
+
+TEST(Mc6000Reactions, EachErrorTakesTheReactionOfItsOwnParameter) {
+  // Seed 000 5.2: the watchdog's reaction "via parameter"; seed 001 3.2.4: the bus watchdog is
+  // error 16 E-OP1. 510-REOP1: error 16, from the bus watchdog or as a device fault's number;
+  // 511-RESIO: the serial watchdog; 512-REDEV: every other device fault (MC-D7).
+  struct Row {
+    const char* error;
+    std::uint16_t parameter;
+  };
+  const Row rows[] = {{"device fault 16 (E-OP1)", mc::kReop1},
+                      {"device fault 7", mc::kRedev},
+                      {"device fault without a number", mc::kRedev},
+                      {"bus watchdog 409-BUTWD", mc::kReop1},
+                      {"serial watchdog 84-SWDGT", mc::kResio}};
+  for (const Row& row : rows) {
+    SCOPED_TRACE(row.error);
+    Servo s;
+    // Three different reactions, so that each error shows whose it took.
+    ASSERT_TRUE(s.write(Face::pcp, mc::kReop1, 1).ok);
+    s.idle(40ms);
+    ASSERT_TRUE(s.write(Face::pcp, mc::kResio, 3).ok);
+    s.idle(40ms);
+    ASSERT_TRUE(s.write(Face::pcp, mc::kRedev, 4).ok);
+    s.idle(40ms);
+    const std::string what = row.error;
+    if (what.rfind("device fault", 0) == 0) {
+      auto e = event(Kind::fault);
+      if (what == "device fault 16 (E-OP1)") e.cause = 16;
+      if (what == "device fault 7") e.cause = 7;
+      ASSERT_TRUE(s.interbus().apply_event(e, s.now()));
+      s.idle(2ms);
+    } else if (what == "bus watchdog 409-BUTWD") {
+      s.interbus().set_bus_watchdog(20ms);
+      s.idle(5ms);
+      s.silent(30ms);
+      ASSERT_TRUE(s.core().bus_watchdog_fault());
+    } else {
+      ASSERT_TRUE(s.write(Face::lustbus, mc::kSwdgt, 50).ok);
+      s.idle(80ms);
+      ASSERT_TRUE(s.core().serial_watchdog_fault());
+    }
+    const auto expected = static_cast<mc::ErrorReaction>(s.core().parameters().raw(row.parameter));
+    EXPECT_EQ(s.core().present_reaction(), expected);
+    EXPECT_EQ(s.core().held_reaction(), expected);
+    if (expected == mc::ErrorReaction::warn) {
+      EXPECT_NE(s.core().status_word() & 0x0080U, 0U) << "a warning: bit 7";
+      EXPECT_NE(s.core().state(), State::fault);
+    } else {
+      EXPECT_EQ(s.core().state(), State::fault);
+    }
+  }
+}
+
+TEST(Mc6000Reactions, OnlyTheFiveStepsAreTaken) {
+  // Seed 000 8: "five steps", 1..5 (5 is RESET, 8.1.2); anything else is an invalid value, 80H
+  // (9.2), through either face.
+  for (const Face f : kFaces) {
+    for (const std::uint16_t n : {mc::kReop1, mc::kResio, mc::kRedev}) {
+      Servo s;
+      EXPECT_FALSE(s.write(f, n, 0).ok) << name(f) << " " << n;
+      EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrInvalidValue) << name(f);
+      EXPECT_FALSE(s.write(f, n, 6).ok) << name(f) << " " << n;
+      EXPECT_EQ(s.read(f, mc::kSerr).raw, mc::kSerrInvalidValue) << name(f);
+      EXPECT_TRUE(s.write(f, n, 5).ok) << name(f) << " " << n;
+      s.idle(40ms);
+      EXPECT_EQ(s.read(f == Face::pcp ? Face::lustbus : Face::pcp, n).raw, 5U) << "one store";
+    }
+  }
+}
+
+// --- Control word bits 12-15 (seed 001, 5.3.1), status word bits 12-15 (5.3.2) -----------------
+
+TEST(Mc6000Events, ControlBits14And15SetOutputsOs00AndOs01WhileTheirSelectorIsRopt1) {
+  // Seed 001 5.3.1: "Bit 14 controls the reference state of output OS00 directly when parameter
+  // 445-FOS00 = ROPT1", bit 15 OS01 with 446-FOS01; bits 11-13 "Unoccupied". 5.3.2: status bits
+  // 12 and 13 "Reserved".
+  struct Row {
+    Word control;
+    bool os00;
+    bool os01;
+  };
+  const Row rows[] = {{0x0000, false, false}, {0x4000, true, false}, {0x8000, false, true},
+                      {0xC000, true, true},   {0x3800, false, false}, {0x4006, true, false}};
+  Servo s;
+  for (const Row& r : rows) {
+    s.set_control_word(r.control);
+    s.idle(2ms);
+    EXPECT_EQ(s.core().digital_output(0), r.os00) << std::hex << r.control;
+    EXPECT_EQ(s.core().digital_output(1), r.os01) << std::hex << r.control;
+    EXPECT_EQ(s.interbus().status_word() & 0x3000U, 0U) << "bits 12, 13 reserved";
+  }
+  // The outputs follow the option's (INTERBUS's) word whichever interface has the control
+  // location: ROPT1 names the source.
+  s.set_control_word(0xC000);
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kClsel, mc::kClselSio).ok);
+  s.idle(40ms);
+  EXPECT_TRUE(s.core().digital_output(0));
+  EXPECT_TRUE(s.core().digital_output(1));
+  // Another function on 445: bit 14 no longer sets OS00.
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kFos00, mc::kFunctionOff).ok);
+  s.idle(2ms);
+  EXPECT_FALSE(s.core().digital_output(0));
+  EXPECT_TRUE(s.core().digital_output(1));
+  // Without mains, or after a new start, the outputs are off until the word comes again.
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::mains_off), s.now()));
+  EXPECT_FALSE(s.core().digital_output(1));
 }

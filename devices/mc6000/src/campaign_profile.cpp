@@ -109,8 +109,14 @@ class Profile final : public CampaignProfile {
                                        : CampaignRole::normal;
       d.params.push_back(m);
       d.readable.push_back(p.number);
-      // 405/406 are written only by the layout script (CampaignDevice::layout).
-      if (m.role != CampaignRole::normal || p.number == kSupi || p.number == kIbcnf) continue;
+      // 405/406 are written only by the layout script (CampaignDevice::layout). The error
+      // reactions 510..512 (MC-D7) keep their factory STOP: the campaign's outages trip the bus
+      // watchdog, and its oracle expects the reset of 5.1.2 to end that fault, which LOCK and RESET
+      // do not (a power-on, a boot).
+      if (m.role != CampaignRole::normal || p.number == kSupi || p.number == kIbcnf || p.number == kReop1 ||
+          p.number == kResio || p.number == kRedev) {
+        continue;
+      }
       CampaignWrites w;
       w.number = p.number;
       w.in_range = {p.default_value, p.min, p.max};

@@ -20,6 +20,8 @@ constexpr std::array kClselTexts{"TERM"sv, "KPAD"sv, "SIO"sv, "CAN"sv, "OPT1"sv,
 constexpr std::array kRsslTexts{"RCON"sv, "RA0"sv, "RA1"sv, "RSIO"sv, "RFIX"sv, "RCAN"sv, "OPT1"sv, "OPT2"sv};
 constexpr std::array kInputTexts{"OFF"sv, "START"sv, "INV"sv, "QSTOP"sv, "RESET"sv, "FIX0"sv, "ROPT1"sv};
 constexpr std::array kOutputTexts{"OFF"sv, "REF"sv, "LIMIT"sv, "ERROR"sv, "ACTIV"sv, "BRAKE"sv, "ROPT1"sv};
+// 510..512: the five reaction steps of seed 000, 8 (8.1.2: 5 "RESET"; the others chosen, MC-D7).
+constexpr std::array kReactionTexts{"-"sv, "WARN"sv, "STOP"sv, "OFF"sv, "LOCK"sv, "RESET"sv};
 
 constexpr ServiceEntry entry(std::uint16_t n, Subject s, Activity a = Activity::nothing,
                              std::uint8_t unit = kUnitNone,
@@ -67,6 +69,10 @@ constexpr std::array<ServiceEntry, kParameters.size()> kService{{
     entry(444, Subject::ref, Activity::ref, kUnitNone, kInputTexts),
     entry(445, Subject::ref, Activity::ref, kUnitNone, kOutputTexts),
     entry(446, Subject::ref, Activity::ref, kUnitNone, kOutputTexts),
+    // 11.2.1: SCTY 12, "Security-and-error-reaction parameter"; a system setting of the dataset.
+    entry(kReop1, Subject::scty, Activity::sys, kUnitNone, kReactionTexts),
+    entry(kResio, Subject::scty, Activity::sys, kUnitNone, kReactionTexts),
+    entry(kRedev, Subject::scty, Activity::sys, kUnitNone, kReactionTexts),
 }};
 
 }  // namespace

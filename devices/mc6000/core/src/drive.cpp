@@ -16,6 +16,9 @@ namespace {
 using drivecom::State;
 
 constexpr std::uint16_t kButwd = 409;  // seed 001, 3.2.4
+constexpr Word kResetBit = 0x0080;     // seed 001, 5.1.2: RESET FAULT
+constexpr Word kOs00Bit = 0x4000;      // seed 001, 5.3.1: bit 14, output OS00
+constexpr Word kOs01Bit = 0x8000;      // bit 15, output OS01
 // The longest silence the drive catches up on by itself: after a longer one only its last part is
 // simulated (a speed loop has settled long before; 60 s x 1 ms samples are 60 000 samples).
 constexpr Duration kCatchUp = std::chrono::seconds(60);
@@ -25,7 +28,7 @@ constexpr int kSettleSamples = 6;
 }  // namespace
 
 Drive::Drive(const DriveConfig& config, DeviceStart start, Time now)
-    : params_(drive_parameters_config(config.timing)), pd_(config.pd) {
+    : params_(drive_parameters_config(config.timing)), pd_(config.pd), boot_time_(config.pd.init_time) {
   last_cycle_ = last_telegram_ = sampled_until_ = now;
   switch (start) {
     case DeviceStart::power_on:
@@ -98,6 +101,15 @@ void Drive::check_serial_watchdog(Time now) {
   }
 }
 
+void Drive::clear_bus_fault(bool expired) {
+  // The bus watchdog's fault ends once data flows again and DRIVECOM left FAULT (transition 15);
+  // as a warning (510-REOP1 = WARN) once data flows again.
+  if (bus_fault_ && !expired &&
+      (pd_.state() == State::start_up_inhibit || reaction_of(kReop1) == ErrorReaction::warn)) {
+    bus_fault_ = false;
+  }
+}
+
 void Drive::serial_telegram(Time now) {
   advance(now);
   last_telegram_ = now;
@@ -108,11 +120,78 @@ void Drive::fieldbus_cycle(Time now) {
   last_cycle_ = now;
 }
 
-void Drive::fault_reset(Time now) {
+ErrorReaction Drive::reaction_of(std::uint16_t number) const {
+  // 510..512 take 1..5 only (the store refuses the rest with 80H).
+  const auto r = params_.raw(number);
+  return r >= 1 && r <= 5 ? static_cast<ErrorReaction>(r) : ErrorReaction::stop;
+}
+
+std::array<std::optional<ErrorReaction>, 3> Drive::present_errors() const {
+  std::array<std::optional<ErrorReaction>, 3> e{};
+  // A device fault numbered 16 is E-OP1 (seed 001, 3.2.4), which 510-REOP1 programs like the
+  // bus watchdog's; any other number, or none, 512-REDEV.
+  if (external_fault_) e[0] = reaction_of(fault_cause_ == kWatchdogError ? kReop1 : kRedev);
+  if (bus_expired_) e[1] = reaction_of(kReop1);
+  if (serial_fault_) e[2] = reaction_of(kResio);
+  return e;
+}
+
+std::optional<ErrorReaction> Drive::present_reaction() const {
+  std::optional<ErrorReaction> worst;
+  for (const auto& r : present_errors()) {
+    if (r && (!worst || *r > *worst)) worst = r;
+  }
+  return worst;
+}
+
+void Drive::apply_reactions() {
+  // Seed 000, 8: each error's own reaction; with several the most severe acts, and the servo
+  // holds to the most severe it has met until the reset or a power-on (MC-D7).
+  const auto present = present_reaction();
+  if (present && (!held_ || *present > *held_)) held_ = present;
+  const bool fault = present && *present != ErrorReaction::warn;
+  pd_.set_fault(fault, held_ && *held_ >= ErrorReaction::off);
+}
+
+Word Drive::fieldbus_word(Word control) const {
+  return held_ == ErrorReaction::lock ? static_cast<Word>(control & ~kResetBit) : control;
+}
+
+bool Drive::digital_output(std::size_t output) const {
+  // Seed 001, 5.3.1: "Bit 14 controls the reference state of output OS00 directly when parameter
+  // 445-FOS00 = ROPT1", bit 15 OS01 with 446-FOS01.
+  if (!powered_ || output > 1) return false;
+  const std::uint16_t selector = output == 0 ? kFos00 : kFos01;
+  const Word bit = output == 0 ? kOs00Bit : kOs01Bit;
+  return (fieldbus_control_ & bit) != 0 && params_.raw(selector) == static_cast<std::uint32_t>(kFunctionRopt1);
+}
+
+ResetOutcome Drive::fault_reset(Time now) {
+  std::optional<ErrorReaction> r = held_;
+  const auto present = present_reaction();
+  if (present && (!r || *present > *r)) r = present;
+  // MC-D7: a reaction-4 error is ended by a power-on only.
+  if (r == ErrorReaction::lock) return ResetOutcome::ignored;
+  // 8.1.2: "Resetting an error, which has a 5 ("RESET") programmed for its reaction, makes the
+  // servocontroller boot" -- from FAULT, where DRIVECOM takes a reset (PD4).
+  if (r == ErrorReaction::reset && pd_.state() == State::fault) {
+    reboot(now);
+    return ResetOutcome::rebooted;
+  }
   // 8.1.2: the reset clears the error; the serial watchdog's time runs again from the reset.
   serial_fault_ = false;
   last_telegram_ = now;
   reset_pending_ = true;
+  held_.reset();
+  return ResetOutcome::cleared;
+}
+
+void Drive::reboot(Time now) {
+  // 8.1.2: the boot is a new start (seed 000, 9.2: the power-on bit tells the host "after a ...
+  // reset of an error"); the serial connection is broken for the initialisation and self test.
+  power_on(now);
+  ++reboots_;
+  boot_until_ = now + boot_time_;
 }
 
 void Drive::power_on(Time now) {
@@ -120,8 +199,12 @@ void Drive::power_on(Time now) {
   pd_.power_on();
   armed_ = false;
   bus_fault_ = false;
+  bus_expired_ = false;
   serial_fault_ = false;
   reset_pending_ = false;
+  held_.reset();
+  fieldbus_control_ = 0;
+  boot_until_ = now;
   last_telegram_ = sampled_until_ = now;
   refresh_readings();
 }
@@ -131,6 +214,7 @@ void Drive::mains_off(Time now) {
   powered_ = false;
   pd_.power_on();  // NOT READY: no power stage, nothing to show
   external_fault_ = false;
+  fieldbus_control_ = 0;
   fault_cause_.reset();
   refresh_readings();
 }
@@ -179,6 +263,10 @@ Word Drive::status_word() const {
   // ROPT1", bit 15 likewise IS01 with 440-FIS01.
   if (inputs_[0] && params_.raw(kFis00) == static_cast<std::uint32_t>(kFunctionRopt1)) w |= 0x4000;
   if (inputs_[1] && params_.raw(kFis01) == static_cast<std::uint32_t>(kFunctionRopt1)) w |= 0x8000;
+  // Seed 001, 5.1.3, bit 7 "Alarm": an error whose programmed reaction is a warning (MC-D7).
+  for (const auto& r : present_errors()) {
+    if (r == ErrorReaction::warn) w |= 0x0080;
+  }
   return w;
 }
 
@@ -194,17 +282,20 @@ void Drive::sample_one(Time now, Word control, double reference_rpm) {
   const Duration butwd = bus_watchdog();
   const bool expired = armed_ && butwd > Duration{0} && (now - last_cycle_) > butwd;
   if (expired) bus_fault_ = true;
-  pd_.set_fault(external_fault_ || expired || serial_fault_);
+  bus_expired_ = expired;
+  fieldbus_control_ = control;
+  apply_reactions();
   pd_.set_enable_locked(params_.downloading());
   if (serial_control()) {
     pd_.step_held(serial_word(), serial_reference_rpm(), kSamplePeriod, 1);
   } else {
     // A reset given over another face reaches DRIVECOM as the RESET FAULT edge in this sample.
-    const Word w = reset_pending_ ? static_cast<Word>(control | 0x0080U) : control;
+    const Word f = fieldbus_word(control);
+    const Word w = reset_pending_ ? static_cast<Word>(f | kResetBit) : f;
     pd_.step_held(w, reference_rpm, kSamplePeriod, 1);
   }
   reset_pending_ = false;
-  if (bus_fault_ && !expired && pd_.state() == State::start_up_inhibit) bus_fault_ = false;
+  clear_bus_fault(expired);
   sampled_until_ = now;
 }
 
@@ -218,7 +309,8 @@ void Drive::watch(Time now) {
   const Duration butwd = bus_watchdog();
   const bool expired = armed_ && butwd > Duration{0} && (now - last_cycle_) > butwd;
   if (expired) bus_fault_ = true;
-  if (bus_fault_ && !expired && pd_.state() == State::start_up_inhibit) bus_fault_ = false;
+  bus_expired_ = expired;
+  clear_bus_fault(expired);
   sampled_until_ = now;
 }
 
@@ -229,7 +321,7 @@ void Drive::sample(Time first, Duration period, std::uint32_t count, Word contro
     return;
   }
   if (count == 1 || period <= Duration{0} || serial_control() || bus_fault_ || serial_fault_ ||
-      params_.downloading() || params_.raw(kSwdgt) != 0 || reset_pending_) {
+      params_.downloading() || params_.raw(kSwdgt) != 0 || reset_pending_ || external_fault_ || held_) {
     for (std::uint32_t k = 0; k < count; ++k) sample_one(first + static_cast<std::int64_t>(k) * period, control, reference_rpm);
     refresh_readings();
     return;
@@ -243,13 +335,13 @@ void Drive::sample(Time first, Duration period, std::uint32_t count, Word contro
     const Duration left = butwd - (first - last_cycle_);
     in_time = left < Duration{0} ? 0U : static_cast<std::uint32_t>(std::min<std::int64_t>(count, left / period + 1));
   }
-  pd_.set_fault(external_fault_);
+  fieldbus_control_ = control;
+  pd_.set_fault(false);
   pd_.set_enable_locked(false);
   pd_.step_held(control, reference_rpm, kSamplePeriod, in_time);
-  if (in_time < count) {
-    bus_fault_ = true;
-    pd_.set_fault(true);
-    pd_.step_held(control, reference_rpm, kSamplePeriod, count - in_time);
+  // From the sample where 409-BUTWD runs out, the error's programmed reaction sample by sample.
+  for (std::uint32_t k = in_time; k < count; ++k) {
+    sample_one(first + static_cast<std::int64_t>(k) * period, control, reference_rpm);
   }
   sampled_until_ = first + static_cast<std::int64_t>(count - 1) * period;
   params_.advance(sampled_until_);
@@ -260,7 +352,7 @@ void Drive::serial_samples(std::uint32_t count, Duration dt) {
   // The serial word follows the state: sample by sample until the machine holds, then the rest
   // with the word it holds on (Mc6000PdDevice::step_held moves the plant in one loop).
   for (std::uint32_t k = 0; k < count; ++k) {
-    pd_.set_fault(external_fault_ || serial_fault_);
+    apply_reactions();
     pd_.set_enable_locked(params_.downloading());
     const Word w = serial_word();
     pd_.step_held(w, serial_reference_rpm(), dt, 1);
@@ -305,9 +397,13 @@ WriteResult Drive::write(Time now, std::uint16_t number, std::optional<std::uint
   if (number == kSwdgt) last_telegram_ = now;  // 5.2: the watchdog's own setting restarts it
   if (number == kSctl1 && (*raw & kSctl1Reset) != 0 && !params_.downloading() && serial_control()) {
     // 8.1.2: bit 7 resets the error -- like bit 0, only from the control location SIO (7.2 step
-    // 2, MC-D4); it is a command, the stored word keeps the other bits.
+    // 2, MC-D4); it is a command, the stored word keeps the other bits. A reaction-5 error makes
+    // it a boot: the store starts anew, the answer is cut.
     params_.set_reading(kSctl1, *raw & ~kSctl1Reset);
-    fault_reset(now);
+    if (fault_reset(now) == ResetOutcome::rebooted) {
+      r.restarted = true;
+      return r;
+    }
   }
   if (!fieldbus_sampling_) serial_samples(kSettleSamples, Duration{0});
   refresh_readings();

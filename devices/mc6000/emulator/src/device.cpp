@@ -41,6 +41,7 @@ Mc6000Device::Mc6000Device(const Mc6000Device& other)
       served_(*drive_),
       pcp_(other.pcp_),
       last_control_(other.last_control_),
+      reboots_seen_(other.reboots_seen_),
       configuration_mismatch_(other.configuration_mismatch_) {
   if (pcp_) pcp_->serve(served_);
 }
@@ -54,6 +55,7 @@ void Mc6000Device::attach(const Mc6000DeviceConfig& config, DeviceStart start) {
   params.preset(kButwd, butwd);
   // This face samples the drive every 1 ms (seed 001, 7.2; docs/errata.md MC-D4).
   drive_->set_fieldbus_sampling(true);
+  reboots_seen_ = drive_->reboots();
   const int words = layout_.pcp_words;
   if (words > 0) {
     pcp::ServerConfig sc = mc6000::server_config(words);
@@ -114,6 +116,12 @@ void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duratio
     drive_->fault_reset(first);
   }
   last_control_ = control;
+  // A reaction-5 error's reset boots the servo (seed 000, 8.1.2), through either face: the
+  // INTERBUS card boots with it and PCP starts over.
+  if (drive_->reboots() != reboots_seen_) {
+    reboots_seen_ = drive_->reboots();
+    if (pcp_) pcp_->power_on(first);
+  }
   drive_->sample(first, period, count, control, reference);
 }
 

@@ -65,6 +65,10 @@ const pcp::ParameterInfo* LustbusDevice::resolve(const lb::Code& code, bool& des
 
 void LustbusDevice::restart(Time now) {
   drive_->power_on(now);  // 6: the power-on bit after every new start
+  started(now);
+}
+
+void LustbusDevice::started(Time now) {
   line_baud_ = value(kParamSbaud);  // 11.5: a new rate is active after the restart
   baud_activations_ = drive_->parameters().baud_activations();
   posmod_.restart(now);
@@ -163,6 +167,12 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
     r = drive_->write(ctx.now, p->number, parsed.ok() ? std::optional<std::uint32_t>(parsed.value) : std::nullopt);
   }
   if (!r.ok()) return lb::SelectAnswer::nak(reaction());
+  // 8.1.2: a reaction-5 error reset boots the servo "immediately after the receipt": only the ADR
+  // of the ACK gets out (LUSTBUS's Reply::cut), then the servo is deaf for its boot.
+  if (r.restarted) {
+    started(ctx.now);
+    return lb::SelectAnswer::cut(reaction());
+  }
   const std::uint32_t activations = drive_->parameters().baud_activations();
   if (activations != baud_activations_) {
     // 11.5: 4-PROG = 111 takes the new 81-SBAUD at once, without a restart; the ACK still goes

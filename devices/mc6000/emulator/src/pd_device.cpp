@@ -105,7 +105,7 @@ void Mc6000PdDevice::sample_held(Word control, Duration dt) {
     initialised_ = since_power_on_ >= config_.init_time;
   }
   const bool standstill = std::fabs(actual_) < config_.standstill_rpm;
-  const drivecom::DeviceInputs in{control, initialised_, fault_present_, standstill, standstill, enable_locked_};
+  const drivecom::DeviceInputs in{control, initialised_, fault_present_, standstill || coast_, standstill, enable_locked_};
   last_ = machine_.sample(in);
   move_actual(dt);
   // A fault reaction that ends within this sample shows FAULT at once.

@@ -44,6 +44,14 @@ inline constexpr std::uint16_t kRssl4 = 420;
 inline constexpr std::uint16_t kRsio = 428;   // seed 000, 7.2.1
 inline constexpr std::uint16_t kFis00 = 439;  // seed 001, 3.2.1, 5.3.2
 inline constexpr std::uint16_t kFis01 = 440;
+inline constexpr std::uint16_t kFos00 = 445;  // seed 001, 3.2.1, 5.3.1
+inline constexpr std::uint16_t kFos01 = 446;
+// The error reactions (seed 000, 8: "programmable, in five steps, for every error"; 5.2: the
+// watchdog's "error reaction of the device via parameter"). The seeds give neither numbers nor
+// names: chosen (docs/errata.md MC-D7), one per error the servo raises.
+inline constexpr std::uint16_t kReop1 = 510;  // error 16 E-OP1 (seed 001, 3.2.4: the bus watchdog)
+inline constexpr std::uint16_t kResio = 511;  // the serial watchdog 84-SWDGT (seed 000, 5.2)
+inline constexpr std::uint16_t kRedev = 512;  // every other device error (a cause 0..255 but 16)
 
 // 85-SERR bits (seed 000, 9.2): the family's 85-SIOF bits (drive/siof.hpp).
 inline constexpr std::uint8_t kSerrPowerOn = drive::siof_mask(drive::SiofBit::power_on);
@@ -76,6 +84,12 @@ inline constexpr std::int64_t kClselOpt1 = 4;
 inline constexpr std::int64_t kCfconScon = 2;
 inline constexpr std::int64_t kFunctionOff = 0;
 inline constexpr std::int64_t kFunctionRopt1 = 6;
+// The five reaction steps (seed 000, 8); 8.1.2 names step 5 "RESET", 1-4 are chosen (MC-D7).
+inline constexpr std::int64_t kReactionWarn = 1;   // WARN: status bit 7 (alarm), the drive runs on
+inline constexpr std::int64_t kReactionStop = 2;   // STOP: brake to standstill, then FAULT
+inline constexpr std::int64_t kReactionOff = 3;    // OFF: power stage off at once, FAULT, coasting
+inline constexpr std::int64_t kReactionLock = 4;   // LOCK: as OFF; only a power-on ends it
+inline constexpr std::int64_t kReactionReset = 5;  // RESET: as OFF; the fault reset boots the servo
 // 91-TYPE: the seeds name the parameter, not the MC6000's code: chosen.
 inline constexpr std::int64_t kMc6000TypeCode = 6000;
 
@@ -83,7 +97,7 @@ inline constexpr std::int64_t kQ16Min = -2147483648LL;
 inline constexpr std::int64_t kQ16Max = 2147483647LL;
 
 // clang-format off
-inline constexpr std::array<pcp::ParameterInfo, 31> kParameters{{
+inline constexpr std::array<pcp::ParameterInfo, 34> kParameters{{
   // number name     type                 category               min     max      default          attributes
   {4,   "PROG",  pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               0},  // type, range chosen
   {15,  "PLRDY", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      1,       0,               pcp::kAttrInitControl},  // type chosen
@@ -116,6 +130,9 @@ inline constexpr std::array<pcp::ParameterInfo, 31> kParameters{{
   {444, "FIF1",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
   {445, "FOS00", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},  // seed 001 3.2.1, 5.3.1
   {446, "FOS01", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},
+  {510, "REOP1", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      5,       kReactionStop,   pcp::kAttrShowText},  // seed 000 8; number, name, default chosen (MC-D7)
+  {511, "RESIO", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      5,       kReactionStop,   pcp::kAttrShowText},
+  {512, "REDEV", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      5,       kReactionStop,   pcp::kAttrShowText},
 }};
 // clang-format on
 // The table has no FLOAT_IEEE, MC_ERROR or PASSWORD parameter because the seeds name none; the

@@ -14,7 +14,7 @@ namespace ibs::devices::mc6000 {
 
 // 11.2.1 subject areas and activity areas the table uses.
 enum class Subject : std::uint8_t {
-  conf = 0, opt1 = 2, scon = 6, sio = 9, sys = 14, ref = 15, menu = 20, val = 21,
+  conf = 0, opt1 = 2, scon = 6, sio = 9, scty = 12, sys = 14, ref = 15, menu = 20, val = 21,
 };
 enum class Activity : std::uint8_t {
   nothing = 0, opt1 = 1, sys = 4, drive = 5, ref = 6,

@@ -1,9 +1,10 @@
 // The MC6000 drive core: the servo itself, knowing no bus (docs/architecture.md, "One drive, many
 // faces"). It owns the parameters (drive_parameters.hpp: the one store, 85-SERR, EEPROM, 4-PROG,
 // 80-SLOAD), the DRIVECOM device machine with the servo plant (Mc6000PdDevice), the external
-// fault and the fault reset, the bus watchdog 409-BUTWD (seed 001, 3.2.4: error 16 E-OP1 at
-// location 1) and the serial watchdog 84-SWDGT (seed 000, 5.2), and the readings every face
-// shows (77-SPEED, 408-IBSTA).
+// fault, each error's programmed reaction and the fault reset (seed 000, 8, 8.1.2; MC-D7), the
+// digital inputs and outputs (seed 001, 5.3.1, 5.3.2), the bus watchdog 409-BUTWD (seed 001,
+// 3.2.4: error 16 E-OP1 at location 1) and the serial watchdog 84-SWDGT (seed 000, 5.2), and the
+// readings every face shows (77-SPEED, 408-IBSTA).
 //
 // Faces are thin: the INTERBUS face (device.hpp) decodes its SUPI/IBCNF words and runs PCP, the
 // LUSTBUS face (lustbus_device.hpp) parses telegrams; both read and write through this object and
@@ -17,6 +18,7 @@
 // The cycle path (sample, advance, read, write) allocates nothing, throws nothing, reads no clock.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -30,6 +32,23 @@
 #include "ibs/interbus/device_start.hpp"
 
 namespace ibs::devices::mc6000 {
+
+// Seed 000, 8: "The error reaction of the MasterControl servocontroller is programmable, in five
+// steps, for every error"; 8.1.2 names step 5, RESET. What steps 1-4 do, and which parameter
+// programs which error (510-REOP1, 511-RESIO, 512-REDEV), are decisions (docs/errata.md MC-D7).
+enum class ErrorReaction : std::uint8_t {
+  warn = 1,   // status word bit 7 "alarm" (seed 001, 5.1.3) while it lasts; the drive runs on
+  stop = 2,   // FAULT RESPONSE ACTIVE, braking to standstill, then FAULT (13, 14); the factory value
+  off = 3,    // the power stage off at once: FAULT in the same sample, the motor coasts
+  lock = 4,   // as off, and the fault reset does not end it: only a power-on does
+  reset = 5,  // as off, and the fault reset boots the servo (8.1.2): power-on bit, ACK cut
+};
+// What a fault reset did.
+enum class ResetOutcome : std::uint8_t {
+  cleared,   // latched causes cleared; DRIVECOM's RESET FAULT edge in the next sample
+  ignored,   // a reaction-4 error holds the servo: nothing happened
+  rebooted,  // a reaction-5 error: the servo boots (NOT READY, 85-SERR = the power-on bit)
+};
 
 struct DriveConfig {
   DriveTiming timing{};
@@ -79,7 +98,9 @@ class Drive final : public DriveAccess {
   // fault causes whose condition is gone are cleared (the serial watchdog's time starts again),
   // and the DRIVECOM machine gets its RESET FAULT edge in the next sample, whichever interface
   // has the control location.
-  void fault_reset(Time now);
+  // With the errors' programmed reactions (ErrorReaction): a reaction-4 error ignores the reset,
+  // a reaction-5 error in FAULT makes it a boot (8.1.2).
+  ResetOutcome fault_reset(Time now);
   // A device fault present or gone; `cause` the error number it shows (nullopt: a generic
   // external fault, no number).
   void set_external_fault(bool present, std::optional<int> cause = std::nullopt) {
@@ -101,6 +122,19 @@ class Drive final : public DriveAccess {
   void mains_off(Time now);
   void mains_on(Time now);
   [[nodiscard]] bool powered() const { return powered_; }
+  // Counts the boots a reaction-5 reset caused: the INTERBUS card boots with the servo (PCP).
+  [[nodiscard]] std::uint32_t reboots() const { return reboots_; }
+  // Seed 000, 8.1.2: "the connection ... is broken for the duration of the boot-up" after a
+  // reaction-5 reset: the serial interface hears nothing until the self-test is done.
+  [[nodiscard]] bool booting(Time now) const { return now < boot_until_; }
+  // The reaction the parameters program for the errors present now, the most severe of them
+  // (nullopt: none present), and the one the servo holds to since the last reset or power-on.
+  [[nodiscard]] std::optional<ErrorReaction> present_reaction() const;
+  [[nodiscard]] std::optional<ErrorReaction> held_reaction() const { return held_; }
+  // The digital outputs OS00 (0) and OS01 (1): seed 001, 5.3.1, control word bits 14 and 15
+  // "control the reference state of output OS00/OS01 directly" when 445-FOS00 / 446-FOS01 =
+  // ROPT1 -- the option's (INTERBUS's) control word, whichever interface has the control location.
+  [[nodiscard]] bool digital_output(std::size_t output) const;
   // The digital inputs IS00 (0) and IS01 (1): seed 001, 5.3.2, status word bits 14 and 15
   // reflect them when 439-FIS00 / 440-FIS01 = ROPT1; the seeds give them no other effect.
   void set_input(std::size_t input, bool high);
@@ -128,6 +162,17 @@ class Drive final : public DriveAccess {
 
  private:
   void sample_one(Time now, Word control, double reference_rpm);
+  // The reaction programmed for each present error, into the DRIVECOM machine (ErrorReaction).
+  void apply_reactions();
+  [[nodiscard]] ErrorReaction reaction_of(std::uint16_t number) const;
+  // The fieldbus's control word as DRIVECOM gets it: RESET FAULT masked while a reaction-4 error
+  // holds the servo.
+  [[nodiscard]] Word fieldbus_word(Word control) const;
+  void reboot(Time now);
+  void clear_bus_fault(bool expired);
+  // The reaction of each error present now (nullopt where it is not): the device fault, the bus
+  // watchdog while it has run out, the serial watchdog until its reset.
+  [[nodiscard]] std::array<std::optional<ErrorReaction>, 3> present_errors() const;
   void serial_samples(std::uint32_t count, Duration dt);
   void check_serial_watchdog(Time now);
   [[nodiscard]] Word serial_word() const;
@@ -141,6 +186,7 @@ class Drive final : public DriveAccess {
   bool armed_ = false;
   Time last_cycle_{};
   bool bus_fault_ = false;
+  bool bus_expired_ = false;  // 409-BUTWD has run out and no cycle came since
   Time last_telegram_{};
   bool serial_fault_ = false;
   bool external_fault_ = false;
@@ -150,6 +196,11 @@ class Drive final : public DriveAccess {
   bool inputs_[2] = {false, false};
   bool reset_pending_ = false;
   Time sampled_until_{};
+  std::optional<ErrorReaction> held_;
+  std::uint32_t reboots_ = 0;
+  Duration boot_time_{};
+  Time boot_until_{};
+  Word fieldbus_control_ = 0;  // the last control word of the fieldbus (outputs, 5.3.1)
 };
 
 }  // namespace ibs::devices::mc6000

@@ -43,6 +43,9 @@ struct WriteResult {
   Refusal refusal = Refusal::none;
   // How long the drive works on an accepted write before it can confirm it (4-PROG = 1).
   Duration busy_for = Duration::zero();
+  // The write reset a reaction-5 error and the servo boots at once (seed 000, 8.1.2): the
+  // answer "under certain circumstances, is not sent in full".
+  bool restarted = false;
   [[nodiscard]] bool ok() const { return refusal == Refusal::none; }
 };
 

@@ -135,6 +135,7 @@ class Mc6000Device final : public DeviceEmulator {
   mc6000::PcpServed served_;
   std::optional<pcp::Server> pcp_;
   Word last_control_ = 0;
+  std::uint32_t reboots_seen_ = 0;  // the core's reaction-5 boots this face has followed
   bool configuration_mismatch_ = false;
 };
 

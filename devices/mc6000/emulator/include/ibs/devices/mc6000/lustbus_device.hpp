@@ -55,8 +55,9 @@ class LustbusDevice final : public lustbus::Responder {
                                const lustbus::Context& ctx) override;
   void checksum_error(const lustbus::Context& ctx) override;
   void telegram_received(const lustbus::Context& ctx) override;
-  // Without mains the servo answers nothing (MC-D6).
-  [[nodiscard]] bool listening(Time /*now*/) const override { return drive_->powered(); }
+  // Without mains the servo answers nothing (MC-D6), nor while it boots after a reaction-5 error
+  // reset (seed 000, 8.1.2: "the connection ... is broken for the duration of the boot-up").
+  [[nodiscard]] bool listening(Time now) const override { return drive_->powered() && !drive_->booting(now); }
 
   // Time passes without a telegram: the watchdog of 5.2, the end of a download test.
   void advance(Time now);
@@ -96,6 +97,8 @@ class LustbusDevice final : public lustbus::Responder {
   lustbus::EnquiryAnswer describe(const pcp::ParameterInfo& p);
   lustbus::EnquiryAnswer substitution_text(std::uint16_t parameter);
   Duration reaction() { return reactions_.next(); }
+  // The servo started anew (restart, or a reaction-5 reset's boot): what the face takes then.
+  void started(Time now);
 
   std::shared_ptr<Drive> drive_;
   lustbus::ReactionTimes reactions_;

@@ -60,7 +60,12 @@ class Mc6000PdDevice {
   // The words the device shows: after the last sample, or before the first.
   void output(std::span<Word> s2m) const;
 
-  void set_fault(bool present) { fault_present_ = present; }
+  // A fault present; `coast`: its reaction switches the power stage off at once, so the fault
+  // reaction is done in the sample it starts (FAULT without braking: docs/errata.md MC-D7).
+  void set_fault(bool present, bool coast = false) {
+    fault_present_ = present;
+    coast_ = coast;
+  }
   // While set the drive is not engaged: ENABLE stops in ON (80-SLOAD download, seed 000 11.4).
   void set_enable_locked(bool locked) { enable_locked_ = locked; }
   void set_inputs(bool is00, bool is01) { is00_ = is00; is01_ = is01; }
@@ -91,6 +96,7 @@ class Mc6000PdDevice {
   Duration since_power_on_{0};
   bool initialised_ = true;
   bool fault_present_ = false;
+  bool coast_ = false;
   bool enable_locked_ = false;
   bool is00_ = false;
   bool is01_ = false;
