@@ -84,6 +84,7 @@ void Link::reset_transfers() {
   tx_active_ = false;
   tx_shown_ = {false, false};
   tx_last_shown_ = -1;
+  tx_back_ = false;
   tx_seq_ = 0;
   rx_size_ = 0;
   rx_expected_ = 0;
@@ -130,6 +131,7 @@ bool Link::send(std::span<const std::uint8_t> pdu) {
   tx_active_ = true;
   tx_shown_ = {false, false};
   tx_last_shown_ = -1;
+  tx_back_ = false;
   return true;
 }
 
@@ -273,6 +275,7 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   // The window moves on: the new base may already have been shown (it was the fragment after).
   tx_shown_ = {advance == 1 && tx_shown_[1], false};
   tx_last_shown_ -= advance;
+  tx_back_ = false;
   tx_since_ = now;
   return true;
 }
@@ -372,9 +375,11 @@ void Link::transmit(Time now, std::span<Word> out) {
       }
       {
         // Go-back-N, window two: the base until it has been shown, then the fragment after it
-        // (if the message has one), then the base again while neither is acknowledged.
+        // (if the message has one); when neither is acknowledged then, the base again, and only
+        // the base until its acknowledgement comes: whatever the peer's rate, it sees it.
         const std::size_t next = tx_offset_ + fragment_size(tx_offset_);
-        const int pick = (tx_shown_[0] && next < tx_size_ && tx_last_shown_ == 0) ? 1 : 0;
+        const int pick = (tx_shown_[0] && next < tx_size_ && tx_last_shown_ == 0 && !tx_back_) ? 1 : 0;
+        if (pick == 0 && tx_last_shown_ == 1) tx_back_ = true;
         const std::size_t offset = pick == 0 ? tx_offset_ : next;
         const std::size_t n = fragment_size(offset);
         a.type = offset + n == tx_size_ ? FrameType::last

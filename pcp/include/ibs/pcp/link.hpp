@@ -186,6 +186,9 @@ class Link {
   // channel, and which was shown last (-1: one before the base, after the base moved on).
   std::array<bool, 2> tx_shown_{};
   int tx_last_shown_ = -1;
+  // Went back to the base: show it until it is acknowledged (a peer slower than this side would
+  // otherwise always see the same one of two alternating fragments).
+  bool tx_back_ = false;
   Time tx_since_{};  // when the base was first shown or last acknowledged progress came
   std::uint8_t tx_seq_ = 0;
 
