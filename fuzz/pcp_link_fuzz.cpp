@@ -4,7 +4,7 @@
 // releases and time steps). Asserts:
 // - a delivered message is 6..134 bytes, its count word says its size, and it is one that the
 //   loose model of docs/pcp.md (fuzz/support/pcp_model.hpp) could have assembled from the frames
-//   seen -- a complete message whose CRC checks, completed by this very frame;
+//   seen -- a complete message of the length its count word gives, completed by this very frame;
 // - the link's own frame always has odd parity and its own direction, shows ABORT while aborting
 //   and ABORT-ACK while acking, and a control frame carries only zero data bytes;
 // - send() takes exactly the PDUs it documents (6..134 bytes, count word matching, link ready
@@ -97,6 +97,7 @@ void check_own_frame(const Link& l, const Frame& f, const Where& where) {
 
 bool stats_monotonic(const LinkStats& a, const LinkStats& b) {
   return b.frames_invalid >= a.frames_invalid && b.frames_repeated >= a.frames_repeated &&
+         b.frames_ahead >= a.frames_ahead &&
          b.frames_refused >= a.frames_refused && b.fragments_orphaned >= a.fragments_orphaned &&
          b.messages_sent >= a.messages_sent && b.messages_received >= a.messages_received &&
          b.messages_dropped >= a.messages_dropped && b.sequence_errors >= a.sequence_errors &&

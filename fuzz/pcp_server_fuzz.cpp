@@ -8,7 +8,7 @@
 // Write (docs/pcp.md, the table of negative confirmations):
 // - complete: a Write.req for the parameter's index, subindex 0, carrying the new value in
 //   exactly the type's bytes, is among the messages that the loose model of the channel
-//   (fuzz/support/pcp_model.hpp: FIRST .. LAST in sequence, count word, CRC) could have
+//   (fuzz/support/pcp_model.hpp: FIRST .. LAST in sequence, count word) could have
 //   assembled from the frames the server saw -- decoded here from the documented layout;
 // - checked: the parameter is writable (not a RAM actual value), the value lies within its
 //   min..max, 85-SERR was 0 and the association stood before the step, and an EEPROM parameter

@@ -10,7 +10,6 @@
 #include "ibs/devices/mc6000/channel.hpp"
 #include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/devices/mc6000/pcp_served.hpp"
-#include "ibs/pcp/crc16.hpp"
 #include "ibs/pcp/server.hpp"
 
 namespace {
@@ -97,13 +96,5 @@ void BM_ReadCalibratedLatency(benchmark::State& state) {
 }
 BENCHMARK(BM_ReadCalibratedLatency)->Arg(1)->Arg(2)->Arg(4);
 
-// The message check over the largest message.
-void BM_Crc16MaxPdu(benchmark::State& state) {
-  std::array<std::uint8_t, kMaxPduSize> b{};
-  for (std::size_t i = 0; i < b.size(); ++i) b[i] = static_cast<std::uint8_t>(i * 31U);
-  for (auto _ : state) benchmark::DoNotOptimize(crc16(b));
-  state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(b.size()));
-}
-BENCHMARK(BM_Crc16MaxPdu);
 
 }  // namespace

@@ -1,11 +1,13 @@
 // A deliberately loose model of the PCP channel's receiving side, written from docs/pcp.md
 // ("Segmentation") rather than from pcp::Link: which messages *could* a receiver have assembled
 // from the frames it saw? It starts a candidate at every FIRST frame, appends a NEXT or LAST frame
-// whose SEQ follows the candidate's last one (the same SEQ is a repeat, any other ends the
-// candidate), and at a LAST frame keeps the candidate's first `4 + 2 * count` bytes if they lie
-// in 6..134 and the CRC-16 after them matches. It ignores aborts, acknowledgements, flow control
-// and timeouts, so what it offers is a superset of what a correct receiver may deliver: a
-// delivered message or an executed request that it does not offer came from nowhere.
+// whose SEQ follows the candidate's last one (any other SEQ is a repeat, an old frame or the
+// second of a window whose first was missed: the candidate waits), and at a LAST frame keeps the
+// candidate's first `4 + 2 * count` bytes if they lie in 6..134 (no link CRC: INTERBUS checks
+// every cycle). Over 4 words a LAST frame alone is a message too. It ignores aborts,
+// acknowledgements, flow control and timeouts, so what it offers is a superset of what a correct
+// receiver may deliver: a delivered message or an executed request that it does not offer came
+// from nowhere.
 #pragma once
 
 #include <algorithm>
@@ -18,7 +20,6 @@
 #include <vector>
 
 #include "ibs/base/words.hpp"
-#include "ibs/pcp/crc16.hpp"
 
 namespace ibs::fuzz {
 
@@ -30,7 +31,7 @@ class PlausibleMessages {
   PlausibleMessages(int channel_words, bool from_client)
       : words_(static_cast<std::size_t>(channel_words)), dir_(from_client ? 0U : 1U) {}
 
-  // One frame as the receiver saw it; returns the messages (PDUs without CRC) it completes.
+  // One frame as the receiver saw it; returns the messages (PDUs) it completes.
   std::vector<Bytes> feed(std::span<const Word> frame) {
     std::vector<Bytes> done;
     if (frame.size() < words_) return done;
@@ -53,7 +54,10 @@ class PlausibleMessages {
         next.push_back(std::move(c));  // a FIRST (the candidate goes on), or a repeat
         continue;
       }
-      if (seq != ((c.last + 1U) & 3U)) continue;  // out of sequence: this candidate ends
+      if (seq != ((c.last + 1U) & 3U)) {
+        next.push_back(std::move(c));  // not the next: the receiver waits for it
+        continue;
+      }
       c.bytes.insert(c.bytes.end(), data.begin(), data.end());
       c.last = seq;
       if (type == 3) {
@@ -61,6 +65,10 @@ class PlausibleMessages {
         continue;
       }
       if (c.bytes.size() <= 300) next.push_back(std::move(c));
+    }
+    if (type == 3 && words_ == 4) {
+      // A message of one frame (the 6-byte requests fit 7 data bytes).
+      if (auto m = complete(Bytes(data.begin(), data.end()))) done.push_back(std::move(*m));
     }
     if (type == 1) {
       Candidate c{Bytes(data.begin(), data.end()), seq};
@@ -89,9 +97,7 @@ class PlausibleMessages {
   static std::optional<Bytes> complete(const Bytes& b) {
     if (b.size() < 4) return std::nullopt;
     const std::size_t pdu = 4U + 2U * ((static_cast<std::size_t>(b[2]) << 8U) | b[3]);
-    if (pdu < 6 || pdu > 134 || b.size() < pdu + 2) return std::nullopt;
-    const std::uint16_t crc = pcp::crc16(std::span<const std::uint8_t>(b.data(), pdu));
-    if (b[pdu] != (crc >> 8U) || b[pdu + 1] != (crc & 0xFFU)) return std::nullopt;
+    if (pdu < 6 || pdu > 134 || b.size() < pdu) return std::nullopt;
     return Bytes(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(pdu));
   }
 

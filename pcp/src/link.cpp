@@ -5,8 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "ibs/pcp/crc16.hpp"
-
 namespace ibs::pcp {
 
 namespace {
@@ -84,7 +82,9 @@ void Link::reset_transfers() {
   tx_size_ = 0;
   tx_offset_ = 0;
   tx_active_ = false;
-  tx_shown_ = false;
+  tx_shown_ = {false, false};
+  tx_last_shown_ = -1;
+  tx_back_ = false;
   tx_seq_ = 0;
   rx_size_ = 0;
   rx_expected_ = 0;
@@ -126,19 +126,18 @@ bool Link::send(std::span<const std::uint8_t> pdu) {
   // The receiver delimits the message by its count word, so it must be right.
   if (decode_header(pdu, h) != PduError::none) return false;
   std::copy(pdu.begin(), pdu.end(), tx_.begin());
-  const std::uint16_t crc = crc16(pdu);
-  tx_[pdu.size()] = high_byte(crc);
-  tx_[pdu.size() + 1] = low_byte(crc);
-  tx_size_ = pdu.size() + kCrcSize;
+  tx_size_ = pdu.size();
   tx_offset_ = 0;
   tx_active_ = true;
-  tx_shown_ = false;
+  tx_shown_ = {false, false};
+  tx_last_shown_ = -1;
+  tx_back_ = false;
   return true;
 }
 
 std::span<const std::uint8_t> Link::message() const {
   if (!rx_complete_) return {};
-  return {rx_.data(), rx_expected_ - kCrcSize};
+  return {rx_.data(), rx_expected_};
 }
 
 void Link::release_message() {
@@ -149,8 +148,8 @@ void Link::release_message() {
 
 LinkEvents Link::receive(Time now, std::span<const Word> in) {
   LinkEvents ev;
-  if (state_ == LinkState::ready && tx_active_ && tx_shown_ &&
-      now - tx_shown_at_ >= cfg_.ack_timeout) {
+  if (state_ == LinkState::ready && tx_active_ && tx_shown_[0] &&
+      now - tx_since_ >= cfg_.ack_timeout) {
     ++stats_.ack_timeouts;
     abort();
     ev.reset = true;
@@ -221,7 +220,12 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
           enter_acking(a->ack);
           ev.reset = true;
         } else if (code == ControlCode::idle) {
-          take_ack(a->ack, ev);  // an idle peer still acknowledges our fragments
+          // An idle peer still acknowledges our fragments.
+          if (!take_ack(now, a->ack, ev)) {
+            ++stats_.sequence_errors;
+            abort();
+            ev.reset = true;
+          }
         }
         break;
     }
@@ -231,40 +235,61 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
   // A data frame.
   if (state_ == LinkState::aborting) return ev;  // the peer has not seen our ABORT yet
   if (state_ == LinkState::acking) {
-    // The peer took our ABORT-ACK and starts its first message (FIRST s0); any other data frame
-    // is from before its abort.
-    if (a->type != FrameType::first || a->seq != 0) return ev;
+    // The peer took our ABORT-ACK and starts its first message (FIRST s0, or LAST s0 for a
+    // message of one frame); any other data frame is from before its abort, or the second of
+    // the peer's window while we missed its first.
+    const bool only = a->type == FrameType::last && data_size_ >= kMinPduSize;
+    if ((a->type != FrameType::first && !only) || a->seq != 0) return ev;
     leave_acking();
     if (state_ != LinkState::ready) return ev;
   }
-  take_ack(a->ack, ev);
+  if (!take_ack(now, a->ack, ev)) {
+    // Between two correct peers an ACK names the base's predecessor or a fragment shown since:
+    // the peer's state is not ours. Resynchronise.
+    ++stats_.sequence_errors;
+    abort();
+    ev.reset = true;
+    return ev;
+  }
   process_data(*a, data, ev);
   return ev;
 }
 
-void Link::take_ack(std::uint8_t ack, LinkEvents& ev) {
-  // Only a fragment that has been on the channel can be acknowledged; ACK names its SEQ.
-  if (!tx_active_ || !tx_shown_ || ack != tx_seq_) return;
-  tx_offset_ += std::min(data_size_, tx_size_ - tx_offset_);
-  tx_seq_ = next_seq(tx_seq_);
-  tx_shown_ = false;
+bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
+  // The peer's ACK names the last fragment it accepted: the base's predecessor (nothing new), the
+  // base, or the fragment after it -- only ones that have been on the channel (docs/pcp.md,
+  // "Go-back-N"). Idle, the base is the next SEQ to use and only its predecessor is valid.
+  const auto advance = static_cast<std::uint8_t>((ack - tx_seq_ + 1U) & kSeqMask);  // 0, 1, 2
+  if (advance == 0) return true;
+  if (!tx_active_ || advance == 3 || !tx_shown_[advance - 1U]) return false;
+  for (std::uint8_t k = 0; k < advance; ++k) {
+    tx_offset_ += fragment_size(tx_offset_);
+    tx_seq_ = next_seq(tx_seq_);
+  }
   if (tx_offset_ >= tx_size_) {
     tx_active_ = false;
     ++stats_.messages_sent;
     ev.message_sent = true;
+    return true;
   }
+  // The window moves on: the new base may already have been shown (it was the fragment after).
+  tx_shown_ = {advance == 1 && tx_shown_[1], false};
+  tx_last_shown_ -= advance;
+  tx_back_ = false;
+  tx_since_ = now;
+  return true;
 }
 
 void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev) {
-  if (a.seq == rx_last_) {
-    ++stats_.frames_repeated;
-    return;
-  }
+  // With a window of two the peer shows SEQs from last - 1 to last + 2 (docs/pcp.md): only
+  // last + 1 is new; last and last - 1 are old frames seen again, last + 2 the second of a window
+  // whose first we missed (the peer shows the first again).
   if (a.seq != next_seq(rx_last_)) {
-    // Stop-and-wait never skips a number: the peer's state is not ours. Resynchronise.
-    ++stats_.sequence_errors;
-    abort();
-    ev.reset = true;
+    if (a.seq == next_seq(next_seq(rx_last_))) {
+      ++stats_.frames_ahead;
+    } else {
+      ++stats_.frames_repeated;
+    }
     return;
   }
   if (rx_complete_) {
@@ -272,7 +297,10 @@ void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, 
     return;
   }
   rx_last_ = a.seq;
-  if (a.type == FrameType::first) {
+  if (a.type == FrameType::first ||
+      (a.type == FrameType::last && !rx_in_message_ && data_size_ >= kMinPduSize)) {
+    // FIRST opens a message; over 4 words a LAST outside one is a message of a single frame
+    // (narrower frames cannot hold the 6-byte minimum: there it is an orphan).
     rx_size_ = 0;
     rx_expected_ = 0;
     rx_in_message_ = true;
@@ -294,7 +322,7 @@ void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, 
       ++stats_.messages_dropped;
       return;
     }
-    rx_expected_ = pdu + kCrcSize;
+    rx_expected_ = pdu;
   }
   if (a.type == FrameType::last) {
     finish_message(ev);
@@ -311,11 +339,6 @@ void Link::finish_message(LinkEvents& ev) {
   bool ok = length_ok;
   if (ok) {
     for (std::size_t i = rx_expected_; i < rx_size_; ++i) ok = ok && rx_[i] == 0;
-  }
-  if (ok) {
-    const std::size_t pdu = rx_expected_ - kCrcSize;
-    const std::uint16_t crc = crc16(std::span<const std::uint8_t>(rx_.data(), pdu));
-    ok = make_word(rx_[pdu], rx_[pdu + 1]) == crc;
   }
   if (!ok) {
     ++stats_.messages_dropped;
@@ -351,16 +374,21 @@ void Link::transmit(Time now, std::span<Word> out) {
         break;
       }
       {
-        const std::size_t n = std::min(data_size_, tx_size_ - tx_offset_);
-        a.type = tx_offset_ == 0
-                     ? FrameType::first
-                     : (tx_offset_ + n == tx_size_ ? FrameType::last : FrameType::middle);
-        a.seq = tx_seq_;
-        std::copy_n(tx_.begin() + static_cast<std::ptrdiff_t>(tx_offset_), n, b.begin() + 1);
-        if (!tx_shown_) {
-          tx_shown_ = true;
-          tx_shown_at_ = now;
-        }
+        // Go-back-N, window two: the base until it has been shown, then the fragment after it
+        // (if the message has one); when neither is acknowledged then, the base again, and only
+        // the base until its acknowledgement comes: whatever the peer's rate, it sees it.
+        const std::size_t next = tx_offset_ + fragment_size(tx_offset_);
+        const int pick = (tx_shown_[0] && next < tx_size_ && tx_last_shown_ == 0 && !tx_back_) ? 1 : 0;
+        if (pick == 0 && tx_last_shown_ == 1) tx_back_ = true;
+        const std::size_t offset = pick == 0 ? tx_offset_ : next;
+        const std::size_t n = fragment_size(offset);
+        a.type = offset + n == tx_size_ ? FrameType::last
+                                         : (offset == 0 ? FrameType::first : FrameType::middle);
+        a.seq = pick == 0 ? tx_seq_ : next_seq(tx_seq_);
+        std::copy_n(tx_.begin() + static_cast<std::ptrdiff_t>(offset), n, b.begin() + 1);
+        if (pick == 0 && !tx_shown_[0]) tx_since_ = now;
+        tx_shown_[static_cast<std::size_t>(pick)] = true;
+        tx_last_shown_ = pick;
       }
       break;
   }

@@ -83,13 +83,32 @@ void Server::drop_association() {
   out_pending_ = false;
 }
 
-void Server::step(Time now, std::span<const Word> m2s, std::span<Word> s2m) {
-  served_->advance(now);
+void Server::receive(Time now, std::span<const Word> m2s) {
   const LinkEvents ev = link_.receive(now, m2s);
   if (ev.reset) {
     ++stats_.link_resets;
     drop_association();
   }
+}
+
+void Server::cycle(Time now, std::span<const Word> m2s, std::span<Word> s2m) {
+  receive(now, m2s);
+  link_.transmit(now, s2m);
+}
+
+void Server::step(Time now, std::span<const Word> m2s, std::span<Word> s2m) {
+  served_->advance(now);
+  receive(now, m2s);
+  serve(now);
+  link_.transmit(now, s2m);
+}
+
+void Server::sample(Time now) {
+  served_->advance(now);
+  serve(now);
+}
+
+void Server::serve(Time now) {
   if (link_.has_message()) {
     handle_message(now, link_.message());
     link_.release_message();
@@ -102,7 +121,6 @@ void Server::step(Time now, std::span<const Word> m2s, std::span<Word> s2m) {
     if (out_pending_ && now >= out_at_ && link_.can_send() && link_.send(out_.view()))
       out_pending_ = false;
   }
-  link_.transmit(now, s2m);
 }
 
 void Server::queue_abort(AbortReason reason, std::uint8_t cr) {

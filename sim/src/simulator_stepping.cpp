@@ -171,7 +171,8 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   const bool recording = !d.recordings.empty();  // only with SimOptions::record_traces
   std::array<Word, 4> before{};
   if (recording) before = d.s2m;
-  d.emu->sample({d.pd_m2s(), d.pd_s2m(), {d.pcp_m2s.data(), d.pcp_words}, {d.pcp_s2m.data(), d.pcp_words}}, t);
+  // The PCP words move at the cycle end (pcp_cycle): the sample gets none.
+  d.emu->sample({d.pd_m2s(), d.pd_s2m(), {}, {}}, t);
   ++d.k;
   d.next_sample = next_sample_time(d);
   if (const devices::Notices n = d.emu->notices(); n.count != d.notices) {

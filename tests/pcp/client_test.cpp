@@ -219,7 +219,7 @@ TEST(Client, ServoRestartEndsTheOutstandingRequestWithALinkReset) {
   Session s(1);
   ASSERT_TRUE(s.initiate().ok());
   ASSERT_EQ(s.client.read(s.bus.now(), ParameterRef::number(83)), SubmitStatus::accepted);
-  for (int i = 0; i < 30; ++i) s.bus.cycle();
+  for (int i = 0; i < 8; ++i) s.bus.cycle();  // the request half-way on the channel
   s.power_on();
   const auto r = s.bus.await(100ms);
   ASSERT_TRUE(r.has_value());

@@ -2,6 +2,9 @@
 //
 // Two clocks: the master steps the client every bus cycle, the servo steps the server every
 // device sample (1 ms, seed 001 7.2). With cycle == sample it is the trace's lock-step timing.
+// `Interface::at_cycle` runs the servo's link at the bus cycle as the MC6000's INTERBUS CPU does
+// (Server::cycle every cycle, Server::sample every sample: the simulator's timing); by default
+// the link runs in the servo's samples (Server::step), the slower case its guarantees must hold in too.
 // Between them the bus: every cycle each side's latest frame is delivered to the other unless a
 // fault says otherwise (the fault model of the brief):
 //   corrupted - the cycle is discarded: neither direction's data is delivered;
@@ -42,10 +45,13 @@ struct FaultCounts {
   std::uint64_t repeated = 0;
 };
 
+enum class Interface : std::uint8_t { at_sample, at_cycle };
+
 class Bus {
  public:
-  Bus(Client& client, Server& server, Duration cycle = 1ms, Duration sample = 1ms)
-      : client_(&client), server_(&server), cycle_(cycle), sample_(sample) {}
+  Bus(Client& client, Server& server, Duration cycle = 1ms, Duration sample = 1ms,
+      Interface interface = Interface::at_sample)
+      : client_(&client), server_(&server), cycle_(cycle), sample_(sample), interface_(interface) {}
 
   void set_faults(const FaultRates& f, std::uint32_t seed) {
     faults_ = f;
@@ -62,8 +68,13 @@ class Bus {
     now_ += cycle_;
     deliver();
     client_->step(now_, client_in_, client_out_);
+    if (interface_ == Interface::at_cycle) server_->cycle(now_, server_in_, server_out_);
     while (next_sample_ <= now_) {
-      server_->step(next_sample_, server_in_, server_out_);
+      if (interface_ == Interface::at_cycle) {
+        server_->sample(next_sample_);
+      } else {
+        server_->step(next_sample_, server_in_, server_out_);
+      }
       next_sample_ += sample_;
     }
   }
@@ -123,6 +134,7 @@ class Bus {
   Server* server_;
   Duration cycle_;
   Duration sample_;
+  Interface interface_;
   Time now_{};
   Time next_sample_{};
   std::array<Word, 4> client_in_{};

@@ -229,15 +229,16 @@ TEST(WiresharkDissector, TsharkDecodesEveryDevicesWords) {
   EXPECT_TRUE(inquiry) << "no value inquiry (CODE 1) from the master";
   EXPECT_TRUE(ack) << "no ACK from the inverter";
 
-  // PCP: fragments reassembled into messages with their services, the CRC checked.
+  // PCP: fragments reassembled into messages with their services, each of the length its count
+  // word gives (docs/pcp.md: the link adds no CRC).
   const auto msgs = lines_of(run(tshark + " -Y interbus.pcp.message -T fields -E separator=';'"
                                           " -e interbus.pcp.message.service -e interbus.pcp.message.parameter"
-                                          " -e interbus.pcp.message.crc_ok 2>/dev/null"));
+                                          " -e interbus.pcp.message.count 2>/dev/null"));
   ASSERT_GE(msgs.size(), 4U);
-  EXPECT_EQ(msgs[0], "Initiate.req;;1");
-  EXPECT_EQ(msgs[1], "Initiate.conf;;1");
-  EXPECT_EQ(msgs[2], "Read.req;85;1");
-  EXPECT_EQ(msgs[3], "Read.conf;;1");
+  EXPECT_EQ(msgs[0], "Initiate.req;;8");
+  EXPECT_EQ(msgs[1], "Initiate.conf;;7");
+  EXPECT_EQ(msgs[2], "Read.req;85;3");
+  EXPECT_EQ(msgs[3], "Read.conf;;4");
 
   // The verbose tree, as `tshark -V` shows it.
   const std::string verbose = run(tshark + " -V -c 3000 2>/dev/null");

@@ -136,8 +136,6 @@ f.msg_index = ProtoField.uint16("interbus.pcp.message.index", "Index", base.HEX)
 f.msg_parameter = ProtoField.uint16("interbus.pcp.message.parameter", "Parameter (index - 5C00H)", base.DEC)
 f.msg_result = ProtoField.uint16("interbus.pcp.message.result", "Result", base.HEX)
 f.msg_params = ProtoField.bytes("interbus.pcp.message.parameters", "Parameters", base.SPACE)
-f.msg_crc = ProtoField.uint16("interbus.pcp.message.crc", "CRC-16", base.HEX)
-f.msg_crc_ok = ProtoField.bool("interbus.pcp.message.crc_ok", "CRC matches")
 
 -- Arithmetic instead of bit operators: the script runs on Lua 5.2 to 5.4 alike.
 local function bits(v, shift, n) return math.floor(v / 2 ^ shift) % 2 ^ n end
@@ -158,25 +156,6 @@ end
 local function fmt(v)
   local s = string.format("%.6f", v):gsub("0+$", ""):gsub("%.$", "")
   return s
-end
-
-local function bxor16(a, b)
-  local r = 0
-  for i = 0, 15 do
-    if bit(a, i) ~= bit(b, i) then r = r + 2 ^ i end
-  end
-  return r
-end
--- CRC-16 of docs/pcp.md: polynomial 1021H, initial FFFFH, no reflection, no final XOR.
-local function crc16(bytes, n)
-  local crc = 0xFFFF
-  for i = 1, n do
-    crc = bxor16(crc, bytes[i] * 256)
-    for _ = 1, 8 do
-      if crc >= 0x8000 then crc = bxor16((crc * 2) % 0x10000, 0x1021) else crc = (crc * 2) % 0x10000 end
-    end
-  end
-  return crc
 end
 
 local function command_of(w)
@@ -444,9 +423,11 @@ local function service_name(code)
   return services[b] .. (conf and ".conf" or (unconfirmed and "" or ".req"))
 end
 
--- Follows one frame of a device's channel (first pass only): a data frame whose TYPE/SEQ differs
--- from the last one seen is a new fragment (stop-and-wait repeats a fragment until it is
--- acknowledged); ABORT and ABORT-ACK drop the message in transfer.
+-- Follows one frame of a device's channel (first pass only), as the receiver does (docs/pcp.md,
+-- "Go-back-N, window two"): a data frame is a new fragment only with the SEQ after the last one
+-- taken (the sender shows a fragment again while it waits, and goes back); ABORT and ABORT-ACK
+-- drop the message in transfer and restart the counter. Over 4 words a LAST frame alone is a
+-- message of its own.
 local function follow_fragment(pinfo, tvb, base, words, key)
   local admin = tvb(base, 1):uint()
   local ones = 0
@@ -454,18 +435,22 @@ local function follow_fragment(pinfo, tvb, base, words, key)
   if ones % 2 == 0 then return end
   local tr = transfers[key]
   if not tr then
-    tr = { bytes = nil, last = nil }
+    tr = { bytes = nil, seq = nil }
     transfers[key] = tr
   end
   local ftype, seq = bits(admin, 5, 2), bits(admin, 3, 2)
   if ftype == 0 then
-    if seq == 1 or seq == 2 then tr.bytes, tr.last = nil, nil end
+    if seq == 1 or seq == 2 then tr.bytes, tr.seq = nil, 3 end
     return
   end
-  local id = ftype * 4 + seq
-  if id == tr.last then return end
-  tr.last = id
-  if ftype == 1 then tr.bytes = {} elseif not tr.bytes then return end
+  if tr.seq ~= nil and seq ~= (tr.seq + 1) % 4 then return end
+  if tr.seq == nil and ftype == 2 then return end  -- the capture began in the middle of a message
+  tr.seq = seq
+  if ftype == 1 or (ftype == 3 and not tr.bytes and words == 4) then
+    tr.bytes = {}
+  elseif not tr.bytes then
+    return
+  end
   for i = 1, 2 * words - 1 do tr.bytes[#tr.bytes + 1] = tvb(base + i, 1):uint() end
   if ftype == 3 then
     local list = messages[pinfo.number] or {}
@@ -475,21 +460,21 @@ local function follow_fragment(pinfo, tvb, base, words, key)
   end
 end
 
--- A reassembled message: PDU, CRC-16, zero padding (docs/pcp.md, "Messages on the channel").
+-- A reassembled message: PDU and zero padding, no link CRC (docs/pcp.md, "Messages on the channel").
 local function add_message(t, bytes, direction)
   local ba = ByteArray.new()
   ba:set_size(#bytes)
   for i = 1, #bytes do ba:set_index(i - 1, bytes[i]) end
   local mt = ba:tvb("PCP message")
   local n = #bytes
-  if n < 8 then
-    t:add(f.msg, mt()):append_text(" (shorter than a PDU and its CRC)")
+  if n < 6 then
+    t:add(f.msg, mt()):append_text(" (shorter than a PDU)")
     return nil
   end
   local code, count = mt(0, 2):uint(), mt(2, 2):uint()
   local size = 4 + 2 * count
   local service = service_name(code)
-  local it = t:add(f.msg, mt(0, math.min(size + 2, n)))
+  local it = t:add(f.msg, mt(0, math.min(size, n)))
   it:set_text(string.format("PCP message %s: %s, %d bytes", direction, service, size))
   it:add(f.msg_dir, mt(0, 0), direction):set_generated()
   it:add(f.msg_service, mt(0, 2), service):set_generated()
@@ -497,7 +482,7 @@ local function add_message(t, bytes, direction)
   it:add(f.msg_count, mt(2, 2))
   it:add(f.msg_invoke, mt(4, 1))
   it:add(f.msg_cr, mt(5, 1))
-  if size + 2 > n then
+  if size > n then
     it:append_text(" (the count word announces more bytes than arrived)")
     return service
   end
@@ -517,11 +502,6 @@ local function add_message(t, bytes, direction)
     it:set_text(string.format("PCP message %s: %s, %d bytes, index %04XH", direction, service, size, index))
   end
   if size > 6 then it:add(f.msg_params, mt(6, size - 6)) end
-  local crc = mt(size, 2):uint()
-  it:add(f.msg_crc, mt(size, 2))
-  local ok = crc16(bytes, size) == crc
-  it:add(f.msg_crc_ok, mt(size, 2), ok):set_generated()
-  if not ok then it:append_text(" (CRC does not match)") end
   return service
 end
 

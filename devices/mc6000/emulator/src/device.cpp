@@ -101,6 +101,10 @@ void Mc6000Device::output_pcp(Time now, std::span<Word> pcp_s2m) {
   if (pcp_ && !pcp_s2m.empty()) pcp_->show(now, pcp_s2m);
 }
 
+void Mc6000Device::pcp_cycle(Time now, std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) {
+  if (pcp_ && !pcp_m2s.empty()) pcp_->cycle(now, pcp_m2s, pcp_s2m);
+}
+
 void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
   // SUPI 0: the INTERBUS CPU loops without exchanging data with the servo (3.2.2); without
   // process data the drive's machine does not move, its watchdog still runs out.
@@ -137,7 +141,12 @@ void Mc6000Device::step_held(std::span<const Word> pd_m2s, Time first, Duration 
 void Mc6000Device::step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s,
                         std::span<Word> pcp_s2m) {
   sample_core(pd_m2s, now, mc6000::kSamplePeriod, 1);
-  if (pcp_ && !pcp_m2s.empty()) pcp_->step(now, pcp_m2s, pcp_s2m);
+  if (!pcp_) return;
+  if (pcp_m2s.empty()) {
+    pcp_->sample(now);  // the interface side runs in pcp_cycle()
+  } else {
+    pcp_->step(now, pcp_m2s, pcp_s2m);
+  }
 }
 
 namespace mc6000 {

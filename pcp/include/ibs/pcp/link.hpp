@@ -2,11 +2,13 @@
 // 3.2.2) — the project's own design, because the chip's administrative byte is not public
 // (public-facts.md, PCP). docs/pcp.md specifies it; this header is its one interface.
 //
-// Every bus cycle each side shows one frame: the administrative byte (high byte of the first
-// channel word) and 2 * words - 1 data bytes. The administrative byte:
+// Seed 001 3.2.2 puts the channel on the servo's *INTERBUS CPU*: both ends of the link run at the
+// bus cycle (the servo's interface side, not its 1 ms control sample), so every cycle each side
+// shows one frame: the administrative byte (high byte of the first channel word) and
+// 2 * words - 1 data bytes. The administrative byte:
 //
 //     bit  7     DIR   0 = master -> servo, 1 = servo -> master
-//     bits 6..5  TYPE  00 control, 01 first fragment, 10 continuation, 11 last fragment
+//     bits 6..5  TYPE  00 control, 01 first fragment, 10 continuation, 11 last (or only) fragment
 //     bits 4..3  SEQ   data frames: sequence counter (mod 4)
 //                      control frames: 00 IDLE, 01 ABORT, 10 ABORT-ACK, 11 invalid
 //     bits 2..1  ACK   data and IDLE frames: SEQ of the last data frame accepted from the peer
@@ -14,19 +16,25 @@
 //                      ABORT-ACK: the abort number of the peer's ABORT it answers
 //     bit  0     P     odd parity over the byte (00H and FFH are never valid)
 //
-// Stop-and-wait: a fragment stays on the channel until the peer's ACK names its SEQ; a message is
-// `PDU bytes, CRC-16 (high, low)`, its length follows from the PDU's count word, and the last
-// fragment is padded with zeros. A lost, repeated or discarded cycle shows the receiver an old
-// frame again, which the SEQ rule ignores; a message is delivered only when its length, padding
-// and CRC check. ABORT / ABORT-ACK resynchronise both sides (start, restart, timeout, protocol
-// violation) and drop every message in transfer. The abort number ties an ABORT-ACK to the ABORT it
-// answers, and `acking` ends only on IDLE or a FIRST s0 frame, so a frame shown before an abort but
-// seen after it never counts for the new link; when both sides abort at once the master's abort
-// is answered first, then the servo's (docs/pcp.md, "Link").
+// Go-back-N with a window of two fragments: a sender shows fragment s+1 in the cycle after s,
+// before s is acknowledged (an answer takes a cycle each way on INTERBUS's summation frame, so a
+// window of one would halve the rate), shows nothing newer until s is acknowledged, and shows s
+// again when no acknowledgement came. The receiver takes only the next SEQ in order. A message is
+// its PDU bytes alone: INTERBUS checks every cycle with its own frame check and delivers a cycle
+// whole or not at all (public-facts.md, INTERBUS bus), so the link adds no CRC of its own; its
+// length follows from the PDU's count word and the last fragment is padded with zeros. A lost,
+// repeated or discarded cycle shows the receiver an old frame again, which the SEQ rule ignores;
+// a message is delivered only when its length and padding check. ABORT / ABORT-ACK resynchronise
+// both sides (start, restart, timeout, protocol violation) and drop every message in transfer.
+// The abort number ties an ABORT-ACK to the ABORT it answers, and `acking` ends only on IDLE or a
+// FIRST (or only) s0 frame, so a frame shown before an abort but seen after it never counts for
+// the new link; when both sides abort at once the master's abort is answered first, then the
+// servo's (docs/pcp.md, "Link").
 //
 // The cycle path (receive, transmit, send) allocates nothing, throws nothing, reads no clock.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -40,13 +48,14 @@
 
 namespace ibs::pcp {
 
-inline constexpr std::size_t kCrcSize = 2;
-inline constexpr std::size_t kMaxMessageSize = kMaxPduSize + kCrcSize;
+// A message on the channel is its PDU: no link CRC (INTERBUS's frame check covers every cycle).
+inline constexpr std::size_t kMaxMessageSize = kMaxPduSize;
 inline constexpr int kMaxChannelWords = 4;
 inline constexpr std::size_t kMaxFrameBytes = 2 * static_cast<std::size_t>(kMaxChannelWords);
 inline constexpr std::size_t kMaxFrameData = kMaxFrameBytes - 1;
-// The smallest message spans two frames even at 4 words, so FIRST and LAST are always distinct.
-static_assert(kMinPduSize + kCrcSize > kMaxFrameData);
+// The count word (PDU bytes 2..3) lies in the first frame only at 4 words, and only there does a
+// message (the 6-byte Identify and Status requests) fit one frame: it goes as a LAST frame alone.
+static_assert(kMinPduSize <= kMaxFrameData);
 
 enum class Direction : std::uint8_t { to_server = 0, to_client = 1 };
 enum class FrameType : std::uint8_t { control = 0, first = 1, middle = 2, last = 3 };
@@ -90,13 +99,14 @@ struct LinkConfig {
 
 struct LinkStats {
   std::uint32_t frames_invalid = 0;      // parity, direction or control-code errors
-  std::uint32_t frames_repeated = 0;     // a data frame seen again (stale cycle)
+  std::uint32_t frames_repeated = 0;     // a data frame seen again, or an older one (stale cycle)
+  std::uint32_t frames_ahead = 0;        // a data frame one beyond the next: the next was missed
   std::uint32_t frames_refused = 0;      // a new data frame not taken while a message waits
   std::uint32_t fragments_orphaned = 0;  // continuation/last without a first
   std::uint32_t messages_sent = 0;
   std::uint32_t messages_received = 0;
-  std::uint32_t messages_dropped = 0;  // length, padding or CRC check failed
-  std::uint32_t sequence_errors = 0;
+  std::uint32_t messages_dropped = 0;  // length or padding check failed
+  std::uint32_t sequence_errors = 0;     // an ACK naming a fragment this side never showed
   std::uint32_t ack_timeouts = 0;
   std::uint32_t aborts_local = 0;  // aborts this side started
   std::uint32_t aborts_peer = 0;   // aborts the peer started
@@ -135,7 +145,7 @@ class Link {
   bool send(std::span<const std::uint8_t> pdu);
   [[nodiscard]] bool sending() const { return tx_active_; }
 
-  // The received message (PDU without the CRC) until release_message().
+  // The received message (its PDU) until release_message().
   [[nodiscard]] bool has_message() const { return rx_complete_; }
   [[nodiscard]] std::span<const std::uint8_t> message() const;
   void release_message();
@@ -144,7 +154,11 @@ class Link {
   void reset_transfers();
   void enter_acking(std::uint8_t peer_abort_number);
   void leave_acking();
-  void take_ack(std::uint8_t ack, LinkEvents& ev);
+  // False: the ACK names a fragment this side never showed (a sequence error).
+  bool take_ack(Time now, std::uint8_t ack, LinkEvents& ev);
+  [[nodiscard]] std::size_t fragment_size(std::size_t offset) const {
+    return std::min(data_size_, tx_size_ - offset);
+  }
   void process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev);
   void finish_message(LinkEvents& ev);
 
@@ -166,10 +180,16 @@ class Link {
   // Sending.
   std::array<std::uint8_t, kMaxMessageSize> tx_{};
   std::size_t tx_size_ = 0;
-  std::size_t tx_offset_ = 0;  // first byte of the fragment on the channel
+  std::size_t tx_offset_ = 0;  // first byte of the oldest unacknowledged fragment (the base)
   bool tx_active_ = false;
-  bool tx_shown_ = false;  // the current fragment has been transmitted at least once
-  Time tx_shown_at_{};
+  // The window: the base (SEQ tx_seq_) and the fragment after it; which of them has been on the
+  // channel, and which was shown last (-1: one before the base, after the base moved on).
+  std::array<bool, 2> tx_shown_{};
+  int tx_last_shown_ = -1;
+  // Went back to the base: show it until it is acknowledged (a peer slower than this side would
+  // otherwise always see the same one of two alternating fragments).
+  bool tx_back_ = false;
+  Time tx_since_{};  // when the base was first shown or last acknowledged progress came
   std::uint8_t tx_seq_ = 0;
 
   // Receiving.

@@ -1,6 +1,9 @@
 // The PCP server: the drive side of the parameter channel (seed 001, 4.2, as the MC6000 has it).
-// The device model steps it once per sample (the MC6000: 1 ms, seed 001, 7.2) with the channel
-// words and the time; the server answers Initiate, Read, Write, Get-OV long, Identify and Status
+// Two processors share it, as on the servo (seed 001 3.2.2: the servo's INTERBUS CPU): the
+// interface side runs the link at the bus cycle (cycle(): the channel words of every cycle), the
+// servo's processor takes complete requests and answers them in its samples (sample(): the
+// MC6000: every 1 ms, seed 001 7.2). step() does both in one call, for a caller whose cycle is its
+// sample (trace replay, lock-step tests). The server answers Initiate, Read, Write, Get-OV long, Identify and Status
 // and may send Information Reports (the KBL of 4.2.2). It serves the parameters it is given
 // (ServedParameters, served.hpp) and owns none: the values, their checks, 85-SERR and the drive's
 // own timing (EEPROM, PROG, a download) are the drive's, which other buses reach as well.
@@ -83,7 +86,13 @@ class Server {
   // ABORT. (The drive's own power-on -- RAM from EEPROM, 85-SERR -- is the drive's.)
   void power_on(Time now);
 
-  // One device sample: reads the master's channel words, writes the servo's.
+  // The interface side, once per bus cycle: reads the master's frame of this cycle and writes the
+  // servo's frame for the next.
+  void cycle(Time now, std::span<const Word> m2s, std::span<Word> s2m);
+  // The servo processor's share, once per device sample: takes a complete request from the
+  // interface, executes it after the latency model's processing time, hands the answer back.
+  void sample(Time now);
+  // Both in one call (cycle == sample): receive, sample, transmit.
   void step(Time now, std::span<const Word> m2s, std::span<Word> s2m);
   // The frame the servo shows before its first sample (a trace's s2m[0]).
   void show(Time now, std::span<Word> s2m) { link_.transmit(now, s2m); }
@@ -107,7 +116,8 @@ class Server {
   [[nodiscard]] const ServerConfig& config() const { return cfg_; }
 
  private:
-  void advance(Time now);
+  void receive(Time now, std::span<const Word> m2s);
+  void serve(Time now);  // the servo processor's work of a sample, after the drive's advance()
   void handle_message(Time now, std::span<const std::uint8_t> msg);
   void execute(Time now);
   void queue_abort(AbortReason reason, std::uint8_t cr);

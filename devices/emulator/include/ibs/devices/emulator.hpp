@@ -56,6 +56,11 @@ class DeviceEmulator {
   // The words the device shows now: after its last sample, or before its first.
   virtual void output(std::span<Word> pd_out) const = 0;
   virtual void output_pcp(Time /*now*/, std::span<Word> /*pcp_out*/) {}
+  // The parameter channel's interface side at a valid data cycle (the MC6000's INTERBUS CPU,
+  // seed 001 3.2.2): reads the master's channel words of this cycle, writes the device's for the
+  // next one. A caller that calls it gives sample() empty PCP spans; a caller without it (one
+  // sample per cycle) gives sample() the words and the device runs its interface there.
+  virtual void pcp_cycle(Time /*now*/, std::span<const Word> /*pcp_in*/, std::span<Word> /*pcp_out*/) {}
 
   // A valid data cycle reached the device (its bus watchdog is fed by every one).
   virtual void bus_cycle(Time now) = 0;

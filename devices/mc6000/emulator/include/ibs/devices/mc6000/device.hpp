@@ -58,7 +58,9 @@ class Mc6000Device final : public DeviceEmulator {
   [[nodiscard]] const std::shared_ptr<mc6000::Drive>& shared_drive() const { return drive_; }
 
   // One 1 ms sample: the process-data words (control word first) and the PCP channel words
-  // (layout().pcp_words each; empty spans without PCP).
+  // (layout().pcp_words each). With the channel words the sample also runs the channel's
+  // interface side (a caller whose sample is its bus cycle); with empty spans only the servo
+  // processor's share, and pcp_cycle() runs the interface at every bus cycle.
   void sample(std::span<const Word> pd_m2s, std::span<Word> pd_s2m, Time now,
               std::span<const Word> pcp_m2s = {}, std::span<Word> pcp_s2m = {}) {
     step(pd_m2s, now, pcp_m2s, pcp_s2m);
@@ -81,6 +83,9 @@ class Mc6000Device final : public DeviceEmulator {
   void step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
   void output(std::span<Word> pd_s2m) const override;
   void output_pcp(Time now, std::span<Word> pcp_s2m) override;
+  // The INTERBUS CPU's side of the PCP channel, every valid data cycle (seed 001 3.2.2): the link's
+  // fragments move at the bus cycle, independent of the 1 ms control sample (docs/pcp.md).
+  void pcp_cycle(Time now, std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) override;
 
   // A valid data cycle reached the device: "the watchdog is triggered with every INTERBUS cycle".
   void bus_cycle(Time now) override { drive_->fieldbus_cycle(now); }
