@@ -38,7 +38,7 @@ bool one_byte(drive::DataType t) {
 
 Drive::Drive(const DriveConfig& config, DeviceStart start, Time now)
     : config_(config),
-      params_(parameters(), pnr::kProg),
+      params_(config.interbus_software ? parameters() : standalone_parameters(), pnr::kProg),
       slots_{params_.table().slot(pnr::kIbWd),  params_.table().slot(pnr::kIbcod),
              params_.table().slot(pnr::kIcntl), params_.table().slot(pnr::kIbsta),
              params_.table().slot(pnr::kFdriv), params_.table().slot(pnr::kFist)},
@@ -102,7 +102,13 @@ drive::WriteEffect Drive::write(std::size_t slot, Word raw, bool power_stage_ena
     return {};
   }
   const bool defaults = params_.loads_defaults(slot, raw);
-  drive::WriteEffect e = params_.write(slot, raw, power_stage_enabled, now);
+  // Seed 000, 11.1, kind '3': FSEL/ISEL variables are RAM variables while the serial interface
+  // controls (2-CSEL = 3); otherwise seed 001, 4.1.3.3's rule: RAM while the power stage runs,
+  // EEPROM too while it is off (decision VF-E18). The store keeps them in RAM alone when told the
+  // power stage runs.
+  const bool ram_only = power_stage_enabled || (drive::storage(p.category) == drive::Storage::eeprom_ram &&
+                                                value(pnr::kCsel) == kCselSio);
+  drive::WriteEffect e = params_.write(slot, raw, ram_only, now);
   // 5.2: a new watchdog time counts from its setting.
   if (p.number == pnr::kSiot) serial_last_ = now;
   apply_parameters();

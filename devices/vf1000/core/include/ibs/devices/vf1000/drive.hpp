@@ -41,6 +41,10 @@ struct DriveConfig {
   // reset (reset_time, D13).
   Vf1000PdConfig pd{};
   StoringTimes storing{};
+  // The inverter's software: the INTERBUS package, whose factory values are seed 001 3.1.1's
+  // (1-MODE 4, 2-CSEL 5, 4-FSSEL 25), or the standard one of a drive on LUSTBUS alone (seed 000,
+  // 4.1; standalone_parameters(), VF-E20).
+  bool interbus_software = true;
 };
 
 // The faces a drive can be reached through.
@@ -163,9 +167,9 @@ class Drive final : public drive::ParameterAccess {
   [[nodiscard]] const Vf1000PdDevice& pd() const { return pd_; }
   [[nodiscard]] drivecom::State state() const { return pd_.state(); }
   [[nodiscard]] double frequency_hz() const { return pd_.frequency_hz(); }
-  [[nodiscard]] bool power_stage_enabled() const {
-    return drivecom::power_stage_enabled(pd_.state());
-  }
+  // The power stage runs (11-STAT 02H; EEPROM values refused, seed 000 3): DRIVECOM's power stage
+  // states, but not while the motor is shut down at a reference of 0 Hz (seed 001, 5.2.3).
+  [[nodiscard]] bool power_stage_enabled() const { return pd_.power_stage_on(); }
   [[nodiscard]] Word status() const;  // 11-STAT
   [[nodiscard]] bool external_fault() const { return external_fault_; }
   // 906/907: the INTERBUS watchdog ran out (and has not seen data since); E-IBS latched.
