@@ -710,3 +710,44 @@ TEST(Vf1000Events, NoLoadAndNoInputs) {
   input.kind = ibs::devices::PlantEvent::Kind::input;
   EXPECT_FALSE(r.ib->apply_event(input, r.now));
 }
+
+TEST(Vf1000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
+  // Seed 001, 6.1: "While the SMARTCARD is being read and written to bus operation is disabled";
+  // seed 000, 10 exception 2: "While a SMARTCARD is being read in, no communications with the
+  // device via the LUSTBUS is possible. This condition can last up to 10 seconds". Decision
+  // VF-E21: for the operation's time the INTERBUS face shows a module error and takes no words
+  // (its channel waits), the LUSTBUS face hears nothing; the values stay (the seeds give no card's
+  // content); afterwards both answer as before, without a new start.
+  struct Row {
+    ibs::devices::PlantEvent::Kind kind;
+    double seconds;
+  };
+  for (const Row row : {Row{ibs::devices::PlantEvent::Kind::card_read, 2.0},
+                        Row{ibs::devices::PlantEvent::Kind::card_write, 3.0}}) {
+    SCOPED_TRACE(row.kind == ibs::devices::PlantEvent::Kind::card_read ? "read" : "written");
+    Rig r(true, true);
+    ASSERT_EQ(r.ib_write(pnr::kFmax1, 0x01F4).kind, "written");
+    const std::uint32_t starts = r.drive->starts();
+    ibs::devices::PlantEvent card;
+    card.kind = row.kind;
+    card.value = row.seconds;
+    const Time from = r.now;
+    ASSERT_TRUE(r.ib->apply_event(card, r.now));
+    r.wait(50ms);
+    EXPECT_TRUE(r.ib->module_error(r.now));
+    EXPECT_EQ(r.lb_read(pnr::kFmax1).kind, "no_answer");  // the host's retries included
+    // The master's control word is not taken while the card is busy.
+    r.control(0x8000 | kRampBits | 0x0006);
+    r.wait(100ms);
+    EXPECT_EQ(r.drive->state(), State::start_up_inhibit);
+    const Duration card_time = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(row.seconds));
+    while (r.now < from + card_time) r.tick();
+    r.wait(50ms);
+    EXPECT_FALSE(r.ib->module_error(r.now));
+    EXPECT_EQ(r.drive->state(), State::ready) << "the words count again";
+    EXPECT_EQ(untimed(r.lb_read(pnr::kFmax1)), (Result{"value", 0x01F4, 0, {}}));
+    EXPECT_EQ(untimed(r.ib_read(pnr::kFmax1)), (Result{"value", 0x01F4, 0, {}}));
+    EXPECT_EQ(r.drive->starts(), starts) << "no new start: no power-on bit";
+    EXPECT_EQ(r.drive->siof(), 0);
+  }
+}

@@ -1,5 +1,6 @@
 #include "ibs/devices/vf1000/drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "ibs/devices/vf1000/descriptor.hpp"
@@ -356,6 +357,7 @@ void Drive::software_reset(Word control, Time now) {
 
 void Drive::power_cycle(Time now) {
   new_start(now, config_.pd.init_time);
+  card_until_ = Time{0};  // switched off: the card operation ends with it
   pd_.power_on();
   pd_.override_control(std::nullopt);
   ib_armed_ = false;
@@ -407,11 +409,21 @@ bool Drive::apply(const PlantEvent& e, Time now) {
     case PlantEvent::Kind::mains_on:
       mains_on(now);
       return true;
+    case PlantEvent::Kind::card_read:
+    case PlantEvent::Kind::card_write:
+      // Reading loads the card's parameter set, writing saves the drive's: the seeds give neither
+      // set, so the values stay; the time is what either bus sees (VF-E21).
+      smartcard(std::chrono::duration_cast<Duration>(std::chrono::duration<double>(e.value)), now);
+      return true;
     case PlantEvent::Kind::load:
     case PlantEvent::Kind::input:
       return false;
   }
   return false;
+}
+
+void Drive::smartcard(Duration how_long, Time now) {
+  if (how_long > Duration{0}) card_until_ = std::max(card_until_, now + how_long);
 }
 
 void Drive::set_fault(bool present, Time now, std::optional<int> cause) {

@@ -149,6 +149,11 @@ class Drive final : public drive::ParameterAccess {
   void mains_off(Time now);
   void mains_on(Time now);
   [[nodiscard]] bool powered() const { return powered_; }
+  // A SMARTCARD read or written for `how_long` from `now`: meanwhile bus operation is disabled
+  // (seed 001, 6.1: a module error on INTERBUS, no words taken; seed 000, 10 exception 2: no
+  // LUSTBUS communication), decision VF-E21.
+  void smartcard(Duration how_long, Time now);
+  [[nodiscard]] bool card_busy(Time now) const { return now < card_until_; }
   // A plant or fault event (plant_event.hpp) by the calls above; false for one the inverter does
   // not take (a load, an input: DriveFacts::events says why).
   bool apply(const PlantEvent& e, Time now);
@@ -223,6 +228,7 @@ class Drive final : public drive::ParameterAccess {
   bool external_fault_ = false;
   std::optional<int> fault_cause_;
   bool powered_ = true;
+  Time card_until_{0};  // the SMARTCARD operation ends
   // 906/907.
   bool ib_armed_ = false;
   Time ib_last_cycle_{0};

@@ -73,9 +73,10 @@ class LustbusDevice final : public lustbus::Responder {
   void restart(Time now);
   // 8.1.1: deaf while the drive initialises or boots after a reset; seed 001, 6.1: deaf while the
   // drive operates on the INTERBUS with 1-MODE = 4 (VF-E16); seed 000, 4: on RS-485 deaf unless
-  // 61-SOUTA = 7 (VF-E20).
+  // 61-SOUTA = 7 (VF-E20); seed 000, 10 exception 2: deaf while a SMARTCARD is read or written
+  // (VF-E21).
   [[nodiscard]] bool listening(Time now) const override {
-    return !drive_->initialising(now) && !drive_->serial_locked() &&
+    return !drive_->initialising(now) && !drive_->card_busy(now) && !drive_->serial_locked() &&
            (!timing_.rs485 || drive_->value(pnr::kSouta) == kSoutaRs485);
   }
   // In the self-test after a reset; at its end the drive is back as after power-on.
