@@ -751,3 +751,28 @@ TEST(Vf1000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
     EXPECT_EQ(r.drive->siof(), 0);
   }
 }
+
+TEST(Vf1000Events, ControlBits12And13AndStatusBits14And15CarryNoInventedFunction) {
+  // Seed 001, 5.2.1: control bits 12 / 13 "activate the parameter-set function of input S2IND /
+  // S1IND"; 5.2.2: status bits 14 / 15 are the "status of output S2OUT / S1OUT, dependent on
+  // programmed function". Decision VF-E22: no seed gives those functions or the parameters that
+  // program them (5.2.x names only 36-RSTOP), so bits 12 / 13 change nothing and the outputs stay
+  // off (bits 14 / 15 = 0); STL / STR (bits 14 / 15 of the control word) keep their meaning.
+  std::array<Word, 2> status{};
+  std::array<double, 2> frequency{};
+  for (const Word inputs : {Word{0x0000}, Word{0x3000}}) {
+    Rig r(true, false);
+    r.m2s[1] = 200;  // 10 Hz
+    r.control(0x8000 | inputs | kRampBits | 0x0006);
+    r.wait(50ms);
+    r.control(0x8000 | inputs | kRampBits | 0x000F);
+    r.wait(300ms);
+    const std::size_t i = inputs == 0 ? 0 : 1;
+    status[i] = r.s2m[0];
+    frequency[i] = r.drive->frequency_hz();
+    EXPECT_EQ(r.s2m[0] & 0xC000U, 0U) << "S2OUT / S1OUT off";
+  }
+  EXPECT_EQ(status[0], status[1]);
+  EXPECT_EQ(frequency[0], frequency[1]);
+  EXPECT_GT(frequency[0], 0.0) << "STR: clockwise";
+}
