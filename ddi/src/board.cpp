@@ -60,6 +60,7 @@ sim::Scenario board_scenario(const std::string& path) {
       case sim::Action::mains:
       case sim::Action::load:
       case sim::Action::input:
+      case sim::Action::smartcard:
         break;
       default:
         throw sim::ScenarioError(path, e.source_line,

@@ -114,6 +114,8 @@ bool operator==(const TimelineEntry& a, const TimelineEntry& b) {
       return a.number == b.number;
     case Action::input:
       return a.value == b.value && a.level == b.level;
+    case Action::smartcard:
+      return a.value == b.value && a.duration == b.duration;
     case Action::emergency_stop:
     case Action::block_power:
     case Action::fault_power_cycle:

@@ -40,7 +40,8 @@ const std::vector<std::string_view>& device_keys() {
 }
 const std::vector<std::string_view> kActionKeys = {
     "state", "emergency_stop", "block_power", "speed", "frequency",     "read",
-    "write", "describe",       "wait_state",  "fault", "master_restart", "mains", "load", "input"};
+    "write", "describe",       "wait_state",  "fault", "master_restart", "mains", "load", "input",
+    "smartcard"};
 const std::vector<std::string_view> kEntryKeys = [] {
   std::vector<std::string_view> keys{"at", "device"};
   keys.insert(keys.end(), kActionKeys.begin(), kActionKeys.end());
@@ -429,6 +430,12 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l,
         } else if (key == "input") {
           e.action = Action::input;
           e.value = r.string(v, key);
+        } else if (key == "smartcard") {
+          e.action = Action::smartcard;
+          e.value = r.string(v, key);
+          if (e.value != "read" && e.value != "write") {
+            r.fail(v.line, "'smartcard' must be \"read\" or \"write\", not \"" + e.value + "\"");
+          }
         } else if (key == "fault") {
           const std::string fault = r.string(v, key);
           if (fault == "corrupt") {
@@ -469,6 +476,7 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l,
       break;
     case Action::fault_device:
     case Action::fault_lost:
+    case Action::smartcard:
       wanted = "duration";
       break;
     default:
@@ -483,6 +491,9 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l,
   }
   if (e.action == Action::fault_lost && modifier_key.empty()) {
     r.fail(l.action, "fault = \"lost\" needs 'duration': how long the device stays off the bus");
+  }
+  if (e.action == Action::smartcard && modifier_key.empty()) {
+    r.fail(l.action, "'smartcard' needs 'duration': how long the card is read or written");
   }
 }
 

@@ -54,6 +54,8 @@ std::string_view to_string(Action a) {
       return "load";
     case Action::input:
       return "input";
+    case Action::smartcard:
+      return "smartcard";
   }
   return "?";
 }

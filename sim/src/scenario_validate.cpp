@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <span>
@@ -526,6 +527,22 @@ class Validator {
         if (!devices::find_input(f, e.value)) {
           fail(action_line, "'input' = \"" + e.value + "\" is not an input of the " + kind_text(*k->kind) + " " +
                                 who + " (" + devices::input_names(f) + ")");
+        }
+        break;
+      }
+      case Action::smartcard: {
+        // The drive's own card (its descriptor's EventFacts): how long an operation may last.
+        const devices::EventFacts& f = k->kind->facts().events;
+        if (f.card_max_s <= 0.0) {
+          fail(action_line, "'smartcard' is not for " + who + ", " + a_kind(*k->kind) + ": " +
+                                std::string(f.no_card.empty() ? "its manuals name no SMARTCARD operation" : f.no_card));
+        } else if (e.duration <= Duration::zero() ||
+                   e.duration > std::chrono::duration_cast<Duration>(std::chrono::duration<double>(f.card_max_s))) {
+          char most[32];
+          std::snprintf(most, sizeof most, "%g", f.card_max_s);
+          fail(pick(l.modifier, action_line), "'duration' of a SMARTCARD operation of " + who +
+                                                  " must be above 0 s and at most " + most + " s (" +
+                                                  std::string(f.card_source) + ")");
         }
         break;
       }

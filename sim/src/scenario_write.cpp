@@ -150,6 +150,10 @@ std::vector<OutField> entry_fields(const TimelineEntry& e) {
       f.push_back(text("input", e.value));
       f.push_back(text("level", e.level ? "high" : "low"));
       break;
+    case Action::smartcard:
+      f.push_back(text("smartcard", e.value));
+      f.push_back(time("duration", e.duration));
+      break;
     case Action::fault_lost:
       f.push_back(text("fault", fault_name(e.action)));
       f.push_back(time("duration", e.duration));

@@ -124,6 +124,7 @@ void Simulator::apply(const TimelineEntry& e, Time t) {
     case Action::mains:
     case Action::load:
     case Action::input:
+    case Action::smartcard:
       fault(t, idx.value_or(devices_.size()), e.action, e.duration, e.count, &e);
       break;
   }
@@ -153,6 +154,13 @@ void Simulator::plant(Time t, std::size_t i, const TimelineEntry& e, FaultRecord
       ev.level = e.level;
       f.kind = "input";
       f.detail = "input " + e.value + (e.level ? " high" : " low");
+      break;
+    case Action::smartcard:
+      ev.kind = e.value == "write" ? devices::PlantEvent::Kind::card_write : devices::PlantEvent::Kind::card_read;
+      ev.value = std::chrono::duration<double>(e.duration).count();
+      f.kind = "smartcard";
+      f.detail = "SMARTCARD " + std::string(e.value == "write" ? "written" : "read") + " for " +
+                 fmt_value(to_ms(e.duration)) + " ms";
       break;
     default:
       return;
@@ -247,9 +255,10 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
     case Action::mains:
     case Action::load:
     case Action::input:
+    case Action::smartcard:
       if (entry == nullptr || i >= devices_.size()) return;
       plant(t, i, *entry, f);
-      if (kind == Action::mains) note(*devices_[i], f.detail);
+      if (kind == Action::mains || kind == Action::smartcard) note(*devices_[i], f.detail);
       break;
     default: return;
   }

@@ -227,6 +227,9 @@ TEST(LustbusCli, NakExitsOneWithTheCause) {
   // 7.1: control on the serial interface, then the start.
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "0"}, port)).rc, 0);
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CSEL", "3"}, port)).rc, 0);
+  // A reference above 0 Hz: at 0 Hz the inverter shuts the motor down (seed 001 5.2.3, VF-E19).
+  ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSEL", "8"}, port)).rc, 0);
+  ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "5"}, port)).rc, 0);
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CNTL", "0x80"}, port)).rc, 0);
   // 3: an EEPROM parameter while the power stage runs: NAK, 40H.
   const CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "4"}, port));

@@ -70,8 +70,9 @@ TEST(Vf1000Lustbus, SeedExamples622And6111ByteExact) {
   EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::ready);
 }
 
-// 7.1: 3-CNTL commands the inverter only with 1-MODE = 0 and 2-CSEL = 3 (the INTERBUS factory
-// values 4 and 5 leave it to the other control location); 40H is the start bit counter-clockwise.
+// 7.1: 3-CNTL commands the inverter only with 1-MODE = 0 and 2-CSEL = 3 (the standard factory
+// CSEL 0 of a drive on LUSTBUS alone, VF-E20, leaves it to the terminals); 40H is the start bit
+// counter-clockwise.
 TEST(Vf1000Lustbus, ControlOnlyFromTheSerialInterface) {
   Fresh f;
   EXPECT_EQ(f.send(sel(5, 105, "0064")).answer, (Bytes{}(0x45)(6).v));  // 5 Hz
@@ -127,6 +128,8 @@ TEST(Vf1000Lustbus, RefusalsCarryTheirCause) {
   EXPECT_EQ(o.siof, 0x40);
   ASSERT_EQ(bus.write(1, 101, "0000").kind, OutcomeKind::acknowledged);  // 7.1: MODE, CSEL
   ASSERT_EQ(bus.write(1, 102, "0003").kind, OutcomeKind::acknowledged);
+  ASSERT_EQ(bus.write(1, 104, "0008").kind, OutcomeKind::acknowledged);  // FSSIO: 5 Hz
+  ASSERT_EQ(bus.write(1, 105, "0064").kind, OutcomeKind::acknowledged);  // (at 0 Hz: off, VF-E19)
   ASSERT_EQ(bus.write(1, 103, "0080").kind, OutcomeKind::acknowledged);  // running
   o = bus.write(1, 101, "0004");  // MODE, an EEPROM parameter
   EXPECT_EQ(o.kind, OutcomeKind::nak);
@@ -144,7 +147,7 @@ TEST(Vf1000Lustbus, LatchHoldsUntilReadAndEnquiriesSetNothing) {
   EXPECT_EQ(f.send(sel(5, 104, "0063")).answer, (Bytes{}(0x45)(0x15).v));  // 99 > 25
   EXPECT_EQ(f.dev.siof(), 0x80);
   EXPECT_EQ(f.send(sel(5, 104, "0008")).answer, (Bytes{}(0x45)(0x15).v));  // valid, refused
-  EXPECT_EQ(f.dev.value(pnr::kFssel), 25);
+  EXPECT_EQ(f.dev.value(pnr::kFssel), 0);  // the standard factory value (VF-E20)
   EXPECT_EQ(f.send(enq(5, 85)).answer, bytes(encode_text_answer(5, make_code(85), make_value("0080")).span()));
   EXPECT_EQ(f.dev.siof(), 0);
   EXPECT_EQ(f.send(sel(5, 104, "0008")).answer, (Bytes{}(0x45)(6).v));
@@ -163,7 +166,7 @@ TEST(Vf1000Lustbus, EepromAnswersOnlyOnceStored) {
   EXPECT_EQ(f.send(sel(5, 122, "01F4")).due, 122ms);  // FMAX1, PT_FIXPOINT16
   EXPECT_EQ(f.dev.eeprom_value(pnr::kFmax1), 0x01F4);
   EXPECT_EQ(f.send(sel(5, 122, "01F4")).due, 2ms);  // unchanged
-  EXPECT_EQ(f.send(sel(5, 101, "0000")).due, 62ms);  // MODE, PT_USIGN8
+  EXPECT_EQ(f.send(sel(5, 101, "0001")).due, 62ms);  // MODE, PT_USIGN8
   EXPECT_EQ(f.send(sel(5, 183, "1234")).due, 2ms);   // SIOW, RAM
   EXPECT_EQ(f.send(sel(5, 105, "0010")).due, 122ms);  // FSSIO, stopped: into EEPROM too
 }
@@ -191,7 +194,7 @@ TEST(Vf1000Lustbus, Prog1LoadsFactoryDefaults) {
   Bus bus;
   bus.add(dev, 1);
   bus.read(1, 85);
-  ASSERT_EQ(bus.write(1, 101, "0000").kind, OutcomeKind::acknowledged);
+  ASSERT_EQ(bus.write(1, 101, "0001").kind, OutcomeKind::acknowledged);
   Request r = select(1, make_code(171), make_value("0001"));
   EXPECT_EQ(bus.run(r).kind, OutcomeKind::no_answer);  // the default 250 ms is too short
   bus.read(1, 85);
@@ -199,8 +202,78 @@ TEST(Vf1000Lustbus, Prog1LoadsFactoryDefaults) {
   const auto o = bus.run(r);
   EXPECT_EQ(o.kind, OutcomeKind::acknowledged);
   EXPECT_GT(o.finished - o.started, 1500ms);
-  EXPECT_EQ(dev.value(pnr::kMode), 4);
+  EXPECT_EQ(dev.value(pnr::kMode), 0);  // a drive on LUSTBUS alone: the standard value (VF-E20)
   EXPECT_EQ(dev.value(pnr::kProg), 0);
+}
+
+// Seed 001, 3.1.1: the INTERBUS software package changes the standard factory values of 1-MODE
+// (4), 2-CSEL (5) and 4-FSSEL (25); a drive on LUSTBUS alone (seed 000, 4.1: one device, address 0)
+// has the standard ones, which no seed lists: 0, 0, 0 (VF-E20). Its description's basis value
+// (11.1) and 71-PROG say the same; every other value is the table's.
+TEST(Vf1000Lustbus, ADriveOnLustbusAloneHasTheStandardFactoryValues) {
+  struct Row {
+    std::uint16_t number;
+    ibs::Word standard;
+    ibs::Word interbus;  // seed 001, 3.1.1
+  };
+  const Row rows[] = {{pnr::kMode, 0, 4}, {pnr::kCsel, 0, 5}, {pnr::kFssel, 0, 25}, {pnr::kFmax1, 1000, 1000},
+                      {pnr::kSouta, 0, 0}, {pnr::kSioc, 2, 2}};
+  Vf dev;
+  const ibs::devices::vf1000::Drive on_interbus(ibs::devices::vf1000::DriveConfig{}, ibs::DeviceStart::operational,
+                                                Time{0});
+  Bus bus;
+  bus.add(dev, 1);
+  for (const Row& row : rows) {
+    SCOPED_TRACE(row.number);
+    EXPECT_EQ(dev.value(row.number), row.standard);
+    EXPECT_EQ(on_interbus.value(row.number), row.interbus);
+    const auto d = parse_vf_description(bus.read(1, 10100U + row.number).value.view());
+    ASSERT_TRUE(d.ok());
+    EXPECT_EQ(d.value.basis, row.standard);
+  }
+  bus.read(1, 85);
+  ASSERT_EQ(bus.write(1, 101, "0004").kind, OutcomeKind::acknowledged);
+  Request prog = select(1, make_code(171), make_value("0001"));
+  prog.response_timeout = 10s;
+  ASSERT_EQ(bus.run(prog).kind, OutcomeKind::acknowledged);
+  EXPECT_EQ(dev.value(pnr::kMode), 0);
+  EXPECT_EQ(dev.eeprom_value(pnr::kMode), 0);
+}
+
+// Seed 000, 4: "SMARTDRIVE Inverters with the RS-485 interface must additionally have the
+// parameter 61-SOUTA = 7 set. This activates the data direction switch of the internal interface
+// software driver." VF-E20: on RS-485 the drive hears nothing unless 61-SOUTA = 7 (ENQUIRY and
+// SELECT alike, so nothing it was sent takes effect); on a line without the switch SOUTA does not
+// matter. The SELECT that changes SOUTA is answered (the telegram came in while it listened).
+TEST(Vf1000Lustbus, OnRs485ItAnswersOnlyWithSouta7) {
+  struct Row {
+    bool rs485;
+    ibs::Word souta;
+    bool answers;
+  };
+  const Row rows[] = {{false, 0, true}, {false, 7, true}, {true, 0, false}, {true, 6, false}, {true, 7, true}};
+  for (const Row& row : rows) {
+    SCOPED_TRACE(std::string(row.rs485 ? "RS-485" : "no direction switch") + ", SOUTA " + std::to_string(row.souta));
+    ibs::devices::vf1000::LustbusTiming timing;
+    timing.rs485 = row.rs485;
+    Vf dev(timing);
+    dev.drive().set_value(pnr::kSouta, row.souta);  // as at its KEYPAD
+    Bus bus;
+    bus.add(dev, 1);
+    EXPECT_EQ(bus.read(1, 85).kind, row.answers ? OutcomeKind::value : OutcomeKind::no_answer);
+    EXPECT_EQ(bus.write(1, 183, "1234").kind, row.answers ? OutcomeKind::acknowledged : OutcomeKind::no_answer);
+    EXPECT_EQ(dev.value(pnr::kSiow), row.answers ? 0x1234 : 0);
+  }
+  // Commissioned over the line: the ACK of SOUTA = 0 still goes out, then the drive is deaf.
+  ibs::devices::vf1000::LustbusTiming timing;
+  timing.rs485 = true;
+  Vf dev(timing);
+  dev.drive().set_value(pnr::kSouta, 7);
+  Bus bus;
+  bus.add(dev, 1);
+  bus.read(1, 85);
+  EXPECT_EQ(bus.write(1, 161, "0000").kind, OutcomeKind::acknowledged);
+  EXPECT_EQ(bus.read(1, 161).kind, OutcomeKind::no_answer);
 }
 
 // 5.2: 84-SIOT in ms; any valid telegram (the dummy on 83-SIOW) resets it; running out sets 02H and
@@ -211,6 +284,9 @@ TEST(Vf1000Lustbus, WatchdogAndStatReset) {
   Fresh f;
   f.control_on_sio();
   Time t = f.t + 1s;
+  // A reference above 0 Hz: at 0 Hz the power stage would be off (seed 001 5.2.3, VF-E19).
+  ASSERT_EQ(f.send(sel(5, 105, "0064")).answer, (Bytes{}(0x45)(6).v));
+  t = f.t + 1s;
   // SIOT is an EEPROM parameter: set before the start (40H while running).
   ASSERT_EQ(feed(f.rx, sel(5, 184, "0064"), t).answer, (Bytes{}(0x45)(6).v));  // 100 ms
   t += 80ms;

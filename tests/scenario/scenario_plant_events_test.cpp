@@ -74,6 +74,38 @@ TEST(ScenarioPlantEvents, RefusalsNameTheDrivesOwnLists) {
       << vf_input;
 }
 
+TEST(ScenarioPlantEvents, ASmartcardOperationReadsRoundTripsAndIsCheckedAgainstTheDrive) {
+  // Seed 000, 10 exception 2: a SMARTCARD read "can last up to 10 seconds, depending on the
+  // device"; seed 001, 6.1: read and written (docs/errata.md VF-E21). The VF1000 declares it
+  // (EventFacts::card_max_s); a drive that does not is refused with the reason.
+  const std::string text = tdoc::kBase +
+                           "[[timeline]]\nat = \"10 ms\"\ndevice = \"v\"\nsmartcard = \"read\"\nduration = \"2 s\"\n"
+                           "[[timeline]]\nat = \"500 ms\"\ndevice = \"v\"\nsmartcard = \"write\"\nduration = \"10 s\"\n";
+  const Scenario s = parse_scenario_toml(text, "s.toml");
+  ASSERT_EQ(s.timeline.size(), 2U);
+  EXPECT_EQ(s.timeline[0].action, Action::smartcard);
+  EXPECT_EQ(s.timeline[0].value, "read");
+  EXPECT_EQ(s.timeline[0].duration, 2s);
+  EXPECT_EQ(s.timeline[1].value, "write");
+  EXPECT_EQ(parse_scenario_toml(write_scenario_toml(s), "rt.toml"), s);
+  EXPECT_EQ(parse_scenario_json(write_scenario_json(s), "rt.json"), s);
+  Scenario other = s;
+  other.timeline[0].duration = 3s;
+  EXPECT_FALSE(other == s);
+
+  EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"read\"\n")),
+            at_toml(11, "'smartcard' needs 'duration': how long the card is read or written"));
+  EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"insert\"\nduration = \"1 s\"\n")),
+            at_toml(11, "'smartcard' must be \"read\" or \"write\", not \"insert\""));
+  EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"read\"\nduration = \"11 s\"\n")),
+            at_toml(12, "'duration' of a SMARTCARD operation of device 'v' must be above 0 s and at most 10 s (seed 000 "
+                        "10 exception 2, seed 001 6.1)"));
+  EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"read\"\ncount = 2\n")),
+            at_toml(12, "'count' does not go with 'smartcard' (it takes 'duration')"));
+  const std::string mc = toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nsmartcard = \"read\"\nduration = \"1 s\"\n"));
+  EXPECT_NE(mc.find("s.toml:11: 'smartcard' is not for device 'm'"), std::string::npos) << mc;
+}
+
 TEST(ControlLine, AGoodLineIsAnEntryWithoutAt) {
   const Scenario running = parse_scenario_toml(tdoc::kBase, "s.toml");
   const TimelineEntry e =

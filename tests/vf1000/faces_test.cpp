@@ -13,6 +13,7 @@
 #include "ibs/devices/vf1000/device.hpp"
 #include "ibs/devices/vf1000/drive.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
+#include "ibs/devices/vf1000/lustbus_face.hpp"
 #include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/vf1000_channel/client.hpp"
 
@@ -55,8 +56,8 @@ std::ostream& operator<<(std::ostream& os, const Result& r) {
 // line at 9600 Bd with its host, both on one timeline.
 struct Rig {
   explicit Rig(bool interbus = true, bool serial = true,
-               DeviceStart start = DeviceStart::operational)
-      : drive(std::make_shared<vf::Drive>(vf::DriveConfig{}, start, Time{0})) {
+               DeviceStart start = DeviceStart::operational, const vf::DriveConfig& config = {})
+      : drive(std::make_shared<vf::Drive>(config, start, Time{0})) {
     // Seed 001, 6.1 (VF-E16): on the INTERBUS with the factory 1-MODE = 4 the serial interface
     // cannot be used; a rig that reaches the drive through both faces runs it at another MODE
     // (the INTERBUS words still control: VF-E16).
@@ -263,7 +264,7 @@ TEST(Vf1000Faces, EachRefusalSetsTheSameBitThroughEitherFace) {
 
 TEST(Vf1000Faces, AnEepromParameterIsRefusedWhileThePowerStageRunsThroughEitherFace) {
   // Seed 001, 4.1.3.2 / seed 000, 3: EEPROM parameters are not writable with the power stage
-  // enabled; 5-FSSIO (EEPROM/RAM) goes to RAM only. The drive runs from its serial interface
+  // enabled; 5-FSSIO (EEPROM/RAM) is still taken, into RAM. The drive runs from its serial interface
   // (seed 000, 7.1): the same drive state for both faces.
   for (const Via v : {Via::interbus, Via::lustbus}) {
     SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
@@ -279,7 +280,9 @@ TEST(Vf1000Faces, AnEepromParameterIsRefusedWhileThePowerStageRunsThroughEitherF
     EXPECT_EQ(r.drive->value(pnr::kFmax1), 1000);
     EXPECT_EQ(untimed(write(r, v, pnr::kFssio, 200)), (Result{"written", 0, 0, {}}));
     EXPECT_EQ(r.drive->value(pnr::kFssio), 200);
-    EXPECT_EQ(r.drive->eeprom_value(pnr::kFssio), 100);
+    // CSEL = 3: 5-FSSIO is a RAM variable (seed 000, 11.1 kind '3'; VF-E18), so neither the 100
+    // written before the start nor the 200 reached the EEPROM.
+    EXPECT_EQ(r.drive->eeprom_value(pnr::kFssio), 0);
   }
 }
 
@@ -370,6 +373,121 @@ TEST(Vf1000Faces, AChangedEepromValueTakesTheSameDriveTimeThroughEitherFace) {
       EXPECT_NEAR(Ms(one_changed.took - one_same.took).count(), 60.0, 8.3);
     }
   }
+}
+
+TEST(Vf1000Faces, FselVariablesAreRamVariablesWhileTheSerialInterfaceControls) {
+  // Seed 000, 11.1, parameter kind '3' (FSEL/ISEL variable): "if CSEL <= 3, they are RAM variables
+  // (control via serial interface). If CSEL < 3, they are EEPROM-Variables"; seed 001, 4.1.3.3:
+  // "The inverter stores changes to EEPROM/RAM parameters in the RAM when the power stage is
+  // enabled, and additionally in the EEPROM when the power stage is disabled." Decision VF-E18:
+  // 2-CSEL = 3 (the serial interface's control location) keeps them in RAM whatever the power
+  // stage does; any other CSEL follows 001's rule. 5-FSSIO is such a variable (kind 3).
+  struct Row {
+    Word csel;
+    bool power_stage;
+    Word eeprom_after;  // 5-FSSIO's EEPROM copy after writing 200 over the default 0
+    Duration storing;   // seed 000, 10 exception 4: a changed two-byte EEPROM value ~120 ms
+  };
+  const Row rows[] = {
+      {3, false, 0, Duration{0}},  {3, true, 0, Duration{0}},  // RAM variable (11.1)
+      {0, false, 200, 120ms},      {2, true, 0, Duration{0}},  // CSEL < 3: 001's rule
+      {5, false, 200, 120ms},      {5, true, 0, Duration{0}},  // the INTERBUS factory CSEL
+  };
+  for (const Row& row : rows) {
+    SCOPED_TRACE("CSEL " + std::to_string(row.csel) + (row.power_stage ? ", running" : ", stopped"));
+    vf::Drive d(vf::DriveConfig{}, DeviceStart::operational, Time{0});
+    ASSERT_TRUE(d.set_value(pnr::kCsel, row.csel));
+    const auto slot = static_cast<std::size_t>(d.table().slot(pnr::kFssio));
+    ASSERT_EQ(d.check_write(d.find(pnr::kFssio), 200, row.power_stage), ibs::drive::WriteCheck::ok);
+    const auto e = d.write(slot, 200, row.power_stage, Time{0});
+    EXPECT_EQ(d.value(pnr::kFssio), 200);
+    EXPECT_EQ(d.eeprom_value(pnr::kFssio), row.eeprom_after);
+    EXPECT_EQ(e.storing, row.storing);
+  }
+  // The same through either face: with CSEL = 3 a stopped drive acknowledges 5-FSSIO as fast as a
+  // RAM value (the 122 ms of an EEPROM write were the fault), and a power-on brings back the
+  // EEPROM's value, not the RAM's.
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
+    auto r = rig_for(v);
+    ASSERT_EQ(write(*r, v, pnr::kCsel, 3).kind, "written");
+    ASSERT_FALSE(r->drive->power_stage_enabled());
+    const Result ram = write(*r, v, pnr::kSiow, 0x0101);
+    const Result fssio = write(*r, v, pnr::kFssio, 463);
+    EXPECT_EQ(fssio.kind, "written");
+    EXPECT_EQ(fssio.took, ram.took) << "a RAM variable: no storing time";
+    EXPECT_EQ(r->drive->eeprom_value(pnr::kFssio), 0);
+    ASSERT_EQ(write(*r, v, pnr::kCsel, 5).kind, "written");
+    const Result eeprom = write(*r, v, pnr::kFssio, 100);
+    EXPECT_GT(eeprom.took - ram.took, 100ms) << "CSEL 5, stopped: an EEPROM write";
+    EXPECT_EQ(r->drive->eeprom_value(pnr::kFssio), 100);
+  }
+}
+
+TEST(Vf1000Faces, AtAReferenceOf0HzTheInverterShutsTheMotorDownThroughEitherFace) {
+  // Seed 001, 5.2.3: "Important: At a reference value of 0 Hz the inverter shuts down the motor if
+  // DC-Stop is not programmed !" Decision VF-E19: once the ramp has reached 0 Hz at a reference of
+  // 0 Hz the power stage is off (11-STAT without 02H, EEPROM values writable as at standstill,
+  // seed 000 3 and 11.1 kind '2'); DRIVECOM stays ENABLED (the master's command; 5.1.1 has no
+  // transition the reference makes) and a reference above 0 Hz starts the motor from 0 Hz. No
+  // seed names DC-Stop's parameter: the model's configuration (Vf1000PdConfig::dc_stop) keeps the
+  // power stage on.
+  struct Row {
+    Word reference;  // 0.05 Hz
+    bool dc_stop;
+    bool power_stage;  // after the ramp has settled
+  };
+  const Row rows[] = {{0, false, false}, {100, false, true}, {0, true, true}, {100, true, true}};
+  for (const Via v : {Via::interbus, Via::lustbus}) {
+    for (const Row& row : rows) {
+      SCOPED_TRACE(std::string(v == Via::interbus ? "INTERBUS" : "LUSTBUS") + ", reference " +
+                   std::to_string(row.reference) + (row.dc_stop ? ", DC-Stop" : ""));
+      vf::DriveConfig config;
+      config.pd.dc_stop = row.dc_stop;
+      Rig r(v == Via::interbus, v == Via::lustbus, DeviceStart::operational, config);
+      if (v == Via::interbus) {
+        r.m2s[1] = row.reference;
+        r.control(0x8000 | kRampBits | 0x0006);  // STR, SHUTDOWN
+        r.wait(50ms);
+        r.control(0x8000 | kRampBits | 0x000F);  // ENABLE OPERATION
+      } else {
+        // Seed 000, 7.1: control and reference from the serial interface.
+        for (const auto& [n, value] : {std::pair{pnr::kMode, Word{0}}, {pnr::kCsel, Word{3}},
+                                       {pnr::kFssel, Word{8}}, {pnr::kFssio, row.reference},
+                                       {pnr::kCntl, Word{0x80}}}) {
+          ASSERT_EQ(r.lb_write(n, value).kind, "written") << n;
+        }
+      }
+      r.wait(500ms);
+      ASSERT_EQ(r.drive->state(), State::enabled);
+      EXPECT_EQ(r.drive->power_stage_enabled(), row.power_stage);
+      const Word running = row.power_stage ? vf::kStatRunning : Word{0};
+      EXPECT_EQ(untimed(read(r, v, pnr::kStat)), (Result{"value", Word(vf::kStatReady | running), 0, {}}));
+      // An EEPROM value: refused while the power stage runs (40H), taken while it is off.
+      EXPECT_EQ(untimed(write(r, v, pnr::kFmax1, 900)),
+                row.power_stage ? (Result{"nak", 0, 0x40, {}}) : (Result{"written", 0, 0, {}}));
+    }
+  }
+  // Down to 0 Hz and up again: the ramp first, then off; a new reference starts it again.
+  Rig r(true, false);
+  r.m2s[1] = 200;  // 10 Hz
+  r.control(0x8000 | kRampBits | 0x0006);
+  r.wait(50ms);
+  r.control(0x8000 | kRampBits | 0x000F);
+  r.wait(1s);
+  ASSERT_DOUBLE_EQ(r.drive->frequency_hz(), 10.0);
+  r.m2s[1] = 0;
+  r.wait(100ms);
+  EXPECT_GT(r.drive->frequency_hz(), 0.0) << "on its ramp (20 Hz/s)";
+  EXPECT_TRUE(r.drive->power_stage_enabled());
+  r.wait(500ms);
+  EXPECT_EQ(r.drive->frequency_hz(), 0.0);
+  EXPECT_FALSE(r.drive->power_stage_enabled());
+  EXPECT_EQ(r.drive->state(), State::enabled);
+  r.m2s[1] = 200;
+  r.wait(100ms);
+  EXPECT_TRUE(r.drive->power_stage_enabled());
+  EXPECT_GT(r.drive->frequency_hz(), 0.0);
 }
 
 TEST(Vf1000Faces, Stat000FResetsAFaultOverTheCommunicationWordToo) {
@@ -484,6 +602,33 @@ TEST(Vf1000Faces, TheSerialWatchdogMonitorsOnlyASerialLink) {
   EXPECT_EQ(both.ib_read(pnr::kSiof).value, 0x02);
 }
 
+TEST(Vf1000Faces, TheEmulatorsDriveComesCommissionedForItsRs485Line) {
+  // VF-E20: `ibs lustbus emulate` and the test bench serve RS-485, where the drive answers only
+  // with 61-SOUTA = 7 (seed 000, 4); like the line's rate in 81-SIOC the emulator sets it as a
+  // commissioning step, in the EEPROM. Alone on LUSTBUS the drive has the standard factory values
+  // (seed 001 3.1.1 does not apply, VF-E20); the bench's drive keeps its INTERBUS ones.
+  const ibs::devices::LustbusFace& face = vf::lustbus_face();
+  ibs::devices::LustbusEmulated alone = face.make(ibs::devices::LustbusFaceOptions{});
+  auto& lone = dynamic_cast<vf::LustbusDevice&>(*alone.responder);
+  EXPECT_EQ(lone.eeprom_value(pnr::kSouta), vf::kSoutaRs485);
+  EXPECT_EQ(lone.value(pnr::kMode), 0);
+  EXPECT_TRUE(lone.listening(Time{0}));
+  // A host that writes another SOUTA loses the drive (its own ACK still goes out).
+  lone.drive().read_siof();
+  const auto code = lb::make_code(100U + pnr::kSouta);
+  EXPECT_EQ(lone.select(code, lb::make_value("0000"), {1, Time{1s}}).reply, lb::Reply::ack);
+  EXPECT_FALSE(lone.listening(Time{2s}));
+
+  Vf1000Device ib(Vf1000DeviceConfig{}, DeviceStart::operational, Time{0});
+  ibs::devices::LustbusEmulated bench = face.attach(ib, ibs::devices::LustbusFaceOptions{});
+  EXPECT_EQ(ib.drive().eeprom_value(pnr::kSouta), vf::kSoutaRs485);
+  EXPECT_EQ(ib.drive().value(pnr::kMode), 4) << "the INTERBUS package's value (seed 001, 3.1.1)";
+  auto& served = dynamic_cast<vf::LustbusDevice&>(*bench.responder);
+  EXPECT_FALSE(served.listening(Time{0})) << "MODE 4 on the ring (VF-E16)";
+  ib.drive().set_value(pnr::kMode, 1);
+  EXPECT_TRUE(served.listening(Time{0}));
+}
+
 TEST(Vf1000Faces, ACopyOfAFaceIsAnIndependentDrive) {
   Rig r;
   ASSERT_EQ(r.ib_write(pnr::kFmax1, 0x0200).kind, "written");
@@ -564,4 +709,70 @@ TEST(Vf1000Events, NoLoadAndNoInputs) {
   ibs::devices::PlantEvent input;
   input.kind = ibs::devices::PlantEvent::Kind::input;
   EXPECT_FALSE(r.ib->apply_event(input, r.now));
+}
+
+TEST(Vf1000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
+  // Seed 001, 6.1: "While the SMARTCARD is being read and written to bus operation is disabled";
+  // seed 000, 10 exception 2: "While a SMARTCARD is being read in, no communications with the
+  // device via the LUSTBUS is possible. This condition can last up to 10 seconds". Decision
+  // VF-E21: for the operation's time the INTERBUS face shows a module error and takes no words
+  // (its channel waits), the LUSTBUS face hears nothing; the values stay (the seeds give no card's
+  // content); afterwards both answer as before, without a new start.
+  struct Row {
+    ibs::devices::PlantEvent::Kind kind;
+    double seconds;
+  };
+  for (const Row row : {Row{ibs::devices::PlantEvent::Kind::card_read, 2.0},
+                        Row{ibs::devices::PlantEvent::Kind::card_write, 3.0}}) {
+    SCOPED_TRACE(row.kind == ibs::devices::PlantEvent::Kind::card_read ? "read" : "written");
+    Rig r(true, true);
+    ASSERT_EQ(r.ib_write(pnr::kFmax1, 0x01F4).kind, "written");
+    const std::uint32_t starts = r.drive->starts();
+    ibs::devices::PlantEvent card;
+    card.kind = row.kind;
+    card.value = row.seconds;
+    const Time from = r.now;
+    ASSERT_TRUE(r.ib->apply_event(card, r.now));
+    r.wait(50ms);
+    EXPECT_TRUE(r.ib->module_error(r.now));
+    EXPECT_EQ(r.lb_read(pnr::kFmax1).kind, "no_answer");  // the host's retries included
+    // The master's control word is not taken while the card is busy.
+    r.control(0x8000 | kRampBits | 0x0006);
+    r.wait(100ms);
+    EXPECT_EQ(r.drive->state(), State::start_up_inhibit);
+    const Duration card_time = std::chrono::duration_cast<Duration>(std::chrono::duration<double>(row.seconds));
+    while (r.now < from + card_time) r.tick();
+    r.wait(50ms);
+    EXPECT_FALSE(r.ib->module_error(r.now));
+    EXPECT_EQ(r.drive->state(), State::ready) << "the words count again";
+    EXPECT_EQ(untimed(r.lb_read(pnr::kFmax1)), (Result{"value", 0x01F4, 0, {}}));
+    EXPECT_EQ(untimed(r.ib_read(pnr::kFmax1)), (Result{"value", 0x01F4, 0, {}}));
+    EXPECT_EQ(r.drive->starts(), starts) << "no new start: no power-on bit";
+    EXPECT_EQ(r.drive->siof(), 0);
+  }
+}
+
+TEST(Vf1000Events, ControlBits12And13AndStatusBits14And15CarryNoInventedFunction) {
+  // Seed 001, 5.2.1: control bits 12 / 13 "activate the parameter-set function of input S2IND /
+  // S1IND"; 5.2.2: status bits 14 / 15 are the "status of output S2OUT / S1OUT, dependent on
+  // programmed function". Decision VF-E22: no seed gives those functions or the parameters that
+  // program them (5.2.x names only 36-RSTOP), so bits 12 / 13 change nothing and the outputs stay
+  // off (bits 14 / 15 = 0); STL / STR (bits 14 / 15 of the control word) keep their meaning.
+  std::array<Word, 2> status{};
+  std::array<double, 2> frequency{};
+  for (const Word inputs : {Word{0x0000}, Word{0x3000}}) {
+    Rig r(true, false);
+    r.m2s[1] = 200;  // 10 Hz
+    r.control(0x8000 | inputs | kRampBits | 0x0006);
+    r.wait(50ms);
+    r.control(0x8000 | inputs | kRampBits | 0x000F);
+    r.wait(300ms);
+    const std::size_t i = inputs == 0 ? 0 : 1;
+    status[i] = r.s2m[0];
+    frequency[i] = r.drive->frequency_hz();
+    EXPECT_EQ(r.s2m[0] & 0xC000U, 0U) << "S2OUT / S1OUT off";
+  }
+  EXPECT_EQ(status[0], status[1]);
+  EXPECT_EQ(frequency[0], frequency[1]);
+  EXPECT_GT(frequency[0], 0.0) << "STR: clockwise";
 }

@@ -246,17 +246,18 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
   for (const auto& item : j.items()) {
     const std::string& key = item.key();
     if (key == "at") throw std::invalid_argument("control entries apply at once: no 'at'");
-    if (key == "fault" || key == "mains" || key == "load" || key == "input") {
+    if (key == "fault" || key == "mains" || key == "load" || key == "input" || key == "smartcard") {
       if (!action.empty()) {
         throw std::invalid_argument("a control line holds one action: '" + action + "' and '" + key + "'");
       }
       action = key;
     } else if (key != "device" && key != "cause" && key != "duration" && key != "level") {
       throw std::invalid_argument("unknown key '" + key +
-                                  "' (the emulator takes: device, fault, cause, duration, mains, load, input, level)");
+                                  "' (the emulator takes: device, fault, cause, duration, mains, load, input, level, "
+                                  "smartcard)");
     }
   }
-  if (action.empty()) throw std::invalid_argument("a control line needs an action: fault, mains, load or input");
+  if (action.empty()) throw std::invalid_argument("a control line needs an action: fault, mains, load, input or smartcard");
   // Which drive: its address, or NAME@ADDR as given on the command line; alone, it may go unsaid.
   if (!j.contains("device")) {
     if (drives.size() != 1) throw std::invalid_argument("give 'device' (the drive's address or NAME@ADDR)");
@@ -283,10 +284,8 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
   const auto only_with = [&](const char* key, const char* with) {
     if (j.contains(key)) throw std::invalid_argument(std::string("'") + key + "' goes with " + with + " only");
   };
-  if (action != "fault") {
-    only_with("cause", "fault = \"device\"");
-    only_with("duration", "fault = \"device\"");
-  }
+  if (action != "fault") only_with("cause", "fault = \"device\"");
+  if (action != "fault" && action != "smartcard") only_with("duration", "fault = \"device\" and 'smartcard'");
   if (action != "input") only_with("level", "'input'");
   if (action == "fault") {
     const std::string fault = string_of("fault");
@@ -325,6 +324,34 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     if (m != "off" && m != "on") throw std::invalid_argument("'mains' must be \"off\" or \"on\", not \"" + m + "\"");
     c.event.kind = m == "off" ? devices::PlantEvent::Kind::mains_off : devices::PlantEvent::Kind::mains_on;
     c.text = "mains " + m;
+  } else if (action == "smartcard") {
+    // The drive's SMARTCARD (seed 000, 10 exception 2): read or written for 'duration'.
+    if (facts.card_max_s <= 0.0) {
+      throw std::invalid_argument("'smartcard' is not for the " + title + ": " +
+                                  std::string(facts.no_card.empty() ? "its manuals name no SMARTCARD operation"
+                                                                    : facts.no_card));
+    }
+    const std::string op = string_of("smartcard");
+    if (op != "read" && op != "write") {
+      throw std::invalid_argument("'smartcard' must be \"read\" or \"write\", not \"" + op + "\"");
+    }
+    if (!j.contains("duration")) throw std::invalid_argument("'smartcard' needs 'duration': how long the card is busy");
+    Duration d{};
+    try {
+      d = parse_time(string_of("duration"));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("'duration': ") + e.what());
+    }
+    const double s = std::chrono::duration<double>(d).count();
+    if (!(s > 0.0) || s > facts.card_max_s) {
+      throw std::invalid_argument("'duration' of a SMARTCARD operation must be above 0 s and at most " +
+                                  format_time(std::chrono::duration_cast<Duration>(
+                                      std::chrono::duration<double>(facts.card_max_s))) +
+                                  " (" + std::string(facts.card_source) + ")");
+    }
+    c.event.kind = op == "write" ? devices::PlantEvent::Kind::card_write : devices::PlantEvent::Kind::card_read;
+    c.event.value = s;
+    c.text = "SMARTCARD " + std::string(op == "write" ? "written" : "read") + " for " + format_time(d);
   } else if (action == "load") {
     if (facts.load_unit.empty()) {
       throw std::invalid_argument("'load' is not for the " + title + ": " +

@@ -85,6 +85,9 @@ constexpr DriveFacts kFacts{
             .load_unit = {},
             .no_load = "the VF1000 is an inverter without a motor model here: its frequency follows the ramp, "
                        "whatever the load (docs/errata.md VF-E17)",
+            // Seed 000, 10 exception 2: "up to 10 seconds, depending on the device".
+            .card_max_s = 10.0,
+            .card_source = "seed 000 10 exception 2, seed 001 6.1",
         },
 };
 

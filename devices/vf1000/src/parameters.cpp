@@ -82,8 +82,22 @@ constexpr std::array kVf1000Parameters = {
                   "Actual speed"},
 };
 
+// The same table with the standard factory values of the three parameters seed 001, 3.1.1 says the
+// INTERBUS software package changes (1-MODE 4, 2-CSEL 5, 4-FSSEL 25). No seed lists the standard
+// values (decision VF-E20): 1-MODE 0 is seed 000 7.1's "Clamp or SIO", the mode of the terminals
+// that 3.1.1 says the INTERBUS values take away; 2-CSEL 0 and 4-FSSEL 0 are neither the serial
+// interface's 3 nor FSSIO's 8, which 7.1 has the host set before it controls.
+constexpr auto kStandaloneParameters = [] {
+  auto t = kVf1000Parameters;
+  for (ParameterInfo& p : t) {
+    if (p.number == pnr::kMode || p.number == pnr::kCsel || p.number == pnr::kFssel) p.default_value = 0;
+  }
+  return t;
+}();
+
 }  // namespace
 
 std::span<const drive::ParameterInfo> parameters() { return kVf1000Parameters; }
+std::span<const drive::ParameterInfo> standalone_parameters() { return kStandaloneParameters; }
 
 }  // namespace ibs::devices::vf1000

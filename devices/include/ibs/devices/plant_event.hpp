@@ -35,6 +35,12 @@ struct EventFacts {
   // The load torque's unit ("Nm"); empty: the drive takes no load, for `no_load`'s reason.
   std::string_view load_unit;
   std::string_view no_load;
+  // A SMARTCARD read into the drive or written from it: the longest such operation in seconds
+  // (0: the drive takes no card event, for `no_card`'s reason) and where its manual says so.
+  // (Default member initializers: the wings' designated initializers may leave them out.)
+  double card_max_s = 0.0;
+  std::string_view card_source{};
+  std::string_view no_card{};
 };
 
 struct PlantEvent {
@@ -46,10 +52,12 @@ struct PlantEvent {
     mains_on,     // mains back
     load,         // load torque, `value` in EventFacts::load_unit
     input,        // digital input `input` (index into EventFacts::inputs) at `level`
+    card_read,    // a SMARTCARD is read into the drive for `value` seconds ...
+    card_write,   // ... or written from it (EventFacts::card_max_s)
   };
   Kind kind = Kind::fault;
   std::optional<int> cause;  // fault: the error number (nullopt: a generic external fault)
-  double value = 0.0;        // load
+  double value = 0.0;        // load; card_read / card_write: how long, in seconds
   std::size_t input = 0;     // input
   bool level = false;        // input: true = high
 };

@@ -248,6 +248,9 @@ bool Drive::apply(const PlantEvent& e, Time now) {
     case PlantEvent::Kind::input:
       set_input(e.input, e.level);
       return true;
+    case PlantEvent::Kind::card_read:
+    case PlantEvent::Kind::card_write:
+      return false;  // EventFacts::card_max_s = 0: refused before it gets here
   }
   return false;
 }

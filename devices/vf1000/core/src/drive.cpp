@@ -1,5 +1,6 @@
 #include "ibs/devices/vf1000/drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "ibs/devices/vf1000/descriptor.hpp"
@@ -38,7 +39,7 @@ bool one_byte(drive::DataType t) {
 
 Drive::Drive(const DriveConfig& config, DeviceStart start, Time now)
     : config_(config),
-      params_(parameters(), pnr::kProg),
+      params_(config.interbus_software ? parameters() : standalone_parameters(), pnr::kProg),
       slots_{params_.table().slot(pnr::kIbWd),  params_.table().slot(pnr::kIbcod),
              params_.table().slot(pnr::kIcntl), params_.table().slot(pnr::kIbsta),
              params_.table().slot(pnr::kFdriv), params_.table().slot(pnr::kFist)},
@@ -102,7 +103,13 @@ drive::WriteEffect Drive::write(std::size_t slot, Word raw, bool power_stage_ena
     return {};
   }
   const bool defaults = params_.loads_defaults(slot, raw);
-  drive::WriteEffect e = params_.write(slot, raw, power_stage_enabled, now);
+  // Seed 000, 11.1, kind '3': FSEL/ISEL variables are RAM variables while the serial interface
+  // controls (2-CSEL = 3); otherwise seed 001, 4.1.3.3's rule: RAM while the power stage runs,
+  // EEPROM too while it is off (decision VF-E18). The store keeps them in RAM alone when told the
+  // power stage runs.
+  const bool ram_only = power_stage_enabled || (drive::storage(p.category) == drive::Storage::eeprom_ram &&
+                                                value(pnr::kCsel) == kCselSio);
+  drive::WriteEffect e = params_.write(slot, raw, ram_only, now);
   // 5.2: a new watchdog time counts from its setting.
   if (p.number == pnr::kSiot) serial_last_ = now;
   apply_parameters();
@@ -350,6 +357,7 @@ void Drive::software_reset(Word control, Time now) {
 
 void Drive::power_cycle(Time now) {
   new_start(now, config_.pd.init_time);
+  card_until_ = Time{0};  // switched off: the card operation ends with it
   pd_.power_on();
   pd_.override_control(std::nullopt);
   ib_armed_ = false;
@@ -401,11 +409,21 @@ bool Drive::apply(const PlantEvent& e, Time now) {
     case PlantEvent::Kind::mains_on:
       mains_on(now);
       return true;
+    case PlantEvent::Kind::card_read:
+    case PlantEvent::Kind::card_write:
+      // Reading loads the card's parameter set, writing saves the drive's: the seeds give neither
+      // set, so the values stay; the time is what either bus sees (VF-E21).
+      smartcard(std::chrono::duration_cast<Duration>(std::chrono::duration<double>(e.value)), now);
+      return true;
     case PlantEvent::Kind::load:
     case PlantEvent::Kind::input:
       return false;
   }
   return false;
+}
+
+void Drive::smartcard(Duration how_long, Time now) {
+  if (how_long > Duration{0}) card_until_ = std::max(card_until_, now + how_long);
 }
 
 void Drive::set_fault(bool present, Time now, std::optional<int> cause) {

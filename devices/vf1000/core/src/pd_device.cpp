@@ -42,6 +42,7 @@ void Vf1000PdDevice::power_on() {
   setpoint_ = 0.0;
   frequency_ = 0.0;
   at_setpoint_ = false;
+  zero_hz_off_ = false;
   status_ = machine_.state_bits();
   comm_ = 0x0000;
 }
@@ -60,6 +61,7 @@ void Vf1000PdDevice::start(DeviceStart s) {
   setpoint_ = 0.0;
   frequency_ = 0.0;
   at_setpoint_ = false;
+  zero_hz_off_ = false;
   status_ = drivecom::status_word(machine_.state(), 0, {});
   comm_ = 0x8000;
 }
@@ -123,6 +125,10 @@ void Vf1000PdDevice::sample(std::span<const Word> m2s, std::span<Word> s2m, Dura
   in.stopped = frequency_ == 0.0 || config_.stop_ramp_hz_per_s <= 0;
   last_ = machine_.sample(in);
   run_ramp(control, seconds(dt));
+  // 5.2.3: at a reference of 0 Hz the inverter shuts the motor down once its ramp has brought the
+  // frequency there (unless DC-Stop holds it); a reference above 0 Hz starts it again from 0 Hz.
+  // DRIVECOM's state is the master's command and stays ENABLED (VF-E19).
+  zero_hz_off_ = machine_.state() == State::enabled && !config_.dc_stop && m2s[1] == 0 && frequency_ == 0.0;
   // The stop ramp has been worked through: START-UP INHIBIT by itself (5.2.1) in the same sample.
   if (machine_.state() == State::emergency_stop_active && frequency_ == 0.0) {
     in.stopped = true;

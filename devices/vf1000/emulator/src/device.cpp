@@ -149,6 +149,12 @@ Word Vf1000Device::channel_word(Word from_master, Time now) {
 
 void Vf1000Device::sample(std::span<const Word> m2s, std::span<Word> s2m, Time now) {
   last_sample_ = now;
+  // Seed 001, 6.1: "While the SMARTCARD is being read and written to bus operation is disabled":
+  // the drive takes no words and its channel waits; the words it shows stay (VF-E21).
+  if (drive_->card_busy(now)) {
+    drive_->output(s2m);
+    return;
+  }
   drive_->begin_sample(now);
   sync(now);  // a new start another face caused
   Word comm = channel_word(m2s[2], now);

@@ -11,8 +11,17 @@ namespace ibs::devices::vf1000 {
 namespace lb = ibs::lustbus;
 using drive::SiofBit;
 
+namespace {
+
+DriveConfig standalone(DriveConfig c) {
+  c.interbus_software = false;
+  return c;
+}
+
+}  // namespace
+
 LustbusDevice::LustbusDevice(LustbusTiming timing, const DriveConfig& drive)
-    : LustbusDevice(std::make_shared<Drive>(drive, DeviceStart::initialised, Time{0}), timing) {}
+    : LustbusDevice(std::make_shared<Drive>(standalone(drive), DeviceStart::initialised, Time{0}), timing) {}
 
 LustbusDevice::LustbusDevice(std::shared_ptr<Drive> drive, LustbusTiming timing)
     : timing_(timing),

@@ -96,6 +96,7 @@ enum class Action : std::uint8_t {
   mains,          // value: "off" | "on" (mains lost / back)
   load,           // load torque in the drive's unit (number; DriveFacts::events.load_unit)
   input,          // digital input `value` (its manual's name) to `level`
+  smartcard,      // value: "read" | "write": a SMARTCARD operation lasting `duration`
 };
 
 struct TimelineEntry {
@@ -112,7 +113,8 @@ struct TimelineEntry {
   int count = 1;              // fault_corrupt
   Duration duration{0};       // fault_device: how long the cause stays (0: it clears at once);
                               // fault_lost: how long the device is off the bus (> 0);
-                              // wait_state: timeout (0: wait up to the end of the run)
+                              // wait_state: timeout (0: wait up to the end of the run);
+                              // smartcard: how long the card is read or written (> 0)
   std::string cause;          // fault_device: the drive's error as written ("12", "E-IBS"); empty:
                               // a generic external fault
   bool level = false;         // input: true = high

@@ -45,6 +45,11 @@ inline constexpr std::uint16_t kFist = 912;   // 912-FIST
 
 // The VF1000 parameter table with the INTERBUS factory defaults (sorted by number; static data).
 std::span<const drive::ParameterInfo> parameters();
+// The same table with the standard factory defaults of an inverter without the INTERBUS software
+// package (seed 001, 3.1.1; seed 000, 4.1: a drive on LUSTBUS alone; decision VF-E20).
+std::span<const drive::ParameterInfo> standalone_parameters();
+// 61-SOUTA = 7 switches the data direction of an RS-485 interface (seed 000, 4).
+inline constexpr Word kSoutaRs485 = 7;
 
 // 907-IBCOD: the reaction to the process-data watchdog (seed 001, 4.1.1).
 enum class IbCod : std::uint8_t {

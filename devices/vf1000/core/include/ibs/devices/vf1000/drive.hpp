@@ -41,6 +41,10 @@ struct DriveConfig {
   // reset (reset_time, D13).
   Vf1000PdConfig pd{};
   StoringTimes storing{};
+  // The inverter's software: the INTERBUS package, whose factory values are seed 001 3.1.1's
+  // (1-MODE 4, 2-CSEL 5, 4-FSSEL 25), or the standard one of a drive on LUSTBUS alone (seed 000,
+  // 4.1; standalone_parameters(), VF-E20).
+  bool interbus_software = true;
 };
 
 // The faces a drive can be reached through.
@@ -145,6 +149,11 @@ class Drive final : public drive::ParameterAccess {
   void mains_off(Time now);
   void mains_on(Time now);
   [[nodiscard]] bool powered() const { return powered_; }
+  // A SMARTCARD read or written for `how_long` from `now`: meanwhile bus operation is disabled
+  // (seed 001, 6.1: a module error on INTERBUS, no words taken; seed 000, 10 exception 2: no
+  // LUSTBUS communication), decision VF-E21.
+  void smartcard(Duration how_long, Time now);
+  [[nodiscard]] bool card_busy(Time now) const { return now < card_until_; }
   // A plant or fault event (plant_event.hpp) by the calls above; false for one the inverter does
   // not take (a load, an input: DriveFacts::events says why).
   bool apply(const PlantEvent& e, Time now);
@@ -163,9 +172,9 @@ class Drive final : public drive::ParameterAccess {
   [[nodiscard]] const Vf1000PdDevice& pd() const { return pd_; }
   [[nodiscard]] drivecom::State state() const { return pd_.state(); }
   [[nodiscard]] double frequency_hz() const { return pd_.frequency_hz(); }
-  [[nodiscard]] bool power_stage_enabled() const {
-    return drivecom::power_stage_enabled(pd_.state());
-  }
+  // The power stage runs (11-STAT 02H; EEPROM values refused, seed 000 3): DRIVECOM's power stage
+  // states, but not while the motor is shut down at a reference of 0 Hz (seed 001, 5.2.3).
+  [[nodiscard]] bool power_stage_enabled() const { return pd_.power_stage_on(); }
   [[nodiscard]] Word status() const;  // 11-STAT
   [[nodiscard]] bool external_fault() const { return external_fault_; }
   // 906/907: the INTERBUS watchdog ran out (and has not seen data since); E-IBS latched.
@@ -219,6 +228,7 @@ class Drive final : public drive::ParameterAccess {
   bool external_fault_ = false;
   std::optional<int> fault_cause_;
   bool powered_ = true;
+  Time card_until_{0};  // the SMARTCARD operation ends
   // 906/907.
   bool ib_armed_ = false;
   Time ib_last_cycle_{0};

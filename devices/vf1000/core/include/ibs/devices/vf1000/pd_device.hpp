@@ -26,6 +26,10 @@ struct Vf1000PdConfig {
   double deceleration_hz_per_s = 20;  // ramp generator, down
   double stop_ramp_hz_per_s = 50;     // 36-RSTOP: stop ramp; 0 = no stop ramp (power stage off)
   double max_frequency_hz = 400;
+  // Seed 001, 5.2.3: "At a reference value of 0 Hz the inverter shuts down the motor if DC-Stop is
+  // not programmed!" No seed names the parameter that programs DC-Stop, so it is the model's
+  // configuration, off as the warning assumes (decision VF-E19).
+  bool dc_stop = false;
 };
 
 class Vf1000PdDevice {
@@ -59,6 +63,12 @@ class Vf1000PdDevice {
   [[nodiscard]] bool initialised() const { return initialised_; }
   [[nodiscard]] const Vf1000PdConfig& config() const { return config_; }
   [[nodiscard]] drivecom::State state() const { return machine_.state(); }
+  // The power stage modulates: DRIVECOM's power stage states, except while the inverter has shut
+  // the motor down at a reference of 0 Hz (5.2.3, VF-E19: the state stays ENABLED).
+  [[nodiscard]] bool power_stage_on() const {
+    return drivecom::power_stage_enabled(machine_.state()) && !zero_hz_off_;
+  }
+  [[nodiscard]] bool shut_down_at_zero_hz() const { return zero_hz_off_; }
   [[nodiscard]] double frequency_hz() const { return frequency_; }
   [[nodiscard]] double setpoint_hz() const { return setpoint_; }
   [[nodiscard]] Word status_word() const { return status_; }
@@ -79,6 +89,7 @@ class Vf1000PdDevice {
   double setpoint_ = 0.0;   // signed, after direction
   double frequency_ = 0.0;  // signed ramp output
   bool at_setpoint_ = false;
+  bool zero_hz_off_ = false;  // 5.2.3: shut down at a reference of 0 Hz
   std::optional<Word> override_;
   Word status_ = 0;
   Word comm_ = 0x8000;

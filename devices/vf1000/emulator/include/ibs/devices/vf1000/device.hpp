@@ -92,7 +92,10 @@ class Vf1000Device final : public DeviceEmulator {
 
   // The bus shows a module error for this device (initialisation, 6.1); meanwhile its bus
   // interface still takes the master's words, and it acts on the newest ones once it is ready.
-  [[nodiscard]] bool module_error(Time now) const override { return drive_->initialising(now); }
+  // Seed 001, 6.1: also while a SMARTCARD is read or written ("bus operation is disabled"; VF-E21).
+  [[nodiscard]] bool module_error(Time now) const override {
+    return drive_->initialising(now) || drive_->card_busy(now);
+  }
   [[nodiscard]] bool takes_words_in_module_error() const override { return true; }
   [[nodiscard]] drivecom::State state() const override { return drive_->state(); }
   [[nodiscard]] double frequency_hz() const { return drive_->frequency_hz(); }

@@ -38,12 +38,20 @@ struct LustbusTiming {
   // 8.1.1: "the Inverter's ACK-answer telegram, under certain circumstances, is not sent in
   // full": cut (ADR only) unless told (ack or none).
   lustbus::Reply reset_answer = lustbus::Reply::cut;
+  // The inverter's serial interface is RS-485 (not RS-232): seed 000, 4, "SMARTDRIVE Inverters
+  // with the RS-485 interface must additionally have the parameter 61-SOUTA = 7 set. This
+  // activates the data direction switch of the internal interface software driver." Without it the
+  // face hears nothing (VF-E20). Off unless told: the tests' direct line; the emulator sets it.
+  bool rs485 = false;
 };
 
 class LustbusDevice final : public lustbus::Responder {
  public:
   // A drive of its own (`drive` its configuration: self-test, storing times), started as after
-  // a power-on whose initialisation is done: the power-on bit set (6). Allocates.
+  // a power-on whose initialisation is done: the power-on bit set (6). A drive on LUSTBUS alone
+  // runs the standard software, not the INTERBUS package: its factory values are
+  // standalone_parameters()'s (seed 001 3.1.1, seed 000 4.1; VF-E20), whatever
+  // drive.interbus_software says. Allocates.
   explicit LustbusDevice(LustbusTiming timing = {}, const DriveConfig& drive = {});
   // The LUSTBUS face of an existing drive, which another face may serve too. Allocates nothing.
   LustbusDevice(std::shared_ptr<Drive> drive, LustbusTiming timing = {});
@@ -64,9 +72,12 @@ class LustbusDevice final : public lustbus::Responder {
   // defaults, the power-on bit set, 81-SIOC's rate taken (11.5).
   void restart(Time now);
   // 8.1.1: deaf while the drive initialises or boots after a reset; seed 001, 6.1: deaf while the
-  // drive operates on the INTERBUS with 1-MODE = 4 (VF-E16).
+  // drive operates on the INTERBUS with 1-MODE = 4 (VF-E16); seed 000, 4: on RS-485 deaf unless
+  // 61-SOUTA = 7 (VF-E20); seed 000, 10 exception 2: deaf while a SMARTCARD is read or written
+  // (VF-E21).
   [[nodiscard]] bool listening(Time now) const override {
-    return !drive_->initialising(now) && !drive_->serial_locked();
+    return !drive_->initialising(now) && !drive_->card_busy(now) && !drive_->serial_locked() &&
+           (!timing_.rs485 || drive_->value(pnr::kSouta) == kSoutaRs485);
   }
   // In the self-test after a reset; at its end the drive is back as after power-on.
   [[nodiscard]] bool booting() const { return drive_->starting(); }
