@@ -21,10 +21,16 @@
 //   value passes the table (04-PROG: to the factory settings; 151-ASTPR: its data set), a string
 //   write closed with List_End answered 0 whose checksum is the XOR of the blocks echoed and whose
 //   text is theirs, a mains reset (the flash copy) - and the flash copy only through 150-SAVE;
-//   every setting always passes the table.
+//   every setting always passes the table; a data set download (80-SLOAD, D39) changes settings
+//   and flash only at its accepted end, only Card Writeable ones, both alike, and never while open;
+// - the data set text (`ibs canlust download`'s parser with the CDA3000's table): an accepted
+//   text gives distinct Card Writeable parameters with values the table takes, each from a line
+//   of the text, and written back as `NUMBER VALUE` lines it parses to the same records; a
+//   refused one names a line of the text (or 0: no record) and gives no record.
 //
-// Input: byte 0 selects the part (0: decoders, 1: cannelloni, 2: server, 3: client, 4: the
-// CDA3000 drive); the rest is that part's input, read front to back.
+// Input: byte 0 selects the part (FFH: the data set text; else by its value mod 5, 0: decoders,
+// 1: cannelloni, 2: server, 3: client, 4: the CDA3000 drive); the rest is that part's input,
+// read front to back.
 #include <array>
 #include <chrono>
 #include <cstddef>
@@ -37,6 +43,7 @@
 
 #include "fuzz_support.hpp"
 #include "ibs/can/cannelloni.hpp"
+#include "ibs/canlust/data_set.hpp"
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
@@ -383,9 +390,10 @@ void drive_part(Input& in) {
   c.saved = cda::commissioned_for_bus(1, static_cast<std::uint8_t>(1 + in.ConsumeIntegral<std::uint8_t>() % 3));
   c.saved.emplace_back(cda::kCawdg, in.ConsumeIntegral<std::uint8_t>() % 64);
   c.saved.emplace_back(cda::kCascy, 1 + in.ConsumeIntegral<std::uint8_t>() % 64);
-  c.watchdog_reaction = static_cast<ErrorReaction>(in.ConsumeIntegral<std::uint8_t>() % 4);
+  c.saved.emplace_back(cda::kRop2, in.ConsumeIntegral<std::uint8_t>() % 4);  // the watchdog's reaction
   c.save_time = 0ms;  // every reply at once: each request is matched with its reply below
   c.prog_time = 0ms;
+  c.download_check_time = 0ms;
   cda::Cda3000 d(c);
   const IdentifierMap ids;
   Time now{0};
@@ -398,7 +406,7 @@ void drive_part(Input& in) {
   static constexpr std::uint16_t kNumbers[] = {cda::kProg, cda::kName, cda::kSave, cda::kAstpr, cda::kAster,
                                                cda::kClsel, cda::kRssl1, cda::kDisp, cda::kReff, cda::kCacnf,
                                                cda::kCamod, cda::kCladr, cda::kCawdg, cda::kCascy, cda::kOptn2,
-                                               999};
+                                               cda::kSload, cda::kSload, cda::kRop2, cda::kCawmk, 999};
   static constexpr std::uint8_t kModes[] = {kModeRead, kModeWrite, kModeDescribe, kModeStringRead,
                                             kModeStringWrite, kModeListEnd, 0x33};
   // Frames out: status words are DRIVECOM states; returns the replies.
@@ -418,6 +426,7 @@ void drive_part(Input& in) {
   while (in.remaining_bytes() > 0) {
     const auto action = in.ConsumeIntegral<std::uint8_t>();
     const Snapshot before = snapshot(d);
+    const bool was_downloading = d.downloading();
     std::vector<ParameterTelegram> replies;
     std::optional<ParameterTelegram> request;
     if (action < 0x40) {
@@ -449,6 +458,7 @@ void drive_part(Input& in) {
           const auto how = in.ConsumeIntegral<std::uint8_t>();
           t.data = (how & 1U) != 0 ? xor_echoed : ((how & 2U) != 0 ? in.ConsumeIntegral<std::uint8_t>() % 8U
                                                                      : in.ConsumeIntegral<std::uint32_t>());
+          if ((how & 12U) == 12U) t.data = (how & 16U) != 0 ? cda::kSloadStart : cda::kSloadEnd;
           t.block = in.ConsumeIntegral<std::uint8_t>() % 8;
           f = *encode_parameter_request(ids, a, t);
           break;
@@ -486,6 +496,25 @@ void drive_part(Input& in) {
     } else if (request && request->code != kModeListEnd) {
       open = false;
     }
+    // A download's end (D39): the only moment a download changes settings, and then only Card
+    // Writeable ones, settings and flash alike (the handshake itself reads its result).
+    const bool download_end = accepted && was_downloading && request->code == kModeWrite &&
+                              request->parameter == cda::kSload && request->data == cda::kSloadEnd;
+    if (download_end) {
+      IBS_FUZZ_REQUIRE(!d.downloading(), "the download is still open after its end");
+      for (std::size_t i = 0; i < cda::kParameters.size(); ++i) {
+        const auto& p = cda::kParameters[i];
+        if (p.number == cda::kReff || p.number == cda::kSload) continue;
+        if (before.current[i] != after.current[i] || before.saved[i] != after.saved[i]) {
+          IBS_FUZZ_REQUIRE(cda::card_writeable(p) && after.current[i] == after.saved[i],
+                           "a download's end changed what is no Card Writeable setting, or not in flash");
+        }
+      }
+      continue;
+    }
+    if (was_downloading && accepted && request->code == kModeWrite && request->parameter != cda::kSload) {
+      IBS_FUZZ_REQUIRE(before.current == after.current, "a value of an open download acted before its end");
+    }
     // Settings: only a write answered 0, with a value the table takes.
     for (std::size_t i = 0; i < cda::kParameters.size(); ++i) {
       const auto n = cda::kParameters[i].number;
@@ -512,11 +541,55 @@ void drive_part(Input& in) {
   }
 }
 
+// `ibs canlust download`'s reading of a data set text, with the CDA3000's table as the resolver.
+ResolvedRecord resolve_cda(std::string_view param, std::string_view value) {
+  const cda::ParameterInfo* p = cda::find_parameter(param);
+  if (p == nullptr) return {0, 0, "not a parameter"};
+  if (!cda::card_writeable(*p)) return {0, 0, "not Card Writeable"};
+  cda::ParsedValue v = cda::parse_value(*p, value);
+  if (!v.wire) return {0, 0, v.error.empty() ? std::string("refused") : v.error};
+  return {p->number, *v.wire, {}};
+}
+
+void data_set_part(Input& in) {
+  const std::vector<char> bytes = in.ConsumeBytes<char>(in.remaining_bytes());
+  const std::string text(bytes.begin(), bytes.end());
+  const DataSetParse p = parse_data_set(text, resolve_cda);
+  const std::size_t lines = ibs::fuzz::count_lines(text);
+  if (!p) {
+    IBS_FUZZ_REQUIRE(p.records.empty() && !p.error.empty() && p.error_line <= lines, "a refusal without its line");
+    return;
+  }
+  IBS_FUZZ_REQUIRE(!p.records.empty(), "an accepted data set without records");
+  std::string again;
+  for (std::size_t i = 0; i < p.records.size(); ++i) {
+    const DataSetRecord& r = p.records[i];
+    const cda::ParameterInfo* info = cda::find_parameter(r.parameter);
+    IBS_FUZZ_REQUIRE(info != nullptr && cda::card_writeable(*info), "a record no data set may hold");
+    IBS_FUZZ_REQUIRE(cda::check_value(*info, r.value) == cda::ValueCheck::ok, "a record the table refuses");
+    IBS_FUZZ_REQUIRE(r.line >= 1 && r.line <= lines && (i == 0 || r.line > p.records[i - 1].line),
+                     "a record outside the text's lines");
+    for (std::size_t j = 0; j < i; ++j) IBS_FUZZ_REQUIRE(p.records[j].parameter != r.parameter, "a parameter twice");
+    again += std::to_string(r.parameter) + " " + std::to_string(cda::number_of(*info, r.value)) + "\n";
+  }
+  const DataSetParse q = parse_data_set(again, resolve_cda);
+  IBS_FUZZ_REQUIRE(q && q.records.size() == p.records.size(), "the records written back do not parse");
+  for (std::size_t i = 0; i < q.records.size(); ++i) {
+    IBS_FUZZ_REQUIRE(q.records[i].parameter == p.records[i].parameter && q.records[i].value == p.records[i].value,
+                     "the records written back parse to others");
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Input in(data, size);
-  switch (in.ConsumeIntegral<std::uint8_t>() % 5) {
+  const auto part = in.ConsumeIntegral<std::uint8_t>();
+  if (part == 0xFF) {
+    data_set_part(in);
+    return 0;
+  }
+  switch (part % 5) {
     case 0: decoders(in); break;
     case 1: cannelloni_part(in); break;
     case 2: server_part(in); break;

@@ -352,6 +352,57 @@ TEST(Candump, DecodeSaysWhereALineIsBad) {
   std::remove(path.c_str());
 }
 
+// `ibs canlust download FILE` (seed 003, "Downloading parameter data sets"; D39): the set goes
+// through 80-SLOAD and is in the drive's EEPROM; a bad line is refused with FILE:LINE before
+// anything is sent (exit 2); a set the drive finds implausible is rejected with the parameter and
+// its line (exit 1), the old set stays; the file is only read.
+TEST(CanlustCli, DownloadADataSetFile) {
+  const Ports p;
+  Emulator emu({"--bus", p.emulator_bus(), "cda3000@1"});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U);
+  const std::string bus = p.client_bus();
+  const auto cli = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"canlust"});
+    args.insert(args.end(), {"--bus", bus});
+    return run_cli(args);
+  };
+  const std::string good = temp_path("canlust_set") + ".txt";
+  const std::string text = "# conveyor 3\nCASCY 40   # status every 40 ms\n574-CAWDG 0\nCDSSL CDS2\n";
+  std::ofstream(good) << text;
+  auto r = cli({"download", "--address", "1", good});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "CDA 1: 3 parameters downloaded, 80-SLOAD = 0: the data set is in the EEPROM\n");
+  r = cli({"read", "--address", "1", "CASCY"});
+  EXPECT_EQ(r.out, "CDA 1 575-CASCY: 40 ms\n") << r.err;
+  std::ifstream back(good);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(back), {}), text);  // never written
+
+  const std::string bad = temp_path("canlust_bad") + ".txt";
+  std::ofstream(bad) << "CASCY 40\n\nCAWDG 300\n";
+  r = cli({"download", "--address", "1", bad});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust download: " + bad + ":3: 574-CAWDG: 300 ms is above the maximum 255 ms\n");
+  std::ofstream(bad) << "SAVE 1\n";
+  r = cli({"download", "--address", "1", bad});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust download: " + bad + ":1: 150-SAVE cannot be part of a data set (it is not Card Writeable)\n");
+  r = cli({"download", "--address", "1", temp_path("canlust_missing")});
+  EXPECT_EQ(r.rc, 2);
+
+  // 570-CAMOD = MASTER is a value of the table the drive does not run: implausible as a whole.
+  std::ofstream(bad) << "CASCY 20\nCAMOD MASTER\n";
+  r = cli({"download", "--address", "1", bad, "--json"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_EQ(r.err, "ibs canlust download: CDA 1: the drive found the data set implausible: 570-CAMOD (" + bad +
+                       ":2), 80-SLOAD = 570; the old data set stays\n");
+  EXPECT_NE(r.out.find("\"outcome\":\"rejected\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"rejected_parameter\":570"), std::string::npos) << r.out;
+  r = cli({"read", "--address", "1", "CASCY"});
+  EXPECT_EQ(r.out, "CDA 1 575-CASCY: 40 ms\n") << r.err;
+  std::remove(good.c_str());
+  std::remove(bad.c_str());
+}
+
 // ---- the test bench (issue 24) ---------------------------------------------------------------
 
 std::string write_file(const std::string& name, const std::string& text) {
@@ -471,7 +522,7 @@ TEST(CanlustBench, EmulateControlSocketInjectsAFault) {
             "control:2: cda3000@1: load 50.0 %: set: the motor slips 1.50 Hz below the output frequency\n"
             "control:3: control entries apply at once: no 'at'\n"
             "control:4: cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
-            "11 E-FLT, 12 E-PWR, 16 E-OP2\n"
+            "11 E-FLT, 12 E-PWR, 16 E-OP2; its warnings (6.3) are 0004H W-I2T, 0008H W-TM, 0010H W-TH\n"
             "control:5: device 7 is not served (give its address or NAME@ADDR as on the command line)\n");
   std::remove(err_path.c_str());
 }

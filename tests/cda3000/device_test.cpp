@@ -434,7 +434,7 @@ TEST_P(Cda3000Watchdog, TripsWithinOneStatusPeriodWithItsReaction) {
   DeviceConfig dc = commissioned(1);
   dc.saved.emplace_back(kCawdg, 50);
   dc.saved.emplace_back(kCascy, 20);
-  dc.watchdog_reaction = c.reaction;
+  dc.saved.emplace_back(kRop2, static_cast<std::uint32_t>(c.reaction));  // 6.1: a parameter (CAN-E16)
   b.add(dc);
   m.system_start();
   b.run_for(5ms);

@@ -150,6 +150,59 @@ TEST(Cda3000Events, EnpoLowBlocksThePowerStage) {
   EXPECT_EQ(b.drive(0).state(), drivecom::State::enabled);
 }
 
+// Seed 003, 5.1 "Controller enable (ENPO)": "The drive units require an additional hardware
+// enable via control terminal X2/8 ENPO for control over the CAN bus. This control signal is
+// high-active. When this control signal is removed the motor runs out freely." Row by row: with
+// ENPO low from the power-on, no command of the bus enables the drive (DRIVECOM and EasyDrive);
+// taken away from a running motor, it coasts (D28: 2 s, not the 200 ms of a stop) (CAN-E14, D36).
+struct EnpoRow {
+  const char* name;
+  std::uint8_t cacnf;
+  ibs::Word first;   // the commands the master sends with ENPO low
+  ibs::Word second;
+};
+class Cda3000Enpo : public ::testing::TestWithParam<EnpoRow> {};
+
+TEST_P(Cda3000Enpo, WithoutEnpoTheBusCannotEnableTheDrive) {
+  const EnpoRow row = GetParam();
+  Master m;
+  Bus<Master> b(m);
+  DeviceConfig dc = commissioned(1, row.cacnf);
+  dc.saved.emplace_back(kCascy, 20);
+  b.add(dc);
+  b.drive(0).set_input(Input::enpo, false, Time{0});
+  b.run_for(1ms);
+  m.system_start();
+  b.run_for(5ms);
+  const auto ref = *wire_from_hz(ValueWidth::int32q16, 20.0);
+  m.send_control(1, {row.first, ref});
+  b.run_for(20ms);
+  m.send_control(1, {row.second, ref});
+  b.run_for(500ms);
+  EXPECT_EQ(b.drive(0).state(), drivecom::State::start_up_inhibit);
+  EXPECT_EQ(b.drive(0).actual_hz(b.now()), 0.0);
+  // High-active: with ENPO the same commands enable it.
+  b.drive(0).set_input(Input::enpo, true, b.now());
+  m.send_control(1, {row.first, ref});
+  b.run_for(20ms);
+  m.send_control(1, {row.second, ref});
+  b.run_for(1500ms);
+  EXPECT_EQ(b.drive(0).state(), drivecom::State::enabled);
+  EXPECT_NEAR(b.drive(0).actual_hz(b.now()), 20.0, 0.1);
+  // Removed: the motor runs out freely (coasting, 20 Hz x e^-0.05 after 100 ms).
+  b.drive(0).set_input(Input::enpo, false, b.now());
+  b.run_for(100ms);
+  EXPECT_NEAR(b.drive(0).actual_hz(b.now()), 19.02, 0.05);
+  EXPECT_FALSE(drivecom::power_stage_enabled(b.drive(0).state()));
+}
+
+const EnpoRow kEnpoRows[] = {
+    {"Drivecom", 2, 0x0006, 0x000F},
+    {"EasyDriveStr", 4, 0x0001, 0x0001},
+};
+INSTANTIATE_TEST_SUITE_P(Section51, Cda3000Enpo, ::testing::ValuesIn(kEnpoRows),
+                         [](const ::testing::TestParamInfo<EnpoRow>& p) { return std::string(p.param.name); });
+
 // The face (what scenarios and `emulate --control` use): the cause by name, short name or number;
 // unknown causes, inputs and loads refused with what the drive takes.
 TEST(Cda3000Events, FaceTakesCausesByNameOrNumberAndRefusesOthers) {
@@ -166,7 +219,7 @@ TEST(Cda3000Events, FaceTakesCausesByNameOrNumberAndRefusesOthers) {
   }
   EXPECT_EQ(face.check_event({K::fault, "E-XYZ", 0.0, "", false}),
             "cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, 11 E-FLT, "
-            "12 E-PWR, 16 E-OP2");
+            "12 E-PWR, 16 E-OP2; its warnings (6.3) are 0004H W-I2T, 0008H W-TM, 0010H W-TH");
   EXPECT_EQ(face.check_event({K::input, "", 0.0, "X9", true}),
             "input 'X9': the CDA3000's terminals in seed 003 are ENPO (X2-8) and ISD00 (X2-9)");
   EXPECT_FALSE(face.check_event({K::load, "", 301.0, "", false}).empty());

@@ -23,6 +23,7 @@
 #include "ibs/can/candump.hpp"
 #include "ibs/can/socketcan.hpp"
 #include "ibs/can/udp.hpp"
+#include "ibs/canlust/data_set.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/devices/drives.hpp"
 #include "control_input.hpp"
@@ -657,12 +658,109 @@ int monitor_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o,
   return kExitCanOk;
 }
 
+// Seed 003, "Downloading parameter data sets": FILE (one `PARAM VALUE` a line, '#' a comment) is
+// read, never written; every value is checked against the drive's table before anything is sent
+// (a refusal names FILE:LINE), then the set goes through the drive's handshake in one sequence
+// (canlust::DataSetDownload) and the drive checks the whole set (D39).
+int download_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  if (face.download == nullptr) throw std::invalid_argument(std::string(face.title) + " offers no data set download");
+  const cl::DownloadHandshake& h = *face.download;
+  std::string text;
+  try {
+    text = read_text_file(o.parameter);  // a regular file of bounded size: never a FIFO or a device
+  } catch (const FileReadError& e) {
+    throw std::invalid_argument(o.parameter + ": " + e.what());
+  }
+  const auto resolve = [&face](std::string_view param, std::string_view value) -> cl::ResolvedRecord {
+    const auto p = face.find_parameter(param);
+    if (!p) {
+      return {0, 0, "'" + std::string(param) + "' is not a " + std::string(face.title) + " parameter"};
+    }
+    if (!p->in_data_set) return {0, 0, p->name + " cannot be part of a data set (it is not Card Writeable)"};
+    const devices::CanlustValue v = face.parse_value(p->number, value);
+    if (!v.wire) return {0, 0, v.error};
+    return {p->number, *v.wire, {}};
+  };
+  const cl::DataSetParse parsed = cl::parse_data_set(text, resolve);
+  if (!parsed) {
+    throw std::invalid_argument(o.parameter + (parsed.error_line > 0 ? ":" + std::to_string(parsed.error_line) : "") +
+                                ": " + parsed.error);
+  }
+  const auto name_of = [&face](std::uint16_t n) {
+    const auto p = face.parameter(n);
+    return p ? p->name : "parameter " + std::to_string(n);
+  };
+  const auto line_of = [&](std::uint16_t n) -> std::string {
+    for (const auto& r : parsed.records) {
+      if (r.parameter == n) return " (" + o.parameter + ":" + std::to_string(r.line) + ")";
+    }
+    return "";
+  };
+  const std::string handshake = name_of(h.parameter);
+  Session s(o.bus);
+  cl::ClientConfig cc;
+  cc.ids = ids_for(o.bus);
+  if (o.timeout_ms > 0) cc.timeout = std::chrono::milliseconds(o.timeout_ms);
+  cl::ParameterClient client(cc);
+  const auto a = static_cast<cl::Address>(o.address);
+  cl::DataSetDownload d(h, a, parsed.records);
+  const Clock::time_point t0 = Clock::now();
+  for (;;) {
+    const Time now = since(t0);
+    d.step(client);
+    client.step(now);
+    while (auto f = client.take_frame()) s.send(*f);
+    d.step(client);
+    if (d.finished()) break;
+    const Time next = client.next_deadline();
+    const Duration wait = next <= now ? Duration::zero() : std::min<Duration>(next - now, 10ms);
+    if (auto f = s.receive(wait)) client.receive(*f, since(t0));
+  }
+  const cl::DownloadResult& r = d.result();
+  const std::size_t n = parsed.records.size();
+  nlohmann::json j;
+  j["address"] = o.address;
+  j["command"] = "download";
+  j["file"] = o.parameter;
+  j["records"] = n;
+  j["outcome"] = std::string(cl::to_string(r.state));
+  const std::string who = drive_label(face, static_cast<unsigned>(o.address));
+  if (r.state == cl::DownloadState::downloaded) {
+    if (o.bus.json) {
+      out << j.dump() << "\n";
+    } else {
+      out << who << ": " << n << (n == 1 ? " parameter" : " parameters") << " downloaded, " << handshake
+          << " = 0: the data set is in the EEPROM\n";
+    }
+    return kExitCanOk;
+  }
+  std::string why;
+  if (r.state == cl::DownloadState::rejected) {
+    j["rejected_parameter"] = r.rejected_parameter;
+    why = "the drive found the data set implausible: " + name_of(r.rejected_parameter) + line_of(r.rejected_parameter) +
+          ", " + handshake + " = " + std::to_string(r.rejected_parameter) + "; the old data set stays";
+  } else {
+    j["failed_step"] = r.step;
+    if (r.outcome.kind == cl::OutcomeKind::refused) j["status"] = r.outcome.status;
+    const std::string step = r.step == 0       ? handshake + " = -1 (open)"
+                             : r.step <= n     ? name_of(parsed.records[r.step - 1].parameter) + " (" + o.parameter + ":" +
+                                                 std::to_string(parsed.records[r.step - 1].line) + ")"
+                             : r.step == n + 1 ? handshake + " = -2 (check and save)"
+                                               : "reading " + handshake;
+    why = step + ": " + cl::describe(r.outcome) +
+          (r.step >= 1 && r.step <= n ? "; the download was dropped, the old data set stays" : "");
+  }
+  if (o.bus.json) out << j.dump() << "\n";
+  err << "ibs canlust download: " << who << ": " << why << "\n";
+  return kExitCanDevice;
+}
+
 int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
   const std::string name = which.get_name();
   try {
     const cl::IdentifierMap ids = ids_for(o.bus);
     layout_for(o.bus);
-    if (name == "read" || name == "write" || name == "describe") {
+    if (name == "read" || name == "write" || name == "describe" || name == "download") {
       if (o.address < 0 || o.address > ids.max_address) {
         throw std::invalid_argument("--address must be 0.." + std::to_string(ids.max_address));
       }
@@ -672,6 +770,7 @@ int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& o
     if (name == "read") return read_cmd(face, o, out, err);
     if (name == "write") return write_cmd(face, o, out, err);
     if (name == "describe") return describe_cmd(face, o, out, err);
+    if (name == "download") return download_cmd(face, o, out, err);
     if (name == "start") return system_cmd(face, true, o, out, err);
     if (name == "stop") return system_cmd(face, false, o, out, err);
     return monitor_cmd(face, o, out, err);
@@ -873,7 +972,8 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
                             devices::drive_names(devices::Bus::canlust, ", ", " or ", "@ADDR") + ", one per drive")
       ->required();
   state.emulate->add_option("--watchdog-reaction", eo.watchdog_reaction,
-                            "the drives' reaction when 574-CAWDG runs out: wrn, stop, quick-stop, disable-power (default)");
+                            "the drives' stored reaction when 574-CAWDG runs out (the error response of E-OP2, a "
+                            "parameter the master may write): wrn, stop, quick-stop, disable-power (default)");
   state.emulate->add_flag("--factory", eo.factory,
                           "factory settings (CLSEL TERM, CLADR 0): ADDR is the connector's address 0..7");
   state.emulate->add_option("--control", eo.control,
@@ -905,6 +1005,13 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
   add_parameter_options(state.describe, co);
   add_bus_options(state.describe, co.bus);
 
+  state.download = state.canlust->add_subcommand(
+      "download", "download a parameter data set (PARAM VALUE lines): checked by the drive as a whole, then in its EEPROM");
+  state.download->add_option("FILE", co.parameter, "the data set: `PARAM VALUE` per line, '#' starts a comment")->required();
+  state.download->add_option("--address", co.address, "the drive's CAN address (571-CLADR)")->required();
+  state.download->add_option("--timeout-ms", co.timeout_ms, "each request's timeout (default 250 ms; the final check 2 s)");
+  add_bus_options(state.download, co.bus);
+
   state.monitor = state.canlust->add_subcommand("monitor", "print every frame decoded until SIGINT/SIGTERM");
   state.monitor->add_option("--duration-ms", co.duration_ms, "stop after this long (default: until a signal)");
   add_bus_options(state.monitor, co.bus);
@@ -913,7 +1020,7 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
 std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::ostream& out, std::ostream& err) {
   if (state.canlust == nullptr || !state.canlust->parsed()) return std::nullopt;
   if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
-  for (const CLI::App* c : {state.start, state.stop, state.read, state.write, state.describe, state.monitor}) {
+  for (const CLI::App* c : {state.start, state.stop, state.read, state.write, state.describe, state.download, state.monitor}) {
     if (c->parsed()) return client(*c, state.client_options, out, err);
   }
   return kExitCanBadInput;

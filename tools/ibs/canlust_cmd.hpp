@@ -6,6 +6,7 @@
 //   ibs canlust read     --bus BUS --address A PARAM
 //   ibs canlust write    --bus BUS --address A PARAM VALUE
 //   ibs canlust describe --bus BUS --address A PARAM
+//   ibs canlust download --bus BUS --address A FILE
 //   ibs canlust monitor  --bus BUS [--duration-ms N]
 //
 // BUS is udp:LOCALPORT:HOST:PORT (CAN over UDP in cannelloni's format; LOCALPORT 0: any, PORT 0:
@@ -77,6 +78,7 @@ struct CanlustCommandState {
   CLI::App* read = nullptr;
   CLI::App* write = nullptr;
   CLI::App* describe = nullptr;
+  CLI::App* download = nullptr;
   CLI::App* monitor = nullptr;
   CanlustEmulateOptions emulate_options;
   CanlustClientOptions client_options;

@@ -65,10 +65,12 @@ end
 -- The CDA3000's parameter names (devices/cda3000/parameters.hpp; the test
 -- CanlustDissector.ParameterNamesAreTheWings keeps the two equal).
 local cda3000 = {
-  [4] = "04-PROG", [90] = "90-NAME", [95] = "95-ERR1", [150] = "150-SAVE", [151] = "151-ASTPR", [152] = "152-ASTER",
+  [4] = "04-PROG", [80] = "80-SLOAD", [90] = "90-NAME", [95] = "95-ERR1", [150] = "150-SAVE", [151] = "151-ASTPR", [152] = "152-ASTER",
   [180] = "180-FISA0", [260] = "260-CLSEL", [280] = "280-RSSL1", [360] = "360-DISP", [406] = "406-REFF",
-  [489] = "489-CLBDR", [492] = "492-CACNF", [570] = "570-CAMOD", [571] = "571-CLADR", [574] = "574-CAWDG",
-  [575] = "575-CASCY", [578] = "578-OPTN2", [651] = "651-CDSSL",
+  [489] = "489-CLBDR", [492] = "492-CACNF", [520] = "520-ROTI", [521] = "521-RPLS", [522] = "522-RPAR",
+  [523] = "523-RFLT", [524] = "524-RPWR", [525] = "525-ROP2", [570] = "570-CAMOD", [571] = "571-CLADR",
+  [574] = "574-CAWDG", [575] = "575-CASCY", [576] = "576-CAWMK", [577] = "577-CAWRN", [578] = "578-OPTN2",
+  [651] = "651-CDSSL",
 }
 
 p.prefs.step = Pref.uint("Identifier step", 2, "identifier = base + step x address (1: the text, 2: the examples)")

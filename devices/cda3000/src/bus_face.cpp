@@ -34,12 +34,20 @@ std::string causes() {
   for (const auto& e : canlust::kErrorTable) {
     list += (list.empty() ? "" : ", ") + std::to_string(e.number) + " " + std::string(e.name);
   }
+  list += "; its warnings (6.3) are";
+  for (const auto& w : kWarnings) {
+    char b[48];
+    std::snprintf(b, sizeof b, " %04XH %.*s,", static_cast<unsigned>(w.mask), static_cast<int>(w.name.size()),
+                  w.name.data());
+    list += b;
+  }
+  list.pop_back();
   return list;
 }
 
 std::string check(const CanlustEvent& e) {
   using K = CanlustEvent::Kind;
-  if (e.kind == K::fault && !find_cause(e.cause)) {
+  if (e.kind == K::fault && !find_cause(e.cause) && find_warning(e.cause) == nullptr) {
     return "cause '" + e.cause + "': the CDA3000's errors (seed 003, table 5.9) are " + causes();
   }
   if (e.kind == K::input && !find_input(e.input)) {
@@ -78,11 +86,25 @@ class EmulatedDrive final : public CanlustDrive {
     if (const std::string why = check(e); !why.empty()) return {false, why};
     switch (e.kind) {
       case K::fault: {
+        if (const WarningInfo* w = find_warning(e.cause)) {
+          // 6.3: a warning, reported on the CAN (status bit 7) when 576-CAWMK selects it.
+          if (!drive_.raise_warning(w->mask, now)) return {false, "the drive is off (mains)"};
+          char b[16];
+          std::snprintf(b, sizeof b, "%04XH ", static_cast<unsigned>(w->mask));
+          const bool shown = (*drive_.value(kCawmk) & w->mask) != 0;
+          return {true, b + std::string(w->name) + " (" + std::string(w->text) + "), warning, " +
+                            (shown ? "status bit 7" : "not reported on the CAN (576-CAWMK)")};
+        }
         const std::uint8_t n = *find_cause(e.cause);
         if (!drive_.inject_fault(n, now)) return {false, "the drive is off (mains)"};
         const auto info = canlust::find_error(n);
+        // 6.1: the response is the error's parameter; WRN leaves the state as it was.
+        const auto r = static_cast<canlust::ErrorReaction>(*drive_.value(*response_parameter(n)));
+        const std::string what = r == canlust::ErrorReaction::warning
+                                     ? "WRN, status bit 7"
+                                     : std::string(drivecom::to_string(drive_.state()));
         return {true, std::to_string(n) + " " + std::string(info->name) + " (" + std::string(info->cause) + "), " +
-                          std::string(drivecom::to_string(drive_.state())) + ", error telegram sent"};
+                          what + ", error telegram sent"};
       }
       case K::mains_off:
         drive_.power_off();
@@ -120,11 +142,14 @@ class EmulatedDrive final : public CanlustDrive {
 std::unique_ptr<CanlustDrive> make(const CanlustFaceOptions& o) {
   DeviceConfig c;
   c.ids = o.ids;
-  c.watchdog_reaction = o.watchdog_reaction;
   if (o.factory) {
     c.connector_address = o.address;
   } else {
     c.saved = commissioned_for_bus(o.address, o.cacnf);
+  }
+  // 6.1 / CAN-E16: the watchdog's reaction is the drive's stored 525-ROP2.
+  if (o.watchdog_reaction != static_cast<canlust::ErrorReaction>(kResponseDefault) || !o.factory) {
+    c.saved.push_back({kRop2, static_cast<std::uint32_t>(o.watchdog_reaction)});
   }
   // 4.3.1: the bus settings are parameters; the constructor checks them like a write.
   if (o.bitrate) c.saved.push_back({kClbdr, *o.bitrate / 1000});  // 489-CLBDR in kBaud
@@ -193,7 +218,7 @@ std::unique_ptr<CanlustMaster> make_master(const CanlustMasterOptions& o) {
 
 std::optional<CanlustParameter> as_face(const ParameterInfo* p) {
   if (p == nullptr) return std::nullopt;
-  return CanlustParameter{p->number, display_name(*p), p->writable(), p->is_string(), p->type};
+  return CanlustParameter{p->number, display_name(*p), p->writable(), p->is_string(), p->type, card_writeable(*p)};
 }
 
 std::optional<CanlustParameter> find_by_text(std::string_view text) { return as_face(find_parameter(text)); }
@@ -241,12 +266,15 @@ CanlustFrameText frame_text(const canlust::CanFrame& f, const canlust::Identifie
   return {e.id, std::move(e.text)};
 }
 
+// D39: 80-SLOAD -1 opens, -2 closes (the answer after the check, 200 ms), 0 drops.
+constexpr canlust::DownloadHandshake kDownload{kSload, kSloadStart, kSloadEnd, kSloadCancel, 2s};
+
 }  // namespace
 
 const CanlustFace& bus_face() {
   static const CanlustFace face{"CDA3000", &make,   &make_master,   &find_by_text, &find_by_number, &parse,
                                 &format,   &check,  "CDA",          &number,       &write_timeout,  &description,
-                                &status_word,       &hz,            &frame_text};
+                                &status_word,       &hz,            &frame_text,    &kDownload};
   return face;
 }
 

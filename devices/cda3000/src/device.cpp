@@ -4,6 +4,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -73,6 +74,7 @@ std::optional<std::uint32_t> Cda3000::value(std::uint16_t number) const {
   if (!i || kParameters[*i].is_string()) return std::nullopt;
   if (number == kReff) return static_cast<std::uint32_t>(q16_from_double(reference_hz()));
   if (number == kErr1) return wire_from_err_struc(last_error_);
+  if (number == kCawrn) return warnings();
   return current_[*i];
 }
 
@@ -94,6 +96,28 @@ std::string_view Cda3000::saved_text(std::uint16_t number) const {
 }
 
 bool Cda3000::bus_controls() const { return get(kClsel) == kOptn2Code; }
+
+ErrorReaction Cda3000::response(std::uint8_t error) const {
+  const auto p = response_parameter(error);
+  return static_cast<ErrorReaction>(p ? get(*p) : kResponseDefault);
+}
+
+std::uint16_t Cda3000::warnings() const {
+  // 6.3 0004H "warning message when I2t integrator of device is active": the integrator runs
+  // while the power stage drives more than the rated torque (CAN-E17).
+  const bool i2t = drivecom::power_stage_enabled(sm_.state()) && std::fabs(load_percent_) > 100.0;
+  return static_cast<std::uint16_t>(warnings_raised_ | (i2t ? kWarningI2t : 0U));
+}
+
+bool Cda3000::warning() const {
+  // 6.3: only the warnings 576-CAWMK selects are reported on the CAN (status bit 7).
+  return warning_ || error_warning_ || (warnings() & get(kCawmk)) != 0;
+}
+
+void Cda3000::acknowledge_warnings() {
+  error_warning_ = false;
+  warnings_raised_ = 0;
+}
 
 double Cda3000::reference_hz() const {
   if (get(kRssl1) != kOptn2Code) return 0.0;  // the emulator has no terminals, MOP or tables
@@ -139,7 +163,7 @@ ibs::Word Cda3000::easydrive_status(Time now) const {
   const double t = plant_.target();
   const bool braking = std::fabs(f) > config_.plant.stop_threshold_hz && ((f > 0.0 && t < f) || (f < 0.0 && t > f));
   w = with_bit(w, es::kBrk, active && braking);
-  w = with_bit(w, es::kWarning, warning_);
+  w = with_bit(w, es::kWarning, warning());
   w = with_bit(w, es::kCanStart, system_state() == canlust::SystemState::start);
   w = with_bit(w, es::kReferenceReached,
                st == drivecom::State::enabled && std::fabs(f - reference_hz()) <= config_.plant.reached_window_hz);
@@ -155,6 +179,8 @@ void Cda3000::power_on(Time now) {
   current_ = saved_;
   easy_word_ = 0;
   name_ = name_saved_;
+  download_open_ = false;  // a download the mains reset cut is lost; the old set is in flash
+  set(kSload, 0);
   const std::uint32_t cladr = get(kCladr);
   address_ = static_cast<Address>(cladr != 0 ? cladr : config_.connector_address);
   layout_ = process_layout_for_cacnf(static_cast<std::uint8_t>(get(kCacnf))).value_or(ProcessLayout{});
@@ -165,7 +191,7 @@ void Cda3000::power_on(Time now) {
   nc.layout = layout_;
   nc.status_period = std::chrono::milliseconds(get(kCascy));
   nc.watchdog = std::chrono::milliseconds(get(kCawdg));
-  nc.watchdog_reaction = config_.watchdog_reaction;
+  nc.watchdog_reaction = response(kErrorOp2);  // 525-ROP2; watchdog_expired reads it again
   nc.outbox_capacity = config_.outbox_capacity;
   node_.reset();
   node_.emplace(nc, *this, *this);
@@ -174,6 +200,7 @@ void Cda3000::power_on(Time now) {
   control_ = 0;
   reference_hz_ = 0.0;
   warning_ = false;
+  acknowledge_warnings();
   fault_.reset();
   plant_.reset(now);
   sample(now);  // the self-test is instantaneous here: NOT READY -> START-UP INHIBIT (1)
@@ -201,7 +228,8 @@ void Cda3000::sample(Time now) {
   drivecom::DeviceInputs in;
   // 2.3 Figure 2-5 / 3.1: without ENPO (X2-8) the power stage cannot be enabled; the drive
   // takes it as DRIVECOM's "block power" (bit 1 clear): START-UP INHIBIT, the motor coasts (D36).
-  in.control = enpo_ ? control_ : static_cast<ibs::Word>(control_ & ~ibs::Word{0x0002});
+  // 4.x: during a data set download the drive is disabled ("the drive is enabled again" after it).
+  in.control = enpo_ && !download_open_ ? control_ : static_cast<ibs::Word>(control_ & ~ibs::Word{0x0002});
   in.fault_present = fault_.has_value();
   in.fault_reaction_done = !fault_ || *fault_ == ErrorReaction::disable_power || stopped;
   in.stopped = stopped;
@@ -261,7 +289,7 @@ Time Cda3000::next_deadline() const {
 
 ibs::Word Cda3000::status_word() const {
   drivecom::StatusExtras x;
-  x.alarm = warning_;
+  x.alarm = warning();
   x.remote = bus_controls();
   x.limit_value = get(kRssl1) == kOptn2Code && std::fabs(reference_hz_) > config_.plant.fmax_hz;
   // Bit 10 needs the actual frequency at the time of asking: status(now) adds it.
@@ -284,14 +312,42 @@ bool Cda3000::inject_fault(std::uint8_t number, Time now) {
   if (!node_ || !canlust::find_error(number)) return false;
   advance(now);
   ++counters_.device_faults;
-  // 6.1: "the drive unit disables the power stage if the default error response is set" -- the
-  // seed prints no other response for these errors (D34).
-  fault_ = ErrorReaction::disable_power;
+  // 6.1: "the error response is programmable for each error in four stages"; the default
+  // disables the power stage (CAN-E16: the error's parameter, factory PWOFF).
+  const ErrorReaction r = response(number);
   const auto hours = std::chrono::duration_cast<std::chrono::hours>(now - first_power_on_.value_or(now)).count();
   last_error_ = {number, 0, static_cast<std::uint16_t>(std::min<long long>(hours, 0xFFFF))};
-  sample(now);
-  // 5.5 / 6.2: the error message (441 + address) carries the number of table 5.9.
-  node_->report_error({number, 0, static_cast<std::uint8_t>(ErrorReaction::disable_power)}, now);
+  if (r == ErrorReaction::warning) {
+    // 6.1 p. 67: with the response WRN "the device indicates the warning": status bit 7.
+    error_warning_ = true;
+  } else {
+    // A second error never softens the reaction already running (the codes rise with severity).
+    if (!fault_ || r > *fault_) fault_ = r;
+    sample(now);
+  }
+  // 5.5 / 6.2: the error message (441 + address) carries the number of table 5.9 and (D6) the
+  // reaction taken.
+  node_->report_error({number, 0, static_cast<std::uint8_t>(r)}, now);
+  return true;
+}
+
+const WarningInfo* find_warning(std::string_view text) {
+  std::string up(text);
+  for (char& c : up) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (const auto& w : kWarnings) {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%04XH", static_cast<unsigned>(w.mask));
+    char cx[16];
+    std::snprintf(cx, sizeof cx, "0X%04X", static_cast<unsigned>(w.mask));
+    if (up == w.name || "W-" + up == w.name || up == hex || up == cx) return &w;
+  }
+  return nullptr;
+}
+
+bool Cda3000::raise_warning(std::uint16_t mask, Time now) {
+  if (!node_) return false;
+  advance(now);
+  warnings_raised_ = static_cast<std::uint16_t>(warnings_raised_ | mask);
   return true;
 }
 
@@ -325,6 +381,8 @@ void Cda3000::execute(const ControlTelegram& t, Time now) {
   if (get(kRssl1) == kOptn2Code) reference_hz_ = hz_from_wire(layout_.reference, t.reference);
   warning_ = false;  // a control telegram again: the watchdog's warning is over
   // 6.5: the error reset bit acknowledges the error; the cause (no control telegram) is gone.
+  // It acknowledges an error answered with WRN and the warnings of 6.3 too (CAN-E17).
+  if (drivecom::reset_fault_edge(sm_.last_control(), t.word)) acknowledge_warnings();
   if (fault_ && sm_.state() == drivecom::State::fault && drivecom::reset_fault_edge(sm_.last_control(), t.word)) {
     fault_.reset();
   }
@@ -350,13 +408,18 @@ StatusTelegram Cda3000::status(Time now) {
 std::optional<ErrorTelegram> Cda3000::watchdog_expired(const WatchdogEvent& e) {
   advance(e.now);
   ++counters_.watchdog_trips;
-  if (e.reaction == ErrorReaction::warning) {
+  // 6.1 / D15: the watchdog reports E-OP2; its reaction is 525-ROP2 as it is set now (CAN-E16),
+  // not what the node was built with.
+  const ErrorReaction r = response(e.error.number);
+  if (r == ErrorReaction::warning) {
     warning_ = true;  // 6.1 WRN: a warning, the drive keeps running
   } else {
-    fault_ = e.reaction;
+    if (!fault_ || r > *fault_) fault_ = r;
     sample(e.now);
   }
-  return e.error;
+  ErrorTelegram t = e.error;
+  t.reaction = static_cast<std::uint8_t>(r);
+  return t;
 }
 
 void Cda3000::system_state_changed(SystemState s, Time now) {
@@ -364,6 +427,7 @@ void Cda3000::system_state_changed(SystemState s, Time now) {
   if (s != SystemState::stop) return;
   // 6.5: the transition SYSTEM START -> SYSTEM STOP acknowledges the error: transition 15.
   warning_ = false;
+  acknowledge_warnings();
   if (fault_) {
     fault_.reset();
     if (sm_.state() == drivecom::State::fault) {
@@ -389,6 +453,15 @@ ValueResult Cda3000::read(std::uint16_t number, std::uint8_t index, Time now) {
 AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint32_t v, Time now) {
   const ParameterInfo* p = find_parameter(number);
   if (p == nullptr) return {kStatusUnknownParameter, {}};
+  if (download_open_ && number != kSload) {
+    // 4.x: the data set "is transferred to the drive controller without individual checking of
+    // the parameter values"; only Card Writeable parameters belong to it (D39).
+    if (!card_writeable(*p)) return {kStatusChangeNotPermitted, {}};
+    if (index != 0) return {kStatusImpermissibleValue, {}};
+    pending_[*parameter_index(number)] = v;
+    ++counters_.writes;
+    return {};
+  }
   if (!p->writable() || p->is_string()) return {kStatusChangeNotPermitted, {}};
   if (index != 0) return {kStatusImpermissibleValue, {}};
   if (check_value(*p, v) != ValueCheck::ok) return {kStatusImpermissibleValue, {}};
@@ -412,6 +485,7 @@ AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint3
       if (v == 1) {
         // 3.5.1 / 4.3.3: the settings into flash; "takes a few hundred milliseconds".
         saved_ = current_;
+        saved_[*parameter_index(kSload)] = 0;  // a handshake in RAM, no setting (D39)
         name_saved_ = name_;
         return {kStatusOk, config_.save_time};
       }
@@ -419,11 +493,60 @@ AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint3
     case kAstpr:
       load_preset(v, now);
       return {};
+    case kSload:
+      return download(v, now);
     default:
       set(number, v);
       apply_live(number, now);
       return {};
   }
+}
+
+AccessResult Cda3000::download(std::uint32_t code, Time now) {
+  advance(now);
+  if (code == kSloadStart) {
+    // Opened only with the power stage off and the motor at rest: the drive is disabled for the
+    // download (D39); a second -1 starts again.
+    if (drivecom::power_stage_enabled(sm_.state()) || std::fabs(plant_.hz(now)) > config_.plant.stop_threshold_hz) {
+      return {kStatusChangeNotPermitted, {}};
+    }
+    download_open_ = true;
+    pending_ = current_;  // the parameters the set leaves out keep their values
+    set(kSload, kSloadStart);
+    sample(now);
+    return {};
+  }
+  if (code == kSloadCancel) {
+    download_open_ = false;
+    set(kSload, 0);
+    sample(now);
+    return {};
+  }
+  if (code != kSloadEnd || !download_open_) return {kStatusImpermissibleValue, {}};
+  // 4.x: "the drive controller checks the now complete new data set for plausibility": every
+  // Card Writeable value against its row, in the table's order; the first one refused is named.
+  std::uint16_t implausible = 0;
+  for (std::size_t i = 0; i < kParameters.size() && implausible == 0; ++i) {
+    const ParameterInfo& p = kParameters[i];
+    if (!card_writeable(p)) continue;
+    const bool camod_master = p.number == kCamod && pending_[i] != kCamodSlave;  // D26
+    if (check_value(p, pending_[i]) != ValueCheck::ok || camod_master) implausible = p.number;
+  }
+  download_open_ = false;
+  if (implausible != 0) {
+    set(kSload, implausible);  // nothing taken: the old data set stays
+  } else {
+    // "If the data set is valid the parameters are accepted with the attribute Card Writeable
+    // into the EEPROM": settings and flash alike; 574 / 575 act at once (D21).
+    for (std::size_t i = 0; i < kParameters.size(); ++i) {
+      if (card_writeable(kParameters[i])) current_[i] = saved_[i] = pending_[i];
+    }
+    set(kSload, 0);
+    apply_live(kCawdg, now);
+    apply_live(kCascy, now);
+  }
+  sample(now);  // "The drive is enabled again"
+  return {kStatusOk, config_.download_check_time};
 }
 
 void Cda3000::load_preset(std::uint32_t data_set, Time now) {

@@ -48,6 +48,18 @@ std::string with_unit(const ParameterInfo& p, const std::string& v) {
 
 }  // namespace
 
+std::optional<std::uint16_t> response_parameter(std::uint8_t error) {
+  switch (error) {
+    case canlust::kErrorOti: return kRoti;
+    case canlust::kErrorPls: return kRpls;
+    case canlust::kErrorPar: return kRpar;
+    case canlust::kErrorFlt: return kRflt;
+    case canlust::kErrorPwr: return kRpwr;
+    case canlust::kErrorOp2: return kRop2;
+    default: return std::nullopt;
+  }
+}
+
 const ParameterInfo* find_parameter(std::uint16_t number) {
   for (const auto& p : kParameters) {
     if (p.number == number) return &p;

@@ -21,6 +21,7 @@
 
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
+#include "ibs/canlust/data_set.hpp"
 #include "ibs/canlust/data_types.hpp"
 #include "ibs/canlust/errors.hpp"
 #include "ibs/canlust/frame.hpp"
@@ -37,7 +38,8 @@ namespace ibs::devices {
 // What `ibs canlust emulate` and a scenario's [[device]] give one emulated drive.
 struct CanlustFaceOptions {
   canlust::IdentifierMap ids{};
-  // The reaction programmed for the bus watchdog (seed 003, 6.1).
+  // The reaction programmed for the bus watchdog (seed 003, 6.1): the drive's stored setting of its
+  // response parameter (CDA3000: 525-ROP2), as a commissioning tool would have saved it.
   canlust::ErrorReaction watchdog_reaction = canlust::ErrorReaction::disable_power;
   // true: an uncommissioned drive at the connector's address (seed 003, 2.1: 0..7); false: a
   // drive commissioned for the bus (7.1.2) at `address` with the telegram layout `cacnf`.
@@ -120,6 +122,7 @@ struct CanlustParameter {
   bool writable = true;
   bool is_string = false;  // read and written as text
   canlust::DataType type = canlust::DataType::usign32;  // how the wire image codes the value
+  bool in_data_set = false;  // a data set download may hold it ("Card Writeable")
 };
 
 struct CanlustValue {
@@ -238,6 +241,10 @@ struct CanlustFace {
   // A frame explained with the drive's parameter names and word meanings.
   CanlustFrameText (*explain_frame)(const canlust::CanFrame& f, const canlust::IdentifierMap& ids,
                                     const canlust::ProcessLayout& layout) = nullptr;
+  // Seed 003, "Downloading parameter data sets": the drive's handshake (`ibs canlust download`);
+  // nullptr when the drive offers no download. Which parameters a set may hold:
+  // CanlustParameter::in_data_set.
+  const canlust::DownloadHandshake* download = nullptr;
 };
 
 }  // namespace ibs::devices

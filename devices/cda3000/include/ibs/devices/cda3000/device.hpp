@@ -41,8 +41,11 @@ struct DeviceConfig {
   Duration save_time = 300ms;
   // p. 13: the reply to 04-PROG = 1 comes "only when the command is complete" (time invented).
   Duration prog_time = 500ms;
-  // 6.1: the error reaction programmed for the bus watchdog (574-CAWDG); D15: disable power.
-  canlust::ErrorReaction watchdog_reaction = canlust::ErrorReaction::disable_power;
+  // 4.x: the reply to 80-SLOAD = -2 comes once the whole data set is checked and, when valid, in
+  // the EEPROM (time invented, as the MC6000's 200 ms of seed 000 11.4; D39).
+  Duration download_check_time = 200ms;
+  // The reaction to the bus watchdog (574-CAWDG) is no setting here but the drive's parameter
+  // 525-ROP2 (6.1: programmable per error; the watchdog reports E-OP2, D15): put it in `saved`.
   // Flash values other than the factory settings (a commissioned drive), e.g. {571, 1}; checked
   // by the constructor like a write.
   std::vector<std::pair<std::uint16_t, std::uint32_t>> saved{};
@@ -67,6 +70,24 @@ struct DeviceCounters {
 enum class Input : std::uint8_t { enpo, isd00 };
 std::optional<Input> find_input(std::string_view name);  // "ENPO", "ISD00" (any case)
 std::string_view to_string(Input i);
+
+// The warnings of 6.3 ("parameterizable warnings on the CAN") whose text the seed keeps: the bit
+// (mask) in 577-CAWRN and 576-CAWMK, the name the bench raises it by, the seed's text (CAN-E17).
+struct WarningInfo {
+  std::uint16_t mask;
+  std::string_view name;
+  std::string_view text;
+};
+inline constexpr std::uint16_t kWarningI2t = 0x0004;
+inline constexpr std::uint16_t kWarningMotorTemperature = 0x0008;
+inline constexpr std::uint16_t kWarningHeatSink = 0x0010;
+inline constexpr std::array<WarningInfo, 3> kWarnings{{
+    {kWarningI2t, "W-I2T", "I2t integrator of the device active"},
+    {kWarningMotorTemperature, "W-TM", "motor temperature above 502-WLTM"},
+    {kWarningHeatSink, "W-TH", "heat sink temperature above its warning level"},
+}};
+// By name ("W-TM", "TM", any case) or mask ("0008H", "0x0008").
+const WarningInfo* find_warning(std::string_view text);
 
 // Load torque limits (D35): +-300 % of the motor's rated torque.
 inline constexpr double kMaxLoadPercent = 300.0;
@@ -99,7 +120,15 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   // default error response (6.1: the power stage is disabled, DRIVECOM FAULT), sends the error
   // telegram (number, location 0, reaction) and keeps it in 95-ERR1. false: mains off or a number
   // the table lacks (nothing changes).
+  // The response is the error's parameter (520-ROTI .. 525-ROP2, 6.1, CAN-E16): WRN shows the
+  // warning bit until acknowledged, STOP / QSTOP stop the motor and then FAULT, PWOFF FAULT at once.
   bool inject_fault(std::uint8_t number, Time now);
+  // A warning of 6.3 (a mask of kWarnings) present until acknowledged like an error (6.5: the
+  // error reset bit, System Start -> Stop) or a mains reset (CAN-E17). false: mains off.
+  bool raise_warning(std::uint16_t mask, Time now);
+  // 577-CAWRN: the warnings present, whether the mask reports them or not; 0004H (I2t) also
+  // while the power stage drives a load above 100 % of the rated torque.
+  [[nodiscard]] std::uint16_t warnings() const;
   // The load torque in % of the motor's rated torque (D35): the motor slips below the output
   // frequency, 3 Hz at 100 %; kept over mains resets (it is mechanical).
   void set_load(double percent, Time now);
@@ -115,7 +144,11 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   [[nodiscard]] double actual_hz(Time now) const { return plant_.hz(now); }
   // The reference the drive follows (0 unless 280-RSSL1 = OPTN2), limited to +-fmax.
   [[nodiscard]] double reference_hz() const;
-  [[nodiscard]] bool warning() const { return warning_; }
+  // Status bit 7 (DRIVECOM and EasyDrive): the watchdog's or an error's WRN response, or a warning
+  // of 577-CAWRN that 576-CAWMK reports on the CAN.
+  [[nodiscard]] bool warning() const;
+  // 80-SLOAD = -1 opened a data set download that has not ended (the power stage is blocked).
+  [[nodiscard]] bool downloading() const { return download_open_; }
   [[nodiscard]] std::optional<canlust::ErrorReaction> fault() const { return fault_; }
   // A parameter's setting (the wire image) / text; nullopt for numbers the table lacks.
   [[nodiscard]] std::optional<std::uint32_t> value(std::uint16_t number) const;
@@ -153,6 +186,9 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   [[nodiscard]] ibs::Word easydrive_status(Time now) const;
   [[nodiscard]] bool awaiting_stop() const;
   [[nodiscard]] bool bus_controls() const;
+  [[nodiscard]] canlust::ErrorReaction response(std::uint8_t error) const;
+  canlust::AccessResult download(std::uint32_t code, Time now);
+  void acknowledge_warnings();
 
   DeviceConfig config_;
   Values current_{};
@@ -169,14 +205,18 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   Time state_since_{};
   double reference_hz_ = 0.0;  // as received, before the +-fmax limit
   SpeedPlant plant_{};
-  bool warning_ = false;
+  bool warning_ = false;        // the watchdog's WRN response, until the next control telegram
+  bool error_warning_ = false;  // an error with the WRN response, until acknowledged
+  std::uint16_t warnings_raised_ = 0;  // 6.3 warnings raised by the bench, until acknowledged
   std::optional<canlust::ErrorReaction> fault_;
   DeviceCounters counters_{};
   double load_percent_ = 0.0;
   bool enpo_ = true;   // 7.1.2 step 6: the hardware enable is wired for bus operation
   bool isd00_ = false;
   canlust::ErrStruc last_error_{};
-  std::optional<Time> first_power_on_;  // the operating hours of 95-ERR1 count from here
+  std::optional<Time> first_power_on_;
+  bool download_open_ = false;  // 80-SLOAD = -1 until -2 or 0: the data set being received
+  Values pending_{};  // the operating hours of 95-ERR1 count from here
 };
 
 }  // namespace ibs::devices::cda3000

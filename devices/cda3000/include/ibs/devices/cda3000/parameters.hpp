@@ -56,6 +56,14 @@ struct ParameterInfo {
 
 // Numbers with behaviour beyond storing a value.
 inline constexpr std::uint16_t kProg = 4;      // 1.x exceptions: 1 = factory settings
+// 4.x "Downloading parameter data sets": the handshake of a download (number, name and codes
+// invented after the MC6000's 80-SLOAD of seed 000, 11.4; D39): -1 opens, -2 closes and checks,
+// 0 drops an open download; reads -1 while one is open, then 0 (valid, in the EEPROM) or the
+// number of the first implausible parameter.
+inline constexpr std::uint16_t kSload = 80;
+inline constexpr std::uint32_t kSloadStart = 0xFFFFFFFFU;  // -1, INT16 sign-filled (4.1.1)
+inline constexpr std::uint32_t kSloadEnd = 0xFFFFFFFEU;    // -2
+inline constexpr std::uint32_t kSloadCancel = 0;
 inline constexpr std::uint16_t kName = 90;     // invented: a user text (a writable string)
 inline constexpr std::uint16_t kErr1 = 95;     // invented: the last error as ERR_STRUC (D34)
 inline constexpr std::uint16_t kFisa0 = 180;
@@ -74,6 +82,19 @@ inline constexpr std::uint16_t kCawdg = 574;   // 4.3.1
 inline constexpr std::uint16_t kCascy = 575;   // 4.3.1
 inline constexpr std::uint16_t kOptn2 = 578;   // 3.3: the module found at option slot 2
 inline constexpr std::uint16_t kCdssl = 651;   // 5.4.1 footnote 2
+// 6.1: "the error response is programmable for each error in four stages": one response per
+// error of table 5.9, numbers and names invented (CAN-E16). 525-ROP2 is the bus watchdog's too
+// (it reports E-OP2 at 172, D15).
+inline constexpr std::uint16_t kRoti = 520;
+inline constexpr std::uint16_t kRpls = 521;
+inline constexpr std::uint16_t kRpar = 522;
+inline constexpr std::uint16_t kRflt = 523;
+inline constexpr std::uint16_t kRpwr = 524;
+inline constexpr std::uint16_t kRop2 = 525;
+// 6.3 "Parameterizable warnings on the CAN": the mask of the warnings reported over the bus and
+// the warnings present (bits 0004H, 0008H, 0010H ... of 6.3); numbers and names invented (CAN-E17).
+inline constexpr std::uint16_t kCawmk = 576;
+inline constexpr std::uint16_t kCawrn = 577;
 
 // Substitution-text codes. Seed 003 prints three: 280-RSSL1 "7 TBSEL" (5.4.1 footnote 1), the
 // range "0 FCON .. 11 FMAX" with 1 FA0, 2 FA1, 4 FPOT (4.3.2), and 651-CDSSL "6 OPTN2" (footnote
@@ -122,16 +143,32 @@ inline constexpr std::array<Choice, 3> kChoicesCdssl{{
     {1, "CDS2", "characteristic data set 2"},
     {kOptn2Code, "OPTN2", "selected by the CUSEL bit over the bus"}}};
 
+// The four stages of 6.1 as codes of the error reaction (D7: 0 WRN, 1 STOP, 2 quick stop, 3 the
+// power stage off, the default of 6.1); the names besides WRN and STOP invented.
+inline constexpr std::uint32_t kResponseDefault = 3;
+inline constexpr std::array<Choice, 4> kChoicesResponse{{
+    {0, "WRN", "warning message: status bit 7, the drive runs on"},
+    {1, "STOP", "controlled stop, then FAULT"},
+    {2, "QSTOP", "quick stop, then FAULT"},
+    {kResponseDefault, "PWOFF", "power stage disabled at once, the motor coasts (6.1 default)"}}};
+// The response parameter of an error of table 5.9; nullopt for a number the table lacks.
+std::optional<std::uint16_t> response_parameter(std::uint8_t error);
+
 // Q16 limits of 406-REFF (the drive's +-fmax is a setting of the emulator).
 inline constexpr std::int64_t kQ16Min = -2147483648LL;
 inline constexpr std::int64_t kQ16Max = 2147483647LL;
 
 // clang-format off
-inline constexpr std::array<ParameterInfo, 19> kParameters{{
+inline constexpr std::array<ParameterInfo, 28> kParameters{{
   {kProg, "PROG", "reset to factory settings", DataType::usign8, 0, 1, 0, "",
    Memory::ram, Access::read_write, Effect::at_once, kChoicesProg, true,
    "seed 003 p. 13: 1 makes the drive overwrite all settings with their defaults, the reply "
    "comes when that is done; type, range, names invented"},
+  {kSload, "SLOAD", "parameter data set download (handshake)", DataType::int16, -2, 999, 0, "",
+   Memory::ram, Access::read_write, Effect::at_once, {}, true,
+   "seed 003 4.x 'Downloading parameter data sets': values taken without individual checking, "
+   "the whole set checked for plausibility at the end, then into the EEPROM with the attribute "
+   "Card Writeable; number, name and codes invented after seed 000 11.4's 80-SLOAD (D39)"},
   {kName, "NAME", "device name (user text)", DataType::string, 0, 99, 0, "",
    Memory::flash, Access::read_write, Effect::at_once, {}, true,
    "invented: seed 003 names no string parameter that can be written (D24)"},
@@ -175,6 +212,26 @@ inline constexpr std::array<ParameterInfo, 19> kParameters{{
    Memory::flash, Access::read_write, Effect::after_mains_reset, kChoicesCacnf, true,
    "seed 003 4.3.2, 5.5.5, 7.1: 2 DRIVECOM (7.1.2), 4 EasyDrive (7.1.1); map D5; factory 2 "
    "invented"},
+  {kRoti, "ROTI", "error response to E-OTI (drive unit overheating)", DataType::usign8, 0, 3,
+   kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
+   "seed 003 6.1: 'programmable for each error in four stages', default: the power stage "
+   "disabled; number, name and codes invented (CAN-E16)"},
+  {kRpls, "RPLS", "error response to E-PLS (plausibility error)", DataType::usign8, 0, 3,
+   kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
+   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+  {kRpar, "RPAR", "error response to E-PAR (faulty parameter setting)", DataType::usign8, 0, 3,
+   kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
+   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+  {kRflt, "RFLT", "error response to E-FLT (floating point error)", DataType::usign8, 0, 3,
+   kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
+   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+  {kRpwr, "RPWR", "error response to E-PWR (power pack not recognized)", DataType::usign8, 0, 3,
+   kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
+   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+  {kRop2, "ROP2", "error response to E-OP2 (option module, bus watchdog)", DataType::usign8, 0, 3,
+   kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
+   "seed 003 6.1 and table 5.9 (E-OP2); also the reaction to 574-CAWDG running out (D15); "
+   "number, name, codes and the factory PWOFF invented (CAN-E16)"},
   {kCamod, "CAMOD", "function selection of the option module", DataType::usign8, 0, 1,
    kCamodSlave, "", Memory::flash, Access::read_write, Effect::after_mains_reset, kChoicesCamod,
    true, "seed 003 4.3.1: 'Function selection option module CANLUST Slave Ma...'; codes invented"},
@@ -188,6 +245,13 @@ inline constexpr std::array<ParameterInfo, 19> kParameters{{
   {kCascy, "CASCY", "sampling time of the status message", DataType::usign16, 1, 32000, 80, "ms",
    Memory::flash, Access::read_write, Effect::at_once, {}, false,
    "seed 003 4.3.1: 1..32000 ms, factory 80"},
+  {kCawmk, "CAWMK", "warnings reported on the CAN (mask)", DataType::usign16, 0, 0xFFFF, 0xFFFF, "",
+   Memory::flash, Access::read_write, Effect::at_once, {}, true,
+   "seed 003 6.3 'parameterizable warnings on the CAN', masks 0004H I2t, 0008H motor "
+   "temperature, 0010H heat sink temperature; number, name and factory (all) invented (CAN-E17)"},
+  {kCawrn, "CAWRN", "warnings present (6.3 bits)", DataType::usign16, 0, 0xFFFF, 0, "",
+   Memory::ram, Access::read_only, Effect::at_once, {}, true,
+   "seed 003 6.3 bits 0004H, 0008H, 0010H; number and name invented (CAN-E17)"},
   {kOptn2, "OPTN2", "module found at option slot 2", DataType::string, 0, 99, 0, "",
    Memory::ram, Access::read_only, Effect::at_once, {}, true,
    "seed 003 3.3: 'verify the value in parameter 578-OPTN2 (LCAN)'; a read-only STRING 'LCAN' "
@@ -202,6 +266,13 @@ inline constexpr std::array<ParameterInfo, 19> kParameters{{
 // The factory text of 90-NAME and the constant of 578-OPTN2 (3.3: the CM-CAN1 shows as LCAN).
 inline constexpr std::string_view kNameFactory = "CDA3000";
 inline constexpr std::string_view kOptn2Module = "LCAN";
+
+// 4.x "Card Writeable": the parameters a data set holds, the writable values kept in flash
+// (D39); RAM commands (04-PROG, 150-SAVE, 80-SLOAD), read-only values and 90-NAME (a STRING,
+// written by the string transfer) are not.
+constexpr bool card_writeable(const ParameterInfo& p) {
+  return p.writable() && !p.is_string() && p.memory == Memory::flash;
+}
 
 // The row of a parameter; nullptr when the CDA3000 has none here (reply status 20H).
 const ParameterInfo* find_parameter(std::uint16_t number);
