@@ -162,7 +162,7 @@ wait_for_line() {  # file prefix: the emulator's first line, within 10 s
 emulators+=($!)
 lustbus_pty=$(wait_for_line "$work/lustbus.txt" "pty: ")
 "$work/hosts-build/lustbus_read" "$lustbus_pty" 1 00004 | tee "$work/lustbus_read.txt"
-grep -qx "1 00004 = 0019" "$work/lustbus_read.txt"  # 4-FSSEL's factory value, 25
+grep -qx "1 00004 = 0000" "$work/lustbus_read.txt"  # 4-FSSEL of a drive on LUSTBUS alone: 0 (docs/errata.md VF-E20)
 "$ibs_bin" dfs1 emulate --pty dfs1@1 >"$work/dfs1.txt" 2>&1 &
 emulators+=($!)
 dfs1_pty=$(wait_for_line "$work/dfs1.txt" "pty: ")

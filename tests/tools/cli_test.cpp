@@ -52,7 +52,7 @@ TEST(Cli, HelpEndsWithExamplesAndExitCodes) {
     ASSERT_NE(examples, std::string::npos) << path << "\n" << r.out;
     EXPECT_NE(r.out.find("\n  ibs ", examples + 12), std::string::npos) << path << ": two examples\n" << r.out;
     EXPECT_NE(r.out.find("Exit codes: 0 "), std::string::npos) << path << "\n" << r.out;
-    for (const char* parser : {" TEXT", " INT", " UINT", " FLOAT"}) {
+    for (const char* parser : {" TEXT", " INT ", " INT\n", " UINT", " FLOAT"}) {
       EXPECT_EQ(r.out.find(parser), std::string::npos) << path << ": '" << parser << "'\n" << r.out;
     }
   }

@@ -90,7 +90,7 @@ constexpr Footer kFooters[] = {
     {"dfs1 speed", "Examples:\n  ibs dfs1 speed -p /tmp/dfs1 -a 1 1000\n  ibs dfs1 speed -p /tmp/dfs1 -a 0 --execute\n"
                    "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
     {"completion", "Examples:\n  ibs completion bash > ~/.local/share/bash-completion/completions/ibs\n"
-                   "  source <(ibs completion bash)\n"
+                   "  ibs completion bash > /tmp/ibs.bash && . /tmp/ibs.bash\n"
                    "Exit codes: 0 ok; 2 bad input"},
 };
 

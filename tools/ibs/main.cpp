@@ -172,8 +172,8 @@ int run_ibs(int argc, char** argv) {
       int rc = ibs::cli::kExitOk;
       if (replay->parsed()) {
         rc = ibs::cli::replay(emulate, file, replay_pcap);
-      } else if (std::ostringstream text; const auto log = file == "-" ? std::nullopt
-                                                  : ibs::cli::decode_lustbus_log(file, text, std::cerr)) {
+      } else if (std::ostringstream log_text; const auto log = file == "-" ? std::nullopt
+                                                  : ibs::cli::decode_lustbus_log(file, log_text, std::cerr)) {
         // A log is explained as text; with --json the output is JSON or an error, never the text
         // first (the text is held until it is known which).
         rc = *log;
@@ -181,17 +181,17 @@ int run_ibs(int argc, char** argv) {
           std::cerr << file << ": --json is for traces; a byte log is explained as text (leave out --json)\n";
           rc = ibs::cli::kExitBadInput;
         } else {
-          std::cout << text.str() << std::flush;
+          std::cout << log_text.str() << std::flush;
         }
-      } else if (std::ostringstream text; const auto candump = file == "-" ? std::nullopt
+      } else if (std::ostringstream candump_text; const auto candump = file == "-" ? std::nullopt
                                                   : ibs::cli::decode_candump_log(file, decode_id_step, decode_cacnf,
-                                                                                 text, std::cerr)) {
+                                                                                 candump_text, std::cerr)) {
         rc = *candump;
         if (decode_json) {
           std::cerr << file << ": --json is for traces; a candump log is explained as text (leave out --json)\n";
           rc = ibs::cli::kExitBadInput;
         } else {
-          std::cout << text.str() << std::flush;
+          std::cout << candump_text.str() << std::flush;
         }
       } else {
         rc = ibs::cli::decode(file, decode_json);
