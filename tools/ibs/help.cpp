@@ -140,7 +140,7 @@ void completion_case(const CLI::App* app, const std::string& path, std::ostrings
     s << "      case \"$prev\" in " << files << ") COMPREPLY=($(compgen -f -- \"$cur\")); return ;; esac\n";
   }
   s << "      COMPREPLY=($(compgen -W \"" << words << "\" -- \"$cur\"))\n";
-  s << "      [ ${#COMPREPLY[@]} -eq 0 ] && COMPREPLY=($(compgen -f -- \"$cur\"))\n";
+  s << "      if [ ${#COMPREPLY[@]} -eq 0 ]; then COMPREPLY=($(compgen -f -- \"$cur\")); fi\n";
   s << "      ;;\n";
   for (const CLI::App* sub : app->get_subcommands({})) {
     completion_case(sub, path.empty() ? sub->get_name() : path + " " + sub->get_name(), s);
@@ -179,6 +179,7 @@ std::string bash_completion(const CLI::App& app) {
     << "  case \"$path\" in\n";
   completion_case(&app, "", s);
   s << "  esac\n"
+    << "  return 0\n"
     << "}\n"
     << "complete -F _ibs ibs\n";
   return s.str();
