@@ -101,7 +101,7 @@ for lua in interbus canlust; do
   [[ -f "$work/full/share/ibs/wireshark/plugins/$lua.lua" ]] || { echo "check_install: $lua.lua not installed" >&2; exit 1; }
 done
 if command -v tshark >/dev/null; then
-  tshark -X lua_script:"$work/full/share/ibs/wireshark/plugins/interbus.lua" -G protocols 2>/dev/null | grep -q $'\tinterbus$' \
+  tshark -G protocols -X lua_script:"$work/full/share/ibs/wireshark/plugins/interbus.lua" 2>/dev/null | grep -q $'\tinterbus$' \
     || { echo "check_install: tshark does not load the installed interbus.lua" >&2; exit 1; }
 fi
 cmake -S examples/embed -B "$work/embed-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
