@@ -118,16 +118,18 @@ cmake --build "$work/ddi-build" -j "$jobs" >/dev/null
 # The shared library gives the DDI's calls and the legacy headers' two register readings
 # (ibs_util.h) and nothing else: the legacy helpers (ddi_macr.h) are macros, as in Phoenix's SDK,
 # so nothing of them is linked. pkg-config finds it for a C build.
-if nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
-    | awk '{ sub(/@.*/, "", $3) } $2 == "T" && $3 !~ /^DDI_/ && $3 != "GetIBSDiagnostic" && $3 != "GetIBSDiagnosticEx"' \
-    | grep -q .; then
+# The exported names first (the globs that match nothing drop out; no pipe ends early).
+shopt -s nullglob
+ddi_libs=("$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so*)
+shopt -u nullglob
+((${#ddi_libs[@]} > 0)) || { echo "check_install: libibs-ddi.so is not installed" >&2; exit 1; }
+ddi_exports=$(nm -D --defined-only "${ddi_libs[@]}" | awk '{ sub(/@.*/, "", $3) } $2 == "T" { print $3 }' | sort -u)
+if [[ -n $(grep -v -e '^DDI_' -e '^GetIBSDiagnostic$' -e '^GetIBSDiagnosticEx$' <<<"$ddi_exports") ]]; then
   echo "check_install: libibs-ddi.so exports more than the DDI_* calls and GetIBSDiagnostic(Ex)" >&2
   exit 1
 fi
 for sym in GetIBSDiagnostic GetIBSDiagnosticEx; do
-  nm -D --defined-only "$work"/full/lib*/libibs-ddi.so* "$work"/full/lib/*/libibs-ddi.so* 2>/dev/null \
-    | awk -v s="$sym" '{ sub(/@.*/, "", $3) } $2 == "T" && $3 == s' | grep -q . \
-    || { echo "check_install: libibs-ddi.so does not export $sym" >&2; exit 1; }
+  grep -qx "$sym" <<<"$ddi_exports" || { echo "check_install: libibs-ddi.so does not export $sym" >&2; exit 1; }
 done
 export PKG_CONFIG_PATH="$work/full/lib/pkgconfig:$work/full/lib/x86_64-linux-gnu/pkgconfig"
 # shellcheck disable=SC2046
