@@ -21,7 +21,7 @@ valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect='*MasterL
 # "IR (P%)  < CALLER (Nx)" stand right above the function's own line "IR (P%)  *  FUNCTION".
 # Perl, because callgrind_annotate is a Perl script: wherever it runs, so does this.
 callgrind_annotate --tree=caller --inclusive=yes "$out" 2>/dev/null | perl -ne '
-  if (/^\s*([\d,]+) .*<.*\((\d+)x\)/) { $calls += $2; next }
+  if (/^\s*([\d,]+) .*<.*\(([\d,]+)x\)/) { ($c = $2) =~ tr/,//d; $calls += $c; next }
   if (/^\s*([\d,]+) .*\*\s.*MasterLoop::cycle/) { ($ir = $1) =~ tr/,//d; $found = 1; last }
   $calls = 0;
   END {

@@ -2,6 +2,9 @@
 // and a whole ENQUIRY — host submit to outcome, device receiver and responder — in memory.
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+
+#include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/lustbus/host.hpp"
 #include "ibs/lustbus/receiver.hpp"
 
@@ -88,5 +91,36 @@ void BM_EnquiryBothSides(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_EnquiryBothSides);
+
+// The same exchange with the wing's emulated VF1000 (its reaction time 0) answering 91-TYPE, the
+// row of issue 26 (docs/performance.md); the answer is checked against the inverter's stored value.
+void BM_EnquiryVf1000BothSides(benchmark::State& state) {
+  devices::vf1000::LustbusTiming timing;
+  timing.reaction = ReactionModel::fixed(Duration(0));
+  devices::vf1000::LustbusDevice vf(timing);
+  Receiver rx(vf, 1);
+  Host host;
+  const Request req = enquiry(1, kTypeCode);
+  char text[8];
+  std::snprintf(text, sizeof text, "%04X", static_cast<unsigned>(vf.value(kParamType)));
+  const Value expected = make_value(text);
+  Time now{0};
+  for (auto _ : state) {
+    const RequestId id = host.submit(req).id;
+    host.step(now);
+    for (const auto b : host.take_output()) rx.receive(b, now);
+    host.output_done(now);
+    for (const auto b : rx.take_answer(now)) host.receive(b, now);
+    for (const auto b : host.take_output()) rx.receive(b, now);  // EOT
+    host.output_done(now);
+    const Outcome* o = host.outcome(id);
+    if (o == nullptr || o->kind != OutcomeKind::value || !(o->value == expected)) {
+      state.SkipWithError("the VF1000 did not answer 91-TYPE with its stored value");
+      break;
+    }
+    now += std::chrono::microseconds{1};
+  }
+}
+BENCHMARK(BM_EnquiryVf1000BothSides);
 
 }  // namespace

@@ -98,6 +98,27 @@ inline constexpr auto kPaths = make_paths();
 
 constexpr PathStep path(State s, Target t) { return kPaths[static_cast<std::size_t>(t)][idx(s)]; }
 
+// kPaths as the words sent: the path's command word and the transition waited for.
+struct PathMove {
+  Word word;
+  std::uint8_t transition;
+};
+constexpr std::array<std::array<PathMove, kStateCount>, kTargets> make_path_moves() {
+  std::array<std::array<PathMove, kStateCount>, kTargets> moves{};
+  for (std::size_t t = 0; t < kTargets; ++t) {
+    for (std::size_t s = 0; s < kStateCount; ++s) moves[t][s] = {command_word(kPaths[t][s].command), kPaths[t][s].transition};
+  }
+  return moves;
+}
+inline constexpr auto kPathMoves = make_path_moves();
+
+// A state on a target's path that step_target takes no decision in beyond the path: neither a
+// fault state (reset or refusal) nor NOT READY (start or restart).
+constexpr bool plain_path_state(std::uint8_t code) {
+  return code == idx(State::start_up_inhibit) || code == idx(State::ready) || code == idx(State::on) ||
+         code == idx(State::enabled) || code == idx(State::emergency_stop_active);
+}
+
 // The table of docs/drivecom.md, pinned where the manual is explicit: the start-up of 5.3.4
 // (0006H in START-UP INHIBIT, 000FH in READY taking 3 and 4) and every state's way out.
 static_assert(path(State::start_up_inhibit, Target::enabled).command == Command::shutdown);
@@ -129,19 +150,6 @@ std::string_view to_string(Failure f) {
   return "?";
 }
 
-SequencerConfig SequencerConfig::defaults() {
-  SequencerConfig c;
-  c.transition_timeout.fill(200ms);
-  c.transition_timeout[0] = 0ms;
-  c.transition_timeout[13] = 0ms;
-  c.transition_timeout[1] = 10s;   // the VF1000 initialises for about 4 s after power-on (6.1)
-  c.transition_timeout[14] = 10s;  // the drive's fault reaction (braking) may take seconds
-  return c;
-}
-
-Sequencer::Sequencer(const SequencerConfig& config)
-    : config_(config), app_bits_(static_cast<Word>(config.application_bits & ~kOwnedBits)) {}
-
 void Sequencer::restart() {
   report_ = Report{};
   last_control_ = 0;
@@ -151,9 +159,11 @@ void Sequencer::restart() {
   up_since_request_ = false;
   reset_edge_sent_ = false;
   pulse_started_ = false;
+  hold_code_ = kNotHolding;
 }
 
 void Sequencer::begin(Goal g, Time now) {
+  hold_code_ = kNotHolding;
   report_.goal = g;
   report_.phase = Phase::moving;
   report_.failure = Failure::none;
@@ -174,12 +184,6 @@ void Sequencer::request(Target t, Time now) {
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
 void Sequencer::request_block_power(Time now) { begin(Goal::block_power, now); }
-
-Word Sequencer::emit(Word drivecom_bits) {
-  last_control_ = static_cast<Word>((drivecom_bits & cw::kDrivecomMask) | app_bits_);
-  report_.command_sent = last_control_;
-  return last_control_;
-}
 
 void Sequencer::wait_for(std::uint8_t transition, Time now) {
   if (transition != report_.transition || report_.state_seen != prev_seen_) {
@@ -227,24 +231,48 @@ Sequencer::Move Sequencer::plan(State s, Time now) {
   return {command_word(p.command), p.transition};
 }
 
-Word Sequencer::step(Word status, Time now) {
-  const std::optional<State> st = decode_state(status);
-  report_.status_seen = status;
+Word Sequencer::step_moving(std::uint8_t code, Time now) {
+  if (report_.goal == Goal::target && report_.phase == Phase::moving && plain_path_state(code)) {
+    // step_target for a drive moving along the path, the same decisions in a straight line: a
+    // healthy state ends a reset's cover (reset_allowed_), counts as up since the request, stops
+    // any reset pulse; the path's word goes out, its transition's timeout runs.
+    const State s = static_cast<State>(code);
+    report_.state_seen = s;
+    reset_allowed_ = false;
+    up_since_request_ = true;
+    reset_edge_sent_ = false;
+    pulse_started_ = false;
+    const PathMove m = kPathMoves[static_cast<std::size_t>(report_.target)][code];
+    Word w = 0;
+    if (m.transition == 0) {
+      report_.phase = Phase::reached;
+      report_.transition = 0;
+      report_.waited = 0ns;
+      w = emit(m.word);
+    } else {
+      wait_for(m.transition, now);
+      w = report_.phase == Phase::failed ? fail(Failure::timeout) : emit(m.word);
+    }
+    prev_seen_ = s;
+    known_ = s;
+    hold_code_ = report_.phase == Phase::reached && s == target_state(report_.target) ? code : kNotHolding;
+    return w;
+  }
+  const std::optional<State> st =
+      code == detail::kNoState ? std::nullopt : std::optional<State>(static_cast<State>(code));
   report_.state_seen = st;
   Word w = 0;
-  // The common case of every cycle: holding a reached target.
-  if (report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)) {
-    w = emit(last_control_);
-  } else {
-    switch (report_.goal) {
-      case Goal::idle: w = emit(command_word(Command::block_power)); break;
-      case Goal::emergency_stop:
-      case Goal::block_power: w = step_stop(st, now); break;
-      case Goal::target: w = step_target(st, now); break;
-    }
+  switch (report_.goal) {
+    case Goal::idle: w = emit(command_word(Command::block_power)); break;
+    case Goal::emergency_stop:
+    case Goal::block_power: w = step_stop(st, now); break;
+    case Goal::target: w = step_target(st, now); break;
   }
   prev_seen_ = st;
   if (st) known_ = st;
+  hold_code_ = report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)
+                   ? static_cast<std::uint8_t>(*st)
+                   : kNotHolding;
   return w;
 }
 

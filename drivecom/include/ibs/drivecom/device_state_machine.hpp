@@ -127,6 +127,43 @@ struct SampleResult {
   }
 };
 
+namespace detail {
+// A state the command table alone moves (5.1.2): no automatic transition leaves it.
+constexpr bool commanded_state(State s) { return s >= State::start_up_inhibit && s <= State::enabled; }
+
+// What one sample does in a commanded state under one command with no fault and no enable lock:
+// the transitions of kTransitionLut taken until the state moves no more (READY + ENABLE takes
+// 3 then 4, 5.3.4), and where they end. Derived once from the table, so that such a sample -- the
+// whole start-up, every hold -- is one lookup instead of the general loop of sample_transitions.
+// `settles` is false where the chain ends outside the commanded states (ENABLED + EMERGENCY STOP
+// -> EMERGENCY STOP ACTIVE, whose exit depends on the drive's other inputs): the loop decides.
+struct Chain {
+  SampleResult result;
+  bool settles = true;
+};
+constexpr std::array<std::array<Chain, 5>, kStateCount> make_chain_lut() {
+  std::array<std::array<Chain, 5>, kStateCount> lut{};
+  for (std::size_t s = 0; s < kStateCount; ++s) {
+    for (std::size_t c = 0; c < 5; ++c) {
+      Chain& ch = lut[s][c];
+      State at = static_cast<State>(s);
+      while (ch.result.count < SampleResult::kMax && commanded_state(at)) {
+        const Cell t = kTransitionLut[static_cast<std::size_t>(at)][c];
+        if (t.number == 0) break;
+        ch.result.add(t.number);
+        at = t.to;
+      }
+      ch.result.state = at;
+      ch.settles = commanded_state(at);
+    }
+  }
+  return lut;
+}
+inline constexpr auto kChainLut = make_chain_lut();
+static_assert(kChainLut[static_cast<std::size_t>(State::ready)][static_cast<std::size_t>(Command::enable)].result.packed == 0x43,
+              "READY + ENABLE: 3 then 4 in one sample (5.3.4)");
+}  // namespace detail
+
 // True where the power stage drives the motor.
 constexpr bool power_stage_enabled(State s) {
   return s == State::enabled || s == State::emergency_stop_active ||
@@ -141,12 +178,23 @@ class DeviceStateMachine {
   // Processes one sample: transitions are taken until the state is stable, so READY + ENABLE
   // reaches ENABLED in one sample (5.3.4). Never allocates, never throws.
   SampleResult sample(const DeviceInputs& in) {
-    // The common case of every sample, inline: a stable state whose command changes nothing.
-    if (holds(in)) {
-      last_control_ = in.control;
-      SampleResult stable;
-      stable.state = state_;
-      return stable;
+    // The common cases of every sample, inline: a commanded state, no fault, no enable lock.
+    // Its transitions follow from the state and the command alone: a hold (the most common) from
+    // kTransitionLut, a move from detail::kChainLut.
+    if (!in.fault_present && !in.enable_locked && detail::commanded_state(state_)) {
+      const auto cmd = static_cast<std::size_t>(decode_command(in.control));
+      if (detail::kTransitionLut[static_cast<std::size_t>(state_)][cmd].number == 0) {
+        last_control_ = in.control;
+        SampleResult stable;
+        stable.state = state_;
+        return stable;
+      }
+      const detail::Chain& c = detail::kChainLut[static_cast<std::size_t>(state_)][cmd];
+      if (c.settles) {
+        last_control_ = in.control;
+        state_ = c.result.state;
+        return c.result;
+      }
     }
     return sample_transitions(in);
   }
@@ -154,7 +202,7 @@ class DeviceStateMachine {
   // control word: a stable state (START-UP INHIBIT .. ENABLED), no fault, and a command that
   // does not move it. The same inputs again then hold it again.
   [[nodiscard]] bool holds(const DeviceInputs& in) const {
-    return !in.fault_present && !in.enable_locked && state_ >= State::start_up_inhibit && state_ <= State::enabled &&
+    return !in.fault_present && !in.enable_locked && detail::commanded_state(state_) &&
            detail::kTransitionLut[static_cast<std::size_t>(state_)]
                                  [static_cast<std::size_t>(decode_command(in.control))]
                                      .number == 0;

@@ -76,7 +76,16 @@ struct SequencerConfig {
   // stays in FAULT. Longer than two VF1000 samples (8.2 ms) so that a sampling drive sees the edge.
   Duration reset_pulse = 50ms;
 
-  static SequencerConfig defaults();
+  // At compile time, so that a sequencer built with the defaults copies a constant.
+  static constexpr SequencerConfig defaults() {
+    SequencerConfig c;
+    c.transition_timeout.fill(200ms);
+    c.transition_timeout[0] = 0ms;
+    c.transition_timeout[13] = 0ms;
+    c.transition_timeout[1] = 10s;   // the VF1000 initialises for about 4 s after power-on (6.1)
+    c.transition_timeout[14] = 10s;  // the drive's fault reaction (braking) may take seconds
+    return c;
+  }
 };
 
 // Why the sequencer is where it is; also the answer to "why did the transition not happen".
@@ -100,7 +109,9 @@ std::string describe(const Report& r);
 
 class Sequencer {
  public:
-  explicit Sequencer(const SequencerConfig& config = SequencerConfig::defaults());
+  // Inline, so that a sequencer with the default configuration is built from constants.
+  explicit Sequencer(const SequencerConfig& config = SequencerConfig::defaults())
+      : config_(config), app_bits_(static_cast<Word>(config.application_bits & ~kOwnedBits)) {}
 
   // Requests a target state; clears an emergency-stop or block-power request. A fault the drive
   // is in (or shows first, when its state is not known yet) is reset on the way; a fault that
@@ -113,7 +124,13 @@ class Sequencer {
 
   // One master cycle: reads the status word, returns the control word to send. Never allocates,
   // never throws. After any failure it sends BLOCK POWER with bit 7 low until the next request.
-  Word step(Word status, Time now);
+  Word step(Word status, Time now) {
+    // The common case of every cycle, one compare: the reached target shown again.
+    const std::uint8_t code = detail::kStateLut[status & 0x7FU];
+    report_.status_seen = status;
+    if (code == hold_code_) return emit(last_control_);
+    return step_moving(code, now);
+  }
 
   [[nodiscard]] const Report& report() const { return report_; }
   [[nodiscard]] Word last_control() const { return last_control_; }
@@ -134,7 +151,15 @@ class Sequencer {
   Word step_target(std::optional<State> st, Time now);
   void wait_for(std::uint8_t transition, Time now);
   Word fail(Failure f);
-  Word emit(Word drivecom_bits);
+  Word emit(Word drivecom_bits) {
+    last_control_ = static_cast<Word>((drivecom_bits & cw::kDrivecomMask) | app_bits_);
+    report_.command_sent = last_control_;
+    return last_control_;
+  }
+  Word step_moving(std::uint8_t code, Time now);
+
+  // No state code (detail::kStateLut gives 0..7 or kNoState): nothing is being held.
+  static constexpr std::uint8_t kNotHolding = 0xFE;
 
   SequencerConfig config_;
   Word app_bits_;
@@ -157,6 +182,11 @@ class Sequencer {
   bool reset_edge_sent_ = false;
   Time pulse_edge_{0};
   bool pulse_started_ = false;
+  // The state code of the reached target while the sequencer holds it, else kNotHolding. Set
+  // only at the end of a step that reached or held the target, with report_.state_seen,
+  // prev_seen_ and known_ all that state; cleared by every request and restart. A step whose
+  // status word shows that state again changes none of them: it sends the last word again.
+  std::uint8_t hold_code_ = kNotHolding;
 };
 
 }  // namespace ibs::drivecom

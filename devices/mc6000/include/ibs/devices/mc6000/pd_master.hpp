@@ -2,6 +2,7 @@
 // plus the reference and actual in engineering units in the layout's words.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <span>
 
@@ -22,8 +23,36 @@ class Mc6000PdMaster {
   void set_reference_rpm(double rpm) { reference_ = rpm; }
   [[nodiscard]] double reference_rpm() const { return reference_; }
 
-  // One master cycle: reads the status-side words, writes the control-side words.
-  void cycle(std::span<const Word> s2m, std::span<Word> m2s, Time now);
+  // One master cycle: reads the status-side words, writes the control-side words. Inline: it is
+  // every MC6000 driver's cycle on the full bus (docs/performance.md, "master cycle").
+  void cycle(std::span<const Word> s2m, std::span<Word> m2s, Time now) {
+    if (m2s.empty() || s2m.empty()) return;
+    // The actual words decoded only when they changed: decode_actual is a function of the layout
+    // and the words alone, so the same words give the same value.
+    const std::size_t n = actual_words_;
+    if (s2m.size() > n) [[likely]] {
+      bool same = decoded_;
+      switch (n) {
+        case 2: same = same && s2m[2] == actual_raw_[1]; [[fallthrough]];
+        case 1: same = same && s2m[1] == actual_raw_[0]; break;
+        default: break;
+      }
+      if (!same) decode_actual_words(s2m.subspan(1, n));
+    } else {
+      decode_actual_words(s2m.subspan(1));
+    }
+    m2s[0] = sequencer_.step(s2m[0], now);
+    if (reference_ != encoded_reference_) encode_reference_words();
+    // Control word, reference, and 0 in any word the layout leaves unused (SUPI 12 with IBCNF 2),
+    // word by word: a loop here became a call of memset and memcpy for one or two words.
+    switch (m2s.size()) {
+      case 4: m2s[3] = reference_words_[2]; [[fallthrough]];
+      case 3: m2s[2] = reference_words_[1]; [[fallthrough]];
+      case 2: m2s[1] = reference_words_[0]; [[fallthrough]];
+      default: break;
+    }
+    for (std::size_t w = reference_words_.size() + 1; w < m2s.size(); ++w) m2s[w] = 0;  // never: 4 words at most
+  }
   // The words before the first cycle: BLOCK POWER, reference 0.
   void initial(std::span<Word> m2s) const;
 
@@ -32,6 +61,9 @@ class Mc6000PdMaster {
   [[nodiscard]] const mc6000::Layout& layout() const { return layout_; }
 
  private:
+  void decode_actual_words(std::span<const Word> words);
+  void encode_reference_words();
+
   mc6000::Layout layout_;
   drivecom::Sequencer sequencer_;
   double reference_ = 0.0;
@@ -40,6 +72,11 @@ class Mc6000PdMaster {
   std::array<Word, 3> reference_words_{};
   double encoded_reference_ = 0.0;
   mc6000::Actual actual_{};
+  // The layout's actual words (at most 2, 3.2.3) and the words actual_ was decoded from;
+  // decoded_ false before the first decode and after one from fewer words than the layout's.
+  std::size_t actual_words_ = 0;
+  std::array<Word, 2> actual_raw_{};
+  bool decoded_ = false;
 };
 
 }  // namespace ibs::devices
