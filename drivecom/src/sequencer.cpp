@@ -179,7 +179,6 @@ void Sequencer::request(Target t, Time now) {
   begin(Goal::target, now);
   reset_allowed_ = !known_ || is_fault_state(*known_);
   up_since_request_ = false;
-  reset_edge_sent_ = false;
 }
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
@@ -232,7 +231,9 @@ Sequencer::Move Sequencer::plan(State s, Time now) {
 }
 
 Word Sequencer::step_moving(std::uint8_t code, Time now) {
-  if (report_.goal == Goal::target && report_.phase == Phase::moving && plain_path_state(code)) {
+  // Not while the request covers a reset: the first healthy state after a fault state is
+  // checked in step_target (left by a reset edge or by a restart).
+  if (report_.goal == Goal::target && report_.phase == Phase::moving && !reset_allowed_ && plain_path_state(code)) {
     // step_target for a drive moving along the path, the same decisions in a straight line: a
     // healthy state ends a reset's cover (reset_allowed_), counts as up since the request, stops
     // any reset pulse; the path's word goes out, its transition's timeout runs.
@@ -270,6 +271,7 @@ Word Sequencer::step_moving(std::uint8_t code, Time now) {
   }
   prev_seen_ = st;
   if (st) known_ = st;
+  if (st && *st != State::fault) reset_edge_sent_ = false;
   hold_code_ = report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)
                    ? static_cast<std::uint8_t>(*st)
                    : kNotHolding;
@@ -338,6 +340,10 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
     up_since_request_ = false;
     reset_edge_sent_ = false;
   } else {
+    // Out of FAULT RESPONSE ACTIVE or FAULT into a healthy state without a reset edge from this
+    // master: only a power-on leaves a fault state that way (5.1.2: FAULT is left by transition
+    // 15 alone), its NOT READY between two samples -- a restart, as above (DC-D1).
+    if (!is_fault_state(*st) && known_ && is_fault_state(*known_) && !reset_edge_sent_) return fail(Failure::restarted);
     up_since_request_ = true;
   }
   const Move m = plan(*st, now);

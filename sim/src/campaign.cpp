@@ -348,6 +348,17 @@ void CampaignChecker::power_cycle(std::size_t dev, Time now, std::optional<State
   // A drive switched off and on while it still initialises (NOT READY) looks the same to the
   // master before and after: a request made then covers it (as a fault joins a latched one).
   if (state_then && *state_then == State::not_ready) return;
+  // Nor can it tell a drive switched off and on in FAULT RESPONSE ACTIVE or FAULT that comes back
+  // in FAULT (its cause still there) from one that stayed in FAULT, when the self-test's NOT READY
+  // falls between two of its samples: a request made in the fault covers the reset of that fault
+  // too. A drive that comes back without the fault has restarted, which the master can see (it
+  // left FAULT without a reset edge) and must not enable: the first state after NOT READY decides
+  // (observe()).
+  if (state_then && (*state_then == State::fault || *state_then == State::fault_response_active)) {
+    d.boot_from_fault = now;
+    return;
+  }
+  d.boot_from_fault.reset();
   withdraw(d, now, "power cycle", false);
 }
 
@@ -393,6 +404,7 @@ void CampaignChecker::master_restart(Time now) {
 void CampaignChecker::state_command(std::size_t dev, StateCommand c, Time now) {
   Dev& d = devices_[dev];
   if (c == StateCommand::enable) {
+    d.boot_from_fault.reset();  // asked after the power cycle: nothing of it is left to withdraw
     d.permitted = true;
     d.written_after.reset();
     d.word_out.reset();
@@ -494,6 +506,10 @@ void CampaignChecker::observe(std::size_t dev, Time t, State state, bool watchdo
   if (watchdog_fault && !d.watchdog_fault && !in_fault) withdraw(d, t, "watchdog fault", false);
   d.watchdog_fault = watchdog_fault;
   d.last_state = state;
+  if (d.boot_from_fault && state != State::not_ready) {
+    if (state != State::fault && state != State::fault_response_active) withdraw(d, *d.boot_from_fault, "power cycle", false);
+    d.boot_from_fault.reset();
+  }
   // ENABLED only with permission, or while a withdrawal is on its way to the device.
   if (d.leave_by && t >= *d.leave_by) {
     ++counts_.stop_checks;

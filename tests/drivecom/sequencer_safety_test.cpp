@@ -133,6 +133,40 @@ TEST(SequencerSafety, NotReadyAfterTheRequestsOwnResetEdgeIsTheDriveBooting) {
   EXPECT_EQ(f, Failure::restarted);
 }
 
+// Found by the 10-million campaign of docs/robustness.md (seed 1, after issue 25): a servo
+// switched off and on in FAULT RESPONSE ACTIVE, its self-test's NOT READY between two of the
+// master's samples. FAULT is left by transition 15 alone (5.1.2); a drive out of a fault state
+// without this master's reset edge has restarted, and a request made in the fault does not carry
+// across that (docs/errata.md DC-D1).
+TEST(SequencerSafety, ADriveOutOfAFaultWithoutTheResetEdgeHasRestarted) {
+  Failure f = Failure::none;
+  const auto fra = run(Target::enabled, {0x020F, 0x020F, 0x0240, 0x0231, 0x0233}, &f);
+  EXPECT_EQ(words_text(fra), "0000 0000 0000 0000 0000");
+  EXPECT_EQ(f, Failure::restarted);
+  const auto fault = run(Target::enabled, {0x020F, 0x0208, 0x0240, 0x0231}, &f);
+  EXPECT_EQ(words_text(fault), "0000 0080 0006 000F") << "after the reset edge: the reset done";
+  EXPECT_EQ(f, Failure::none);
+  // The edge a previous request sent is out: the drive leaving FAULT on it is no restart.
+  Sequencer seq;
+  seq.request(Target::enabled, Time{0});
+  EXPECT_EQ(seq.step(0x0208, 1ms), 0x0080);
+  seq.request(Target::on, 2ms);
+  EXPECT_EQ(seq.step(0x0208, 3ms), 0x0000) << "bit 7 dropped: no second edge";
+  EXPECT_EQ(seq.step(0x0240, 4ms), 0x0006);
+  EXPECT_EQ(seq.report().failure, Failure::none);
+  // The same drive back in FAULT later, then out of it with no edge since: a restart.
+  Sequencer later;
+  later.request(Target::enabled, Time{0});
+  EXPECT_EQ(later.step(0x0208, 1ms), 0x0080);
+  EXPECT_EQ(later.step(0x0240, 2ms), 0x0006);
+  later.request_block_power(3ms);
+  EXPECT_EQ(later.step(0x0208, 4ms), 0x0000);
+  later.request(Target::enabled, 5ms);
+  EXPECT_EQ(later.step(0x020F, 6ms), 0x0000);
+  EXPECT_EQ(later.step(0x0240, 7ms), 0x0000) << "out of FAULT RESPONSE ACTIVE with no edge";
+  EXPECT_EQ(later.report().failure, Failure::restarted);
+}
+
 TEST(SequencerSafety, FaultPresentAtTheRequestIsResetOnTheWay) {
   // The request covers a fault the drive is in when it is made (or shows first).
   const auto sent = run(Target::enabled, {0x0208, 0x0208, 0x0240, 0x0231, 0x0237});

@@ -37,6 +37,7 @@ class Monitor {
   void on_restart() {
     ask_ = Ask::none;
     known_.reset();
+    edge_out_ = false;
     must_block_ = false;
     prev_word_ = 0;
   }
@@ -57,13 +58,19 @@ class Monitor {
       if (*st == State::not_ready) up_seen_ = false;
       if (*st != State::not_ready) up_seen_ = true;
       if (*st != State::fault) reset_sent_ = false;
+      // Out of a fault state into a healthy one with no reset edge since the drive showed FAULT
+      // (sent by this request or an earlier one): FAULT is left by transition 15 alone (5.1.2),
+      // so the drive restarted, its NOT READY unseen (errata DC-D1).
+      if (*st != State::not_ready && !is_fault(*st) && known_ && is_fault(*known_) && !edge_out_) must_block_ = true;
     }
+    if (st && *st != State::fault) edge_out_ = false;
     if (st) known_ = st;
     std::string why = judge(word, report);
     if (ask_ == Ask::target && known_ == State::fault && covered_ && (word & 0x0080U) != 0 &&
         (prev_word_ & 0x0080U) == 0) {
       reset_sent_ = true;
     }
+    if (known_ == State::fault && (word & 0x0080U) != 0 && (prev_word_ & 0x0080U) == 0) edge_out_ = true;
     prev_word_ = word;
     return why;
   }
@@ -111,6 +118,7 @@ class Monitor {
   bool target_seen_ = false;
   bool up_seen_ = false;
   bool reset_sent_ = false;  // the request's reset edge was sent while the drive showed FAULT
+  bool edge_out_ = false;    // a reset edge (any request's) went out since the drive showed FAULT
   bool must_block_ = false;
   Word prev_word_ = 0;
 };

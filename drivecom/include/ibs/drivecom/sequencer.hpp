@@ -177,8 +177,10 @@ class Sequencer {
   // A state other than NOT READY has been seen since the request: NOT READY now means the drive
   // restarted (only power-on leads there, 5.1.1), and the request does not carry across that.
   bool up_since_request_ = false;
-  // This request sent a rising edge of bit 7 while the drive showed FAULT: NOT READY next is the
-  // drive booting from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart.
+  // A rising edge of bit 7 went out while the drive showed FAULT, and no other state has been
+  // seen since (a new request keeps it: the edge is out): NOT READY next is the drive booting
+  // from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart; a healthy
+  // state next is the reset done. Without it a drive out of a fault state has restarted unseen.
   bool reset_edge_sent_ = false;
   Time pulse_edge_{0};
   bool pulse_started_ = false;

@@ -179,6 +179,8 @@ class CampaignChecker {
     bool late_reported = false;
     bool lock_reported = false;
     std::optional<drivecom::State> last_state;  // at the previous observation
+    // Switched off and on in a fault state: the first state after the self-test decides (power_cycle()).
+    std::optional<Time> boot_from_fault;
   };
 
   Cell* cell(Dev& d, std::uint16_t number);
