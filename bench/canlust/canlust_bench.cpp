@@ -10,6 +10,7 @@
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
+#include "ibs/devices/cda3000/device.hpp"
 #include "ibs/devices/cda3000/driver.hpp"
 
 namespace {
@@ -93,6 +94,55 @@ void BM_ParameterReadBothSides(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ParameterReadBothSides);
+
+// Issue 26's row: one parameter read of the client from the emulated CDA3000 (the wing's drive,
+// commissioned for the bus at address 1), both in memory: the request frame into the drive, its
+// reply frame out of it into the client, the value checked against the drive's own. Out of line,
+// so that callgrind counts one call per read (bench/callgrind_per_call.sh ... cda3000_read_once).
+struct Cda3000Pair {
+  devices::cda3000::Cda3000 drive{devices::cda3000::DeviceConfig{
+      .connector_address = 1, .saved = devices::cda3000::commissioned_for_bus(1)}};
+  ParameterClient client{[] {
+    ClientConfig c;
+    c.completed_capacity = 4;
+    return c;
+  }()};
+  Time now{0};
+  std::uint32_t expected = 0;
+  Cda3000Pair() {
+    drive.power_on(now);
+    drive.step(now);
+    while (drive.take_frame()) {
+    }
+    expected = *drive.value(571);
+  }
+};
+
+[[gnu::noinline]] std::uint32_t cda3000_read_once(Cda3000Pair& p) {
+  const auto id = p.client.submit(read(1, 571)).id;
+  p.client.step(p.now);
+  const auto req = p.client.take_frame();
+  p.drive.receive(*req, p.now);
+  p.drive.step(p.now);
+  std::uint32_t value = ~0U;
+  while (const auto rep = p.drive.take_frame()) p.client.receive(*rep, p.now);
+  if (const Poll r = p.client.poll(id); r.outcome != nullptr && r.outcome->kind == OutcomeKind::done) {
+    value = r.outcome->value;
+  }
+  p.now += 1ms;
+  return value;
+}
+
+void BM_ParameterReadCda3000BothSides(benchmark::State& state) {
+  Cda3000Pair p;
+  for (auto _ : state) {
+    if (cda3000_read_once(p) != p.expected) {
+      state.SkipWithError("the read did not return 571-CLADR's value");
+      break;
+    }
+  }
+}
+BENCHMARK(BM_ParameterReadCda3000BothSides);
 
 void BM_StringReadBothSides(benchmark::State& state) {
   TableDrive drive;

@@ -27,13 +27,17 @@ constexpr std::array<TelegramKind, 6> kSelective = {
 std::optional<Classified> IdentifierMap::classify(std::uint16_t id) const {
   if (id == kIdSystem) return Classified{TelegramKind::system, 0};
   if (step == 0) return std::nullopt;
+  // Each kind's block is step x (max_address + 1) identifiers from its base: the range decides
+  // first, so only the block that holds the identifier divides (issue 26: every frame on the bus
+  // is classified, by the client and by every drive).
+  const unsigned span = static_cast<unsigned>(step) * (static_cast<unsigned>(max_address) + 1U);
   for (const auto k : kSelective) {
     const std::uint16_t base = base_of(k);
     if (id < base) continue;
     const unsigned off = id - base;
-    if (off % step != 0) continue;
-    const unsigned a = off / step;
-    if (a > max_address) continue;
+    if (off >= span) continue;
+    const unsigned a = step == 2 ? off >> 1U : off / step;
+    if (a * step != off) continue;
     return Classified{k, static_cast<Address>(a)};
   }
   return std::nullopt;

@@ -89,6 +89,7 @@ ParameterClient::ParameterClient(const ClientConfig& config) : config_(config) {
   if (config_.timeout <= Duration::zero()) config_.timeout = 1ms;
   if (config_.string_timeout <= Duration::zero()) config_.string_timeout = 1ms;
   active_.resize(static_cast<std::size_t>(config_.ids.max_address) + 1);
+  busy_.reserve(active_.size());
   outbox_.resize(std::max<std::size_t>(config_.outbox_capacity, active_.size()));
   completed_.resize(std::max<std::size_t>(1, config_.completed_capacity));
 }
@@ -134,7 +135,7 @@ void ParameterClient::start(Active& a, Time now) {
   a.checksum = 0;
   a.bytes = 0;
   a.terminator = false;
-  a.text = FixedString{};
+  a.text.length = 0;  // the characters past the length are never read
   const Request& r = a.request;
   switch (r.kind) {
     case RequestKind::read: send(a, kModeRead, 0, r.index, now); return;
@@ -149,6 +150,20 @@ void ParameterClient::start(Active& a, Time now) {
   }
 }
 
+void ParameterClient::list_busy(Active& a, Address address) {
+  a.busy = true;
+  a.listed_at = static_cast<std::uint8_t>(busy_.size());
+  busy_.push_back(address);  // within the reserved capacity: one entry per slot at most
+}
+
+void ParameterClient::unlist_busy(Active& a) {
+  a.busy = false;
+  const Address last = busy_.back();
+  busy_[a.listed_at] = last;
+  active_[last].listed_at = a.listed_at;
+  busy_.pop_back();
+}
+
 void ParameterClient::finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status,
                              std::uint32_t value) {
   Completed& c = completed_[completed_next_];
@@ -157,16 +172,24 @@ void ParameterClient::finish(Active& a, OutcomeKind kind, Time now, std::uint8_t
   c.outcome.kind = kind;
   c.outcome.status = status;
   c.outcome.value = value;
-  c.outcome.text = kind == OutcomeKind::done ? a.text : FixedString{};
+  // Only a string read fills a.text; the others leave an empty text (length 0) without copying
+  // the buffer.
+  if (kind == OutcomeKind::done && a.text.length > 0) {
+    c.outcome.text = a.text;
+  } else {
+    c.outcome.text.length = 0;
+  }
   c.outcome.telegrams = a.telegrams;
   c.outcome.started = a.started;
   c.outcome.finished = now;
-  a.busy = false;
+  if (a.busy) unlist_busy(a);
 }
 
 void ParameterClient::step(Time now) {
-  for (auto& a : active_) {
-    if (a.busy && now >= a.deadline) {
+  // Backwards: finishing moves the last entry into the place of the one removed, already seen.
+  for (std::size_t i = busy_.size(); i-- > 0;) {
+    Active& a = active_[busy_[i]];
+    if (now >= a.deadline) {
       ++counters_.timeouts;
       finish(a, OutcomeKind::timeout, now);
     }
@@ -178,7 +201,7 @@ void ParameterClient::step(Time now) {
       ++it;
       continue;
     }
-    a.busy = true;
+    list_busy(a, it->request.address);
     a.id = it->id;
     a.request = it->request;
     start(a, now);
@@ -308,34 +331,30 @@ Time ParameterClient::next_deadline() const {
     }
   }
   Time t = Time::max();
-  for (const auto& a : active_) {
-    if (a.busy) t = std::min(t, a.deadline);
-  }
+  for (const Address b : busy_) t = std::min(t, active_[b].deadline);
   return t;
 }
 
 Poll ParameterClient::poll(RequestId id) const {
-  for (const auto& a : active_) {
-    if (a.busy && a.id == id) return {RequestState::active, nullptr};
+  if (id == 0) return {RequestState::unknown, nullptr};
+  for (const Address b : busy_) {
+    if (active_[b].id == id) return {RequestState::active, nullptr};
   }
   for (const auto& q : queue_) {
     if (q.id == id) return {RequestState::queued, nullptr};
   }
-  for (const auto& c : completed_) {
-    if (c.id == id && id != 0) return {RequestState::done, &c.outcome};
+  // Newest first: a request is mostly polled right after it finished.
+  for (std::size_t k = 1; k <= completed_.size(); ++k) {
+    const Completed& c = completed_[(completed_next_ + completed_.size() - k) % completed_.size()];
+    if (c.id == id) return {RequestState::done, &c.outcome};
   }
   return {RequestState::unknown, nullptr};
 }
 
-bool ParameterClient::idle() const {
-  if (!queue_.empty()) return false;
-  return std::none_of(active_.begin(), active_.end(), [](const Active& a) { return a.busy; });
-}
+bool ParameterClient::idle() const { return queue_.empty() && busy_.empty(); }
 
 void ParameterClient::abort_all(Time now) {
-  for (auto& a : active_) {
-    if (a.busy) finish(a, OutcomeKind::aborted, now);
-  }
+  while (!busy_.empty()) finish(active_[busy_.back()], OutcomeKind::aborted, now);
   for (const auto& q : queue_) {
     Active tmp;
     tmp.id = q.id;

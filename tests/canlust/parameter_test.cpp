@@ -292,5 +292,65 @@ TEST(ParameterClientQueue, OneRequestPerDriveAtATimeButDrivesInParallel) {
   EXPECT_EQ(c.poll(b1).outcome->kind, OutcomeKind::aborted);
 }
 
+// The client keeps the drives with a request in a list of its own (issue 26): requests to every
+// address at once, answered, timed out and aborted in an order unlike the one they started in,
+// each ends exactly once with its own outcome, and the client's deadline and idleness follow.
+TEST(ParameterClientQueue, EveryAddressAtOnceEndsEachRequestOnceWhateverTheOrder) {
+  ClientConfig cfg;
+  cfg.queue_capacity = 128;
+  cfg.completed_capacity = 128;
+  cfg.outbox_capacity = 128;
+  ParameterClient c(cfg);
+  const IdentifierMap ids;
+  std::vector<RequestId> id(100);
+  for (unsigned a = 0; a < 100; ++a) {
+    auto r = read(static_cast<Address>(a), static_cast<std::uint16_t>(a + 1));
+    r.timeout = std::chrono::milliseconds(10 + (a * 37) % 50);  // deadlines in no address order
+    id[a] = c.submit(r).id;
+  }
+  c.step(Time{0});
+  int frames = 0;
+  while (c.take_frame()) ++frames;
+  EXPECT_EQ(frames, 100);
+  // Odd addresses answer, from the highest down; the even ones never do.
+  for (unsigned a = 99; a < 100; a -= 2) {
+    c.receive(*encode_parameter_reply(ids, static_cast<Address>(a), {static_cast<std::uint16_t>(a + 1), 0, a * 3, 0}), 1ms);
+  }
+  for (unsigned a = 1; a < 100; a += 2) {
+    ASSERT_EQ(c.poll(id[a]).state, RequestState::done) << a;
+    EXPECT_EQ(c.poll(id[a]).outcome->value, a * 3) << a;
+  }
+  // The earliest deadline of the even ones: 10 + (a x 37) % 50 smallest over even a.
+  Duration first = Duration::max();
+  for (unsigned a = 0; a < 100; a += 2) first = std::min<Duration>(first, std::chrono::milliseconds(10 + (a * 37) % 50));
+  EXPECT_EQ(c.next_deadline(), Time{first});
+  EXPECT_FALSE(c.idle());
+  c.step(Time{35ms});
+  for (unsigned a = 0; a < 100; a += 2) {
+    const bool due = 10 + (a * 37) % 50 <= 35;
+    const Poll p = c.poll(id[a]);
+    if (due) {
+      ASSERT_EQ(p.state, RequestState::done) << a;
+      EXPECT_EQ(p.outcome->kind, OutcomeKind::timeout) << a;
+    } else {
+      EXPECT_EQ(p.state, RequestState::active) << a;
+    }
+  }
+  c.abort_all(Time{36ms});
+  EXPECT_TRUE(c.idle());
+  EXPECT_EQ(c.next_deadline(), Time::max());
+  for (unsigned a = 0; a < 100; a += 2) {
+    const bool due = 10 + (a * 37) % 50 <= 35;
+    EXPECT_EQ(c.poll(id[a]).outcome->kind, due ? OutcomeKind::timeout : OutcomeKind::aborted) << a;
+  }
+  // A slot freed in the middle of the list takes a new request again.
+  const auto again = c.submit(read(50, 7)).id;
+  c.step(Time{40ms});
+  EXPECT_EQ(c.poll(again).state, RequestState::active);
+  c.receive(*encode_parameter_reply(ids, 50, {7, 0, 1234, 0}), 41ms);
+  EXPECT_EQ(c.poll(again).outcome->value, 1234U);
+  EXPECT_TRUE(c.idle());
+}
+
 }  // namespace
 }  // namespace ibs::canlust

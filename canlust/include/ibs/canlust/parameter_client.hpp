@@ -119,6 +119,7 @@ class ParameterClient {
  private:
   struct Active {
     bool busy = false;
+    std::uint8_t listed_at = 0;    // its place in busy_ while busy
     RequestId id = 0;
     Request request{};
     Time started{};
@@ -146,10 +147,15 @@ class ParameterClient {
   void finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status = 0, std::uint32_t value = 0);
   void on_reply(Active& a, const ParameterTelegram& t, Time now);
   void send_write_block(Active& a, Time now);
+  void list_busy(Active& a, Address address);
+  void unlist_busy(Active& a);
 
   ClientConfig config_;
   std::vector<Queued> queue_;  // in submission order; capacity reserved by the constructor
   std::vector<Active> active_;  // one per address 0..max_address
+  // The addresses whose slot is busy, in no order (issue 26: step, poll and next_deadline touch
+  // only the drives with a request, not all 100 slots); capacity reserved by the constructor.
+  std::vector<Address> busy_;
   std::vector<CanFrame> outbox_;  // ring
   std::size_t out_head_ = 0;
   std::size_t out_size_ = 0;
