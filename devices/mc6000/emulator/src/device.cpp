@@ -132,8 +132,9 @@ void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duratio
 }
 
 void Mc6000Device::step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
-  if (pcp_ || deaf(first) || deaf(first + static_cast<std::int64_t>(count) * period)) {
-    // The channel is stepped sample by sample.
+  if (pcp_ || deaf(first) || deaf(first + static_cast<std::int64_t>(count - 1) * period)) {
+    // The channel is stepped sample by sample; so is a stretch the face is deaf in, which
+    // step() samples with the words held.
     for (std::uint32_t k = 0; k < count; ++k) step(pd_m2s, first + static_cast<std::int64_t>(k) * period);
     return;
   }
