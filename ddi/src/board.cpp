@@ -61,6 +61,7 @@ sim::Scenario board_scenario(const std::string& path) {
       case sim::Action::load:
       case sim::Action::input:
       case sim::Action::smartcard:
+      case sim::Action::option_card:
         break;
       default:
         throw sim::ScenarioError(path, e.source_line,

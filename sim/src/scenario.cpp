@@ -116,6 +116,8 @@ bool operator==(const TimelineEntry& a, const TimelineEntry& b) {
       return a.value == b.value && a.level == b.level;
     case Action::smartcard:
       return a.value == b.value && a.duration == b.duration;
+    case Action::option_card:
+      return a.value == b.value;
     case Action::emergency_stop:
     case Action::block_power:
     case Action::fault_power_cycle:

@@ -41,7 +41,7 @@ const std::vector<std::string_view>& device_keys() {
 const std::vector<std::string_view> kActionKeys = {
     "state", "emergency_stop", "block_power", "speed", "frequency",     "read",
     "write", "describe",       "wait_state",  "fault", "master_restart", "mains", "load", "input",
-    "smartcard"};
+    "smartcard", "option_card"};
 const std::vector<std::string_view> kEntryKeys = [] {
   std::vector<std::string_view> keys{"at", "device"};
   keys.insert(keys.end(), kActionKeys.begin(), kActionKeys.end());
@@ -435,6 +435,12 @@ void read_entry(const Reader& r, const Node& n, TimelineEntry& e, EntryLines& l,
           e.value = r.string(v, key);
           if (e.value != "read" && e.value != "write") {
             r.fail(v.line, "'smartcard' must be \"read\" or \"write\", not \"" + e.value + "\"");
+          }
+        } else if (key == "option_card") {
+          e.action = Action::option_card;
+          e.value = r.string(v, key);
+          if (e.value != "withdrawn" && e.value != "inserted") {
+            r.fail(v.line, "'option_card' must be \"withdrawn\" or \"inserted\", not \"" + e.value + "\"");
           }
         } else if (key == "fault") {
           const std::string fault = r.string(v, key);

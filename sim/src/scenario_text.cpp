@@ -56,6 +56,8 @@ std::string_view to_string(Action a) {
       return "input";
     case Action::smartcard:
       return "smartcard";
+    case Action::option_card:
+      return "option_card";
   }
   return "?";
 }

@@ -546,6 +546,16 @@ class Validator {
         }
         break;
       }
+      case Action::option_card: {
+        // The drive's own option card (its descriptor's EventFacts): one its manual says it detects.
+        const devices::EventFacts& f = k->kind->facts().events;
+        if (f.option_card.empty()) {
+          fail(action_line, "'option_card' is not for " + who + ", " + a_kind(*k->kind) + ": " +
+                                std::string(f.no_option.empty() ? "its manuals give no option card an effect"
+                                                                : f.no_option));
+        }
+        break;
+      }
       case Action::fault_lost:
         if (e.duration <= Duration::zero()) {
           fail(pick(l.modifier, action_line),

@@ -154,6 +154,9 @@ std::vector<OutField> entry_fields(const TimelineEntry& e) {
       f.push_back(text("smartcard", e.value));
       f.push_back(time("duration", e.duration));
       break;
+    case Action::option_card:
+      f.push_back(text("option_card", e.value));
+      break;
     case Action::fault_lost:
       f.push_back(text("fault", fault_name(e.action)));
       f.push_back(time("duration", e.duration));

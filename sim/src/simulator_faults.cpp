@@ -125,6 +125,7 @@ void Simulator::apply(const TimelineEntry& e, Time t) {
     case Action::load:
     case Action::input:
     case Action::smartcard:
+    case Action::option_card:
       fault(t, idx.value_or(devices_.size()), e.action, e.duration, e.count, &e);
       break;
   }
@@ -161,6 +162,13 @@ void Simulator::plant(Time t, std::size_t i, const TimelineEntry& e, FaultRecord
       f.kind = "smartcard";
       f.detail = "SMARTCARD " + std::string(e.value == "write" ? "written" : "read") + " for " +
                  fmt_value(to_ms(e.duration)) + " ms";
+      break;
+    case Action::option_card:
+      ev.kind = e.value == "withdrawn" ? devices::PlantEvent::Kind::option_withdrawn
+                                       : devices::PlantEvent::Kind::option_inserted;
+      f.kind = "option-card";
+      f.detail = std::string(facts.option_card) + " " + e.value + ": detected at the next power-on (" +
+                 std::string(facts.option_source) + ")";
       break;
     default:
       return;
@@ -256,9 +264,12 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
     case Action::load:
     case Action::input:
     case Action::smartcard:
+    case Action::option_card:
       if (entry == nullptr || i >= devices_.size()) return;
       plant(t, i, *entry, f);
-      if (kind == Action::mains || kind == Action::smartcard) note(*devices_[i], f.detail);
+      if (kind == Action::mains || kind == Action::smartcard || kind == Action::option_card) {
+        note(*devices_[i], f.detail);
+      }
       break;
     default: return;
   }

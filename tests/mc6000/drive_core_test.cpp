@@ -68,6 +68,16 @@ class Servo {
     }
   }
 
+  // After a power-on both link ends announce their restart first; the client then initiates again.
+  bool connect() {
+    for (int i = 0; i < 3; ++i) {
+      client_.initiate(now_);
+      const auto r = run_pcp();
+      if (r && r->ok()) return true;
+    }
+    return false;
+  }
+
   mc::Drive& core() { return *core_; }
   ibs::devices::Mc6000Device& interbus() { return interbus_; }
   mc::LustbusDevice& lustbus() { return lustbus_; }
@@ -507,6 +517,180 @@ TEST(Mc6000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
   const Answer serr = s.read(Face::lustbus, mc::kSerr);
   ASSERT_TRUE(serr.ok);
   EXPECT_EQ(serr.raw & mc::kSerrPowerOn, mc::kSerrPowerOn);
+}
+
+TEST(Mc6000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
+  // Seed 000, 10 exception 2: "While a SMARTCARD is being read in, no communications with the
+  // device via the LUSTBUS is possible. This condition can last up to 10 seconds, depending on
+  // the device" -- "device" is either series (000, 1). Seed 001 says for the INTERBUS only, in
+  // the VF1000's 6.1, "While the SMARTCARD is being read and written to bus operation is
+  // disabled"; it has no MC6000 section that says otherwise. Decision MC-D9, as VF-E21: for the
+  // operation's time the INTERBUS face shows a module error and takes no words (nor PCP frames),
+  // the LUSTBUS face hears nothing; the servo runs on as last commanded and keeps its values;
+  // the silence the servo made itself trips neither watchdog; afterwards both faces answer as
+  // before, without a new start (no power-on bit).
+  struct Row {
+    Kind kind;
+    Duration time;
+  };
+  for (const Row row : {Row{Kind::card_read, 2s}, Row{Kind::card_write, 3s}}) {
+    SCOPED_TRACE(row.kind == Kind::card_read ? "read" : "written");
+    Servo s;
+    ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);  // the power-on bit of the start read
+    ASSERT_TRUE(s.write(Face::pcp, 83, 1234).ok);
+    ASSERT_TRUE(s.write(Face::lustbus, 409, 100).ok);  // 409-BUTWD: 100 ms (seed 001, 3.2.4)
+    s.idle(40ms);                                       // its EEPROM save
+    auto card = event(row.kind);
+    card.value = std::chrono::duration<double>(row.time).count();
+    const Time from = s.now();
+    ASSERT_TRUE(s.interbus().apply_event(card, s.now()));
+    s.idle(50ms);
+    EXPECT_TRUE(s.interbus().module_error(s.now()));
+    EXPECT_FALSE(s.read(Face::lustbus, 83).ok) << "no LUSTBUS answer during the operation";
+    // The master's control word is not taken while the card is busy.
+    s.set_control_word(0x0006);
+    s.idle(100ms);
+    EXPECT_EQ(s.core().state(), State::start_up_inhibit);
+    while (s.now() < from + row.time) s.tick();
+    s.idle(50ms);
+    EXPECT_FALSE(s.interbus().module_error(s.now()));
+    EXPECT_EQ(s.core().state(), State::ready) << "the words count again";
+    EXPECT_FALSE(s.core().bus_watchdog_fault()) << "the servo's own silence is no E-OP1";
+    const Answer lb = s.read(Face::lustbus, 83);
+    ASSERT_TRUE(lb.ok);
+    EXPECT_EQ(lb.raw, 1234U);
+    const Answer ib = s.read(Face::pcp, 83);
+    ASSERT_TRUE(ib.ok);
+    EXPECT_EQ(ib.raw, 1234U);
+    EXPECT_EQ(s.read(Face::lustbus, mc::kSerr).raw, 0U) << "no new start: no power-on bit";
+  }
+}
+
+// Seed 001, 3.2.1 "Modified Factory Default": "The MC6000 servocontroller detects the INTERBUS
+// card automatically on power-on. The first time it is detected the following parameters are
+// changed in the MC6000 for INTERBUS operation" (the table), "After the INTERBUS card has been
+// withdrawn from the MC6000 these parameters are reset to their factory defaults the next time
+// the device is powered-up." The table's eleven rows, 443/444 included; the factory defaults
+// without the card are not in the seeds: every selector at code 0, the one that names no option
+// (RCON, OFF; CLSEL TERM) -- decision MC-D10.
+struct OptionRow {
+  std::uint16_t number;
+  const char* name;
+  std::uint32_t interbus;  // 3.2.1's value
+  std::uint32_t factory;   // without the card (MC-D10)
+  std::uint32_t user;      // a value the user sets meanwhile
+};
+constexpr OptionRow kOptionTable[] = {
+    {402, "CLSEL", 4 /* OPT1 */, 0 /* TERM */, 2 /* SIO */},
+    {417, "RSSL1", 0 /* RCON */, 0, 3 /* RSIO */},
+    {418, "RSSL2", 0 /* RCON */, 0, 3},
+    {419, "RSSL3", 6 /* OPT1 */, 0 /* RCON */, 3},
+    {420, "RSSL4", 0 /* RCON */, 0, 3},
+    {439, "FIS00", 6 /* ROPT1 */, 0 /* OFF */, 1},
+    {440, "FIS01", 6 /* ROPT1 */, 0, 1},
+    {445, "FOS00", 6 /* ROPT1 */, 0, 1},
+    {446, "FOS01", 6 /* ROPT1 */, 0, 1},
+    {443, "FIF0", 0 /* OFF */, 0, 1},
+    {444, "FIF1", 0 /* OFF */, 0, 1},
+};
+
+void expect_option_values(Servo& s, std::uint32_t OptionRow::*column, const char* what) {
+  for (const OptionRow& row : kOptionTable) {
+    const Answer a = s.read(Face::lustbus, row.number);
+    ASSERT_TRUE(a.ok) << row.name;
+    EXPECT_EQ(a.raw, row.*column) << row.number << "-" << row.name << ": " << what;
+    EXPECT_EQ(s.lustbus().eeprom_value(row.number), row.*column) << row.number << "-" << row.name << ": " << what
+                                                                  << " (EEPROM)";
+  }
+}
+
+TEST(Mc6000Events, WithdrawingTheInterbusCardRestoresFactoryDefaultsAtTheNextPowerOn) {
+  Servo s;
+  // The card is in and was detected: 3.2.1's values.
+  expect_option_values(s, &OptionRow::interbus, "with the card");
+  ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
+  for (const OptionRow& row : kOptionTable) {
+    ASSERT_TRUE(s.write(Face::lustbus, row.number, row.user).ok) << row.name;
+    s.idle(20ms);  // the EEPROM save of one byte (seed 000, 3)
+  }
+  // Withdrawn: the card is gone at once (no INTERBUS answer: a module error, MC-D10); the serial
+  // interface is the servo's own; the values change only at the next power-on.
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::option_withdrawn), s.now()));
+  s.idle(10ms);
+  EXPECT_TRUE(s.interbus().module_error(s.now()));
+  expect_option_values(s, &OptionRow::user, "withdrawn, not yet powered up");
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::power_cycle), s.now()));
+  s.idle(10ms);
+  EXPECT_TRUE(s.interbus().module_error(s.now())) << "no card, no INTERBUS";
+  expect_option_values(s, &OptionRow::factory, "the first power-on without the card");
+  // Once: what the user sets afterwards stays at the next power-on without the card.
+  ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kClsel, mc::kClselSio).ok);
+  s.idle(20ms);
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::power_cycle), s.now()));
+  s.idle(10ms);
+  EXPECT_EQ(s.read(Face::lustbus, mc::kClsel).raw, static_cast<std::uint32_t>(mc::kClselSio));
+  // 4-PROG = 1 loads the factory defaults of the servo as it stands: without the card, these.
+  ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kProg, 1).ok);
+  expect_option_values(s, &OptionRow::factory, "4-PROG = 1 without the card");
+  // It reset 405-SUPI / 406-IBCNF as well: the ring's layout written back (3.2.2, 3.2.3).
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kSupi, 9).ok);
+  s.idle(20ms);
+  ASSERT_TRUE(s.write(Face::lustbus, mc::kIbcnf, 1).ok);
+  s.idle(20ms);
+  // Inserted: detected at the next power-on only (3.2.1); then 3.2.1's values again and the
+  // INTERBUS face serves, its PCP starting over.
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::option_inserted), s.now()));
+  s.idle(10ms);
+  EXPECT_TRUE(s.interbus().module_error(s.now())) << "not detected before a power-on";
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::power_cycle), s.now()));
+  s.idle(10ms);
+  EXPECT_FALSE(s.interbus().module_error(s.now()));
+  expect_option_values(s, &OptionRow::interbus, "detected again");
+  ASSERT_TRUE(s.connect());
+  ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
+  const Answer clsel = s.read(Face::pcp, mc::kClsel);
+  ASSERT_TRUE(clsel.ok);
+  EXPECT_EQ(clsel.raw, static_cast<std::uint32_t>(mc::kClselOpt1));
+}
+
+TEST(Mc6000Events, ACardWithdrawnAndPutBackBeforeAPowerOnChangesNothing) {
+  // 3.2.1: detection is at power-on; a card that is in at the next power-on was not withdrawn.
+  Servo s;
+  ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
+  for (const OptionRow& row : kOptionTable) {
+    ASSERT_TRUE(s.write(Face::lustbus, row.number, row.user).ok) << row.name;
+    s.idle(20ms);
+  }
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::option_withdrawn), s.now()));
+  s.idle(10ms);
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::option_inserted), s.now()));
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::power_cycle), s.now()));
+  s.idle(10ms);
+  EXPECT_FALSE(s.interbus().module_error(s.now()));
+  expect_option_values(s, &OptionRow::user, "the card was in at the power-on");
+}
+
+TEST(Mc6000Events, WithTheCardWithdrawnNoCycleReachesTheServo) {
+  // MC-D10: the card is physically gone: the INTERBUS face shows a module error and takes no
+  // words; the servo runs on as last commanded, and its bus watchdog 409-BUTWD (seed 001, 3.2.4)
+  // sees no cycle: error 16 E-OP1 once it runs out.
+  Servo s;
+  ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
+  ASSERT_TRUE(s.write(Face::lustbus, 409, 50).ok);
+  s.idle(40ms);
+  s.set_control_word(0x0006);
+  s.idle(10ms);
+  ASSERT_EQ(s.core().state(), State::ready);
+  ASSERT_TRUE(s.interbus().apply_event(event(Kind::option_withdrawn), s.now()));
+  s.set_control_word(0x0000);
+  s.idle(20ms);
+  EXPECT_EQ(s.core().state(), State::ready) << "the last words hold";
+  EXPECT_FALSE(s.core().bus_watchdog_fault());
+  s.idle(60ms);
+  EXPECT_TRUE(s.core().bus_watchdog_fault());
+  EXPECT_EQ(s.interbus().error_number(), mc::kWatchdogError);
 }
 
 // --- Programmable error reactions (seed 000, 5.2, 8, 8.1.2; docs/errata.md MC-D7) -------------

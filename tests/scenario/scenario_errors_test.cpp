@@ -328,7 +328,7 @@ TEST(ScenarioErrors, EntryShape) {
                             "{\"at\": \"0 s\", \"device\": \"m\"}", 5,
                             "a timeline entry needs an action (one of: state, emergency_stop, "
                             "block_power, speed, frequency, read, write, describe, wait_state, "
-                            "fault, master_restart, mains, load, input, smartcard)"));
+                            "fault, master_restart, mains, load, input, smartcard, option_card)"));
   EXPECT_TRUE(refused_entry(
       "at = \"0 s\"\ndevice = \"m\"\nstate = \"on\"\nspeed = 1.0\n", 12,
       "{\"at\": \"0 s\", \"device\": \"m\",\n \"state\": \"on\",\n \"speed\": 1.0}", 7,

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "ibs/devices/mc6000/device.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/devices/vf1000/device.hpp"
 #include "ibs/sim/simulator.hpp"
 
@@ -758,6 +759,57 @@ TEST(SimulatorPlantEvents, MainsLossAndLoadAndInputFromTheTimeline) {
   std::vector<std::string> kinds;
   for (const FaultRecord& f : sim.summary().faults) kinds.push_back(f.kind);
   EXPECT_EQ(kinds, (std::vector<std::string>{"input", "load", "mains-off", "mains-on"}));
+}
+
+// MC-D9: a SMARTCARD operation on the MC6000 from the timeline: a module error for its time,
+// then the master's words count again, without a new start.
+TEST(SimulatorPlantEvents, AnMc6000SmartcardOperationIsAModuleErrorForItsTime) {
+  Scenario s;
+  s.duration = 3s;
+  s.devices = {mc6000()};
+  TimelineEntry card = at(1s, "mc", Action::smartcard, "read");
+  card.duration = 500ms;
+  s.timeline = {at(0s, "mc", Action::state, "enabled"), card};
+  Simulator sim(s);
+  sim.run_until(1200ms);
+  EXPECT_TRUE(sim.module_error(0, sim.now()));
+  EXPECT_EQ(sim.device_state(0), State::enabled) << "the servo runs on as last commanded";
+  sim.run_until(1490ms);
+  EXPECT_EQ(sim.device_state(0), State::enabled) << "to the end of the operation: no new start";
+  sim.run();
+  EXPECT_FALSE(sim.module_error(0, sim.now()));
+  // The master saw no status during the module error and ended its request (docs/errata.md
+  // DC-D1); its words reach the servo again: START-UP INHIBIT.
+  EXPECT_EQ(sim.device_state(0), State::start_up_inhibit);
+  ASSERT_EQ(sim.summary().faults.size(), 1U);
+  EXPECT_EQ(sim.summary().faults[0].kind, "smartcard");
+}
+
+// MC-D10, seed 001 3.2.1: the INTERBUS card withdrawn is a module error at once; the power-on
+// after it brings the factory defaults; put back, the next power-on detects it again.
+TEST(SimulatorPlantEvents, TheInterbusCardWithdrawnAndPutBackFromTheTimeline) {
+  Scenario s;
+  s.duration = 4s;
+  s.devices = {mc6000()};
+  s.timeline = {at(500ms, "mc", Action::option_card, "withdrawn"), at(1s, "mc", Action::fault_power_cycle),
+                at(2s, "mc", Action::option_card, "inserted"), at(2500ms, "mc", Action::fault_power_cycle)};
+  Simulator sim(s);
+  auto& servo = dynamic_cast<devices::Mc6000Device&>(sim.emulator(0));
+  sim.run_until(700ms);
+  EXPECT_TRUE(sim.module_error(0, sim.now()));
+  EXPECT_EQ(servo.drive().parameters().raw(devices::mc6000::kClsel), static_cast<std::uint32_t>(devices::mc6000::kClselOpt1))
+      << "not before the next power-on";
+  sim.run_until(1500ms);
+  EXPECT_EQ(servo.drive().parameters().raw(devices::mc6000::kClsel), 0U) << "the factory default without the card";
+  EXPECT_TRUE(sim.module_error(0, sim.now()));
+  sim.run_until(2200ms);
+  EXPECT_TRUE(sim.module_error(0, sim.now())) << "detected at power-on only";
+  sim.run();
+  EXPECT_FALSE(sim.module_error(0, sim.now()));
+  EXPECT_EQ(servo.drive().parameters().raw(devices::mc6000::kClsel), static_cast<std::uint32_t>(devices::mc6000::kClselOpt1));
+  std::vector<std::string> kinds;
+  for (const FaultRecord& f : sim.summary().faults) kinds.push_back(f.kind);
+  EXPECT_EQ(kinds, (std::vector<std::string>{"option-card", "power-cycle", "option-card", "power-cycle"}));
 }
 
 // The control channel's entries: applied at the time reached, recorded with their line.

@@ -246,7 +246,8 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
   for (const auto& item : j.items()) {
     const std::string& key = item.key();
     if (key == "at") throw std::invalid_argument("control entries apply at once: no 'at'");
-    if (key == "fault" || key == "mains" || key == "load" || key == "input" || key == "smartcard") {
+    if (key == "fault" || key == "mains" || key == "load" || key == "input" || key == "smartcard" ||
+        key == "option_card") {
       if (!action.empty()) {
         throw std::invalid_argument("a control line holds one action: '" + action + "' and '" + key + "'");
       }
@@ -254,10 +255,12 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     } else if (key != "device" && key != "cause" && key != "duration" && key != "level") {
       throw std::invalid_argument("unknown key '" + key +
                                   "' (the emulator takes: device, fault, cause, duration, mains, load, input, level, "
-                                  "smartcard)");
+                                  "smartcard, option_card)");
     }
   }
-  if (action.empty()) throw std::invalid_argument("a control line needs an action: fault, mains, load, input or smartcard");
+  if (action.empty()) {
+    throw std::invalid_argument("a control line needs an action: fault, mains, load, input, smartcard or option_card");
+  }
   // Which drive: its address, or NAME@ADDR as given on the command line; alone, it may go unsaid.
   if (!j.contains("device")) {
     if (drives.size() != 1) throw std::invalid_argument("give 'device' (the drive's address or NAME@ADDR)");
@@ -352,6 +355,20 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     c.event.kind = op == "write" ? devices::PlantEvent::Kind::card_write : devices::PlantEvent::Kind::card_read;
     c.event.value = s;
     c.text = "SMARTCARD " + std::string(op == "write" ? "written" : "read") + " for " + format_time(d);
+  } else if (action == "option_card") {
+    // The drive's option card, detected at its next power-on (seed 001, 3.2.1 for the MC6000).
+    if (facts.option_card.empty()) {
+      throw std::invalid_argument("'option_card' is not for the " + title + ": " +
+                                  std::string(facts.no_option.empty() ? "its manuals give no option card an effect"
+                                                                      : facts.no_option));
+    }
+    const std::string op = string_of("option_card");
+    if (op != "withdrawn" && op != "inserted") {
+      throw std::invalid_argument("'option_card' must be \"withdrawn\" or \"inserted\", not \"" + op + "\"");
+    }
+    c.event.kind = op == "withdrawn" ? devices::PlantEvent::Kind::option_withdrawn
+                                     : devices::PlantEvent::Kind::option_inserted;
+    c.text = std::string(facts.option_card) + " " + op;
   } else if (action == "load") {
     if (facts.load_unit.empty()) {
       throw std::invalid_argument("'load' is not for the " + title + ": " +

@@ -72,6 +72,14 @@ constexpr DriveFacts kFacts{
             .no_inputs = {},
             .load_unit = "Nm",
             .no_load = {},
+            // Seed 000, 10 exception 2: "up to 10 seconds, depending on the device" (MC-D9).
+            .card_max_s = 10.0,
+            .card_source = "seed 000 10 exception 2",
+            .no_card = {},
+            // Seed 001, 3.2.1: its factory defaults back at the next power-up (MC-D10).
+            .option_card = "INTERBUS card",
+            .option_source = "seed 001 3.2.1",
+            .no_option = {},
         },
 };
 

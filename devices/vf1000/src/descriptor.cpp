@@ -88,6 +88,11 @@ constexpr DriveFacts kFacts{
             // Seed 000, 10 exception 2: "up to 10 seconds, depending on the device".
             .card_max_s = 10.0,
             .card_source = "seed 000 10 exception 2, seed 001 6.1",
+            .no_card = {},
+            .option_card = {},
+            .option_source = {},
+            .no_option = "its INTERBUS operation is a modified software package, not a card it detects (seed 001 "
+                         "3.1.1); no seed gives a withdrawal an effect",
         },
 };
 

@@ -41,6 +41,12 @@ struct EventFacts {
   double card_max_s = 0.0;
   std::string_view card_source{};
   std::string_view no_card{};
+  // An option card the drive detects at power-on, withdrawn and inserted again: the card as its
+  // manual names it (empty: the drive takes no option event, for `no_option`'s reason) and where
+  // the manual says what its withdrawal does.
+  std::string_view option_card{};
+  std::string_view option_source{};
+  std::string_view no_option{};
 };
 
 struct PlantEvent {
@@ -54,6 +60,8 @@ struct PlantEvent {
     input,        // digital input `input` (index into EventFacts::inputs) at `level`
     card_read,    // a SMARTCARD is read into the drive for `value` seconds ...
     card_write,   // ... or written from it (EventFacts::card_max_s)
+    option_withdrawn,  // the option card (EventFacts::option_card) pulled out ...
+    option_inserted,   // ... and put in; the drive detects either at its next power-on
   };
   Kind kind = Kind::fault;
   std::optional<int> cause;  // fault: the error number (nullopt: a generic external fault)

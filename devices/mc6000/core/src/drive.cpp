@@ -95,7 +95,7 @@ void Drive::refresh_readings() {
 void Drive::check_serial_watchdog(Time now) {
   // 5.2: no valid telegram within 84-SWDGT ms: the error state, 02H in 85-SERR; the drive stops.
   const auto swdgt = params_.raw(kSwdgt);
-  if (!serial_fault_ && swdgt != 0 && now - last_telegram_ > std::chrono::milliseconds(swdgt)) {
+  if (!serial_fault_ && swdgt != 0 && now - quiet_since(last_telegram_, now) > std::chrono::milliseconds(swdgt)) {
     serial_fault_ = true;
     params_.set_serr(drive::SiofBit::watchdog);
   }
@@ -196,6 +196,8 @@ void Drive::reboot(Time now) {
 
 void Drive::power_on(Time now) {
   params_.power_on(now);
+  detect_interbus_card();
+  card_until_ = Time::min();  // switched off: a SMARTCARD operation ends with it
   pd_.power_on();
   armed_ = false;
   bus_fault_ = false;
@@ -213,6 +215,7 @@ void Drive::mains_off(Time now) {
   advance(now);
   powered_ = false;
   pd_.power_on();  // NOT READY: no power stage, nothing to show
+  card_until_ = Time::min();
   external_fault_ = false;
   fieldbus_control_ = 0;
   fault_cause_.reset();
@@ -250,9 +253,35 @@ bool Drive::apply(const PlantEvent& e, Time now) {
       return true;
     case PlantEvent::Kind::card_read:
     case PlantEvent::Kind::card_write:
-      return false;  // EventFacts::card_max_s = 0: refused before it gets here
+      // Reading loads the card's parameter set, writing saves the servo's: the seeds give neither
+      // set, so the values stay; the time is what either bus sees (MC-D9).
+      smartcard(std::chrono::duration_cast<Duration>(std::chrono::duration<double>(e.value)), now);
+      return true;
+    case PlantEvent::Kind::option_withdrawn:
+      withdraw_interbus_card();
+      return true;
+    case PlantEvent::Kind::option_inserted:
+      insert_interbus_card();
+      return true;
   }
   return false;
+}
+
+void Drive::smartcard(Duration how_long, Time now) {
+  if (powered_ && how_long > Duration{0}) card_until_ = std::max(card_until_, now + how_long);
+}
+
+void Drive::detect_interbus_card() {
+  // Seed 001, 3.2.1: "The first time it is detected the following parameters are changed ...
+  // After the INTERBUS card has been withdrawn ... reset to their factory defaults the next time
+  // the device is powered-up." A card found again after that is detected for the first time again.
+  if (card_fitted_ == card_detected_) return;
+  card_detected_ = card_fitted_;
+  set_option_defaults(card_detected_);
+}
+
+void Drive::set_option_defaults(bool with_card) {
+  for (const OptionDefault& d : kOptionDefaults) params_.preset(d.number, with_card ? d.with_card : d.without_card);
 }
 
 void Drive::set_input(std::size_t input, bool high) {
@@ -283,7 +312,7 @@ void Drive::sample_one(Time now, Word control, double reference_rpm) {
   // Seed 001, 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16
   // (E-OP1), location 1, a device fault that stays until it is reset once data flows again.
   const Duration butwd = bus_watchdog();
-  const bool expired = armed_ && butwd > Duration{0} && (now - last_cycle_) > butwd;
+  const bool expired = armed_ && butwd > Duration{0} && (now - quiet_since(last_cycle_, now)) > butwd;
   if (expired) bus_fault_ = true;
   bus_expired_ = expired;
   fieldbus_control_ = control;
@@ -310,7 +339,7 @@ void Drive::watch(Time now) {
   params_.advance(now);
   check_serial_watchdog(now);
   const Duration butwd = bus_watchdog();
-  const bool expired = armed_ && butwd > Duration{0} && (now - last_cycle_) > butwd;
+  const bool expired = armed_ && butwd > Duration{0} && (now - quiet_since(last_cycle_, now)) > butwd;
   if (expired) bus_fault_ = true;
   bus_expired_ = expired;
   clear_bus_fault(expired);
@@ -335,7 +364,7 @@ void Drive::sample(Time first, Duration period, std::uint32_t count, Word contro
   const Duration butwd = bus_watchdog();
   std::uint32_t in_time = count;
   if (armed_ && butwd > Duration{0}) {
-    const Duration left = butwd - (first - last_cycle_);
+    const Duration left = butwd - (first - quiet_since(last_cycle_, first));
     in_time = left < Duration{0} ? 0U : static_cast<std::uint32_t>(std::min<std::int64_t>(count, left / period + 1));
   }
   fieldbus_control_ = control;
@@ -398,6 +427,11 @@ WriteResult Drive::write(Time now, std::uint16_t number, std::optional<std::uint
   WriteResult r = params_.write(now, number, raw, drivecom::power_stage_enabled(pd_.state()));
   if (!r.ok() || !raw) return r;
   if (number == kSwdgt) last_telegram_ = now;  // 5.2: the watchdog's own setting restarts it
+  // 10 exception 1: 4-PROG = 1 loads the factory defaults of the servo as it stands: those of
+  // 3.2.1 are "modified" by the INTERBUS card the servo detected; without it, its own (MC-D10).
+  if (number == kProg && *raw == static_cast<std::uint32_t>(kProgFactoryDefaults) && !card_detected_) {
+    set_option_defaults(false);
+  }
   if (number == kSctl1 && (*raw & kSctl1Reset) != 0 && !params_.downloading() && serial_control()) {
     // 8.1.2: bit 7 resets the error -- like bit 0, only from the control location SIO (7.2 step
     // 2, MC-D4); it is a command, the stored word keeps the other bits. A reaction-5 error makes

@@ -1,5 +1,6 @@
 #include "ibs/devices/mc6000/device.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "ibs/devices/mc6000/channel.hpp"
@@ -41,6 +42,7 @@ Mc6000Device::Mc6000Device(const Mc6000Device& other)
       served_(*drive_),
       pcp_(other.pcp_),
       last_control_(other.last_control_),
+      held_(other.held_),
       reboots_seen_(other.reboots_seen_),
       configuration_mismatch_(other.configuration_mismatch_) {
   if (pcp_) pcp_->serve(served_);
@@ -98,11 +100,11 @@ void Mc6000Device::output(std::span<Word> pd_s2m) const {
 }
 
 void Mc6000Device::output_pcp(Time now, std::span<Word> pcp_s2m) {
-  if (pcp_ && !pcp_s2m.empty()) pcp_->show(now, pcp_s2m);
+  if (pcp_ && !pcp_s2m.empty() && !deaf(now)) pcp_->show(now, pcp_s2m);
 }
 
 void Mc6000Device::pcp_cycle(Time now, std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) {
-  if (pcp_ && !pcp_m2s.empty()) pcp_->cycle(now, pcp_m2s, pcp_s2m);
+  if (pcp_ && !pcp_m2s.empty() && !deaf(now)) pcp_->cycle(now, pcp_m2s, pcp_s2m);
 }
 
 void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
@@ -130,16 +132,26 @@ void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duratio
 }
 
 void Mc6000Device::step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count) {
-  if (pcp_) {
-    // The channel is stepped sample by sample.
+  if (pcp_ || deaf(first) || deaf(first + static_cast<std::int64_t>(count - 1) * period)) {
+    // The channel is stepped sample by sample; so is a stretch the face is deaf in, which
+    // step() samples with the words held.
     for (std::uint32_t k = 0; k < count; ++k) step(pd_m2s, first + static_cast<std::int64_t>(k) * period);
     return;
   }
+  std::copy_n(pd_m2s.begin(), std::min(held_.size(), pd_m2s.size()), held_.begin());
   sample_core(pd_m2s, first, period, count);
 }
 
 void Mc6000Device::step(std::span<const Word> pd_m2s, Time now, std::span<const Word> pcp_m2s,
                         std::span<Word> pcp_s2m) {
+  if (deaf(now)) {
+    // A SMARTCARD operation (MC-D9) or no card (MC-D10): the words and frames of the bus do not
+    // reach the servo, which runs on with the words it took last; the PCP channel waits.
+    sample_core({held_.data(), std::min(held_.size(), pd_m2s.size())}, now, mc6000::kSamplePeriod, 1);
+    return;
+  }
+  const std::size_t n = std::min(held_.size(), pd_m2s.size());
+  std::copy_n(pd_m2s.begin(), n, held_.begin());
   sample_core(pd_m2s, now, mc6000::kSamplePeriod, 1);
   if (!pcp_) return;
   if (pcp_m2s.empty()) {

@@ -417,6 +417,8 @@ bool Drive::apply(const PlantEvent& e, Time now) {
       return true;
     case PlantEvent::Kind::load:
     case PlantEvent::Kind::input:
+    case PlantEvent::Kind::option_withdrawn:  // no seed gives the inverter's option an effect
+    case PlantEvent::Kind::option_inserted:
       return false;
   }
   return false;

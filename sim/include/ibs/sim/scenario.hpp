@@ -97,6 +97,7 @@ enum class Action : std::uint8_t {
   load,           // load torque in the drive's unit (number; DriveFacts::events.load_unit)
   input,          // digital input `value` (its manual's name) to `level`
   smartcard,      // value: "read" | "write": a SMARTCARD operation lasting `duration`
+  option_card,    // value: "withdrawn" | "inserted": the drive's option card (EventFacts::option_card)
 };
 
 struct TimelineEntry {

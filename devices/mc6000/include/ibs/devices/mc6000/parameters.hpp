@@ -90,6 +90,30 @@ inline constexpr std::int64_t kReactionStop = 2;   // STOP: brake to standstill,
 inline constexpr std::int64_t kReactionOff = 3;    // OFF: power stage off at once, FAULT, coasting
 inline constexpr std::int64_t kReactionLock = 4;   // LOCK: as OFF; only a power-on ends it
 inline constexpr std::int64_t kReactionReset = 5;  // RESET: as OFF; the fault reset boots the servo
+// Seed 001, 3.2.1 "Modified Factory Default": the parameters the servo changes for INTERBUS
+// operation the first time it detects the INTERBUS card at power-on (the table's defaults), and
+// resets "to their factory defaults the next time the device is powered-up" after the card was
+// withdrawn. The seeds give the values with the card only; without it every selector is code 0,
+// the one that names no option: CLSEL TERM, RSSLx RCON (seed 000 7.2: "0 (i.e., RCON)"), the
+// function selectors OFF (docs/errata.md MC-D10).
+struct OptionDefault {
+  std::uint16_t number;
+  std::int64_t with_card;     // 3.2.1's table
+  std::int64_t without_card;  // the factory default (MC-D10)
+};
+inline constexpr std::array<OptionDefault, 11> kOptionDefaults{{
+    {kClsel, kClselOpt1, 0},
+    {kRssl1, kRsslRcon, kRsslRcon},
+    {kRssl2, kRsslRcon, kRsslRcon},
+    {kRssl3, kRsslOpt1, kRsslRcon},
+    {kRssl4, kRsslRcon, kRsslRcon},
+    {kFis00, kFunctionRopt1, kFunctionOff},
+    {kFis01, kFunctionRopt1, kFunctionOff},
+    {kFos00, kFunctionRopt1, kFunctionOff},
+    {kFos01, kFunctionRopt1, kFunctionOff},
+    {443, kFunctionOff, kFunctionOff},  // FIF0
+    {444, kFunctionOff, kFunctionOff},  // FIF1
+}};
 // 91-TYPE: the seeds name the parameter, not the MC6000's code: chosen.
 inline constexpr std::int64_t kMc6000TypeCode = 6000;
 

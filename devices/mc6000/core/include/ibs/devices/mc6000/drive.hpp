@@ -18,6 +18,7 @@
 // The cycle path (sample, advance, read, write) allocates nothing, throws nothing, reads no clock.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -139,6 +140,22 @@ class Drive final : public DriveAccess {
   // reflect them when 439-FIS00 / 440-FIS01 = ROPT1; the seeds give them no other effect.
   void set_input(std::size_t input, bool high);
   [[nodiscard]] bool input(std::size_t input) const { return input < 2 && inputs_[input]; }
+  // A SMARTCARD read into the servo or written from it for `how_long` from `now` (seed 000, 10
+  // exception 2: "no communications with the device via the LUSTBUS", "up to 10 seconds";
+  // docs/errata.md MC-D9): meanwhile the serial interface hears nothing and the INTERBUS face
+  // takes no words (a module error); the servo runs on as last commanded and keeps its values;
+  // the silence it makes itself is counted by neither watchdog. A power-on or the mains' loss
+  // ends it.
+  void smartcard(Duration how_long, Time now);
+  [[nodiscard]] bool card_busy(Time now) const { return now < card_until_; }
+  // The INTERBUS card (seed 001, 3.2.1): "detects the INTERBUS card automatically on power-on";
+  // the first power-on that finds it sets 3.2.1's values, the first one after its withdrawal the
+  // factory defaults (kOptionDefaults, RAM and EEPROM; MC-D10). It serves from the power-on that
+  // detected it until it is pulled out.
+  void withdraw_interbus_card() { card_fitted_ = false; }
+  void insert_interbus_card() { card_fitted_ = true; }
+  [[nodiscard]] bool interbus_card_fitted() const { return card_fitted_; }
+  [[nodiscard]] bool interbus_card_serving() const { return card_fitted_ && card_detected_; }
   // A plant or fault event (plant_event.hpp) by the calls above (power_cycle: power_on).
   bool apply(const PlantEvent& e, Time now);
 
@@ -178,6 +195,12 @@ class Drive final : public DriveAccess {
   [[nodiscard]] Word serial_word() const;
   [[nodiscard]] Duration bus_watchdog() const;
   void refresh_readings();
+  // The time a watchdog counts its silence from: the last cycle or telegram, or the end of a
+  // SMARTCARD operation after it (now while one runs).
+  [[nodiscard]] Time quiet_since(Time last, Time now) const { return std::max(last, std::min(card_until_, now)); }
+  // 3.2.1: the card found or missed at power-on.
+  void detect_interbus_card();
+  void set_option_defaults(bool with_card);
 
   DriveParameters params_;
   Mc6000PdDevice pd_;
@@ -201,6 +224,9 @@ class Drive final : public DriveAccess {
   Duration boot_time_{};
   Time boot_until_{};
   Word fieldbus_control_ = 0;  // the last control word of the fieldbus (outputs, 5.3.1)
+  Time card_until_ = Time::min();  // the SMARTCARD operation ends
+  bool card_fitted_ = true;        // the INTERBUS card is in the slot ...
+  bool card_detected_ = true;      // ... and was there at the last power-on
 };
 
 }  // namespace ibs::devices::mc6000

@@ -6,6 +6,7 @@
 // LUSTBUS face may serve at the same time.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -88,7 +89,10 @@ class Mc6000Device final : public DeviceEmulator {
   void pcp_cycle(Time now, std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) override;
 
   // A valid data cycle reached the device: "the watchdog is triggered with every INTERBUS cycle".
-  void bus_cycle(Time now) override { drive_->fieldbus_cycle(now); }
+  // Not while the face is deaf (a SMARTCARD operation, the card withdrawn): nothing reaches the servo.
+  void bus_cycle(Time now) override {
+    if (!deaf(now)) drive_->fieldbus_cycle(now);
+  }
   void power_cycle(Time now) override;
   void set_fault(bool present) override { drive_->set_external_fault(present); }
   // Plant and fault events (plant_event.hpp): the core's, once for every face.
@@ -99,10 +103,14 @@ class Mc6000Device final : public DeviceEmulator {
   // A servo switched on with other 405-SUPI / 406-IBCNF values than the ring was configured for
   // shows another ID code: the master's configuration no longer fits it and the bus reports a
   // module error until the ring is configured again (a new run).
-  // Without mains the INTERBUS card of the servo is off too (MC-D6): a module error.
-  [[nodiscard]] bool module_error(Time /*now*/) const override {
-    return configuration_mismatch_ || !drive_->powered();
+  // Without mains the INTERBUS card of the servo is off too (MC-D6): a module error. So while a
+  // SMARTCARD is read or written (seed 001 6.1's "bus operation is disabled", MC-D9) and while the
+  // card is out of its slot or not yet detected by a power-on (seed 001 3.2.1, MC-D10).
+  [[nodiscard]] bool module_error(Time now) const override {
+    return configuration_mismatch_ || !drive_->powered() || deaf(now);
   }
+  // The face takes no words and no PCP frames: the servo samples on with the last words it took.
+  [[nodiscard]] bool deaf(Time now) const { return drive_->card_busy(now) || !drive_->interbus_card_serving(); }
   [[nodiscard]] bool configuration_mismatch() const { return configuration_mismatch_; }
   [[nodiscard]] drivecom::State state() const override { return drive_->state(); }
   [[nodiscard]] double actual_rpm() const { return drive_->actual_rpm(); }
@@ -140,6 +148,7 @@ class Mc6000Device final : public DeviceEmulator {
   mc6000::PcpServed served_;
   std::optional<pcp::Server> pcp_;
   Word last_control_ = 0;
+  std::array<Word, 4> held_{};  // the process-data words taken last (the servo holds them)
   std::uint32_t reboots_seen_ = 0;  // the core's reaction-5 boots this face has followed
   bool configuration_mismatch_ = false;
 };

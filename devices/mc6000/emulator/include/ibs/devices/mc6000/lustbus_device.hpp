@@ -56,8 +56,11 @@ class LustbusDevice final : public lustbus::Responder {
   void checksum_error(const lustbus::Context& ctx) override;
   void telegram_received(const lustbus::Context& ctx) override;
   // Without mains the servo answers nothing (MC-D6), nor while it boots after a reaction-5 error
-  // reset (seed 000, 8.1.2: "the connection ... is broken for the duration of the boot-up").
-  [[nodiscard]] bool listening(Time now) const override { return drive_->powered() && !drive_->booting(now); }
+  // reset (seed 000, 8.1.2: "the connection ... is broken for the duration of the boot-up"), nor
+  // while a SMARTCARD is read or written (seed 000, 10 exception 2; MC-D9).
+  [[nodiscard]] bool listening(Time now) const override {
+    return drive_->powered() && !drive_->booting(now) && !drive_->card_busy(now);
+  }
 
   // Time passes without a telegram: the watchdog of 5.2, the end of a download test.
   void advance(Time now);
