@@ -23,6 +23,9 @@
 #include <sstream>
 #include <cerrno>
 #include <cstring>
+#include <ctime>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -220,7 +223,7 @@ TEST(CanlustCli, ParameterCommandsWithJsonAndExitCodes) {
   const std::string log = temp_path("canlust_monitor") + ".log";
   r = cli({"monitor", "--duration-ms", "250", "--log", log});
   EXPECT_EQ(r.rc, 0);
-  EXPECT_NE(r.out.find("883  [6]  40 02 00 00 00 00        status CDA 1: 0240 START-UP INHIBIT"), std::string::npos)
+  EXPECT_NE(r.out.find("  373   [6]  40 02 00 00 00 00        status CDA 1: 0240 START-UP INHIBIT"), std::string::npos)
       << r.out;
   std::ostringstream dout;
   std::ostringstream derr;
@@ -401,6 +404,243 @@ TEST(CanlustCli, DownloadADataSetFile) {
   EXPECT_EQ(r.out, "CDA 1 575-CASCY: 40 ms\n") << r.err;
   std::remove(good.c_str());
   std::remove(bad.c_str());
+}
+
+// ---- can-utils' ways and the other buses' conventions (issue 27) ----------------------------
+
+// One line per non-empty line of `text`.
+std::vector<std::string> lines_in(const std::string& text) {
+  std::vector<std::string> v;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) {
+    if (!l.empty()) v.push_back(l);
+  }
+  return v;
+}
+
+// `-p BUS -a ADDR -j` as on the other buses (`--bus`, `--address`, `--addr`, `--json` still
+// work); `read --repeat N --interval MS`: one line or JSON object a reading, the failures counted
+// at the end on standard error (mbpoll -1 / -l; lustbus read does the same).
+TEST(CanlustCli, ShortOptionsAndRepeatedReadings) {
+  const Ports p;
+  Emulator emu({"-p", p.emulator_bus(), "cda3000@1"});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U) << emu.first_line();
+  const std::string bus = p.client_bus();
+  auto r = run_cli({"canlust", "read", "-p", bus, "-a", "1", "360", "--repeat", "3", "--interval", "100"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "CDA 1 360-DISP: 406\nCDA 1 360-DISP: 406\nCDA 1 360-DISP: 406\n");
+  EXPECT_EQ(r.err, "ibs canlust read: 3 readings, 3 ok, 0 failed\n");
+  r = run_cli({"canlust", "read", "--bus", bus, "--addr", "1", "DISP", "-j"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("\"value\":406"), std::string::npos) << r.out;
+  // Nobody at 9: every reading ends with its timeout, each a JSON object, the summary says so.
+  const auto t0 = std::chrono::steady_clock::now();
+  r = run_cli({"canlust", "read", "-p", bus, "-a", "9", "360", "--timeout-ms", "50", "--repeat", "2", "--interval",
+               "100", "--json"});
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 2s);
+  EXPECT_EQ(r.rc, 1);
+  const auto objects = lines_in(r.out);
+  ASSERT_EQ(objects.size(), 2U) << r.out;
+  for (const std::string& o : objects) EXPECT_NE(o.find("\"outcome\":\"timeout\""), std::string::npos) << o;
+  const std::string summary = "ibs canlust read: 2 readings, 0 ok, 2 failed (2 timeouts)\n";
+  ASSERT_GE(r.err.size(), summary.size()) << r.err;
+  EXPECT_EQ(r.err.substr(r.err.size() - summary.size()), summary) << r.err;
+  // A refusal is counted as one.
+  r = run_cli({"canlust", "read", "-p", bus, "-a", "1", "999", "--repeat", "2", "--interval", "50"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("ibs canlust read: 2 readings, 0 ok, 2 failed (2 refused)\n"), std::string::npos) << r.err;
+  // Bad input ends at once, without a summary.
+  r = run_cli({"canlust", "read", "-p", bus, "-a", "100", "360", "--repeat", "5"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust read: --address must be 0..99\n");
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+// `ibs canlust send` (cansend) starts the drives; `monitor` (candump) shows their status telegrams
+// with candump's filters, -n COUNT, -t a|d|z and -T, identifiers in hex and CANLust's words beside.
+TEST(CanlustCli, MonitorFiltersCountsAndTimestampsAsCandump) {
+  const Ports p;
+  Emulator emu({"-p", p.emulator_bus(), "cda3000@1", "cda3000@2"});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U) << emu.first_line();
+  const std::string bus = p.client_bus();
+  const auto cli = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"canlust"});
+    args.insert(args.end(), {"-p", bus});
+    return run_cli(args);
+  };
+  auto r = cli({"send", "0DD#01"});  // System Start (5.5.4): the drives send their status cyclically
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out, "");  // as cansend: nothing to say
+
+  const std::regex z(R"(^\(\d{3}\.\d{6}\)  udp\d+  373   \[6\]  40 02 00 00 00 00        status CDA 1: 0240 START-UP INHIBIT.*)");
+  r = cli({"monitor", "-f", "373:7FF", "-n", "3", "-t", "z", "--duration-ms", "5000"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  auto lines = lines_in(r.out);
+  ASSERT_EQ(lines.size(), 3U) << r.out;
+  for (const std::string& l : lines) EXPECT_TRUE(std::regex_match(l, z)) << l;
+  EXPECT_EQ(lines[0].rfind("(000.000000)  ", 0), 0U) << lines[0];
+  EXPECT_GE(lines[2].substr(0, 12), lines[1].substr(0, 12));  // time since the first frame
+
+  // Delta: the status cycle (575-CASCY, 80 ms by default) between frames of one drive; summed over
+  // four cycles, as the frames are stamped when read (a busy machine may read two at once).
+  r = cli({"monitor", "-f", "373:7FF", "-n", "5", "-t", "d", "--duration-ms", "5000"});
+  lines = lines_in(r.out);
+  ASSERT_EQ(lines.size(), 5U) << r.out;
+  EXPECT_EQ(lines[0].rfind("(000.000000)  ", 0), 0U) << lines[0];
+  double cycles = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i) cycles += std::stod(lines[i].substr(1, 10));
+  EXPECT_GT(cycles, 0.15) << r.out;
+  EXPECT_LT(cycles, 1.5) << r.out;
+
+  // Absolute: the wall clock, as candump -ta.
+  r = cli({"monitor", "-n", "1", "-t", "a", "--duration-ms", "5000"});
+  lines = lines_in(r.out);
+  ASSERT_EQ(lines.size(), 1U) << r.out;
+  ASSERT_TRUE(std::regex_match(lines[0], std::regex(R"(^\(\d{10}\.\d{6}\)  udp\d+  [0-9A-F]{3}   \[\d\]  .*)"))) << lines[0];
+  EXPECT_LT(std::abs(std::stod(lines[0].substr(1, 17)) - static_cast<double>(std::time(nullptr))), 5.0) << lines[0];
+
+  // Inverted (candump's ID~MASK and the ~ID:MASK form), repeated, comma-separated.
+  r = cli({"monitor", "-f", "373~7FF", "-f", "~607:7F0,j", "-n", "4", "--duration-ms", "5000"});
+  lines = lines_in(r.out);
+  ASSERT_EQ(lines.size(), 4U) << r.out;
+  for (const std::string& l : lines) {
+    EXPECT_EQ(l.find("  373   ["), std::string::npos) << l;
+    EXPECT_EQ(l.find("  60"), std::string::npos) << l;
+  }
+  // Two filters no frame passes at once: -T ends the wait.
+  const auto t0 = std::chrono::steady_clock::now();
+  r = cli({"monitor", "-f", "373:7FF,375:7FF,j", "-T", "300"});
+  EXPECT_EQ(r.rc, 0);
+  EXPECT_EQ(r.out, "");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 3s);
+
+  r = cli({"monitor", "-f", "375:7FF", "-n", "1", "-j", "--duration-ms", "5000"});
+  EXPECT_NE(r.out.find("\"id\":885,\"id_hex\":\"375\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"text\":\"status CDA 2: 0240 START-UP INHIBIT"), std::string::npos) << r.out;
+
+  // Bad input: what and where, exit 2.
+  r = cli({"monitor", "-f", "373:7FG"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust monitor: --filter '373:7FG', column 7: 'G' is not a hex digit (the MASK) (candump's "
+                   "filters: ID:MASK, ID~MASK, j; hex)\n");
+  r = cli({"monitor", "-t", "x"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_EQ(r.err, "ibs canlust monitor: -t 'x': expected a (absolute), d (delta) or z (zero at the first frame)\n");
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
+// Frames on a bus the test holds (CAN over UDP): `ibs canlust send|play` as the user runs them.
+class TestBus {
+ public:
+  TestBus() {
+    auto o = can::UdpCanTransport::open({"127.0.0.1", 0, "127.0.0.1", 0});
+    if (!o) throw std::runtime_error(o.error);
+    bus_ = std::move(o.transport);
+  }
+  std::string peer_bus() const { return "udp:0:127.0.0.1:" + std::to_string(bus_->local_port()); }
+  // Frames with their arrival (steady clock) until `n` came or `limit` passed.
+  std::vector<std::pair<cl::CanFrame, std::chrono::steady_clock::time_point>> take(std::size_t n, Duration limit) {
+    std::vector<std::pair<cl::CanFrame, std::chrono::steady_clock::time_point>> got;
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (got.size() < n && std::chrono::steady_clock::now() < end) {
+      const auto r = bus_->receive(10ms);
+      if (r.status == can::IoStatus::ok) got.emplace_back(r.frame, std::chrono::steady_clock::now());
+    }
+    return got;
+  }
+
+ private:
+  std::unique_ptr<can::UdpCanTransport> bus_;
+};
+
+TEST(CanlustCli, SendTakesCansendSyntaxAndSaysWhereItIsWrong) {
+  TestBus bus;
+  const std::string ibs = std::string(IBS_CLI) + " canlust send -p " + bus.peer_bus() + " ";
+  auto r = test::run_shell(ibs + "2a5#01.02.0304 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out, "");
+  auto got = bus.take(1, 2s);
+  ASSERT_EQ(got.size(), 1U);
+  EXPECT_EQ(got[0].first, cl::CanFrame::make(0x2A5, {1, 2, 3, 4}));
+  r = test::run_shell(ibs + "0DD#01 -j 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("\"frame\":\"0DD#01\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("System Start"), std::string::npos) << r.out;
+  got = bus.take(1, 2s);
+  ASSERT_EQ(got.size(), 1U);
+  EXPECT_EQ(got[0].first, cl::encode_system(cl::SystemCommand::start));
+  r = test::run_shell(ibs + "123#R2 2>&1");
+  got = bus.take(1, 2s);
+  ASSERT_EQ(got.size(), 1U);
+  EXPECT_TRUE(got[0].first.rtr);
+  EXPECT_EQ(got[0].first.dlc, 2);
+
+  const std::string rules = " (cansend's ID#DATA: 3 hex digits 000..7FF, '#', 0..8 bytes of 2 hex digits, '.' between "
+                            "bytes; ID#R or ID#R0..R8 a remote frame)\n";
+  r = test::run_shell(ibs + "2A5#0G 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "ibs canlust send: '2A5#0G', column 6: 'G' is not a hex digit (the data)" + rules);
+  r = test::run_shell(ibs + "12345678#00 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "ibs canlust send: '12345678#00', column 1: an 8-digit identifier is an extended (29-bit) one: "
+                   "CANLust uses 11-bit identifiers, 3 hex digits" + rules);
+  r = test::run_shell(ibs + "123#001122334455667788 2>&1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.out.find("column 21: more than 8 data bytes"), std::string::npos) << r.out;
+  EXPECT_TRUE(bus.take(1, 200ms).empty()) << "bad input sends nothing";
+}
+
+// canplayer: the frames of a candump log, paced by their times; `-` reads standard input; a bad
+// line is FILE:LINE: what, exit 2, and nothing is sent; a signal ends it with 130.
+TEST(CanlustCli, PlayPacesACandumpLogInRealTime) {
+  TestBus bus;
+  const std::string log = temp_path("canlust_play") + ".log";
+  std::ofstream(log) << "(1795431275.000000) can0 0DD#01\n\n(1795431275.300000) can0 44F#6801050000000000\n"
+                        "(1795431275.600000) vcan1 123#R\n";
+  const std::string ibs = std::string(IBS_CLI) + " canlust play -p " + bus.peer_bus() + " ";
+  for (const std::string& how : {log, "- < " + log}) {
+    test::ShellResult r{};
+    std::thread player([&] { r = test::run_shell(ibs + how + " 2>&1"); });
+    const auto got = bus.take(3, 5s);
+    player.join();
+    EXPECT_EQ(r.exit_code, 0) << how << ": " << r.out;
+    ASSERT_EQ(got.size(), 3U) << how;
+    EXPECT_EQ(got[0].first, cl::encode_system(cl::SystemCommand::start));
+    EXPECT_EQ(got[1].first, cl::CanFrame::make(0x44F, {0x68, 0x01, 0x05, 0, 0, 0, 0, 0}));
+    EXPECT_TRUE(got[2].first.rtr);
+    const auto gap = [&](std::size_t i) { return got[i].second - got[i - 1].second; };
+    EXPECT_GT(gap(1), 200ms) << how;  // 300 ms in the log
+    EXPECT_LT(gap(1), 1000ms) << how;
+    EXPECT_GT(gap(2), 200ms) << how;
+    EXPECT_LT(gap(2), 1000ms) << how;
+  }
+  const auto bad = [&](const std::string& text, const std::string& how) {
+    std::ofstream(log) << text;
+    const auto r = test::run_shell(ibs + how + " 2>&1");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_TRUE(bus.take(1, 100ms).empty()) << "nothing is sent from a bad log";
+    return r.out;
+  };
+  EXPECT_EQ(bad("(1.000000) can0 0DD#01\n(2.000000) can0 zz#00\n", log),
+            "ibs canlust play: " + log + ":2: the identifier is not hex (a candump log line: (SECONDS.MICROS) IFACE "
+            "ID#DATA): '(2.000000) can0 zz#00'\n");
+  EXPECT_EQ(bad("(1.000000) can0 0DD#01\n(2.000000) can0 12345678#00\n", "- < " + log),
+            "ibs canlust play: <stdin>:2: an extended-identifier or CAN FD frame: CANLust carries 11-bit classic "
+            "frames only\n");
+  EXPECT_EQ(bad("(1.1234567) can0 0DD#01\n", log),
+            "ibs canlust play: " + log + ":1: the time '1.1234567' is not SECONDS.MICROS (up to 6 digits after the point)\n");
+  EXPECT_EQ(bad("\n\n", log), "ibs canlust play: " + log + ": no frame to play\n");
+  EXPECT_EQ(bad("", temp_path("canlust_nolog")).rfind("ibs canlust play: " + temp_path("canlust_nolog") + ": ", 0), 0U);
+
+  // A frame 60 s on: SIGINT ends the wait, after the first frame, with 130.
+  std::ofstream(log) << "(10.000000) can0 0DD#01\n(70.000000) can0 0DD#00\n";
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = test::run_shell("timeout --preserve-status -s INT 0.5 " + ibs + log + " 2>&1");
+  EXPECT_EQ(r.exit_code, 130) << r.out;
+  EXPECT_EQ(r.out, "ibs canlust play: " + log + ": interrupted after 1 of 2 frames\n");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, 5s);
+  EXPECT_EQ(bus.take(2, 100ms).size(), 1U);
+  std::remove(log.c_str());
 }
 
 // ---- the test bench (issue 24) ---------------------------------------------------------------

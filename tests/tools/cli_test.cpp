@@ -44,7 +44,9 @@ TEST(Cli, HelpEndsWithExamplesAndExitCodes) {
   for (const std::string path : {"", "run", "replay", "decode", "campaign", "layout", "timing", "lustbus emulate",
                                  "lustbus read", "lustbus write", "lustbus describe", "lustbus scan",
                                  "lustbus download", "dfs1 emulate", "dfs1 status", "dfs1 read", "dfs1 write",
-                                 "dfs1 speed", "completion"}) {
+                                 "dfs1 speed", "canlust emulate", "canlust start", "canlust stop", "canlust read",
+                                 "canlust write", "canlust describe", "canlust download", "canlust monitor",
+                                 "canlust send", "canlust play", "completion"}) {
     const Result r = run(path + " --help");
     EXPECT_EQ(r.exit_code, 0) << path << "\n" << r.out;
     EXPECT_NE(r.out.find("Usage: ibs " + path), std::string::npos) << path << "\n" << r.out;
@@ -60,6 +62,17 @@ TEST(Cli, HelpEndsWithExamplesAndExitCodes) {
   EXPECT_NE(read.out.find("-p,--port PORT"), std::string::npos) << read.out;
   EXPECT_NE(read.out.find("-a,--address,--addr ADDR"), std::string::npos) << read.out;
   EXPECT_NE(read.out.find("--timeout-ms MS"), std::string::npos) << read.out;
+  // CANLust by the same names: -p the bus, -a the drive, -j JSON, values named by what they are.
+  const Result can_read = run("canlust read --help");
+  for (const char* option : {"-p,--bus BUS", "-a,--address,--addr ADDR", "-j,--json", "--timeout-ms MS", "--repeat N",
+                             "--interval MS", "--log FILE", "--id-step N"}) {
+    EXPECT_NE(can_read.out.find(option), std::string::npos) << option << "\n" << can_read.out;
+  }
+  const Result monitor = run("canlust monitor --help");
+  for (const char* option : {"-f,--filter FILTER", "-n,--count COUNT", "-t,--timestamp a|d|z", "-T,--idle-ms MS",
+                             "--duration-ms MS"}) {
+    EXPECT_NE(monitor.out.find(option), std::string::npos) << option << "\n" << monitor.out;
+  }
 }
 
 // `ibs completion bash` completes subcommands and options from the command tree itself.
@@ -75,6 +88,9 @@ TEST(Cli, BashCompletionCompletesCommandsAndOptions) {
   EXPECT_EQ(complete("ibs lustbus re", 2), "read\n");
   EXPECT_EQ(complete("ibs lustbus read --tim", 3), "--timeout-ms\n");
   EXPECT_EQ(complete("ibs dfs1 status --addr", 3), "--address\n");
+  EXPECT_EQ(complete("ibs canlust pl", 2), "play\n");
+  EXPECT_EQ(complete("ibs canlust se", 2), "send\n");
+  EXPECT_EQ(complete("ibs canlust monitor --ti", 3), "--timestamp\n");
   EXPECT_EQ(run("completion zsh").exit_code, 2);
 }
 

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
+#include <poll.h>
 #include <unistd.h>
 #include <algorithm>
 #include <cstring>
@@ -20,6 +21,7 @@
 #include <stdexcept>
 
 #include "ibs/base/text_file.hpp"
+#include "ibs/can/can_text.hpp"
 #include "ibs/can/candump.hpp"
 #include "ibs/can/socketcan.hpp"
 #include "ibs/can/udp.hpp"
@@ -138,9 +140,13 @@ struct Session {
     if (recorder) recorder->record(f);
     return bus->send(f) == can::IoStatus::ok;
   }
+  // monitor's filters: a frame they hold back is neither returned nor recorded, as candump's
+  // socket filters keep it from its log.
+  const can::CanFilterSet* filters = nullptr;
   std::optional<cl::CanFrame> receive(Duration wait) {
     const can::Received r = bus->receive(std::max<Duration>(wait, Duration::zero()));
     if (r.status != can::IoStatus::ok) return std::nullopt;
+    if (filters != nullptr && !filters->passes(r.frame)) return std::nullopt;
     if (recorder) recorder->record(r.frame);
     return r.frame;
   }
@@ -428,7 +434,8 @@ cl::ParameterClient make_client(const CanBusOptions& o) {
   return cl::ParameterClient(c);
 }
 
-int read_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+int read_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err,
+             cl::OutcomeKind* outcome) {
   const Target t = resolve(face, o.parameter);
   Session s(o.bus);
   cl::ParameterClient client = make_client(o.bus);
@@ -436,6 +443,7 @@ int read_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, st
   cl::Request r = (t.info && t.info->is_string) ? cl::read_string(a, t.number) : cl::read(a, t.number);
   if (o.timeout_ms > 0) r.timeout = std::chrono::milliseconds(o.timeout_ms);
   const cl::Outcome res = transact(s, client, r);
+  if (outcome != nullptr) *outcome = res.kind;
   nlohmann::json j;
   j["address"] = o.address;
   j["command"] = "read";
@@ -618,26 +626,79 @@ std::string data_hex(const cl::CanFrame& f) {
   return s;
 }
 
+// candump's -t: (a)bsolute wall-clock time, (d)elta to the frame before, (z)ero at the first
+// frame; "(1795431275.322679)" or "(000.013265)" as candump prints them.
+std::string candump_stamp(char mode, std::int64_t us) {
+  char b[48];
+  if (mode == 'a') {
+    std::snprintf(b, sizeof b, "(%010lld.%06lld)", static_cast<long long>(us / 1000000), static_cast<long long>(us % 1000000));
+  } else {
+    std::snprintf(b, sizeof b, "(%03lld.%06lld)", static_cast<long long>(us / 1000000), static_cast<long long>(us % 1000000));
+  }
+  return b;
+}
+
+can::CanFilterSet filters_of(const std::vector<std::string>& given) {
+  can::CanFilterSet set;
+  for (const std::string& f : given) {
+    if (const auto e = can::add_candump_filters(f, set)) {
+      throw std::invalid_argument("--filter '" + f + "', column " + std::to_string(e->column) + ": " + e->what +
+                                  " (candump's filters: ID:MASK, ID~MASK, j; hex)");
+    }
+  }
+  return set;
+}
+
+// candump with CANLust's words: every frame the filters let through, its time as -t says, the
+// interface, the identifier in hex, [DLC], the bytes and what they mean; until --duration-ms,
+// COUNT frames, MS without a frame (-T) or a signal.
 int monitor_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
   (void)err;
   const cl::IdentifierMap ids = ids_for(o.bus);
   const cl::ProcessLayout layout = layout_for(o.bus);
   if (o.duration_ms < 0) throw std::invalid_argument("--duration-ms must be 0 (until a signal) or more");
+  if (o.idle_ms < 0) throw std::invalid_argument("-T must be 0 (never) or more");
+  if (o.timestamp.size() != 1 || std::string_view("adz").find(o.timestamp[0]) == std::string_view::npos) {
+    throw std::invalid_argument("-t '" + o.timestamp + "': expected a (absolute), d (delta) or z (zero at the first frame)");
+  }
+  const char mode = o.timestamp[0];
+  const can::CanFilterSet filters = filters_of(o.filters);
   StopSignals signals;
   Session s(o.bus);
-  if (!o.bus.json) out << "monitoring " << s.bus->name() << "\n" << std::flush;
+  s.filters = &filters;
   const Clock::time_point t0 = Clock::now();
   const Duration limit = o.duration_ms > 0 ? Duration(std::chrono::milliseconds(o.duration_ms)) : Duration::max();
-  while (since(t0) < limit && !signals.raised()) {
-    const Duration left = limit == Duration::max() ? kPoll : std::min<Duration>(limit - since(t0), kPoll);
-    const auto f = s.receive(left);
+  const Duration idle = o.idle_ms > 0 ? Duration(std::chrono::milliseconds(o.idle_ms)) : Duration::max();
+  Time last_frame = since(t0);
+  std::optional<Time> first;
+  Time previous{};
+  unsigned shown = 0;
+  while (since(t0) < limit && !signals.raised() && (o.count == 0 || shown < o.count)) {
+    const Time now = since(t0);
+    if (idle != Duration::max() && now - last_frame >= idle) break;
+    Duration wait = kPoll;
+    if (limit != Duration::max()) wait = std::min<Duration>(wait, limit - now);
+    if (idle != Duration::max()) wait = std::min<Duration>(wait, idle - (now - last_frame));
+    const auto f = s.receive(wait);
     if (!f) continue;
-    const double t = to_ms(since(t0)) / 1000.0;
+    const Time at = since(t0);
+    last_frame = at;
+    std::int64_t us = 0;
+    if (mode == 'a') {
+      us = std::chrono::duration_cast<std::chrono::microseconds>(Wall::now().time_since_epoch()).count();
+    } else {
+      if (!first) first = previous = at;
+      us = std::chrono::duration_cast<std::chrono::microseconds>(at - (mode == 'z' ? *first : previous)).count();
+      previous = at;
+    }
+    ++shown;
     const auto e = face.explain_frame(*f, ids, layout);
     if (o.bus.json) {
       nlohmann::json j;
-      j["time"] = t;
+      j["time"] = static_cast<double>(us) / 1e6;
+      j["iface"] = s.name;
       j["id"] = f->id;
+      j["id_hex"] = hex(f->id, 3);
       j["dlc"] = f->dlc;
       j["rtr"] = f->rtr;
       j["data"] = data_hex(*f);
@@ -648,14 +709,119 @@ int monitor_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o,
       j["text"] = e.text;
       out << j.dump() << "\n" << std::flush;
     } else {
-      char head[64];
-      std::snprintf(head, sizeof head, "%12.6f  %4u  [%u]  ", t, static_cast<unsigned>(f->id), static_cast<unsigned>(f->dlc));
-      std::string d = f->rtr ? "remote" : data_hex(*f);
+      // candump: " (TIME)  IFACE  ID   [DLC]  BYTES"; then CANLust's words.
+      std::string d = f->rtr ? "remote request" : data_hex(*f);
       d.resize(std::max<std::size_t>(d.size(), 23), ' ');
-      out << head << d << "  " << e.text << "\n" << std::flush;
+      out << candump_stamp(mode, us) << "  " << s.name << "  " << hex(f->id, 3) << "   [" << static_cast<unsigned>(f->dlc)
+          << "]  " << d << "  " << e.text << "\n"
+          << std::flush;
     }
   }
   return kExitCanOk;
+}
+
+// cansend: one frame, ID#DATA, on the bus.
+int send_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  const can::FrameText t = can::parse_cansend(o.frame);
+  if (!t.frame) {
+    throw std::invalid_argument("'" + o.frame + "', column " + std::to_string(t.error.column) + ": " + t.error.what +
+                                " (cansend's ID#DATA: 3 hex digits 000..7FF, '#', 0..8 bytes of 2 hex digits, '.' "
+                                "between bytes; ID#R or ID#R0..R8 a remote frame)");
+  }
+  const cl::IdentifierMap ids = ids_for(o.bus);
+  const cl::ProcessLayout layout = layout_for(o.bus);
+  Session s(o.bus);
+  const std::string text = can::cansend_text(*t.frame);
+  if (!s.send(*t.frame)) {
+    err << "ibs canlust send: " << text << ": not sent: " << s.bus->last_error() << "\n";
+    return kExitCanDevice;
+  }
+  if (o.bus.json) {
+    nlohmann::json j;
+    j["command"] = "send";
+    j["frame"] = text;
+    j["id"] = t.frame->id;
+    j["text"] = face.explain_frame(*t.frame, ids, layout).text;
+    out << j.dump() << "\n";
+  }
+  return kExitCanOk;
+}
+
+// canplayer: the frames of a candump log on the bus, paced as their times say (the first at once),
+// until the last one or a signal. The whole log is read and checked before the first frame goes.
+int play_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+  (void)face;
+  const std::string name = o.file == "-" ? "<stdin>" : o.file;
+  std::string text;
+  if (o.file == "-") {
+    std::string chunk(64 * 1024, '\0');
+    while (std::cin.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || std::cin.gcount() > 0) {
+      text.append(chunk.data(), static_cast<std::size_t>(std::cin.gcount()));
+      if (text.size() > kMaxInputFileBytes) throw std::invalid_argument(name + ": larger than 256 MiB");
+    }
+  } else {
+    try {
+      text = read_text_file(o.file);  // a regular file of bounded size: never a FIFO or a device
+    } catch (const FileReadError& e) {
+      throw std::invalid_argument(o.file + ": " + e.what());
+    }
+  }
+  ids_for(o.bus);
+  layout_for(o.bus);
+  const std::vector<std::string> lines = lines_of(text);
+  const can::CandumpLog log = can::read_candump_log(lines);
+  if (log.error) {
+    throw std::invalid_argument(name + ":" + std::to_string(log.error->line) + ": " + log.error->what +
+                                " (a candump log line: (SECONDS.MICROS) IFACE ID#DATA): '" + log.error->text + "'");
+  }
+  std::vector<std::int64_t> times;
+  for (const can::CandumpEntry& e : log.entries) {
+    const std::string where = name + ":" + std::to_string(e.line) + ": ";
+    if (!e.record.classic) {
+      throw std::invalid_argument(where + "an extended-identifier or CAN FD frame: CANLust carries 11-bit classic frames only");
+    }
+    const auto us = can::candump_time_us(e.record.time);
+    if (!us) throw std::invalid_argument(where + "the time '" + e.record.time + "' is not SECONDS.MICROS (up to 6 digits after the point)");
+    times.push_back(*us);
+  }
+  if (log.entries.empty()) throw std::invalid_argument(name + ": no frame to play");
+  StopSignals signals;
+  Session s(o.bus);
+  const Clock::time_point t0 = Clock::now();
+  std::size_t sent = 0;
+  std::size_t failed = 0;
+  for (std::size_t i = 0; i < log.entries.size(); ++i) {
+    // The frame's time after the first one's; a time earlier than the one before goes at once.
+    const auto due = t0 + std::chrono::microseconds(std::max<std::int64_t>(times[i] - times[0], 0));
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(due - Clock::now()).count();
+      pollfd p{signals.fd(), POLLIN, 0};
+      const timespec ts{static_cast<time_t>(std::max<long long>(left, 0) / 1'000'000'000),
+                        static_cast<long>(std::max<long long>(left, 0) % 1'000'000'000)};
+      if (::ppoll(&p, 1, &ts, nullptr) > 0 && signals.raised()) {
+        err << "ibs canlust play: " << name << ": interrupted after " << sent << " of " << log.entries.size()
+            << " frames\n";
+        return kExitCanInterrupted;
+      }
+      if (left <= 0 || Clock::now() >= due) break;
+    }
+    if (s.send(log.entries[i].record.frame)) {
+      ++sent;
+    } else {
+      ++failed;
+      err << "ibs canlust play: " << name << ":" << log.entries[i].line << ": not sent: " << s.bus->last_error() << "\n";
+    }
+  }
+  if (o.bus.json) {
+    nlohmann::json j;
+    j["command"] = "play";
+    j["file"] = name;
+    j["frames"] = log.entries.size();
+    j["sent"] = sent;
+    j["seconds"] = static_cast<double>(times.back() - times.front()) / 1e6;
+    out << j.dump() << "\n";
+  }
+  return failed == 0 ? kExitCanOk : kExitCanDevice;
 }
 
 // Seed 003, "Downloading parameter data sets": FILE (one `PARAM VALUE` a line, '#' a comment) is
@@ -755,7 +921,8 @@ int download_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o
   return kExitCanDevice;
 }
 
-int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& out, std::ostream& err) {
+int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& out, std::ostream& err,
+           cl::OutcomeKind* outcome = nullptr) {
   const std::string name = which.get_name();
   try {
     const cl::IdentifierMap ids = ids_for(o.bus);
@@ -767,12 +934,14 @@ int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& o
       if (o.timeout_ms < 0) throw std::invalid_argument("--timeout-ms must be positive");
     }
     const devices::CanlustFace& face = client_face();
-    if (name == "read") return read_cmd(face, o, out, err);
+    if (name == "read") return read_cmd(face, o, out, err, outcome);
     if (name == "write") return write_cmd(face, o, out, err);
     if (name == "describe") return describe_cmd(face, o, out, err);
     if (name == "download") return download_cmd(face, o, out, err);
     if (name == "start") return system_cmd(face, true, o, out, err);
     if (name == "stop") return system_cmd(face, false, o, out, err);
+    if (name == "send") return send_cmd(face, o, out, err);
+    if (name == "play") return play_cmd(face, o, out, err);
     return monitor_cmd(face, o, out, err);
   } catch (const std::invalid_argument& e) {
     err << "ibs canlust " << name << ": " << e.what() << "\n";
@@ -781,17 +950,17 @@ int client(const CLI::App& which, const CanlustClientOptions& o, std::ostream& o
 }
 
 void add_bus_options(CLI::App* cmd, CanBusOptions& b) {
-  cmd->add_option("--bus", b.bus, "udp:LOCALPORT:HOST:PORT (CAN over UDP, cannelloni format) or socketcan:IFACE")
+  cmd->add_option("-p,--bus", b.bus, "udp:LOCALPORT:HOST:PORT (CAN over UDP, cannelloni format) or socketcan:IFACE")
       ->required();
   cmd->add_option("--id-step", b.id_step, "identifier = base + STEP x address: 2 (the examples, default) or 1 (the text)");
   cmd->add_option("--cacnf", b.cacnf, "the drives' 492-CACNF (1..3 DRIVECOM, 4 EasyDrive; default 2): the telegram layout");
-  cmd->add_flag("--json", b.json, "print JSON");
+  cmd->add_flag("-j,--json", b.json, "print JSON");
   cmd->add_option("--log", b.log, "write every frame sent and received to FILE in candump -l format");
   cmd->add_option("--pcap", b.pcap, "write every frame sent and received to FILE as pcap (LINKTYPE_CAN_SOCKETCAN)");
 }
 
 void add_parameter_options(CLI::App* cmd, CanlustClientOptions& o) {
-  cmd->add_option("--address", o.address, "the drive's CAN address (571-CLADR)")->required();
+  cmd->add_option("-a,--address,--addr", o.address, "the drive's CAN address (571-CLADR)")->required();
   cmd->add_option("--timeout-ms", o.timeout_ms, "the request's timeout (default 250 ms, strings 2 s)");
 }
 
@@ -992,6 +1161,7 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
   state.read = state.canlust->add_subcommand("read", "read a parameter (mode 05, strings mode 11)");
   state.read->add_option("PARAM", co.parameter, "NUMBER, NAME or NUMBER-NAME, e.g. 360, DISP, 360-DISP")->required();
   add_parameter_options(state.read, co);
+  add_repeat_options(state.read, co.repeat);
   add_bus_options(state.read, co.bus);
 
   state.write = state.canlust->add_subcommand("write", "write a parameter (mode 02, strings mode 08)");
@@ -1008,19 +1178,77 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
   state.download = state.canlust->add_subcommand(
       "download", "download a parameter data set (PARAM VALUE lines): checked by the drive as a whole, then in its EEPROM");
   state.download->add_option("FILE", co.parameter, "the data set: `PARAM VALUE` per line, '#' starts a comment")->required();
-  state.download->add_option("--address", co.address, "the drive's CAN address (571-CLADR)")->required();
+  state.download->add_option("-a,--address,--addr", co.address, "the drive's CAN address (571-CLADR)")->required();
   state.download->add_option("--timeout-ms", co.timeout_ms, "each request's timeout (default 250 ms; the final check 2 s)");
   add_bus_options(state.download, co.bus);
 
-  state.monitor = state.canlust->add_subcommand("monitor", "print every frame decoded until SIGINT/SIGTERM");
-  state.monitor->add_option("--duration-ms", co.duration_ms, "stop after this long (default: until a signal)");
+  state.monitor = state.canlust->add_subcommand(
+      "monitor", "candump with CANLust's words: every frame, filtered, in hex and decoded, until SIGINT/SIGTERM");
+  state.monitor
+      ->add_option("-f,--filter", co.filters,
+                   "candump's filters, hex: ID:MASK (id & mask == ID & MASK), ID~MASK (!=), j (all must match); "
+                   "comma-separated or repeated; none: every frame")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  state.monitor->add_option("-n,--count", co.count, "stop after COUNT frames (candump -n)")->type_name("COUNT");
+  state.monitor
+      ->add_option("-t,--timestamp", co.timestamp,
+                   "the time of each frame (candump -t): a absolute, d delta to the frame before, z since the first "
+                   "frame (default)")
+      ->type_name("a|d|z");
+  state.monitor->add_option("-T,--idle-ms", co.idle_ms, "stop after MS without a frame (candump -T; default: never)")
+      ->type_name("MS");
+  state.monitor->add_option("--duration-ms", co.duration_ms, "stop after MS (default: until a signal)");
   add_bus_options(state.monitor, co.bus);
+
+  state.send = state.canlust->add_subcommand("send", "cansend: send one frame, ID#DATA (e.g. 0DD#01: System Start)");
+  state.send
+      ->add_option("FRAME", co.frame,
+                   "ID#DATA: 3 hex digits, '#', 0..8 bytes of 2 hex digits ('.' between bytes allowed); ID#R a remote frame")
+      ->required();
+  add_bus_options(state.send, co.bus);
+
+  state.play = state.canlust->add_subcommand(
+      "play", "canplayer: send the frames of a candump log, paced in real time by their timestamps");
+  state.play->add_option("FILE", co.file, "the candump log ((SECONDS.MICROS) IFACE ID#DATA a line); - standard input")
+      ->required();
+  add_bus_options(state.play, co.bus);
 }
 
 std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::ostream& out, std::ostream& err) {
   if (state.canlust == nullptr || !state.canlust->parsed()) return std::nullopt;
   if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
-  for (const CLI::App* c : {state.start, state.stop, state.read, state.write, state.describe, state.download, state.monitor}) {
+  if (state.read->parsed()) {
+    // mbpoll's -1 / -l (repeat.hpp): one line or JSON object a reading, the failures counted.
+    unsigned timeouts = 0;
+    unsigned refused = 0;
+    unsigned other = 0;
+    return repeat_readings(
+        state.client_options.repeat, "ibs canlust read", err, kExitCanBadInput,
+        [&] {
+          cl::OutcomeKind kind = cl::OutcomeKind::done;
+          const int rc = client(*state.read, state.client_options, out, err, &kind);
+          out.flush();  // a pipe sees each reading as it comes
+          if (rc == kExitCanDevice) {
+            if (kind == cl::OutcomeKind::timeout) ++timeouts;
+            else if (kind == cl::OutcomeKind::refused) ++refused;
+            else ++other;
+          }
+          return rc;
+        },
+        [&] {
+          std::string s;
+          const auto add = [&s](unsigned n, const char* one, const char* many) {
+            if (n > 0) s += (s.empty() ? "" : ", ") + std::to_string(n) + " " + (n == 1 ? one : many);
+          };
+          add(timeouts, "timeout", "timeouts");
+          add(refused, "refused", "refused");
+          add(other, "other failure", "other failures");
+          return s;
+        });
+  }
+  for (const CLI::App* c : {state.start, state.stop, state.write, state.describe, state.download, state.monitor,
+                            state.send, state.play}) {
     if (c->parsed()) return client(*c, state.client_options, out, err);
   }
   return kExitCanBadInput;

@@ -1,18 +1,23 @@
 // `ibs canlust ...`: CDA3000 drives on a CANLust bus (docs/canlust.md, "Command line").
 //
-//   ibs canlust emulate  --bus BUS [--cacnf N] [--watchdog-reaction R] [--factory] cda3000@ADDR...
-//   ibs canlust start    --bus BUS [--listen-ms N]
-//   ibs canlust stop     --bus BUS [--listen-ms N]
-//   ibs canlust read     --bus BUS --address A PARAM
-//   ibs canlust write    --bus BUS --address A PARAM VALUE
-//   ibs canlust describe --bus BUS --address A PARAM
-//   ibs canlust download --bus BUS --address A FILE
-//   ibs canlust monitor  --bus BUS [--duration-ms N]
+//   ibs canlust emulate  -p BUS [--cacnf N] [--watchdog-reaction R] [--factory] cda3000@ADDR...
+//   ibs canlust start    -p BUS [--listen-ms MS]
+//   ibs canlust stop     -p BUS [--listen-ms MS]
+//   ibs canlust read     -p BUS -a ADDR PARAM [--repeat N] [--interval MS]
+//   ibs canlust write    -p BUS -a ADDR PARAM VALUE
+//   ibs canlust describe -p BUS -a ADDR PARAM
+//   ibs canlust download -p BUS -a ADDR FILE
+//   ibs canlust monitor  -p BUS [-f FILTER]... [-n COUNT] [-t a|d|z] [-T MS] [--duration-ms MS]
+//   ibs canlust send     -p BUS ID#DATA
+//   ibs canlust play     -p BUS FILE|-
 //
-// BUS is udp:LOCALPORT:HOST:PORT (CAN over UDP in cannelloni's format; LOCALPORT 0: any, PORT 0:
-// whoever sends first) or socketcan:IFACE. Every command takes [--id-step N] [--cacnf N]
-// [--json] [--log FILE] (candump -l format) [--pcap FILE] (LINKTYPE_CAN_SOCKETCAN). Exit codes:
-// 0 ok, 1 the drive refused or did not answer (the decoded reason is printed), 2 bad input.
+// BUS (-p, --bus) is udp:LOCALPORT:HOST:PORT (CAN over UDP in cannelloni's format; LOCALPORT 0:
+// any, PORT 0: whoever sends first) or socketcan:IFACE. Every command takes [--id-step N]
+// [--cacnf N] [-j, --json] [--log FILE] (candump -l format) [--pcap FILE]
+// (LINKTYPE_CAN_SOCKETCAN). monitor, send and play are can-utils' candump, cansend and canplayer
+// with CANLust's words beside the frames (their text forms: can/can_text.hpp, can/candump.hpp).
+// Exit codes: 0 ok, 1 the drive refused or did not answer (the decoded reason is printed), a frame
+// was not sent; 2 bad input; 130 play interrupted.
 // Floor 4: real time from the steady clock and real sockets around the sans-I/O machines of
 // canlust/: the emulated drives are the registry's CANLust faces (devices/drives.hpp), found by
 // the NAME of NAME@ADDR; the client commands read, write and explain in the CDA3000's table.
@@ -32,6 +37,7 @@
 #include "ibs/can/transport.hpp"
 #include "ibs/canlust/frame.hpp"
 #include "ibs/devices/canlust_face.hpp"
+#include "repeat.hpp"
 
 namespace CLI {
 class App;
@@ -42,6 +48,7 @@ namespace ibs::cli {
 inline constexpr int kExitCanOk = 0;
 inline constexpr int kExitCanDevice = 1;    // refused, timeout, bad reply
 inline constexpr int kExitCanBadInput = 2;  // bad options, a bus that does not open
+inline constexpr int kExitCanInterrupted = 130;  // play: SIGINT / SIGTERM before its last frame
 
 struct CanBusOptions {
   std::string bus;
@@ -68,6 +75,13 @@ struct CanlustClientOptions {
   int timeout_ms = 0;     // 0: 250 ms, strings 2 s, 150-SAVE / 04-PROG 2 s
   int listen_ms = 300;    // start / stop: how long to listen for the drives' answers
   int duration_ms = 0;    // monitor: 0 = until SIGINT / SIGTERM
+  RepeatOptions repeat;   // read: --repeat N --interval MS
+  std::vector<std::string> filters;  // monitor: candump's ID:MASK, ID~MASK, j; comma-separated or repeated
+  unsigned count = 0;                // monitor: stop after COUNT frames shown (0: no limit)
+  std::string timestamp = "z";       // monitor: a absolute, d delta, z since the first frame (candump -t)
+  int idle_ms = 0;                   // monitor: stop after MS without a frame (candump -T; 0: never)
+  std::string frame;                 // send: cansend's ID#DATA
+  std::string file;                  // play: a candump log, "-" standard input
 };
 
 struct CanlustCommandState {
@@ -80,6 +94,8 @@ struct CanlustCommandState {
   CLI::App* describe = nullptr;
   CLI::App* download = nullptr;
   CLI::App* monitor = nullptr;
+  CLI::App* send = nullptr;
+  CLI::App* play = nullptr;
   CanlustEmulateOptions emulate_options;
   CanlustClientOptions client_options;
 };

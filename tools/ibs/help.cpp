@@ -20,6 +20,8 @@ std::string metavariable(const std::string& long_name) {
       {"threads", "N"},         {"transactions", "N"},      {"rt-priority", "PRIO"},   {"control", "SPEC"},
       {"pty-link", "LINK"},     {"framing", "FRAMING"},     {"format", "FORMAT"},      {"bus", "BUS"},
       {"sw-us", "US"},          {"supi", "N"},              {"ibcnf", "N"},            {"emulate", "SIDE"},
+      {"listen-ms", "MS"},      {"duration-ms", "MS"},      {"id-step", "N"},          {"cacnf", "N"},
+      {"watchdog-reaction", "REACTION"},
   };
   if (const auto it = names.find(long_name); it != names.end()) return it->second;
   std::string n;
@@ -89,6 +91,37 @@ constexpr Footer kFooters[] = {
                    "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
     {"dfs1 speed", "Examples:\n  ibs dfs1 speed -p /tmp/dfs1 -a 1 1000\n  ibs dfs1 speed -p /tmp/dfs1 -a 0 --execute\n"
                    "Exit codes: 0 ok; 1 NAK, timeout or a bad response; 2 bad input"},
+    {"canlust emulate", "Examples:\n  ibs canlust emulate -p udp:29701:127.0.0.1:29700 cda3000@1 cda3000@2\n"
+                        "  ibs canlust emulate -p socketcan:vcan0 --control unix:/tmp/cda.ctl cda3000@1\n"
+                        "Exit codes: 0 ended by SIGINT/SIGTERM; 2 bad input"},
+    {"canlust start", "Examples:\n  ibs canlust start -p udp:29700:127.0.0.1:29701\n"
+                      "  ibs canlust start -p socketcan:can0 --listen-ms 500 -j\n"
+                      "Exit codes: 0 sent (the drives that answered are listed); 2 bad input"},
+    {"canlust stop", "Examples:\n  ibs canlust stop -p udp:29700:127.0.0.1:29701\n"
+                     "  ibs canlust stop -p socketcan:can0 -j\n"
+                     "Exit codes: 0 sent (the drives that answered are listed); 2 bad input"},
+    {"canlust read", "Examples:\n  ibs canlust read -p udp:29700:127.0.0.1:29701 -a 1 360-DISP\n"
+                     "  ibs canlust read -p socketcan:can0 -a 2 REFF -j --repeat 10 --interval 500\n"
+                     "Exit codes: 0 ok; 1 refused (the status decoded) or no answer; 2 bad input"},
+    {"canlust write", "Examples:\n  ibs canlust write -p udp:29700:127.0.0.1:29701 -a 1 CAWDG 120\n"
+                      "  ibs canlust write -p socketcan:can0 -a 2 NAME \"Line 3 pump\" -j\n"
+                      "Exit codes: 0 ok; 1 refused (the status decoded) or no answer; 2 bad input"},
+    {"canlust describe", "Examples:\n  ibs canlust describe -p udp:29700:127.0.0.1:29701 -a 1 575\n"
+                         "  ibs canlust describe -p socketcan:can0 -a 2 CAWDG -j\n"
+                         "Exit codes: 0 ok; 1 refused or no answer; 2 bad input"},
+    {"canlust download", "Examples:\n  ibs canlust download -p udp:29700:127.0.0.1:29701 -a 1 dataset.txt\n"
+                         "  ibs canlust download -p socketcan:can0 -a 2 dataset.txt -j\n"
+                         "Exit codes: 0 downloaded; 1 rejected or refused (the parameter and FILE:LINE), no answer; "
+                         "2 bad input (FILE:LINE: what)"},
+    {"canlust monitor", "Examples:\n  ibs canlust monitor -p udp:29700:127.0.0.1:29701 -f 373:7FF -n 5 -t d\n"
+                        "  ibs canlust monitor -p socketcan:can0 -f 373:7FF,375:7FF -t a --log /tmp/canlust.log\n"
+                        "Exit codes: 0 ended (COUNT frames, --duration-ms, -T, SIGINT/SIGTERM); 2 bad input"},
+    {"canlust send", "Examples:\n  ibs canlust send -p udp:29700:127.0.0.1:29701 0DD#01\n"
+                     "  ibs canlust send -p socketcan:can0 0DD#00 --log /tmp/sent.log\n"
+                     "Exit codes: 0 sent; 1 the bus did not take it; 2 bad input (what and the column)"},
+    {"canlust play", "Examples:\n  ibs canlust play -p udp:29700:127.0.0.1:29701 /tmp/canlust.log\n"
+                     "  ibs canlust play -p socketcan:can0 - < /tmp/canlust.log\n"
+                     "Exit codes: 0 played; 1 a frame was not sent; 2 bad input (FILE:LINE: what); 130 interrupted"},
     {"completion", "Examples:\n  ibs completion bash > ~/.local/share/bash-completion/completions/ibs\n"
                    "  ibs completion bash > /tmp/ibs.bash && . /tmp/ibs.bash\n"
                    "Exit codes: 0 ok; 2 bad input"},

@@ -32,9 +32,10 @@ inline void add_repeat_options(CLI::App* cmd, RepeatOptions& r) {
 // Runs `once` (which prints its reading and returns its exit code) as `r` says. Bad input
 // (`bad_input`) ends at once; otherwise the result is 0 when every reading succeeded, else the
 // last failure's code. With more than one reading, `who` and the counts go to `err` at the end:
-// "ibs lustbus read: 10 readings, 9 ok, 1 failed (exit 1: no answer, ...)".
+// "ibs lustbus read: 10 readings, 9 ok, 1 failed"; `failures`, when given, says what failed and is
+// added in parentheses when something did: "ibs canlust read: 3 readings, 1 ok, 2 failed (2 timeouts)".
 inline int repeat_readings(const RepeatOptions& r, const std::string& who, std::ostream& err, int bad_input,
-                           const std::function<int()>& once) {
+                           const std::function<int()>& once, const std::function<std::string()>& failures = {}) {
   if (r.repeat == 1) return once();
   StopSignals signals;
   using Clock = std::chrono::steady_clock;
@@ -69,7 +70,9 @@ inline int repeat_readings(const RepeatOptions& r, const std::string& who, std::
     if (stop) break;
   }
   err << who << ": " << done << (done == 1 ? " reading, " : " readings, ") << (done - failed) << " ok, " << failed
-      << " failed\n";
+      << " failed";
+  if (failed > 0 && failures) err << " (" << failures() << ")";
+  err << "\n";
   return worst;
 }
 
