@@ -54,7 +54,8 @@ int run_ibs(int argc, char** argv) {
   run->add_flag("-q,--quiet", run_options.progress.quiet, "no progress on standard error");
   run->add_flag("--progress", run_options.progress.always,
                 "progress on standard error every second, as lines, even where it is not a terminal");
-  run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory");
+  run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory; - writes the one trace of a "
+                  "one-device run to standard output");
   run->add_option("--vcd", run_options.vcd_file,
                   "write the run as a VCD file for gtkwave, with FILE.gtkw to open it ready to read");
   run->add_option("--pcap", run_options.pcap_file,
