@@ -64,12 +64,46 @@ void check_counts(const Trace& t, std::size_t m2s_words, std::size_t s2m_words) 
 }
 
 ReplayResult matched(std::size_t n) {
-  return {true, n, "replay: " + std::to_string(n) + " steps matched"};
+  return {true, n, "replay: " + std::to_string(n) + " steps matched", std::nullopt};
 }
 
-ReplayResult failed(std::size_t n, std::string message) { return {false, n, std::move(message)}; }
+ReplayResult failed(std::size_t n, std::string message, Mismatch what) {
+  return {false, n, std::move(message), std::move(what)};
+}
+
+Mismatch words_mismatch(Mismatch::Kind kind, const Row& r, Column c, const std::vector<WordPattern>& expected,
+                        std::span<const Word> actual) {
+  Mismatch m;
+  m.kind = kind;
+  m.step = r.step;
+  m.line = r.line;
+  m.column = c == Column::m2s ? "m2s" : "s2m";
+  m.expected = expected;
+  m.actual.assign(actual.begin(), actual.end());
+  return m;
+}
+
+Mismatch outcome_mismatch(const Row& last, const Outcome& expected, const std::optional<Outcome>& actual) {
+  Mismatch m;
+  m.kind = Mismatch::Kind::outcome;
+  m.step = last.step;
+  m.line = last.line;
+  m.expected_outcome = to_string(expected);
+  if (actual) m.actual_outcome = to_string(*actual);
+  return m;
+}
 
 }  // namespace
+
+std::string_view to_string(Mismatch::Kind kind) {
+  switch (kind) {
+    case Mismatch::Kind::row: return "row";
+    case Mismatch::Kind::gap: return "gap";
+    case Mismatch::Kind::gap_hold: return "gap-hold";
+    case Mismatch::Kind::outcome: return "outcome";
+  }
+  return "row";
+}
 
 void validate(const Trace& t) {
   const Header& h = t.header;
@@ -162,18 +196,21 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
           return failed(n, "gap before " + where(t, r) + ": s2m cannot reach " + format_patterns(r.s2m) +
                                ": the device's words have not changed for " + std::to_string(kGapSettleSteps) +
                                " steps (" + std::to_string(g + 1) + " into the gap)\n  last actual " +
-                               format_words(s2m) + "  " + e.explain_s2m(s2m));
+                               format_words(s2m) + "  " + e.explain_s2m(s2m),
+                      words_mismatch(Mismatch::Kind::gap, r, Column::s2m, r.s2m, s2m));
         }
       }
       if (!found) {
         return failed(n, "gap before " + where(t, r) + ": s2m did not reach " +
                              format_patterns(r.s2m) + " within max-gap " +
                              std::to_string(t.header.max_gap) + " steps\n  last actual " +
-                             format_words(s2m) + "  " + e.explain_s2m(s2m));
+                             format_words(s2m) + "  " + e.explain_s2m(s2m),
+                      words_mismatch(Mismatch::Kind::gap, r, Column::s2m, r.s2m, s2m));
       }
       pending_gap = false;
     }
-    if (!matches(r.s2m, s2m)) return failed(n, mismatch(t, r, Column::s2m, r.s2m, s2m, e));
+    if (!matches(r.s2m, s2m)) return failed(n, mismatch(t, r, Column::s2m, r.s2m, s2m, e),
+                                             words_mismatch(Mismatch::Kind::row, r, Column::s2m, r.s2m, s2m));
     prev_m2s = values_of(r.m2s);
     ++n;
   }
@@ -223,23 +260,27 @@ ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& 
         if (unchanged >= kGapSettleSteps) {
           return failed(n, "gap before " + where(t, r) + ": m2s cannot reach " + format_patterns(r.m2s) +
                                ": the master's words have not changed for " + std::to_string(kGapSettleSteps) +
-                               " steps (" + std::to_string(g + 1) + " into the gap)");
+                               " steps (" + std::to_string(g + 1) + " into the gap)",
+                      words_mismatch(Mismatch::Kind::gap, r, Column::m2s, r.m2s, m2s));
         }
         if (!matches(prev_row->m2s, m2s)) {
           return failed(n, "during the gap before " + where(t, r) +
                                " the master must keep sending the previous row's m2s " +
                                format_patterns(prev_row->m2s) + "\n  actual " + format_words(m2s) +
-                               "  " + e.explain_m2s(m2s));
+                               "  " + e.explain_m2s(m2s),
+                      words_mismatch(Mismatch::Kind::gap_hold, r, Column::m2s, prev_row->m2s, m2s));
         }
       }
       if (!found) {
         return failed(n, "gap before " + where(t, r) + ": m2s did not reach " +
                              format_patterns(r.m2s) + " within max-gap " +
-                             std::to_string(h.max_gap) + " steps");
+                             std::to_string(h.max_gap) + " steps",
+                      words_mismatch(Mismatch::Kind::gap, r, Column::m2s, r.m2s, m2s));
       }
       pending_gap = false;
     }
-    if (!matches(r.m2s, m2s)) return failed(n, mismatch(t, r, Column::m2s, r.m2s, m2s, e));
+    if (!matches(r.m2s, m2s)) return failed(n, mismatch(t, r, Column::m2s, r.m2s, m2s, e),
+                                             words_mismatch(Mismatch::Kind::row, r, Column::m2s, r.m2s, m2s));
     prev_s2m = values_of(r.s2m);
     prev_row = &r;
     ++n;
@@ -251,12 +292,14 @@ ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& 
     if (!got) {
       return failed(n, "after the last row (" + t.file + ":" + std::to_string(prev_row->line) +
                            ") the master reports no outcome yet; expected '" +
-                           to_string(*h.outcome) + "'");
+                           to_string(*h.outcome) + "'",
+                    outcome_mismatch(*prev_row, *h.outcome, got));
     }
     if (!(*got == *h.outcome)) {
       return failed(n, "after the last row (" + t.file + ":" + std::to_string(prev_row->line) +
                            ") the master reports '" + to_string(*got) + "'; expected '" +
-                           to_string(*h.outcome) + "'");
+                           to_string(*h.outcome) + "'",
+                    outcome_mismatch(*prev_row, *h.outcome, got));
     }
   }
   return matched(n);

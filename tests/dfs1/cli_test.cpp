@@ -254,6 +254,82 @@ TEST(Dfs1Cli, LogRecordsEveryByteWithTimeAndDirection) {
   std::remove(log.c_str());
 }
 
+// `--log -` (issue 27.1): the byte log on standard output, what the command prints (here its
+// JSON) on standard error; for `emulate` too, whose `pty:` line then goes there.
+TEST(Dfs1Cli, LogDashWritesTheBytesToStandardOutput) {
+  const std::string link = ::testing::TempDir() + "dfs1_log_dash_" + std::to_string(::getpid());
+  std::remove(link.c_str());
+  test::ChildProcess emu({IBS_DFS1_CLI, "dfs1", "emulate", "--pty-link", link, "--log", "-", "dfs1@1"});
+  ASSERT_EQ(emu.first_line(), "ibs-serial-log 1");
+  const CliRun r =
+      run_cli({"dfs1", "status", "--port", link, "--uid", "1", "--log", "-", "--json", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("ibs-serial-log 1\n", 0), 0U) << r.out;
+  EXPECT_NE(r.out.find(" tx " + link + " 10 02 01 81 10 03 7E"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('{'), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.err);
+  EXPECT_EQ(j["uid"], 1) << r.err;
+  ASSERT_EQ(emu.stop(SIGTERM), 0);
+  const std::string log = emu.rest();
+  EXPECT_NE(log.find(" rx "), std::string::npos) << log;
+  EXPECT_NE(log.find(" tx "), std::string::npos) << log;
+  EXPECT_EQ(log.find("pty: "), std::string::npos) << log;
+}
+
+// `emulate --json` (issue 27.7): one JSON object a line per event in the shape of `ibs lustbus
+// emulate --json` -- where it serves, the request in and the reply out of the controller it was
+// for (not of the other), a corrupt frame, the counters at the end -- and no text.
+TEST(Dfs1Cli, EmulateJsonPrintsOneObjectPerEvent) {
+  test::ChildProcess emu({IBS_DFS1_CLI, "dfs1", "emulate", "--pty", "--json", "dfs1@1", "dfs1@2"});
+  const nlohmann::json first = nlohmann::json::parse(emu.first_line());
+  EXPECT_EQ(first["event"], "serving");
+  const std::string port = first["pty"].get<std::string>();
+  ASSERT_EQ(port.rfind("/dev/pts/", 0), 0U) << emu.first_line();
+  const CliRun r = run_cli({"dfs1", "status", "--port", port, "--uid", "2", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // The status request of UID 1 with a checksum that is not its own (7E is): a corrupt frame.
+  const int fd = ::open(port.c_str(), O_RDWR | O_NOCTTY);
+  ASSERT_GE(fd, 0);
+  const std::vector<std::uint8_t> bad = {0x10, 0x02, 0x01, 0x81, 0x10, 0x03, 0x7F};
+  ASSERT_EQ(::write(fd, bad.data(), bad.size()), static_cast<ssize_t>(bad.size()));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::close(fd);
+  ASSERT_EQ(emu.stop(SIGTERM), 0);
+  std::istringstream in(emu.rest());
+  int requests = 0;
+  int answers = 0;
+  int corrupt = 0;
+  int summaries = 0;
+  for (std::string line; std::getline(in, line);) {
+    nlohmann::json e;
+    ASSERT_NO_THROW(e = nlohmann::json::parse(line)) << line;
+    ASSERT_TRUE(e.contains("time_s")) << e;
+    const std::string what = e["event"];
+    if (what == "telegram") {
+      EXPECT_EQ(e["kind"], "request") << e;
+      EXPECT_EQ(e["device"], "dfs1@2") << e;
+      EXPECT_EQ(e["address"], 2) << e;
+      EXPECT_EQ(e["bytes"].get<std::string>().rfind("10 02 02 81 10 03", 0), 0U) << e;
+      ++requests;
+    } else if (what == "answer") {
+      EXPECT_EQ(e["address"], 2) << e;
+      EXPECT_EQ(e["bytes"].get<std::string>().rfind("10 02 02 06", 0), 0U) << e;  // ACK of UID 2
+      ++answers;
+    } else if (what == "corrupt") {
+      EXPECT_EQ(e["what"], "decode") << e;
+      EXPECT_EQ(e["bytes"], "10 02 01 81 10 03 7F") << e;
+      ++corrupt;
+    } else if (what == "summary") {
+      ++summaries;
+      EXPECT_EQ(e["counters"]["decode_errors"], 1) << e;
+    }
+  }
+  EXPECT_EQ(requests, 1);
+  EXPECT_EQ(answers, 1);
+  EXPECT_EQ(corrupt, 2);  // each controller reads every frame on the line
+  EXPECT_EQ(summaries, 2);
+}
+
 // --- `emulate --control` (docs/dfs1.md, "Faults on demand") ---
 
 // `sh -c "exec ibs dfs1 emulate --pty ARGS 2>ERR [<<here-document]"`: the emulator as the child

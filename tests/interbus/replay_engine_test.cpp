@@ -121,6 +121,40 @@ TEST(ReplayEngine, GapLongerThanMaxGapFails) {
   EXPECT_TRUE(replay_device(ok, d2, HexExplainer{}).matched);
 }
 
+// The mismatch as data (`ibs replay --json`): what the message says, for a program to read.
+TEST(ReplayEngine, TheMismatchIsDataToo) {
+  EchoDevice d;
+  auto r = replay_device(make("", "0, 0005, 0000\n1, 0007, 0006\n2, 0001, 0009/000F\n"), d, HexExplainer{});
+  ASSERT_TRUE(r.mismatch.has_value()) << r.message;
+  EXPECT_EQ(r.mismatch->kind, Mismatch::Kind::row);
+  EXPECT_EQ(r.mismatch->step, 2U);
+  EXPECT_EQ(r.mismatch->line, 6U);
+  EXPECT_EQ(r.mismatch->column, "s2m");
+  ASSERT_EQ(r.mismatch->expected.size(), 1U);
+  EXPECT_EQ(r.mismatch->expected[0].to_string(), "???9");  // 0009/000F as the writer writes it
+  EXPECT_EQ(r.mismatch->actual, std::vector<Word>{0x0008});
+  CounterDevice c;
+  r = replay_device(make("# max-gap: 3\n", "0, 0000, 0000\n...\n5, 0000, 0006\n"), c, HexExplainer{});
+  ASSERT_TRUE(r.mismatch.has_value()) << r.message;
+  EXPECT_EQ(r.mismatch->kind, Mismatch::Kind::gap);
+  EXPECT_EQ(r.mismatch->step, 5U);
+  EXPECT_EQ(r.mismatch->actual, std::vector<Word>{0x0004});  // the last the device showed in the gap
+  PlusTwoMaster m;
+  r = replay_master(make("# request: read 1\n# request-at: 0\n", "0, 0000, 0001\n1, 0003, 0001\n...\n7, 0004, 0005\n"),
+                    m, HexExplainer{});
+  ASSERT_TRUE(r.mismatch.has_value()) << r.message;
+  EXPECT_EQ(r.mismatch->kind, Mismatch::Kind::gap);
+  EXPECT_EQ(r.mismatch->column, "m2s");
+  PlusTwoMaster m2;
+  r = replay_master(make("# request: read 5\n# outcome: timeout\n", "0, 0000, 0001\n1, 0003, 0009\n"), m2, HexExplainer{});
+  ASSERT_TRUE(r.mismatch.has_value()) << r.message;
+  EXPECT_EQ(r.mismatch->kind, Mismatch::Kind::outcome);
+  EXPECT_EQ(r.mismatch->expected_outcome, "timeout");
+  EXPECT_EQ(r.mismatch->actual_outcome, std::optional<std::string>("ok"));
+  EchoDevice ok;
+  EXPECT_FALSE(replay_device(make("", "0, 0005, 0000\n1, 0007, 0006\n"), ok, HexExplainer{}).mismatch.has_value());
+}
+
 TEST(ReplayEngine, DrivingWordsMustBePlainAndCountsMustFit) {
   EchoDevice d;
   EXPECT_THROW(replay_device(make("", "0, 000?, 0000\n"), d, HexExplainer{}), TraceError);

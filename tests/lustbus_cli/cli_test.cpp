@@ -223,6 +223,119 @@ TEST(LustbusCli, ReadWriteDescribeScanWithJsonAndLog) {
   EXPECT_EQ(emu.stop(SIGTERM), 0);
 }
 
+// `--log -` (issue 27.1): the byte log on standard output, what the command prints on standard
+// error; for the host commands and for `emulate`, whose `pty:` line then goes there too.
+TEST(LustbusCli, LogDashWritesTheBytesToStandardOutput) {
+  const std::string link = ::testing::TempDir() + "lustbus_log_dash_" + std::to_string(::getpid());
+  std::filesystem::remove(link);
+  test::ChildProcess emu({IBS_CLI, "lustbus", "emulate", "--pty-link", link, "--log", "-", "vf1000@1"});
+  ASSERT_EQ(emu.first_line(), "ibs-serial-log 1");
+  CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "23.15", "--log", "-"}, link));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.err, "vf1000@1 5-FSSIO := 23.15 Hz (01CFH)\n");
+  EXPECT_EQ(r.out.rfind("ibs-serial-log 1\n", 0), 0U) << r.out;
+  EXPECT_NE(r.out.find(" tx " + link), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("04 41 02 30 30 31 30 35 3D 30 31 43 46 03"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("FSSIO"), std::string::npos) << r.out;
+  ASSERT_EQ(emu.stop(SIGTERM), 0);
+  // The emulator's side of the same telegram: received, then its answer sent.
+  const std::string log = emu.rest();
+  EXPECT_NE(log.find(" rx "), std::string::npos) << log;
+  EXPECT_NE(log.find(" tx "), std::string::npos) << log;
+  EXPECT_EQ(log.find("pty: "), std::string::npos) << log;
+}
+
+// Every line of `text` as JSON; a line that is not fails the test.
+std::vector<nlohmann::json> json_lines(const std::string& text) {
+  std::vector<nlohmann::json> v;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    try {
+      v.push_back(nlohmann::json::parse(line));
+    } catch (const nlohmann::json::exception&) {
+      ADD_FAILURE() << "not JSON: " << line;
+    }
+  }
+  return v;
+}
+
+// `emulate --json` (issue 27.7): one JSON object a line per event -- where it serves, each
+// telegram in and answer out with time, device and address, a corrupt telegram, an event from the
+// control channel (a fault, a load), the counters at the end -- and no text on standard output.
+TEST(LustbusCli, EmulateJsonPrintsOneObjectPerEvent) {
+  const std::string errors = ::testing::TempDir() + "lustbus_emulate_json_err.txt";
+  test::ChildProcess emu({"/bin/sh", "-c",
+                          std::string("exec ") + IBS_CLI + " lustbus emulate --pty --json --control - vf1000@1 mc6000@3 2>" +
+                              errors + " <<'IBS_EOF'\n{\"device\": \"mc6000@3\", \"load\": 2.5}\nIBS_EOF\n"});
+  const nlohmann::json first = nlohmann::json::parse(emu.first_line());
+  EXPECT_EQ(first["event"], "serving");
+  EXPECT_EQ(first["time_s"], 0.0);
+  const std::string port = first["pty"].get<std::string>();
+  ASSERT_EQ(port.rfind("/dev/pts/", 0), 0U) << emu.first_line();
+  CliRun r = run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "23.15"}, port));
+  ASSERT_EQ(r.rc, 0) << r.err;
+  // EOT, 'A', STX, 00105=03E8, ETX and a BCC that is not theirs: NAK (3).
+  const int fd = ::open(port.c_str(), O_RDWR | O_NOCTTY);
+  ASSERT_GE(fd, 0);
+  const std::vector<std::uint8_t> bad = {0x04, 0x41, 0x02, '0', '0', '1', '0', '5', '=', '0', '3', 'E', '8', 0x03, 0x00};
+  ASSERT_EQ(::write(fd, bad.data(), bad.size()), static_cast<ssize_t>(bad.size()));
+  std::vector<std::uint8_t> got;
+  for (const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+       got.size() < 2 && std::chrono::steady_clock::now() < until;) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 50) <= 0) continue;
+    std::uint8_t b[16];
+    const ssize_t n = ::read(fd, b, sizeof b);
+    if (n > 0) got.insert(got.end(), b, b + n);
+  }
+  ::close(fd);
+  EXPECT_EQ(got, (std::vector<std::uint8_t>{0x41, 0x15}));
+  ASSERT_EQ(emu.stop(SIGTERM), 0);
+  const std::vector<nlohmann::json> events = json_lines(emu.rest());
+  int selects = 0;
+  int answers = 0;
+  int corrupt = 0;
+  int controls = 0;
+  int summaries = 0;
+  double last = 0.0;
+  for (const nlohmann::json& e : events) {
+    ASSERT_TRUE(e.contains("time_s") && e.contains("event")) << e;
+    EXPECT_GE(e["time_s"].get<double>(), last) << e;
+    last = e["time_s"].get<double>();
+    const std::string what = e["event"];
+    if (what == "telegram" && e["kind"] == "select") {
+      EXPECT_EQ(e["device"], "vf1000@1") << e;
+      EXPECT_EQ(e["address"], 1) << e;
+      // EOT, 'A', STX, 00105=01CF, ETX, BCC (6.2).
+      EXPECT_EQ(e["bytes"].get<std::string>().rfind("04 41 02 30 30 31 30 35 3D 30 31 43 46 03 ", 0), 0U) << e;
+      EXPECT_EQ(e["bytes"].get<std::string>().size(), 15U * 3 - 1) << e;
+      ++selects;
+    } else if (what == "answer") {
+      EXPECT_EQ(e["address"], 1) << e;
+      ++answers;
+    } else if (what == "corrupt") {
+      EXPECT_EQ(e["what"], "checksum") << e;
+      EXPECT_EQ(e["bytes"], "04 41 02 30 30 31 30 35 3D 30 33 45 38 03 00") << e;
+      ++corrupt;
+    } else if (what == "control") {
+      EXPECT_EQ(e["device"], "mc6000@3") << e;
+      EXPECT_EQ(e["address"], 3) << e;
+      EXPECT_EQ(e["control_line"], 1) << e;
+      EXPECT_EQ(e["taken"], true) << e;
+      ++controls;
+    } else if (what == "summary") {
+      ++summaries;
+      EXPECT_EQ(e["counters"]["checksum_errors"], e["address"] == 1 ? 1 : 0) << e;
+    }
+  }
+  // 9.2: the first SELECT meets the power-on bit (NAK), the host reads 85 and selects again.
+  EXPECT_EQ(selects, 2);
+  EXPECT_EQ(answers, 4);  // NAK, the 85 value, ACK, NAK for the bad BCC
+  EXPECT_EQ(corrupt, 1);
+  EXPECT_EQ(controls, 1);
+  EXPECT_EQ(summaries, 2);
+}
+
 TEST(LustbusCli, NakExitsOneWithTheCause) {
   Emulator emu({"vf1000@1"});
   const std::string port = emu.pty();

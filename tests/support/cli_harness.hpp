@@ -95,6 +95,13 @@ class ChildProcess {
     pid_ = -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
+  // After stop(): what the child printed after its first line, to the end.
+  [[nodiscard]] std::string rest() {
+    std::string text;
+    char buf[4096];
+    while (const std::size_t n = std::fread(buf, 1, sizeof buf, out_)) text.append(buf, n);
+    return text;
+  }
   // Reads standard output to its end into `rest` and waits for the exit: the exit code (-1: not a
   // normal exit). For a child that ends by itself (`ibs run --realtime` at the end of its run).
   int wait(std::string& rest) {

@@ -212,6 +212,62 @@ TEST(Cli, MismatchExitsOneAndExplainsBothWords) {
   EXPECT_NE(r.out.find("actual   0231 0000 0000  status 0231 READY"), std::string::npos) << r.out;
 }
 
+// `replay --json` (issue 27.7): per file one JSON object on one line, as `decode --json` prints,
+// with the mismatch where it is and both sides' words and readings; no `==> FILE <==` lines.
+TEST(Cli, ReplayJsonGivesEachFileItsResultAndTheMismatchAsAnObject) {
+  std::ifstream in(data("mc6000_pd_startup_5_3_4.trace"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("2, 0006 09C4 4000, 0231"), 23, "2, 0006 09C4 4000, 0237");
+  const std::string bad = temp_file("json_mismatch.trace", text);
+  const Result r = run_shell(std::string(IBS_CLI) + " replay --json --emulate device " + bad + " " +
+                             data("vf1000_pd_startup.trace") + " 2>/dev/null");
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  std::vector<nlohmann::json> docs;
+  for (std::size_t start = 0; start < r.out.size();) {
+    const std::size_t end = r.out.find('\n', start);
+    ASSERT_NE(end, std::string::npos) << r.out;
+    docs.push_back(nlohmann::json::parse(r.out.substr(start, end - start)));
+    start = end + 1;
+  }
+  ASSERT_EQ(docs.size(), 2U) << r.out;
+  EXPECT_EQ(docs[0]["file"], bad);
+  EXPECT_EQ(docs[0]["emulate"], "device");
+  EXPECT_EQ(docs[0]["matched"], false);
+  EXPECT_EQ(docs[0]["steps_matched"], 2);
+  ASSERT_EQ(docs[0]["mismatches"].size(), 1U);
+  const nlohmann::json& m = docs[0]["mismatches"][0];
+  EXPECT_EQ(m["kind"], "row");
+  EXPECT_EQ(m["step"], 2);
+  EXPECT_EQ(m["column"], "s2m");
+  EXPECT_EQ(m["expected"], nlohmann::json::array({"0237", "0000", "0000"}));
+  EXPECT_EQ(m["actual"], nlohmann::json::array({"0231", "0000", "0000"}));
+  EXPECT_NE(m["expected_decoded"].get<std::string>().find("ENABLED"), std::string::npos) << m;
+  EXPECT_NE(m["actual_decoded"].get<std::string>().find("READY"), std::string::npos) << m;
+  EXPECT_GT(m["line"].get<int>(), 0);
+  EXPECT_NE(m["message"].get<std::string>().find("mismatch at step 2"), std::string::npos) << m;
+  EXPECT_EQ(docs[1]["matched"], true);
+  EXPECT_EQ(docs[1]["steps_matched"], 6);
+  EXPECT_TRUE(docs[1]["mismatches"].empty());
+  // A master whose report is not the header's outcome: the outcome is the mismatch.
+  std::string master_text = text;
+  master_text.replace(master_text.find("2, 0006 09C4 4000, 0237"), 23, "2, 0006 09C4 4000, 0231");
+  const auto outcome = master_text.find("# outcome: ");
+  ASSERT_NE(outcome, std::string::npos);
+  master_text.replace(outcome, master_text.find('\n', outcome) - outcome, "# outcome: timeout");
+  const Result o = run_shell(std::string(IBS_CLI) + " replay --json --emulate master " +
+                             temp_file("json_outcome.trace", master_text) + " 2>/dev/null");
+  EXPECT_EQ(o.exit_code, 1) << o.out;
+  const nlohmann::json doc = nlohmann::json::parse(o.out);
+  ASSERT_EQ(doc["mismatches"].size(), 1U) << o.out;
+  EXPECT_EQ(doc["mismatches"][0]["kind"], "outcome") << o.out;
+  EXPECT_EQ(doc["mismatches"][0]["expected"], "timeout") << o.out;
+  EXPECT_EQ(doc["mismatches"][0]["actual"], "ok") << o.out;
+  // Bad input stays an error on standard error, never JSON.
+  const Result missing = run_shell(std::string(IBS_CLI) + " replay --json --emulate device /nonexistent/x.trace 2>/dev/null");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.out, "");
+}
+
 TEST(Cli, MalformedTraceExitsTwoWithFileAndLine) {
   const std::string path = temp_file("bad.trace", "# format: ibs-trace 1\n# device: mc6000\n# words: pd\n0, 0000 00000, 0240\n");
   const Result r = run("replay --emulate device " + path);

@@ -115,6 +115,44 @@ TEST(Captures, DashWritesTheCaptureToStandardOutputAndTheSummaryToStandardError)
   fs::remove_all(dir);
 }
 
+// `--trace -` (issue 27.1): the one trace of a one-device run on standard output, ready for
+// `ibs replay -`, the summary on standard error; a run with more traces is refused, saying why.
+TEST(Captures, DashWritesTheOneTraceToStandardOutput) {
+  const std::string dir = fresh_dir("dash_trace");
+  const std::string cli(IBS_CLI);
+  const std::string one = "name = \"one\"\nduration = \"2 s\"\n[[device]]\nname = \"servo\"\ntype = \"mc6000\"\n"
+                          "supi = 11\nibcnf = 2\nbus = \"remote\"\ninitialised = true\n"
+                          "[[timeline]]\nat = \"500 ms\"\ndevice = \"servo\"\nstate = \"enabled\"\n";
+  std::ofstream(dir + "/one.toml") << one;
+  Result r = run_shell(cli + " run " + dir + "/one.toml --trace - > " + dir + "/out.trace 2> " + dir + "/err.txt");
+  ASSERT_EQ(r.exit_code, 0) << slurp(dir + "/err.txt");
+  const std::string trace = slurp(dir + "/out.trace");
+  EXPECT_EQ(trace.rfind("# format: ibs-trace 1\n", 0), 0U) << trace.substr(0, 200);
+  const std::string err = slurp(dir + "/err.txt");
+  EXPECT_TRUE(contains(err, "ibs run: scenario \"one\"")) << err;
+  EXPECT_TRUE(contains(err, "trace written: standard output")) << err;
+  r = run_shell(cli + " run " + dir + "/one.toml --trace - 2>/dev/null | " + cli + " replay --emulate device - 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "steps matched")) << r.out;
+  EXPECT_FALSE(fs::exists("-"));
+  // Two devices: two traces, refused before the run, nothing on standard output.
+  r = run_shell(cli + " run --trace - 2>" + dir + "/err2.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(contains(slurp(dir + "/err2.txt"), "--trace -: the scenario has 2 devices")) << slurp(dir + "/err2.txt");
+  // A power cycle ends a recording and starts another: two traces after the run, refused.
+  std::ofstream(dir + "/cycled.toml") << one << "[[timeline]]\nat = \"1 s\"\ndevice = \"servo\"\nfault = \"power-cycle\"\n";
+  r = run_shell(cli + " run " + dir + "/cycled.toml --trace - 2>" + dir + "/err3.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(contains(slurp(dir + "/err3.txt"), "--trace -: the run recorded 2 traces of servo")) << slurp(dir + "/err3.txt");
+  // Standard output once: with --vcd - too it is refused.
+  r = run("run " + dir + "/one.toml --trace - --vcd -");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, "-: standard output is given for two outputs")) << r.out;
+  fs::remove_all(dir);
+}
+
 // `ibs run -` reads the scenario from standard input in the format --format gives.
 TEST(Captures, RunDashReadsTheScenarioFromStandardInput) {
   const std::string cli(IBS_CLI);

@@ -38,7 +38,8 @@ struct CampaignOptions {
 };
 
 // `pcap_file` (may be empty): the replay as a capture for Wireshark, a ring of one (docs/pcap.md).
-int replay(const std::string& emulate, const std::string& file, const std::string& pcap_file = "");
+// `json`: the result as one JSON object on one line (docs/replay.md) instead of the text.
+int replay(const std::string& emulate, const std::string& file, const std::string& pcap_file = "", bool json = false);
 // `json`: one JSON object per file on one line (trace_input.hpp) instead of the decoded trace.
 int decode(const std::string& file, bool json = false);
 int run(const RunOptions& options);

@@ -22,6 +22,7 @@
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
 #include "control_input.hpp"
+#include "emulate_events.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -90,6 +91,13 @@ const char* json_kind(const nlohmann::json& v) {
   }
 }
 
+// The byte log of --log: none, the file, or for `-` the command's standard output.
+std::unique_ptr<serial::ByteLog> open_byte_log(const Dfs1PortOptions& o) {
+  if (o.log.empty()) return nullptr;
+  if (o.log == "-" && o.log_stream != nullptr) return std::make_unique<serial::ByteLog>(*o.log_stream);
+  return std::make_unique<serial::ByteLog>(o.log);
+}
+
 std::string seconds(Time t) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3f s", std::chrono::duration<double>(t).count());
@@ -103,8 +111,8 @@ class EmulatorControl {
  public:
   EmulatorControl(std::unique_ptr<ControlInput> input, const std::vector<std::string>& names,
                   const std::vector<std::uint8_t>& uids, const std::vector<std::unique_ptr<dev::ServedController>>& served,
-                  std::ostream& err)
-      : input_(std::move(input)), names_(names), uids_(uids), served_(served), err_(err) {}
+                  std::ostream& err, EmulateEvents* events)
+      : input_(std::move(input)), names_(names), uids_(uids), served_(served), err_(err), events_(events) {}
 
   // Called from the serve loop's stop(): what the last turn applied, then the new lines.
   void turn() {
@@ -116,6 +124,14 @@ class EmulatorControl {
   void print_reports() {
     for (std::size_t i = 0; i < served_.size(); ++i) {
       while (const auto r = served_[i]->take_report()) {
+        if (events_ != nullptr) {
+          nlohmann::ordered_json j =
+              EmulateEvents::event(r->at, "control", names_[i], served_[i]->controller().uid());
+          j["what"] = dev::to_string(*r);
+          j["taken"] = true;
+          events_->print(j);
+          continue;
+        }
         err_ << "ibs dfs1 emulate: " << seconds(r->at) << ": " << names_[i] << ": " << dev::to_string(*r) << "\n";
       }
     }
@@ -161,6 +177,7 @@ class EmulatorControl {
   const std::vector<std::uint8_t>& uids_;
   const std::vector<std::unique_ptr<dev::ServedController>>& served_;
   std::ostream& err_;
+  EmulateEvents* events_;  // --json: the reports as events; nullptr: as text on err_
   std::deque<std::pair<std::size_t, dev::Event>> waiting_;  // posted once their controller has room
 };
 
@@ -198,6 +215,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
     return kExitDfs1BadInput;
   }
 
+  EmulateEvents events(out);
   // The control channel exists before `pty: PATH` is printed: whoever reads that line may connect.
   std::optional<EmulatorControl> control;
   if (!o.control.empty()) {
@@ -207,7 +225,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
       err << "ibs dfs1 emulate: --control " << o.control << ": " << why << "\n";
       return kExitDfs1BadInput;
     }
-    control.emplace(std::move(input), o.devices, uid_order, served, err);
+    control.emplace(std::move(input), o.devices, uid_order, served, err, o.json ? &events : nullptr);
   }
 
   // Blocked before `pty: PATH` is printed: whoever reads that line may signal at once.
@@ -228,28 +246,84 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
   // The first line says where it serves: the new pty, or the port it opened.
-  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
-  if (link) out << "pty link: " << link->path() << "\n";
-  out << std::flush;
+  if (o.json) {
+    events.serving(pair ? "pty" : "port", pair ? pair->slave_path() : o.port.port, link ? link->path() : std::string());
+  } else {
+    out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
+    if (link) out << "pty link: " << link->path() << "\n";
+    out << std::flush;
+  }
   for (const std::string& n : port.notes()) err << "ibs dfs1 emulate: " << n << "\n";
 
   std::unique_ptr<serial::ByteLog> log;
   try {
-    if (!o.port.log.empty()) log = std::make_unique<serial::ByteLog>(o.port.log);
+    log = open_byte_log(o.port);
   } catch (const std::exception& e) {
     err << "ibs dfs1 emulate: " << e.what() << "\n";
     return kExitDfs1BadInput;
   }
   port.set_log(log.get());
 
+  // With --json each controller's line is watched: after each byte, what its receiver counted
+  // (a request, a frame for another UID, a corrupt frame, a fragment dropped after silence, D13).
+  std::vector<std::vector<std::uint8_t>> frames(controllers.size());
+  std::vector<proto::ControllerReceiver::Counters> seen(controllers.size());
+  std::vector<std::unique_ptr<WatchedLineDevice>> watched;
+  const auto watch_byte = [&](std::size_t i, std::uint8_t b, Time now) {
+    constexpr std::size_t kMaxFrame = 128;  // longer than any frame of the DFS-1: a host's frame unended
+    std::vector<std::uint8_t>& bytes = frames[i];
+    const auto& n = controllers[i]->counters();
+    const auto print = [&](std::string_view what, const char* key, std::string_view value, bool with_bytes) {
+      nlohmann::ordered_json j = EmulateEvents::event(now, what, o.devices[i], controllers[i]->uid());
+      if (key != nullptr) j[key] = std::string(value);
+      if (with_bytes) j["bytes"] = serial::format_bytes(bytes);
+      events.print(j);
+    };
+    if (n.fragments != seen[i].fragments) {  // this byte came after a silence: the fragment before it went
+      print("corrupt", "what", "fragment", true);
+      bytes.clear();
+    }
+    if (bytes.size() < kMaxFrame) bytes.push_back(b);
+    if (n.dropped_replies != seen[i].dropped_replies) print("answer-cut", nullptr, "", false);
+    if (n.requests != seen[i].requests) {
+      print("telegram", "kind", n.globals != seen[i].globals ? "global" : "request", true);
+      bytes.clear();
+    } else if (n.decode_errors != seen[i].decode_errors) {
+      print("corrupt", "what", "decode", true);
+      bytes.clear();
+    } else if (n.foreign != seen[i].foreign) {
+      bytes.clear();  // a frame for another UID: that controller tells it
+    }
+    seen[i] = n;
+  };
+  if (o.json) {
+    raw.clear();
+    for (std::size_t i = 0; i < served.size(); ++i) {
+      watched.push_back(std::make_unique<WatchedLineDevice>(
+          *served[i], events, o.devices[i], [&controllers, i] { return unsigned{controllers[i]->uid()}; },
+          [&watch_byte, i](std::uint8_t b, Time now) { watch_byte(i, b, now); }));
+      raw.push_back(watched.back().get());
+    }
+  }
+  const auto t0 = std::chrono::steady_clock::now();
   serial::serve(port, raw, [&signals, &control]() {
     if (control) control->turn();
     return signals.raised();
   });
   if (control) control->print_reports();
   // What each controller heard, and what it threw away (D13: fragments a silent host left).
-  for (const auto& c : controllers) {
+  for (std::size_t i = 0; i < controllers.size(); ++i) {
+    const auto& c = controllers[i];
     const auto& n = c->counters();
+    if (o.json) {
+      const Time end{std::chrono::duration_cast<Duration>(std::chrono::steady_clock::now() - t0)};
+      nlohmann::ordered_json j = EmulateEvents::event(end, "summary", o.devices[i], c->uid());
+      j["counters"] = {{"requests", n.requests},           {"globals", n.globals},
+                       {"foreign", n.foreign},             {"decode_errors", n.decode_errors},
+                       {"fragments", n.fragments},         {"dropped_replies", n.dropped_replies}};
+      events.print(j);
+      continue;
+    }
     err << "ibs dfs1 emulate: UID " << static_cast<unsigned>(c->uid()) << ": " << n.requests << " request(s), "
         << n.decode_errors << " corrupt frame(s), " << n.fragments << " fragment(s) dropped after silence, "
         << n.dropped_replies << " reply(ies) cut by a new request\n";
@@ -313,7 +387,7 @@ int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
   try {
     if (o.port.port.empty()) return bad("--port PATH is required");
     port.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
-    if (!o.port.log.empty()) log = std::make_unique<serial::ByteLog>(o.port.log);
+    log = open_byte_log(o.port);
   } catch (const std::exception& e) {
     return bad(e.what());
   }
@@ -416,7 +490,9 @@ void add_port_options(CLI::App* cmd, Dfs1PortOptions& p) {
   cmd->add_option("--baud", p.baud, "baud rate (default 9600; a pty ignores it)");
   cmd->add_option("--framing", p.framing, "data bits, parity, stop bits (default 8N1)");
   cmd->add_flag("--rs485", p.rs485, "let the driver switch the RS-485 transmitter (TIOCSRS485)");
-  cmd->add_option("--log", p.log, "write every byte with time and direction to FILE");
+  cmd->add_option("--log", p.log,
+                  "write every byte with time and direction to FILE; - writes them to standard output (and what "
+                  "the command prints to standard error)");
 }
 
 void add_client_options(CLI::App* cmd, Dfs1ClientOptions& o) {
@@ -446,6 +522,9 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
                             "with --pty (implied): a symbolic link PATH to the pty, as socat's pty,link=PATH; "
                             "a PATH that exists is refused, the link is removed at exit");
   add_port_options(state.emulate, eo.port);
+  state.emulate->add_flag("-j,--json", eo.json,
+                          "one JSON object a line per event: serving, telegram, answer, corrupt, answer-cut, "
+                          "control, summary (docs/dfs1.md)");
   state.emulate->add_option("--control", eo.control,
                             "faults and plant events as JSON lines from - (standard input) or unix:PATH "
                             "(a socket it creates); docs/dfs1.md, \"Faults on demand\"");
@@ -486,19 +565,26 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
                                      std::ostream& err) {
   if (state.dfs1 == nullptr || !state.dfs1->parsed()) return std::nullopt;
-  if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
+  // `--log -` (issue 27.1): the byte log is standard output, and what the command prints itself
+  // goes to standard error, as `ibs run --pcap -` does.
+  Dfs1EmulateOptions eo = state.emulate_options;
+  Dfs1ClientOptions co = state.client_options;
+  const bool log_stdout = (state.emulate->parsed() ? eo.port.log : co.port.log) == "-";
+  if (log_stdout) eo.port.log_stream = co.port.log_stream = &out;
+  std::ostream& say = log_stdout ? err : out;
+  if (state.emulate->parsed()) return emulate(eo, say, err);
   for (const CLI::App* c : {state.status, state.read}) {
     if (c->parsed()) {
-      return repeat_readings(state.client_options.repeat, "ibs dfs1 " + c->get_name(), err, kExitDfs1BadInput,
+      return repeat_readings(co.repeat, "ibs dfs1 " + c->get_name(), err, kExitDfs1BadInput,
                              [&] {
-                               const int rc = client(*c, state.client_options, out, err);
-                               out.flush();  // a pipe sees each reading as it comes
+                               const int rc = client(*c, co, say, err);
+                               say.flush();  // a pipe sees each reading as it comes
                                return rc;
                              });
     }
   }
   for (const CLI::App* c : {state.write, state.speed}) {
-    if (c->parsed()) return client(*c, state.client_options, out, err);
+    if (c->parsed()) return client(*c, co, say, err);
   }
   return kExitDfs1BadInput;
 }

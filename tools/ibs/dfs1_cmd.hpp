@@ -40,7 +40,10 @@ struct Dfs1PortOptions {
   std::uint32_t baud = 9600;
   std::string framing = "8N1";  // decision D9: binary data needs 8 bits
   bool rs485 = false;
-  std::string log;  // empty: no byte log
+  std::string log;  // empty: no byte log; "-": standard output
+  // For `--log -`: the stream the log goes to (the command's standard output, set by
+  // run_dfs1_commands, which then prints the command's own output on standard error).
+  std::ostream* log_stream = nullptr;
 };
 
 struct Dfs1EmulateOptions {
@@ -49,6 +52,9 @@ struct Dfs1EmulateOptions {
   std::string pty_link;  // --pty-link PATH: a stable link to the pty (implies --pty), removed at exit
   std::vector<std::string> devices;  // dfs1@UID
   std::string control;               // --control: "-" or "unix:PATH"; empty: none
+  // --json: one JSON object a line per event (request in, reply out, corrupt frame, fault) instead
+  // of the text (emulate_events.hpp; docs/dfs1.md, "Events as JSON").
+  bool json = false;
 };
 
 struct Dfs1ClientOptions {

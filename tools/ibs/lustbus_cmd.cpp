@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "control_input.hpp"
+#include "emulate_events.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/base/time_text.hpp"
 #include "ibs/devices/plant_event.hpp"
@@ -404,6 +405,13 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
   return c;
 }
 
+// The byte log of --log: none, the file, or for `-` the command's standard output.
+std::unique_ptr<serial::ByteLog> open_byte_log(const LustbusPortOptions& o) {
+  if (o.log.empty()) return nullptr;
+  if (o.log == "-" && o.log_stream != nullptr) return std::make_unique<serial::ByteLog>(*o.log_stream);
+  return std::make_unique<serial::ByteLog>(o.log);
+}
+
 int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err) {
   const auto bad = [&](const std::string& what) {
     err << "ibs lustbus emulate: " << what << "\n";
@@ -480,19 +488,80 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
     } else {
       opened.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
     }
-    if (!o.port.log.empty()) log = std::make_unique<serial::ByteLog>(o.port.log);
+    log = open_byte_log(o.port);
   } catch (const std::exception& e) {
     return bad(e.what());
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
+  EmulateEvents events(out);
   // The first line says where it serves: the new pty, or the port it opened.
-  out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
-  if (link) out << "pty link: " << link->path() << "\n";
-  out << std::flush;
+  if (o.json) {
+    events.serving(pair ? "pty" : "port", pair ? pair->slave_path() : o.port.port, link ? link->path() : std::string());
+  } else {
+    out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
+    if (link) out << "pty link: " << link->path() << "\n";
+    out << std::flush;
+  }
   for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
   port.set_log(log.get());
+  // With --json each drive's line is watched: what its receiver took or threw away after each
+  // byte (3, LB-D23) and the answers it gave.
+  std::vector<std::vector<std::uint8_t>> telegrams(specs.size());
+  std::vector<lb::ReceiverCounters> seen(specs.size());
+  std::vector<std::unique_ptr<WatchedLineDevice>> watched;
+  const auto drive_event = [&](std::size_t i, Time at, std::string_view what) {
+    return EmulateEvents::event(at, what, specs[i].spec, receivers[i]->address());
+  };
+  const auto watch_byte = [&](std::size_t i, std::uint8_t b, Time now) {
+    constexpr std::size_t kMaxTelegram = 128;  // longer than any telegram (6): what a host sent unended
+    std::vector<std::uint8_t>& bytes = telegrams[i];
+    const lb::Receiver& r = *receivers[i];
+    const lb::ReceiverCounters& n = r.counters();
+    const auto with_bytes = [&](nlohmann::ordered_json j) {
+      j["bytes"] = serial::format_bytes(bytes);
+      events.print(j);
+      bytes.clear();
+    };
+    if (n.fragments != seen[i].fragments) {  // this byte came after a silence: the fragment before it went
+      nlohmann::ordered_json j = drive_event(i, now, "corrupt");
+      j["what"] = "fragment";
+      with_bytes(std::move(j));
+    }
+    if (n.cut_answers != seen[i].cut_answers) events.print(drive_event(i, now, "answer-cut"));
+    if (r.last_event() == lb::ReceiverEvent::reset) bytes.clear();  // EOT begins every telegram (3)
+    if (bytes.size() < kMaxTelegram) bytes.push_back(b);
+    switch (r.last_event()) {
+      case lb::ReceiverEvent::enquiry:
+      case lb::ReceiverEvent::select:
+      case lb::ReceiverEvent::broadcast: {
+        nlohmann::ordered_json j = drive_event(i, now, "telegram");
+        j["kind"] = std::string(lb::to_string(r.last_event()));
+        with_bytes(std::move(j));
+        break;
+      }
+      case lb::ReceiverEvent::checksum_error:
+      case lb::ReceiverEvent::dropped: {
+        nlohmann::ordered_json j = drive_event(i, now, "corrupt");
+        j["what"] = r.last_event() == lb::ReceiverEvent::checksum_error ? "checksum" : "improper";
+        with_bytes(std::move(j));
+        break;
+      }
+      case lb::ReceiverEvent::none:
+      case lb::ReceiverEvent::reset: break;
+    }
+    seen[i] = n;
+  };
   std::vector<base::LineDevice*> lines;
-  for (lb::ServedReceiver& d : served) lines.push_back(&d);
+  for (std::size_t i = 0; i < served.size(); ++i) {
+    if (!o.json) {
+      lines.push_back(&served[i]);
+      continue;
+    }
+    watched.push_back(std::make_unique<WatchedLineDevice>(
+        served[i], events, specs[i].spec, [&receivers, i] { return unsigned{receivers[i]->address()}; },
+        [&watch_byte, i](std::uint8_t b, Time now) { watch_byte(i, b, now); }));
+    lines.push_back(watched.back().get());
+  }
   // Control lines are read between two turns of the serve loop (every kServePoll at the most), at
   // the time since it began; a device fault with a duration clears when that has passed.
   struct PendingClear {
@@ -511,7 +580,14 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
       devices::PlantEvent clear;
       clear.kind = devices::PlantEvent::Kind::fault_clear;
       if (controlled[it->drive].drive->apply_event) controlled[it->drive].drive->apply_event(clear, now);
-      err << "ibs lustbus emulate: " << controlled[it->drive].spec << ": device fault's cause gone\n" << std::flush;
+      if (o.json) {
+        nlohmann::ordered_json j = drive_event(it->drive, now, "control");
+        j["what"] = "device fault's cause gone";
+        j["taken"] = true;
+        events.print(j);
+      } else {
+        err << "ibs lustbus emulate: " << controlled[it->drive].spec << ": device fault's cause gone\n" << std::flush;
+      }
       it = clears.erase(it);
     }
     control->poll(
@@ -520,9 +596,17 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
             const ControlEvent c = parse_emulate_control(text, controlled);
             const ControlledDrive& d = controlled[c.drive];
             const bool taken = d.drive->apply_event && d.drive->apply_event(c.event, now);
-            err << "ibs lustbus emulate: control:" << number << ": " << d.spec << ": " << c.text
-                << (taken ? "" : " (not taken by the drive)") << "\n"
-                << std::flush;
+            if (o.json) {
+              nlohmann::ordered_json j = drive_event(c.drive, now, "control");
+              j["what"] = c.text;
+              j["taken"] = taken;
+              j["control_line"] = number;
+              events.print(j);
+            } else {
+              err << "ibs lustbus emulate: control:" << number << ": " << d.spec << ": " << c.text
+                  << (taken ? "" : " (not taken by the drive)") << "\n"
+                  << std::flush;
+            }
             if (taken && c.clear_after) clears.push_back({c.drive, now + *c.clear_after});
           } catch (const std::invalid_argument& e) {
             err << "control:" << number << ": " << e.what() << "\n" << std::flush;
@@ -538,6 +622,16 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
   // tells its controllers'.
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const lb::ReceiverCounters& n = receivers[i]->counters();
+    if (o.json) {
+      const Time end{std::chrono::duration_cast<Duration>(std::chrono::steady_clock::now() - t0)};
+      nlohmann::ordered_json j = drive_event(i, end, "summary");
+      j["counters"] = {{"enquiries", n.enquiries},         {"selects", n.selects},
+                       {"broadcasts", n.broadcasts},       {"answers", n.answers},
+                       {"checksum_errors", n.checksum_errors}, {"dropped", n.dropped},
+                       {"fragments", n.fragments},         {"cut_answers", n.cut_answers}};
+      events.print(j);
+      continue;
+    }
     err << "ibs lustbus emulate: " << specs[i].spec << ": " << n.enquiries << " ENQUIRY(s), " << n.selects
         << " SELECT(s), " << n.broadcasts << " broadcast(s), " << n.answers << " answer(s) sent, "
         << n.checksum_errors << " BCC error(s), " << n.dropped << " improper telegram(s) dropped, " << n.fragments
@@ -614,7 +708,7 @@ HostPort open_host_port(const LustbusPortOptions& o) {
   HostPort h;
   try {
     h.port.emplace(serial::SerialPort::open(o.port, port_options(o)));
-    if (!o.log.empty()) h.log = std::make_unique<serial::ByteLog>(o.log);
+    h.log = open_byte_log(o);
   } catch (const std::exception& e) {
     throw BadInput(e.what());
   }
@@ -863,7 +957,9 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
 
 void add_port_options(CLI::App* cmd, LustbusPortOptions& p) {
   cmd->add_option("--baud", p.baud, "baud rate (default 9600; a pty ignores it); 7E1 always");
-  cmd->add_option("--log", p.log, "write every byte with time and direction to FILE");
+  cmd->add_option("--log", p.log,
+                  "write every byte with time and direction to FILE; - writes them to standard output (and what "
+                  "the command prints to standard error)");
 }
 
 void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) {
@@ -972,6 +1068,9 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
   state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time in ms instead")
       ->check(CLI::Range(0, 10000));
   add_port_options(state.emulate, eo.port);
+  state.emulate->add_flag("-j,--json", eo.json,
+                          "one JSON object a line per event: serving, telegram, answer, corrupt, answer-cut, "
+                          "control, summary (docs/lustbus.md)");
   state.emulate->add_option("--control", eo.control,
                             "a live control channel, '-' (standard input) or unix:PATH: JSON lines of "
                             "events (fault, mains, load, input) for the drives served");
@@ -1008,18 +1107,25 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
 std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::ostream& out,
                                         std::ostream& err) {
   if (state.lustbus == nullptr || !state.lustbus->parsed()) return std::nullopt;
-  if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
-  if (state.download->parsed()) return download_file(state.client_options, out, err);
+  // `--log -` (issue 27.1): the byte log is standard output, and what the command prints itself
+  // goes to standard error, as `ibs run --pcap -` does.
+  LustbusEmulateOptions eo = state.emulate_options;
+  LustbusClientOptions co = state.client_options;
+  const bool log_stdout = (state.emulate->parsed() ? eo.port.log : co.port.log) == "-";
+  if (log_stdout) eo.port.log_stream = co.port.log_stream = &out;
+  std::ostream& say = log_stdout ? err : out;
+  if (state.emulate->parsed()) return emulate(eo, say, err);
+  if (state.download->parsed()) return download_file(co, say, err);
   if (state.read->parsed()) {
-    return repeat_readings(state.client_options.repeat, "ibs lustbus read", err, kExitLustbusBadInput,
+    return repeat_readings(co.repeat, "ibs lustbus read", err, kExitLustbusBadInput,
                            [&] {
-                             const int rc = client(*state.read, state.client_options, out, err);
-                             out.flush();  // a pipe sees each reading as it comes
+                             const int rc = client(*state.read, co, say, err);
+                             say.flush();  // a pipe sees each reading as it comes
                              return rc;
                            });
   }
   for (const CLI::App* c : {state.write, state.describe, state.scan}) {
-    if (c->parsed()) return client(*c, state.client_options, out, err);
+    if (c->parsed()) return client(*c, co, say, err);
   }
   return kExitLustbusBadInput;
 }

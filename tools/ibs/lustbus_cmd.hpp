@@ -43,7 +43,10 @@ inline constexpr int kExitLustbusBadInput = 2;  // bad options or values, a port
 struct LustbusPortOptions {
   std::string port;
   std::uint32_t baud = 9600;
-  std::string log;  // empty: no byte log
+  std::string log;  // empty: no byte log; "-": standard output
+  // For `--log -`: the stream the log goes to (the command's standard output, set by
+  // run_lustbus_commands, which then prints the command's own output on standard error).
+  std::ostream* log_stream = nullptr;
 };
 
 struct LustbusEmulateOptions {
@@ -61,6 +64,9 @@ struct LustbusEmulateOptions {
   // A live control channel ("-", "unix:PATH"; empty: none): JSON lines of plant and fault events
   // for the drives (docs/lustbus.md, "Events on demand").
   std::string control;
+  // --json: one JSON object a line per event (telegram in, answer out, corrupt telegram, fault)
+  // instead of the text (emulate_events.hpp; docs/lustbus.md, "Events as JSON").
+  bool json = false;
 };
 
 struct LustbusClientOptions {

@@ -54,7 +54,8 @@ int run_ibs(int argc, char** argv) {
   run->add_flag("-q,--quiet", run_options.progress.quiet, "no progress on standard error");
   run->add_flag("--progress", run_options.progress.always,
                 "progress on standard error every second, as lines, even where it is not a terminal");
-  run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory");
+  run->add_option("--trace", run_options.trace_dir, "write one ibs-trace 1 file per device into this directory; - writes the one trace of a "
+                  "one-device run to standard output");
   run->add_option("--vcd", run_options.vcd_file,
                   "write the run as a VCD file for gtkwave, with FILE.gtkw to open it ready to read");
   run->add_option("--pcap", run_options.pcap_file,
@@ -88,6 +89,9 @@ int run_ibs(int argc, char** argv) {
   replay->add_option("FILE", replay_files, "the trace files; - reads one from standard input")->required();
   std::string replay_pcap;
   replay->add_option("--pcap", replay_pcap, "write every replayed step to a pcap file for Wireshark");
+  bool replay_json = false;
+  replay->add_flag("-j,--json", replay_json,
+                   "one JSON object per file, each on one line, with its mismatch (docs/replay.md)");
 
   std::vector<std::string> decode_files;
   bool decode_json = false;
@@ -168,10 +172,11 @@ int run_ibs(int argc, char** argv) {
     // their file); the exit code is the worst: bad input (2) before a mismatch (1) before 0.
     int worst = ibs::cli::kExitOk;
     for (const std::string& file : files) {
-      if (files.size() > 1 && !(decode->parsed() && decode_json)) std::cout << "==> " << file << " <==\n" << std::flush;
+      const bool json = replay->parsed() ? replay_json : decode_json;
+      if (files.size() > 1 && !json) std::cout << "==> " << file << " <==\n" << std::flush;
       int rc = ibs::cli::kExitOk;
       if (replay->parsed()) {
-        rc = ibs::cli::replay(emulate, file, replay_pcap);
+        rc = ibs::cli::replay(emulate, file, replay_pcap, replay_json);
       } else if (std::ostringstream log_text; const auto log = file == "-" ? std::nullopt
                                                   : ibs::cli::decode_lustbus_log(file, log_text, std::cerr)) {
         // A log is explained as text; with --json the output is JSON or an error, never the text

@@ -2,6 +2,8 @@
 #include <iostream>
 #include <optional>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.hpp"
 #include "ibs/devices/registry.hpp"
 #include "ibs/devices/trace_adapters.hpp"
@@ -196,9 +198,51 @@ std::optional<std::vector<Word>> last_row_words(const trace::Trace& t, const tra
   return words;
 }
 
+// The replay's result for a program (`ibs replay --json`, docs/replay.md): one object on one line,
+// as `ibs decode --json` prints one per file; `mismatches` holds the one mismatch replay stops at.
+std::string result_json(const trace::Trace& t, const std::string& emulate, const trace::ReplayResult& r,
+                        const trace::Explainer& e) {
+  nlohmann::ordered_json mismatches = nlohmann::ordered_json::array();
+  if (r.mismatch) {
+    const trace::Mismatch& m = *r.mismatch;
+    nlohmann::ordered_json j;
+    j["kind"] = std::string(trace::to_string(m.kind));
+    j["step"] = m.step;
+    j["line"] = m.line;
+    if (m.kind == trace::Mismatch::Kind::outcome) {
+      j["expected"] = m.expected_outcome;
+      j["actual"] = m.actual_outcome ? nlohmann::ordered_json(*m.actual_outcome) : nlohmann::ordered_json(nullptr);
+    } else {
+      const bool m2s = m.column == "m2s";
+      nlohmann::ordered_json expected = nlohmann::ordered_json::array();
+      std::vector<Word> expected_values;
+      for (const trace::WordPattern& w : m.expected) {
+        expected.push_back(w.to_string());
+        expected_values.push_back(static_cast<Word>(w.value & w.mask));  // masked bits as 0
+      }
+      nlohmann::ordered_json actual = nlohmann::ordered_json::array();
+      for (const Word w : m.actual) actual.push_back(trace::format_words(std::span<const Word>(&w, 1)));
+      j["column"] = m.column;
+      j["expected"] = std::move(expected);
+      j["actual"] = std::move(actual);
+      j["expected_decoded"] = m2s ? e.explain_m2s(expected_values) : e.explain_s2m(expected_values);
+      j["actual_decoded"] = m2s ? e.explain_m2s(m.actual) : e.explain_s2m(m.actual);
+    }
+    j["message"] = r.message;
+    mismatches.push_back(std::move(j));
+  }
+  nlohmann::ordered_json doc;
+  doc["file"] = t.file;
+  doc["emulate"] = emulate;
+  doc["matched"] = r.matched;
+  doc["steps_matched"] = r.steps_matched;
+  doc["mismatches"] = std::move(mismatches);
+  return doc.dump() + "\n";
+}
+
 }  // namespace
 
-int replay(const std::string& emulate, const std::string& file, const std::string& pcap_file) {
+int replay(const std::string& emulate, const std::string& file, const std::string& pcap_file, bool json) {
   OutputFiles outputs;
   try {
     const trace::Trace t = load_trace_input(file);
@@ -259,13 +303,17 @@ int replay(const std::string& emulate, const std::string& file, const std::strin
         return kExitBadInput;
       }
     }
-    if (!r.matched) {
-      std::cout << r.message << "\n";
-      std::cout << "replay: " << r.steps_matched << " steps matched before the mismatch\n";
-      return kExitMismatch;
+    // With the capture on standard output (`--pcap -`), the result goes to standard error.
+    std::ostream& say = outputs.uses_stdout() ? std::cerr : std::cout;
+    if (json) {
+      say << result_json(t, emulate, r, *explainer);
+    } else if (!r.matched) {
+      say << r.message << "\n";
+      say << "replay: " << r.steps_matched << " steps matched before the mismatch\n";
+    } else {
+      say << r.message << "\n";
     }
-    std::cout << r.message << "\n";
-    return kExitOk;
+    return r.matched ? kExitOk : kExitMismatch;
   } catch (const trace::TraceError& e) {
     std::cerr << e.what() << "\n";
     return kExitBadInput;

@@ -292,7 +292,23 @@ int run(const RunOptions& o) {
   // have been written; a path that cannot be created fails before the run.
   OutputFiles outputs;
   std::string error;
-  if (!o.trace_dir.empty() && !outputs.make_directory(o.trace_dir, error)) {
+  // `--trace -`: the one trace on standard output, for a run that records one; a trace is a
+  // device's (docs/replay.md, "Recordings"), so a scenario of several devices has several.
+  const bool trace_stdout = o.trace_dir == "-";
+  std::ostream* trace_stream = nullptr;
+  if (trace_stdout) {
+    if (scenario.devices.size() != 1) {
+      std::cerr << "--trace -: the scenario has " << scenario.devices.size()
+                << " devices and each records its own trace, but standard output holds one; give a directory "
+                   "(--trace DIR)\n";
+      return kExitBadInput;
+    }
+    trace_stream = outputs.open("-", error);  // standard output, taken now so no other output takes it
+    if (trace_stream == nullptr) {
+      std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+  } else if (!o.trace_dir.empty() && !outputs.make_directory(o.trace_dir, error)) {
     std::cerr << error << "\n";
     return kExitBadInput;
   }
@@ -432,7 +448,19 @@ int run(const RunOptions& o) {
     }
   }
   std::vector<std::string> written;
-  if (!o.trace_dir.empty()) {
+  if (trace_stdout) {
+    const auto traces = simulator->traces();
+    if (traces.size() != 1) {
+      // A power cycle ends a recording; the next starts once the device has initialised again.
+      std::cerr << "--trace -: the run recorded " << traces.size() << " traces of " << scenario.devices.front().name
+                << (traces.empty() ? " (it never showed a freshly started device's words)"
+                                   : " (each power cycle starts a new one)")
+                << ", but standard output holds one; give a directory (--trace DIR); nothing was written\n";
+      return kExitBadInput;
+    }
+    *trace_stream << trace::write(traces.front().trace);
+    written.push_back("standard output");
+  } else if (!o.trace_dir.empty()) {
     for (const auto& r : simulator->traces()) {
       const auto path = std::filesystem::path(o.trace_dir) / r.file_name;
       if (!outputs.write(path, trace::write(r.trace), error)) {

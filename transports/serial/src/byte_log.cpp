@@ -19,9 +19,13 @@ std::string format_bytes(std::span<const std::uint8_t> bytes) {
   return s;
 }
 
-ByteLog::ByteLog(const std::string& path) : out_(path), start_(std::chrono::steady_clock::now()) {
-  if (!out_) throw std::runtime_error("log " + path + ": cannot open for writing");
-  out_ << "ibs-serial-log 1\n" << std::flush;
+ByteLog::ByteLog(const std::string& path) : file_(path), out_(&file_), start_(std::chrono::steady_clock::now()) {
+  if (!file_) throw std::runtime_error("log " + path + ": cannot open for writing");
+  *out_ << "ibs-serial-log 1\n" << std::flush;
+}
+
+ByteLog::ByteLog(std::ostream& out) : out_(&out), start_(std::chrono::steady_clock::now()) {
+  *out_ << "ibs-serial-log 1\n" << std::flush;
 }
 
 void ByteLog::record(Direction d, std::string_view port, std::span<const std::uint8_t> bytes) {
@@ -31,7 +35,7 @@ void ByteLog::record(Direction d, std::string_view port, std::span<const std::ui
   std::array<char, 32> t{};
   std::snprintf(t.data(), t.size(), "%lld.%06lld", static_cast<long long>(us / 1000000),
                 static_cast<long long>(us % 1000000));
-  out_ << t.data() << (d == Direction::tx ? " tx " : " rx ") << port << ' ' << format_bytes(bytes)
+  *out_ << t.data() << (d == Direction::tx ? " tx " : " rx ") << port << ' ' << format_bytes(bytes)
        << '\n'
        << std::flush;
 }

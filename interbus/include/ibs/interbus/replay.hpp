@@ -9,6 +9,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "ibs/interbus/trace.hpp"
 
@@ -68,10 +70,32 @@ class MasterSide {
 // will never end, and replay says so instead of running to `max-gap`.
 inline constexpr std::uint64_t kGapSettleSteps = 50'000;
 
+// Where and how a replay failed, for a program to read (`ibs replay --json`, docs/replay.md); the
+// same as the message says in words.
+struct Mismatch {
+  enum class Kind {
+    row,      // a row's words in `column` are not the emulated side's
+    gap,      // the emulated side did not reach the row after a gap (within max-gap, or settled)
+    gap_hold, // during a gap the master did not keep sending the previous row's m2s
+    outcome,  // after the last row the master's report is not the header's `outcome`
+  };
+  Kind kind = Kind::row;
+  std::uint64_t step = 0;  // the row's step (row, gap: the row after the gap; outcome: the last row)
+  std::size_t line = 0;    // that row's line in the file
+  std::string column;      // "m2s" or "s2m"; empty for outcome
+  std::vector<WordPattern> expected;  // the file's words in `column`; empty for outcome
+  std::vector<Word> actual;           // the emulated side's words (in a gap its last ones)
+  std::string expected_outcome;       // outcome: the header's
+  std::optional<std::string> actual_outcome;  // outcome: the master's report; nullopt: none yet
+};
+
+std::string_view to_string(Mismatch::Kind kind);
+
 struct ReplayResult {
   bool matched = false;
   std::size_t steps_matched = 0;  // rows compared and matched
   std::string message;            // the mismatch report, or `replay: N steps matched`
+  std::optional<Mismatch> mismatch;  // set when !matched
 };
 
 // What a trace must be whichever side is emulated and whether it is decoded: an `outcome` needs

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <fstream>
+#include <ostream>
 #include <span>
 #include <string>
 #include <string_view>
@@ -21,10 +22,15 @@ class ByteLog {
  public:
   // Throws std::runtime_error "log FILE: cannot open for writing".
   explicit ByteLog(const std::string& path);
+  // The log written to `out` (a command's standard output for `--log -`), which must outlive it.
+  explicit ByteLog(std::ostream& out);
+  ByteLog(const ByteLog&) = delete;  // out_ may point at its own file_
+  ByteLog& operator=(const ByteLog&) = delete;
   void record(Direction d, std::string_view port, std::span<const std::uint8_t> bytes);
 
  private:
-  std::ofstream out_;
+  std::ofstream file_;
+  std::ostream* out_;
   std::chrono::steady_clock::time_point start_;
 };
 
