@@ -456,6 +456,25 @@ TEST(CanlustCli, ShortOptionsAndRepeatedReadings) {
   EXPECT_EQ(emu.stop(SIGTERM), 0);
 }
 
+// `--log -` (candump -L): the candump log of the read's two frames on standard output, the reading
+// itself on standard error, so a pipe gets a log and nothing else.
+TEST(CanlustCli, LogDashWritesTheFramesToStandardOutput) {
+  const Ports p;
+  Emulator emu({"-p", p.emulator_bus(), "cda3000@1"});
+  ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U) << emu.first_line();
+  const auto r = run_cli({"canlust", "read", "-p", p.client_bus(), "-a", "1", "360", "--log", "-"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.err, "CDA 1 360-DISP: 406\n");
+  const auto frames = lines_in(r.out);
+  ASSERT_GE(frames.size(), 2U) << r.out;
+  // The request 44F (1101 + 2 x 1) and the reply 52B (1321 + 2 x 1), as candump -l writes them.
+  EXPECT_NE(r.out.find(" 44F#680105"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" 52B#68010096"), std::string::npos) << r.out;
+  for (const std::string& l : frames) EXPECT_EQ(l.front(), '(') << l;
+  EXPECT_FALSE(std::filesystem::exists("-"));
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+}
+
 // `ibs canlust send` (cansend) starts the drives; `monitor` (candump) shows their status telegrams
 // with candump's filters, -n COUNT, -t a|d|z and -T, identifiers in hex and CANLust's words beside.
 TEST(CanlustCli, MonitorFiltersCountsAndTimestampsAsCandump) {

@@ -134,7 +134,7 @@ struct Session {
   std::string name;
 
   explicit Session(const CanBusOptions& o) : bus(open_bus(o.bus)), name(interface_name(o.bus)) {
-    if (!o.log.empty() || !o.pcap.empty()) recorder = std::make_unique<FrameRecorder>(o.log, o.pcap, name);
+    if (!o.log.empty() || !o.pcap.empty()) recorder = std::make_unique<FrameRecorder>(o.log, o.pcap, name, o.log_stdout);
   }
   bool send(const cl::CanFrame& f) {
     if (recorder) recorder->record(f);
@@ -955,7 +955,7 @@ void add_bus_options(CLI::App* cmd, CanBusOptions& b) {
   cmd->add_option("--id-step", b.id_step, "identifier = base + STEP x address: 2 (the examples, default) or 1 (the text)");
   cmd->add_option("--cacnf", b.cacnf, "the drives' 492-CACNF (1..3 DRIVECOM, 4 EasyDrive; default 2): the telegram layout");
   cmd->add_flag("-j,--json", b.json, "print JSON");
-  cmd->add_option("--log", b.log, "write every frame sent and received to FILE in candump -l format");
+  cmd->add_option("--log", b.log, "write every frame sent and received to FILE in candump -l format (- for standard output; the command's own output then goes to standard error)");
   cmd->add_option("--pcap", b.pcap, "write every frame sent and received to FILE as pcap (LINKTYPE_CAN_SOCKETCAN)");
 }
 
@@ -970,17 +970,23 @@ void add_parameter_options(CLI::App* cmd, CanlustClientOptions& o) {
 
 struct FrameRecorder::Files {
   std::ofstream log;
-  bool has_log = false;
+  std::ostream* log_out = nullptr;  // the file, or standard output for `--log -`
 #ifdef IBS_HAVE_PCAP
   std::unique_ptr<can::PcapWriter> pcap;
 #endif
   std::string iface;
 };
 
-FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, std::string iface)
+FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, std::string iface,
+                             std::ostream* log_stdout)
     : files_(std::make_unique<Files>()) {
   files_->iface = std::move(iface);
-  if (!log.empty() && !pcap.empty() && std::filesystem::weakly_canonical(log) == std::filesystem::weakly_canonical(pcap)) {
+  if (log == "-") {
+    // candump -L: the log on standard output (the command's own lines go to standard error).
+    files_->log_out = log_stdout;
+  }
+  if (!log.empty() && log != "-" && !pcap.empty() &&
+      std::filesystem::weakly_canonical(log) == std::filesystem::weakly_canonical(pcap)) {
     throw std::invalid_argument("--log " + log + " and --pcap " + pcap + " are the same file");
   }
   // Both recordings are live (written frame by frame until the command ends), so they are written
@@ -988,7 +994,7 @@ FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, st
   // truncating it (and removed again if this made it), then the capture, and only then is the log
   // truncated (issue 23, defect 4: a bad --pcap had emptied an existing --log).
   bool log_made = false;
-  if (!log.empty()) {
+  if (!log.empty() && log != "-") {
     std::error_code ec;
     log_made = !std::filesystem::exists(log, ec);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0666);
@@ -1014,17 +1020,17 @@ FrameRecorder::FrameRecorder(const std::string& log, const std::string& pcap, st
     throw std::invalid_argument("--pcap: this ibs was built without libpcap (apt-get install libpcap-dev)");
 #endif
   }
-  if (!log.empty()) {
+  if (!log.empty() && log != "-") {
     files_->log.open(log, std::ios::out | std::ios::trunc);
     if (!files_->log) throw std::invalid_argument("--log " + log + ": cannot open the file for writing");
-    files_->has_log = true;
+    files_->log_out = &files_->log;
   }
 }
 
 FrameRecorder::~FrameRecorder() = default;
 
 void FrameRecorder::record(const cl::CanFrame& f, Wall::time_point at) {
-  if (files_->has_log) files_->log << can::candump_line(f, at, files_->iface) << "\n" << std::flush;
+  if (files_->log_out != nullptr) *files_->log_out << can::candump_line(f, at, files_->iface) << "\n" << std::flush;
 #ifdef IBS_HAVE_PCAP
   if (files_->pcap) {
     files_->pcap->write(f, std::chrono::duration_cast<Duration>(at.time_since_epoch()));
@@ -1215,19 +1221,28 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
   add_bus_options(state.play, co.bus);
 }
 
-std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::ostream& out, std::ostream& err) {
+std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::ostream& standard_out,
+                                        std::ostream& err) {
   if (state.canlust == nullptr || !state.canlust->parsed()) return std::nullopt;
-  if (state.emulate->parsed()) return emulate(state.emulate_options, out, err);
+  // `--log -` puts the candump log on standard output: what the command prints itself goes to
+  // standard error then, so that the log stays a log (candump -L, issue 27.1).
+  const std::string& log = state.emulate->parsed() ? state.emulate_options.bus.log : state.client_options.bus.log;
+  std::ostream& out = log == "-" ? err : standard_out;
+  CanlustEmulateOptions emulate_options = state.emulate_options;
+  emulate_options.bus.log_stdout = &standard_out;
+  CanlustClientOptions client_options = state.client_options;
+  client_options.bus.log_stdout = &standard_out;
+  if (state.emulate->parsed()) return emulate(emulate_options, out, err);
   if (state.read->parsed()) {
     // mbpoll's -1 / -l (repeat.hpp): one line or JSON object a reading, the failures counted.
     unsigned timeouts = 0;
     unsigned refused = 0;
     unsigned other = 0;
     return repeat_readings(
-        state.client_options.repeat, "ibs canlust read", err, kExitCanBadInput,
+        client_options.repeat, "ibs canlust read", err, kExitCanBadInput,
         [&] {
           cl::OutcomeKind kind = cl::OutcomeKind::done;
-          const int rc = client(*state.read, state.client_options, out, err, &kind);
+          const int rc = client(*state.read, client_options, out, err, &kind);
           out.flush();  // a pipe sees each reading as it comes
           if (rc == kExitCanDevice) {
             if (kind == cl::OutcomeKind::timeout) ++timeouts;
@@ -1249,7 +1264,7 @@ std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::o
   }
   for (const CLI::App* c : {state.start, state.stop, state.write, state.describe, state.download, state.monitor,
                             state.send, state.play}) {
-    if (c->parsed()) return client(*c, state.client_options, out, err);
+    if (c->parsed()) return client(*c, client_options, out, err);
   }
   return kExitCanBadInput;
 }

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <span>
@@ -55,6 +56,8 @@ struct CanBusOptions {
   unsigned id_step = 2;  // decision D1
   unsigned cacnf = 2;    // the drives' 492-CACNF: how control and status telegrams are laid out
   bool json = false;
+  // Where `--log -` writes (standard output; run_canlust_commands sets the stream it was given).
+  std::ostream* log_stdout = &std::cout;
   std::string log;   // candump -l log of every frame sent and received
   std::string pcap;  // the same frames as a pcap file
 };
@@ -116,7 +119,9 @@ std::unique_ptr<can::CanTransport> open_bus(const std::string& spec);
 class FrameRecorder {
  public:
   // Throws std::invalid_argument when a file does not open (or pcap is not built in).
-  FrameRecorder(const std::string& log, const std::string& pcap, std::string interface_name);
+  // `log` "-": the log goes to `log_stdout`.
+  FrameRecorder(const std::string& log, const std::string& pcap, std::string interface_name,
+                std::ostream* log_stdout = &std::cout);
   ~FrameRecorder();
   FrameRecorder(const FrameRecorder&) = delete;
   FrameRecorder& operator=(const FrameRecorder&) = delete;
