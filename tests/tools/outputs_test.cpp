@@ -372,11 +372,15 @@ TEST(Pictures, PlotDrawsEachDrivesSeriesAxesAndEvents) {
   const auto texts = svg_texts(text);
   const auto has = [&](const std::string& t) { return std::find(texts.begin(), texts.end(), t) != texts.end(); };
   // Per drive: its title, the series in the key, the axes labelled, the states named.
+  // Both viewpoints (issue 27.14), both kinds of transaction, and the events close together under
+  // one label (the servo's device fault 0.2 s after a corrupted cycle).
   for (const char* what : {"servo (ID code 4DBH)", "fan (ID code 33BH)", "pump (ID code 33BH)", "reference (rpm)",
-                           "actual (rpm)", "reference (Hz)", "actual (Hz)", "reference, actual (rpm)",
-                           "reference, actual (Hz)", "DRIVECOM state", "time (s)", "ENABLED", "FAULT",
-                           "EMERGENCY STOP ACTIVE", "fault events", "power-cycle", "device-fault",
-                           "parameter transactions", "read 85", "ibs run: faults, 12 s simulated"}) {
+                           "actual, master's view (rpm)", "actual, device (rpm)", "reference (Hz)",
+                           "actual, master's view (Hz)", "actual, device (Hz)", "reference, actual (rpm)",
+                           "reference, actual (Hz)", "state, master's view", "state, device", "time (s)", "ENABLED",
+                           "FAULT", "EMERGENCY STOP ACTIVE", "fault events", "power-cycle", "fault-cleared",
+                           "2 events: corrupt, device-fault", "done transactions", "failed transactions", "read 85",
+                           "ibs run: faults, 12 s simulated"}) {
     EXPECT_TRUE(has(what)) << what;
   }
   // Every series is drawn: two value curves, the state steps and the transaction bars or the
