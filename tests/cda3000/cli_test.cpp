@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -303,20 +304,25 @@ TEST(CanlustCli, AFailingRecordingEmptiesNoFile) {
   std::remove(log.c_str());
 }
 
-// The dissector's copy of the CDA3000 parameter names is the wing's table.
-TEST(CanlustDissector, ParameterNamesAreTheWings) {
+// The dissector's copy of the CDA3000 parameter table (names, data types, units) is the wing's:
+// the data type says how it shows a value read or written (406-REFF -12.25 Hz).
+TEST(CanlustDissector, ParameterTableIsTheWings) {
   std::ifstream in(std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua");
   const std::string lua((std::istreambuf_iterator<char>(in)), {});
   const auto start = lua.find("local cda3000 = {");
   ASSERT_NE(start, std::string::npos);
-  const std::string table = lua.substr(start, lua.find('}', start) - start);
-  std::map<int, std::string> names;
-  const std::regex row(R"re(\[(\d+)\] = "([^"]+)")re");
+  const std::string table = lua.substr(start, lua.find("\n}", start) - start);
+  std::map<int, std::array<std::string, 3>> rows;
+  const std::regex row(R"re(\[(\d+)\] = \{ "([^"]+)", "([^"]+)", "([^"]*)" \})re");
   for (auto it = std::sregex_iterator(table.begin(), table.end(), row); it != std::sregex_iterator(); ++it) {
-    names[std::stoi((*it)[1])] = (*it)[2];
+    rows[std::stoi((*it)[1])] = {(*it)[2], (*it)[3], (*it)[4]};
   }
-  ASSERT_EQ(names.size(), dev::kParameters.size());
-  for (const auto& p : dev::kParameters) EXPECT_EQ(names[p.number], dev::display_name(p)) << p.number;
+  ASSERT_EQ(rows.size(), dev::kParameters.size());
+  for (const auto& p : dev::kParameters) {
+    const std::array<std::string, 3> want{dev::display_name(p), std::string(cl::to_string(p.type)),
+                                          std::string(p.unit)};
+    EXPECT_EQ(rows[p.number], want) << p.number;
+  }
 }
 
 // candump's log format, both ways.
