@@ -248,6 +248,32 @@ TEST(CanlustCli, ParameterCommandsWithJsonAndExitCodes) {
   EXPECT_NE(out.find("1323;360-DISP;0x00000196;\n"), std::string::npos) << out;  // 7.1.3's reply
   EXPECT_NE(out.find("1329;574-CAWDG;0x00000078;\n"), std::string::npos) << out;
   EXPECT_NE(out.find("883;;;START-UP INHIBIT\n"), std::string::npos) << out;
+  // The replies by what their request asked (issue 27.15): a value with its unit, the characters
+  // of a string transfer, a description's items; no expert info on these valid frames.
+  const auto tshark_out = [](const std::string& c) {
+    std::string text;
+    if (FILE* pipe = ::popen(c.c_str(), "r")) {
+      char buf[4096];
+      std::size_t n;
+      while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) text.append(buf, n);
+      ::pclose(pipe);
+    }
+    return text;
+  };
+  const std::string base = "tshark -X lua_script:" + std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua -r " + pcap;
+  const std::string values = tshark_out(base + " -Y canlust.kind==5 -T fields -E separator=';' -e canlust.parameter_name"
+                                               " -e canlust.value -e canlust.unit -e canlust.text"
+                                               " -e canlust.description.data_type -e canlust.checksum 2>/dev/null");
+  EXPECT_NE(values.find("360-DISP;406;;;;\n"), std::string::npos) << values;
+  EXPECT_NE(values.find("574-CAWDG;120;ms;;;\n"), std::string::npos) << values;  // the write's echo, the read
+  EXPECT_NE(values.find("90-NAME;;;Line;;\n"), std::string::npos) << values;      // a string read's first block
+  EXPECT_NE(values.find("90-NAME;;; pum;;\n90-NAME;;;p;;\n"), std::string::npos) << values;  // ... to the terminator
+  EXPECT_NE(values.find("575-CASCY;;;;USIGN16;\n"), std::string::npos) << values;  // description item 0
+  EXPECT_NE(values.find("575-CASCY;32000;ms;;;\n"), std::string::npos) << values;  // item 2, the maximum
+  EXPECT_NE(values.find("575-CASCY;;;CASC;;\n"), std::string::npos) << values;     // item 5, the name
+  EXPECT_NE(values.find("90-NAME;;;;;0x"), std::string::npos) << values;          // List_End: the checksum
+  const std::string verbose = tshark_out(base + " -V 2>/dev/null");
+  EXPECT_EQ(verbose.find("Expert Info"), std::string::npos);
   std::remove(pcap.c_str());
   std::remove(log.c_str());
 }
