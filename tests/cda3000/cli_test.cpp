@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -250,6 +251,32 @@ TEST(CanlustCli, ParameterCommandsWithJsonAndExitCodes) {
   EXPECT_NE(out.find("1323;360-DISP;0x00000196;\n"), std::string::npos) << out;  // 7.1.3's reply
   EXPECT_NE(out.find("1329;574-CAWDG;0x00000078;\n"), std::string::npos) << out;
   EXPECT_NE(out.find("883;;;START-UP INHIBIT\n"), std::string::npos) << out;
+  // The replies by what their request asked (issue 27.15): a value with its unit, the characters
+  // of a string transfer, a description's items; no expert info on these valid frames.
+  const auto tshark_out = [](const std::string& c) {
+    std::string text;
+    if (FILE* pipe = ::popen(c.c_str(), "r")) {
+      char buf[4096];
+      std::size_t n;
+      while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) text.append(buf, n);
+      ::pclose(pipe);
+    }
+    return text;
+  };
+  const std::string base = "tshark -X lua_script:" + std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua -r " + pcap;
+  const std::string values = tshark_out(base + " -Y canlust.kind==5 -T fields -E separator=';' -e canlust.parameter_name"
+                                               " -e canlust.value -e canlust.unit -e canlust.text"
+                                               " -e canlust.description.data_type -e canlust.checksum 2>/dev/null");
+  EXPECT_NE(values.find("360-DISP;406;;;;\n"), std::string::npos) << values;
+  EXPECT_NE(values.find("574-CAWDG;120;ms;;;\n"), std::string::npos) << values;  // the write's echo, the read
+  EXPECT_NE(values.find("90-NAME;;;Line;;\n"), std::string::npos) << values;      // a string read's first block
+  EXPECT_NE(values.find("90-NAME;;; pum;;\n90-NAME;;;p;;\n"), std::string::npos) << values;  // ... to the terminator
+  EXPECT_NE(values.find("575-CASCY;;;;USIGN16;\n"), std::string::npos) << values;  // description item 0
+  EXPECT_NE(values.find("575-CASCY;32000;ms;;;\n"), std::string::npos) << values;  // item 2, the maximum
+  EXPECT_NE(values.find("575-CASCY;;;CASC;;\n"), std::string::npos) << values;     // item 5, the name
+  EXPECT_NE(values.find("90-NAME;;;;;0x"), std::string::npos) << values;          // List_End: the checksum
+  const std::string verbose = tshark_out(base + " -V 2>/dev/null");
+  EXPECT_EQ(verbose.find("Expert Info"), std::string::npos);
   std::remove(pcap.c_str());
   std::remove(log.c_str());
 }
@@ -306,20 +333,25 @@ TEST(CanlustCli, AFailingRecordingEmptiesNoFile) {
   std::remove(log.c_str());
 }
 
-// The dissector's copy of the CDA3000 parameter names is the wing's table.
-TEST(CanlustDissector, ParameterNamesAreTheWings) {
+// The dissector's copy of the CDA3000 parameter table (names, data types, units) is the wing's:
+// the data type says how it shows a value read or written (406-REFF -12.25 Hz).
+TEST(CanlustDissector, ParameterTableIsTheWings) {
   std::ifstream in(std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua");
   const std::string lua((std::istreambuf_iterator<char>(in)), {});
   const auto start = lua.find("local cda3000 = {");
   ASSERT_NE(start, std::string::npos);
-  const std::string table = lua.substr(start, lua.find('}', start) - start);
-  std::map<int, std::string> names;
-  const std::regex row(R"re(\[(\d+)\] = "([^"]+)")re");
+  const std::string table = lua.substr(start, lua.find("\n}", start) - start);
+  std::map<int, std::array<std::string, 3>> rows;
+  const std::regex row(R"re(\[(\d+)\] = \{ "([^"]+)", "([^"]+)", "([^"]*)" \})re");
   for (auto it = std::sregex_iterator(table.begin(), table.end(), row); it != std::sregex_iterator(); ++it) {
-    names[std::stoi((*it)[1])] = (*it)[2];
+    rows[std::stoi((*it)[1])] = {(*it)[2], (*it)[3], (*it)[4]};
   }
-  ASSERT_EQ(names.size(), dev::kParameters.size());
-  for (const auto& p : dev::kParameters) EXPECT_EQ(names[p.number], dev::display_name(p)) << p.number;
+  ASSERT_EQ(rows.size(), dev::kParameters.size());
+  for (const auto& p : dev::kParameters) {
+    const std::array<std::string, 3> want{dev::display_name(p), std::string(cl::to_string(p.type)),
+                                          std::string(p.unit)};
+    EXPECT_EQ(rows[p.number], want) << p.number;
+  }
 }
 
 // candump's log format, both ways.

@@ -233,19 +233,19 @@ TEST(WiresharkDissector, TsharkDecodesEveryDevicesWords) {
   // word gives (docs/pcp.md: the link adds no CRC).
   const auto msgs = lines_of(run(tshark + " -Y interbus.pcp.message -T fields -E separator=';'"
                                           " -e interbus.pcp.message.service -e interbus.pcp.message.parameter"
-                                          " -e interbus.pcp.message.count 2>/dev/null"));
+                                          " -e interbus.pcp.message.count -e interbus.pcp.message.device 2>/dev/null"));
   ASSERT_GE(msgs.size(), 4U);
-  EXPECT_EQ(msgs[0], "Initiate.req;;8");
-  EXPECT_EQ(msgs[1], "Initiate.conf;;7");
-  EXPECT_EQ(msgs[2], "Read.req;85;3");
-  EXPECT_EQ(msgs[3], "Read.conf;;4");
+  EXPECT_EQ(msgs[0], "Initiate.req;;8;mc6000");
+  EXPECT_EQ(msgs[1], "Initiate.conf;;7;mc6000");
+  EXPECT_EQ(msgs[2], "Read.req;85;3;mc6000");
+  EXPECT_EQ(msgs[3], "Read.conf;;4;mc6000");
 
   // The verbose tree, as `tshark -V` shows it.
   const std::string verbose = run(tshark + " -V -c 3000 2>/dev/null");
   for (const char* what : {"INTERBUS (ibs capture), configuration", "Device mc6000: MC6000, ID code 4DBH",
                            "Control word: 0x000f POWER-ON/ENABLE", "Status word: 0x0637 ENABLED, remote, reference reached",
                            "Reference: 2500.25 rpm (Q16)", "Reference: 50 Hz", "Communication word (inverter): 0x8000",
-                           "PCP master -> servo: FIRST s", "PCP message master -> servo: Read.req"}) {
+                           "PCP master -> servo: FIRST s", "PCP message master -> servo (mc6000): Read.req"}) {
     EXPECT_TRUE(contains(verbose, what)) << what;
   }
   std::remove(path.c_str());

@@ -303,6 +303,84 @@ TEST(Captures, AMasterReplayCapturesThePcpChannel) {
   fs::remove_all(dir);
 }
 
+// Issue 27.15: each reassembled PCP message names the device whose channel carried it, one
+// name per message beside its service (`interbus.device` lists every device of the packet).
+TEST(Captures, EachPcpMessageNamesItsDevice) {
+  if (!have("tshark")) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
+  const std::string dir = fresh_dir("pcp_devices");
+  std::ofstream(dir + "/two.toml") << R"(name = "two servos"
+duration = "600 ms"
+[[device]]
+name = "left"
+type = "mc6000"
+supi = 11
+ibcnf = 2
+initialised = true
+[[device]]
+name = "right"
+type = "mc6000"
+supi = 11
+ibcnf = 2
+initialised = true
+[[timeline]]
+at = "0 s"
+device = "left"
+read = 85
+[[timeline]]
+at = "300 ms"
+device = "right"
+read = 409
+)";
+  const std::string pcap = dir + "/two.pcap";
+  const Result r = run("run " + dir + "/two.toml --pcap " + pcap);
+  if (contains(r.out, "without libpcap")) GTEST_SKIP() << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto msgs = lines_of(run_shell(tshark(pcap) + " -Y interbus.pcp.message -T fields -E separator=';'"
+                                                      " -e interbus.pcp.message.device -e interbus.pcp.message.service"
+                                                      " -e interbus.pcp.message.parameter -e interbus.device 2>/dev/null")
+                                 .out);
+  const std::vector<std::string> want{
+      "left;Initiate.req;;left,right",  "left;Initiate.conf;;left,right", "left;Read.req;85;left,right",
+      "left;Read.conf;;left,right",     "right;Initiate.req;;left,right", "right;Initiate.conf;;left,right",
+      "right;Read.req;409;left,right", "right;Read.conf;;left,right"};
+  EXPECT_EQ(msgs, want);
+  const std::string verbose = run_shell(tshark(pcap) + " -V 2>/dev/null").out;
+  EXPECT_TRUE(contains(verbose, "PCP message master -> servo (right): Read.req, 10 bytes, index 5D99H"));
+  fs::remove_all(dir);
+}
+
+// Issue 27.15: the CANLust dissector shows a parameter's value as the wing's data type and unit
+// say (406-REFF INT32Q16 in Hz, 575-CASCY USIGN16 in ms), each reply with the request it answers;
+// a valid capture raises no expert info (bytes 3-6 are characters only in a string transfer).
+TEST(Captures, CanlustRepliesShowValuesWithTheirUnits) {
+  if (!have("tshark")) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
+  const std::string dir = fresh_dir("canlust_values");
+  const std::string pcap = dir + "/conveyors.pcap";
+  const Result r = run("run " + std::string(IBS_SOURCE_DIR) + "/examples/canlust/conveyors.toml --pcap " + pcap);
+  if (contains(r.out, "without libpcap")) GTEST_SKIP() << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::string lua = " -X lua_script:" + std::string(IBS_SOURCE_DIR) + "/tools/wireshark/canlust.lua -r " + pcap;
+  const auto rows = lines_of(run_shell("tshark" + lua +
+                                       " -Y 'canlust.kind == 4 || canlust.kind == 5' -T fields -E separator=';'"
+                                       " -e can.id -e canlust.parameter_name -e canlust.data_type -e canlust.value"
+                                       " -e canlust.unit -e canlust.text 2>/dev/null")
+                                 .out);
+  const std::vector<std::string> want{
+      "1103;575-CASCY;USIGN16;;;",      // read request: no value
+      "1105;575-CASCY;USIGN16;40;ms;",  // write request
+      "1323;575-CASCY;USIGN16;20;ms;",  // the read's reply
+      "1325;575-CASCY;USIGN16;40;ms;",  // the write's echo
+      "1105;406-REFF;INT32Q16;;;",
+      "1325;406-REFF;INT32Q16;-12.25;Hz;"};
+  EXPECT_EQ(rows, want);
+  const std::string verbose = run_shell("tshark" + lua + " -V 2>/dev/null").out;
+  EXPECT_TRUE(contains(verbose, "Value read: -12.25 Hz (INT32Q16)")) << verbose.substr(0, 3000);
+  EXPECT_TRUE(contains(verbose, "[Request in frame: "));
+  const auto expert = verbose.find("Expert Info");
+  EXPECT_EQ(expert, std::string::npos) << verbose.substr(expert > 2000 ? expert - 2000 : 0, 2200);
+  fs::remove_all(dir);
+}
+
 TEST(Pictures, RunVcdWritesASaveFileBesideIt) {
   const std::string dir = fresh_dir("gtkw");
   const std::string vcd = dir + "/run.vcd";
@@ -410,11 +488,15 @@ TEST(Pictures, PlotDrawsEachDrivesSeriesAxesAndEvents) {
   const auto texts = svg_texts(text);
   const auto has = [&](const std::string& t) { return std::find(texts.begin(), texts.end(), t) != texts.end(); };
   // Per drive: its title, the series in the key, the axes labelled, the states named.
+  // Both viewpoints (issue 27.14), both kinds of transaction, and the events close together under
+  // one label (the servo's device fault 0.2 s after a corrupted cycle).
   for (const char* what : {"servo (ID code 4DBH)", "fan (ID code 33BH)", "pump (ID code 33BH)", "reference (rpm)",
-                           "actual (rpm)", "reference (Hz)", "actual (Hz)", "reference, actual (rpm)",
-                           "reference, actual (Hz)", "DRIVECOM state", "time (s)", "ENABLED", "FAULT",
-                           "EMERGENCY STOP ACTIVE", "fault events", "power-cycle", "device-fault",
-                           "parameter transactions", "read 85", "ibs run: faults, 12 s simulated"}) {
+                           "actual, master's view (rpm)", "actual, device (rpm)", "reference (Hz)",
+                           "actual, master's view (Hz)", "actual, device (Hz)", "reference, actual (rpm)",
+                           "reference, actual (Hz)", "state, master's view", "state, device", "time (s)", "ENABLED",
+                           "FAULT", "EMERGENCY STOP ACTIVE", "fault events", "power-cycle", "fault-cleared",
+                           "2 events: corrupt, device-fault", "done transactions", "failed transactions", "read 85",
+                           "ibs run: faults, 12 s simulated"}) {
     EXPECT_TRUE(has(what)) << what;
   }
   // Every series is drawn: two value curves, the state steps and the transaction bars or the

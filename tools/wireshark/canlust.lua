@@ -47,6 +47,14 @@ f.err_reaction = ProtoField.uint8("canlust.error.reaction", "Error reaction", ba
 f.state = ProtoField.string("canlust.drivecom_state", "DRIVECOM state")
 f.command = ProtoField.string("canlust.drivecom_command", "DRIVECOM command")
 f.pname = ProtoField.string("canlust.parameter_name", "CDA3000 parameter")
+f.ptype = ProtoField.string("canlust.data_type", "Data type")
+f.value = ProtoField.double("canlust.value", "Value")
+f.unit = ProtoField.string("canlust.unit", "Unit")
+f.err_hours = ProtoField.uint16("canlust.error.hours", "Operating hours", base.DEC)
+f.desc_type = ProtoField.string("canlust.description.data_type", "Description: data type")
+f.item = ProtoField.uint8("canlust.description_item", "Description item", base.DEC)
+f.checksum = ProtoField.uint32("canlust.checksum", "String checksum (XOR of the blocks)", base.HEX)
+f.request_in = ProtoField.framenum("canlust.request_in", "Request in frame")
 
 -- DRIVECOM (the CDA3000 with 492-CACNF 1..3): the state table of the status word and the command
 -- table of the control word (seed 001, 5.1.2 / 5.1.3; drivecom/), rows as mask, value, name.
@@ -62,16 +70,29 @@ local function lookup(rows, word)
   return "no DRIVECOM state"
 end
 
--- The CDA3000's parameter names (devices/cda3000/parameters.hpp; the test
--- CanlustDissector.ParameterNamesAreTheWings keeps the two equal).
+-- The CDA3000's parameters: display name, data type (seed 003, 4.1.1) and unit, as the wing's
+-- table has them (devices/cda3000/parameters.hpp; the test CanlustDissector.ParameterTableIsTheWings
+-- keeps the two equal). The type says how data bytes 3-6 of a value read, written or echoed are
+-- shown: INT32Q16 406-REFF as "-12.25 Hz".
 local cda3000 = {
-  [4] = "04-PROG", [80] = "80-SLOAD", [90] = "90-NAME", [95] = "95-ERR1", [150] = "150-SAVE", [151] = "151-ASTPR", [152] = "152-ASTER",
-  [180] = "180-FISA0", [260] = "260-CLSEL", [280] = "280-RSSL1", [360] = "360-DISP", [406] = "406-REFF",
-  [489] = "489-CLBDR", [492] = "492-CACNF", [520] = "520-ROTI", [521] = "521-RPLS", [522] = "522-RPAR",
-  [523] = "523-RFLT", [524] = "524-RPWR", [525] = "525-ROP2", [570] = "570-CAMOD", [571] = "571-CLADR",
-  [574] = "574-CAWDG", [575] = "575-CASCY", [576] = "576-CAWMK", [577] = "577-CAWRN", [578] = "578-OPTN2",
-  [651] = "651-CDSSL",
+  [4] = { "04-PROG", "USIGN8", "" }, [80] = { "80-SLOAD", "INT16", "" }, [90] = { "90-NAME", "STRING", "" },
+  [95] = { "95-ERR1", "ERR_STRUC", "" }, [150] = { "150-SAVE", "USIGN8", "" }, [151] = { "151-ASTPR", "USIGN8", "" },
+  [152] = { "152-ASTER", "USIGN8", "" }, [180] = { "180-FISA0", "USIGN8", "" }, [260] = { "260-CLSEL", "USIGN8", "" },
+  [280] = { "280-RSSL1", "USIGN8", "" }, [360] = { "360-DISP", "USIGN16", "" }, [406] = { "406-REFF", "INT32Q16", "Hz" },
+  [489] = { "489-CLBDR", "USIGN16", "kBaud" }, [492] = { "492-CACNF", "USIGN8", "" }, [520] = { "520-ROTI", "USIGN8", "" },
+  [521] = { "521-RPLS", "USIGN8", "" }, [522] = { "522-RPAR", "USIGN8", "" }, [523] = { "523-RFLT", "USIGN8", "" },
+  [524] = { "524-RPWR", "USIGN8", "" }, [525] = { "525-ROP2", "USIGN8", "" }, [570] = { "570-CAMOD", "USIGN8", "" },
+  [571] = { "571-CLADR", "USIGN8", "" }, [574] = { "574-CAWDG", "USIGN8", "ms" }, [575] = { "575-CASCY", "USIGN16", "ms" },
+  [576] = { "576-CAWMK", "USIGN16", "" }, [577] = { "577-CAWRN", "USIGN16", "" }, [578] = { "578-OPTN2", "STRING", "" },
+  [651] = { "651-CDSSL", "USIGN8", "" },
 }
+-- canlust::DataType's codes (data_types.hpp), item 0 of a description.
+local type_codes = { [0] = "USIGN8", [1] = "INT8", [2] = "USIGN16", [3] = "INT16", [4] = "USIGN32", [5] = "INT32",
+                     [6] = "INT32Q16", [7] = "FIXPOINT16", [8] = "ERR_STRUC", [9] = "STRING" }
+-- The CDA3000's description items (mode 04; devices/cda3000/description.hpp, decision D29).
+local describe_items = { [0] = "data type", [1] = "minimum", [2] = "maximum", [3] = "factory setting",
+                         [4] = "attributes", [5] = "name, characters 1-4", [6] = "name, characters 5-8",
+                         [7] = "unit" }
 
 p.prefs.step = Pref.uint("Identifier step", 2, "identifier = base + step x address (1: the text, 2: the examples)")
 p.prefs.max_address = Pref.uint("Highest address", 99, "addresses 0..N")
@@ -90,6 +111,118 @@ local function classify(id)
     end
   end
   return nil, nil
+end
+
+-- The request a reply answers: the last request to the same address before it, taken on the
+-- first pass in frame order (every request gets exactly one reply, CAL; seed 003, 4.5). A
+-- reply's data bytes mean what the request asked for: a value, a description item, characters of
+-- a string or its checksum.
+local last_request = {}  -- address -> { frame, parameter, mode }
+local request_of = {}    -- reply frame -> that request
+
+function p.init()
+  last_request = {}
+  request_of = {}
+end
+
+-- A number as written: integers whole, others without trailing zeros.
+local function fmt(v)
+  if v == math.floor(v) and math.abs(v) < 2 ^ 53 then return string.format("%d", v) end
+  local s = string.format("%.6f", v):gsub("0+$", ""):gsub("%.$", "")
+  return s
+end
+
+-- Bytes 3-6 as a value of `ptype` (4.1.1; data_types.hpp): nil for STRING and ERR_STRUC.
+local function number_of(range, ptype)
+  if ptype == "INT8" or ptype == "INT16" or ptype == "INT32" then return range:le_int() end
+  if ptype == "INT32Q16" then return range:le_int() / 65536 end
+  if ptype == "FIXPOINT16" then return range:le_uint() / 20 end
+  if ptype == "USIGN8" or ptype == "USIGN16" or ptype == "USIGN32" then return range:le_uint() end
+  return nil
+end
+
+-- The characters of bytes 3-6 up to the first NUL (a string block, a text item of a description).
+local function chars(range)
+  local out = {}
+  for i = 0, range:len() - 1 do
+    local c = range(i, 1):uint()
+    if c == 0 then break end
+    out[#out + 1] = string.char(c)
+  end
+  return table.concat(out)
+end
+
+-- A value of parameter row `row` (nil: not a CDA3000 parameter, shown as data only). Returns the
+-- text for the Info column.
+local function add_value(t, range, row, label)
+  if not row then return "" end
+  local ptype, unit = row[2], row[3]
+  if ptype == "ERR_STRUC" then
+    -- 4.1.1: error number, location, operating hours low, high (E-OP2 at 172 after 85 h = 10 AC 55 00).
+    local number, location, hours = range(0, 1):uint(), range(1, 1):uint(), range(2, 2):le_uint()
+    t:add(f.err_number, range(0, 1))
+    t:add(f.err_location, range(1, 1))
+    t:add_le(f.err_hours, range(2, 2))
+    return string.format(" = error %d at %d after %d h", number, location, hours)
+  end
+  local v = number_of(range, ptype)
+  if v == nil then return "" end
+  local text = fmt(v) .. (unit ~= "" and " " .. unit or "")
+  t:add(f.value, range, v):set_text(string.format("%s: %s (%s)", label, text, ptype))
+  if unit ~= "" then t:add(f.unit, unit):set_generated() end
+  return " = " .. text
+end
+
+-- Data bytes 3-6 of a parameter request (kind 4) or reply (kind 5) by what was asked for.
+local function add_data(tvb, pinfo, t, kind, address)
+  local number, code, block = tvb(0, 2):le_uint(), tvb(2, 1):uint(), tvb(7, 1):uint()
+  local data = tvb(3, 4)
+  local row = cda3000[number]
+  if row then t:add(f.ptype, row[2]):set_generated() end
+  local mode, status = code, nil
+  if kind == 4 then
+    if not pinfo.visited then last_request[address] = { frame = pinfo.number, parameter = number, mode = code } end
+  else
+    if not pinfo.visited then
+      local rq = last_request[address]
+      if rq and rq.parameter == number then request_of[pinfo.number] = rq end
+      last_request[address] = nil
+    end
+    local rq = request_of[pinfo.number]
+    if not rq then return "" end  -- the capture began after the request: the data stay raw
+    t:add(f.request_in, rq.frame):set_generated()
+    mode, status = rq.mode, code
+  end
+  -- String transfer (4.5.x): the List_End telegram carries the checksum, the others 4 characters.
+  if (kind == 4 and mode == 16) or (kind == 5 and mode == 11 and status == 16) then
+    t:add_le(f.checksum, data)
+    return string.format(" checksum %08X", data:le_uint())
+  end
+  if status ~= nil and status ~= 0 then return "" end
+  if mode == 2 then
+    return add_value(t, data, row, kind == 4 and "Value written" or "Value written (echo)")
+  elseif mode == 5 and kind == 5 then
+    return add_value(t, data, row, "Value read")
+  elseif mode == 4 then
+    t:add(f.item, tvb(7, 1)):append_text(" (" .. (describe_items[block] or "none: List_End") .. ")")
+    if kind == 4 then return "" end
+    if block == 0 then
+      local name = type_codes[data:le_uint()] or "?"
+      t:add(f.desc_type, data, name)
+      return " = " .. name
+    elseif block >= 1 and block <= 3 then
+      return add_value(t, data, row, "Description: " .. describe_items[block])
+    elseif block >= 5 and block <= 7 then
+      local text = chars(data)
+      t:add(f.text, data, text)
+      return string.format(" = \"%s\"", text)
+    end
+  elseif (mode == 11 and kind == 5) or (mode == 8 and block >= 1) then
+    local text = chars(data)
+    t:add(f.text, data, text)
+    return string.format(" \"%s\"", text)
+  end
+  return ""
 end
 
 function p.dissector(tvb, pinfo, tree)
@@ -123,8 +256,8 @@ function p.dissector(tvb, pinfo, tree)
     info = string.format("%s %d: word %04X%s", kinds[kind], address, word, meaning)
   elseif (kind == 4 or kind == 5) and n >= 8 then
     t:add_le(f.param, tvb(0, 2))
-    local name = cda3000[tvb(0, 2):le_uint()]
-    if name then t:add(f.pname, name):set_generated() end
+    local row = cda3000[tvb(0, 2):le_uint()]
+    if row then t:add(f.pname, row[1]):set_generated() end
     if kind == 4 then
       t:add(f.mode, tvb(2, 1))
     else
@@ -134,11 +267,11 @@ function p.dissector(tvb, pinfo, tree)
       st:add(f.st_value, tvb(2, 1))
     end
     t:add_le(f.data, tvb(3, 4))
-    t:add(f.text, tvb(3, 4))
     t:add(f.block, tvb(7, 1))
     info = string.format("%s %d: parameter %d %s %02X data %08X block %d", kinds[kind], address,
                          tvb(0, 2):le_uint(), kind == 4 and "mode" or "status", tvb(2, 1):uint(),
                          tvb(3, 4):le_uint(), tvb(7, 1):uint())
+    info = info .. add_data(tvb, pinfo, t, kind, address)
   elseif kind == 0 and n >= 3 then
     t:add(f.err_number, tvb(0, 1))
     t:add(f.err_location, tvb(1, 1))

@@ -126,6 +126,7 @@ f.pcp_parity_ok = ProtoField.bool("interbus.pcp.parity_ok", "Odd parity holds")
 f.pcp_data = ProtoField.bytes("interbus.pcp.data", "Data", base.SPACE)
 f.pcp_service = ProtoField.string("interbus.pcp.service", "Service")
 f.msg = ProtoField.bytes("interbus.pcp.message", "PCP message", base.SPACE)
+f.msg_device = ProtoField.string("interbus.pcp.message.device", "Device")
 f.msg_dir = ProtoField.string("interbus.pcp.message.direction", "Direction")
 f.msg_service = ProtoField.string("interbus.pcp.message.service", "Service")
 f.msg_code = ProtoField.uint16("interbus.pcp.message.code", "Code", base.HEX)
@@ -461,21 +462,28 @@ local function follow_fragment(pinfo, tvb, base, words, key)
 end
 
 -- A reassembled message: PDU and zero padding, no link CRC (docs/pcp.md, "Messages on the channel").
-local function add_message(t, bytes, direction)
+-- `device`: the name of the device whose channel carried it. The message is an item of that
+-- device's subtree, but `interbus.device` occurs once per device of the packet, so `-T fields`
+-- could not tell which one a message belongs to; `interbus.pcp.message.device` occurs once per
+-- message, beside its service.
+local function add_message(t, bytes, direction, device)
   local ba = ByteArray.new()
   ba:set_size(#bytes)
   for i = 1, #bytes do ba:set_index(i - 1, bytes[i]) end
   local mt = ba:tvb("PCP message")
   local n = #bytes
   if n < 6 then
-    t:add(f.msg, mt()):append_text(" (shorter than a PDU)")
+    local it = t:add(f.msg, mt())
+    it:append_text(" (shorter than a PDU)")
+    it:add(f.msg_device, mt(0, 0), device):set_generated()
     return nil
   end
   local code, count = mt(0, 2):uint(), mt(2, 2):uint()
   local size = 4 + 2 * count
   local service = service_name(code)
   local it = t:add(f.msg, mt(0, math.min(size, n)))
-  it:set_text(string.format("PCP message %s: %s, %d bytes", direction, service, size))
+  it:set_text(string.format("PCP message %s (%s): %s, %d bytes", direction, device, service, size))
+  it:add(f.msg_device, mt(0, 0), device):set_generated()
   it:add(f.msg_dir, mt(0, 0), direction):set_generated()
   it:add(f.msg_service, mt(0, 2), service):set_generated()
   it:add(f.msg_code, mt(0, 2))
@@ -499,7 +507,8 @@ local function add_message(t, bytes, direction)
     local index = mt(6, 2):uint()
     it:add(f.msg_index, mt(6, 2))
     if index >= 0x5C00 then it:add(f.msg_parameter, mt(6, 2), index - 0x5C00):set_generated() end
-    it:set_text(string.format("PCP message %s: %s, %d bytes, index %04XH", direction, service, size, index))
+    it:set_text(string.format("PCP message %s (%s): %s, %d bytes, index %04XH", direction, device, service, size,
+                              index))
   end
   if size > 6 then it:add(f.msg_params, mt(6, size - 6)) end
   return service
@@ -591,7 +600,7 @@ local function dissect_cycle(tvb, pinfo, t)
         for _, m in ipairs(messages[pinfo.number] or {}) do
           local dir = (m.key == index .. ">") and "master -> servo" or ((m.key == index .. "<") and "servo -> master")
           if dir then
-            local service = add_message(dt, m.bytes, dir)
+            local service = add_message(dt, m.bytes, dir, d.name)
             if service then summary = summary .. " " .. service end
           end
         end
