@@ -158,6 +158,7 @@ void Sequencer::restart() {
   reset_allowed_ = false;
   up_since_request_ = false;
   reset_edge_sent_ = false;
+  edge_out_ = false;
   pulse_started_ = false;
   hold_code_ = kNotHolding;
 }
@@ -179,6 +180,7 @@ void Sequencer::request(Target t, Time now) {
   begin(Goal::target, now);
   reset_allowed_ = !known_ || is_fault_state(*known_);
   up_since_request_ = false;
+  reset_edge_sent_ = false;
 }
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
@@ -242,6 +244,7 @@ Word Sequencer::step_moving(std::uint8_t code, Time now) {
     reset_allowed_ = false;
     up_since_request_ = true;
     reset_edge_sent_ = false;
+    edge_out_ = false;
     pulse_started_ = false;
     const PathMove m = kPathMoves[static_cast<std::size_t>(report_.target)][code];
     Word w = 0;
@@ -271,7 +274,7 @@ Word Sequencer::step_moving(std::uint8_t code, Time now) {
   }
   prev_seen_ = st;
   if (st) known_ = st;
-  if (st && *st != State::fault) reset_edge_sent_ = false;
+  if (st && *st != State::fault) edge_out_ = false;
   hold_code_ = report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)
                    ? static_cast<std::uint8_t>(*st)
                    : kNotHolding;
@@ -343,11 +346,14 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
     // Out of FAULT RESPONSE ACTIVE or FAULT into a healthy state without a reset edge from this
     // master: only a power-on leaves a fault state that way (5.1.2: FAULT is left by transition
     // 15 alone), its NOT READY between two samples -- a restart, as above (DC-D1).
-    if (!is_fault_state(*st) && known_ && is_fault_state(*known_) && !reset_edge_sent_) return fail(Failure::restarted);
+    if (!is_fault_state(*st) && known_ && is_fault_state(*known_) && !edge_out_) return fail(Failure::restarted);
     up_since_request_ = true;
   }
   const Move m = plan(*st, now);
-  if (*st == State::fault && (m.word & kResetBit) != 0 && (last_control_ & kResetBit) == 0) reset_edge_sent_ = true;
+  if (*st == State::fault && (m.word & kResetBit) != 0 && (last_control_ & kResetBit) == 0) {
+    reset_edge_sent_ = true;
+    edge_out_ = true;
+  }
   if (*st != State::fault) reset_edge_sent_ = false;
   if (m.transition == 0) {
     report_.phase = Phase::reached;

@@ -177,11 +177,13 @@ class Sequencer {
   // A state other than NOT READY has been seen since the request: NOT READY now means the drive
   // restarted (only power-on leads there, 5.1.1), and the request does not carry across that.
   bool up_since_request_ = false;
-  // A rising edge of bit 7 went out while the drive showed FAULT, and no other state has been
-  // seen since (a new request keeps it: the edge is out): NOT READY next is the drive booting
-  // from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart; a healthy
-  // state next is the reset done. Without it a drive out of a fault state has restarted unseen.
+  // This request sent a rising edge of bit 7 while the drive showed FAULT: NOT READY next is the
+  // drive booting from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart.
   bool reset_edge_sent_ = false;
+  // A rising edge of bit 7 went out (this request's or an earlier one's) since the drive showed
+  // FAULT: a healthy state next is the reset done; without it a drive out of a fault state has
+  // restarted unseen (DC-D1).
+  bool edge_out_ = false;
   Time pulse_edge_{0};
   bool pulse_started_ = false;
   // The state code of the reached target while the sequencer holds it, else kNotHolding. Set
