@@ -71,33 +71,10 @@ void BM_ReceiverSelect(benchmark::State& state) {
 }
 BENCHMARK(BM_ReceiverSelect);
 
-// Submit, EOT ADR CODE ENQ to the receiver, its answer to the host, the host's EOT, outcome.
-void BM_EnquiryBothSides(benchmark::State& state) {
-  OneValue r;
-  Receiver rx(r, 1);
-  Host host;
-  const Request req = enquiry(1, make_code(112));
-  Time now{0};
-  for (auto _ : state) {
-    const RequestId id = host.submit(req).id;
-    host.step(now);
-    for (const auto b : host.take_output()) rx.receive(b, now);
-    host.output_done(now);
-    for (const auto b : rx.take_answer(now)) host.receive(b, now);
-    for (const auto b : host.take_output()) rx.receive(b, now);  // EOT
-    host.output_done(now);
-    benchmark::DoNotOptimize(host.outcome(id));
-    now += std::chrono::microseconds{1};
-  }
-}
-BENCHMARK(BM_EnquiryBothSides);
-
-// The same exchange with the wing's emulated VF1000 (its reaction time 0) answering 91-TYPE, the
-// row of issue 26 (docs/performance.md); the answer is checked against the inverter's stored value.
-// One exchange out of line, so that callgrind counts one call per ENQUIRY
-// (bench/callgrind_per_call.sh ... vf1000_enquiry_once).
-[[gnu::noinline]] bool vf1000_enquiry_once(Host& host, Receiver& rx, const Request& req, const Value& expected,
-                                           Time& now) {
+// One ENQUIRY: submit, EOT ADR CODE ENQ to the receiver, its answer to the host, the host's EOT,
+// the outcome. Out of line, so that callgrind counts one call per exchange
+// (bench/callgrind_per_call.sh ... enquiry_once).
+[[gnu::noinline]] const Outcome* enquiry_once(Host& host, Receiver& rx, const Request& req, Time& now) {
   const RequestId id = host.submit(req).id;
   host.step(now);
   for (const auto b : host.take_output()) rx.receive(b, now);
@@ -105,10 +82,22 @@ BENCHMARK(BM_EnquiryBothSides);
   for (const auto b : rx.take_answer(now)) host.receive(b, now);
   for (const auto b : host.take_output()) rx.receive(b, now);  // EOT
   host.output_done(now);
-  const Outcome* o = host.outcome(id);
   now += std::chrono::microseconds{1};
-  return o != nullptr && o->kind == OutcomeKind::value && o->value == expected;
+  return host.outcome(id);
 }
+
+void BM_EnquiryBothSides(benchmark::State& state) {
+  OneValue r;
+  Receiver rx(r, 1);
+  Host host;
+  const Request req = enquiry(1, make_code(112));
+  Time now{0};
+  for (auto _ : state) benchmark::DoNotOptimize(enquiry_once(host, rx, req, now));
+}
+BENCHMARK(BM_EnquiryBothSides);
+
+// The same exchange with the wing's emulated VF1000 (its reaction time 0) answering 91-TYPE, the
+// row of issue 26 (docs/performance.md); the answer is checked against the inverter's stored value.
 
 void BM_EnquiryVf1000BothSides(benchmark::State& state) {
   devices::vf1000::LustbusTiming timing;
@@ -122,7 +111,8 @@ void BM_EnquiryVf1000BothSides(benchmark::State& state) {
   const Value expected = make_value(text);
   Time now{0};
   for (auto _ : state) {
-    if (!vf1000_enquiry_once(host, rx, req, expected, now)) {
+    const Outcome* o = enquiry_once(host, rx, req, now);
+    if (o == nullptr || o->kind != OutcomeKind::value || !(o->value == expected)) {
       state.SkipWithError("the VF1000 did not answer 91-TYPE with its stored value");
       break;
     }

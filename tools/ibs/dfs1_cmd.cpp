@@ -246,13 +246,8 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   }
   serial::SerialPort& port = pair ? pair->master() : *opened;
   // The first line says where it serves: the new pty, or the port it opened.
-  if (o.json) {
-    events.serving(pair ? "pty" : "port", pair ? pair->slave_path() : o.port.port, link ? link->path() : std::string());
-  } else {
-    out << (pair ? "pty: " + pair->slave_path() : "port: " + o.port.port) << "\n";
-    if (link) out << "pty link: " << link->path() << "\n";
-    out << std::flush;
-  }
+  events.serving(o.json, pair ? "pty" : "port", pair ? pair->slave_path() : o.port.port,
+                 link ? link->path() : std::string());
   for (const std::string& n : port.notes()) err << "ibs dfs1 emulate: " << n << "\n";
 
   std::unique_ptr<serial::ByteLog> log;

@@ -46,8 +46,15 @@ class EmulateEvents {
     j["address"] = address;
     return j;
   }
-  // `serving`: where the emulator serves, the JSON form of its `pty: PATH` / `port: PATH` line.
-  void serving(const std::string& key, const std::string& path, const std::string& link) {
+  // Where the emulator serves, its first line: `pty: PATH` / `port: PATH` (and `pty link: PATH`),
+  // or with --json the `serving` event that says the same.
+  void serving(bool json, const std::string& key, const std::string& path, const std::string& link) {
+    if (!json) {
+      out_ << key << ": " << path << "\n";
+      if (!link.empty()) out_ << "pty link: " << link << "\n";
+      out_ << std::flush;
+      return;
+    }
     nlohmann::ordered_json j = event(Time{0}, "serving");
     j[key] = path;
     if (!link.empty()) j["pty_link"] = link;
