@@ -77,10 +77,10 @@ BENCHMARK(BM_ReceiverSelect);
 [[gnu::noinline]] const Outcome* enquiry_once(Host& host, Receiver& rx, const Request& req, Time& now) {
   const RequestId id = host.submit(req).id;
   host.step(now);
-  for (const auto b : host.take_output()) rx.receive(b, now);
+  rx.receive(host.take_output(), now);
   host.output_done(now);
-  for (const auto b : rx.take_answer(now)) host.receive(b, now);
-  for (const auto b : host.take_output()) rx.receive(b, now);  // EOT
+  host.receive(rx.take_answer(now), now);
+  rx.receive(host.take_output(), now);  // EOT
   host.output_done(now);
   now += std::chrono::microseconds{1};
   return host.outcome(id);

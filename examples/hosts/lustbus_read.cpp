@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
       const ibs::Time next = std::min(host.next_deadline(), deadline);
       const auto wait = std::max(next - now(), ibs::Duration(std::chrono::microseconds(100)));
       const std::size_t n = port.read(buf, std::min<ibs::Duration>(wait, std::chrono::milliseconds(10)));
-      for (std::size_t i = 0; i < n; ++i) host.receive(buf[i], now());
+      host.receive(std::span<const std::uint8_t>(buf.data(), n), now());
     }
     const lb::Outcome* o = host.outcome(s.id);
     if (o == nullptr || o->kind != lb::OutcomeKind::value) {

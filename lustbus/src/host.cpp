@@ -323,7 +323,7 @@ void Host::receive(std::uint8_t b, Time now) {
       if (st == AnswerDecoder::Status::done) {
         answer_kind_ = decoder_.kind();
         answer_error_ = AnswerError::none;
-                state_ = HostState::turnaround;
+        state_ = HostState::turnaround;
         deadline_ = now + config_.turnaround;
         if (config_.turnaround <= Duration{0}) start_eot(now);
       } else if (st == AnswerDecoder::Status::error) {
@@ -338,6 +338,40 @@ void Host::receive(std::uint8_t b, Time now) {
       return;
     default:
       return;  // characters outside an answer are noise: ignored
+  }
+}
+
+void Host::receive(std::span<const std::uint8_t> bytes, Time now) {
+  last_now_ = now;
+  std::size_t i = 0;
+  while (i < bytes.size()) {
+    switch (state_) {
+      case HostState::awaiting:
+      case HostState::receiving: {
+        // As receive(b, now) for each: the deadline is the same for every character of `now`.
+        state_ = HostState::receiving;
+        deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
+        i += decoder_.feed(bytes.subspan(i));
+        const auto st = decoder_.status();
+        if (st == AnswerDecoder::Status::done) {
+          answer_kind_ = decoder_.kind();
+          answer_error_ = AnswerError::none;
+          state_ = HostState::turnaround;
+          deadline_ = now + config_.turnaround;
+          if (config_.turnaround <= Duration{0}) start_eot(now);
+        } else if (st == AnswerDecoder::Status::error) {
+          answer_kind_ = AnswerKind::none;
+          answer_error_ = decoder_.error();
+          state_ = HostState::draining;
+        }
+        continue;
+      }
+      case HostState::draining:
+        deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
+        return;
+      default:
+        return;  // characters outside an answer are noise: ignored
+    }
   }
 }
 

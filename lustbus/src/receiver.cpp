@@ -104,14 +104,17 @@ bool in_fragment(ReceiverState s) {
 }
 }  // namespace
 
-void Receiver::receive(std::uint8_t b, Time now) {
-  event_ = ReceiverEvent::none;
+inline void Receiver::silence(Time now) {
   // LB-D23: a fragment followed by silence is dropped; this character starts afresh.
   if (in_fragment(state_) && gap_ > Duration::zero() && now - last_char_at_ > gap_) {
     state_ = ReceiverState::idle;
     ++counters_.fragments;
   }
   last_char_at_ = now;
+}
+
+inline void Receiver::receive_one(std::uint8_t b, Time now) {
+  event_ = ReceiverEvent::none;
   // 2.2: the byte after ETX is the BCC whatever its value — even EOT.
   if (state_ == ReceiverState::select_bcc) {
     finish_select(b, now);
@@ -208,6 +211,17 @@ void Receiver::receive(std::uint8_t b, Time now) {
     case ReceiverState::ignoring:
       return;
   }
+}
+
+void Receiver::receive(std::uint8_t b, Time now) {
+  silence(now);
+  receive_one(b, now);
+}
+
+void Receiver::receive(std::span<const std::uint8_t> bytes, Time now) {
+  if (bytes.empty()) return;
+  silence(now);  // the characters after the first follow it with no silence
+  for (const std::uint8_t b : bytes) receive_one(b, now);
 }
 
 void Receiver::finish_enquiry(Time now) {

@@ -2,24 +2,6 @@
 
 namespace ibs::lustbus {
 
-namespace {
-
-void push_code(Frame& f, const Code& c) {
-  for (std::size_t i = 0; i < kCodeLength; ++i) f.push(static_cast<std::uint8_t>(c.digit(i)));
-}
-
-// CODE = VALUE ETX BCC, the BCC over CODE..ETX (2.2).
-void push_text(Frame& f, const Code& c, const Value& v) {
-  const std::size_t from = f.size;
-  push_code(f, c);
-  f.push(kEquals);
-  for (const char ch : v.view()) f.push(static_cast<std::uint8_t>(ch));
-  f.push(kEtx);
-  f.push(bcc({f.bytes.data() + from, f.size - from}));
-}
-
-}  // namespace
-
 std::uint8_t text_bcc(const Code& c, const Value& v) {
   std::uint8_t x = kEquals ^ kEtx;
   for (std::size_t i = 0; i < kCodeLength; ++i) x ^= static_cast<std::uint8_t>(c.digit(i));
@@ -27,29 +9,69 @@ std::uint8_t text_bcc(const Code& c, const Value& v) {
   return x;
 }
 
+namespace {
+
+// Fills a frame with its size in a register: every byte stored through a uint8_t could change
+// `Frame::size` as far as the compiler knows, so Frame::push reloads it each time.
+class Writer {
+ public:
+  explicit Writer(Frame& f) : f_(f) {}
+  ~Writer() { f_.size = static_cast<std::uint8_t>(n_); }
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  void push(std::uint8_t b) { f_.bytes[n_++] = b; }
+  void code(const Code& c) {
+    for (std::size_t i = 0; i < kCodeLength; ++i) push(static_cast<std::uint8_t>(c.digit(i)));
+  }
+  // CODE = VALUE ETX BCC, the BCC over CODE..ETX (2.2).
+  void text(const Code& c, const Value& v) {
+    code(c);
+    push(kEquals);
+    for (const char ch : v.view()) push(static_cast<std::uint8_t>(ch));
+    push(kEtx);
+    push(text_bcc(c, v));
+  }
+
+ private:
+  Frame& f_;
+  std::size_t n_ = 0;
+};
+
+}  // namespace
+
 Frame encode_enquiry(Address a, const Code& c) {
   Frame f;
-  f.push(kEot);
-  f.push(address_char(a));
-  push_code(f, c);
-  f.push(kEnq);
+  {
+    Writer w(f);
+    w.push(kEot);
+    w.push(address_char(a));
+    w.code(c);
+    w.push(kEnq);
+  }
   return f;
 }
 
 Frame encode_select(Address a, const Code& c, const Value& v) {
   Frame f;
-  f.push(kEot);
-  f.push(address_char(a));
-  f.push(kStx);
-  push_text(f, c, v);
+  {
+    Writer w(f);
+    w.push(kEot);
+    w.push(address_char(a));
+    w.push(kStx);
+    w.text(c, v);
+  }
   return f;
 }
 
 Frame encode_text_answer(Address a, const Code& c, const Value& v) {
   Frame f;
-  f.push(address_char(a));
-  f.push(kStx);
-  push_text(f, c, v);
+  {
+    Writer w(f);
+    w.push(address_char(a));
+    w.push(kStx);
+    w.text(c, v);
+  }
   return f;
 }
 
@@ -114,93 +136,107 @@ void AnswerDecoder::start(Address a, const Code& c, Expect e, std::size_t binary
   address_ = a;
   code_ = c;
   expect_ = e;
-  step_ = Step::address;
   status_ = Status::need_more;
   kind_ = AnswerKind::none;
   error_ = AnswerError::none;
   value_.clear();
-  code_pos_ = 0;
-  bcc_ = 0;
-  count_ = 0;
+  cursor_ = Cursor{};
 }
 
-AnswerDecoder::Status AnswerDecoder::fail(AnswerError e) {
+AnswerDecoder::Status AnswerDecoder::fail(Cursor& c, AnswerError e) {
   error_ = e;
-  step_ = Step::finished;
+  c.step = Step::finished;
   status_ = Status::error;
   return status_;
 }
 
-AnswerDecoder::Status AnswerDecoder::feed(std::uint8_t b) {
-  if (status_ != Status::need_more) return status_;
-  ++count_;
+AnswerDecoder::Status AnswerDecoder::done(Cursor& c, AnswerKind k) {
+  kind_ = k;
+  c.step = Step::finished;
+  status_ = Status::done;
+  return status_;
+}
+
+// One character while the answer needs more. The cursor (step, BCC, code position, count) is the
+// caller's local copy, kept in registers across a run of characters: each character stored into
+// the VALUE is a char store the compiler must assume could change any member.
+inline AnswerDecoder::Status AnswerDecoder::feed_one(Cursor& c, std::uint8_t b) {
+  ++c.count;
   // The BCC may be any byte, a garbled one included (then it cannot match).
-  if (step_ == Step::bcc) {
-    if (b != bcc_) return fail(AnswerError::bad_bcc);
-    kind_ = AnswerKind::text;
-    step_ = Step::finished;
-    status_ = Status::done;
-    return status_;
+  if (c.step == Step::bcc) {
+    if (b != c.bcc) return fail(c, AnswerError::bad_bcc);
+    return done(c, AnswerKind::text);
   }
-  if (is_garbled(b)) return fail(AnswerError::garbled);
-  switch (step_) {
+  if (is_garbled(b)) return fail(c, AnswerError::garbled);
+  switch (c.step) {
     case Step::address:
       // 6.1.1: the device answers with the ADR it was addressed with ('@' at address 0).
-      if (!address_from_char(b)) return fail(AnswerError::unexpected);
-      if (b != address_char(address_)) return fail(AnswerError::wrong_address);
-      step_ = Step::after_address;
-      return status_;
+      if (!address_from_char(b)) return fail(c, AnswerError::unexpected);
+      if (b != address_char(address_)) return fail(c, AnswerError::wrong_address);
+      c.step = Step::after_address;
+      return Status::need_more;
     case Step::after_address:
-      if (b == kNak) {
-        kind_ = AnswerKind::nak;
-        step_ = Step::finished;
-        status_ = Status::done;
-        return status_;
-      }
+      if (b == kNak) return done(c, AnswerKind::nak);
       if (b == kAck) {
-        if (expect_ != Expect::ack_or_nak) return fail(AnswerError::wrong_kind);
-        kind_ = AnswerKind::ack;
-        step_ = Step::finished;
-        status_ = Status::done;
-        return status_;
+        if (expect_ != Expect::ack_or_nak) return fail(c, AnswerError::wrong_kind);
+        return done(c, AnswerKind::ack);
       }
       if (b == kStx) {
-        if (expect_ != Expect::text_or_nak) return fail(AnswerError::wrong_kind);
-        step_ = Step::code;
-        return status_;
+        if (expect_ != Expect::text_or_nak) return fail(c, AnswerError::wrong_kind);
+        c.step = Step::code;
+        return Status::need_more;
       }
-      return fail(AnswerError::unexpected);
+      return fail(c, AnswerError::unexpected);
     case Step::code:
-      if (b < '0' || b > '9') return fail(AnswerError::unexpected);
-      bcc_ ^= b;
-      if (static_cast<char>(b) != code_.digit(code_pos_)) return fail(AnswerError::wrong_code);
-      if (++code_pos_ == kCodeLength) step_ = Step::equals;
-      return status_;
+      if (b < '0' || b > '9') return fail(c, AnswerError::unexpected);
+      c.bcc ^= b;
+      if (static_cast<char>(b) != code_.digit(c.code_pos)) return fail(c, AnswerError::wrong_code);
+      if (++c.code_pos == kCodeLength) c.step = Step::equals;
+      return Status::need_more;
     case Step::equals:
-      if (b != kEquals) return fail(AnswerError::unexpected);
-      bcc_ ^= b;
-      step_ = Step::value;
-      return status_;
+      if (b != kEquals) return fail(c, AnswerError::unexpected);
+      c.bcc ^= b;
+      c.step = Step::value;
+      return Status::need_more;
     case Step::value:
       if (value_.size() < binary_prefix_) {  // LB-D10: a known number of binary bytes first
-        if (!value_.push_binary(b)) return fail(AnswerError::value_too_long);
-        bcc_ ^= b;
-        return status_;
+        if (!value_.push_binary(b)) return fail(c, AnswerError::value_too_long);
+        c.bcc ^= b;
+        return Status::need_more;
       }
       if (b == kEtx) {
-        bcc_ ^= b;
-        step_ = Step::bcc;
-        return status_;
+        c.bcc ^= b;
+        c.step = Step::bcc;
+        return Status::need_more;
       }
-      if (!is_value_char(b)) return fail(AnswerError::unexpected);
-      if (!value_.push_back(b)) return fail(AnswerError::value_too_long);
-      bcc_ ^= b;
-      return status_;
+      if (!is_value_char(b)) return fail(c, AnswerError::unexpected);
+      if (!value_.push_back(b)) return fail(c, AnswerError::value_too_long);
+      c.bcc ^= b;
+      return Status::need_more;
     case Step::bcc:
     case Step::finished:
       break;
   }
-  return fail(AnswerError::unexpected);
+  return fail(c, AnswerError::unexpected);
+}
+
+AnswerDecoder::Status AnswerDecoder::feed(std::uint8_t b) {
+  if (status_ != Status::need_more) return status_;
+  Cursor c = cursor_;
+  const Status st = feed_one(c, b);
+  cursor_ = c;
+  return st;
+}
+
+std::size_t AnswerDecoder::feed(std::span<const std::uint8_t> bytes) {
+  if (status_ != Status::need_more) return 0;
+  Cursor c = cursor_;
+  std::size_t n = 0;
+  while (n < bytes.size()) {
+    if (feed_one(c, bytes[n++]) != Status::need_more) break;
+  }
+  cursor_ = c;
+  return n;
 }
 
 }  // namespace ibs::lustbus

@@ -1,5 +1,6 @@
 #include "ibs/lustbus/value.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -19,15 +20,12 @@ int hex_digit(char c, ValueError& e) {
 }
 
 Value hex_value(std::uint32_t raw, std::size_t min_width) {
-  char digits[8];
-  std::size_t n = 0;
-  do {
-    digits[n++] = kHex[raw & 0xFU];
-    raw >>= 4;
-  } while (raw != 0);
+  // Capital hex digits, at least `min_width` (<= 100) of them: known VALUE characters, written
+  // into the value's buffer at once rather than checked one by one.
+  const auto digits = static_cast<std::size_t>((std::bit_width(raw) + 3) / 4);
+  const std::size_t n = std::max<std::size_t>(std::max<std::size_t>(digits, 1), min_width);
   Value v;
-  for (std::size_t i = n; i < min_width; ++i) v.push_back('0');
-  while (n > 0) v.push_back(static_cast<std::uint8_t>(digits[--n]));
+  v.fill_hex(raw, n, kHex);
   return v;
 }
 

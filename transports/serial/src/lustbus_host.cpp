@@ -33,7 +33,7 @@ lustbus::Outcome transact(SerialPort& port, lustbus::Host& host, const lustbus::
     const Time next = host.next_deadline();
     const Duration wait = next == Time::max() ? kHostPoll : std::clamp(next - now, Duration(100us), kHostPoll);
     const std::size_t n = port.read(buf, wait);
-    for (std::size_t i = 0; i < n; ++i) host.receive(buf[i], since(t0));
+    host.receive(std::span<const std::uint8_t>(buf.data(), n), since(t0));
   }
   const lustbus::Outcome* o = host.outcome(s.id);
   return o != nullptr ? *o : lustbus::Outcome{};

@@ -12,7 +12,7 @@
 //   host.step(now);                       // timeouts; starts the next telegram
 //   auto out = host.take_output();        // send these; then, when the last one is on the line:
 //   host.output_done(now);
-//   host.receive(byte, now);              // each character from the line
+//   host.receive(bytes, now);             // the characters from the line (or one at a time)
 //   host.next_deadline();                 // when step() next has something to do
 // submit(), step(), take_output(), output_done() and receive() allocate nothing and throw
 // nothing; the queue and the ring of finished outcomes are allocated by the constructor.
@@ -251,6 +251,8 @@ class Host {
   std::span<const std::uint8_t> take_output();
   void output_done(Time now);
   void receive(std::uint8_t b, Time now);
+  // Characters that arrived together at `now`: the same as receive(b, now) for each in order.
+  void receive(std::span<const std::uint8_t> bytes, Time now);
   // When step() next has something to do; Time::max() when nothing.
   [[nodiscard]] Time next_deadline() const;
   [[nodiscard]] bool output_pending() const { return out_size_ > 0; }

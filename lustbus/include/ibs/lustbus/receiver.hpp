@@ -109,6 +109,9 @@ class Receiver {
 
   // One character from the line.
   void receive(std::uint8_t b, Time now);
+  // Characters that arrived together at `now`, as many calls of receive(b, now) in order (the
+  // transports read a port in chunks); last_event() is then the last character's.
+  void receive(std::span<const std::uint8_t> bytes, Time now);
 
   // When the pending answer is due (nullopt: none).
   [[nodiscard]] std::optional<Time> answer_due() const;
@@ -129,6 +132,8 @@ class Receiver {
   [[nodiscard]] const ReceiverCounters& counters() const { return counters_; }
 
  private:
+  void silence(Time now);
+  void receive_one(std::uint8_t b, Time now);
   void drop();
   void finish_enquiry(Time now);
   void finish_select(std::uint8_t bcc_received, Time now);

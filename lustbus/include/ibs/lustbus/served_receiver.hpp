@@ -33,7 +33,7 @@ class ServedReceiver final : public base::LineDevice {
       const std::uint32_t rate = baud_();
       receiver_->set_inter_char_timeout(inter_char_timeout(rate != 0 ? rate : kFactoryBaud));
     }
-    for (const std::uint8_t b : bytes) receiver_->receive(b, now);
+    receiver_->receive(bytes, now);
   }
   std::span<const std::uint8_t> output(Time now) override {
     const auto due = receiver_->answer_due();

@@ -79,29 +79,37 @@ class AnswerDecoder {
   // binary elements of an 11.2 description, whose length is known (LB-D10).
   void start(Address a, const Code& c, Expect e, std::size_t binary_prefix = 0);
   Status feed(std::uint8_t b);
+  // The characters in order until the answer is complete or wrong (status() says which); returns
+  // how many it took: all of them while it needs more, none once it needs no more.
+  std::size_t feed(std::span<const std::uint8_t> bytes);
 
   [[nodiscard]] Status status() const { return status_; }
   [[nodiscard]] AnswerKind kind() const { return kind_; }
   [[nodiscard]] AnswerError error() const { return error_; }
   [[nodiscard]] const Value& value() const { return value_; }
-  [[nodiscard]] std::size_t bytes() const { return count_; }
+  [[nodiscard]] std::size_t bytes() const { return cursor_.count; }
 
  private:
   enum class Step : std::uint8_t { address, after_address, code, equals, value, bcc, finished };
-  Status fail(AnswerError e);
+  struct Cursor {
+    Step step = Step::address;
+    std::uint8_t code_pos = 0;
+    std::uint8_t bcc = 0;
+    std::size_t count = 0;
+  };
+  Status feed_one(Cursor& c, std::uint8_t b);
+  Status fail(Cursor& c, AnswerError e);
+  Status done(Cursor& c, AnswerKind k);
 
   Address address_ = 0;
   Code code_{};
   Expect expect_ = Expect::text_or_nak;
-  Step step_ = Step::address;
   Status status_ = Status::need_more;
   AnswerKind kind_ = AnswerKind::none;
   AnswerError error_ = AnswerError::none;
   Value value_{};
-  std::uint8_t code_pos_ = 0;
-  std::uint8_t bcc_ = 0;
   std::size_t binary_prefix_ = 0;
-  std::size_t count_ = 0;
+  Cursor cursor_{};
 };
 
 }  // namespace ibs::lustbus

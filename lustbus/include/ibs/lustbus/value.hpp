@@ -43,6 +43,16 @@ class Value {
     return true;
   }
   constexpr void clear() { size_ = 0; }
+  // The `n` (<= 100) last hexadecimal digits of `raw`, zeros in front, from `digits` (16
+  // characters, each a VALUE character): for the formatting in value.cpp.
+  constexpr void fill_hex(std::uint32_t raw, std::size_t n, const char* digits) {
+    n = n < kMaxValueLength ? n : kMaxValueLength;
+    size_ = static_cast<std::uint8_t>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t shift = 4 * (n - 1 - i);
+      chars_[i] = shift < 32 ? digits[(raw >> shift) & 0xFU] : '0';
+    }
+  }
   [[nodiscard]] constexpr std::size_t size() const { return size_; }
   [[nodiscard]] constexpr bool empty() const { return size_ == 0; }
   [[nodiscard]] constexpr std::string_view view() const { return {chars_.data(), size_}; }
