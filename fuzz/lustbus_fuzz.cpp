@@ -15,9 +15,14 @@
 // - host: requests and arbitrary answer bytes at arbitrary times into a Host. Asserts: every
 //   request ends within a bound of simulated time; a value outcome holds only VALUE characters;
 //   the host's output is always EOT-led telegrams or a lone EOT; nothing is sent while awaiting.
+// - chunks: the same bytes one at a time and in chunks cut where the input says (a port read),
+//   into two decoders, two receivers and two hosts. Asserts: everything observable is the same on
+//   both paths (status, kind, error, value, count; state, event, counters, answers; outcomes).
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -261,16 +266,135 @@ void fuzz_host(In& in) {
   }
 }
 
+// Answers every ENQUIRY with one value and every SELECT with ACK, counting what reached it.
+class Fixed : public Responder {
+ public:
+  int enquiries = 0;
+  int selects = 0;
+  int checksum_errors = 0;
+  EnquiryAnswer enquiry(const Code&, const Context&) override {
+    ++enquiries;
+    return EnquiryAnswer::text(make_value("03E8"));
+  }
+  SelectAnswer select(const Code&, const Value&, const Context&) override {
+    ++selects;
+    return SelectAnswer::ack();
+  }
+  void checksum_error(const Context&) override { ++checksum_errors; }
+};
+
+void fuzz_chunks(In& in) {
+  const auto a = static_cast<Address>(in.ConsumeIntegralInRange<int>(0, 30));
+  const Code c = make_code(in.ConsumeIntegralInRange<std::uint32_t>(0, 99999));
+  const bool enq = in.ConsumeBool();
+  const auto prefix = in.ConsumeIntegralInRange<std::size_t>(0, 3);
+  // Chunk k arrives k * gap after the first: 0, within or beyond the inter-character timeout.
+  const Duration gap = Duration{in.ConsumeIntegralInRange<std::int64_t>(0, 10'000'000)};
+  std::vector<std::size_t> cuts;
+  const int n_cuts = in.ConsumeIntegralInRange<int>(1, 8);
+  for (int i = 0; i < n_cuts; ++i) cuts.push_back(in.ConsumeIntegralInRange<std::size_t>(0, 32));
+  const auto bytes = in.ConsumeBytes<std::uint8_t>(in.remaining_bytes());
+  // The chunks: the cut sizes in turn, the last chunk whatever is left.
+  std::vector<std::span<const std::uint8_t>> chunks;
+  for (std::size_t at = 0, k = 0; at < bytes.size(); ++k) {
+    const std::size_t n = std::min(cuts[k % cuts.size()], bytes.size() - at);
+    chunks.emplace_back(bytes.data() + at, k + 1 >= 64 ? bytes.size() - at : n);
+    at += chunks.back().size();
+  }
+
+  const auto expect = enq ? AnswerDecoder::Expect::text_or_nak : AnswerDecoder::Expect::ack_or_nak;
+  AnswerDecoder d1, d2;
+  d1.start(a, c, expect, prefix);
+  d2.start(a, c, expect, prefix);
+  for (const auto& ch : chunks) {
+    for (const auto b : ch) d1.feed(b);
+    const bool needed = d2.status() == AnswerDecoder::Status::need_more;
+    const std::size_t before = d2.bytes();
+    const std::size_t took = d2.feed(ch);
+    if (took != d2.bytes() - before || (!needed && took != 0) ||
+        (d2.status() == AnswerDecoder::Status::need_more && took != ch.size())) {
+      fail("the chunked decoder took another count than it counted");
+    }
+  }
+  if (d1.status() != d2.status() || d1.kind() != d2.kind() || d1.error() != d2.error() ||
+      d1.value().view() != d2.value().view() || d1.bytes() != d2.bytes()) {
+    fail("the decoder decided differently on chunks");
+  }
+
+  Fixed r1, r2;
+  Receiver x1(r1, a), x2(r2, a);
+  std::vector<std::uint8_t> ans1, ans2;
+  Time now{0};
+  for (const auto& ch : chunks) {
+    for (const auto b : ch) x1.receive(b, now);
+    x2.receive(ch, now);
+    if (x1.state() != x2.state() || x1.last_event() != x2.last_event()) {
+      fail("the receiver's state differs on chunks");
+    }
+    now += gap;
+    for (const auto b : x1.take_answer(now)) ans1.push_back(b);
+    for (const auto b : x2.take_answer(now)) ans2.push_back(b);
+  }
+  const auto& k1 = x1.counters();
+  const auto& k2 = x2.counters();
+  if (ans1 != ans2 || r1.enquiries != r2.enquiries || r1.selects != r2.selects ||
+      r1.checksum_errors != r2.checksum_errors || k1.enquiries != k2.enquiries ||
+      k1.selects != k2.selects || k1.broadcasts != k2.broadcasts ||
+      k1.checksum_errors != k2.checksum_errors || k1.dropped != k2.dropped ||
+      k1.answers != k2.answers || k1.fragments != k2.fragments || k1.cut_answers != k2.cut_answers) {
+    fail("the receiver answered or counted differently on chunks");
+  }
+
+  Host h1, h2;
+  const Request req = enq ? enquiry(a, c) : select(a, c, make_value("0001"));
+  const RequestId id1 = h1.submit(req).id;
+  const RequestId id2 = h2.submit(req).id;
+  now = Time{0};
+  for (Host* h : {&h1, &h2}) {
+    h->step(now);
+    (void)h->take_output();
+    h->output_done(now);
+  }
+  for (const auto& ch : chunks) {
+    now += gap;
+    for (const auto b : ch) h1.receive(b, now);
+    h2.receive(ch, now);
+    if (h1.state() != h2.state() || h1.next_deadline() != h2.next_deadline()) {
+      fail("the host's state differs on chunks");
+    }
+  }
+  const Time limit = now + 600s;
+  while ((!h1.idle() || !h2.idle()) && now < limit) {
+    const Time d = std::min(h1.next_deadline(), h2.next_deadline());
+    now = d == Time::max() ? now + 1ms : std::max(d, now);
+    for (Host* h : {&h1, &h2}) {
+      h->step(now);
+      if (!h->take_output().empty()) h->output_done(now);
+    }
+  }
+  const Outcome* o1 = h1.outcome(id1);
+  const Outcome* o2 = h2.outcome(id2);
+  if ((o1 == nullptr) != (o2 == nullptr)) fail("one host ended the request, the other did not");
+  if (o1 != nullptr && (o1->kind != o2->kind || o1->value.view() != o2->value.view() ||
+                        o1->answer_error != o2->answer_error || o1->attempts != o2->attempts ||
+                        o1->finished != o2->finished)) {
+    fail("the host's outcome differs on chunks");
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   In in(data, size);
-  switch (in.ConsumeIntegralInRange<int>(0, 2)) {
+  switch (in.ConsumeIntegralInRange<int>(0, 3)) {
     case 0:
       fuzz_decoder(in);
       break;
     case 1:
       fuzz_receiver(in);
+      break;
+    case 3:
+      fuzz_chunks(in);
       break;
     default:
       fuzz_host(in);

@@ -342,6 +342,7 @@ void Host::receive(std::uint8_t b, Time now) {
 }
 
 void Host::receive(std::span<const std::uint8_t> bytes, Time now) {
+  if (bytes.empty()) return;  // no character: nothing happened at `now` (last_now_ stays)
   last_now_ = now;
   std::size_t i = 0;
   while (i < bytes.size()) {

@@ -22,10 +22,13 @@ using test::RecordingResponder;
 using Stream = std::vector<std::uint8_t>;
 using Cuts = std::vector<std::size_t>;  // chunk sizes, summing to the stream's size
 
-// Every way of cutting the stream in two, and twenty random cuttings into one to five chunks.
+// Every way of cutting the stream in two, empty reads among the chunks, and twenty random
+// cuttings.
 std::vector<Cuts> cuttings(std::size_t n) {
   std::vector<Cuts> all;
   for (std::size_t i = 0; i <= n; ++i) all.push_back(i == 0 || i == n ? Cuts{n} : Cuts{i, n - i});
+  // An empty read (nothing arrived at that time) first, in the middle and last.
+  all.push_back(Cuts{0, n / 2, 0, n - n / 2, 0});
   std::mt19937 rng(26);
   for (int k = 0; k < 20; ++k) {
     Cuts c;
@@ -204,6 +207,7 @@ TEST(LustbusChunks, TheReceiverTakesChunksAsItTakesCharacters) {
 // ---- Host (6.1, 3) -------------------------------------------------------------------------------
 
 struct HostRun {
+  std::vector<std::pair<HostState, Time>> after_each;  // state and next deadline after each chunk
   HostState state;
   Outcome outcome;
   Stream eot;
@@ -217,6 +221,7 @@ HostRun run_host(const Stream& answer, const Cuts& cuts, bool chunked) {
   host.step(now);
   (void)host.take_output();
   host.output_done(now);
+  std::vector<std::pair<HostState, Time>> seen;
   std::size_t at = 0;
   for (const std::size_t n : cuts) {
     now += 1ms;
@@ -227,8 +232,9 @@ HostRun run_host(const Stream& answer, const Cuts& cuts, bool chunked) {
       for (const auto b : part) host.receive(b, now);
     }
     at += n;
+    seen.emplace_back(host.state(), host.next_deadline());
   }
-  HostRun r{host.state(), {}, test::to_vector(host.take_output())};
+  HostRun r{seen, host.state(), {}, test::to_vector(host.take_output())};
   host.output_done(now);
   for (int i = 0; i < 20 && host.outcome(id) == nullptr; ++i) {
     now += 100ms;
@@ -258,6 +264,7 @@ TEST(LustbusChunks, TheHostTakesChunksAsItTakesCharacters) {
     for (const auto& cuts : cuttings(s.size())) {
       const HostRun a = run_host(s, cuts, true);
       const HostRun b = run_host(s, cuts, false);
+      EXPECT_EQ(a.after_each, b.after_each);
       EXPECT_EQ(a.state, b.state);
       EXPECT_EQ(a.eot, b.eot);
       EXPECT_EQ(a.outcome.kind, b.outcome.kind);
