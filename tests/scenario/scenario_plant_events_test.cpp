@@ -68,10 +68,30 @@ TEST(ScenarioPlantEvents, RefusalsNameTheDrivesOwnLists) {
             at_toml(11, "'mains' must be \"off\" or \"on\", not \"down\""));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nmains = \"off\"\nlevel = \"low\"\n")),
             at_toml(12, "'level' goes with 'input' only"));
-  const std::string vf_input = toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\ninput = \"STR\"\nlevel = \"high\"\n"));
-  EXPECT_NE(vf_input.find("s.toml:11: 'input' is not for device 'v', a VF1000: the seeds name the VF1000's inputs"),
-            std::string::npos)
-      << vf_input;
+  // Seed 001 5.2.1 / 5.2.2: the VF1000's terminals (docs/errata.md VF-E22) are its list.
+  EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\ninput = \"IS00\"\nlevel = \"high\"\n")),
+            at_toml(11, "'input' = \"IS00\" is not an input of the VF1000 device 'v' (\"S1IND\", \"S2IND\", "
+                        "\"STR\", \"STL\", \"S1OUT\" or \"S2OUT\")"));
+}
+
+TEST(ScenarioPlantEvents, TheVf1000sTerminalsReadAndRoundTrip) {
+  // Seed 001 5.2.1 (inputs S1IND, S2IND, STR, STL) and 5.2.2 (outputs S1OUT, S2OUT, whose level the
+  // scenario states: docs/errata.md VF-E22), in TOML and JSON, each written and read back equal.
+  std::string text = tdoc::kBase;
+  int ms = 10;
+  for (const char* name : {"S1IND", "S2IND", "STR", "STL", "S1OUT", "S2OUT"}) {
+    text += "[[timeline]]\nat = \"" + std::to_string(ms) + " ms\"\ndevice = \"v\"\ninput = \"" + name +
+            "\"\nlevel = \"" + (ms % 20 == 0 ? "low" : "high") + "\"\n";
+    ms += 10;
+  }
+  const Scenario s = parse_scenario_toml(text, "s.toml");
+  ASSERT_EQ(s.timeline.size(), 6U);
+  EXPECT_EQ(s.timeline[4].action, Action::input);
+  EXPECT_EQ(s.timeline[4].value, "S1OUT");
+  EXPECT_TRUE(s.timeline[4].level);
+  EXPECT_FALSE(s.timeline[5].level);
+  EXPECT_EQ(parse_scenario_toml(write_scenario_toml(s), "rt.toml"), s);
+  EXPECT_EQ(parse_scenario_json(write_scenario_json(s), "rt.json"), s);
 }
 
 TEST(ScenarioPlantEvents, ASmartcardOperationReadsRoundTripsAndIsCheckedAgainstTheDrive) {

@@ -761,6 +761,31 @@ TEST(SimulatorPlantEvents, MainsLossAndLoadAndInputFromTheTimeline) {
   EXPECT_EQ(kinds, (std::vector<std::string>{"input", "load", "mains-off", "mains-on"}));
 }
 
+// VF-E22: the VF1000's terminals from the timeline: an output's stated level in the status word
+// the master reads (seed 001 5.2.2: bit 15 S1OUT, bit 14 S2OUT), an input's function on the core.
+TEST(SimulatorPlantEvents, Vf1000TerminalsFromTheTimeline) {
+  Scenario s;
+  s.duration = 1s;
+  s.devices = {vf1000()};
+  TimelineEntry s1out = at(100ms, "vf", Action::input, "S1OUT");
+  s1out.level = true;
+  TimelineEntry s2ind = at(100ms, "vf", Action::input, "S2IND");
+  s2ind.level = true;
+  TimelineEntry s1out_low = at(500ms, "vf", Action::input, "S1OUT");
+  s.timeline = {s1out, s2ind, s1out_low};
+  Simulator sim(s);
+  sim.run_until(300ms);
+  auto& inverter = vf1000_at(sim, 0);
+  EXPECT_EQ(inverter.status_word() & 0xC000U, 0x8000U) << "S1OUT in status bit 15";
+  EXPECT_TRUE(inverter.drive().input_function_active(devices::vf1000::Terminal::s2ind));
+  EXPECT_FALSE(inverter.drive().input_function_active(devices::vf1000::Terminal::s1ind));
+  sim.run();
+  EXPECT_EQ(inverter.status_word() & 0xC000U, 0U) << "S1OUT low again";
+  std::vector<std::string> details;
+  for (const FaultRecord& f : sim.summary().faults) details.push_back(f.detail);
+  EXPECT_EQ(details, (std::vector<std::string>{"input S1OUT high", "input S2IND high", "input S1OUT low"}));
+}
+
 // MC-D9: a SMARTCARD operation on the MC6000 from the timeline: a module error for its time,
 // then the master's words count again, without a new start.
 TEST(SimulatorPlantEvents, AnMc6000SmartcardOperationIsAModuleErrorForItsTime) {

@@ -8,8 +8,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "../lustbus_devices/support.hpp"
+#include "ibs/devices/plant_event.hpp"
+#include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/devices/vf1000/device.hpp"
 #include "ibs/devices/vf1000/drive.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
@@ -699,15 +703,18 @@ TEST(Vf1000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
   EXPECT_EQ(siof.value & 0x01U, 0x01U) << "the power-on bit tells the host of the power failure";
 }
 
-TEST(Vf1000Events, NoLoadAndNoInputs) {
-  // VF-E17: the seeds give the VF1000 no load model and no input with a readable state.
+TEST(Vf1000Events, NoLoad) {
+  // VF-E17: the seeds give the VF1000 no load model (its frequency follows the ramp).
   Rig r(true, false);
   ibs::devices::PlantEvent load;
   load.kind = ibs::devices::PlantEvent::Kind::load;
   load.value = 1.0;
   EXPECT_FALSE(r.ib->apply_event(load, r.now));
+  // A terminal beyond the drive's own list (kTerminalNames) is not taken either.
   ibs::devices::PlantEvent input;
   input.kind = ibs::devices::PlantEvent::Kind::input;
+  input.input = vf::kTerminalCount;
+  input.level = true;
   EXPECT_FALSE(r.ib->apply_event(input, r.now));
 }
 
@@ -752,27 +759,174 @@ TEST(Vf1000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
   }
 }
 
-TEST(Vf1000Events, ControlBits12And13AndStatusBits14And15CarryNoInventedFunction) {
-  // Seed 001, 5.2.1: control bits 12 / 13 "activate the parameter-set function of input S2IND /
-  // S1IND"; 5.2.2: status bits 14 / 15 are the "status of output S2OUT / S1OUT, dependent on
-  // programmed function". Decision VF-E22: no seed gives those functions or the parameters that
-  // program them (5.2.x names only 36-RSTOP), so bits 12 / 13 change nothing and the outputs stay
-  // off (bits 14 / 15 = 0); STL / STR (bits 14 / 15 of the control word) keep their meaning.
-  std::array<Word, 2> status{};
-  std::array<double, 2> frequency{};
-  for (const Word inputs : {Word{0x0000}, Word{0x3000}}) {
-    Rig r(true, false);
-    r.m2s[1] = 200;  // 10 Hz
-    r.control(0x8000 | inputs | kRampBits | 0x0006);
+// An `input` event on a terminal by the name the drive's facts list (what a scenario or a control
+// line resolves), applied to the core or through the INTERBUS face.
+ibs::devices::PlantEvent terminal_event(std::string_view name, bool high) {
+  const auto index = ibs::devices::find_input(vf::descriptor().facts().events, name);
+  EXPECT_TRUE(index.has_value()) << name;
+  ibs::devices::PlantEvent e;
+  e.kind = ibs::devices::PlantEvent::Kind::input;
+  e.input = index.value_or(0);
+  e.level = high;
+  return e;
+}
+
+TEST(Vf1000Events, TheEventsNameTheTerminalsOfSeed001) {
+  // Seed 001, 5.2.1 (control bits 12..15: S2IND, S1IND, STL, STR) and 5.2.2 (status bits 14 / 15:
+  // S2OUT, S1OUT): the names a scenario writes are the manual's, in the order of vf1000::Terminal.
+  const auto& inputs = vf::descriptor().facts().events.inputs;
+  ASSERT_EQ(inputs.size(), vf::kTerminalCount);
+  const std::pair<vf::Terminal, std::string_view> rows[] = {
+      {vf::Terminal::s1ind, "S1IND"}, {vf::Terminal::s2ind, "S2IND"}, {vf::Terminal::str, "STR"},
+      {vf::Terminal::stl, "STL"},     {vf::Terminal::s1out, "S1OUT"}, {vf::Terminal::s2out, "S2OUT"}};
+  for (const auto& [t, name] : rows) EXPECT_EQ(inputs[static_cast<std::size_t>(t)], name);
+  EXPECT_FALSE(ibs::devices::find_input(vf::descriptor().facts().events, "IS00").has_value());
+}
+
+TEST(Vf1000Events, OutputsS2outAndS1outShowInStatusBits14And15OnBothFaces) {
+  // Seed 001, 5.2.2: "Bit 14 Status of output S2OUT, dependent on programmed function", "Bit 15
+  // Status of output S1OUT". VF-E22: the seeds give no function, so the event states the level;
+  // it shows in the INTERBUS status word and in 911-IBSTA (the DRIVECOM status word, seed 001
+  // 4.1.1) over the communication word, whichever face the event came through. LUSTBUS shows
+  // neither: its VF1000 CODE reaches parameters 00..99 only (seed 000 2.4.1), and 11-STAT's bits
+  // are the ready / running / direction / error of LB-D19.
+  struct Row {
+    bool via_interbus;  // the event through the INTERBUS face, else on the core (the LUSTBUS face's way)
+    std::string_view s1out_level, s2out_level;
+    Word bits;  // status word bits 14 / 15
+  };
+  const Row rows[] = {
+      {true, "low", "low", 0x0000},   {true, "high", "low", 0x8000},  {true, "low", "high", 0x4000},
+      {true, "high", "high", 0xC000}, {false, "high", "low", 0x8000}, {false, "low", "high", 0x4000},
+  };
+  for (const Row& row : rows) {
+    SCOPED_TRACE(std::string(row.via_interbus ? "INTERBUS face" : "core") + ", S1OUT " +
+                 std::string(row.s1out_level) + ", S2OUT " + std::string(row.s2out_level));
+    Rig r(true, true);
+    const auto s1 = terminal_event("S1OUT", row.s1out_level == "high");
+    const auto s2 = terminal_event("S2OUT", row.s2out_level == "high");
+    if (row.via_interbus) {
+      ASSERT_TRUE(r.ib->apply_event(s1, r.now));
+      ASSERT_TRUE(r.ib->apply_event(s2, r.now));
+    } else {
+      ASSERT_TRUE(r.drive->apply(s1, r.now));
+      ASSERT_TRUE(r.drive->apply(s2, r.now));
+    }
     r.wait(50ms);
-    r.control(0x8000 | inputs | kRampBits | 0x000F);
-    r.wait(300ms);
-    const std::size_t i = inputs == 0 ? 0 : 1;
-    status[i] = r.s2m[0];
-    frequency[i] = r.drive->frequency_hz();
-    EXPECT_EQ(r.s2m[0] & 0xC000U, 0U) << "S2OUT / S1OUT off";
+    EXPECT_EQ(r.drive->terminal(vf::Terminal::s1out), (row.bits & 0x8000U) != 0);
+    EXPECT_EQ(r.drive->terminal(vf::Terminal::s2out), (row.bits & 0x4000U) != 0);
+    EXPECT_EQ(r.s2m[0] & 0xC000U, row.bits) << "the INTERBUS status word";
+    EXPECT_EQ(r.ib_read(pnr::kIbsta).value & 0xC000U, row.bits) << "911-IBSTA over the communication word";
+    EXPECT_EQ(untimed(r.lb_read(pnr::kStat)), (Result{"value", vf::kStatReady, 0, {}})) << "11-STAT unchanged";
   }
-  EXPECT_EQ(status[0], status[1]);
-  EXPECT_EQ(frequency[0], frequency[1]);
-  EXPECT_GT(frequency[0], 0.0) << "STR: clockwise";
+  // The LUSTBUS face alone (`ibs lustbus emulate --control`): the event reaches the core it serves,
+  // whose status word carries the level (what 911 and an INTERBUS face would show).
+  ibs::devices::LustbusEmulated alone = vf::lustbus_face().make(ibs::devices::LustbusFaceOptions{});
+  ASSERT_TRUE(alone.apply_event(terminal_event("S2OUT", true), Time{1s}));
+  alone.advance(Time{2s});
+  auto& lone = dynamic_cast<vf::LustbusDevice&>(*alone.responder);
+  EXPECT_TRUE(lone.drive().terminal(vf::Terminal::s2out));
+  EXPECT_EQ(lone.drive().pd().status_word() & 0xC000U, 0x4000U);
+  EXPECT_EQ(lone.drive().value(pnr::kIbsta) & 0xC000U, 0x4000U);
+
+  // The level stays until the event changes it; low again clears the bit.
+  Rig r(true, true);
+  ASSERT_TRUE(r.ib->apply_event(terminal_event("S1OUT", true), r.now));
+  r.wait(50ms);
+  ASSERT_EQ(r.s2m[0] & 0xC000U, 0x8000U);
+  ASSERT_TRUE(r.ib->apply_event(terminal_event("S1OUT", false), r.now));
+  r.wait(50ms);
+  EXPECT_EQ(r.s2m[0] & 0xC000U, 0U);
+  // Without mains the output is dead (VF-E17: the inverter is off).
+  ASSERT_TRUE(r.ib->apply_event(terminal_event("S2OUT", true), r.now));
+  ibs::devices::PlantEvent off;
+  off.kind = ibs::devices::PlantEvent::Kind::mains_off;
+  ASSERT_TRUE(r.ib->apply_event(off, r.now));
+  EXPECT_FALSE(r.drive->terminal(vf::Terminal::s2out));
+}
+
+TEST(Vf1000Events, ControlBits12And13OrTheTerminalsActivateTheFunctionOfS2indAndS1ind) {
+  // Seed 001, 5.2.1: "Bit 12 Activates the parameter-set function of input S2IND", "Bit 13
+  // Activates the parameter-set function of input S1IND". VF-E22: the function is active while the
+  // terminal is high or the bus bit set; the seeds do not give what it does, so nothing else
+  // changes -- the DRIVECOM status bits 0..13 and the frequency are those without it.
+  struct Row {
+    std::string_view terminal;  // set high before the run ("" none)
+    Word bits;                  // control word bits 12 / 13
+    bool s1ind, s2ind;          // input_function_active
+  };
+  const Row rows[] = {
+      {"", 0x0000, false, false},      {"S1IND", 0x0000, true, false}, {"S2IND", 0x0000, false, true},
+      {"", 0x2000, true, false},       {"", 0x1000, false, true},      {"S1IND", 0x2000, true, false},
+      {"S2IND", 0x2000, true, true},   {"", 0x3000, true, true},
+  };
+  std::optional<Word> base_status;
+  std::optional<double> base_frequency;
+  for (const Row& row : rows) {
+    SCOPED_TRACE(std::string(row.terminal.empty() ? "no terminal" : row.terminal) + ", bits " +
+                 std::to_string(row.bits));
+    Rig r(true, false);
+    if (!row.terminal.empty()) {
+      ASSERT_TRUE(r.ib->apply_event(terminal_event(row.terminal, true), r.now));
+    }
+    r.m2s[1] = 200;  // 10 Hz
+    r.control(0x8000 | row.bits | kRampBits | 0x0006);
+    r.wait(50ms);
+    r.control(0x8000 | row.bits | kRampBits | 0x000F);
+    r.wait(300ms);
+    EXPECT_EQ(r.drive->input_function_active(vf::Terminal::s1ind), row.s1ind);
+    EXPECT_EQ(r.drive->input_function_active(vf::Terminal::s2ind), row.s2ind);
+    EXPECT_FALSE(r.drive->input_function_active(vf::Terminal::str)) << "no parameter-set function";
+    const Word status = r.s2m[0] & 0x3FFFU;
+    if (!base_status) {
+      base_status = status;
+      base_frequency = r.drive->frequency_hz();
+      EXPECT_GT(*base_frequency, 0.0) << "STR: clockwise";
+    }
+    EXPECT_EQ(status, *base_status);
+    EXPECT_EQ(r.drive->frequency_hz(), *base_frequency);
+    EXPECT_EQ(r.s2m[0] & 0xC000U, 0U) << "inputs drive no output";
+    // The bus bit counts from the word the drive acts on: gone with a new start, back with the
+    // first word after it; without mains nothing is active.
+    if (row.bits != 0 && row.terminal.empty()) {
+      ibs::devices::PlantEvent cycle;
+      cycle.kind = ibs::devices::PlantEvent::Kind::power_cycle;
+      ASSERT_TRUE(r.ib->apply_event(cycle, r.now));
+      EXPECT_FALSE(r.drive->input_function_active(vf::Terminal::s1ind));
+      EXPECT_FALSE(r.drive->input_function_active(vf::Terminal::s2ind));
+      r.wait(r.drive->config().pd.init_time + 100ms);
+      EXPECT_EQ(r.drive->input_function_active(vf::Terminal::s1ind), row.s1ind);
+      EXPECT_EQ(r.drive->input_function_active(vf::Terminal::s2ind), row.s2ind);
+      ibs::devices::PlantEvent off;
+      off.kind = ibs::devices::PlantEvent::Kind::mains_off;
+      ASSERT_TRUE(r.ib->apply_event(off, r.now));
+      EXPECT_FALSE(r.drive->input_function_active(vf::Terminal::s1ind));
+      EXPECT_FALSE(r.drive->input_function_active(vf::Terminal::s2ind));
+    }
+  }
+}
+
+TEST(Vf1000Events, TerminalsStrAndStlAreRecordedButTheBusControls) {
+  // Seed 001, 5.2.1: control bits 14 / 15 are the "function as input STL / STR" under INTERBUS
+  // control; the model has no terminal control location (INTERBUS or serial only, seed 001 6.1,
+  // seed 000 7.1), so the terminals are recorded and change nothing (VF-E22).
+  struct Row {
+    std::string_view terminal;
+    Word direction_bits;  // control bit 15 STR / 14 STL
+    double sign;          // of the frequency reached
+  };
+  const Row rows[] = {{"STR", 0x0000, 0.0}, {"STL", 0x0000, 0.0}, {"STL", 0x8000, 1.0}, {"STR", 0x4000, -1.0}};
+  for (const Row& row : rows) {
+    SCOPED_TRACE(std::string(row.terminal) + ", bits " + std::to_string(row.direction_bits));
+    Rig r(true, false);
+    ASSERT_TRUE(r.ib->apply_event(terminal_event(row.terminal, true), r.now));
+    r.m2s[1] = 200;  // 10 Hz
+    r.control(row.direction_bits | kRampBits | 0x0006);
+    r.wait(50ms);
+    r.control(row.direction_bits | kRampBits | 0x000F);
+    r.wait(300ms);
+    EXPECT_TRUE(r.drive->terminal(row.terminal == "STR" ? vf::Terminal::str : vf::Terminal::stl));
+    const double f = r.drive->frequency_hz();
+    EXPECT_EQ(f > 0.0 ? 1.0 : (f < 0.0 ? -1.0 : 0.0), row.sign);
+  }
 }

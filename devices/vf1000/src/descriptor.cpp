@@ -78,10 +78,10 @@ constexpr DriveFacts kFacts{
             .max_error = 14,
             .errors = kErrors,
             .error_source = "seed 001 4.1.3.3: 00H..0EH",
-            .inputs = {},
-            .no_inputs = "the seeds name the VF1000's inputs STR, STL, S1IND and S2IND only as control word "
-                         "bits 12..15 that stand in for them (seed 001 5.2.1), with no parameter that shows "
-                         "the terminals (docs/errata.md VF-E17)",
+            // Its terminals (seed 001 5.2.1, 5.2.2; docs/errata.md VF-E22): the inputs, and the
+            // outputs S1OUT / S2OUT set to the level their programmed function gives.
+            .inputs = kTerminalNames,
+            .no_inputs = {},
             .load_unit = {},
             .no_load = "the VF1000 is an inverter without a motor model here: its frequency follows the ramp, "
                        "whatever the load (docs/errata.md VF-E17)",

@@ -22,6 +22,10 @@ constexpr Word kStartCounterClockwise = 0x40;
 // After a longer silence only this much of the inverter's own sampling is run (the ramp has long
 // ended): 60 s are about 7 300 samples of 8.2 ms.
 constexpr Duration kCatchUp = std::chrono::seconds(60);
+// Seed 001, 5.2.1: bit 12 S2IND, bit 13 S1IND.
+constexpr Word kS2indBit = 0x1000;
+constexpr Word kS1indBit = 0x2000;
+constexpr Word kInputFunctionBits = kS2indBit | kS1indBit;
 
 // Transition 15 (FAULT -> START-UP INHIBIT on RESET FAULT) among those of a sample.
 bool reset_fault_taken(const drivecom::SampleResult& r) {
@@ -268,6 +272,7 @@ void Drive::after_sample(Word control, Word actual, Time now) {
     ib_fault_ = false;  // reset by the master after the data came back
   }
   last_control_ = control;
+  input_bits_ = control & kInputFunctionBits;
   mirror(control, actual);
 }
 
@@ -325,6 +330,7 @@ void Drive::apply_parameters() {
 void Drive::new_start(Time now, Duration init) {
   // Seed 000, 6 and 9.2: after every new start only the power-on bit; EEPROM values back.
   params_.power_on();
+  input_bits_ = 0;  // the bus's bits count again from the first word after the start
   ready_at_ = now + init;
   starting_ = true;
   ++starts_;
@@ -415,13 +421,37 @@ bool Drive::apply(const PlantEvent& e, Time now) {
       // set, so the values stay; the time is what either bus sees (VF-E21).
       smartcard(std::chrono::duration_cast<Duration>(std::chrono::duration<double>(e.value)), now);
       return true;
-    case PlantEvent::Kind::load:
     case PlantEvent::Kind::input:
+      if (e.input >= vf1000::kTerminalCount) return false;
+      set_terminal(static_cast<vf1000::Terminal>(e.input), e.level);
+      return true;
+    case PlantEvent::Kind::load:
     case PlantEvent::Kind::option_withdrawn:  // no seed gives the inverter's option an effect
     case PlantEvent::Kind::option_inserted:
       return false;
   }
   return false;
+}
+
+void Drive::set_terminal(vf1000::Terminal t, bool high) {
+  terminals_[static_cast<std::size_t>(t)] = high;
+  // 5.2.2: bit 14 S2OUT, bit 15 S1OUT, in the status word of the next sample (and so in 911).
+  pd_.set_outputs(terminals_[static_cast<std::size_t>(vf1000::Terminal::s2out)],
+                  terminals_[static_cast<std::size_t>(vf1000::Terminal::s1out)]);
+}
+
+bool Drive::terminal(vf1000::Terminal t) const {
+  const bool output = t == vf1000::Terminal::s1out || t == vf1000::Terminal::s2out;
+  return terminals_[static_cast<std::size_t>(t)] && (powered_ || !output);
+}
+
+bool Drive::input_function_active(vf1000::Terminal input) const {
+  if (!powered_) return false;
+  switch (input) {
+    case vf1000::Terminal::s1ind: return terminal(input) || (input_bits_ & kS1indBit) != 0;
+    case vf1000::Terminal::s2ind: return terminal(input) || (input_bits_ & kS2indBit) != 0;
+    default: return false;
+  }
 }
 
 void Drive::smartcard(Duration how_long, Time now) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -61,6 +62,16 @@ constexpr Word encode_control_bits(const ControlBits& b) {
 }
 // Ramp generator running freely (bits 4, 5, 6 set): what a master sends to let the drive run.
 inline constexpr Word kRampRun = 0x0070;
+
+// The inverter's terminals a plant event names (EventFacts::inputs, in this order; docs/errata.md
+// VF-E22): the inputs S1IND, S2IND (their parameter-set function, 5.2.1 bits 13 / 12), STR, STL
+// (start clockwise / counter-clockwise, 5.2.1 bits 15 / 14) and the outputs S1OUT, S2OUT (5.2.2
+// bits 15 / 14), whose level the event states because the seeds do not give their programmed
+// function.
+enum class Terminal : std::uint8_t { s1ind, s2ind, str, stl, s1out, s2out };
+inline constexpr std::size_t kTerminalCount = 6;
+inline constexpr std::string_view kTerminalNames[kTerminalCount] = {"S1IND", "S2IND", "STR",
+                                                                    "STL",   "S1OUT", "S2OUT"};
 
 // Status-word bits 8, 14, 15 (5.2.2): bit 8 is not implemented; S2OUT, S1OUT.
 inline constexpr drivecom::StatusBitNames kStatusBits{"bit 8 (not implemented) set", "S2OUT", "S1OUT"};

@@ -154,8 +154,25 @@ class Drive final : public drive::ParameterAccess {
   // LUSTBUS communication), decision VF-E21.
   void smartcard(Duration how_long, Time now);
   [[nodiscard]] bool card_busy(Time now) const { return now < card_until_; }
-  // A plant or fault event (plant_event.hpp) by the calls above; false for one the inverter does
-  // not take (a load, an input: DriveFacts::events says why).
+  // A terminal's level (docs/errata.md VF-E22). An input (S1IND, S2IND, STR, STL) is wired high
+  // or low; an output (S1OUT, S2OUT) is set to the level its programmed function gives -- seed 001
+  // 5.2.2: "status of output S2OUT / S1OUT, dependent on programmed function", a function no seed
+  // gives, so the event states the level. The outputs show in status word bits 14 (S2OUT) and 15
+  // (S1OUT) from the next sample, on INTERBUS and in 911-IBSTA (which LUSTBUS, reaching parameters
+  // 00..99 only, cannot read: seed 000 2.4.1).
+  void set_terminal(vf1000::Terminal t, bool high);
+  // The level recorded for the terminal; an output is low while the inverter has no mains.
+  [[nodiscard]] bool terminal(vf1000::Terminal t) const;
+  // Seed 001, 5.2.1: control word bit 12 / 13 "activates the parameter-set function of input
+  // S2IND / S1IND". Active while the inverter is powered and the terminal is high or the bit is
+  // set in the control word of the last sample (the INTERBUS master's; the serial interface's
+  // sets neither: the bus stands in for the terminal, as bits 14 / 15 do for STL / STR); false for
+  // the other terminals. What the function does the seeds do
+  // not give: nothing else follows from it (VF-E22).
+  [[nodiscard]] bool input_function_active(vf1000::Terminal input) const;
+  // A plant or fault event (plant_event.hpp) by the calls above (an input: set_terminal by the
+  // index of kTerminalNames); false for one the inverter does not take (a load: DriveFacts::events
+  // says why).
   bool apply(const PlantEvent& e, Time now);
 
   // --- State ----------------------------------------------------------------------------------
@@ -240,6 +257,10 @@ class Drive final : public drive::ParameterAccess {
   // The drive's own sampling, while no INTERBUS face samples it.
   Time sample_time_{0};
   Word last_control_ = 0;  // the control word of the last sample
+  // Control bits 12 / 13 (S2IND / S1IND) of the last sample since the last new start.
+  Word input_bits_ = 0;
+  // The terminals' levels, by vf1000::Terminal.
+  std::array<bool, vf1000::kTerminalCount> terminals_{};
   // The faces attached; a copy of the drive has none.
   struct Faces {
     int interbus = 0;
