@@ -6,9 +6,7 @@ namespace ibs::drivecom {
 
 namespace {
 
-constexpr bool is_fault_state(State s) {
-  return s == State::fault || s == State::fault_response_active;
-}
+using detail::is_fault_state;
 
 constexpr Word kResetBit = 1U << cw::kResetFault;
 constexpr std::size_t kTargets = 4;
@@ -98,25 +96,12 @@ inline constexpr auto kPaths = make_paths();
 
 constexpr PathStep path(State s, Target t) { return kPaths[static_cast<std::size_t>(t)][idx(s)]; }
 
-// kPaths as the words sent: the path's command word and the transition waited for.
-struct PathMove {
-  Word word;
-  std::uint8_t transition;
-};
-constexpr std::array<std::array<PathMove, kStateCount>, kTargets> make_path_moves() {
-  std::array<std::array<PathMove, kStateCount>, kTargets> moves{};
+constexpr std::array<std::array<detail::PathMove, kStateCount>, kTargets> make_path_moves() {
+  std::array<std::array<detail::PathMove, kStateCount>, kTargets> moves{};
   for (std::size_t t = 0; t < kTargets; ++t) {
     for (std::size_t s = 0; s < kStateCount; ++s) moves[t][s] = {command_word(kPaths[t][s].command), kPaths[t][s].transition};
   }
   return moves;
-}
-inline constexpr auto kPathMoves = make_path_moves();
-
-// A state on a target's path that step_target takes no decision in beyond the path: neither a
-// fault state (reset or refusal) nor NOT READY (start or restart).
-constexpr bool plain_path_state(std::uint8_t code) {
-  return code == idx(State::start_up_inhibit) || code == idx(State::ready) || code == idx(State::on) ||
-         code == idx(State::enabled) || code == idx(State::emergency_stop_active);
 }
 
 // The table of docs/drivecom.md, pinned where the manual is explicit: the start-up of 5.3.4
@@ -135,6 +120,24 @@ static_assert(path(State::enabled, Target::enabled).transition == 0);
 static_assert(kCommands == 5);
 
 }  // namespace
+
+// kPaths as the words sent (declared in the header for Sequencer::step_path).
+constexpr std::array<std::array<detail::PathMove, kStateCount>, 4> detail::kPathMoves = make_path_moves();
+// step_path takes a plain path state with nothing to wait for as the target reached and held.
+constexpr bool plain_states_hold_only_at_target() {
+  for (std::size_t t = 0; t < 4; ++t) {
+    for (std::size_t s = 0; s < kStateCount; ++s) {
+      if (((detail::kPlainPathStates >> s) & 1U) == 0) continue;
+      const bool at_target = static_cast<State>(s) == target_state(static_cast<Target>(t));
+      if ((detail::kPathMoves[t][s].transition == 0) != at_target) return false;
+    }
+  }
+  return true;
+}
+static_assert(plain_states_hold_only_at_target());
+static_assert(detail::kPlainPathStates == ((1U << idx(State::start_up_inhibit)) | (1U << idx(State::ready)) |
+                                           (1U << idx(State::on)) | (1U << idx(State::enabled)) |
+                                           (1U << idx(State::emergency_stop_active))));
 
 std::string_view to_string(Target t) { return state_row(target_state(t)).name; }
 
@@ -161,26 +164,7 @@ void Sequencer::restart() {
   edge_out_ = false;
   pulse_started_ = false;
   hold_code_ = kNotHolding;
-}
-
-void Sequencer::begin(Goal g, Time now) {
-  hold_code_ = kNotHolding;
-  report_.goal = g;
-  report_.phase = Phase::moving;
-  report_.failure = Failure::none;
-  report_.transition = 0;
-  report_.since = now;
-  report_.waited = 0ns;
-  report_.timeout = 0ns;
-  pulse_started_ = false;
-}
-
-void Sequencer::request(Target t, Time now) {
-  report_.target = t;
-  begin(Goal::target, now);
-  reset_allowed_ = !known_ || is_fault_state(*known_);
-  up_since_request_ = false;
-  reset_edge_sent_ = false;
+  update_path_mask();
 }
 
 void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, now); }
@@ -233,35 +217,7 @@ Sequencer::Move Sequencer::plan(State s, Time now) {
 }
 
 Word Sequencer::step_moving(std::uint8_t code, Time now) {
-  // Not while the request covers a reset: the first healthy state after a fault state is
-  // checked in step_target (left by a reset edge or by a restart).
-  if (report_.goal == Goal::target && report_.phase == Phase::moving && !reset_allowed_ && plain_path_state(code)) {
-    // step_target for a drive moving along the path, the same decisions in a straight line: a
-    // healthy state ends a reset's cover (reset_allowed_), counts as up since the request, stops
-    // any reset pulse; the path's word goes out, its transition's timeout runs.
-    const State s = static_cast<State>(code);
-    report_.state_seen = s;
-    reset_allowed_ = false;
-    up_since_request_ = true;
-    reset_edge_sent_ = false;
-    edge_out_ = false;
-    pulse_started_ = false;
-    const PathMove m = kPathMoves[static_cast<std::size_t>(report_.target)][code];
-    Word w = 0;
-    if (m.transition == 0) {
-      report_.phase = Phase::reached;
-      report_.transition = 0;
-      report_.waited = 0ns;
-      w = emit(m.word);
-    } else {
-      wait_for(m.transition, now);
-      w = report_.phase == Phase::failed ? fail(Failure::timeout) : emit(m.word);
-    }
-    prev_seen_ = s;
-    known_ = s;
-    hold_code_ = report_.phase == Phase::reached && s == target_state(report_.target) ? code : kNotHolding;
-    return w;
-  }
+  // step() took the plain moves along a target's path (step_path); everything else decides here.
   const std::optional<State> st =
       code == detail::kNoState ? std::nullopt : std::optional<State>(static_cast<State>(code));
   report_.state_seen = st;
@@ -278,6 +234,7 @@ Word Sequencer::step_moving(std::uint8_t code, Time now) {
   hold_code_ = report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)
                    ? static_cast<std::uint8_t>(*st)
                    : kNotHolding;
+  update_path_mask();
   return w;
 }
 

@@ -60,20 +60,27 @@ Exchange MasterLoop::cycle(Bus& bus, interbus::ProcessImage& image, Time now) no
 
 void MasterLoop::cycle(interbus::ProcessImage& image, Time now, const Exchange& exchange) noexcept {
   bind(image);
+  // The vectors' storage and the exchange's flag in locals: nothing a driver does moves them (the
+  // cycle allocates nothing, a driver sees neither the loop nor the exchange), and the compiler
+  // need not load them again after every driver's call.
+  const std::unique_ptr<devices::DeviceDriver>* const drivers = drivers_.data();
+  devices::DriverIo* const ios = ios_.data();
+  const LinkState* const links = exchange.links.data();
+  const bool valid = exchange.data_valid;
   const std::size_t n = drivers_.size();
   const std::size_t listed = std::min(n, exchange.links.size());
   std::size_t i = 0;
   for (; i < listed; ++i) {  // Exchange::link(i), without its range check per device
-    devices::DriverIo& x = ios_[i];
-    x.data_valid = exchange.data_valid && exchange.links[i].data_valid;
-    x.module_error = exchange.links[i].module_error;
-    drivers_[i]->cycle(x, now);
+    devices::DriverIo& x = ios[i];
+    x.data_valid = valid && links[i].data_valid;
+    x.module_error = links[i].module_error;
+    drivers[i]->cycle(x, now);
   }
   for (; i < n; ++i) {  // a bus that lists no (or not every) device: valid as the whole cycle
-    devices::DriverIo& x = ios_[i];
-    x.data_valid = exchange.data_valid;
+    devices::DriverIo& x = ios[i];
+    x.data_valid = valid;
     x.module_error = false;
-    drivers_[i]->cycle(x, now);
+    drivers[i]->cycle(x, now);
   }
 }
 

@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <random>
+#include <span>
+#include <vector>
 
 #include "ibs/devices/mc6000/pd_device.hpp"
 #include "ibs/devices/mc6000/pd_master.hpp"
@@ -197,6 +200,51 @@ TEST(PdMasters, Vf1000MasterSetsDirectionAndRampBits) {
   EXPECT_EQ(m2s[0], 0x407F);  // STL, ramp bits 4-6, ENABLE
   EXPECT_EQ(m2s[1], 250);
   EXPECT_EQ(m2s[2], 0x2416);
+}
+
+// Mc6000PdMaster::cycle skips cycle_general's calls when the actual words, the reference and the
+// sequencer's hold are unchanged (docs/performance.md, "Issue 26"). Two masters, one through
+// cycle() and one through cycle_general(), get the same random words, references, requests and
+// layouts; the words written, the actual decoded and the sequencer's report must be the same.
+TEST(Mc6000PdMasterShortcut, CycleWritesAndDecodesAsTheGeneralCycleOverRandomRuns) {
+  const std::array<std::pair<int, int>, 5> layouts{{{11, 2}, {12, 2}, {12, 3}, {10, 2}, {8, 1}}};
+  for (std::uint32_t seed = 1; seed <= 40; ++seed) {
+    std::mt19937 rng(seed);
+    const auto [supi, ibcnf] = layouts[seed % layouts.size()];
+    const auto layout = devices::mc6000::make_layout(supi, ibcnf);
+    Mc6000PdMaster fast(layout), general(layout);
+    const std::size_t words = static_cast<std::size_t>(layout.pd_words);
+    std::vector<Word> s2m(words, 0), out_fast(words, 0), out_general(words, 0);
+    const std::array<Word, 6> statuses{0x0240, 0x0221, 0x0223, 0x0637, 0x0208, 0x0627};
+    Time now{0};
+    for (int i = 0; i < 3000; ++i) {
+      const auto r = static_cast<unsigned>(rng() % 100);
+      if (r < 3) {
+        const auto t = static_cast<drivecom::Target>(rng() % 4);
+        fast.sequencer().request(t, now);
+        general.sequencer().request(t, now);
+      } else if (r < 6) {
+        const double rpm = static_cast<double>(static_cast<int>(rng() % 8000) - 4000) / 3.0;
+        fast.set_reference_rpm(rpm);
+        general.set_reference_rpm(rpm);
+      } else if (r < 12) {
+        for (std::size_t w = 1; w < words; ++w) s2m[w] = static_cast<Word>(rng());
+      } else if (r < 30) {
+        s2m[0] = statuses[rng() % statuses.size()];
+      }
+      // Fewer words now and then: a short slice takes the general cycle in both.
+      const std::size_t n = rng() % 50 == 0 ? rng() % (words + 1) : words;
+      fast.cycle(std::span<const Word>(s2m.data(), n), std::span<Word>(out_fast.data(), n), now);
+      general.cycle_general(std::span<const Word>(s2m.data(), n), std::span<Word>(out_general.data(), n), now);
+      ASSERT_EQ(out_fast, out_general) << "seed " << seed << " cycle " << i;
+      ASSERT_EQ(fast.actual().value, general.actual().value) << "seed " << seed << " cycle " << i;
+      ASSERT_EQ(fast.actual().torque, general.actual().torque);
+      ASSERT_EQ(fast.sequencer().last_control(), general.sequencer().last_control());
+      ASSERT_EQ(fast.sequencer().report().phase, general.sequencer().report().phase);
+      ASSERT_EQ(fast.sequencer().report().status_seen, general.sequencer().report().status_seen);
+      now += 1ms;
+    }
+  }
 }
 
 }  // namespace

@@ -14,6 +14,19 @@ void Mc6000PdMaster::initial(std::span<Word> m2s) const {
   std::fill(m2s.begin(), m2s.end(), Word{0});
 }
 
+void Mc6000PdMaster::cycle_general(std::span<const Word> s2m, std::span<Word> m2s, Time now) {
+  if (m2s.empty() || s2m.empty()) return;
+  // The actual words decoded only when they changed (same_actual).
+  if (s2m.size() > actual_words_) {
+    if (!same_actual(s2m)) decode_actual_words(s2m.subspan(1, actual_words_));
+  } else {
+    decode_actual_words(s2m.subspan(1));
+  }
+  m2s[0] = sequencer_.step(s2m[0], now);
+  if (reference_ != encoded_reference_) encode_reference_words();
+  put_reference(m2s);
+}
+
 void Mc6000PdMaster::decode_actual_words(std::span<const Word> words) {
   actual_ = mc6000::decode_actual(layout_, words);
   decoded_ = words.size() == actual_words_;

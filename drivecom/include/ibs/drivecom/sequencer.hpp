@@ -88,6 +88,22 @@ struct SequencerConfig {
   }
 };
 
+namespace detail {
+constexpr bool is_fault_state(State s) { return s == State::fault || s == State::fault_response_active; }
+// A target's path as the words sent: for each target and state, the word of the path's command
+// and the transition it waits for (0: holding the target). Derived in sequencer.cpp from
+// kCommandTransitions (5.1.2); declared here for Sequencer::step_path.
+struct PathMove {
+  Word word;
+  std::uint8_t transition;
+};
+extern const std::array<std::array<PathMove, kStateCount>, kTargets.size()> kPathMoves;
+// The states on a target's path in which step_target decides nothing beyond the path: START-UP
+// INHIBIT, READY, ON, ENABLED, EMERGENCY STOP ACTIVE (neither a fault state, with its reset or
+// refusal, nor NOT READY, with its start or restart). A bit per state code; checked in the .cpp.
+inline constexpr unsigned kPlainPathStates = 0x9EU;
+}  // namespace detail
+
 // Why the sequencer is where it is; also the answer to "why did the transition not happen".
 struct Report {
   Goal goal = Goal::idle;
@@ -116,7 +132,14 @@ class Sequencer {
   // Requests a target state; clears an emergency-stop or block-power request. A fault the drive
   // is in (or shows first, when its state is not known yet) is reset on the way; a fault that
   // appears after the drive has been seen in another state ends the request as failed.
-  void request(Target t, Time now);
+  // Inline, so that a sequencer built and asked at once (a master starting) is a few stores.
+  void request(Target t, Time now) {
+    report_.target = t;
+    begin(Goal::target, now);
+    reset_allowed_ = !known_ || detail::is_fault_state(*known_);
+    up_since_request_ = false;
+    reset_edge_sent_ = false;
+  }
   // Sends EMERGENCY STOP from the next step on, whatever the state, until the next request().
   void request_emergency_stop(Time now);
   // Sends BLOCK POWER from the next step on, whatever the state, until the next request().
@@ -129,7 +152,28 @@ class Sequencer {
     const std::uint8_t code = detail::kStateLut[status & 0x7FU];
     report_.status_seen = status;
     if (code == hold_code_) return emit(last_control_);
+    // The next common case, a drive moving along the target's path, inline too (step_path).
+    // path_mask_ is kPlainPathStates or 0; kNoState (0xFF) & 31 is bit 31, never set.
+    if (((path_mask_ >> (code & 31U)) & 1U) != 0) return step_path(code, now);
     return step_moving(code, now);
+  }
+
+  // step() without its two shortcuts (the hold, step_path): every status word through the
+  // general decisions. The same words and the same report as step(), by construction (see
+  // step_path); SequencerShortcuts.* compares the two over random runs.
+  Word step_general(Word status, Time now) {
+    report_.status_seen = status;
+    return step_moving(detail::kStateLut[status & 0x7FU], now);
+  }
+
+  // step() for a status word that shows the held target again: true, `control` the word step()
+  // returns, with step()'s effects. For any other status word false, and nothing changes (a
+  // caller then calls step()). Lets a driver keep its common case free of calls.
+  bool step_holding(Word status, Word& control) {
+    if (detail::kStateLut[status & 0x7FU] != hold_code_) return false;
+    report_.status_seen = status;
+    control = emit(last_control_);
+    return true;
   }
 
   [[nodiscard]] const Report& report() const { return report_; }
@@ -146,7 +190,26 @@ class Sequencer {
   };
   Move plan(State s, Time now);
   Move reset_pulse(Time now);
-  void begin(Goal g, Time now);
+  void begin(Goal g, Time now) {
+    hold_code_ = kNotHolding;
+    report_.goal = g;
+    report_.phase = Phase::moving;
+    report_.failure = Failure::none;
+    report_.transition = 0;
+    report_.since = now;
+    report_.waited = 0ns;
+    report_.timeout = 0ns;
+    pulse_started_ = false;
+    update_path_mask();
+  }
+  // path_mask_ from the goal, the phase and the last state seen: kPlainPathStates while the
+  // sequencer moves to a target and the drive was not last seen in a fault state, else 0.
+  void update_path_mask() {
+    path_mask_ = report_.goal == Goal::target && report_.phase == Phase::moving &&
+                         !(known_ && detail::is_fault_state(*known_))
+                     ? detail::kPlainPathStates
+                     : 0U;
+  }
   Word step_stop(std::optional<State> st, Time now);
   Word step_target(std::optional<State> st, Time now);
   void wait_for(std::uint8_t transition, Time now);
@@ -157,6 +220,50 @@ class Sequencer {
     return last_control_;
   }
   Word step_moving(std::uint8_t code, Time now);
+  // step_target for a drive on the target's path (goal a target, phase moving, `code` a plain
+  // path state, the last state seen no fault state): the same decisions in a straight line.
+  // step_target's other checks cannot fire there: a reset's cover is only ended by a healthy
+  // state; the restart check needs a fault state seen last; NOT READY is no plain path state; a
+  // moving phase has left no reached target. SequencerSafety.* and the exhaustive monitors
+  // (tests/support/sequencer_monitor.hpp) check both paths against the rules.
+  Word step_path(std::uint8_t code, Time now) {
+    const auto s = static_cast<State>(code);
+    report_.state_seen = s;
+    // A healthy state ends a reset's cover, counts as up since the request, ends any reset pulse
+    // and any edge's credit (step_target, plan).
+    reset_allowed_ = false;
+    up_since_request_ = true;
+    reset_edge_sent_ = false;
+    edge_out_ = false;
+    pulse_started_ = false;
+    const detail::PathMove m = detail::kPathMoves[static_cast<std::size_t>(report_.target)][code];
+    Word w = 0;
+    if (m.transition == 0) {
+      report_.phase = Phase::reached;
+      report_.transition = 0;
+      report_.waited = 0ns;
+      w = emit(m.word);
+      // A plain path state holds only at its target (checked on kPathMoves in the .cpp).
+      hold_code_ = code;
+      path_mask_ = 0;
+    } else {
+      // wait_for: the timer restarts when the transition waited for or the state changes.
+      if (m.transition != report_.transition || prev_seen_ != s) report_.since = now;
+      report_.transition = m.transition;
+      report_.timeout = config_.transition_timeout[m.transition & 0x0FU];
+      report_.waited = now - report_.since;
+      if (report_.waited > report_.timeout) {
+        w = fail(Failure::timeout);
+        path_mask_ = 0;
+      } else {
+        w = emit(m.word);
+      }
+      hold_code_ = kNotHolding;
+    }
+    prev_seen_ = s;
+    known_ = s;
+    return w;
+  }
 
   // No state code (detail::kStateLut gives 0..7 or kNoState): nothing is being held.
   static constexpr std::uint8_t kNotHolding = 0xFE;
@@ -191,6 +298,10 @@ class Sequencer {
   // prev_seen_ and known_ all that state; cleared by every request and restart. A step whose
   // status word shows that state again changes none of them: it sends the last word again.
   std::uint8_t hold_code_ = kNotHolding;
+  // The states step() hands to step_path, a bit per state code: kPlainPathStates while the goal
+  // is a target, the phase moving and the last state seen no fault state, else 0. Kept by every
+  // function that changes those (begin, restart, step_moving, step_path: update_path_mask).
+  std::uint32_t path_mask_ = 0;
 };
 
 }  // namespace ibs::drivecom

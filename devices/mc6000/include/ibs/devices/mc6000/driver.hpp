@@ -63,6 +63,8 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   [[nodiscard]] ParamStatus status(ParamId id) const override;
   [[nodiscard]] std::string describe(ParamId id) const override;
 
+  // cycle() of a driver with a PCP channel: the process data, then the channel.
+  void cycle_with_pcp(const DriverIo& io, Time now);
   void take_results(Time now);
   // The timeout for the next request: kTimeoutCycles of the cycle time seen, at least the
   // client's own.

@@ -24,35 +24,24 @@ class Mc6000PdMaster {
   [[nodiscard]] double reference_rpm() const { return reference_; }
 
   // One master cycle: reads the status-side words, writes the control-side words. Inline: it is
-  // every MC6000 driver's cycle on the full bus (docs/performance.md, "master cycle").
+  // every MC6000 driver's cycle on the full bus (docs/performance.md, "master cycle"). The common
+  // case is a leaf: the actual words those decoded last (decode_actual is a function of the
+  // layout and the words alone), the reference the one encoded, the sequencer holding its target
+  // (Sequencer::step_holding): then the words written are those cycle_general writes, without
+  // its calls. Anything else, cycle_general.
   void cycle(std::span<const Word> s2m, std::span<Word> m2s, Time now) {
-    if (m2s.empty() || s2m.empty()) return;
-    // The actual words decoded only when they changed: decode_actual is a function of the layout
-    // and the words alone, so the same words give the same value.
-    const std::size_t n = actual_words_;
-    if (s2m.size() > n) [[likely]] {
-      bool same = decoded_;
-      switch (n) {
-        case 2: same = same && s2m[2] == actual_raw_[1]; [[fallthrough]];
-        case 1: same = same && s2m[1] == actual_raw_[0]; break;
-        default: break;
-      }
-      if (!same) decode_actual_words(s2m.subspan(1, n));
-    } else {
-      decode_actual_words(s2m.subspan(1));
+    Word control = 0;
+    if (s2m.size() > actual_words_ && !m2s.empty() && m2s.size() <= reference_words_.size() + 1 &&
+        same_actual(s2m) && reference_ == encoded_reference_ && sequencer_.step_holding(s2m[0], control)) {
+      m2s[0] = control;
+      put_reference(m2s);
+      return;
     }
-    m2s[0] = sequencer_.step(s2m[0], now);
-    if (reference_ != encoded_reference_) encode_reference_words();
-    // Control word, reference, and 0 in any word the layout leaves unused (SUPI 12 with IBCNF 2),
-    // word by word: a loop here became a call of memset and memcpy for one or two words.
-    switch (m2s.size()) {
-      case 4: m2s[3] = reference_words_[2]; [[fallthrough]];
-      case 3: m2s[2] = reference_words_[1]; [[fallthrough]];
-      case 2: m2s[1] = reference_words_[0]; [[fallthrough]];
-      default: break;
-    }
-    for (std::size_t w = reference_words_.size() + 1; w < m2s.size(); ++w) m2s[w] = 0;  // never: 4 words at most
+    cycle_general(s2m, m2s, now);
   }
+  // cycle() without its shortcut, every case (out of line: cycle's common case calls nothing).
+  // The same words and state as cycle(); Mc6000PdMasterShortcut.* compares the two at random.
+  void cycle_general(std::span<const Word> s2m, std::span<Word> m2s, Time now);
   // The words before the first cycle: BLOCK POWER, reference 0.
   void initial(std::span<Word> m2s) const;
 
@@ -61,6 +50,28 @@ class Mc6000PdMaster {
   [[nodiscard]] const mc6000::Layout& layout() const { return layout_; }
 
  private:
+  // The actual words (1..actual_words_ of s2m, which has more than that) are those actual_ was
+  // decoded from.
+  [[nodiscard]] bool same_actual(std::span<const Word> s2m) const {
+    bool same = decoded_;
+    switch (actual_words_) {
+      case 2: same = same && s2m[2] == actual_raw_[1]; [[fallthrough]];
+      case 1: same = same && s2m[1] == actual_raw_[0]; break;
+      default: break;
+    }
+    return same;
+  }
+  // Reference and 0 in any word the layout leaves unused (SUPI 12 with IBCNF 2), word by word: a
+  // loop here became a call of memset and memcpy for one or two words.
+  void put_reference(std::span<Word> m2s) const {
+    switch (m2s.size()) {
+      case 4: m2s[3] = reference_words_[2]; [[fallthrough]];
+      case 3: m2s[2] = reference_words_[1]; [[fallthrough]];
+      case 2: m2s[1] = reference_words_[0]; [[fallthrough]];
+      default: break;
+    }
+    for (std::size_t w = reference_words_.size() + 1; w < m2s.size(); ++w) m2s[w] = 0;  // never: 4 words at most
+  }
   void decode_actual_words(std::span<const Word> words);
   void encode_reference_words();
 
