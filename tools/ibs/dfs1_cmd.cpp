@@ -22,7 +22,7 @@
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
 #include "control_input.hpp"
-#include "emulate_events.hpp"
+#include "watched_line_device.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {

@@ -19,7 +19,7 @@
 #include <stdexcept>
 
 #include "control_input.hpp"
-#include "emulate_events.hpp"
+#include "watched_line_device.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/base/time_text.hpp"
 #include "ibs/devices/plant_event.hpp"
