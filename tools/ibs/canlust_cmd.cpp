@@ -341,7 +341,7 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   }
   EmulateEvents events(out);
   // The first line says where it serves (with --json the `serving` event).
-  events.serving(o.bus.json, "bus", s->bus->name(), std::string());
+  events.serving(o.bus.json, "bus", std::string(s->bus->name()), std::string());
   const auto drive_event = [&](std::size_t i, Time at, std::string_view what) {
     return EmulateEvents::event(at, what, o.devices[i], raw[i]->address());
   };
