@@ -28,6 +28,7 @@
 #include "ibs/canlust/data_set.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/devices/drives.hpp"
+#include "ibs/tool/format.hpp"
 #include "control_input.hpp"
 #include "emulate_events.hpp"
 #include "stop_signals.hpp"
@@ -47,18 +48,10 @@ constexpr Duration kPoll = 20ms;
 
 Time since(Clock::time_point t0) { return std::chrono::duration_cast<Duration>(Clock::now() - t0); }
 
-std::string hex(unsigned v, int digits) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%0*X", digits, v);
-  return buf;
-}
+using tool::hex;
 
 // A frame's data bytes as candump prints them: "40 02 00 00 00 00".
-std::string data_hex(const cl::CanFrame& f) {
-  std::string s;
-  for (std::size_t i = 0; i < f.payload().size(); ++i) s += (i == 0 ? "" : " ") + hex(f.data[i], 2);
-  return s;
-}
+std::string data_hex(const cl::CanFrame& f) { return tool::hex_bytes(f.payload()); }
 
 std::optional<long long> parse_int(std::string_view s) {
   long long v = 0;
@@ -172,11 +165,7 @@ std::string event_words(const devices::CanlustEvent& e) {
   using K = devices::CanlustEvent::Kind;
   switch (e.kind) {
     case K::fault: return "fault " + e.cause;
-    case K::load: {
-      char b[48];
-      std::snprintf(b, sizeof b, "load %.1f %%", e.load);
-      return b;
-    }
+    case K::load: return "load " + tool::fixed(e.load, 1, "%");
     case K::input: return "input " + e.input + (e.level ? " high" : " low");
     default: return std::string(devices::to_string(e.kind));
   }
@@ -709,13 +698,7 @@ int system_cmd(const devices::CanlustFace& face, bool start, const CanlustClient
 // candump's -t: (a)bsolute wall-clock time, (d)elta to the frame before, (z)ero at the first
 // frame; "(1795431275.322679)" or "(000.013265)" as candump prints them.
 std::string candump_stamp(char mode, std::int64_t us) {
-  char b[48];
-  if (mode == 'a') {
-    std::snprintf(b, sizeof b, "(%010lld.%06lld)", static_cast<long long>(us / 1000000), static_cast<long long>(us % 1000000));
-  } else {
-    std::snprintf(b, sizeof b, "(%03lld.%06lld)", static_cast<long long>(us / 1000000), static_cast<long long>(us % 1000000));
-  }
-  return b;
+  return fmt::format("({:0{}}.{:06})", us / 1000000, mode == 'a' ? 10 : 3, us % 1000000);
 }
 
 can::CanFilterSet filters_of(const std::vector<std::string>& given) {
