@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libcli11-dev
-          nlohmann-json3-dev libtomlplusplus-dev libasio-dev libpcap-dev help2man)
+          nlohmann-json3-dev libtomlplusplus-dev libasio-dev libpcap-dev libfmt-dev help2man)
 # The tests only: tshark runs the Wireshark dissectors (CANLust and INTERBUS) over the captures the
 # tests write (WiresharkDissector.*, CanlustCli.*, the capture tests; installed
 # without its setuid question: DEBIAN_FRONTEND=noninteractive keeps the default, no setuid);

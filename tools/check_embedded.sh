@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The embedded build (docs/embedding.md, "An embedded build"), checked as a user would, outside the
 # build tree:
-#  1. -DIBS_EMBEDDED=ON in Release with -Werror, Eigen, CLI11, toml++, nlohmann-json, GoogleTest
-#     and Google Benchmark forbidden to CMake, installed into a fresh prefix without the trace and
+#  1. -DIBS_EMBEDDED=ON in Release with -Werror, Eigen, CLI11, toml++, nlohmann-json, {fmt},
+#     GoogleTest and Google Benchmark forbidden to CMake, installed into a fresh prefix without the trace and
 #     replay headers;
 #  2. the installed static libraries throw and catch nothing and carry no RTTI and no iostreams:
 #     no reference to __cxa_throw, __cxa_begin_catch, __gxx_personality_v0 (nm), no typeinfo
@@ -26,7 +26,8 @@ echo "check_embedded: the embedded build" >&2
 cmake -S . -B "$work/build" --no-warn-unused-cli -DIBS_EMBEDDED=ON -DCMAKE_BUILD_TYPE=Release -DIBS_WERROR=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON \
-  -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON >/dev/null
+  -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_fmt=ON >/dev/null
 cmake --build "$work/build" -j "$jobs" >/dev/null
 cmake --install "$work/build" --prefix "$work/prefix" >/dev/null
 fail() {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The installable master (docs/embedding.md), checked as a user would, outside the build tree:
-#  1. a master-only build (-DIBS_MASTER_ONLY=ON) with Eigen, CLI11, toml++ and nlohmann-json
+#  1. a master-only build (-DIBS_MASTER_ONLY=ON) with Eigen, CLI11, toml++, nlohmann-json and {fmt}
 #     forbidden to CMake, installed into a fresh prefix; a program linked through pkg-config
 #     (ibs-master) runs the master loop over the in-memory bus;
 #  2. the whole project installed from a built tree (default build/debug) into another prefix;
@@ -28,7 +28,8 @@ echo "check_install: master-only build" >&2
 cmake -S . -B "$work/master-build" --no-warn-unused-cli -DIBS_MASTER_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON \
-  -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON >/dev/null
+  -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_fmt=ON >/dev/null
 cmake --build "$work/master-build" -j "$jobs" >/dev/null
 cmake --install "$work/master-build" --prefix "$work/master" >/dev/null
 if [[ -e "$work/master/bin/ibs" ]] || ls "$work/master"/lib*/libibs_sim* >/dev/null 2>&1; then

@@ -31,6 +31,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "canlust_cmd.hpp"
 #include "ibs/can/candump.hpp"
 #include "ibs/can/udp.hpp"
@@ -146,6 +148,115 @@ TEST(CanlustCli, EmulateExitsZeroOnSigint) {
   Emulator emu({"--bus", p.emulator_bus(), "cda3000@3"});
   ASSERT_EQ(emu.first_line().rfind("bus: ", 0), 0U);
   EXPECT_EQ(emu.stop(SIGINT), 0);
+}
+
+std::vector<nlohmann::json> json_lines(const std::string& text) {
+  std::vector<nlohmann::json> v;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) v.push_back(nlohmann::json::parse(line));
+  }
+  return v;
+}
+
+// `emulate --json`: the serving event first, then one object per frame a drive took or sent, per
+// state change and per control event, in the shape of `lustbus emulate --json` (docs/canlust.md,
+// "Events as JSON").
+TEST(CanlustCli, EmulateJsonPrintsOneObjectPerEvent) {
+  const Ports p;
+  const std::string errors = temp_path("canlust_emulate_json") + ".err";
+  test::ChildProcess emu({"/bin/sh", "-c",
+                          std::string("exec ") + IBS_CLI + " canlust emulate --json --control - --bus " +
+                              p.emulator_bus() + " cda3000@1 cda3000@4 2>" + errors +
+                              " <<'IBS_EOF'\n{\"device\": 4, \"fault\": \"device\", \"cause\": \"E-OTI\"}\nIBS_EOF\n"});
+  const nlohmann::json first = nlohmann::json::parse(emu.first_line());
+  EXPECT_EQ(first["event"], "serving");
+  EXPECT_EQ(first["time_s"], 0.0);
+  EXPECT_EQ(first["bus"].get<std::string>().rfind("udp:127.0.0.1:", 0), 0U) << first;
+  // Read as it comes: the logon and status telegrams alone could fill the pipe of a slow run.
+  std::string printed;
+  std::thread reader([&] { printed = emu.rest(); });
+  const auto cli = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), {"canlust"});
+    args.insert(args.end(), {"--bus", p.client_bus()});
+    return run_cli(args);
+  };
+  auto r = cli({"read", "--address", "1", "360"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  // A request for an address nobody serves: no drive tells it.
+  EXPECT_EQ(cli({"read", "--address", "9", "360", "--timeout-ms", "100"}).rc, 1);
+  r = cli({"start", "--listen-ms", "200"});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  const int rc = emu.stop(SIGTERM);
+  reader.join();
+  ASSERT_EQ(rc, 0);
+  std::ifstream in(errors);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), {}), "");  // nothing on stderr: all is JSON
+  std::remove(errors.c_str());
+
+  int requests = 0;
+  int replies = 0;
+  int systems = 0;
+  int controls = 0;
+  int errors_sent = 0;
+  bool fault = false;
+  int started = 0;
+  int summaries = 0;
+  double last = 0.0;
+  for (const nlohmann::json& e : json_lines(printed)) {
+    ASSERT_TRUE(e.contains("time_s") && e.contains("event")) << e;
+    EXPECT_GE(e["time_s"].get<double>(), last) << e;
+    last = e["time_s"].get<double>();
+    const std::string what = e["event"];
+    ASSERT_TRUE(e.contains("device") && e.contains("address")) << e;
+    EXPECT_EQ(e["device"], e["address"] == 1 ? "cda3000@1" : "cda3000@4") << e;
+    if (what == "telegram" && e["kind"] == "parameter request") {
+      // 1101 + 2 x 1 = 44FH (D1); 360 = 168H read (mode 05).
+      EXPECT_EQ(e["address"], 1) << e;
+      EXPECT_EQ(e["id"], 0x44F) << e;
+      EXPECT_EQ(e["id_hex"], "44F") << e;
+      EXPECT_EQ(e["bytes"].get<std::string>().rfind("68 01 05 ", 0), 0U) << e;
+      EXPECT_NE(e["text"].get<std::string>().find("360-DISP"), std::string::npos) << e;
+      ++requests;
+    } else if (what == "telegram") {
+      EXPECT_EQ(e["kind"], "system start/stop") << e;
+      EXPECT_EQ(e["id"], 221) << e;
+      EXPECT_EQ(e["bytes"], "01") << e;  // System Start (5.5.4)
+      ++systems;
+    } else if (what == "answer" && e["kind"] == "parameter reply") {
+      EXPECT_EQ(e["address"], 1) << e;
+      EXPECT_EQ(e["id_hex"], "52B") << e;
+      ++replies;
+    } else if (what == "answer" && e["kind"] == "error") {
+      EXPECT_EQ(e["address"], 4) << e;  // 6.2: the error telegram of the faulted drive
+      ++errors_sent;
+    } else if (what == "control") {
+      EXPECT_EQ(e["address"], 4) << e;
+      EXPECT_EQ(e["what"], "fault E-OTI") << e;
+      EXPECT_EQ(e["taken"], true) << e;
+      EXPECT_EQ(e["control_line"], 1) << e;
+      EXPECT_EQ(e["result"], "8 E-OTI (drive unit overheating), FAULT, error telegram sent") << e;
+      ++controls;
+    } else if (what == "state") {
+      if (e["address"] == 4 && e["state"] == "FAULT") fault = true;
+      if (e["system"] == "System Start") ++started;
+      if (e["address"] == 1) {
+        EXPECT_NE(e["state"], "FAULT") << e;  // the fault was drive 4's only
+      }
+    } else if (what == "summary") {
+      EXPECT_EQ(e["counters"]["telegrams"], e["address"] == 1 ? 2 : 1) << e;
+      EXPECT_GT(e["counters"]["answers"].get<int>(), 0) << e;
+      ++summaries;
+    }
+  }
+  EXPECT_EQ(requests, 1);
+  EXPECT_EQ(replies, 1);
+  EXPECT_EQ(systems, 2);  // every drive tells the broadcast
+  EXPECT_EQ(controls, 1);
+  EXPECT_EQ(errors_sent, 1);
+  EXPECT_TRUE(fault);
+  EXPECT_EQ(started, 2);
+  EXPECT_EQ(summaries, 2);
 }
 
 TEST(CanlustCli, ParameterCommandsWithJsonAndExitCodes) {

@@ -13,6 +13,7 @@
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serial_port.hpp"
 #include "ibs/serial/serve.hpp"
+#include "ibs/tool/format.hpp"
 
 namespace ibs::cli {
 
@@ -53,12 +54,6 @@ void open_line(Line& line, const ServedLine& config, const serial::PortOptions& 
     throw std::invalid_argument(file + ": [" + line.key + "]: " + e.what());
   }
   for (const std::string& n : line.port().notes()) line.notes.push_back(line.key + ": " + n);
-}
-
-std::string seconds(Time t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f s", static_cast<double>(t.count()) / 1e9);
-  return buf;
 }
 
 // A timeline or control entry for a DFS-1 controller as the wing's own control parser reads it
@@ -256,7 +251,7 @@ bool Bench::apply(const TimelineEntry& e, Time now) {
     // The plant is stepped to `now` first (Controller::apply); the report is the status a host
     // reads right after it.
     const devices::dfs1::EventReport r = c.controller->apply(parsed.event->event, now);
-    m.events.push_back(seconds(now) + " " + c.name + ": " + devices::dfs1::to_string(r));
+    m.events.push_back(tool::seconds(now) + " " + c.name + ": " + devices::dfs1::to_string(r));
     return true;
   }
   return false;

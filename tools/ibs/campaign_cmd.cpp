@@ -9,16 +9,13 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "ibs/sim/campaign.hpp"
+#include "ibs/tool/format.hpp"
 
 namespace ibs::cli {
 
 namespace {
 
-std::string fixed(double v, int digits) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*f", digits, v);
-  return b;
-}
+using tool::fixed;
 
 void print_map(std::ostream& os, const char* title, const std::map<std::string, std::uint64_t>& m) {
   os << title << "\n";

@@ -28,7 +28,9 @@
 #include "ibs/canlust/data_set.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/devices/drives.hpp"
+#include "ibs/tool/format.hpp"
 #include "control_input.hpp"
+#include "emulate_events.hpp"
 #include "stop_signals.hpp"
 #ifdef IBS_HAVE_PCAP
 #include "ibs/can/pcap_writer.hpp"
@@ -46,11 +48,10 @@ constexpr Duration kPoll = 20ms;
 
 Time since(Clock::time_point t0) { return std::chrono::duration_cast<Duration>(Clock::now() - t0); }
 
-std::string hex(unsigned v, int digits) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%0*X", digits, v);
-  return buf;
-}
+using tool::hex;
+
+// A frame's data bytes as candump prints them: "40 02 00 00 00 00".
+std::string data_hex(const cl::CanFrame& f) { return tool::hex_bytes(f.payload()); }
 
 std::optional<long long> parse_int(std::string_view s) {
   long long v = 0;
@@ -164,11 +165,7 @@ std::string event_words(const devices::CanlustEvent& e) {
   using K = devices::CanlustEvent::Kind;
   switch (e.kind) {
     case K::fault: return "fault " + e.cause;
-    case K::load: {
-      char b[48];
-      std::snprintf(b, sizeof b, "load %.1f %%", e.load);
-      return b;
-    }
+    case K::load: return "load " + tool::fixed(e.load, 1, "%");
     case K::input: return "input " + e.input + (e.level ? " high" : " low");
     default: return std::string(devices::to_string(e.kind));
   }
@@ -282,9 +279,12 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   if (o.devices.empty()) return bad("no device: give " + forms + " (one or more)");
   std::vector<std::unique_ptr<devices::CanlustDrive>> drives;
   std::vector<devices::CanlustDrive*> raw;
+  std::vector<const devices::CanlustFace*> faces;  // --json: each drive's words for its frames
+  cl::IdentifierMap ids;
+  cl::ProcessLayout layout;
   try {
-    const cl::IdentifierMap ids = ids_for(o.bus);
-    layout_for(o.bus);
+    ids = ids_for(o.bus);
+    layout = layout_for(o.bus);
     const auto reaction = parse_reaction(o.watchdog_reaction);
     if (!reaction) {
       return bad("--watchdog-reaction '" + o.watchdog_reaction + "': expected wrn, stop, quick-stop or disable-power");
@@ -309,6 +309,7 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
       c.cacnf = static_cast<std::uint8_t>(o.bus.cacnf);
       drives.push_back(drive->canlust->make(c));
       raw.push_back(drives.back().get());
+      faces.push_back(drive->canlust);
     }
   } catch (const std::invalid_argument& e) {
     return bad(e.what());
@@ -327,7 +328,12 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
     control = ControlInput::open(o.control, error);
     if (!control) return bad("--control " + o.control + ": " + error);
   }
-  out << "bus: " << s->bus->name() << "\n" << std::flush;
+  EmulateEvents events(out);
+  // The first line says where it serves (with --json the `serving` event).
+  events.serving(o.bus.json, "bus", std::string(s->bus->name()), std::string());
+  const auto drive_event = [&](std::size_t i, Time at, std::string_view what) {
+    return EmulateEvents::event(at, what, o.devices[i], raw[i]->address());
+  };
   std::function<void(Time)> each_turn;
   if (control) {
     each_turn = [&](Time now) {
@@ -342,16 +348,85 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
             }
             const devices::CanlustEventResult r = raw[ev.drive]->apply(ev.event, now);
             // A refused event is a bad line: its text says why (the drive's own check).
-            if (r.ok) err << where << o.devices[ev.drive] << ": " << event_words(ev.event) << ": ";
-            else err << where;
-            err << r.text << "\n" << std::flush;
+            if (!r.ok) {
+              err << where << r.text << "\n" << std::flush;
+            } else if (o.bus.json) {
+              nlohmann::ordered_json j = drive_event(ev.drive, now, "control");
+              j["what"] = event_words(ev.event);
+              j["taken"] = true;
+              j["control_line"] = number;
+              j["result"] = r.text;
+              events.print(j);
+            } else {
+              err << where << o.devices[ev.drive] << ": " << event_words(ev.event) << ": " << r.text << "\n"
+                  << std::flush;
+            }
           },
           [&](std::size_t number, std::string_view what) {
             err << "control:" << number << ": " << what << "\n" << std::flush;
           });
     };
   }
-  serve_canlust(*s->bus, raw, s->recorder.get(), [&signals]() { return signals.raised(); }, each_turn);
+  // With --json the loop is watched: each frame from the bus that a drive takes as its own (a
+  // control or parameter request at its address, 5.5; System Start / Stop, which every drive
+  // tells), each frame a drive sends, and each change of its DRIVECOM or system state (5.2).
+  struct Seen {
+    std::optional<drivecom::State> state;
+    std::optional<cl::SystemState> system;
+    std::uint64_t telegrams = 0;
+    std::uint64_t answers = 0;
+  };
+  std::vector<Seen> seen(raw.size());
+  const auto with_frame = [&](nlohmann::ordered_json j, std::size_t i, const cl::CanFrame& f) {
+    const devices::CanlustFrameText e = faces[i]->explain_frame(f, ids, layout);
+    j["kind"] = e.id ? std::string(cl::to_string(e.id->kind)) : std::string("unknown");
+    j["id"] = f.id;
+    j["id_hex"] = hex(f.id, 3);
+    j["dlc"] = f.dlc;
+    j["rtr"] = f.rtr;
+    j["bytes"] = data_hex(f);
+    j["text"] = e.text;
+    events.print(j);
+  };
+  const auto check_state = [&](std::size_t i, Time now) {
+    const drivecom::State state = raw[i]->state();
+    const cl::SystemState system = raw[i]->system_state();
+    if (seen[i].state == state && seen[i].system == system) return;
+    seen[i].state = state;
+    seen[i].system = system;
+    nlohmann::ordered_json j = drive_event(i, now, "state");
+    j["state"] = std::string(drivecom::to_string(state));
+    j["system"] = std::string(cl::to_string(system));
+    events.print(j);
+  };
+  ServeWatch watch;
+  watch.received = [&](const cl::CanFrame& f, Time now) {
+    const std::optional<cl::Classified> c = ids.classify(f.id);
+    for (std::size_t i = 0; c && i < raw.size(); ++i) {
+      const bool to_drive = c->kind == cl::TelegramKind::control || c->kind == cl::TelegramKind::parameter_request;
+      if (c->kind != cl::TelegramKind::system && !(to_drive && c->address == raw[i]->address())) continue;
+      ++seen[i].telegrams;
+      with_frame(drive_event(i, now, "telegram"), i, f);
+    }
+    for (std::size_t i = 0; i < raw.size(); ++i) check_state(i, now);
+  };
+  watch.stepped = check_state;
+  watch.sent = [&](std::size_t i, const cl::CanFrame& f, Time now) {
+    ++seen[i].answers;
+    with_frame(drive_event(i, now, "answer"), i, f);
+  };
+  const Clock::time_point t0 = Clock::now();
+  serve_canlust(*s->bus, raw, s->recorder.get(), [&signals]() { return signals.raised(); }, each_turn,
+                o.bus.json ? &watch : nullptr);
+  if (o.bus.json) {
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+      nlohmann::ordered_json j = drive_event(i, since(t0), "summary");
+      j["counters"] = {{"telegrams", seen[i].telegrams},
+                       {"answers", seen[i].answers},
+                       {"watchdog_trips", raw[i]->watchdog_trips()}};
+      events.print(j);
+    }
+  }
   return kExitCanOk;
 }
 
@@ -620,22 +695,10 @@ int system_cmd(const devices::CanlustFace& face, bool start, const CanlustClient
   return kExitCanOk;
 }
 
-std::string data_hex(const cl::CanFrame& f) {
-  std::string s;
-  for (std::size_t i = 0; i < f.payload().size(); ++i) s += (i == 0 ? "" : " ") + hex(f.data[i], 2);
-  return s;
-}
-
 // candump's -t: (a)bsolute wall-clock time, (d)elta to the frame before, (z)ero at the first
 // frame; "(1795431275.322679)" or "(000.013265)" as candump prints them.
 std::string candump_stamp(char mode, std::int64_t us) {
-  char b[48];
-  if (mode == 'a') {
-    std::snprintf(b, sizeof b, "(%010lld.%06lld)", static_cast<long long>(us / 1000000), static_cast<long long>(us % 1000000));
-  } else {
-    std::snprintf(b, sizeof b, "(%03lld.%06lld)", static_cast<long long>(us / 1000000), static_cast<long long>(us % 1000000));
-  }
-  return b;
+  return fmt::format("({:0{}}.{:06})", us / 1000000, mode == 'a' ? 10 : 3, us % 1000000);
 }
 
 can::CanFilterSet filters_of(const std::vector<std::string>& given) {
@@ -1108,7 +1171,8 @@ std::unique_ptr<can::CanTransport> open_bus(const std::string& spec) {
 }
 
 void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* const> drives, FrameRecorder* recorder,
-                   const std::function<bool()>& stop, const std::function<void(Time now)>& each_turn) {
+                   const std::function<bool()>& stop, const std::function<void(Time now)>& each_turn,
+                   const ServeWatch* watch) {
   const Clock::time_point t0 = Clock::now();
   for (devices::CanlustDrive* d : drives) d->power_on(Time{0});
   while (!stop()) {
@@ -1116,7 +1180,9 @@ void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* cons
     if (each_turn) each_turn(now);
     for (std::size_t i = 0; i < drives.size(); ++i) {
       drives[i]->step(now);
+      if (watch != nullptr && watch->stepped) watch->stepped(i, now);
       while (auto f = drives[i]->take_frame()) {
+        if (watch != nullptr && watch->sent) watch->sent(i, *f, now);
         if (recorder != nullptr) recorder->record(*f);
         (void)bus.send(*f);  // UDP with PORT 0 has no peer until one sends: the frame is lost
         for (std::size_t k = 0; k < drives.size(); ++k) {
@@ -1133,6 +1199,7 @@ void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* cons
     if (recorder != nullptr) recorder->record(r.frame);
     now = since(t0);
     for (devices::CanlustDrive* d : drives) d->receive(r.frame, now);
+    if (watch != nullptr && watch->received) watch->received(r.frame, now);
   }
 }
 
@@ -1155,6 +1222,8 @@ void add_canlust_commands(CLI::App& app, CanlustCommandState& state) {
                             "live control: - (standard input) or unix:PATH; JSON lines, each a drive event "
                             "(fault with cause, mains, load, input; docs/canlust.md)");
   add_bus_options(state.emulate, eo.bus);
+  state.emulate->get_option("--json")->description(
+      "one JSON object a line per event: serving, telegram, answer, state, control, summary (docs/canlust.md)");
 
   CanlustClientOptions& co = state.client_options;
   state.start = state.canlust->add_subcommand("start", "broadcast System Start (221, 01H) and show the drives' status");

@@ -1,6 +1,6 @@
 // `ibs canlust ...`: CDA3000 drives on a CANLust bus (docs/canlust.md, "Command line").
 //
-//   ibs canlust emulate  -p BUS [--cacnf N] [--watchdog-reaction R] [--factory] cda3000@ADDR...
+//   ibs canlust emulate  -p BUS [--cacnf N] [--watchdog-reaction R] [--factory] [--control SPEC] cda3000@ADDR...
 //   ibs canlust start    -p BUS [--listen-ms MS]
 //   ibs canlust stop     -p BUS [--listen-ms MS]
 //   ibs canlust read     -p BUS -a ADDR PARAM [--repeat N] [--interval MS]
@@ -143,8 +143,16 @@ std::optional<int> decode_candump_log(const std::string& file, unsigned id_step,
 // (asked at least every 20 ms).
 // `each_turn(now)`, when given, runs once per turn of the loop (at least every 20 ms), on the
 // loop's own thread: the control channel of `emulate --control` is read there.
+// `watch`, when given, is told what the loop did as it happens (`emulate --json`).
+struct ServeWatch {
+  // A frame from the bus, once every drive has taken it.
+  std::function<void(const canlust::CanFrame& f, Time now)> received;
+  // Drive `i` has stepped to `now` (its state may have changed); then each frame it sent.
+  std::function<void(std::size_t i, Time now)> stepped;
+  std::function<void(std::size_t i, const canlust::CanFrame& f, Time now)> sent;
+};
 void serve_canlust(can::CanTransport& bus, std::span<devices::CanlustDrive* const> drives,
                    FrameRecorder* recorder, const std::function<bool()>& stop,
-                   const std::function<void(Time now)>& each_turn = {});
+                   const std::function<void(Time now)>& each_turn = {}, const ServeWatch* watch = nullptr);
 
 }  // namespace ibs::cli

@@ -21,8 +21,9 @@
 #include "ibs/serial/dfs1_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
+#include "ibs/tool/format.hpp"
 #include "control_input.hpp"
-#include "emulate_events.hpp"
+#include "watched_line_device.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -64,10 +65,7 @@ std::pair<const dev::Dfs1Face*, std::uint8_t> parse_device(const std::string& sp
   return {d->dfs1, static_cast<std::uint8_t>(v)};
 }
 
-std::string hex2(unsigned v) {
-  static constexpr char kHex[] = "0123456789ABCDEF";
-  return {kHex[(v >> 4) & 0xF], kHex[v & 0xF]};
-}
+using tool::hex2;
 
 std::string join(const std::vector<std::string_view>& v) {
   if (v.empty()) return "none";
@@ -98,12 +96,6 @@ std::unique_ptr<serial::ByteLog> open_byte_log(const Dfs1PortOptions& o) {
   return std::make_unique<serial::ByteLog>(o.log);
 }
 
-std::string seconds(Time t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f s", std::chrono::duration<double>(t).count());
-  return buf;
-}
-
 // The control channel of `emulate --control`: lines are parsed as they come, their events posted
 // to the controller they name and applied at the serve loop's next turn with its time; what each
 // did is printed once applied. A bad line is reported and skipped; nothing here ends the run.
@@ -132,7 +124,7 @@ class EmulatorControl {
           events_->print(j);
           continue;
         }
-        err_ << "ibs dfs1 emulate: " << seconds(r->at) << ": " << names_[i] << ": " << dev::to_string(*r) << "\n";
+        err_ << "ibs dfs1 emulate: " << tool::seconds(r->at) << ": " << names_[i] << ": " << dev::to_string(*r) << "\n";
       }
     }
   }

@@ -19,7 +19,7 @@
 #include <stdexcept>
 
 #include "control_input.hpp"
-#include "emulate_events.hpp"
+#include "watched_line_device.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/base/time_text.hpp"
 #include "ibs/devices/plant_event.hpp"
@@ -35,6 +35,7 @@
 #include "ibs/serial/lustbus_host.hpp"
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
+#include "ibs/tool/format.hpp"
 #include "stop_signals.hpp"
 
 namespace ibs::cli {
@@ -171,12 +172,6 @@ lb::Value format_value(const Param& p, std::uint32_t bits) {
   const auto v = lb::format_typed(p.family, p.type, bits);
   if (!v.ok()) throw BadInput(label(p) + ": the value cannot be sent as a VALUE");
   return v.value;
-}
-
-std::string hex_text(std::uint32_t v, unsigned digits) {
-  char b[16];
-  std::snprintf(b, sizeof b, "%0*X", static_cast<int>(digits), v);
-  return b;
 }
 
 // One request through the host loop on the port (serial/lustbus_host.hpp); a request the host
@@ -879,7 +874,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
       std::string raw_hex;
       for (const char c : r.value.view()) {
         if (!raw_hex.empty()) raw_hex += ' ';
-        raw_hex += hex_text(static_cast<unsigned char>(c), 2);
+        raw_hex += tool::hex2(static_cast<unsigned char>(c));
       }
       j["raw_hex"] = raw_hex;
       if (family == lb::Family::standard) {
@@ -927,7 +922,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
     }
     const unsigned digits = lb::width_bits(p.type) / 4;
     j["raw"] = bits;
-    j["raw_hex"] = hex_text(bits, digits);
+    j["raw_hex"] = tool::hex(bits, static_cast<int>(digits));
     const auto e = lb::to_engineering(p.type, bits);
     if (e.ok()) {
       j["value"] = e.value;
@@ -938,7 +933,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
       out << j.dump() << "\n";
     } else {
       out << who << (name == "write" ? " := " : " = ") << engineering_text(p.type, bits)
-          << (p.unit.empty() ? "" : " " + p.unit) << " (" << hex_text(bits, digits) << "H)\n";
+          << (p.unit.empty() ? "" : " " + p.unit) << " (" << tool::hex(bits, static_cast<int>(digits)) << "H)\n";
     }
     return kExitLustbusOk;
   } catch (const BadInput& e) {

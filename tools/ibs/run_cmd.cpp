@@ -36,6 +36,7 @@
 #include "ibs/sim/scenario_file.hpp"
 #include "ibs/sim/simulator.hpp"
 #include "ibs/sim/vcd_recorder.hpp"
+#include "ibs/tool/format.hpp"
 
 namespace ibs::cli {
 
@@ -366,10 +367,8 @@ int run(const RunOptions& o) {
   Progress progress(o.progress, "ibs run");
   if (progress.enabled()) {
     options.progress = [&progress](Time now, Duration total) {
-      char text[96];
-      std::snprintf(text, sizeof text, "simulated %.1f s of %.1f s (%.0f %%)", to_ms(now) / 1000.0,
-                    to_ms(total) / 1000.0, 100.0 * to_ms(now) / to_ms(total));
-      progress.report(text);
+      progress.report(fmt::format("simulated {:.1f} s of {:.1f} s ({:.0f} %)", to_ms(now) / 1000.0,
+                                  to_ms(total) / 1000.0, 100.0 * to_ms(now) / to_ms(total)));
     };
   }
   // SIGINT and SIGTERM end the run between two slices of simulated time; then nothing is written

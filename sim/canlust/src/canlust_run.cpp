@@ -22,6 +22,7 @@
 #include "ibs/devices/drives.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/scenario.hpp"
+#include "ibs/tool/format.hpp"
 #include "canlust_reader.hpp"
 #include "run_summary.hpp"
 
@@ -53,12 +54,7 @@ struct PendingRead {
   bool write = false;
 };
 
-std::string seconds(Time t) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3f s", to_ms(t) / 1000.0);
-  return b;
-}
-
+using tool::seconds;
 
 Drive& find(std::vector<std::unique_ptr<Drive>>& drives, const std::string& name) {
   for (auto& d : drives) {
@@ -135,9 +131,7 @@ void apply_drive_event(Drive& d, const Entry& e, EntryResult& r, Time now) {
       if (e.action == Action::device_fault) r.what += " " + e.cause;
       if (e.action == Action::input) r.what += " " + e.input + (e.level ? " high" : " low");
       if (e.action == Action::load) {
-        char b[48];
-        std::snprintf(b, sizeof b, " %.1f %%", e.load);
-        r.what += b;
+        r.what += " " + tool::fixed(e.load, 1, "%");
       }
       // The load and the terminals stay while the mains is off; a fault needs a drive that is on
       // (the drive says so).
@@ -339,17 +333,13 @@ class Simulation {
         r.outcome = r.ok ? "requested" : "refused";
         return;
       case Action::easydrive: {
-        char b[16];
-        std::snprintf(b, sizeof b, " %04X", static_cast<unsigned>(e.bits));
-        r.what += b;
+        r.what += " " + tool::hex4(e.bits);
         r.ok = driver.set_easydrive(d.spec.address, e.bits);
         r.outcome = r.ok ? "set" : "refused";
         return;
       }
       case Action::reference: {
-        char b[48];
-        std::snprintf(b, sizeof b, " %.2f Hz", e.hz);
-        r.what += b;
+        r.what += " " + tool::fixed(e.hz, 2, "Hz");
         const auto refusal = driver.set_reference_hz(d.spec.address, e.hz);
         r.ok = !refusal;
         r.outcome = r.ok ? "set" : "refused: " + std::string(*refusal);
@@ -594,9 +584,7 @@ class Served {
       if (!last_status_[i]) {
         d.result.status = "none sent";
       } else if (d.spec.cacnf == 4) {
-        char b[40];
-        std::snprintf(b, sizeof b, "EasyDrive %04X", static_cast<unsigned>(*last_status_[i]));
-        d.result.status = b;
+        d.result.status = "EasyDrive " + tool::hex4(*last_status_[i]);
       } else {
         d.result.status = face_->explain_status_word(*last_status_[i]);
       }
@@ -691,7 +679,6 @@ Report run_realtime(const Scenario& s, const RealtimeOptions& o, const std::stri
 
 std::string format_text(const Report& r) {
   std::ostringstream o;
-  char b[256];
   // The drives by their manual's name ("CDA3000") when they are all of one registered type.
   std::string title;
   for (const auto& d : r.drives) {
@@ -702,13 +689,13 @@ std::string format_text(const Report& r) {
   o << "scenario " << r.name << ": CANLust, " << r.drives.size() << " " << (title.empty() ? "" : title + " ") << "drive"
     << (r.drives.size() == 1 ? "" : "s")
     << ", " << r.bitrate / 1000 << " kbit/s, " << format_time(r.duration) << " simulated\n";
-  std::snprintf(b, sizeof b, "bus: %llu frames, %llu bits (%llu stuff), load %.1f %% (busiest 100 ms: %.1f %%), "
-                "%llu arbitration losses, %llu overflows\n",
-                static_cast<unsigned long long>(r.frames), static_cast<unsigned long long>(r.bits),
-                static_cast<unsigned long long>(r.stuff_bits), 100.0 * r.load, 100.0 * r.peak_load,
-                static_cast<unsigned long long>(r.arbitration_losses), static_cast<unsigned long long>(r.overflows));
   const bool served = r.realtime && !r.realtime->served.empty();
-  if (!served) o << b;
+  if (!served) {
+    o << fmt::format("bus: {} frames, {} bits ({} stuff), load {:.1f} % (busiest 100 ms: {:.1f} %), "
+                     "{} arbitration losses, {} overflows\n",
+                     r.frames, r.bits, r.stuff_bits, 100.0 * r.load, 100.0 * r.peak_load, r.arbitration_losses,
+                     r.overflows);
+  }
   if (r.realtime) {
     const Report::Realtime& rt = *r.realtime;
     o << "real time: " << (served ? "served on " + rt.served.substr(std::string("canlust ").size()) + " for your master, "
@@ -720,12 +707,11 @@ std::string format_text(const Report& r) {
   }
   if (r.start_spread) o << "System Start executed by every drive within " << format_time(*r.start_spread) << "\n";
   for (const auto& d : r.drives) {
-    std::snprintf(b, sizeof b, "%s (address %u): %s, %s, %.2f Hz (reference %.2f Hz), logon %s, start %s, "
-                  "watchdog trips %u, error telegrams %u\n",
-                  d.name.c_str(), unsigned{d.address}, d.system_state.c_str(), d.state.c_str(), d.actual_hz,
-                  d.reference_hz, d.logon ? seconds(*d.logon).c_str() : "-", d.started ? seconds(*d.started).c_str() : "-",
-                  d.watchdog_trips, d.errors);
-    o << b;
+    o << fmt::format("{} (address {}): {}, {}, {:.2f} Hz (reference {:.2f} Hz), logon {}, start {}, "
+                     "watchdog trips {}, error telegrams {}\n",
+                     d.name, unsigned{d.address}, d.system_state, d.state, d.actual_hz, d.reference_hz,
+                     d.logon ? seconds(*d.logon) : "-", d.started ? seconds(*d.started) : "-", d.watchdog_trips,
+                     d.errors);
     o << "  status " << d.status << "\n";
     if (served) o << "  frames: received " << d.frames_received << ", sent " << d.frames_sent << "\n";
     o << "  states:";
