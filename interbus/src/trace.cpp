@@ -5,6 +5,7 @@
 #include <charconv>
 #include <limits>
 
+#include "ibs/base/number_text.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/base/time_text.hpp"
 
@@ -144,15 +145,7 @@ std::uint64_t parse_count(std::string_view value, std::string_view key, const st
   return static_cast<std::uint64_t>(*n);
 }
 
-std::string hex4(unsigned v) {
-  static constexpr std::string_view kDigits = "0123456789ABCDEF";
-  std::string s(4, '0');
-  for (int i = 3; i >= 0; --i) {
-    s[static_cast<std::size_t>(i)] = kDigits[v & 0xFU];
-    v >>= 4U;
-  }
-  return s;
-}
+std::string hex4(unsigned v) { return hex_text(v, 4); }
 
 // Text of a file put into a message: a byte that is not printable is shown as \xNN (a NUL would
 // otherwise end the message where a reader sees it).

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "ibs/base/number_text.hpp"
 #include "ibs/lustbus/description.hpp"
 #include "ibs/lustbus/siof.hpp"
 #include "ibs/lustbus/telegram.hpp"
@@ -59,11 +60,7 @@ Named name_code(const Code& c, const ParameterLookup& lookup) {
   return n;
 }
 
-std::string hex2(std::uint8_t b) {
-  char t[4];
-  std::snprintf(t, sizeof t, "%02X", b);
-  return t;
-}
+std::string hex2(std::uint8_t b) { return hex_text(b, 2); }
 
 // A shared CODE (00081..00085, 2.4.2 and 5.2) is answered by either family, each in its own VALUE
 // form: the VF1000's 85-SIOF as four characters, the MC6000's 85-SERR as two hex digits (a binary

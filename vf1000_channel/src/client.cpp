@@ -1,8 +1,8 @@
 #include "ibs/vf1000_channel/client.hpp"
 
-#include <cstdio>
 #include <stdexcept>
 
+#include "ibs/base/number_text.hpp"
 #include "ibs/drive/siof.hpp"
 
 namespace ibs::vf1000_channel {
@@ -26,11 +26,7 @@ constexpr std::size_t wrap(std::size_t i, std::size_t n) {
   return i >= n ? i - n : i;
 }
 
-std::string hex4(Word w) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "%04XH", static_cast<unsigned>(w));
-  return buf;
-}
+std::string hex4(Word w) { return hex_text(w, 4) + "H"; }
 
 }  // namespace
 

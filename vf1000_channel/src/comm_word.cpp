@@ -1,17 +1,14 @@
 #include "ibs/vf1000_channel/comm_word.hpp"
 
-#include <cstdio>
 #include <string>
+
+#include "ibs/base/number_text.hpp"
 
 namespace ibs::vf1000_channel {
 
 namespace {
 
-std::string hex2(unsigned v) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "%02XH", v & 0xFFU);
-  return buf;
-}
+std::string hex2(unsigned v) { return hex_text(v & 0xFFU, 2) + "H"; }
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "ibs/base/number_text.hpp"
 #include "ibs/devices/trace_support.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
 #include "ibs/devices/vf1000/pd_master.hpp"
@@ -19,11 +20,7 @@ std::string hz(double v) {
   return buf;
 }
 
-std::string hex4(Word w) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%04X", static_cast<unsigned>(w));
-  return buf;
-}
+std::string hex4(Word w) { return hex_text(w, 4); }
 
 class Master final : public trace::MasterSide {
  public:

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -32,5 +33,15 @@ inline std::string fixed_text(double v, int decimals) {
 
 // "994.60" for 994.5975647 rpm, "0.00" for 8.73332e-09 rpm.
 inline std::string quantity_text(double v, std::string_view unit) { return fixed_text(v, decimals_for_unit(unit)); }
+
+// The last `digits` hexadecimal digits of `v`, capital, zeros in front: "03E8" for (1000, 4), as
+// the manuals print words and bytes. The libraries' one copy (the command line formats with {fmt},
+// tools/format; a library links no formatting package).
+inline std::string hex_text(std::uint64_t v, int digits) {
+  static constexpr std::string_view kDigits = "0123456789ABCDEF";
+  std::string s(static_cast<std::size_t>(digits > 0 ? digits : 0), '0');
+  for (auto i = s.size(); i-- > 0; v >>= 4U) s[i] = kDigits[v & 0xFU];
+  return s;
+}
 
 }  // namespace ibs
