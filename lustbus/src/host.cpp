@@ -312,34 +312,7 @@ void Host::step(Time now) {
   }
 }
 
-void Host::receive(std::uint8_t b, Time now) {
-  last_now_ = now;
-  switch (state_) {
-    case HostState::awaiting:
-    case HostState::receiving: {
-      state_ = HostState::receiving;
-      deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
-      const auto st = decoder_.feed(b);
-      if (st == AnswerDecoder::Status::done) {
-        answer_kind_ = decoder_.kind();
-        answer_error_ = AnswerError::none;
-        state_ = HostState::turnaround;
-        deadline_ = now + config_.turnaround;
-        if (config_.turnaround <= Duration{0}) start_eot(now);
-      } else if (st == AnswerDecoder::Status::error) {
-        answer_kind_ = AnswerKind::none;
-        answer_error_ = decoder_.error();
-        state_ = HostState::draining;
-      }
-      return;
-    }
-    case HostState::draining:
-      deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
-      return;
-    default:
-      return;  // characters outside an answer are noise: ignored
-  }
-}
+void Host::receive(std::uint8_t b, Time now) { receive(std::span<const std::uint8_t>(&b, 1), now); }
 
 void Host::receive(std::span<const std::uint8_t> bytes, Time now) {
   if (bytes.empty()) return;  // no character: nothing happened at `now` (last_now_ stays)
@@ -349,7 +322,7 @@ void Host::receive(std::span<const std::uint8_t> bytes, Time now) {
     switch (state_) {
       case HostState::awaiting:
       case HostState::receiving: {
-        // As receive(b, now) for each: the deadline is the same for every character of `now`.
+        // The characters of one read share `now`, and so the deadline each would set.
         state_ = HostState::receiving;
         deadline_ = std::min(now + config_.inter_char_timeout, exchange_ends_);
         i += decoder_.feed(bytes.subspan(i));
