@@ -35,6 +35,7 @@ Mc6000Driver::Mc6000Driver(const mc6000::Layout& layout, const drivecom::Sequenc
 }
 
 void Mc6000Driver::initial(const DriverIo& io) {
+  skip_ = nullptr;
   master_.initial(io.pd_out);
   std::fill(io.pcp_out.begin(), io.pcp_out.end(), Word{0});
   if (client_ && !io.pcp_out.empty()) client_->show(Time{0}, io.pcp_out);
@@ -46,19 +47,32 @@ Duration Mc6000Driver::request_timeout(Duration at_least) const {
 }
 
 void Mc6000Driver::cycle(const DriverIo& io, Time now) {
-  if (cycled_ && now > last_cycle_) period_ = std::max(period_, now - last_cycle_);
-  last_cycle_ = now;
-  cycled_ = true;
-  // Out of line, so that a driver without a channel (SUPI 12) calls nothing in its common case.
-  if (client_ && !io.pcp_out.empty()) {
+  // A driver with a PCP channel out of line; one without (SUPI 12) is the process data alone,
+  // and its common case calls nothing (Mc6000PdMaster::cycle) and saves no register: every call
+  // from here is the last thing it does.
+  if (client_) {
     cycle_with_pcp(io, now);
     return;
   }
-  if (!io.pd_out.empty()) master_.cycle(io.pd_in, io.pd_out, now);
+  // Without a channel, the process data is all there is and nothing waits for time: a cycle that
+  // only held lets the master loop skip the next ones while the hold lasts (skip_while_holding).
+  if (master_.cycle_holding(io.pd_in, io.pd_out)) {
+    skip_ = &master_.sequencer();
+    return;
+  }
+  skip_ = nullptr;
+  master_.cycle_general(io.pd_in, io.pd_out, now);  // nothing for no words out
 }
 
 void Mc6000Driver::cycle_with_pcp(const DriverIo& io, Time now) {
+  // The bus period, learnt from the times cycle() is called with, sets the PCP requests'
+  // timeouts (request_timeout, start_next) and nothing else: a driver without a channel has no
+  // use for it.
+  if (cycled_ && now > last_cycle_) period_ = std::max(period_, now - last_cycle_);
+  last_cycle_ = now;
+  cycled_ = true;
   if (!io.pd_out.empty()) master_.cycle(io.pd_in, io.pd_out, now);
+  if (io.pcp_out.empty()) return;
   take_results(now);
   start_next(now);
   client_->step(now, io.pcp_in, io.pcp_out);
@@ -66,6 +80,7 @@ void Mc6000Driver::cycle_with_pcp(const DriverIo& io, Time now) {
 }
 
 void Mc6000Driver::restart(Time now) {
+  skip_ = nullptr;
   master_.sequencer().restart();
   master_.set_reference_rpm(0.0);
   if (!client_) return;

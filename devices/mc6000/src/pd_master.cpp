@@ -8,7 +8,14 @@ Mc6000PdMaster::Mc6000PdMaster(const mc6000::Layout& layout,
                                const drivecom::SequencerConfig& config)
     : layout_(layout),
       sequencer_(config),
-      actual_words_(std::min(static_cast<std::size_t>(std::max(layout.actual_words, 0)), std::size_t{2})) {}
+      actual_words_(std::min(static_cast<std::size_t>(std::max(layout.actual_words, 0)), std::size_t{2})) {
+  encode_reference_words();
+}
+
+void Mc6000PdMaster::set_reference_rpm(double rpm) {
+  reference_ = rpm;
+  encode_reference_words();
+}
 
 void Mc6000PdMaster::initial(std::span<Word> m2s) const {
   std::fill(m2s.begin(), m2s.end(), Word{0});
@@ -23,7 +30,6 @@ void Mc6000PdMaster::cycle_general(std::span<const Word> s2m, std::span<Word> m2
     decode_actual_words(s2m.subspan(1));
   }
   m2s[0] = sequencer_.step(s2m[0], now);
-  if (reference_ != encoded_reference_) encode_reference_words();
   put_reference(m2s);
 }
 
@@ -36,7 +42,6 @@ void Mc6000PdMaster::decode_actual_words(std::span<const Word> words) {
 void Mc6000PdMaster::encode_reference_words() {
   const auto ref_words = static_cast<std::size_t>(layout_.reference_words);
   mc6000::encode_reference(layout_, reference_, std::span<Word>(reference_words_.data(), ref_words));
-  encoded_reference_ = reference_;
 }
 
 }  // namespace ibs::devices

@@ -85,6 +85,21 @@ class DeviceDriver {
   [[nodiscard]] virtual double reference() const = 0;
   [[nodiscard]] virtual double actual() const = 0;
   [[nodiscard]] virtual std::string_view unit() const = 0;
+
+  // The master loop's skip of a holding driver (MasterLoop::cycle, docs/performance.md). A driver
+  // points it at its sequencer at the end of a cycle that did nothing but hold: it wrote its
+  // words and changed no state but what holding the same input words again leaves as it is
+  // (drivecom::Sequencer::step_holding reads no time), and waits for no timer. Until the
+  // sequencer's hold code changes (only a step sets it; every request, stop request, restart
+  // and change of the application bits clears it), the driver's input words or link flags
+  // change, or the driver clears it (a new reference, a restart), its next cycle would be the
+  // same again, so the loop may write its words itself instead of calling it. Null: no skip;
+  // a driver with a parameter channel or a timer never sets it. A driver that runs in a loop is
+  // cycled by that loop only.
+  [[nodiscard]] const drivecom::Sequencer* skip_while_holding() const { return skip_; }
+
+ protected:
+  const drivecom::Sequencer* skip_ = nullptr;
 };
 
 }  // namespace ibs::devices

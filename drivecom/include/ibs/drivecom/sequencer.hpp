@@ -178,7 +178,20 @@ class Sequencer {
 
   [[nodiscard]] const Report& report() const { return report_; }
   [[nodiscard]] Word last_control() const { return last_control_; }
-  void set_application_bits(Word bits) { app_bits_ = static_cast<Word>(bits & ~kOwnedBits); }
+  // New application bits end a hold: the next step sends them through the general decisions and
+  // holds again. A master loop that skips a holding driver (DeviceDriver::skip_while_holding)
+  // sees the hold end and calls the driver again.
+  void set_application_bits(Word bits) {
+    const auto b = static_cast<Word>(bits & ~kOwnedBits);
+    if (b == app_bits_) return;
+    app_bits_ = b;
+    hold_code_ = kNotHolding;
+  }
+  // The state code a reached target holds (step_holding), kNotHolding when none (no state code:
+  // detail::kStateLut gives 0..7 or kNoState). Only a step
+  // sets it; every request, stop request, restart and change of the application bits clears it.
+  static constexpr std::uint8_t kNotHolding = 0xFE;
+  [[nodiscard]] std::uint8_t hold_code() const { return hold_code_; }
   // After a master restart: forget everything, send BLOCK POWER with bit 7 low.
   void restart();
 
@@ -264,9 +277,6 @@ class Sequencer {
     known_ = s;
     return w;
   }
-
-  // No state code (detail::kStateLut gives 0..7 or kNoState): nothing is being held.
-  static constexpr std::uint8_t kNotHolding = 0xFE;
 
   SequencerConfig config_;
   Word app_bits_;

@@ -4,6 +4,7 @@
 // allocates nothing, throws nothing and takes no lock. docs/embedding.md shows the loop in use.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -56,7 +57,33 @@ class MasterLoop {
   interbus::BusConfig config_;
   std::vector<std::unique_ptr<devices::DeviceDriver>> drivers_;
   std::vector<Place> places_;
-  std::vector<devices::DriverIo> ios_;  // one per driver, bound to *bound_
+  // The loop's record of a driver's hold (DeviceDriver::skip_while_holding): what the driver's
+  // last cycle saw and wrote, in 64-bit windows of four words from the start of its slices. A
+  // device can be skipped only if its slices fit such a window inside the image and it has no
+  // PCP words (the masks then cover its words; otherwise they are 0 and it is never armed).
+  struct Held {
+    std::uint64_t in = 0;        // the input words the hold saw (masked)
+    std::uint64_t out = 0;       // the words it wrote (masked)
+    std::uint64_t in_mask = 0;   // the device's words in the input window
+    std::uint64_t out_mask = 0;  // and in the output window
+    // The sequencer's hold code when armed; kDisarmed, which no 8-bit code equals, otherwise.
+    std::uint16_t hold = kDisarmed;
+  };
+  static constexpr std::uint16_t kDisarmed = 0x100;
+  // One per driver: the driver, its words in *bound_ and its hold, side by side, so that the
+  // cycle walks one array (one pointer live across the drivers' calls, not an index into two).
+  struct Bound {
+    devices::DeviceDriver* driver = nullptr;
+    devices::DriverIo io;
+    Held held;
+  };
+  // The skip: true when the driver's next cycle is known to be its last one again (the hold it
+  // reported, the same sequencer hold, input words and link flags), after writing its words.
+  static bool skip(Bound& b, bool data_valid, bool module_error) noexcept;
+  // After a driver's cycle: arms its record if it reports a hold, disarms it otherwise.
+  static void record(Bound& b) noexcept;
+  void disarm() noexcept;
+  std::vector<Bound> ios_;
   const interbus::ProcessImage* bound_ = nullptr;
 };
 

@@ -38,7 +38,10 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   void restart(Time now) override;
   drivecom::Sequencer& sequencer() override { return master_.sequencer(); }
   ParameterAccess& parameters() override { return *this; }
-  void set_reference(double rpm) override { master_.set_reference_rpm(rpm); }
+  void set_reference(double rpm) override {
+    skip_ = nullptr;  // new reference words: the next cycle writes them
+    master_.set_reference_rpm(rpm);
+  }
   [[nodiscard]] double reference() const override { return master_.reference_rpm(); }
   [[nodiscard]] double actual() const override { return master_.actual_rpm(); }
   [[nodiscard]] std::string_view unit() const override { return "rpm"; }
@@ -63,8 +66,10 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   [[nodiscard]] ParamStatus status(ParamId id) const override;
   [[nodiscard]] std::string describe(ParamId id) const override;
 
-  // cycle() of a driver with a PCP channel: the process data, then the channel.
-  void cycle_with_pcp(const DriverIo& io, Time now);
+  // cycle() of a driver with a PCP channel: the bus period, the process data, then the channel
+  // (when the cycle hands the driver the channel's words).
+  // Never inline: cycle() would then save registers for its calls on every driver's path.
+  [[gnu::noinline]] void cycle_with_pcp(const DriverIo& io, Time now);
   void take_results(Time now);
   // The timeout for the next request: kTimeoutCycles of the cycle time seen, at least the
   // client's own.
@@ -85,7 +90,7 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   Refusal refusal_ = Refusal::none;
   Time last_cycle_{};
   bool cycled_ = false;
-  Duration period_{};  // the bus cycle, from the times cycle() is called with
+  Duration period_{};  // the bus cycle, from the times cycle() is called with (PCP drivers only)
 };
 
 }  // namespace ibs::devices

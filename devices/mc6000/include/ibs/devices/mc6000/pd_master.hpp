@@ -20,24 +20,31 @@ class Mc6000PdMaster {
 
   drivecom::Sequencer& sequencer() { return sequencer_; }
   [[nodiscard]] const drivecom::Sequencer& sequencer() const { return sequencer_; }
-  void set_reference_rpm(double rpm) { reference_ = rpm; }
+  // Encodes the reference into its bus words at once (a pure function of the layout and the
+  // value), so that the cycle writes them without looking at the value.
+  void set_reference_rpm(double rpm);
   [[nodiscard]] double reference_rpm() const { return reference_; }
 
   // One master cycle: reads the status-side words, writes the control-side words. Inline: it is
   // every MC6000 driver's cycle on the full bus (docs/performance.md, "master cycle"). The common
   // case is a leaf: the actual words those decoded last (decode_actual is a function of the
-  // layout and the words alone), the reference the one encoded, the sequencer holding its target
+  // layout and the words alone), the sequencer holding its target
   // (Sequencer::step_holding): then the words written are those cycle_general writes, without
   // its calls. Anything else, cycle_general.
   void cycle(std::span<const Word> s2m, std::span<Word> m2s, Time now) {
+    if (!cycle_holding(s2m, m2s)) cycle_general(s2m, m2s, now);
+  }
+  // cycle()'s common case alone: true when it applies, with cycle()'s words and effects; false
+  // otherwise, and nothing changed (the caller then calls cycle_general). Reads no time.
+  bool cycle_holding(std::span<const Word> s2m, std::span<Word> m2s) {
     Word control = 0;
     if (s2m.size() > actual_words_ && !m2s.empty() && m2s.size() <= reference_words_.size() + 1 &&
-        same_actual(s2m) && reference_ == encoded_reference_ && sequencer_.step_holding(s2m[0], control)) {
+        same_actual(s2m) && sequencer_.step_holding(s2m[0], control)) {
       m2s[0] = control;
       put_reference(m2s);
-      return;
+      return true;
     }
-    cycle_general(s2m, m2s, now);
+    return false;
   }
   // cycle() without its shortcut, every case (out of line: cycle's common case calls nothing).
   // The same words and state as cycle(); Mc6000PdMasterShortcut.* compares the two at random.
@@ -78,10 +85,9 @@ class Mc6000PdMaster {
   mc6000::Layout layout_;
   drivecom::Sequencer sequencer_;
   double reference_ = 0.0;
-  // The reference as bus words, encoded again only when it changes.
+  // The reference as bus words, encoded by set_reference_rpm (and the constructor).
   // Words 2..4 of the slot: the encoded reference, then 0 in any word the layout leaves unused.
   std::array<Word, 3> reference_words_{};
-  double encoded_reference_ = 0.0;
   mc6000::Actual actual_{};
   // The layout's actual words (at most 2, 3.2.3) and the words actual_ was decoded from;
   // decoded_ false before the first decode and after one from fewer words than the layout's.
