@@ -149,10 +149,17 @@ class Node {
 
  private:
   void push(const std::optional<CanFrame>& f);
+  void push_frame(const CanFrame& f);
+  void push_reply(const ParameterTelegram& t);
   void apply(SystemEvent e, Time now);
   void send_status(Time now);
 
   NodeConfig config_;
+  // config_.ids.own_id of this node's control and parameter request telegrams, -1 for none: the
+  // frames receive() acts on besides the broadcast (issue 26: no classify for every frame).
+  std::int32_t control_id_ = -1;
+  std::int32_t request_id_ = -1;
+  std::int32_t reply_id_ = -1;  // config_.ids.id of its parameter replies, -1 for none
   DriveProcess* drive_;
   ParameterServer server_;
   bool powered_ = false;
