@@ -182,7 +182,7 @@ void Node::step(Time now) {
 void Node::push_reply(const ParameterTelegram& t) {
   // encode_parameter_reply(config_.ids, config_.address, t) with the identifier found once.
   if (reply_id_ < 0) return;
-  push_frame(*detail::encode_parameter(static_cast<std::uint16_t>(reply_id_), t));
+  push_frame(detail::parameter_frame(static_cast<std::uint16_t>(reply_id_), t));
 }
 
 Time Node::next_deadline() const {

@@ -147,9 +147,9 @@ void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std
   a.block = block;
   a.sent_data = data;
   ++a.telegrams;
-  const auto f = encode_parameter_request(config_.ids, a.request.address,
-                                          {a.request.parameter, mode, data, block});
-  if (!f) return;  // address checked at submit
+  // encode_parameter_request, written straight into the outbox (issue 26).
+  const auto id = config_.ids.id(TelegramKind::parameter_request, a.request.address);
+  if (!id) return;  // address checked at submit
   const std::size_t n = outbox_.size();
   if (out_size_ == n) {
     ++counters_.dropped_frames;
@@ -158,7 +158,7 @@ void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std
   // The ring's index without a division: head and size are both below n.
   std::size_t at = out_head_ + out_size_;
   if (at >= n) at -= n;
-  outbox_[at] = *f;
+  outbox_[at] = detail::parameter_frame(*id, {a.request.parameter, mode, data, block});
   ++out_size_;
 }
 

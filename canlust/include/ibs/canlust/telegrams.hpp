@@ -128,11 +128,10 @@ constexpr std::uint64_t parameter_word(const ParameterTelegram& t) {
   return static_cast<std::uint64_t>(t.parameter) | (static_cast<std::uint64_t>(t.code) << 16U) |
          (static_cast<std::uint64_t>(t.data) << 24U) | (static_cast<std::uint64_t>(t.block) << 56U);
 }
-constexpr std::optional<CanFrame> encode_parameter(std::optional<std::uint16_t> id,
-                                                   const ParameterTelegram& t) {
-  if (!id) return std::nullopt;
+// The frame for an identifier already checked (what encode_parameter_request / _reply give).
+constexpr CanFrame parameter_frame(std::uint16_t id, const ParameterTelegram& t) {
   CanFrame f;
-  f.id = *id;
+  f.id = id;
   f.dlc = kParameterTelegramLength;
   const std::uint64_t w = parameter_word(t);
   if constexpr (std::endian::native == std::endian::little) {
@@ -143,6 +142,11 @@ constexpr std::optional<CanFrame> encode_parameter(std::optional<std::uint16_t> 
     }
   }
   return f;
+}
+constexpr std::optional<CanFrame> encode_parameter(std::optional<std::uint16_t> id,
+                                                   const ParameterTelegram& t) {
+  if (!id) return std::nullopt;
+  return parameter_frame(*id, t);
 }
 }  // namespace detail
 
