@@ -43,14 +43,6 @@ void Node::push_frame(const CanFrame& f) {
   ++out_size_;
 }
 
-std::optional<CanFrame> Node::take_frame() {
-  if (out_size_ == 0) return std::nullopt;
-  const CanFrame f = outbox_[out_head_];
-  if (++out_head_ == outbox_.size()) out_head_ = 0;
-  --out_size_;
-  return f;
-}
-
 void Node::power_on(Time now) {
   powered_ = true;
   state_ = SystemState::logon;

@@ -244,16 +244,12 @@ void ParameterClient::step(Time now) {
     a.id = q.id;
     copy_request(a.request, q.request);
     start(a, now);
-    dequeue(k);  // shifts the later ones into place k
+    if (k + 1 == queued_) {
+      --queued_;  // the last one: nothing to shift
+    } else {
+      dequeue(k);  // shifts the later ones into place k
+    }
   }
-}
-
-std::optional<CanFrame> ParameterClient::take_frame() {
-  if (out_size_ == 0) return std::nullopt;
-  const CanFrame f = outbox_[out_head_];
-  if (++out_head_ == outbox_.size()) out_head_ = 0;
-  --out_size_;
-  return f;
 }
 
 void ParameterClient::receive(const CanFrame& f, Time now) {

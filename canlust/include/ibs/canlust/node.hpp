@@ -130,7 +130,14 @@ class Node {
   void power_on(Time now);
   void receive(const CanFrame& f, Time now);
   void step(Time now);
-  std::optional<CanFrame> take_frame();
+  // Inline: asked until it has nothing (issue 26: twice a parameter read at least).
+  std::optional<CanFrame> take_frame() {
+    if (out_size_ == 0) return std::nullopt;
+    const CanFrame f = outbox_[out_head_];
+    if (++out_head_ == outbox_.size()) out_head_ = 0;
+    --out_size_;
+    return f;
+  }
   [[nodiscard]] Time next_deadline() const;
 
   // An error of the drive (6.2): sends the error telegram (441 + address).

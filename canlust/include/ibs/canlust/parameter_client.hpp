@@ -104,7 +104,14 @@ class ParameterClient {
 
   Submitted submit(const Request& r);
   void step(Time now);
-  std::optional<CanFrame> take_frame();
+  // Inline: asked until it has nothing (issue 26).
+  std::optional<CanFrame> take_frame() {
+    if (out_size_ == 0) return std::nullopt;
+    const CanFrame f = outbox_[out_head_];
+    if (++out_head_ == outbox_.size()) out_head_ = 0;
+    --out_size_;
+    return f;
+  }
   // Any frame; parameter replies of drives with an active request are taken, others ignored.
   void receive(const CanFrame& f, Time now);
   [[nodiscard]] Time next_deadline() const;
