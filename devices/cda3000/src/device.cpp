@@ -280,11 +280,6 @@ void Cda3000::step(Time now) {
   node_->step(now);
 }
 
-std::optional<CanFrame> Cda3000::take_frame() {
-  if (!node_) return std::nullopt;
-  return node_->take_frame();
-}
-
 Time Cda3000::next_deadline() const {
   if (!node_) return Time::max();
   Time t = node_->next_deadline();

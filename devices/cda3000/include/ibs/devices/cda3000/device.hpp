@@ -104,7 +104,11 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   void power_off();
   void receive(const canlust::CanFrame& f, Time now);
   void step(Time now);
-  std::optional<canlust::CanFrame> take_frame();
+  // Inline (issue 26: asked until it has nothing, twice a parameter read at least).
+  std::optional<canlust::CanFrame> take_frame() {
+    if (!node_) return std::nullopt;
+    return node_->take_frame();
+  }
   [[nodiscard]] Time next_deadline() const;
 
   // ---- observation --------------------------------------------------------------------------
