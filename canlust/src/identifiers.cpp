@@ -57,4 +57,28 @@ bool IdentifierMap::unambiguous() const {
   return true;
 }
 
+std::optional<std::uint16_t> IdentifierMap::own_id(TelegramKind k, Address a) const {
+  if (k == TelegramKind::system || step == 0 || a > max_address) return std::nullopt;
+  const unsigned v = base_of(k) + static_cast<unsigned>(step) * a;
+  if (v > 0xFFFFU) return std::nullopt;
+  const auto id = static_cast<std::uint16_t>(v);
+  if (classify(id) != Classified{k, a}) return std::nullopt;
+  return id;
+}
+
+KindMatcher::KindMatcher(const IdentifierMap& ids, TelegramKind k) : ids_(ids), kind_(k) {
+  if (k == TelegramKind::system || ids.step == 0) return;  // general: classify decides
+  base_ = base_of(k);
+  step_ = ids.step;
+  span_ = step_ * (static_cast<unsigned>(ids.max_address) + 1U);
+  // The block's identifiers must all be this kind's for classify (no earlier kind overlaps).
+  for (unsigned a = 0; a <= ids.max_address; ++a) {
+    const unsigned v = base_ + step_ * a;
+    if (v > 0xFFFFU) break;
+    const auto c = ids.classify(static_cast<std::uint16_t>(v));
+    if (!c || c->kind != k || c->address != a) return;
+  }
+  general_ = false;
+}
+
 }  // namespace ibs::canlust

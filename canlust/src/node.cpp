@@ -15,25 +15,32 @@ std::string_view to_string(SystemState s) {
 
 Node::Node(const NodeConfig& config, DriveProcess& drive, ParameterAccess& parameters)
     : config_(config), drive_(&drive), server_(parameters) {
+  const auto own = [&](TelegramKind k) -> std::int32_t {
+    const auto id = config_.ids.own_id(k, config_.address);
+    return id ? static_cast<std::int32_t>(*id) : -1;
+  };
+  control_id_ = own(TelegramKind::control);
+  const auto reply = config_.ids.id(TelegramKind::parameter_reply, config_.address);
+  reply_id_ = reply ? static_cast<std::int32_t>(*reply) : -1;
+  request_id_ = own(TelegramKind::parameter_request);
   outbox_.resize(std::max<std::size_t>(4, config_.outbox_capacity));
 }
 
 void Node::push(const std::optional<CanFrame>& f) {
-  if (!f) return;
-  if (out_size_ == outbox_.size()) {
+  if (f) push_frame(*f);
+}
+
+void Node::push_frame(const CanFrame& f) {
+  const std::size_t n = outbox_.size();
+  if (out_size_ == n) {
     ++counters_.dropped_frames;
     return;
   }
-  outbox_[(out_head_ + out_size_) % outbox_.size()] = *f;
+  // The ring's index without a division: head and size are both below n.
+  std::size_t at = out_head_ + out_size_;
+  if (at >= n) at -= n;
+  outbox_[at] = f;
   ++out_size_;
-}
-
-std::optional<CanFrame> Node::take_frame() {
-  if (out_size_ == 0) return std::nullopt;
-  const CanFrame f = outbox_[out_head_];
-  out_head_ = (out_head_ + 1) % outbox_.size();
-  --out_size_;
-  return f;
 }
 
 void Node::power_on(Time now) {
@@ -79,9 +86,11 @@ void Node::apply(SystemEvent e, Time now) {
 
 void Node::receive(const CanFrame& f, Time now) {
   if (!powered_) return;
-  const auto c = config_.ids.classify(f.id);
-  if (!c) return;
-  if (c->kind == TelegramKind::system) {
+  // What classify(f.id) says, for the three telegrams a node acts on: the broadcast (classify
+  // takes its identifier first), and this address's control and parameter request (own_id);
+  // everything else - other kinds, other drives, unused identifiers - is ignored (5.5).
+  TelegramKind kind = TelegramKind::system;
+  if (f.id == kIdSystem) {
     const auto d = decode_system(f);
     if (!d) return;
     apply(d.value == SystemCommand::start ? SystemEvent::start_broadcast
@@ -89,8 +98,14 @@ void Node::receive(const CanFrame& f, Time now) {
           now);
     return;
   }
-  if (c->address != config_.address) return;
-  switch (c->kind) {
+  if (f.id == request_id_) {
+    kind = TelegramKind::parameter_request;
+  } else if (f.id == control_id_) {
+    kind = TelegramKind::control;
+  } else {
+    return;
+  }
+  switch (kind) {
     case TelegramKind::control: {
       const auto d = decode_control(f, config_.layout);
       if (!d) {
@@ -117,9 +132,7 @@ void Node::receive(const CanFrame& f, Time now) {
       }
       // 5.2: parameter access is possible in every system state.
       server_.receive(d.value, now);
-      while (auto r = server_.take_reply(now)) {
-        push(encode_parameter_reply(config_.ids, config_.address, *r));
-      }
+      while (const auto r = server_.take_reply(now)) push_reply(*r);
       return;
     }
     default:
@@ -155,9 +168,13 @@ void Node::step(Time now) {
       push(encode_error(config_.ids, config_.address, *e));
     }
   }
-  while (auto r = server_.take_reply(now)) {
-    push(encode_parameter_reply(config_.ids, config_.address, *r));
-  }
+  while (const auto r = server_.take_reply(now)) push_reply(*r);
+}
+
+void Node::push_reply(const ParameterTelegram& t) {
+  // encode_parameter_reply(config_.ids, config_.address, t) with the identifier found once.
+  if (reply_id_ < 0) return;
+  push_frame(detail::parameter_frame(static_cast<std::uint16_t>(reply_id_), t));
 }
 
 Time Node::next_deadline() const {

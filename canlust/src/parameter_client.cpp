@@ -84,8 +84,31 @@ Request write_string(Address a, std::uint16_t parameter, std::string_view text) 
   return r;
 }
 
-ParameterClient::ParameterClient(const ClientConfig& config) : config_(config) {
-  queue_.reserve(std::max<std::size_t>(1, config_.queue_capacity));
+namespace {
+// A request without the unused part of its text buffer: only a string write reads its text, and
+// only its first `length` characters (issue 26: the 100-byte buffer was copied into the queue
+// and again into the drive's slot for every numeric request).
+void copy_request(Request& to, const Request& from) {
+  to.kind = from.kind;
+  to.address = from.address;
+  to.parameter = from.parameter;
+  to.index = from.index;
+  to.value = from.value;
+  to.text_too_long = from.text_too_long;
+  to.timeout = from.timeout;
+  if (from.kind == RequestKind::write_string) {
+    const std::size_t n = std::min<std::size_t>(from.text.length, from.text.chars.size());
+    std::copy_n(from.text.chars.data(), n, to.text.chars.data());
+    to.text.length = from.text.length;
+  } else {
+    to.text.length = 0;
+  }
+}
+}  // namespace
+
+ParameterClient::ParameterClient(const ClientConfig& config)
+    : config_(config), replies_(config_.ids, TelegramKind::parameter_reply) {
+  queue_.resize(std::max<std::size_t>(1, config_.queue_capacity));
   if (config_.timeout <= Duration::zero()) config_.timeout = 1ms;
   if (config_.string_timeout <= Duration::zero()) config_.string_timeout = 1ms;
   active_.resize(static_cast<std::size_t>(config_.ids.max_address) + 1);
@@ -100,10 +123,21 @@ Submitted ParameterClient::submit(const Request& r) {
     return {0, SubmitError::text_too_long};
   }
   if (r.timeout && *r.timeout <= Duration::zero()) return {0, SubmitError::invalid_timeout};
-  if (queue_.size() >= queue_.capacity()) return {0, SubmitError::queue_full};
+  if (queued_ == queue_.size()) return {0, SubmitError::queue_full};
   const RequestId id = next_id_++;
-  queue_.push_back({id, r});
+  Queued& q = queue_[queued_++];
+  q.id = id;
+  copy_request(q.request, r);
   return {id, SubmitError::none};
+}
+
+void ParameterClient::dequeue(std::size_t k) {
+  // Keeps the submission order of the others (the oldest request of a drive starts first).
+  for (std::size_t i = k + 1; i < queued_; ++i) {
+    queue_[i - 1].id = queue_[i].id;
+    copy_request(queue_[i - 1].request, queue_[i].request);
+  }
+  --queued_;
 }
 
 void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std::uint8_t block,
@@ -113,14 +147,18 @@ void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std
   a.block = block;
   a.sent_data = data;
   ++a.telegrams;
-  const auto f = encode_parameter_request(config_.ids, a.request.address,
-                                          {a.request.parameter, mode, data, block});
-  if (!f) return;  // address checked at submit
-  if (out_size_ == outbox_.size()) {
+  // encode_parameter_request, written straight into the outbox (issue 26).
+  const auto id = config_.ids.id(TelegramKind::parameter_request, a.request.address);
+  if (!id) return;  // address checked at submit
+  const std::size_t n = outbox_.size();
+  if (out_size_ == n) {
     ++counters_.dropped_frames;
     return;
   }
-  outbox_[(out_head_ + out_size_) % outbox_.size()] = *f;
+  // The ring's index without a division: head and size are both below n.
+  std::size_t at = out_head_ + out_size_;
+  if (at >= n) at -= n;
+  outbox_[at] = detail::parameter_frame(*id, {a.request.parameter, mode, data, block});
   ++out_size_;
 }
 
@@ -167,7 +205,7 @@ void ParameterClient::unlist_busy(Active& a) {
 void ParameterClient::finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status,
                              std::uint32_t value) {
   Completed& c = completed_[completed_next_];
-  completed_next_ = (completed_next_ + 1) % completed_.size();
+  if (++completed_next_ == completed_.size()) completed_next_ = 0;
   c.id = a.id;
   c.outcome.kind = kind;
   c.outcome.status = status;
@@ -195,34 +233,32 @@ void ParameterClient::step(Time now) {
     }
   }
   // Start the oldest queued request of every free drive (one request per drive at a time).
-  for (auto it = queue_.begin(); it != queue_.end();) {
-    Active& a = active_[it->request.address];
+  for (std::size_t k = 0; k < queued_;) {
+    const Queued& q = queue_[k];
+    Active& a = active_[q.request.address];
     if (a.busy) {
-      ++it;
+      ++k;
       continue;
     }
-    list_busy(a, it->request.address);
-    a.id = it->id;
-    a.request = it->request;
+    list_busy(a, q.request.address);
+    a.id = q.id;
+    copy_request(a.request, q.request);
     start(a, now);
-    it = queue_.erase(it);  // shifts; no allocation
+    if (k + 1 == queued_) {
+      --queued_;  // the last one: nothing to shift
+    } else {
+      dequeue(k);  // shifts the later ones into place k
+    }
   }
 }
 
-std::optional<CanFrame> ParameterClient::take_frame() {
-  if (out_size_ == 0) return std::nullopt;
-  const CanFrame f = outbox_[out_head_];
-  out_head_ = (out_head_ + 1) % outbox_.size();
-  --out_size_;
-  return f;
-}
-
 void ParameterClient::receive(const CanFrame& f, Time now) {
-  const auto c = config_.ids.classify(f.id);
-  if (!c || c->kind != TelegramKind::parameter_reply) return;
+  // classify(f.id) when it is a parameter reply (KindMatcher).
+  const auto address = replies_.match(f.id);
+  if (!address) return;
   const auto t = decode_parameter(f);
   if (!t) return;
-  Active& a = active_[c->address];
+  Active& a = active_[*address];
   if (!a.busy || now >= a.deadline || t.value.parameter != a.request.parameter ||
       t.value.block != a.block) {
     ++counters_.stray_replies;
@@ -325,10 +361,8 @@ void ParameterClient::on_reply(Active& a, const ParameterTelegram& t, Time now) 
 
 Time ParameterClient::next_deadline() const {
   if (out_size_ > 0) return Time::min();  // frames to take now
-  if (!queue_.empty()) {
-    for (const auto& q : queue_) {
-      if (!active_[q.request.address].busy) return Time::min();
-    }
+  for (std::size_t k = 0; k < queued_; ++k) {
+    if (!active_[queue_[k].request.address].busy) return Time::min();
   }
   Time t = Time::max();
   for (const Address b : busy_) t = std::min(t, active_[b].deadline);
@@ -340,29 +374,31 @@ Poll ParameterClient::poll(RequestId id) const {
   for (const Address b : busy_) {
     if (active_[b].id == id) return {RequestState::active, nullptr};
   }
-  for (const auto& q : queue_) {
-    if (q.id == id) return {RequestState::queued, nullptr};
+  for (std::size_t k = 0; k < queued_; ++k) {
+    if (queue_[k].id == id) return {RequestState::queued, nullptr};
   }
   // Newest first: a request is mostly polled right after it finished.
-  for (std::size_t k = 1; k <= completed_.size(); ++k) {
-    const Completed& c = completed_[(completed_next_ + completed_.size() - k) % completed_.size()];
+  std::size_t at = completed_next_;  // below completed_.size()
+  for (std::size_t k = 0; k < completed_.size(); ++k) {
+    at = at == 0 ? completed_.size() - 1 : at - 1;
+    const Completed& c = completed_[at];
     if (c.id == id) return {RequestState::done, &c.outcome};
   }
   return {RequestState::unknown, nullptr};
 }
 
-bool ParameterClient::idle() const { return queue_.empty() && busy_.empty(); }
+bool ParameterClient::idle() const { return queued_ == 0 && busy_.empty(); }
 
 void ParameterClient::abort_all(Time now) {
   while (!busy_.empty()) finish(active_[busy_.back()], OutcomeKind::aborted, now);
-  for (const auto& q : queue_) {
+  for (std::size_t k = 0; k < queued_; ++k) {
     Active tmp;
-    tmp.id = q.id;
-    tmp.request = q.request;
+    tmp.id = queue_[k].id;
+    copy_request(tmp.request, queue_[k].request);
     tmp.started = now;
     finish(tmp, OutcomeKind::aborted, now);
   }
-  queue_.clear();
+  queued_ = 0;
   out_size_ = 0;
 }
 

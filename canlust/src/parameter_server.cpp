@@ -206,22 +206,6 @@ void ParameterServer::list_end(const ParameterTelegram& r, Time now) {
   reply(r, a.status, r.data, now + a.delay);
 }
 
-std::optional<ParameterTelegram> ParameterServer::take_reply(Time now) {
-  if (busy_reply_) {
-    auto b = busy_reply_;
-    busy_reply_.reset();
-    ++counters_.replies;
-    return b;
-  }
-  if (pending_ && now >= pending_at_) {
-    auto p = pending_;
-    pending_.reset();
-    ++counters_.replies;
-    return p;
-  }
-  return std::nullopt;
-}
-
 Time ParameterServer::next_deadline() const {
   if (busy_reply_) return Time::min();
   if (pending_) return pending_at_;

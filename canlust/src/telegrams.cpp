@@ -114,35 +114,4 @@ Decoded<ErrorTelegram> decode_error(const CanFrame& f) {
   return {{f.data[0], f.data[1], f.data[2]}, DecodeError::none};
 }
 
-namespace {
-std::optional<CanFrame> encode_parameter(std::optional<std::uint16_t> id, const ParameterTelegram& t) {
-  if (!id) return std::nullopt;
-  CanFrame f;
-  f.id = *id;
-  f.dlc = kParameterTelegramLength;
-  put_le16(f.data, t.parameter);
-  f.data[2] = t.code;
-  put_le32(std::span(f.data).subspan(3), t.data);
-  f.data[7] = t.block;
-  return f;
-}
-}  // namespace
-
-std::optional<CanFrame> encode_parameter_request(const IdentifierMap& ids, Address a,
-                                                 const ParameterTelegram& t) {
-  return encode_parameter(ids.id(TelegramKind::parameter_request, a), t);
-}
-
-std::optional<CanFrame> encode_parameter_reply(const IdentifierMap& ids, Address a,
-                                               const ParameterTelegram& t) {
-  return encode_parameter(ids.id(TelegramKind::parameter_reply, a), t);
-}
-
-Decoded<ParameterTelegram> decode_parameter(const CanFrame& f) {
-  const auto e = check(f, kParameterTelegramLength);
-  if (e != DecodeError::none) return {{}, e};
-  const std::span<const std::uint8_t> d(f.data);
-  return {{get_le16(d), f.data[2], get_le32(d.subspan(3)), f.data[7]}, DecodeError::none};
-}
-
 }  // namespace ibs::canlust

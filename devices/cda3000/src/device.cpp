@@ -72,10 +72,15 @@ void Cda3000::set(std::uint16_t number, std::uint32_t value) {
 std::optional<std::uint32_t> Cda3000::value(std::uint16_t number) const {
   const auto i = parameter_index(number);
   if (!i || kParameters[*i].is_string()) return std::nullopt;
+  return value_at(*i);
+}
+
+std::uint32_t Cda3000::value_at(std::size_t i) const {
+  const std::uint16_t number = kParameters[i].number;
   if (number == kReff) return static_cast<std::uint32_t>(q16_from_double(reference_hz()));
   if (number == kErr1) return wire_from_err_struc(last_error_);
   if (number == kCawrn) return warnings();
-  return current_[*i];
+  return current_[i];
 }
 
 std::optional<std::uint32_t> Cda3000::saved_value(std::uint16_t number) const {
@@ -275,11 +280,6 @@ void Cda3000::step(Time now) {
   node_->step(now);
 }
 
-std::optional<CanFrame> Cda3000::take_frame() {
-  if (!node_) return std::nullopt;
-  return node_->take_frame();
-}
-
 Time Cda3000::next_deadline() const {
   if (!node_) return Time::max();
   Time t = node_->next_deadline();
@@ -442,12 +442,14 @@ void Cda3000::system_state_changed(SystemState s, Time now) {
 
 ValueResult Cda3000::read(std::uint16_t number, std::uint8_t index, Time now) {
   (void)now;
-  const ParameterInfo* p = find_parameter(number);
-  if (p == nullptr) return {kStatusUnknownParameter, DataType::usign32, 0, {}};
+  // The table's row looked up once (issue 26), for the checks and the value.
+  const auto i = parameter_index(number);
+  if (!i) return {kStatusUnknownParameter, DataType::usign32, 0, {}};
+  const ParameterInfo& p = kParameters[*i];
   // A STRING goes by mode 11 (D24); no CDA3000 parameter here is a field (index 0 only).
-  if (p->is_string()) return {kStatusReadNotPermitted, DataType::usign32, 0, {}};
-  if (index != 0) return {kStatusImpermissibleValue, p->type, 0, {}};
-  return {kStatusOk, p->type, *value(number), {}};
+  if (p.is_string()) return {kStatusReadNotPermitted, DataType::usign32, 0, {}};
+  if (index != 0) return {kStatusImpermissibleValue, p.type, 0, {}};
+  return {kStatusOk, p.type, value_at(*i), {}};
 }
 
 AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint32_t v, Time now) {

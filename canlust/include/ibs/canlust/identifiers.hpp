@@ -76,6 +76,43 @@ struct IdentifierMap {
   [[nodiscard]] std::optional<Classified> classify(std::uint16_t id) const;
   // True when no two (kind, address) pairs share an identifier (checked at configuration).
   [[nodiscard]] bool unambiguous() const;
+  // The identifier that classify() takes for (k, a), nullopt when none does (an address above
+  // max_address, a kind whose block an earlier one overlaps there, the broadcast): what a drive
+  // compares its frames with instead of classifying each (issue 26).
+  [[nodiscard]] std::optional<std::uint16_t> own_id(TelegramKind k, Address a) const;
+};
+
+// The identifiers of one selective kind: match(id) is classify(id)'s address when classify(id)
+// is of that kind, nullopt else, without classify's walk over the other kinds' blocks (issue 26:
+// the client classifies every frame on the bus). Where an earlier kind's block claims one of
+// this kind's identifiers (a map that is not unambiguous()), or for the broadcast, it asks
+// classify itself. Built once from a copy of the map.
+class KindMatcher {
+ public:
+  KindMatcher() : KindMatcher(IdentifierMap{}, TelegramKind::parameter_reply) {}
+  KindMatcher(const IdentifierMap& ids, TelegramKind k);
+
+  [[nodiscard]] std::optional<Address> match(std::uint16_t id) const {
+    if (general_) {
+      const auto c = ids_.classify(id);
+      if (!c || c->kind != kind_) return std::nullopt;
+      return c->address;
+    }
+    if (id < base_) return std::nullopt;
+    const unsigned off = static_cast<unsigned>(id) - base_;
+    if (off >= span_) return std::nullopt;
+    const unsigned a = step_ == 2 ? off >> 1U : off / step_;
+    if (a * step_ != off) return std::nullopt;
+    return static_cast<Address>(a);
+  }
+
+ private:
+  IdentifierMap ids_;
+  TelegramKind kind_;
+  bool general_ = true;
+  unsigned base_ = 0;
+  unsigned step_ = 1;
+  unsigned span_ = 0;
 };
 
 }  // namespace ibs::canlust

@@ -130,7 +130,14 @@ class Node {
   void power_on(Time now);
   void receive(const CanFrame& f, Time now);
   void step(Time now);
-  std::optional<CanFrame> take_frame();
+  // Inline: asked until it has nothing (issue 26: twice a parameter read at least).
+  std::optional<CanFrame> take_frame() {
+    if (out_size_ == 0) return std::nullopt;
+    const CanFrame f = outbox_[out_head_];
+    if (++out_head_ == outbox_.size()) out_head_ = 0;
+    --out_size_;
+    return f;
+  }
   [[nodiscard]] Time next_deadline() const;
 
   // An error of the drive (6.2): sends the error telegram (441 + address).
@@ -149,10 +156,17 @@ class Node {
 
  private:
   void push(const std::optional<CanFrame>& f);
+  void push_frame(const CanFrame& f);
+  void push_reply(const ParameterTelegram& t);
   void apply(SystemEvent e, Time now);
   void send_status(Time now);
 
   NodeConfig config_;
+  // config_.ids.own_id of this node's control and parameter request telegrams, -1 for none: the
+  // frames receive() acts on besides the broadcast (issue 26: no classify for every frame).
+  std::int32_t control_id_ = -1;
+  std::int32_t request_id_ = -1;
+  std::int32_t reply_id_ = -1;  // config_.ids.id of its parameter replies, -1 for none
   DriveProcess* drive_;
   ParameterServer server_;
   bool powered_ = false;

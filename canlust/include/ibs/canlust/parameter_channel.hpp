@@ -131,7 +131,22 @@ class ParameterServer {
   // A request telegram (already decoded) at `now`.
   void receive(const ParameterTelegram& request, Time now);
   // The reply once it is due (at once, or after the drive's delay). One at a time.
-  std::optional<ParameterTelegram> take_reply(Time now);
+  // Inline: a node asks after every request and every step (issue 26).
+  std::optional<ParameterTelegram> take_reply(Time now) {
+    if (busy_reply_) {
+      const auto b = busy_reply_;
+      busy_reply_.reset();
+      ++counters_.replies;
+      return b;
+    }
+    if (pending_ && now >= pending_at_) {
+      const auto p = pending_;
+      pending_.reset();
+      ++counters_.replies;
+      return p;
+    }
+    return std::nullopt;
+  }
   [[nodiscard]] Time next_deadline() const;
   [[nodiscard]] ServerState state() const { return state_; }
   [[nodiscard]] const ServerCounters& counters() const { return counters_; }

@@ -104,7 +104,14 @@ class ParameterClient {
 
   Submitted submit(const Request& r);
   void step(Time now);
-  std::optional<CanFrame> take_frame();
+  // Inline: asked until it has nothing (issue 26).
+  std::optional<CanFrame> take_frame() {
+    if (out_size_ == 0) return std::nullopt;
+    const CanFrame f = outbox_[out_head_];
+    if (++out_head_ == outbox_.size()) out_head_ = 0;
+    --out_size_;
+    return f;
+  }
   // Any frame; parameter replies of drives with an active request are taken, others ignored.
   void receive(const CanFrame& f, Time now);
   [[nodiscard]] Time next_deadline() const;
@@ -150,8 +157,14 @@ class ParameterClient {
   void list_busy(Active& a, Address address);
   void unlist_busy(Active& a);
 
+  void dequeue(std::size_t k);
+
   ClientConfig config_;
-  std::vector<Queued> queue_;  // in submission order; capacity reserved by the constructor
+  KindMatcher replies_;  // config_.ids' parameter replies
+  // The first queued_ entries, in submission order; sized by the constructor, so that queueing
+  // neither constructs nor zeroes a request with its text buffer (issue 26).
+  std::vector<Queued> queue_;
+  std::size_t queued_ = 0;
   std::vector<Active> active_;  // one per address 0..max_address
   // The addresses whose slot is busy, in no order (issue 26: step, poll and next_deadline touch
   // only the drives with a request, not all 100 slots); capacity reserved by the constructor.

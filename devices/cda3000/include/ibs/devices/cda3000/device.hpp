@@ -104,7 +104,11 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   void power_off();
   void receive(const canlust::CanFrame& f, Time now);
   void step(Time now);
-  std::optional<canlust::CanFrame> take_frame();
+  // Inline (issue 26: asked until it has nothing, twice a parameter read at least).
+  std::optional<canlust::CanFrame> take_frame() {
+    if (!node_) return std::nullopt;
+    return node_->take_frame();
+  }
   [[nodiscard]] Time next_deadline() const;
 
   // ---- observation --------------------------------------------------------------------------
@@ -176,6 +180,8 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
  private:
   using Values = std::array<std::uint32_t, kParameters.size()>;
   [[nodiscard]] std::uint32_t get(std::uint16_t number) const;
+  // value() of the table's row i (not a STRING).
+  [[nodiscard]] std::uint32_t value_at(std::size_t i) const;
   void set(std::uint16_t number, std::uint32_t value);
   void apply_live(std::uint16_t number, Time now);
   void load_preset(std::uint32_t data_set, Time now);
