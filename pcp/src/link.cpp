@@ -15,6 +15,22 @@ constexpr std::uint8_t next_seq(std::uint8_t s) {
   return static_cast<std::uint8_t>((s + 1U) & kSeqMask);
 }
 
+// The administrative byte's rules as tables (docs/pcp.md, "Administrative byte"), so that a frame
+// costs a load instead of a bit count. kParityBit[b >> 1]: the P bit that gives bits 7..1 of b odd
+// parity. kAdminValid[b]: odd parity, and not the invalid control code 11.
+constexpr std::array<std::uint8_t, 128> kParityBit = [] {
+  std::array<std::uint8_t, 128> t{};
+  for (unsigned i = 0; i < t.size(); ++i) t[i] = std::popcount(i) % 2 == 0 ? 1 : 0;
+  return t;
+}();
+constexpr std::array<bool, 256> kAdminValid = [] {
+  std::array<bool, 256> t{};
+  for (unsigned b = 0; b < t.size(); ++b) {
+    t[b] = std::popcount(b) % 2 == 1 && !(((b >> 5U) & 3U) == 0 && ((b >> 3U) & 3U) == 3);
+  }
+  return t;
+}();
+
 }  // namespace
 
 std::uint8_t encode_admin(AdminByte a) {
@@ -23,18 +39,17 @@ std::uint8_t encode_admin(AdminByte a) {
   b |= (static_cast<unsigned>(a.seq) & 3U) << 3U;
   b |= (static_cast<unsigned>(a.ack) & 3U) << 1U;
   // Odd parity: the byte always has an odd number of ones.
-  if (std::popcount(b) % 2 == 0) b |= 1U;
+  b |= kParityBit[b >> 1U];
   return static_cast<std::uint8_t>(b);
 }
 
 std::optional<AdminByte> decode_admin(std::uint8_t b) {
-  if (std::popcount(static_cast<unsigned>(b)) % 2 == 0) return std::nullopt;
+  if (!kAdminValid[b]) return std::nullopt;  // even parity, or the control code 11
   AdminByte a;
   a.dir = static_cast<Direction>((b >> 7U) & 1U);
   a.type = static_cast<FrameType>((b >> 5U) & 3U);
   a.seq = static_cast<std::uint8_t>((b >> 3U) & 3U);
   a.ack = static_cast<std::uint8_t>((b >> 1U) & 3U);
-  if (a.type == FrameType::control && a.seq == 3) return std::nullopt;
   return a;
 }
 
@@ -126,6 +141,7 @@ bool Link::send(std::span<const std::uint8_t> pdu) {
   // The receiver delimits the message by its count word, so it must be right.
   if (decode_header(pdu, h) != PduError::none) return false;
   std::copy(pdu.begin(), pdu.end(), tx_.begin());
+  std::fill_n(tx_.begin() + static_cast<std::ptrdiff_t>(pdu.size()), kMaxFrameData, std::uint8_t{0});
   tx_size_ = pdu.size();
   tx_offset_ = 0;
   tx_active_ = true;
@@ -146,7 +162,65 @@ void Link::release_message() {
   rx_expected_ = 0;
 }
 
+void Link::sequence_error(LinkEvents& ev) {
+  ++stats_.sequence_errors;
+  abort();
+  ev.reset = true;
+}
+
 LinkEvents Link::receive(Time now, std::span<const Word> in) {
+  // The shortcut: a ready link, no ack timeout due, and a valid IDLE or data frame of the peer --
+  // every cycle of a transfer. It decides as receive_general does (docs/pcp.md, "Go-back-N"),
+  // reading the words directly; anything else (another state, a timeout, a short, invalid or
+  // foreign frame, ABORT, ABORT-ACK, a control frame with data) goes the general way.
+  const auto words = static_cast<std::size_t>(cfg_.channel_words);
+  if (state_ != LinkState::ready || in.size() < words ||
+      (tx_active_ && tx_shown_[0] && now - tx_since_ >= cfg_.ack_timeout)) {
+    return receive_general(now, in);
+  }
+  const Word w0 = in[0];
+  const std::uint8_t admin = high_byte(w0);
+  if (!kAdminValid[admin] || static_cast<Direction>(admin >> 7U) != peer_dir_) {
+    return receive_general(now, in);
+  }
+  const auto type = static_cast<FrameType>((admin >> 5U) & 3U);
+  const auto seq = static_cast<std::uint8_t>((admin >> 3U) & 3U);
+  const auto ack = static_cast<std::uint8_t>((admin >> 1U) & 3U);
+  LinkEvents ev;
+  if (type == FrameType::control) {
+    unsigned data = low_byte(w0);  // IDLE carries zero data bytes only
+    for (std::size_t i = 1; i < words; ++i) data |= in[i];
+    if (seq != static_cast<std::uint8_t>(ControlCode::idle) || data != 0) {
+      return receive_general(now, in);
+    }
+    // An idle peer still acknowledges our fragments; mostly it names the base's predecessor.
+    if (((ack - tx_seq_ + 1U) & kSeqMask) != 0 && !take_ack(now, ack, ev)) sequence_error(ev);
+    return ev;
+  }
+  if (((ack - tx_seq_ + 1U) & kSeqMask) != 0 && !take_ack(now, ack, ev)) {
+    sequence_error(ev);
+    return ev;
+  }
+  // An old frame seen again, or the second of a window whose first we missed: nothing to copy.
+  if (seq != next_seq(rx_last_)) {
+    if (seq == next_seq(next_seq(rx_last_))) {
+      ++stats_.frames_ahead;
+    } else {
+      ++stats_.frames_repeated;
+    }
+    return ev;
+  }
+  std::array<std::uint8_t, kMaxFrameBytes> b;
+  for (std::size_t i = 0; i < words; ++i) {
+    b[2 * i] = high_byte(in[i]);
+    b[2 * i + 1] = low_byte(in[i]);
+  }
+  process_data(AdminByte{peer_dir_, type, seq, ack},
+               std::span<const std::uint8_t>(b.data() + 1, data_size_), ev);
+  return ev;
+}
+
+LinkEvents Link::receive_general(Time now, std::span<const Word> in) {
   LinkEvents ev;
   if (state_ == LinkState::ready && tx_active_ && tx_shown_[0] &&
       now - tx_since_ >= cfg_.ack_timeout) {
@@ -352,6 +426,47 @@ void Link::finish_message(LinkEvents& ev) {
 }
 
 void Link::transmit(Time now, std::span<Word> out) {
+  // The shortcut: a ready link shows IDLE or a fragment (docs/pcp.md, "Go-back-N"), chosen as
+  // transmit_general chooses, its words made straight from the PDU (the zeros after it in tx_ are
+  // the padding). ABORT, ABORT-ACK and a short output go the general way.
+  const auto words = static_cast<std::size_t>(cfg_.channel_words);
+  if (state_ != LinkState::ready || out.size() < words) {
+    transmit_general(now, out);
+    return;
+  }
+  unsigned admin = (static_cast<unsigned>(cfg_.direction) << 7U) |
+                   (static_cast<unsigned>(rx_last_) << 1U);
+  if (!tx_active_) {
+    admin |= kParityBit[admin >> 1U];  // IDLE: TYPE and SEQ 0, ACK the last accepted
+    out[0] = make_word(static_cast<std::uint8_t>(admin), 0);
+    if (words > 1) {  // 1, 2 or 4 words
+      out[1] = 0;
+      if (words > 2) {
+        out[2] = 0;
+        out[3] = 0;
+      }
+    }
+    return;
+  }
+  const std::size_t next = tx_offset_ + fragment_size(tx_offset_);
+  const int pick = (tx_shown_[0] && next < tx_size_ && tx_last_shown_ == 0 && !tx_back_) ? 1 : 0;
+  if (pick == 0 && tx_last_shown_ == 1) tx_back_ = true;
+  const std::size_t offset = pick == 0 ? tx_offset_ : next;
+  const FrameType type = offset + fragment_size(offset) == tx_size_
+                             ? FrameType::last
+                             : (offset == 0 ? FrameType::first : FrameType::middle);
+  const std::uint8_t seq = pick == 0 ? tx_seq_ : next_seq(tx_seq_);
+  if (pick == 0 && !tx_shown_[0]) tx_since_ = now;
+  tx_shown_[static_cast<std::size_t>(pick)] = true;
+  tx_last_shown_ = pick;
+  admin |= (static_cast<unsigned>(type) << 5U) | (static_cast<unsigned>(seq) << 3U);
+  admin |= kParityBit[admin >> 1U];
+  const std::uint8_t* d = tx_.data() + offset;
+  out[0] = make_word(static_cast<std::uint8_t>(admin), d[0]);
+  for (std::size_t i = 1; i < words; ++i) out[i] = make_word(d[2 * i - 1], d[2 * i]);
+}
+
+void Link::transmit_general(Time now, std::span<Word> out) {
   std::array<std::uint8_t, kMaxFrameBytes> b{};
   AdminByte a;
   a.dir = cfg_.direction;
