@@ -171,56 +171,115 @@ void Link::sequence_error(LinkEvents& ev) {
 LinkEvents Link::receive(Time now, std::span<const Word> in) {
   // The shortcut: a ready link, no ack timeout due, and a valid IDLE or data frame of the peer --
   // every cycle of a transfer. It decides as receive_general does (docs/pcp.md, "Go-back-N"),
-  // reading the words directly; anything else (another state, a timeout, a short, invalid or
-  // foreign frame, ABORT, ABORT-ACK, a control frame with data) goes the general way.
-  const auto words = static_cast<std::size_t>(cfg_.channel_words);
-  if (state_ != LinkState::ready || in.size() < words ||
-      (tx_active_ && tx_shown_[0] && now - tx_since_ >= cfg_.ack_timeout)) {
-    return receive_general(now, in);
+  // reading the words directly (receive_ready); anything else (another state, a timeout, a short,
+  // invalid or foreign frame, ABORT, ABORT-ACK, a control frame with data) goes the general way.
+  if (state_ == LinkState::ready &&
+      !(tx_active_ && tx_shown_[0] && now - tx_since_ >= cfg_.ack_timeout)) {
+    switch (cfg_.channel_words) {
+      case 4:
+        if (in.size() >= 4) return receive_ready<4>(now, in);
+        break;
+      case 2:
+        if (in.size() >= 2) return receive_ready<2>(now, in);
+        break;
+      default:
+        if (!in.empty()) return receive_ready<1>(now, in);
+        break;
+    }
   }
-  const Word w0 = in[0];
-  const std::uint8_t admin = high_byte(w0);
+  return receive_general(now, in);
+}
+
+template <std::size_t N>
+LinkEvents Link::receive_ready(Time now, std::span<const Word> in) {
+  // Whatever this does not decide itself it hands to receive_general before changing anything, so
+  // that the general way decides that frame from the same state.
+  std::array<Word, N> w;
+  for (std::size_t i = 0; i < N; ++i) w[i] = in[i];
+  const std::uint8_t admin = high_byte(w[0]);
   if (!kAdminValid[admin] || static_cast<Direction>(admin >> 7U) != peer_dir_) {
     return receive_general(now, in);
   }
   const auto type = static_cast<FrameType>((admin >> 5U) & 3U);
   const auto seq = static_cast<std::uint8_t>((admin >> 3U) & 3U);
   const auto ack = static_cast<std::uint8_t>((admin >> 1U) & 3U);
-  LinkEvents ev;
   if (type == FrameType::control) {
-    unsigned data = low_byte(w0);  // IDLE carries zero data bytes only
-    for (std::size_t i = 1; i < words; ++i) data |= in[i];
+    unsigned data = low_byte(w[0]);  // IDLE carries zero data bytes only
+    for (std::size_t i = 1; i < N; ++i) data |= w[i];
     if (seq != static_cast<std::uint8_t>(ControlCode::idle) || data != 0) {
       return receive_general(now, in);
     }
-    // An idle peer still acknowledges our fragments; mostly it names the base's predecessor.
-    if (((ack - tx_seq_ + 1U) & kSeqMask) != 0 && !take_ack(now, ack, ev)) sequence_error(ev);
-    return ev;
   }
-  if (((ack - tx_seq_ + 1U) & kSeqMask) != 0 && !take_ack(now, ack, ev)) {
-    sequence_error(ev);
-    return ev;
+  // The ACK (take_ack; an idle peer still acknowledges our fragments): mostly the base's
+  // predecessor, nothing new. One naming a fragment never shown is a sequence error.
+  LinkEvents ev;
+  const auto advance = static_cast<std::uint8_t>((ack - tx_seq_ + 1U) & kSeqMask);
+  if (advance != 0) {
+    if (!tx_active_ || advance == 3 || !tx_shown_[advance - 1U]) return receive_general(now, in);
+    ev.message_sent = move_window(now, advance);
   }
-  // An old frame seen again, or the second of a window whose first we missed: nothing to copy.
-  if (seq != next_seq(rx_last_)) {
-    if (seq == next_seq(next_seq(rx_last_))) {
+  if (type == FrameType::control) return ev;
+
+  // A data frame (process_data): only the next SEQ is new; the one before and the one before that
+  // are old frames seen again, the one after the second of a window whose first we missed.
+  const std::uint8_t last = rx_last_;
+  if (seq != next_seq(last)) {
+    if (seq == next_seq(next_seq(last))) {
       ++stats_.frames_ahead;
     } else {
       ++stats_.frames_repeated;
     }
     return ev;
   }
-  std::array<std::uint8_t, kMaxFrameBytes> b;
-  for (std::size_t i = 0; i < words; ++i) {
-    b[2 * i] = high_byte(in[i]);
-    b[2 * i + 1] = low_byte(in[i]);
+  if (rx_complete_) {
+    ++stats_.frames_refused;  // not acknowledged: the peer repeats it until we take it
+    return ev;
   }
-  process_data(AdminByte{peer_dir_, type, seq, ack},
-               std::span<const std::uint8_t>(b.data() + 1, data_size_), ev);
+  rx_last_ = seq;
+  constexpr std::size_t kData = 2 * N - 1;
+  if (type == FrameType::first ||
+      (type == FrameType::last && !rx_in_message_ && kData >= kMinPduSize)) {
+    rx_size_ = 0;  // FIRST opens a message; over 4 words a LAST outside one is a message alone
+    rx_expected_ = 0;
+    rx_in_message_ = true;
+  } else if (!rx_in_message_) {
+    ++stats_.fragments_orphaned;
+    return ev;
+  }
+  std::size_t size = rx_size_;
+  if (size + kData > rx_.size()) {
+    rx_in_message_ = false;
+    ++stats_.messages_dropped;
+    return ev;
+  }
+  std::uint8_t* p = rx_.data() + size;
+  p[0] = low_byte(w[0]);
+  for (std::size_t i = 1; i < N; ++i) {
+    p[2 * i - 1] = high_byte(w[i]);
+    p[2 * i] = low_byte(w[i]);
+  }
+  size += kData;
+  rx_size_ = size;
+  if (rx_expected_ == 0 && size >= 4) {
+    const std::size_t pdu = 4U + 2U * make_word(rx_[2], rx_[3]);
+    if (pdu < kMinPduSize || pdu > kMaxPduSize) {
+      rx_in_message_ = false;
+      ++stats_.messages_dropped;
+      return ev;
+    }
+    rx_expected_ = pdu;
+  }
+  if (type == FrameType::last) {
+    finish_message(ev);
+  } else if (rx_expected_ != 0 && size >= rx_expected_) {
+    rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
+    ++stats_.messages_dropped;
+  }
   return ev;
 }
 
-LinkEvents Link::receive_general(Time now, std::span<const Word> in) {
+// Out of line, so that the shortcuts' common case saves no registers for it.
+[[gnu::noinline]] LinkEvents Link::receive_general(Time now, std::span<const Word> in) {
   LinkEvents ev;
   if (state_ == LinkState::ready && tx_active_ && tx_shown_[0] &&
       now - tx_since_ >= cfg_.ack_timeout) {
@@ -336,6 +395,11 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   const auto advance = static_cast<std::uint8_t>((ack - tx_seq_ + 1U) & kSeqMask);  // 0, 1, 2
   if (advance == 0) return true;
   if (!tx_active_ || advance == 3 || !tx_shown_[advance - 1U]) return false;
+  if (move_window(now, advance)) ev.message_sent = true;
+  return true;
+}
+
+bool Link::move_window(Time now, std::uint8_t advance) {
   for (std::uint8_t k = 0; k < advance; ++k) {
     tx_offset_ += fragment_size(tx_offset_);
     tx_seq_ = next_seq(tx_seq_);
@@ -343,7 +407,6 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   if (tx_offset_ >= tx_size_) {
     tx_active_ = false;
     ++stats_.messages_sent;
-    ev.message_sent = true;
     return true;
   }
   // The window moves on: the new base may already have been shown (it was the fragment after).
@@ -351,7 +414,7 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   tx_last_shown_ -= advance;
   tx_back_ = false;
   tx_since_ = now;
-  return true;
+  return false;
 }
 
 void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev) {
@@ -427,32 +490,43 @@ void Link::finish_message(LinkEvents& ev) {
 
 void Link::transmit(Time now, std::span<Word> out) {
   // The shortcut: a ready link shows IDLE or a fragment (docs/pcp.md, "Go-back-N"), chosen as
-  // transmit_general chooses, its words made straight from the PDU (the zeros after it in tx_ are
-  // the padding). ABORT, ABORT-ACK and a short output go the general way.
-  const auto words = static_cast<std::size_t>(cfg_.channel_words);
-  if (state_ != LinkState::ready || out.size() < words) {
-    transmit_general(now, out);
-    return;
+  // transmit_general chooses, its words made straight from the PDU (transmit_ready). ABORT,
+  // ABORT-ACK and a short output go the general way.
+  if (state_ == LinkState::ready) {
+    switch (cfg_.channel_words) {
+      case 4:
+        if (out.size() >= 4) return transmit_ready<4>(now, out);
+        break;
+      case 2:
+        if (out.size() >= 2) return transmit_ready<2>(now, out);
+        break;
+      default:
+        if (!out.empty()) return transmit_ready<1>(now, out);
+        break;
+    }
   }
+  transmit_general(now, out);
+}
+
+template <std::size_t N>
+void Link::transmit_ready(Time now, std::span<Word> out) {
   unsigned admin = (static_cast<unsigned>(cfg_.direction) << 7U) |
                    (static_cast<unsigned>(rx_last_) << 1U);
   if (!tx_active_) {
     admin |= kParityBit[admin >> 1U];  // IDLE: TYPE and SEQ 0, ACK the last accepted
     out[0] = make_word(static_cast<std::uint8_t>(admin), 0);
-    if (words > 1) {  // 1, 2 or 4 words
-      out[1] = 0;
-      if (words > 2) {
-        out[2] = 0;
-        out[3] = 0;
-      }
-    }
+    for (std::size_t i = 1; i < N; ++i) out[i] = 0;
     return;
   }
-  const std::size_t next = tx_offset_ + fragment_size(tx_offset_);
-  const int pick = (tx_shown_[0] && next < tx_size_ && tx_last_shown_ == 0 && !tx_back_) ? 1 : 0;
-  if (pick == 0 && tx_last_shown_ == 1) tx_back_ = true;
-  const std::size_t offset = pick == 0 ? tx_offset_ : next;
-  const FrameType type = offset + fragment_size(offset) == tx_size_
+  constexpr std::size_t kData = 2 * N - 1;
+  const std::size_t size = tx_size_;
+  const std::size_t base = tx_offset_;
+  const std::size_t next = base + std::min(kData, size - base);
+  const int shown_last = tx_last_shown_;
+  const int pick = (tx_shown_[0] && next < size && shown_last == 0 && !tx_back_) ? 1 : 0;
+  if (pick == 0 && shown_last == 1) tx_back_ = true;
+  const std::size_t offset = pick == 0 ? base : next;
+  const FrameType type = offset + std::min(kData, size - offset) == size
                              ? FrameType::last
                              : (offset == 0 ? FrameType::first : FrameType::middle);
   const std::uint8_t seq = pick == 0 ? tx_seq_ : next_seq(tx_seq_);
@@ -461,12 +535,13 @@ void Link::transmit(Time now, std::span<Word> out) {
   tx_last_shown_ = pick;
   admin |= (static_cast<unsigned>(type) << 5U) | (static_cast<unsigned>(seq) << 3U);
   admin |= kParityBit[admin >> 1U];
+  // The fragment's bytes, then the zeros after the PDU in tx_ as the LAST frame's padding.
   const std::uint8_t* d = tx_.data() + offset;
   out[0] = make_word(static_cast<std::uint8_t>(admin), d[0]);
-  for (std::size_t i = 1; i < words; ++i) out[i] = make_word(d[2 * i - 1], d[2 * i]);
+  for (std::size_t i = 1; i < N; ++i) out[i] = make_word(d[2 * i - 1], d[2 * i]);
 }
 
-void Link::transmit_general(Time now, std::span<Word> out) {
+[[gnu::noinline]] void Link::transmit_general(Time now, std::span<Word> out) {
   std::array<std::uint8_t, kMaxFrameBytes> b{};
   AdminByte a;
   a.dir = cfg_.direction;

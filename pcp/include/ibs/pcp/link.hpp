@@ -165,11 +165,18 @@ class Link {
   void leave_acking();
   // False: the ACK names a fragment this side never showed (a sequence error).
   bool take_ack(Time now, std::uint8_t ack, LinkEvents& ev);
+  // Moves the base on by `advance` (1 or 2) acknowledged fragments; true: the message is sent.
+  bool move_window(Time now, std::uint8_t advance);
   [[nodiscard]] std::size_t fragment_size(std::size_t offset) const {
     return std::min(data_size_, tx_size_ - offset);
   }
   void process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev);
   void sequence_error(LinkEvents& ev);
+  // The shortcuts of a ready link over N channel words (link.cpp).
+  template <std::size_t N>
+  LinkEvents receive_ready(Time now, std::span<const Word> in);
+  template <std::size_t N>
+  void transmit_ready(Time now, std::span<Word> out);
   void finish_message(LinkEvents& ev);
 
   LinkConfig cfg_;
