@@ -270,7 +270,7 @@ LinkEvents Link::receive_ready(Time now, std::span<const Word> in) {
     rx_expected_ = pdu;
   }
   if (type == FrameType::last) {
-    finish_message(ev);
+    ev.message_received = finish_message();
   } else if (rx_expected_ != 0 && size >= rx_expected_) {
     rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
     ++stats_.messages_dropped;
@@ -462,30 +462,32 @@ void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, 
     rx_expected_ = pdu;
   }
   if (a.type == FrameType::last) {
-    finish_message(ev);
+    ev.message_received = finish_message();
   } else if (rx_expected_ != 0 && rx_size_ >= rx_expected_) {
     rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
     ++stats_.messages_dropped;
   }
 }
 
-void Link::finish_message(LinkEvents& ev) {
+bool Link::finish_message() {
   rx_in_message_ = false;
   const bool length_ok =
       rx_expected_ != 0 && rx_size_ >= rx_expected_ && rx_size_ - rx_expected_ < data_size_;
   bool ok = length_ok;
   if (ok) {
-    for (std::size_t i = rx_expected_; i < rx_size_; ++i) ok = ok && rx_[i] == 0;
+    unsigned padding = 0;
+    for (std::size_t i = rx_expected_; i < rx_size_; ++i) padding |= rx_[i];
+    ok = padding == 0;
   }
   if (!ok) {
     ++stats_.messages_dropped;
     rx_size_ = 0;
     rx_expected_ = 0;
-    return;
+    return false;
   }
   rx_complete_ = true;
   ++stats_.messages_received;
-  ev.message_received = true;
+  return true;
 }
 
 void Link::transmit(Time now, std::span<Word> out) {

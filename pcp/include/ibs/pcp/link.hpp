@@ -177,7 +177,8 @@ class Link {
   LinkEvents receive_ready(Time now, std::span<const Word> in);
   template <std::size_t N>
   void transmit_ready(Time now, std::span<Word> out);
-  void finish_message(LinkEvents& ev);
+  // Ends the message at its LAST fragment; true: it checked and waits in message().
+  bool finish_message();
 
   LinkConfig cfg_;
   std::size_t data_size_;
