@@ -190,6 +190,25 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
   return receive_general(now, in);
 }
 
+// Inline: the shortcut moves the window in most data frames of a transfer.
+inline bool Link::move_window(Time now, std::uint8_t advance) {
+  for (std::uint8_t k = 0; k < advance; ++k) {
+    tx_offset_ += fragment_size(tx_offset_);
+    tx_seq_ = next_seq(tx_seq_);
+  }
+  if (tx_offset_ >= tx_size_) {
+    tx_active_ = false;
+    ++stats_.messages_sent;
+    return true;
+  }
+  // The window moves on: the new base may already have been shown (it was the fragment after).
+  tx_shown_ = {advance == 1 && tx_shown_[1], false};
+  tx_last_shown_ -= advance;
+  tx_back_ = false;
+  tx_since_ = now;
+  return false;
+}
+
 template <std::size_t N>
 LinkEvents Link::receive_ready(Time now, std::span<const Word> in) {
   // Whatever this does not decide itself it hands to receive_general before changing anything, so
@@ -269,12 +288,18 @@ LinkEvents Link::receive_ready(Time now, std::span<const Word> in) {
     }
     rx_expected_ = pdu;
   }
-  if (type == FrameType::last) {
-    ev.message_received = finish_message();
-  } else if (rx_expected_ != 0 && size >= rx_expected_) {
+  if (type == FrameType::last) return finish_ready(ev.message_sent);
+  if (rx_expected_ != 0 && size >= rx_expected_) {
     rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
     ++stats_.messages_dropped;
   }
+  return ev;
+}
+
+LinkEvents Link::finish_ready(bool message_sent) {
+  LinkEvents ev;
+  ev.message_sent = message_sent;
+  ev.message_received = finish_message();
   return ev;
 }
 
@@ -399,23 +424,6 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   return true;
 }
 
-bool Link::move_window(Time now, std::uint8_t advance) {
-  for (std::uint8_t k = 0; k < advance; ++k) {
-    tx_offset_ += fragment_size(tx_offset_);
-    tx_seq_ = next_seq(tx_seq_);
-  }
-  if (tx_offset_ >= tx_size_) {
-    tx_active_ = false;
-    ++stats_.messages_sent;
-    return true;
-  }
-  // The window moves on: the new base may already have been shown (it was the fragment after).
-  tx_shown_ = {advance == 1 && tx_shown_[1], false};
-  tx_last_shown_ -= advance;
-  tx_back_ = false;
-  tx_since_ = now;
-  return false;
-}
 
 void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev) {
   // With a window of two the peer shows SEQs from last - 1 to last + 2 (docs/pcp.md): only

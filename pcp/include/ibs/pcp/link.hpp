@@ -179,6 +179,9 @@ class Link {
   void transmit_ready(Time now, std::span<Word> out);
   // Ends the message at its LAST fragment; true: it checked and waits in message().
   bool finish_message();
+  // The shortcut's events of a LAST fragment (a call of its own, so that the shortcut's other
+  // frames save no registers for it).
+  LinkEvents finish_ready(bool message_sent);
 
   LinkConfig cfg_;
   std::size_t data_size_;
