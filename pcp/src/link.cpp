@@ -137,9 +137,9 @@ void Link::leave_acking() {
 
 bool Link::send(std::span<const std::uint8_t> pdu) {
   if (!can_send() || pdu.size() < kMinPduSize || pdu.size() > kMaxPduSize) return false;
-  PduHeader h;
-  // The receiver delimits the message by its count word, so it must be right.
-  if (decode_header(pdu, h) != PduError::none) return false;
+  // The receiver delimits the message by its count word, so it must be right (decode_header's
+  // count check; the size is in range here).
+  if (pdu.size() != 4U + 2U * make_word(pdu[2], pdu[3])) return false;
   std::copy(pdu.begin(), pdu.end(), tx_.begin());
   std::fill_n(tx_.begin() + static_cast<std::ptrdiff_t>(pdu.size()), kMaxFrameData, std::uint8_t{0});
   tx_size_ = pdu.size();
@@ -536,7 +536,9 @@ void Link::transmit_ready(Time now, std::span<Word> out) {
   const int pick = (tx_shown_[0] && next < size && shown_last == 0 && !tx_back_) ? 1 : 0;
   if (pick == 0 && shown_last == 1) tx_back_ = true;
   const std::size_t offset = pick == 0 ? base : next;
-  const FrameType type = offset + std::min(kData, size - offset) == size
+  // offset < size (the base of an unfinished message, or the fragment after it): the fragment
+  // is the last when the rest fits the frame.
+  const FrameType type = size - offset <= kData
                              ? FrameType::last
                              : (offset == 0 ? FrameType::first : FrameType::middle);
   const std::uint8_t seq = pick == 0 ? tx_seq_ : next_seq(tx_seq_);
