@@ -162,12 +162,6 @@ void Link::release_message() {
   rx_expected_ = 0;
 }
 
-void Link::sequence_error(LinkEvents& ev) {
-  ++stats_.sequence_errors;
-  abort();
-  ev.reset = true;
-}
-
 LinkEvents Link::receive(Time now, std::span<const Word> in) {
   // The shortcut: a ready link, no ack timeout due, and a valid IDLE or data frame of the peer --
   // every cycle of a transfer. It decides as receive_general does (docs/pcp.md, "Go-back-N"),

@@ -171,7 +171,6 @@ class Link {
     return std::min(data_size_, tx_size_ - offset);
   }
   void process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev);
-  void sequence_error(LinkEvents& ev);
   // The shortcuts of a ready link over N channel words (link.cpp).
   template <std::size_t N>
   LinkEvents receive_ready(Time now, std::span<const Word> in);
