@@ -141,7 +141,8 @@ bool Link::send(std::span<const std::uint8_t> pdu) {
   // count check; the size is in range here).
   if (pdu.size() != 4U + 2U * make_word(pdu[2], pdu[3])) return false;
   std::copy(pdu.begin(), pdu.end(), tx_.begin());
-  std::fill_n(tx_.begin() + static_cast<std::ptrdiff_t>(pdu.size()), kMaxFrameData, std::uint8_t{0});
+  std::fill_n(tx_.begin() + static_cast<std::ptrdiff_t>(pdu.size()), kMaxFrameData,
+              std::uint8_t{0});
   tx_size_ = pdu.size();
   tx_offset_ = 0;
   tx_active_ = true;
@@ -418,7 +419,6 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   return true;
 }
 
-
 void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev) {
   // With a window of two the peer shows SEQs from last - 1 to last + 2 (docs/pcp.md): only
   // last + 1 is new; last and last - 1 are old frames seen again, last + 2 the second of a window
@@ -514,8 +514,8 @@ void Link::transmit(Time now, std::span<Word> out) {
 
 template <std::size_t N>
 void Link::transmit_ready(Time now, std::span<Word> out) {
-  unsigned admin = (static_cast<unsigned>(cfg_.direction) << 7U) |
-                   (static_cast<unsigned>(rx_last_) << 1U);
+  unsigned admin =
+      (static_cast<unsigned>(cfg_.direction) << 7U) | (static_cast<unsigned>(rx_last_) << 1U);
   if (!tx_active_) {
     admin |= kParityBit[admin >> 1U];  // IDLE: TYPE and SEQ 0, ACK the last accepted
     out[0] = make_word(static_cast<std::uint8_t>(admin), 0);

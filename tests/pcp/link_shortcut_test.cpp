@@ -32,7 +32,9 @@ TEST(LinkShortcuts, TheAdminTablesAreTheDocumentedBitRules) {
   }
 }
 
-unsigned below(std::mt19937& rng, unsigned n) { return static_cast<unsigned>(rng() % n); }
+unsigned below(std::mt19937& rng, unsigned n) {
+  return static_cast<unsigned>(rng() % n);
+}
 
 std::vector<std::uint8_t> random_pdu(std::mt19937& rng) {
   const std::size_t count = 1 + below(rng, 65);  // 6..134 bytes
@@ -61,7 +63,8 @@ void run(int words, Direction dir, std::uint32_t seed, int cycles, LinkStats& to
   const auto chance = [&](unsigned percent) { return below(rng, 100) < percent; };
   const bool start_ready = chance(50);
   const LinkConfig cfg{words, dir, 10ms, start_ready};
-  const Direction peer_dir = dir == Direction::to_server ? Direction::to_client : Direction::to_server;
+  const Direction peer_dir =
+      dir == Direction::to_server ? Direction::to_client : Direction::to_server;
   Link fast(cfg);
   Link general(cfg);
   Link peer(LinkConfig{words, peer_dir, 10ms, start_ready});
@@ -77,15 +80,18 @@ void run(int words, Direction dir, std::uint32_t seed, int cycles, LinkStats& to
     Frame in = from_peer.back();
     const unsigned how = below(rng, 100);
     if (how < 15) {
-      in = from_peer[from_peer.size() - 1 - std::min<std::size_t>(below(rng, 4), from_peer.size() - 1)];
+      in = from_peer[from_peer.size() - 1 -
+                     std::min<std::size_t>(below(rng, 4), from_peer.size() - 1)];
     } else if (how < 20) {
       for (auto& w : in) w = static_cast<Word>(rng());
     } else if (how < 30) {
       AdminByte a{peer_dir, static_cast<FrameType>(below(rng, 4)),
-                  static_cast<std::uint8_t>(below(rng, 4)), static_cast<std::uint8_t>(below(rng, 4))};
+                  static_cast<std::uint8_t>(below(rng, 4)),
+                  static_cast<std::uint8_t>(below(rng, 4))};
       if (a.type == FrameType::control && a.seq == 3) a.seq = 0;
       in[0] = make_word(encode_admin(a), low_byte(in[0]));
-      if (chance(30)) in[0] = static_cast<Word>(in[0] ^ (1U << below(rng, 8)));  // parity, direction
+      if (chance(30))
+        in[0] = static_cast<Word>(in[0] ^ (1U << below(rng, 8)));  // parity, direction
     }
     const std::size_t in_size = chance(2) ? n - 1 : n;
     const LinkEvents ef = fast.receive(now, std::span<const Word>(in.data(), in_size));
@@ -120,9 +126,10 @@ void run(int words, Direction dir, std::uint32_t seed, int cycles, LinkStats& to
     from_pair.push_back(of);
 
     // The peer: the pair's newest frame or an older one, its own messages and releases.
-    const Frame& seen =
-        chance(85) ? from_pair.back()
-                   : from_pair[from_pair.size() - 1 - std::min<std::size_t>(below(rng, 3), from_pair.size() - 1)];
+    const Frame& seen = chance(85)
+                            ? from_pair.back()
+                            : from_pair[from_pair.size() - 1 -
+                                        std::min<std::size_t>(below(rng, 3), from_pair.size() - 1)];
     peer.receive(now, std::span<const Word>(seen.data(), n));
     if (peer.can_send() && chance(30)) peer.send(random_pdu(rng));
     if (peer.has_message() && chance(70)) peer.release_message();
@@ -172,9 +179,11 @@ TEST(LinkShortcuts, RandomTrafficGivesTheSameEventsCountersAndWordsBothWays) {
   EXPECT_GT(sum.ack_timeouts, 0U);
   EXPECT_GT(sum.aborts_local, 0U);
   EXPECT_GT(sum.aborts_peer, 0U);
-  std::printf("compared: %u repeated, %u ahead, %u refused, %u sent, %u received, %u dropped, %u sequence errors, %u ack timeouts\n",
-              sum.frames_repeated, sum.frames_ahead, sum.frames_refused, sum.messages_sent,
-              sum.messages_received, sum.messages_dropped, sum.sequence_errors, sum.ack_timeouts);
+  std::printf(
+      "compared: %u repeated, %u ahead, %u refused, %u sent, %u received, %u dropped, %u sequence "
+      "errors, %u ack timeouts\n",
+      sum.frames_repeated, sum.frames_ahead, sum.frames_refused, sum.messages_sent,
+      sum.messages_received, sum.messages_dropped, sum.sequence_errors, sum.ack_timeouts);
 }
 
 }  // namespace
