@@ -10,6 +10,10 @@
 // - send() takes exactly the PDUs it documents (6..134 bytes, count word matching, link ready
 //   and idle), and the statistics never go down.
 //
+// In both modes every link has a shadow of the same configuration that gets the same calls but
+// through receive_general and transmit_general: events, counters, state, messages and the words
+// shown must be the same (the shortcut of receive/transmit, LinkShortcuts.* in the tests).
+//
 // Mode 1, a master link and a servo link joined by a faulty bus that delivers, each way and each
 // cycle, the sender's current frame or an older one, never a newer one and never one older than
 // what it delivered before (lost and repeated cycles, docs/pcp.md "Why the faults cannot make a
@@ -95,6 +99,21 @@ void check_own_frame(const Link& l, const Frame& f, const Where& where) {
   }
 }
 
+// The link and its shadow (receive_general, transmit_general) agree in everything visible.
+template <typename Where>
+void check_shadow(const Link& l, const Link& shadow, const Where& where) {
+  if (l.state() != shadow.state()) fail("the general path's state differs: " + where());
+  if (!(l.stats() == shadow.stats())) fail("the general path's counters differ: " + where());
+  if (l.sending() != shadow.sending() || l.can_send() != shadow.can_send()) {
+    fail("the general path's sending differs: " + where());
+  }
+  const auto a = l.message();
+  const auto b = shadow.message();
+  if (l.has_message() != shadow.has_message() || !std::equal(a.begin(), a.end(), b.begin(), b.end())) {
+    fail("the general path's message differs: " + where());
+  }
+}
+
 bool stats_monotonic(const LinkStats& a, const LinkStats& b) {
   return b.frames_invalid >= a.frames_invalid && b.frames_repeated >= a.frames_repeated &&
          b.frames_ahead >= a.frames_ahead &&
@@ -112,6 +131,7 @@ void run_single(ibs::fuzz::Input& in) {
   cfg.start_ready = (h & 0x20U) != 0;
   cfg.ack_timeout = std::chrono::milliseconds(1 + in.ConsumeIntegral<std::uint8_t>());
   Link link(cfg);
+  Link shadow(cfg);
   const auto words = static_cast<std::size_t>(cfg.channel_words);
   fuzz::PlausibleMessages model(cfg.channel_words, cfg.direction == Direction::to_client);
   Time now{0};
@@ -125,12 +145,16 @@ void run_single(ibs::fuzz::Input& in) {
       const bool fits = pdu.size() >= kMinPduSize && pdu.size() <= kMaxPduSize &&
                         pdu.size() == 4U + 2U * ((static_cast<std::size_t>(pdu[2]) << 8U) | pdu[3]);
       const bool sent = link.send(pdu);
+      if (shadow.send(pdu) != sent) fail("send() differs on the general path");
       if (sent != (could && fits)) {
         fail("send() of " + std::to_string(pdu.size()) + " bytes " + hex(pdu) + " returned " + std::to_string(sent) +
              " (ready and idle " + std::to_string(could) + ", fits " + std::to_string(fits) + ")");
       }
     }
-    if ((op & 0x80U) != 0 && (op & 0x30U) == 0x30U) link.abort();
+    if ((op & 0x80U) != 0 && (op & 0x30U) == 0x30U) {
+      link.abort();
+      shadow.abort();
+    }
     Frame f{};
     for (std::size_t i = 0; i < words; ++i) f[i] = in.ConsumeIntegral<std::uint16_t>();
     const LinkStats before = link.stats();
@@ -138,6 +162,10 @@ void run_single(ibs::fuzz::Input& in) {
     const std::vector<Bytes> plausible = model.feed(std::span<const Word>(f.data(), words));
     const LinkEvents ev = link.receive(now, std::span<const Word>(f.data(), words));
     const auto where = [&] { return "frames (first word in>out):" + recent.str(); };
+    if (!(shadow.receive_general(now, std::span<const Word>(f.data(), words)) == ev)) {
+      fail("receive_general's events differ: " + where());
+    }
+    check_shadow(link, shadow, where);
     if (!stats_monotonic(before, link.stats())) fail("a statistic went down: " + where());
     if (ev.message_received) {
       if (!link.has_message()) fail("message_received without a message: " + where());
@@ -153,10 +181,17 @@ void run_single(ibs::fuzz::Input& in) {
       }
     }
     // The user takes the message now, or later (flow control).
-    if (link.has_message() && (op & 0x30U) != 0x10U) link.release_message();
+    if (link.has_message() && (op & 0x30U) != 0x10U) {
+      link.release_message();
+      shadow.release_message();
+    }
     Frame out{};
     link.transmit(now, std::span<Word>(out.data(), words));
+    Frame shadow_out{};
+    shadow.transmit_general(now, std::span<Word>(shadow_out.data(), words));
     recent.words(f[0], out[0]);
+    if (out != shadow_out) fail("transmit_general shows other words: " + where());
+    check_shadow(link, shadow, where);
     check_own_frame(link, out, where);
   }
 }
@@ -187,16 +222,34 @@ void run_pair(ibs::fuzz::Input& in) {
   const auto ack_timeout = std::chrono::milliseconds(20 + in.ConsumeIntegral<std::uint8_t>());
   Link master(LinkConfig{words, Direction::to_server, ack_timeout, (h & 0x10U) != 0});
   Link servo(LinkConfig{words, Direction::to_client, ack_timeout, (h & 0x10U) != 0});
+  Link master_shadow(master.config());
+  Link servo_shadow(servo.config());
   const auto n = static_cast<std::size_t>(words);
+  // The shadow shows the same words as its link (transmit_general against transmit).
+  const auto show = [&](Link& l, Link& shadow, Time t, Frame& out) {
+    l.transmit(t, std::span<Word>(out.data(), n));
+    Frame g{};
+    shadow.transmit_general(t, std::span<Word>(g.data(), n));
+    if (g != out) fail("transmit_general shows other words than transmit");
+    check_shadow(l, shadow, [] { return std::string("after transmit"); });
+  };
+  const auto take = [&](Link& l, Link& shadow, Time t, const Frame& frame) {
+    const LinkEvents ev = l.receive(t, std::span<const Word>(frame.data(), n));
+    if (!(shadow.receive_general(t, std::span<const Word>(frame.data(), n)) == ev)) {
+      fail("receive_general's events differ from receive's");
+    }
+    check_shadow(l, shadow, [] { return std::string("after receive"); });
+    return ev;
+  };
   Wire to_servo;
   Wire to_master;
   Sent from_master;
   Sent from_servo;
   Time now{0};
   Frame f{};
-  master.transmit(now, std::span<Word>(f.data(), n));
+  show(master, master_shadow, now, f);
   to_servo.frames.push_back(f);
-  servo.transmit(now, std::span<Word>(f.data(), n));
+  show(servo, servo_shadow, now, f);
   to_master.frames.push_back(f);
 
   const auto on_delivery = [&](Link& receiver, Sent& sent, const std::string& who) {
@@ -224,37 +277,53 @@ void run_pair(ibs::fuzz::Input& in) {
     const std::uint8_t where = in.ConsumeIntegral<std::uint8_t>();
     now += std::chrono::microseconds(250 + 250 * ((op >> 6U) & 3U));
     // Receive what the bus delivers, then send this cycle's frames.
-    const LinkEvents es = servo.receive(now, std::span<const Word>(to_servo.deliver(op & 3U, where).data(), n));
+    const LinkEvents es = take(servo, servo_shadow, now, to_servo.deliver(op & 3U, where));
     if (es.message_received) on_delivery(servo, from_master, "the servo");
     if (es.message_sent) on_sent(from_servo, "the servo");
-    const LinkEvents em = master.receive(now, std::span<const Word>(to_master.deliver((op >> 2U) & 3U, where).data(), n));
+    const LinkEvents em = take(master, master_shadow, now, to_master.deliver((op >> 2U) & 3U, where));
     if (em.message_received) on_delivery(master, from_servo, "the master");
     if (em.message_sent) on_sent(from_master, "the master");
 
     const std::uint8_t act = in.ConsumeIntegral<std::uint8_t>();
     if ((act & 0x01U) != 0 && master.can_send()) {
       const Bytes p = unique(make_pdu(in), from_master.messages.size());
-      if (master.send(p)) {
+      const bool sent = master.send(p);
+      if (master_shadow.send(p) != sent) fail("send() differs on the general path");
+      if (sent) {
         from_master.messages.push_back(p);
         from_master.was_delivered.push_back(false);
       }
     }
     if ((act & 0x02U) != 0 && servo.can_send()) {
       const Bytes p = unique(make_pdu(in), from_servo.messages.size());
-      if (servo.send(p)) {
+      const bool sent = servo.send(p);
+      if (servo_shadow.send(p) != sent) fail("send() differs on the general path");
+      if (sent) {
         from_servo.messages.push_back(p);
         from_servo.was_delivered.push_back(false);
       }
     }
-    if ((act & 0x0CU) == 0x0CU) master.abort();
-    if ((act & 0x30U) == 0x30U) servo.abort();
+    if ((act & 0x0CU) == 0x0CU) {
+      master.abort();
+      master_shadow.abort();
+    }
+    if ((act & 0x30U) == 0x30U) {
+      servo.abort();
+      servo_shadow.abort();
+    }
     // Messages are taken at once, or a few cycles late (flow control).
-    if (servo.has_message() && (act & 0x40U) == 0) servo.release_message();
-    if (master.has_message() && (act & 0x80U) == 0) master.release_message();
+    if (servo.has_message() && (act & 0x40U) == 0) {
+      servo.release_message();
+      servo_shadow.release_message();
+    }
+    if (master.has_message() && (act & 0x80U) == 0) {
+      master.release_message();
+      master_shadow.release_message();
+    }
 
-    master.transmit(now, std::span<Word>(f.data(), n));
+    show(master, master_shadow, now, f);
     to_servo.frames.push_back(f);
-    servo.transmit(now, std::span<Word>(f.data(), n));
+    show(servo, servo_shadow, now, f);
     to_master.frames.push_back(f);
     if (std::getenv("IBS_FUZZ_TRACE") != nullptr) {
       std::fprintf(stderr, "t=%lld servo saw #%zu %s, master saw #%zu %s | master shows %s (%s) servo shows %s (%s) | es r%d s%d rx%d em r%d s%d rx%d | sent m%zu s%zu\n",

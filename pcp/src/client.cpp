@@ -217,7 +217,8 @@ void Client::fail_protocol(Time now) {
 }
 
 void Client::handle_message(Time now, std::span<const std::uint8_t> msg) {
-  ResponsePdu r;
+  // decode() sets every field: the member saves building a second one each message.
+  ResponsePdu& r = response_;
   if (decode(msg, r) != PduError::none) {
     fail_protocol(now);
     return;

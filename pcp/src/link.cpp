@@ -15,6 +15,22 @@ constexpr std::uint8_t next_seq(std::uint8_t s) {
   return static_cast<std::uint8_t>((s + 1U) & kSeqMask);
 }
 
+// The administrative byte's rules as tables (docs/pcp.md, "Administrative byte"), so that a frame
+// costs a load instead of a bit count. kParityBit[b >> 1]: the P bit that gives bits 7..1 of b odd
+// parity. kAdminValid[b]: odd parity, and not the invalid control code 11.
+constexpr std::array<std::uint8_t, 128> kParityBit = [] {
+  std::array<std::uint8_t, 128> t{};
+  for (unsigned i = 0; i < t.size(); ++i) t[i] = std::popcount(i) % 2 == 0 ? 1 : 0;
+  return t;
+}();
+constexpr std::array<bool, 256> kAdminValid = [] {
+  std::array<bool, 256> t{};
+  for (unsigned b = 0; b < t.size(); ++b) {
+    t[b] = std::popcount(b) % 2 == 1 && !(((b >> 5U) & 3U) == 0 && ((b >> 3U) & 3U) == 3);
+  }
+  return t;
+}();
+
 }  // namespace
 
 std::uint8_t encode_admin(AdminByte a) {
@@ -23,18 +39,17 @@ std::uint8_t encode_admin(AdminByte a) {
   b |= (static_cast<unsigned>(a.seq) & 3U) << 3U;
   b |= (static_cast<unsigned>(a.ack) & 3U) << 1U;
   // Odd parity: the byte always has an odd number of ones.
-  if (std::popcount(b) % 2 == 0) b |= 1U;
+  b |= kParityBit[b >> 1U];
   return static_cast<std::uint8_t>(b);
 }
 
 std::optional<AdminByte> decode_admin(std::uint8_t b) {
-  if (std::popcount(static_cast<unsigned>(b)) % 2 == 0) return std::nullopt;
+  if (!kAdminValid[b]) return std::nullopt;  // even parity, or the control code 11
   AdminByte a;
   a.dir = static_cast<Direction>((b >> 7U) & 1U);
   a.type = static_cast<FrameType>((b >> 5U) & 3U);
   a.seq = static_cast<std::uint8_t>((b >> 3U) & 3U);
   a.ack = static_cast<std::uint8_t>((b >> 1U) & 3U);
-  if (a.type == FrameType::control && a.seq == 3) return std::nullopt;
   return a;
 }
 
@@ -122,10 +137,12 @@ void Link::leave_acking() {
 
 bool Link::send(std::span<const std::uint8_t> pdu) {
   if (!can_send() || pdu.size() < kMinPduSize || pdu.size() > kMaxPduSize) return false;
-  PduHeader h;
-  // The receiver delimits the message by its count word, so it must be right.
-  if (decode_header(pdu, h) != PduError::none) return false;
+  // The receiver delimits the message by its count word, so it must be right (decode_header's
+  // count check; the size is in range here).
+  if (pdu.size() != 4U + 2U * make_word(pdu[2], pdu[3])) return false;
   std::copy(pdu.begin(), pdu.end(), tx_.begin());
+  std::fill_n(tx_.begin() + static_cast<std::ptrdiff_t>(pdu.size()), kMaxFrameData,
+              std::uint8_t{0});
   tx_size_ = pdu.size();
   tx_offset_ = 0;
   tx_active_ = true;
@@ -147,6 +164,142 @@ void Link::release_message() {
 }
 
 LinkEvents Link::receive(Time now, std::span<const Word> in) {
+  // The shortcut: a ready link, no ack timeout due, and a valid IDLE or data frame of the peer --
+  // every cycle of a transfer. It decides as receive_general does (docs/pcp.md, "Go-back-N"),
+  // reading the words directly (receive_ready); anything else (another state, a timeout, a short,
+  // invalid or foreign frame, ABORT, ABORT-ACK, a control frame with data) goes the general way.
+  if (state_ == LinkState::ready &&
+      !(tx_active_ && tx_shown_[0] && now - tx_since_ >= cfg_.ack_timeout)) {
+    switch (cfg_.channel_words) {
+      case 4:
+        if (in.size() >= 4) return receive_ready<4>(now, in);
+        break;
+      case 2:
+        if (in.size() >= 2) return receive_ready<2>(now, in);
+        break;
+      default:
+        if (!in.empty()) return receive_ready<1>(now, in);
+        break;
+    }
+  }
+  return receive_general(now, in);
+}
+
+// Inline: the shortcut moves the window in most data frames of a transfer.
+inline bool Link::move_window(Time now, std::uint8_t advance) {
+  for (std::uint8_t k = 0; k < advance; ++k) {
+    tx_offset_ += fragment_size(tx_offset_);
+    tx_seq_ = next_seq(tx_seq_);
+  }
+  if (tx_offset_ >= tx_size_) {
+    tx_active_ = false;
+    ++stats_.messages_sent;
+    return true;
+  }
+  // The window moves on: the new base may already have been shown (it was the fragment after).
+  tx_shown_ = {advance == 1 && tx_shown_[1], false};
+  tx_last_shown_ -= advance;
+  tx_back_ = false;
+  tx_since_ = now;
+  return false;
+}
+
+template <std::size_t N>
+LinkEvents Link::receive_ready(Time now, std::span<const Word> in) {
+  // Whatever this does not decide itself it hands to receive_general before changing anything, so
+  // that the general way decides that frame from the same state.
+  std::array<Word, N> w;
+  for (std::size_t i = 0; i < N; ++i) w[i] = in[i];
+  const std::uint8_t admin = high_byte(w[0]);
+  if (!kAdminValid[admin] || static_cast<Direction>(admin >> 7U) != peer_dir_) {
+    return receive_general(now, in);
+  }
+  const auto type = static_cast<FrameType>((admin >> 5U) & 3U);
+  const auto seq = static_cast<std::uint8_t>((admin >> 3U) & 3U);
+  const auto ack = static_cast<std::uint8_t>((admin >> 1U) & 3U);
+  if (type == FrameType::control) {
+    unsigned data = low_byte(w[0]);  // IDLE carries zero data bytes only
+    for (std::size_t i = 1; i < N; ++i) data |= w[i];
+    if (seq != static_cast<std::uint8_t>(ControlCode::idle) || data != 0) {
+      return receive_general(now, in);
+    }
+  }
+  // The ACK (take_ack; an idle peer still acknowledges our fragments): mostly the base's
+  // predecessor, nothing new. One naming a fragment never shown is a sequence error.
+  LinkEvents ev;
+  const auto advance = static_cast<std::uint8_t>((ack - tx_seq_ + 1U) & kSeqMask);
+  if (advance != 0) {
+    if (!tx_active_ || advance == 3 || !tx_shown_[advance - 1U]) return receive_general(now, in);
+    ev.message_sent = move_window(now, advance);
+  }
+  if (type == FrameType::control) return ev;
+
+  // A data frame (process_data): only the next SEQ is new; the one before and the one before that
+  // are old frames seen again, the one after the second of a window whose first we missed.
+  const std::uint8_t last = rx_last_;
+  if (seq != next_seq(last)) {
+    if (seq == next_seq(next_seq(last))) {
+      ++stats_.frames_ahead;
+    } else {
+      ++stats_.frames_repeated;
+    }
+    return ev;
+  }
+  if (rx_complete_) {
+    ++stats_.frames_refused;  // not acknowledged: the peer repeats it until we take it
+    return ev;
+  }
+  rx_last_ = seq;
+  constexpr std::size_t kData = 2 * N - 1;
+  if (type == FrameType::first ||
+      (type == FrameType::last && !rx_in_message_ && kData >= kMinPduSize)) {
+    rx_size_ = 0;  // FIRST opens a message; over 4 words a LAST outside one is a message alone
+    rx_expected_ = 0;
+    rx_in_message_ = true;
+  } else if (!rx_in_message_) {
+    ++stats_.fragments_orphaned;
+    return ev;
+  }
+  std::size_t size = rx_size_;
+  if (size + kData > rx_.size()) {
+    rx_in_message_ = false;
+    ++stats_.messages_dropped;
+    return ev;
+  }
+  std::uint8_t* p = rx_.data() + size;
+  p[0] = low_byte(w[0]);
+  for (std::size_t i = 1; i < N; ++i) {
+    p[2 * i - 1] = high_byte(w[i]);
+    p[2 * i] = low_byte(w[i]);
+  }
+  size += kData;
+  rx_size_ = size;
+  if (rx_expected_ == 0 && size >= 4) {
+    const std::size_t pdu = 4U + 2U * make_word(rx_[2], rx_[3]);
+    if (pdu < kMinPduSize || pdu > kMaxPduSize) {
+      rx_in_message_ = false;
+      ++stats_.messages_dropped;
+      return ev;
+    }
+    rx_expected_ = pdu;
+  }
+  if (type == FrameType::last) return finish_ready(ev.message_sent);
+  if (rx_expected_ != 0 && size >= rx_expected_) {
+    rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
+    ++stats_.messages_dropped;
+  }
+  return ev;
+}
+
+LinkEvents Link::finish_ready(bool message_sent) {
+  LinkEvents ev;
+  ev.message_sent = message_sent;
+  ev.message_received = finish_message();
+  return ev;
+}
+
+// Out of line, so that the shortcuts' common case saves no registers for it.
+[[gnu::noinline]] LinkEvents Link::receive_general(Time now, std::span<const Word> in) {
   LinkEvents ev;
   if (state_ == LinkState::ready && tx_active_ && tx_shown_[0] &&
       now - tx_since_ >= cfg_.ack_timeout) {
@@ -262,21 +415,7 @@ bool Link::take_ack(Time now, std::uint8_t ack, LinkEvents& ev) {
   const auto advance = static_cast<std::uint8_t>((ack - tx_seq_ + 1U) & kSeqMask);  // 0, 1, 2
   if (advance == 0) return true;
   if (!tx_active_ || advance == 3 || !tx_shown_[advance - 1U]) return false;
-  for (std::uint8_t k = 0; k < advance; ++k) {
-    tx_offset_ += fragment_size(tx_offset_);
-    tx_seq_ = next_seq(tx_seq_);
-  }
-  if (tx_offset_ >= tx_size_) {
-    tx_active_ = false;
-    ++stats_.messages_sent;
-    ev.message_sent = true;
-    return true;
-  }
-  // The window moves on: the new base may already have been shown (it was the fragment after).
-  tx_shown_ = {advance == 1 && tx_shown_[1], false};
-  tx_last_shown_ -= advance;
-  tx_back_ = false;
-  tx_since_ = now;
+  if (move_window(now, advance)) ev.message_sent = true;
   return true;
 }
 
@@ -325,33 +464,90 @@ void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, 
     rx_expected_ = pdu;
   }
   if (a.type == FrameType::last) {
-    finish_message(ev);
+    ev.message_received = finish_message();
   } else if (rx_expected_ != 0 && rx_size_ >= rx_expected_) {
     rx_in_message_ = false;  // the message is complete but its fragment does not say LAST
     ++stats_.messages_dropped;
   }
 }
 
-void Link::finish_message(LinkEvents& ev) {
+bool Link::finish_message() {
   rx_in_message_ = false;
   const bool length_ok =
       rx_expected_ != 0 && rx_size_ >= rx_expected_ && rx_size_ - rx_expected_ < data_size_;
   bool ok = length_ok;
   if (ok) {
-    for (std::size_t i = rx_expected_; i < rx_size_; ++i) ok = ok && rx_[i] == 0;
+    unsigned padding = 0;
+    for (std::size_t i = rx_expected_; i < rx_size_; ++i) padding |= rx_[i];
+    ok = padding == 0;
   }
   if (!ok) {
     ++stats_.messages_dropped;
     rx_size_ = 0;
     rx_expected_ = 0;
-    return;
+    return false;
   }
   rx_complete_ = true;
   ++stats_.messages_received;
-  ev.message_received = true;
+  return true;
 }
 
 void Link::transmit(Time now, std::span<Word> out) {
+  // The shortcut: a ready link shows IDLE or a fragment (docs/pcp.md, "Go-back-N"), chosen as
+  // transmit_general chooses, its words made straight from the PDU (transmit_ready). ABORT,
+  // ABORT-ACK and a short output go the general way.
+  if (state_ == LinkState::ready) {
+    switch (cfg_.channel_words) {
+      case 4:
+        if (out.size() >= 4) return transmit_ready<4>(now, out);
+        break;
+      case 2:
+        if (out.size() >= 2) return transmit_ready<2>(now, out);
+        break;
+      default:
+        if (!out.empty()) return transmit_ready<1>(now, out);
+        break;
+    }
+  }
+  transmit_general(now, out);
+}
+
+template <std::size_t N>
+void Link::transmit_ready(Time now, std::span<Word> out) {
+  unsigned admin =
+      (static_cast<unsigned>(cfg_.direction) << 7U) | (static_cast<unsigned>(rx_last_) << 1U);
+  if (!tx_active_) {
+    admin |= kParityBit[admin >> 1U];  // IDLE: TYPE and SEQ 0, ACK the last accepted
+    out[0] = make_word(static_cast<std::uint8_t>(admin), 0);
+    for (std::size_t i = 1; i < N; ++i) out[i] = 0;
+    return;
+  }
+  constexpr std::size_t kData = 2 * N - 1;
+  const std::size_t size = tx_size_;
+  const std::size_t base = tx_offset_;
+  const std::size_t next = base + std::min(kData, size - base);
+  const int shown_last = tx_last_shown_;
+  const int pick = (tx_shown_[0] && next < size && shown_last == 0 && !tx_back_) ? 1 : 0;
+  if (pick == 0 && shown_last == 1) tx_back_ = true;
+  const std::size_t offset = pick == 0 ? base : next;
+  // offset < size (the base of an unfinished message, or the fragment after it): the fragment
+  // is the last when the rest fits the frame.
+  const FrameType type = size - offset <= kData
+                             ? FrameType::last
+                             : (offset == 0 ? FrameType::first : FrameType::middle);
+  const std::uint8_t seq = pick == 0 ? tx_seq_ : next_seq(tx_seq_);
+  if (pick == 0 && !tx_shown_[0]) tx_since_ = now;
+  tx_shown_[static_cast<std::size_t>(pick)] = true;
+  tx_last_shown_ = pick;
+  admin |= (static_cast<unsigned>(type) << 5U) | (static_cast<unsigned>(seq) << 3U);
+  admin |= kParityBit[admin >> 1U];
+  // The fragment's bytes, then the zeros after the PDU in tx_ as the LAST frame's padding.
+  const std::uint8_t* d = tx_.data() + offset;
+  out[0] = make_word(static_cast<std::uint8_t>(admin), d[0]);
+  for (std::size_t i = 1; i < N; ++i) out[i] = make_word(d[2 * i - 1], d[2 * i]);
+}
+
+[[gnu::noinline]] void Link::transmit_general(Time now, std::span<Word> out) {
   std::array<std::uint8_t, kMaxFrameBytes> b{};
   AdminByte a;
   a.dir = cfg_.direction;

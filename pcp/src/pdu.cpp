@@ -1,8 +1,15 @@
 #include "ibs/pcp/pdu.hpp"
 
 #include <cstdio>
+#include <memory>
+#include <type_traits>
 
 namespace ibs::pcp {
+
+// The decoders build their result anew in place (std::construct_at over the caller's object):
+// right for types whose old value needs no destruction.
+static_assert(std::is_trivially_destructible_v<RequestPdu>);
+static_assert(std::is_trivially_destructible_v<ResponsePdu>);
 
 std::string_view to_string(ServiceCode s) {
   switch (s) {
@@ -298,7 +305,7 @@ PduError decode(std::span<const std::uint8_t> in, RequestPdu& r) {
       h.code == static_cast<std::uint16_t>(ServiceCode::information_report)) {
     return PduError::unknown_service;
   }
-  r = RequestPdu{};
+  std::construct_at(&r);  // r = RequestPdu{}, built in place rather than copied from a temporary
   r.service = static_cast<ServiceCode>(h.code);
   r.invoke_id = h.invoke_id;
   r.cr = h.cr;
@@ -391,7 +398,7 @@ bool encode(const ResponsePdu& r, Pdu& out) {
 PduError decode(std::span<const std::uint8_t> in, ResponsePdu& r) {
   PduHeader h;
   if (const PduError e = decode_header(in, h); e != PduError::none) return e;
-  r = ResponsePdu{};
+  std::construct_at(&r);  // r = ResponsePdu{}, built in place rather than copied from a temporary
   r.invoke_id = h.invoke_id;
   r.cr = h.cr;
   Reader rd(in.subspan(6));

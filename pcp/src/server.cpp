@@ -138,7 +138,9 @@ void Server::queue_abort(AbortReason reason, std::uint8_t cr) {
 }
 
 void Server::handle_message(Time now, std::span<const std::uint8_t> msg) {
-  RequestPdu req;
+  // Decoded straight into job_, without a copy: job_ is read only while job_active_, and every way
+  // below that does not make the request the job drops the job (drop_association, queue_abort).
+  RequestPdu& req = job_;
   const PduError e = decode(msg, req);
   if (e != PduError::none) {
     PduHeader h;
@@ -161,7 +163,6 @@ void Server::handle_message(Time now, std::span<const std::uint8_t> msg) {
     return;
   }
   ++stats_.requests;
-  job_ = req;
   job_active_ = true;
   job_at_ = now + latency_.processing(workload_);
 }

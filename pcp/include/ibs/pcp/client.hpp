@@ -159,6 +159,8 @@ class Client {
   bool abort_pending_ = false;
   Pdu abort_pdu_{};
 
+  ResponsePdu response_{};  // the message handle_message() decodes, reused
+
   InformationReport report_{};
   bool report_ready_ = false;
   ClientStats stats_{};

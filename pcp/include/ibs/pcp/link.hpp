@@ -110,6 +110,7 @@ struct LinkStats {
   std::uint32_t ack_timeouts = 0;
   std::uint32_t aborts_local = 0;  // aborts this side started
   std::uint32_t aborts_peer = 0;   // aborts the peer started
+  friend bool operator==(const LinkStats&, const LinkStats&) = default;
 };
 
 // What one receive() brought.
@@ -117,6 +118,7 @@ struct LinkEvents {
   bool reset = false;             // all transfers were dropped (peer abort, timeout, protocol)
   bool message_sent = false;      // the peer acknowledged the last fragment of our message
   bool message_received = false;  // a checked message waits in message()
+  friend bool operator==(const LinkEvents&, const LinkEvents&) = default;
 };
 
 class Link {
@@ -140,6 +142,13 @@ class Link {
   // Writes this side's frame for this cycle (channel_words words).
   void transmit(Time now, std::span<Word> out);
 
+  // receive() and transmit() without their shortcut (the ready link's IDLE and data frames read
+  // from and written to the words directly): every frame through the general decisions. The same
+  // events, state, counters and words as receive() and transmit(); LinkShortcuts.* and the fuzz
+  // target pcp_link_fuzz compare the two at random.
+  LinkEvents receive_general(Time now, std::span<const Word> in);
+  void transmit_general(Time now, std::span<Word> out);
+
   // Starts sending a PDU (kMinPduSize..kMaxPduSize bytes); false while not ready or busy.
   [[nodiscard]] bool can_send() const { return state_ == LinkState::ready && !tx_active_; }
   bool send(std::span<const std::uint8_t> pdu);
@@ -156,11 +165,22 @@ class Link {
   void leave_acking();
   // False: the ACK names a fragment this side never showed (a sequence error).
   bool take_ack(Time now, std::uint8_t ack, LinkEvents& ev);
+  // Moves the base on by `advance` (1 or 2) acknowledged fragments; true: the message is sent.
+  bool move_window(Time now, std::uint8_t advance);
   [[nodiscard]] std::size_t fragment_size(std::size_t offset) const {
     return std::min(data_size_, tx_size_ - offset);
   }
   void process_data(const AdminByte& a, std::span<const std::uint8_t> data, LinkEvents& ev);
-  void finish_message(LinkEvents& ev);
+  // The shortcuts of a ready link over N channel words (link.cpp).
+  template <std::size_t N>
+  LinkEvents receive_ready(Time now, std::span<const Word> in);
+  template <std::size_t N>
+  void transmit_ready(Time now, std::span<Word> out);
+  // Ends the message at its LAST fragment; true: it checked and waits in message().
+  bool finish_message();
+  // The shortcut's events of a LAST fragment (a call of its own, so that the shortcut's other
+  // frames save no registers for it).
+  LinkEvents finish_ready(bool message_sent);
 
   LinkConfig cfg_;
   std::size_t data_size_;
@@ -177,8 +197,9 @@ class Link {
   bool own_abort_pending_ = false;
   bool peer_abort_waiting_ = false;
 
-  // Sending.
-  std::array<std::uint8_t, kMaxMessageSize> tx_{};
+  // Sending. The PDU, then zeros up to a whole frame's data beyond it (send() clears them), so
+  // that a LAST fragment's padding is always the bytes after the PDU.
+  std::array<std::uint8_t, kMaxMessageSize + kMaxFrameData> tx_{};
   std::size_t tx_size_ = 0;
   std::size_t tx_offset_ = 0;  // first byte of the oldest unacknowledged fragment (the base)
   bool tx_active_ = false;
