@@ -1,7 +1,6 @@
 #include "ibs/master/master_loop.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -10,18 +9,32 @@ namespace ibs::master {
 
 namespace {
 
-// The four words from `w` as one 64-bit value (the caller has checked they lie in the image).
-std::uint64_t window(const Word* w) noexcept {
+// A device's n (0..4) words as one 64-bit value, and back: its own words only, never a
+// neighbour's (the simulator's devices may use those on another thread meanwhile). Fewer than
+// four words out of line: four, the common slice, is one load or store.
+[[gnu::noinline]] std::uint64_t load_short(const Word* w, std::size_t n) noexcept {
+  std::uint64_t v = 0;
+  std::memcpy(&v, w, std::min(n, std::size_t{3}) * sizeof(Word));
+  return v;
+}
+
+std::uint64_t load_words(const Word* w, std::size_t n) noexcept {
+  if (n != 4) return load_short(w, n);
   std::uint64_t v;
   std::memcpy(&v, w, sizeof v);
   return v;
 }
 
-// The first `n` (0..4) words of a window.
-std::uint64_t window_mask(std::size_t n) noexcept {
-  std::array<Word, 4> words{};
-  for (std::size_t i = 0; i < n && i < words.size(); ++i) words[i] = 0xFFFF;
-  return window(words.data());
+[[gnu::noinline]] void store_short(Word* w, std::size_t n, std::uint64_t v) noexcept {
+  std::memcpy(w, &v, std::min(n, std::size_t{3}) * sizeof(Word));
+}
+
+void store_words(Word* w, std::size_t n, std::uint64_t v) noexcept {
+  if (n != 4) {
+    store_short(w, n, v);
+    return;
+  }
+  std::memcpy(w, &v, sizeof v);
 }
 
 }  // namespace
@@ -67,15 +80,9 @@ void MasterLoop::bind(interbus::ProcessImage& image) noexcept {
   for (std::size_t i = 0; i < drivers_.size(); ++i) {
     Bound& b = ios_[i];
     b.io = io(image, i);
-    // A window of four words must lie inside the image's words (validate() keeps the slices
-    // there; the window may reach past a short slice's end).
     const Place& p = places_[i];
-    const bool fits = p.pcp.length == 0 && p.in.length <= 4 && p.out.length <= 4 &&
-                      p.in.offset + 4 <= interbus::kMaxProcessWords &&
-                      p.out.offset + 4 <= interbus::kMaxProcessWords;
     b.held = Held{};
-    b.held.in_mask = fits ? window_mask(p.in.length) : 0;
-    b.held.out_mask = fits ? window_mask(p.out.length) : 0;
+    b.held.fits = p.pcp.length == 0 && p.in.length <= 4 && p.out.length <= 4;
   }
   bound_ = &image;
 }
@@ -87,26 +94,22 @@ void MasterLoop::disarm() noexcept {
 bool MasterLoop::skip(Bound& b, bool data_valid, bool module_error) noexcept {
   const drivecom::Sequencer* s = b.driver->skip_while_holding();
   if (s == nullptr || s->hold_code() != b.held.hold || data_valid != b.io.data_valid ||
-      module_error != b.io.module_error ||
-      ((window(b.io.pd_in.data()) ^ b.held.in) & b.held.in_mask) != 0) {
+      module_error != b.io.module_error || load_words(b.io.pd_in.data(), b.io.pd_in.size()) != b.held.in) {
     return false;
   }
-  // The words its cycle would write, and the others of the window as they are.
-  Word* const out = b.io.pd_out.data();
-  const std::uint64_t w = (window(out) & ~b.held.out_mask) | b.held.out;
-  std::memcpy(out, &w, sizeof w);
+  store_words(b.io.pd_out.data(), b.io.pd_out.size(), b.held.out);  // what its cycle would write
   return true;
 }
 
 void MasterLoop::record(Bound& b) noexcept {
   const drivecom::Sequencer* s = b.driver->skip_while_holding();
-  if (s == nullptr || b.held.in_mask == 0) {
+  if (s == nullptr || !b.held.fits) {
     b.held.hold = kDisarmed;
     return;
   }
   b.held.hold = s->hold_code();
-  b.held.in = window(b.io.pd_in.data()) & b.held.in_mask;
-  b.held.out = window(b.io.pd_out.data()) & b.held.out_mask;
+  b.held.in = load_words(b.io.pd_in.data(), b.io.pd_in.size());
+  b.held.out = load_words(b.io.pd_out.data(), b.io.pd_out.size());
 }
 
 void MasterLoop::initial(interbus::ProcessImage& image) {

@@ -185,8 +185,7 @@ TEST(MasterLoopSkip, WritesAndChangesWhatCallingEveryDriverDoesOverRandomRuns) {
   for (unsigned seed = 1; seed <= 40; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937 rng(seed);
-    // A random ring; every fourth seed fills the whole image with four-word servos but for a
-    // short one at its end, whose window would leave the image (never skipped).
+    // A random ring; every fourth seed fills the whole image, its last device ending with it.
     std::vector<Kind> kinds;
     if (seed % 4 == 0) {
       kinds.assign(63, Kind::q16);

@@ -58,16 +58,14 @@ class MasterLoop {
   std::vector<std::unique_ptr<devices::DeviceDriver>> drivers_;
   std::vector<Place> places_;
   // The loop's record of a driver's hold (DeviceDriver::skip_while_holding): what the driver's
-  // last cycle saw and wrote, in 64-bit windows of four words from the start of its slices. A
-  // device can be skipped only if its slices fit such a window inside the image and it has no
-  // PCP words (the masks then cover its words; otherwise they are 0 and it is never armed).
+  // last cycle saw and wrote, each slice's words as one 64-bit value. Only a device with at most
+  // four words each way and no PCP words can be skipped (`fits`); another is never armed.
   struct Held {
-    std::uint64_t in = 0;        // the input words the hold saw (masked)
-    std::uint64_t out = 0;       // the words it wrote (masked)
-    std::uint64_t in_mask = 0;   // the device's words in the input window
-    std::uint64_t out_mask = 0;  // and in the output window
+    std::uint64_t in = 0;   // the input words the hold saw
+    std::uint64_t out = 0;  // the words it wrote
     // The sequencer's hold code when armed; kDisarmed, which no 8-bit code equals, otherwise.
     std::uint16_t hold = kDisarmed;
+    bool fits = false;
   };
   static constexpr std::uint16_t kDisarmed = 0x100;
   // One per driver: the driver, its words in *bound_ and its hold, side by side, so that the
