@@ -10,8 +10,9 @@ namespace ibs::master {
 namespace {
 
 // A device's n (0..4) words as one 64-bit value, and back: its own words only, never a
-// neighbour's (the simulator's devices may use those on another thread meanwhile). Fewer than
-// four words out of line: four, the common slice, is one load or store.
+// neighbour's, so that a skip reads and writes no word the drivers' calls would not, whatever
+// memory the image is. Fewer than four words out of line: four, the common slice, is one load or
+// store.
 [[gnu::noinline]] std::uint64_t load_short(const Word* w, std::size_t n) noexcept {
   std::uint64_t v = 0;
   std::memcpy(&v, w, std::min(n, std::size_t{3}) * sizeof(Word));
