@@ -401,10 +401,10 @@ void Host::send_later(const Tx& tx, Time at) {
 void Host::transmit_tx(Time now) {
   (void)now;
   if (tx_.enquiry) {
-    out_frame_ = encode_enquiry(tx_.address, tx_.code);
+    encode_enquiry(out_frame_, tx_.address, tx_.code);
     decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak, answer_binary_prefix(tx_.code));
   } else {
-    out_frame_ = encode_select(tx_.address, tx_.code, tx_.value);
+    encode_select(out_frame_, tx_.address, tx_.code, tx_.value);
     if (tx_.address == kAddressBroadcast) out_frame_.push(kEot);
     decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::ack_or_nak);
   }

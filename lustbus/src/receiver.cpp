@@ -311,7 +311,7 @@ void Receiver::prepare(const EnquiryAnswer& a, Time now) {
   answer_at_ = now + a.reaction;
   switch (a.reply) {
     case Reply::text:
-      answer_ = encode_text_answer(address_, code_, a.value);
+      encode_text_answer(answer_, address_, code_, a.value);  // 6.1: ADR STX CODE = VALUE ETX BCC
       return;
     case Reply::nak:
       answer_ = encode_nak(address_);

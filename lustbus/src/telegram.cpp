@@ -40,38 +40,44 @@ class Writer {
 
 }  // namespace
 
+void encode_enquiry(Frame& f, Address a, const Code& c) {
+  Writer w(f);
+  w.push(kEot);
+  w.push(address_char(a));
+  w.code(c);
+  w.push(kEnq);
+}
+
+void encode_select(Frame& f, Address a, const Code& c, const Value& v) {
+  Writer w(f);
+  w.push(kEot);
+  w.push(address_char(a));
+  w.push(kStx);
+  w.text(c, v);
+}
+
+void encode_text_answer(Frame& f, Address a, const Code& c, const Value& v) {
+  Writer w(f);
+  w.push(address_char(a));
+  w.push(kStx);
+  w.text(c, v);
+}
+
 Frame encode_enquiry(Address a, const Code& c) {
   Frame f;
-  {
-    Writer w(f);
-    w.push(kEot);
-    w.push(address_char(a));
-    w.code(c);
-    w.push(kEnq);
-  }
+  encode_enquiry(f, a, c);
   return f;
 }
 
 Frame encode_select(Address a, const Code& c, const Value& v) {
   Frame f;
-  {
-    Writer w(f);
-    w.push(kEot);
-    w.push(address_char(a));
-    w.push(kStx);
-    w.text(c, v);
-  }
+  encode_select(f, a, c, v);
   return f;
 }
 
 Frame encode_text_answer(Address a, const Code& c, const Value& v) {
   Frame f;
-  {
-    Writer w(f);
-    w.push(address_char(a));
-    w.push(kStx);
-    w.text(c, v);
-  }
+  encode_text_answer(f, a, c, v);
   return f;
 }
 
