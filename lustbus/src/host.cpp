@@ -476,7 +476,15 @@ void Host::start_job(Time now) {
 void Host::enquiry_phase(Phase p, Address a, const Code& c, Duration timeout, Time now) {
   phase_ = p;
   tx_attempts_ = 0;
-  send(Tx{a, c, {}, true, timeout}, now);
+  // send(Tx{a, c, {}, true, timeout}, now), the fields set in place: an ENQUIRY carries no VALUE
+  // (6.1), and a Value shows nothing past its size, so clearing it is the empty one.
+  tx_.address = a;
+  tx_.code = c;
+  tx_.value.clear();
+  tx_.enquiry = true;
+  tx_.timeout = timeout;
+  ++tx_attempts_;
+  transmit_tx(now);
 }
 
 void Host::select_phase(Phase p, const Code& c, const Value& v, Time now) {
