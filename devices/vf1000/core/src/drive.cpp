@@ -46,8 +46,7 @@ Drive::Drive(const DriveConfig& config, DeviceStart start, Time now)
       params_(config.interbus_software ? parameters() : standalone_parameters(), pnr::kProg),
       slots_{params_.table().slot(pnr::kIbWd),  params_.table().slot(pnr::kIbcod),
              params_.table().slot(pnr::kIcntl), params_.table().slot(pnr::kIbsta),
-             params_.table().slot(pnr::kFdriv), params_.table().slot(pnr::kFist),
-             params_.table().slot(pnr::kSiot)},
+             params_.table().slot(pnr::kFdriv), params_.table().slot(pnr::kFist)},
       pd_(config.pd),
       serial_last_(now),
       sample_time_(now) {
@@ -203,7 +202,7 @@ void Drive::advance(Time now) {
   if (!attached(Face::interbus)) {
     // The inverter samples up to the moment its serial watchdog ran out, so that the fault acts
     // from then.
-    const Word siot = slot_value(slots_.siot, 0);  // value(pnr::kSiot), found once
+    const Word siot = value(pnr::kSiot);
     if (attached(Face::serial) && !starting_ && !serial_fault_ && siot != 0 &&
         now - serial_last_ > std::chrono::milliseconds(siot)) {
       const Time expiry = serial_last_ + std::chrono::milliseconds(siot) + Duration{1};
@@ -311,7 +310,7 @@ bool Drive::check_serial_watchdog(Time now) {
   // Seed 000, 5.2: 84-SIOT in ms, 0 = off; it monitors the serial link, so only while a serial
   // face is attached, and not through a self-test (the timer starts again at its end).
   if (!attached(Face::serial) || starting_ || serial_fault_) return false;
-  const Word siot = slot_value(slots_.siot, 0);  // value(pnr::kSiot), found once
+  const Word siot = value(pnr::kSiot);
   if (siot == 0 || now - serial_last_ <= std::chrono::milliseconds(siot)) return false;
   // The error state, bit 02H in 85-SIOF (9.2).
   serial_fault_ = true;

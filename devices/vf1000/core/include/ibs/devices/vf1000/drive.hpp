@@ -226,7 +226,6 @@ class Drive final : public drive::ParameterAccess {
     int ibsta = -1;
     int fdriv = -1;
     int fist = -1;
-    int siot = -1;  // 84-SIOT, read by every advance() (the serial watchdog, seed 000 5.2)
   };
   [[nodiscard]] Word slot_value(int slot, Word absent) const {
     return slot < 0 ? absent : params_.store().value(static_cast<std::size_t>(slot));
