@@ -401,10 +401,10 @@ void Host::send_later(const Tx& tx, Time at) {
 void Host::transmit_tx(Time now) {
   (void)now;
   if (tx_.enquiry) {
-    out_frame_ = encode_enquiry(tx_.address, tx_.code);
+    encode_enquiry(out_frame_, tx_.address, tx_.code);
     decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak, answer_binary_prefix(tx_.code));
   } else {
-    out_frame_ = encode_select(tx_.address, tx_.code, tx_.value);
+    encode_select(out_frame_, tx_.address, tx_.code, tx_.value);
     if (tx_.address == kAddressBroadcast) out_frame_.push(kEot);
     decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::ack_or_nak);
   }
@@ -476,7 +476,15 @@ void Host::start_job(Time now) {
 void Host::enquiry_phase(Phase p, Address a, const Code& c, Duration timeout, Time now) {
   phase_ = p;
   tx_attempts_ = 0;
-  send(Tx{a, c, {}, true, timeout}, now);
+  // send(Tx{a, c, {}, true, timeout}, now), the fields set in place: an ENQUIRY carries no VALUE
+  // (6.1), and a Value shows nothing past its size, so clearing it is the empty one.
+  tx_.address = a;
+  tx_.code = c;
+  tx_.value.clear();
+  tx_.enquiry = true;
+  tx_.timeout = timeout;
+  ++tx_attempts_;
+  transmit_tx(now);
 }
 
 void Host::select_phase(Phase p, const Code& c, const Value& v, Time now) {

@@ -113,97 +113,112 @@ inline void Receiver::silence(Time now) {
   last_char_at_ = now;
 }
 
-inline void Receiver::receive_one(std::uint8_t b, Time now) {
-  event_ = ReceiverEvent::none;
+// The per-character machine of section 3 on a cursor: the members a character changes are held in
+// locals while a chunk runs (a character stored into code_digits_ or value_ may alias any member,
+// so the compiler would reload them all after each). Every step that calls out -- a finished
+// telegram, a drop -- puts the cursor back first and takes it again after, so the members are
+// the truth wherever anything else can see them.
+inline void Receiver::drop(Cursor& c) {
+  c.state = ReceiverState::ignoring;
+  c.event = ReceiverEvent::dropped;
+  ++counters_.dropped;
+}
+
+inline void Receiver::receive_one(Cursor& c, std::uint8_t b, Time now) {
+  c.event = ReceiverEvent::none;
   // 2.2: the byte after ETX is the BCC whatever its value — even EOT.
-  if (state_ == ReceiverState::select_bcc) {
+  if (c.state == ReceiverState::select_bcc) {
+    put(c);
     finish_select(b, now);
+    c = cursor();
     return;
   }
   // 3: EOT sets the state machine back to its start; an answer not yet sent is dropped.
   if (b == kEot) {
-    if (answer_pending_ || state_ == ReceiverState::deferred) ++counters_.cut_answers;
-    state_ = ReceiverState::idle;
-    event_ = ReceiverEvent::reset;
+    if (answer_pending_ || c.state == ReceiverState::deferred) ++counters_.cut_answers;
+    c.state = ReceiverState::idle;
+    c.event = ReceiverEvent::reset;
     answer_pending_ = false;
     return;
   }
   const bool digit = b >= '0' && b <= '9';
-  switch (state_) {
+  switch (c.state) {
     case ReceiverState::idle: {
       const auto a = address_from_char(b);
       if (!a) {
-        drop();
+        drop(c);
         return;
       }
       // 4.2: 0 every device, 31 every device (broadcast), else only the own address.
       if (*a == kAddressAny || *a == kAddressBroadcast || (*a == own_ && own_ != kAddressAny)) {
         address_ = *a;
-        state_ = ReceiverState::address;
+        c.state = ReceiverState::address;
       } else {
-        state_ = ReceiverState::ignoring;
+        c.state = ReceiverState::ignoring;
       }
       return;
     }
     case ReceiverState::address:
       if (b == kStx) {  // 6.2 SELECT
-        state_ = ReceiverState::select_code;
-        code_pos_ = 0;
-        bcc_ = 0;
+        c.state = ReceiverState::select_code;
+        c.code_pos = 0;
+        c.bcc = 0;
         value_.clear();
       } else if (digit) {  // 6.1 ENQUIRY: EOT ADR CODE ENQ
         code_digits_[0] = static_cast<char>(b);
-        code_pos_ = 1;
-        state_ = ReceiverState::enquiry_code;
+        c.code_pos = 1;
+        c.state = ReceiverState::enquiry_code;
       } else {
-        drop();
+        drop(c);
       }
       return;
     case ReceiverState::enquiry_code:
       if (!digit) {
-        drop();
+        drop(c);
         return;
       }
-      code_digits_[code_pos_++] = static_cast<char>(b);
-      if (code_pos_ == kCodeLength) state_ = ReceiverState::enquiry_end;
+      code_digits_[c.code_pos++] = static_cast<char>(b);
+      if (c.code_pos == kCodeLength) c.state = ReceiverState::enquiry_end;
       return;
     case ReceiverState::enquiry_end:
       if (b != kEnq) {
-        drop();
+        drop(c);
         return;
       }
+      put(c);
       finish_enquiry(now);
+      c = cursor();
       return;
     case ReceiverState::select_code:
       if (!digit) {
-        drop();
+        drop(c);
         return;
       }
-      bcc_ ^= b;
-      code_digits_[code_pos_++] = static_cast<char>(b);
-      if (code_pos_ == kCodeLength) state_ = ReceiverState::select_equals;
+      c.bcc ^= b;
+      code_digits_[c.code_pos++] = static_cast<char>(b);
+      if (c.code_pos == kCodeLength) c.state = ReceiverState::select_equals;
       return;
     case ReceiverState::select_equals:
       if (b != kEquals) {
-        drop();
+        drop(c);
         return;
       }
-      bcc_ ^= b;
-      state_ = ReceiverState::select_value;
+      c.bcc ^= b;
+      c.state = ReceiverState::select_value;
       return;
     case ReceiverState::select_value:
       if (b == kEtx) {
-        bcc_ ^= b;
-        state_ = ReceiverState::select_bcc;
+        c.bcc ^= b;
+        c.state = ReceiverState::select_bcc;
         return;
       }
       // A frame character or a garbled one breaks the telegram; more than 100 characters is an
       // improper construction (LB-D4).
       if (!value_.push_back(b)) {
-        drop();
+        drop(c);
         return;
       }
-      bcc_ ^= b;
+      c.bcc ^= b;
       return;
     case ReceiverState::select_bcc:  // handled above
     case ReceiverState::deferred:
@@ -215,13 +230,17 @@ inline void Receiver::receive_one(std::uint8_t b, Time now) {
 
 void Receiver::receive(std::uint8_t b, Time now) {
   silence(now);
-  receive_one(b, now);
+  Cursor c = cursor();
+  receive_one(c, b, now);
+  put(c);
 }
 
 void Receiver::receive(std::span<const std::uint8_t> bytes, Time now) {
   if (bytes.empty()) return;
   silence(now);  // the characters after the first follow it with no silence
-  for (const std::uint8_t b : bytes) receive_one(b, now);
+  Cursor c = cursor();
+  for (const std::uint8_t b : bytes) receive_one(c, b, now);
+  put(c);
 }
 
 void Receiver::finish_enquiry(Time now) {
@@ -292,7 +311,7 @@ void Receiver::prepare(const EnquiryAnswer& a, Time now) {
   answer_at_ = now + a.reaction;
   switch (a.reply) {
     case Reply::text:
-      answer_ = encode_text_answer(address_, code_, a.value);
+      encode_text_answer(answer_, address_, code_, a.value);  // 6.1: ADR STX CODE = VALUE ETX BCC
       return;
     case Reply::nak:
       answer_ = encode_nak(address_);

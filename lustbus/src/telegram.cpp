@@ -25,12 +25,21 @@ class Writer {
     for (std::size_t i = 0; i < kCodeLength; ++i) push(static_cast<std::uint8_t>(c.digit(i)));
   }
   // CODE = VALUE ETX BCC, the BCC over CODE..ETX (2.2).
+  // The BCC is formed while the characters are written, in one pass: the XOR text_bcc() forms.
   void text(const Code& c, const Value& v) {
-    code(c);
+    std::uint8_t x = kEquals ^ kEtx;
+    for (std::size_t i = 0; i < kCodeLength; ++i) {
+      const auto d = static_cast<std::uint8_t>(c.digit(i));
+      push(d);
+      x ^= d;
+    }
     push(kEquals);
-    for (const char ch : v.view()) push(static_cast<std::uint8_t>(ch));
+    for (const char ch : v.view()) {
+      push(static_cast<std::uint8_t>(ch));
+      x ^= static_cast<std::uint8_t>(ch);
+    }
     push(kEtx);
-    push(text_bcc(c, v));
+    push(x);
   }
 
  private:
@@ -40,38 +49,44 @@ class Writer {
 
 }  // namespace
 
+void encode_enquiry(Frame& f, Address a, const Code& c) {
+  Writer w(f);
+  w.push(kEot);
+  w.push(address_char(a));
+  w.code(c);
+  w.push(kEnq);
+}
+
+void encode_select(Frame& f, Address a, const Code& c, const Value& v) {
+  Writer w(f);
+  w.push(kEot);
+  w.push(address_char(a));
+  w.push(kStx);
+  w.text(c, v);
+}
+
+void encode_text_answer(Frame& f, Address a, const Code& c, const Value& v) {
+  Writer w(f);
+  w.push(address_char(a));
+  w.push(kStx);
+  w.text(c, v);
+}
+
 Frame encode_enquiry(Address a, const Code& c) {
   Frame f;
-  {
-    Writer w(f);
-    w.push(kEot);
-    w.push(address_char(a));
-    w.code(c);
-    w.push(kEnq);
-  }
+  encode_enquiry(f, a, c);
   return f;
 }
 
 Frame encode_select(Address a, const Code& c, const Value& v) {
   Frame f;
-  {
-    Writer w(f);
-    w.push(kEot);
-    w.push(address_char(a));
-    w.push(kStx);
-    w.text(c, v);
-  }
+  encode_select(f, a, c, v);
   return f;
 }
 
 Frame encode_text_answer(Address a, const Code& c, const Value& v) {
   Frame f;
-  {
-    Writer w(f);
-    w.push(address_char(a));
-    w.push(kStx);
-    w.text(c, v);
-  }
+  encode_text_answer(f, a, c, v);
   return f;
 }
 

@@ -132,8 +132,24 @@ class Receiver {
   [[nodiscard]] const ReceiverCounters& counters() const { return counters_; }
 
  private:
+  // The members one character changes, held in locals over a chunk (receiver.cpp).
+  struct Cursor {
+    ReceiverState state;
+    ReceiverEvent event;
+    std::uint8_t code_pos;
+    std::uint8_t bcc;
+  };
+  [[nodiscard]] Cursor cursor() const { return {state_, event_, code_pos_, bcc_}; }
+  void put(const Cursor& c) {
+    state_ = c.state;
+    event_ = c.event;
+    code_pos_ = c.code_pos;
+    bcc_ = c.bcc;
+  }
+
   void silence(Time now);
-  void receive_one(std::uint8_t b, Time now);
+  void receive_one(Cursor& c, std::uint8_t b, Time now);
+  void drop(Cursor& c);
   void drop();
   void finish_enquiry(Time now);
   void finish_select(std::uint8_t bcc_received, Time now);

@@ -41,6 +41,12 @@ Frame encode_enquiry(Address a, const Code& c);
 Frame encode_select(Address a, const Code& c, const Value& v);
 // 6.1, device: ADR STX CODE = VALUE ETX BCC.
 Frame encode_text_answer(Address a, const Code& c, const Value& v);
+// The same three written into `f` in place: its bytes from `size` on are left as they were (a
+// Frame's readers look at [0, size) only), so a receiver or host that keeps its frame as a member
+// neither clears 112 bytes nor copies them per telegram.
+void encode_enquiry(Frame& f, Address a, const Code& c);
+void encode_select(Frame& f, Address a, const Code& c, const Value& v);
+void encode_text_answer(Frame& f, Address a, const Code& c, const Value& v);
 // 6.1 / 6.2, device: ADR ACK, ADR NAK.
 Frame encode_ack(Address a);
 Frame encode_nak(Address a);
