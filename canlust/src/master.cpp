@@ -12,31 +12,29 @@ ClientConfig with_ids(ClientConfig c, const IdentifierMap& ids) {
 }  // namespace
 
 Master::Master(const MasterConfig& config)
-    : config_(config), client_(with_ids(config.client, config.ids)) {
+    : config_(config),
+      client_(with_ids(config.client, config.ids)),
+      outbox_(std::max<std::size_t>(4, config.outbox_capacity)) {
   drives_.resize(static_cast<std::size_t>(config_.ids.max_address) + 1);
   for (auto& d : drives_) d.layout = config_.layout;
   logon_order_.resize(drives_.size());
-  outbox_.resize(std::max<std::size_t>(4, config_.outbox_capacity));
   errors_.resize(std::max<std::size_t>(1, config_.error_capacity));
 }
 
 bool Master::push(const std::optional<CanFrame>& f) {
   if (!f) return false;
-  if (out_size_ == outbox_.size()) {
+  if (!outbox_.push(*f)) {
     ++counters_.dropped_frames;
     return false;
   }
-  outbox_[(out_head_ + out_size_) % outbox_.size()] = *f;
-  ++out_size_;
   return true;
 }
 
 std::optional<CanFrame> Master::take_frame() {
   // Own frames (broadcasts, control) first, then the parameter client's.
-  if (out_size_ > 0) {
-    const CanFrame f = outbox_[out_head_];
-    out_head_ = (out_head_ + 1) % outbox_.size();
-    --out_size_;
+  if (!outbox_.empty()) {
+    const CanFrame f = outbox_.front();
+    outbox_.pop();
     return f;
   }
   return client_.take_frame();

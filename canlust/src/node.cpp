@@ -14,7 +14,10 @@ std::string_view to_string(SystemState s) {
 }
 
 Node::Node(const NodeConfig& config, DriveProcess& drive, ParameterAccess& parameters)
-    : config_(config), drive_(&drive), server_(parameters) {
+    : config_(config),
+      drive_(&drive),
+      server_(parameters),
+      outbox_(std::max<std::size_t>(4, config.outbox_capacity)) {
   const auto own = [&](TelegramKind k) -> std::int32_t {
     const auto id = config_.ids.own_id(k, config_.address);
     return id ? static_cast<std::int32_t>(*id) : -1;
@@ -23,7 +26,6 @@ Node::Node(const NodeConfig& config, DriveProcess& drive, ParameterAccess& param
   const auto reply = config_.ids.id(TelegramKind::parameter_reply, config_.address);
   reply_id_ = reply ? static_cast<std::int32_t>(*reply) : -1;
   request_id_ = own(TelegramKind::parameter_request);
-  outbox_.resize(std::max<std::size_t>(4, config_.outbox_capacity));
 }
 
 void Node::push(const std::optional<CanFrame>& f) {
@@ -31,16 +33,7 @@ void Node::push(const std::optional<CanFrame>& f) {
 }
 
 void Node::push_frame(const CanFrame& f) {
-  const std::size_t n = outbox_.size();
-  if (out_size_ == n) {
-    ++counters_.dropped_frames;
-    return;
-  }
-  // The ring's index without a division: head and size are both below n.
-  std::size_t at = out_head_ + out_size_;
-  if (at >= n) at -= n;
-  outbox_[at] = f;
-  ++out_size_;
+  if (!outbox_.push(f)) ++counters_.dropped_frames;
 }
 
 void Node::power_on(Time now) {
@@ -49,7 +42,7 @@ void Node::power_on(Time now) {
   stored_.reset();
   tripped_ = false;
   server_.reset();
-  out_size_ = 0;
+  outbox_.clear();
   next_status_ = Time::max();
   // 5.2: in System Logon the drive sends its logon identifier every 100 ms; the first one at
   // power-on (decision D14).
@@ -179,7 +172,7 @@ void Node::push_reply(const ParameterTelegram& t) {
 
 Time Node::next_deadline() const {
   if (!powered_) return Time::max();
-  if (out_size_ > 0) return Time::min();  // frames to take now
+  if (!outbox_.empty()) return Time::min();  // frames to take now
   Time t = server_.next_deadline();
   if (state_ == SystemState::logon) t = std::min(t, next_logon_);
   if (state_ != SystemState::logon) t = std::min(t, next_status_);

@@ -107,13 +107,14 @@ void copy_request(Request& to, const Request& from) {
 }  // namespace
 
 ParameterClient::ParameterClient(const ClientConfig& config)
-    : config_(config), replies_(config_.ids, TelegramKind::parameter_reply) {
+    : config_(config),
+      replies_(config_.ids, TelegramKind::parameter_reply),
+      outbox_(std::max<std::size_t>(config.outbox_capacity, static_cast<std::size_t>(config.ids.max_address) + 1)) {
   queue_.resize(std::max<std::size_t>(1, config_.queue_capacity));
   if (config_.timeout <= Duration::zero()) config_.timeout = 1ms;
   if (config_.string_timeout <= Duration::zero()) config_.string_timeout = 1ms;
   active_.resize(static_cast<std::size_t>(config_.ids.max_address) + 1);
   busy_.reserve(active_.size());
-  outbox_.resize(std::max<std::size_t>(config_.outbox_capacity, active_.size()));
   completed_.resize(std::max<std::size_t>(1, config_.completed_capacity));
 }
 
@@ -150,16 +151,9 @@ void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std
   // encode_parameter_request, written straight into the outbox (issue 26).
   const auto id = config_.ids.id(TelegramKind::parameter_request, a.request.address);
   if (!id) return;  // address checked at submit
-  const std::size_t n = outbox_.size();
-  if (out_size_ == n) {
+  if (!outbox_.push(detail::parameter_frame(*id, {a.request.parameter, mode, data, block}))) {
     ++counters_.dropped_frames;
-    return;
   }
-  // The ring's index without a division: head and size are both below n.
-  std::size_t at = out_head_ + out_size_;
-  if (at >= n) at -= n;
-  outbox_[at] = detail::parameter_frame(*id, {a.request.parameter, mode, data, block});
-  ++out_size_;
 }
 
 void ParameterClient::start(Active& a, Time now) {
@@ -360,7 +354,7 @@ void ParameterClient::on_reply(Active& a, const ParameterTelegram& t, Time now) 
 }
 
 Time ParameterClient::next_deadline() const {
-  if (out_size_ > 0) return Time::min();  // frames to take now
+  if (!outbox_.empty()) return Time::min();  // frames to take now
   for (std::size_t k = 0; k < queued_; ++k) {
     if (!active_[queue_[k].request.address].busy) return Time::min();
   }
@@ -399,7 +393,7 @@ void ParameterClient::abort_all(Time now) {
     finish(tmp, OutcomeKind::aborted, now);
   }
   queued_ = 0;
-  out_size_ = 0;
+  outbox_.clear();
 }
 
 }  // namespace ibs::canlust

@@ -35,5 +35,24 @@ TEST(BoundedQueue, IsFirstInFirstOutAcrossTheWrap) {
   EXPECT_EQ(q.front(), 7);
 }
 
+// clear (a CANLust node's power-on, a client's abort_all): empty at once, the whole capacity
+// free again, wherever the front stood.
+TEST(BoundedQueue, ClearEmptiesItAndFreesTheWholeCapacity) {
+  BoundedQueue<int> q(3);
+  EXPECT_TRUE(q.push(1));
+  EXPECT_TRUE(q.push(2));
+  q.pop();
+  EXPECT_TRUE(q.push(3));
+  q.clear();
+  EXPECT_TRUE(q.empty());
+  EXPECT_EQ(q.size(), 0U);
+  for (int v = 10; v < 13; ++v) EXPECT_TRUE(q.push(v));
+  EXPECT_FALSE(q.push(13));
+  for (int v = 10; v < 13; ++v) {
+    EXPECT_EQ(q.front(), v);
+    q.pop();
+  }
+}
+
 }  // namespace
 }  // namespace ibs

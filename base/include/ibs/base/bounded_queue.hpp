@@ -1,6 +1,7 @@
 // A first-in first-out queue of fixed capacity, storage placed at construction: the request queue
 // of every parameter channel's master side (the VF1000 communication-word client, the MC6000
-// driver's PCP requests). push, pop and the accessors allocate nothing and throw nothing.
+// driver's PCP requests), the CANLust outboxes of frames. push, pop, clear and the accessors
+// allocate nothing and throw nothing; the index wraps without a division.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +29,11 @@ class BoundedQueue {
     if (count_ == 0) return;
     head_ = slot(1);
     --count_;
+  }
+  // Drops every entry.
+  void clear() noexcept {
+    head_ = 0;
+    count_ = 0;
   }
   // The i-th entry from the front (i < size()).
   [[nodiscard]] const T& operator[](std::size_t i) const noexcept { return items_[slot(i)]; }

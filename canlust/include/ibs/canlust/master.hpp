@@ -21,6 +21,7 @@
 #include "ibs/canlust/identifiers.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
+#include "ibs/base/bounded_queue.hpp"
 #include "ibs/base/time.hpp"
 
 namespace ibs::canlust {
@@ -70,7 +71,7 @@ class Master {
   std::optional<CanFrame> take_frame();
   // Time::min() while frames wait in the outbox (take them now).
   [[nodiscard]] Time next_deadline() const {
-    return out_size_ > 0 ? Time::min() : client_.next_deadline();
+    return !outbox_.empty() ? Time::min() : client_.next_deadline();
   }
 
   // 5.5.4: the broadcasts; every drive takes them together.
@@ -97,9 +98,7 @@ class Master {
   std::vector<DriveView> drives_;
   std::vector<Address> logon_order_;
   std::size_t logon_count_ = 0;
-  std::vector<CanFrame> outbox_;
-  std::size_t out_head_ = 0;
-  std::size_t out_size_ = 0;
+  BoundedQueue<CanFrame> outbox_;
   std::vector<ErrorEvent> errors_;
   std::size_t err_head_ = 0;
   std::size_t err_size_ = 0;

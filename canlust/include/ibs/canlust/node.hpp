@@ -25,6 +25,7 @@
 #include "ibs/canlust/identifiers.hpp"
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/telegrams.hpp"
+#include "ibs/base/bounded_queue.hpp"
 #include "ibs/base/time.hpp"
 
 namespace ibs::canlust {
@@ -132,10 +133,9 @@ class Node {
   void step(Time now);
   // Inline: asked until it has nothing (issue 26: twice a parameter read at least).
   std::optional<CanFrame> take_frame() {
-    if (out_size_ == 0) return std::nullopt;
-    const CanFrame f = outbox_[out_head_];
-    if (++out_head_ == outbox_.size()) out_head_ = 0;
-    --out_size_;
+    if (outbox_.empty()) return std::nullopt;
+    const CanFrame f = outbox_.front();
+    outbox_.pop();
     return f;
   }
   [[nodiscard]] Time next_deadline() const;
@@ -176,9 +176,7 @@ class Node {
   Time next_status_ = Time::max();
   Time last_control_{};
   bool tripped_ = false;
-  std::vector<CanFrame> outbox_;  // ring
-  std::size_t out_head_ = 0;
-  std::size_t out_size_ = 0;
+  BoundedQueue<CanFrame> outbox_;
   NodeCounters counters_{};
 };
 

@@ -21,6 +21,7 @@
 #include "ibs/canlust/frame.hpp"
 #include "ibs/canlust/identifiers.hpp"
 #include "ibs/canlust/parameter_channel.hpp"
+#include "ibs/base/bounded_queue.hpp"
 #include "ibs/base/time.hpp"
 
 namespace ibs::canlust {
@@ -106,10 +107,9 @@ class ParameterClient {
   void step(Time now);
   // Inline: asked until it has nothing (issue 26).
   std::optional<CanFrame> take_frame() {
-    if (out_size_ == 0) return std::nullopt;
-    const CanFrame f = outbox_[out_head_];
-    if (++out_head_ == outbox_.size()) out_head_ = 0;
-    --out_size_;
+    if (outbox_.empty()) return std::nullopt;
+    const CanFrame f = outbox_.front();
+    outbox_.pop();
     return f;
   }
   // Any frame; parameter replies of drives with an active request are taken, others ignored.
@@ -169,9 +169,7 @@ class ParameterClient {
   // The addresses whose slot is busy, in no order (issue 26: step, poll and next_deadline touch
   // only the drives with a request, not all 100 slots); capacity reserved by the constructor.
   std::vector<Address> busy_;
-  std::vector<CanFrame> outbox_;  // ring
-  std::size_t out_head_ = 0;
-  std::size_t out_size_ = 0;
+  BoundedQueue<CanFrame> outbox_;
   std::vector<Completed> completed_;  // ring
   std::size_t completed_next_ = 0;
   RequestId next_id_ = 1;
