@@ -107,9 +107,11 @@ lb::EnquiryAnswer LustbusDevice::enquiry(const lb::Code& code, const lb::Context
   }
   // 9.2: reading 85 erases the bits; 11-STAT and 12 are the drive's state (drive.hpp).
   const Word raw = p->number == pnr::kSiof ? Word{drive_->read_siof()} : drive_->reading(p->number);
-  const auto v = lb::format_raw(lb::Family::standard, raw);  // 2.3.1: "%04X"
-  if (!v.ok()) return lb::EnquiryAnswer::nak(reaction());
-  return lb::EnquiryAnswer::text(v.value, reaction());
+  // 2.3.1: "%04X", formatted into the answer in place (one answer, one reaction time drawn).
+  lb::EnquiryAnswer a{lb::Reply::text, {}, {}};
+  if (lb::format_raw(a.value, lb::Family::standard, raw) != lb::ValueError::none) a = lb::EnquiryAnswer::nak();
+  a.reaction = reaction();
+  return a;
 }
 
 lb::SelectAnswer LustbusDevice::refuse(SiofBit b) {
