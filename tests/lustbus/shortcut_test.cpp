@@ -65,6 +65,16 @@ void damage(Stream& s, std::mt19937& rng) {
   }
 }
 
+// ---- is_value_char: one mask test for the list of 2.2 / 2.3 ------------------------------------
+
+TEST(LustbusShortcuts, AValueCharacterIsAny7BitCharacterButTheSixFrameCharacters) {
+  for (int i = 0; i < 256; ++i) {
+    const auto b = static_cast<std::uint8_t>(i);
+    const bool listed = b < 0x80 && b != kStx && b != kEtx && b != kEot && b != kEnq && b != kAck && b != kNak;
+    EXPECT_EQ(is_value_char(b), listed) << i;
+  }
+}
+
 // ---- AnswerDecoder: a whole text answer in one chunk ---------------------------------------------
 
 // ADR STX CODE = VALUE ETX BCC with `n` random VALUE characters (more than 100 allowed: the
