@@ -1,5 +1,7 @@
 #include "ibs/lustbus/telegram.hpp"
 
+#include <cstring>
+
 namespace ibs::lustbus {
 
 std::uint8_t text_bcc(const Code& c, const Value& v) {
@@ -22,17 +24,15 @@ class Writer {
 
   void push(std::uint8_t b) { f_.bytes[n_++] = b; }
   void code(const Code& c) {
-    for (std::size_t i = 0; i < kCodeLength; ++i) push(static_cast<std::uint8_t>(c.digit(i)));
+    std::memcpy(f_.bytes.data() + n_, c.text().data(), kCodeLength);  // five digits at once
+    n_ += kCodeLength;
   }
   // CODE = VALUE ETX BCC, the BCC over CODE..ETX (2.2).
   // The BCC is formed while the characters are written, in one pass: the XOR text_bcc() forms.
   void text(const Code& c, const Value& v) {
     std::uint8_t x = kEquals ^ kEtx;
-    for (std::size_t i = 0; i < kCodeLength; ++i) {
-      const auto d = static_cast<std::uint8_t>(c.digit(i));
-      push(d);
-      x ^= d;
-    }
+    code(c);
+    for (const char d : c.text()) x ^= static_cast<std::uint8_t>(d);
     push(kEquals);
     for (const char ch : v.view()) {
       push(static_cast<std::uint8_t>(ch));
