@@ -114,7 +114,7 @@ inline void Receiver::silence(Time now) {
 }
 
 // The per-character machine of section 3 on a cursor: the members a character changes are held in
-// locals while a chunk runs (a character stored into code_digits_ or value_ may alias any member,
+// locals while a chunk runs (a character stored into received_code_ or value_ may alias any member,
 // so the compiler would reload them all after each). Every step that calls out -- a finished
 // telegram, a drop -- puts the cursor back first and takes it again after, so the members are
 // the truth wherever anything else can see them.
@@ -141,7 +141,6 @@ inline void Receiver::receive_one(Cursor& c, std::uint8_t b, Time now) {
     answer_pending_ = false;
     return;
   }
-  const bool digit = b >= '0' && b <= '9';
   switch (c.state) {
     case ReceiverState::idle: {
       const auto a = address_from_char(b);
@@ -164,8 +163,7 @@ inline void Receiver::receive_one(Cursor& c, std::uint8_t b, Time now) {
         c.code_pos = 0;
         c.bcc = 0;
         value_.clear();
-      } else if (digit) {  // 6.1 ENQUIRY: EOT ADR CODE ENQ
-        code_digits_[0] = static_cast<char>(b);
+      } else if (received_code_.set_digit(0, b)) {  // 6.1 ENQUIRY: EOT ADR CODE ENQ
         c.code_pos = 1;
         c.state = ReceiverState::enquiry_code;
       } else {
@@ -173,12 +171,11 @@ inline void Receiver::receive_one(Cursor& c, std::uint8_t b, Time now) {
       }
       return;
     case ReceiverState::enquiry_code:
-      if (!digit) {
+      if (!received_code_.set_digit(c.code_pos, b)) {
         drop(c);
         return;
       }
-      code_digits_[c.code_pos++] = static_cast<char>(b);
-      if (c.code_pos == kCodeLength) c.state = ReceiverState::enquiry_end;
+      if (++c.code_pos == kCodeLength) c.state = ReceiverState::enquiry_end;
       return;
     case ReceiverState::enquiry_end:
       if (b != kEnq) {
@@ -190,13 +187,12 @@ inline void Receiver::receive_one(Cursor& c, std::uint8_t b, Time now) {
       c = cursor();
       return;
     case ReceiverState::select_code:
-      if (!digit) {
+      if (!received_code_.set_digit(c.code_pos, b)) {
         drop(c);
         return;
       }
       c.bcc ^= b;
-      code_digits_[c.code_pos++] = static_cast<char>(b);
-      if (c.code_pos == kCodeLength) c.state = ReceiverState::select_equals;
+      if (++c.code_pos == kCodeLength) c.state = ReceiverState::select_equals;
       return;
     case ReceiverState::select_equals:
       if (b != kEquals) {
@@ -235,11 +231,46 @@ void Receiver::receive(std::uint8_t b, Time now) {
   put(c);
 }
 
+// 6.1: a whole ENQUIRY, ADR CODE ENQ, at `p` (7 characters) while the receiver is idle: when the
+// ADR is one this device takes (4.2: 0, 31 or its own), the five characters after it digits and the
+// seventh ENQ, the characters take it where receive_one() would -- enquiry_end with the ADR and
+// CODE kept, event none -- and the seventh finishes it as there. Otherwise false, having changed
+// nothing receive_one() would not set again (digits of a CODE it rewrites from its first): the
+// chunk goes character by character.
+inline bool Receiver::whole_enquiry(Cursor& c, const std::uint8_t* p, Time now) {
+  const auto a = address_from_char(p[0]);
+  if (!a || !(*a == kAddressAny || *a == kAddressBroadcast || (*a == own_ && own_ != kAddressAny))) {
+    return false;
+  }
+  if (p[1 + kCodeLength] != kEnq) return false;
+  for (std::size_t i = 0; i < kCodeLength; ++i) {
+    if (!received_code_.set_digit(i, p[1 + i])) return false;
+  }
+  address_ = *a;
+  c.state = ReceiverState::enquiry_end;
+  c.event = ReceiverEvent::none;
+  c.code_pos = kCodeLength;
+  put(c);
+  finish_enquiry(now);
+  c = cursor();
+  return true;
+}
+
 void Receiver::receive(std::span<const std::uint8_t> bytes, Time now) {
   if (bytes.empty()) return;
   silence(now);  // the characters after the first follow it with no silence
   Cursor c = cursor();
-  for (const std::uint8_t b : bytes) receive_one(c, b, now);
+  constexpr std::size_t kEnquiryRest = 2 + kCodeLength;  // ADR CODE ENQ
+  const std::uint8_t* p = bytes.data();
+  const std::uint8_t* const end = p + bytes.size();
+  while (p != end) {
+    if (c.state == ReceiverState::idle && static_cast<std::size_t>(end - p) >= kEnquiryRest &&
+        whole_enquiry(c, p, now)) {
+      p += kEnquiryRest;
+      continue;
+    }
+    receive_one(c, *p++, now);
+  }
   put(c);
 }
 
@@ -253,7 +284,7 @@ void Receiver::finish_enquiry(Time now) {
     drop();
     return;
   }
-  code_ = *Code::parse({code_digits_.data(), kCodeLength});
+  code_ = received_code_;  // five digits, each checked as it came (6.1)
   const Context ctx{address_, now};
   ++counters_.enquiries;
   event_ = ReceiverEvent::enquiry;
@@ -285,7 +316,7 @@ void Receiver::finish_select(std::uint8_t bcc_received, Time now) {
     prepare(SelectAnswer::nak(), now);
     return;
   }
-  code_ = *Code::parse({code_digits_.data(), kCodeLength});
+  code_ = received_code_;  // five digits, each checked as it came (6.2)
   responder_->telegram_received(ctx);
   const SelectAnswer a = responder_->select(code_, value_, ctx);
   if (ctx.broadcast()) {

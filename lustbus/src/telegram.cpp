@@ -1,5 +1,7 @@
 #include "ibs/lustbus/telegram.hpp"
 
+#include <cstring>
+
 namespace ibs::lustbus {
 
 std::uint8_t text_bcc(const Code& c, const Value& v) {
@@ -22,17 +24,15 @@ class Writer {
 
   void push(std::uint8_t b) { f_.bytes[n_++] = b; }
   void code(const Code& c) {
-    for (std::size_t i = 0; i < kCodeLength; ++i) push(static_cast<std::uint8_t>(c.digit(i)));
+    std::memcpy(f_.bytes.data() + n_, c.text().data(), kCodeLength);  // five digits at once
+    n_ += kCodeLength;
   }
   // CODE = VALUE ETX BCC, the BCC over CODE..ETX (2.2).
   // The BCC is formed while the characters are written, in one pass: the XOR text_bcc() forms.
   void text(const Code& c, const Value& v) {
     std::uint8_t x = kEquals ^ kEtx;
-    for (std::size_t i = 0; i < kCodeLength; ++i) {
-      const auto d = static_cast<std::uint8_t>(c.digit(i));
-      push(d);
-      x ^= d;
-    }
+    code(c);
+    for (const char d : c.text()) x ^= static_cast<std::uint8_t>(d);
     push(kEquals);
     for (const char ch : v.view()) {
       push(static_cast<std::uint8_t>(ch));
@@ -243,8 +243,50 @@ AnswerDecoder::Status AnswerDecoder::feed(std::uint8_t b) {
   return st;
 }
 
+// A whole, valid text answer at the start of a chunk (6.1: ADR STX CODE = VALUE ETX BCC), taken in
+// one pass: the characters checked as feed_one() checks them -- the ADR addressed (6.1.1), STX where
+// text is due, the CODE asked for (whose digits are digits: a Code holds nothing else, 2.4), '=',
+// VALUE characters up to ETX, at most 100 (2.3), the BCC over CODE..ETX (2.2) -- and the decoder
+// left as feed_one() leaves it after the BCC. Anything else (a NAK, an error, an answer cut by the
+// chunk, a binary prefix) returns 0 having changed nothing but the VALUE, which the caller
+// empties: the character-by-character path then takes the chunk from its start.
+std::size_t AnswerDecoder::whole_text(std::span<const std::uint8_t> bytes) {
+  constexpr std::size_t kBeforeValue = 2 + kCodeLength + 1;  // ADR STX CODE =
+  if (bytes.size() < kBeforeValue + 2) return 0;               // + ETX BCC
+  const std::uint8_t* p = bytes.data();
+  if (p[0] != address_char(address_) || p[1] != kStx) return 0;
+  std::uint8_t x = kEquals ^ kEtx;
+  for (std::size_t i = 0; i < kCodeLength; ++i) {
+    if (static_cast<char>(p[2 + i]) != code_.digit(i)) return 0;
+    x ^= p[2 + i];
+  }
+  if (p[kBeforeValue - 1] != kEquals) return 0;
+  std::size_t i = kBeforeValue;
+  const std::size_t n = bytes.size();
+  for (;; ++i) {
+    if (i + 1 >= n) return 0;  // no room for ETX BCC: cut by the chunk
+    const std::uint8_t b = p[i];
+    if (b == kEtx) break;
+    if (!value_.push_back(b)) return 0;  // a frame or garbled character, or more than 100
+    x ^= b;
+  }
+  if (p[i + 1] != x) return 0;
+  cursor_.step = Step::finished;
+  cursor_.code_pos = kCodeLength;
+  cursor_.bcc = x;
+  cursor_.count = i + 2;
+  kind_ = AnswerKind::text;
+  status_ = Status::done;
+  return i + 2;
+}
+
 std::size_t AnswerDecoder::feed(std::span<const std::uint8_t> bytes) {
   if (status_ != Status::need_more) return 0;
+  // Nothing taken yet (the ADR is the next character), text due, no binary prefix (LB-D10).
+  if (cursor_.step == Step::address && expect_ == Expect::text_or_nak && binary_prefix_ == 0) {
+    if (const std::size_t n = whole_text(bytes); n != 0) return n;
+    value_.clear();
+  }
   Cursor c = cursor_;
   std::size_t n = 0;
   while (n < bytes.size()) {

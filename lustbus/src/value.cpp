@@ -19,13 +19,17 @@ int hex_digit(char c, ValueError& e) {
   return -1;
 }
 
-Value hex_value(std::uint32_t raw, std::size_t min_width) {
+void fill_hex_value(Value& v, std::uint32_t raw, std::size_t min_width) {
   // Capital hex digits, at least `min_width` (<= 100) of them: known VALUE characters, written
   // into the value's buffer at once rather than checked one by one.
   const auto digits = static_cast<std::size_t>((std::bit_width(raw) + 3) / 4);
   const std::size_t n = std::max<std::size_t>(std::max<std::size_t>(digits, 1), min_width);
-  Value v;
   v.fill_hex(raw, n, kHex);
+}
+
+Value hex_value(std::uint32_t raw, std::size_t min_width) {
+  Value v;
+  fill_hex_value(v, raw, min_width);
   return v;
 }
 
@@ -90,12 +94,20 @@ std::string_view to_string(DataType t) {
   return "?";
 }
 
-Result<Value> format_raw(Family f, std::uint32_t raw) {
+ValueError format_raw(Value& v, Family f, std::uint32_t raw) {
   if (f == Family::standard) {
-    if (raw > 0xFFFFU) return {{}, ValueError::out_of_range};
-    return {hex_value(raw, 4), ValueError::none};  // sprintf("%04X") of 2.3.1
+    if (raw > 0xFFFFU) return ValueError::out_of_range;
+    fill_hex_value(v, raw, 4);  // sprintf("%04X") of 2.3.1
+    return ValueError::none;
   }
-  return {hex_value(raw, 1), ValueError::none};  // sprintf("%X") of 2.3.2
+  fill_hex_value(v, raw, 1);  // sprintf("%X") of 2.3.2
+  return ValueError::none;
+}
+
+Result<Value> format_raw(Family f, std::uint32_t raw) {
+  Result<Value> r;  // an empty VALUE with an error
+  r.error = format_raw(r.value, f, raw);
+  return r;
 }
 
 Result<Value> format_raw_width(std::uint32_t raw, std::size_t min_width) {

@@ -96,6 +96,7 @@ drive::WriteCheck Drive::check_write(const drive::ParameterInfo* p, Word raw,
 }
 
 drive::WriteEffect Drive::write(std::size_t slot, Word raw, bool power_stage_enabled, Time now) {
+  unsettle();
   const drive::ParameterInfo& p = params_.table().params()[slot];
   if (p.number == pnr::kStat) {
     // 8.1.1: "the reset happens immediately after the receipt": with an error the inverter boots
@@ -146,6 +147,7 @@ Word Drive::eeprom_value(std::uint16_t number) const {
 }
 
 std::uint8_t Drive::read_siof() {
+  unsettle();
   const std::uint8_t bits = siof();
   clear_siof(bits);
   return bits;
@@ -154,10 +156,12 @@ std::uint8_t Drive::read_siof() {
 // --- Faces --------------------------------------------------------------------------------------
 
 void Drive::attach(Face f) {
+  unsettle();
   ++(f == Face::interbus ? faces_.interbus : faces_.serial);
 }
 
 void Drive::detach(Face f) {
+  unsettle();
   int& n = f == Face::interbus ? faces_.interbus : faces_.serial;
   if (n > 0) --n;
 }
@@ -199,6 +203,19 @@ Word Drive::serial_reference() const {
 // --- Time ---------------------------------------------------------------------------------------
 
 void Drive::advance(Time now) {
+  // Advanced to `now` already, nothing changed since (advance_fully says when it leaves the drive
+  // settled): the watchdog has not run out (5.2), no sample is due, the start's end has been seen.
+  // Only the fault input is set again, as the general path would.
+  if (settled_.on && now == settled_.to) {
+    if (!attached(Face::interbus) && now > sample_time_) {
+      pd_.set_fault(external_fault_ || ib_fault_ || serial_fault_);
+    }
+    return;
+  }
+  advance_fully(now);
+}
+
+void Drive::advance_fully(Time now) {
   if (!attached(Face::interbus)) {
     // The inverter samples up to the moment its serial watchdog ran out, so that the fault acts
     // from then.
@@ -206,7 +223,7 @@ void Drive::advance(Time now) {
     if (attached(Face::serial) && !starting_ && !serial_fault_ && siot != 0 &&
         now - serial_last_ > std::chrono::milliseconds(siot)) {
       const Time expiry = serial_last_ + std::chrono::milliseconds(siot) + Duration{1};
-      if (expiry < now) advance(expiry);
+      if (expiry < now) advance_fully(expiry);
     }
     if (now > sample_time_) {
       if (now - sample_time_ > kCatchUp) sample_time_ = now - kCatchUp;
@@ -219,17 +236,32 @@ void Drive::advance(Time now) {
   }
   finish_start(now);
   // 5.2: no valid telegram within 84-SIOT ms; 8: the power stage blocks at once.
-  if (check_serial_watchdog(now) && !attached(Face::interbus)) sample_now(now);
+  const bool tripped = check_serial_watchdog(now);
+  if (tripped && !attached(Face::interbus)) sample_now(now);
+  // Settled when the watchdog did not run out here: the last steps were then the start's end and
+  // a check that changed nothing, so a second call at `now` would find the same state and do
+  // nothing but set the fault input again (as advance() does). After a trip, not settled.
+  settled_.on = !tripped;
+  settled_.to = now;
 }
 
 void Drive::interbus_cycle(Time now) {
+  unsettle();
   ib_armed_ = true;
   ib_last_cycle_ = now;
 }
 
-void Drive::serial_telegram(Time now) { serial_last_ = now; }
+void Drive::serial_telegram(Time now) {
+  // 5.2: the telegram feeds 84-SIOT. At the time the drive was advanced to, advance() there still
+  // has nothing to do: the watchdog then sees 0 ms since the telegram (it runs out only after more
+  // than 84-SIOT ms), and nothing else advance() does reads serial_last_. So the drive stays
+  // settled; at any other time it does not.
+  if (now != settled_.to) unsettle();
+  serial_last_ = now;
+}
 
 void Drive::begin_sample(Time now) {
+  unsettle();
   finish_start(now);
   run_interbus_watchdog(now);
   check_serial_watchdog(now);
@@ -238,6 +270,7 @@ void Drive::begin_sample(Time now) {
 
 void Drive::sample(std::span<const Word> m2s, std::span<Word> s2m, Time now,
                    std::optional<Word> comm) {
+  unsettle();
   // The interface that controls gives words 1 and 2 (seed 000, 7.1; seed 001, 6.1).
   const bool serial = serial_has_control();
   const Word control = serial ? serial_control_word() : m2s[0];
@@ -362,6 +395,7 @@ void Drive::software_reset(Word control, Time now) {
 }
 
 void Drive::power_cycle(Time now) {
+  unsettle();
   new_start(now, config_.pd.init_time);
   card_until_ = Time{0};  // switched off: the card operation ends with it
   pd_.power_on();
@@ -374,6 +408,7 @@ void Drive::power_cycle(Time now) {
 }
 
 void Drive::restart(Time now) {
+  unsettle();
   new_start(now, Duration{0});
   finish_start(now);
   pd_.override_control(std::nullopt);
@@ -387,6 +422,7 @@ void Drive::restart(Time now) {
 }
 
 void Drive::mains_off(Time now) {
+  unsettle();
   power_cycle(now);
   ready_at_ = Time::max();  // no end of the start until the mains return
   powered_ = false;
@@ -395,12 +431,14 @@ void Drive::mains_off(Time now) {
 }
 
 void Drive::mains_on(Time now) {
+  unsettle();
   if (powered_) return;
   powered_ = true;
   power_cycle(now);
 }
 
 bool Drive::apply(const PlantEvent& e, Time now) {
+  unsettle();
   switch (e.kind) {
     case PlantEvent::Kind::fault:
     case PlantEvent::Kind::fault_clear:
@@ -434,6 +472,7 @@ bool Drive::apply(const PlantEvent& e, Time now) {
 }
 
 void Drive::set_terminal(vf1000::Terminal t, bool high) {
+  unsettle();
   terminals_[static_cast<std::size_t>(t)] = high;
   // 5.2.2: bit 14 S2OUT, bit 15 S1OUT, in the status word of the next sample (and so in 911).
   pd_.set_outputs(terminals_[static_cast<std::size_t>(vf1000::Terminal::s2out)],
@@ -455,10 +494,12 @@ bool Drive::input_function_active(vf1000::Terminal input) const {
 }
 
 void Drive::smartcard(Duration how_long, Time now) {
+  unsettle();
   if (how_long > Duration{0}) card_until_ = std::max(card_until_, now + how_long);
 }
 
 void Drive::set_fault(bool present, Time now, std::optional<int> cause) {
+  unsettle();
   external_fault_ = present;
   fault_cause_ = present ? cause : std::nullopt;
   // Without an INTERBUS face the drive samples itself: the fault acts at once (8). With one, at

@@ -18,6 +18,17 @@ DriveConfig standalone(DriveConfig c) {
   return c;
 }
 
+// 2.3.1: the value as "%04X", formatted into the answer itself (the one object returned, so the
+// caller's answer is this one); NAK, with no VALUE, should it not format.
+lb::EnquiryAnswer value_answer(Word raw, Duration reaction) {
+  lb::EnquiryAnswer a{lb::Reply::text, reaction, {}};
+  if (lb::format_raw(a.value, lb::Family::standard, raw) != lb::ValueError::none) {
+    a.reply = lb::Reply::nak;
+    a.value.clear();
+  }
+  return a;
+}
+
 }  // namespace
 
 LustbusDevice::LustbusDevice(LustbusTiming timing, const DriveConfig& drive)
@@ -107,9 +118,7 @@ lb::EnquiryAnswer LustbusDevice::enquiry(const lb::Code& code, const lb::Context
   }
   // 9.2: reading 85 erases the bits; 11-STAT and 12 are the drive's state (drive.hpp).
   const Word raw = p->number == pnr::kSiof ? Word{drive_->read_siof()} : drive_->reading(p->number);
-  const auto v = lb::format_raw(lb::Family::standard, raw);  // 2.3.1: "%04X"
-  if (!v.ok()) return lb::EnquiryAnswer::nak(reaction());
-  return lb::EnquiryAnswer::text(v.value, reaction());
+  return value_answer(raw, reaction());
 }
 
 lb::SelectAnswer LustbusDevice::refuse(SiofBit b) {

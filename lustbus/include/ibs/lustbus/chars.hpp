@@ -55,8 +55,12 @@ constexpr std::uint8_t bcc(std::span<const std::uint8_t> after_stx_through_etx) 
 
 // Characters a VALUE may hold: 7-bit, not one of the frame's control characters. NUL is allowed
 // (the MC6000 description ends its name with '\0', 11.2.1).
+// The six frame characters are all below 20H: one mask test (LustbusShortcuts checks every byte
+// against the list).
+inline constexpr std::uint32_t kFrameCharMask = (1U << kStx) | (1U << kEtx) | (1U << kEot) |
+                                                (1U << kEnq) | (1U << kAck) | (1U << kNak);
 constexpr bool is_value_char(std::uint8_t b) {
-  return b < 0x80 && b != kStx && b != kEtx && b != kEot && b != kEnq && b != kAck && b != kNak;
+  return b < 0x80 && (b >= 0x20 || ((kFrameCharMask >> b) & 1U) == 0);
 }
 
 }  // namespace ibs::lustbus

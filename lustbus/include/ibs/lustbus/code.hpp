@@ -36,6 +36,13 @@ class Code {
     }
     return c;
   }
+  // Digit `i` (< 5) set to `c` when `c` is a decimal digit; false, and nothing changed, when not:
+  // a receiver takes the CODE character by character with this one check (6.1, 6.2).
+  constexpr bool set_digit(std::size_t i, std::uint8_t c) {
+    if (c < '0' || c > '9') return false;
+    digits_[i] = static_cast<char>(c);
+    return true;
+  }
   [[nodiscard]] constexpr std::uint32_t number() const {
     std::uint32_t n = 0;
     for (const char d : digits_) n = n * 10 + static_cast<std::uint32_t>(d - '0');

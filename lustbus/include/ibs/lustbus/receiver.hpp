@@ -149,6 +149,7 @@ class Receiver {
 
   void silence(Time now);
   void receive_one(Cursor& c, std::uint8_t b, Time now);
+  bool whole_enquiry(Cursor& c, const std::uint8_t* p, Time now);
   void drop(Cursor& c);
   void drop();
   void finish_enquiry(Time now);
@@ -164,7 +165,7 @@ class Receiver {
   bool deferred_enquiry_ = false;
 
   Address address_ = 0;  // of the telegram being received
-  std::array<char, kCodeLength> code_digits_{};
+  Code received_code_{};  // the CODE digits as they arrive
   std::uint8_t code_pos_ = 0;
   Code code_{};
   Value value_{};

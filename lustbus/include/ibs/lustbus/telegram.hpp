@@ -104,6 +104,7 @@ class AnswerDecoder {
     std::size_t count = 0;
   };
   Status feed_one(Cursor& c, std::uint8_t b);
+  std::size_t whole_text(std::span<const std::uint8_t> bytes);
   Status fail(Cursor& c, AnswerError e);
   Status done(Cursor& c, AnswerKind k);
 

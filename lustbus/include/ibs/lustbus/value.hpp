@@ -96,6 +96,9 @@ struct Result {
 // ---- raw numbers <-> VALUE strings (2.3) -------------------------------------------------------
 // VF1000: "%04X", only 0..FFFFH (2.3.1). MC6000: "%X", no leading zeros (2.3.2).
 Result<Value> format_raw(Family f, std::uint32_t raw);
+// The same written into `v` in place (the VALUE of an answer being built), which an error leaves
+// as it was.
+ValueError format_raw(Value& v, Family f, std::uint32_t raw);
 // MC6000 with a minimum width (leading zeros are optional, 2.3; 11.2 sends 8 characters).
 Result<Value> format_raw_width(std::uint32_t raw, std::size_t min_width);
 // VF1000: exactly four capital hex digits. MC6000: 1..100 capital hex digits, leading zeros
