@@ -63,10 +63,12 @@ Server::Server(const ServerConfig& cfg, ServedParameters& served)
       latency_(latency_of(cfg)),
       served_(&served),
       link_(link_config(cfg)),
-      workload_(cfg.workload) {}
+      workload_(cfg.workload),
+      processing_(latency_.processing(workload_)) {}
 
 void Server::set_workload(double workload) {
   workload_ = std::clamp(workload, 0.0, 1.0);
+  processing_ = latency_.processing(workload_);
 }
 
 void Server::power_on(Time now) {
@@ -164,7 +166,7 @@ void Server::handle_message(Time now, std::span<const std::uint8_t> msg) {
   }
   ++stats_.requests;
   job_active_ = true;
-  job_at_ = now + latency_.processing(workload_);
+  job_at_ = now + processing_;  // docs/pcp.md, "Latency model"
 }
 
 PcpError Server::do_read(Time now, ResponsePdu& r) {

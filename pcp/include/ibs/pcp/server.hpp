@@ -129,6 +129,8 @@ class Server {
   ServedParameters* served_;
   Link link_;
   double workload_ = 0.0;
+  // latency_.processing(workload_), formed when the workload is set rather than per request.
+  Duration processing_{};
 
   bool associated_ = false;
   std::uint8_t cr_ = 0;
