@@ -149,6 +149,49 @@ TEST(Client, AServerAbortEndsTheRequest) {
   EXPECT_FALSE(client.associated());
 }
 
+TEST(Client, TakeResultViewIsTakeResultWithoutACopy) {
+  // Two sessions alike: one takes its results with take_result(), the other with
+  // take_result_view(); the same results in the same cycles, each taken once.
+  Session a(4);
+  Session b(4);
+  const auto take = [](Session& s, bool view) -> std::optional<Result> {
+    if (!view) return s.client.take_result();
+    const Result* r = s.client.take_result_view();
+    if (r == nullptr) return std::nullopt;
+    EXPECT_EQ(s.client.take_result_view(), nullptr) << "taken once";
+    EXPECT_FALSE(s.client.take_result().has_value()) << "taken once";
+    return *r;
+  };
+  const std::array<std::uint16_t, 3> numbers{kSerr, kIbstu, 999};  // 999: no such parameter
+  for (int k = 0; k < 4; ++k) {
+    for (Session* s : {&a, &b}) {
+      const Time t = s->bus.now();
+      ASSERT_EQ(k == 0 ? s->client.initiate(t)
+                       : s->client.read(t, ParameterRef::number(numbers[static_cast<std::size_t>(k - 1)])),
+                SubmitStatus::accepted);
+    }
+    std::optional<Result> ra;
+    std::optional<Result> rb;
+    for (int c = 0; c < 1000 && !ra; ++c) {
+      a.bus.cycle();
+      b.bus.cycle();
+      ra = take(a, false);
+      rb = take(b, true);
+      ASSERT_EQ(ra.has_value(), rb.has_value()) << "cycle " << c;
+    }
+    ASSERT_TRUE(ra && rb);
+    EXPECT_EQ(ra->service, rb->service);
+    EXPECT_EQ(ra->kind, rb->kind);
+    EXPECT_EQ(ra->index, rb->index);
+    EXPECT_EQ(ra->invoke_id, rb->invoke_id);
+    EXPECT_EQ(ra->error, rb->error);
+    EXPECT_EQ(ra->data, rb->data);
+    EXPECT_EQ(ra->peer_kbl, rb->peer_kbl);
+    EXPECT_EQ(ra->submitted_at, rb->submitted_at);
+    EXPECT_EQ(ra->completed_at, rb->completed_at);
+  }
+}
+
 TEST(Client, ASilentServoEndsInATimeout) {
   Client client(test::client_config(2));
   std::array<Word, 2> zero{};
