@@ -179,16 +179,11 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
   // invalid or foreign frame, ABORT, ABORT-ACK, a control frame with data) goes the general way.
   if (state_ == LinkState::ready &&
       !(tx_active_ && tx_shown_[0] && now - tx_since_ >= cfg_.ack_timeout)) {
-    switch (cfg_.channel_words) {
-      case 4:
-        if (in.size() >= 4) return receive_ready<4>(now, in);
-        break;
-      case 2:
-        if (in.size() >= 2) return receive_ready<2>(now, in);
-        break;
-      default:
-        if (!in.empty()) return receive_ready<1>(now, in);
-        break;
+    const auto words = static_cast<std::size_t>(cfg_.channel_words);  // 1, 2 or 4 (validate)
+    if (in.size() >= words) {
+      if (words == 4) return receive_ready<4>(now, in);
+      if (words == 2) return receive_ready<2>(now, in);
+      return receive_ready<1>(now, in);
     }
   }
   return receive_general(now, in);
@@ -525,16 +520,11 @@ void Link::transmit(Time now, std::span<Word> out) {
   // transmit_general chooses, its words made straight from the PDU (transmit_ready). ABORT,
   // ABORT-ACK and a short output go the general way.
   if (state_ == LinkState::ready) {
-    switch (cfg_.channel_words) {
-      case 4:
-        if (out.size() >= 4) return transmit_ready<4>(now, out);
-        break;
-      case 2:
-        if (out.size() >= 2) return transmit_ready<2>(now, out);
-        break;
-      default:
-        if (!out.empty()) return transmit_ready<1>(now, out);
-        break;
+    const auto words = static_cast<std::size_t>(cfg_.channel_words);  // 1, 2 or 4 (validate)
+    if (out.size() >= words) {
+      if (words == 4) return transmit_ready<4>(now, out);
+      if (words == 2) return transmit_ready<2>(now, out);
+      return transmit_ready<1>(now, out);
     }
   }
   transmit_general(now, out);
