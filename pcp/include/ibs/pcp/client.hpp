@@ -157,7 +157,10 @@ class Client {
 
   bool outstanding_ = false;
   bool sent_ = false;
-  RequestPdu request_{};
+  // What a confirmation must match of the outstanding request (its PDU is in pdu_).
+  ServiceCode request_service_ = ServiceCode::read;
+  std::uint8_t request_invoke_id_ = 0;
+  std::uint8_t request_cr_ = 0;
   std::optional<DataType> expected_type_;
   Pdu pdu_{};
   Time deadline_{};
