@@ -122,7 +122,10 @@ SubmitStatus Client::read(Time now, ParameterRef p, DataType expected, Duration 
 
 SubmitStatus Client::read_subindex(Time now, ParameterRef p, std::uint8_t subindex,
                                    Duration timeout) {
-  RequestPdu r;
+  // A member rather than a fresh RequestPdu (which clears its 124-byte data on every Read): only a
+  // Read's fields are ever written to it (service, index, subindex here; InvokeID and CR in
+  // submit()), so it always equals a fresh Read request with them.
+  RequestPdu& r = read_request_;
   r.service = ServiceCode::read;
   r.index = p.index;
   r.subindex = subindex;

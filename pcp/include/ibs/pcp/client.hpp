@@ -163,6 +163,7 @@ class Client {
   std::uint8_t request_cr_ = 0;
   std::optional<DataType> expected_type_;
   Pdu pdu_{};
+  RequestPdu read_request_{};  // the Read requests' (read_subindex)
   Time deadline_{};
   Result result_{};
   bool result_ready_ = false;
