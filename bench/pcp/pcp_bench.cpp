@@ -37,9 +37,9 @@ struct Loop {
   Loop(const Loop&) = delete;
   Loop& operator=(const Loop&) = delete;
 
-  // Steps until the client reports; returns the number of steps.
-  int until_result(Result& out) {
-    int steps = 0;
+  // Steps until the client reports, counting them in `steps`; the result stays in the client
+  // (Client::take_result_view: no copy of the 312-byte Result).
+  const Result& until_result(std::int64_t& steps) {
     for (;;) {
       now += 1ms;
       const auto to_server = m2s;
@@ -47,10 +47,7 @@ struct Loop {
       client.step(now, to_client, m2s);
       server.step(now, to_server, s2m);
       ++steps;
-      if (auto r = client.take_result()) {
-        out = *r;
-        return steps;
-      }
+      if (const Result* r = client.take_result_view()) return *r;
     }
   }
 
@@ -66,18 +63,17 @@ struct Loop {
 
 // One Read of 2-IBSTU, submit to confirmation, both sides stepped. Out of line, so that callgrind
 // counts one call per Read (bench/callgrind_per_call.sh ... read_once).
-[[gnu::noinline]] int read_once(Loop& loop, Result& r) {
+[[gnu::noinline]] const Result& read_once(Loop& loop, std::int64_t& steps) {
   loop.client.read(loop.now, ParameterRef::number(ibs::devices::mc6000::kIbstu));
-  return loop.until_result(r);
+  return loop.until_result(steps);
 }
 
 void run_reads(benchmark::State& state, LatencyModel latency) {
   const int words = static_cast<int>(state.range(0));
   Loop loop(words, latency);
-  Result r;
+  std::int64_t initiate_steps = 0;
   loop.client.initiate(loop.now);
-  loop.until_result(r);
-  if (!r.ok()) state.SkipWithError("Initiate failed");
+  if (!loop.until_result(initiate_steps).ok()) state.SkipWithError("Initiate failed");
   // The Read's value checked: the bytes of the value the drive stores.
   const std::optional<Value> stored = loop.served.value(ibs::devices::mc6000::kIbstu);
   std::array<std::uint8_t, kMaxValueSize> b{};
@@ -85,7 +81,7 @@ void run_reads(benchmark::State& state, LatencyModel latency) {
   if (stored) expected.assign(std::span<const std::uint8_t>(b.data(), encode(*stored, b)));
   std::int64_t steps = 0;
   for (auto _ : state) {
-    steps += read_once(loop, r);
+    const Result& r = read_once(loop, steps);
     if (!r.ok() || !stored || !(r.data == expected)) {
       state.SkipWithError("the Read did not confirm 2-IBSTU's stored value");
       break;

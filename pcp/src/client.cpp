@@ -84,7 +84,9 @@ SubmitStatus Client::submit(Time now, RequestPdu& req, Duration timeout, bool ne
   if (!encode(req, pdu_) || pdu_.size > cfg_.kbl.max_pdu_sending)
     return SubmitStatus::invalid_argument;
   next_invoke_id_ = static_cast<std::uint8_t>(next_invoke_id_ + 1U);
-  request_ = req;
+  request_service_ = req.service;
+  request_invoke_id_ = req.invoke_id;
+  request_cr_ = req.cr;
   outstanding_ = true;
   sent_ = false;
   deadline_ = now + (timeout > Duration::zero() ? timeout : cfg_.request_timeout);
@@ -120,7 +122,10 @@ SubmitStatus Client::read(Time now, ParameterRef p, DataType expected, Duration 
 
 SubmitStatus Client::read_subindex(Time now, ParameterRef p, std::uint8_t subindex,
                                    Duration timeout) {
-  RequestPdu r;
+  // A member rather than a fresh RequestPdu (which clears its 124-byte data on every Read): only a
+  // Read's fields are ever written to it (service, index, subindex here; InvokeID and CR in
+  // submit()), so it always equals a fresh Read request with them.
+  RequestPdu& r = read_request_;
   r.service = ServiceCode::read;
   r.index = p.index;
   r.subindex = subindex;
@@ -238,8 +243,8 @@ void Client::handle_message(Time now, std::span<const std::uint8_t> msg) {
     report_ready_ = true;
     return;
   }
-  if (!outstanding_ || !sent_ || r.service != request_.service ||
-      r.invoke_id != request_.invoke_id || r.cr != request_.cr) {
+  if (!outstanding_ || !sent_ || r.service != request_service_ ||
+      r.invoke_id != request_invoke_id_ || r.cr != request_cr_) {
     fail_protocol(now);  // a confirmation nobody asked for: the channel is not what we think
     return;
   }
@@ -309,7 +314,7 @@ void Client::step(Time now, std::span<const Word> s2m, std::span<Word> m2s) {
     associated_ = false;
     abort_pending_ = false;
     // An Initiate that has not left yet may still go once the channel is back.
-    if (outstanding_ && (sent_ || request_.service != ServiceCode::initiate)) {
+    if (outstanding_ && (sent_ || request_service_ != ServiceCode::initiate)) {
       complete(now, ResultKind::link_reset);
     }
   }

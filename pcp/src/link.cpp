@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -30,6 +31,14 @@ constexpr std::array<bool, 256> kAdminValid = [] {
   }
   return t;
 }();
+
+// A frame of 4 words as one 64-bit number (little-endian host): the words' bytes swapped give the
+// frame's bytes in channel order (each word high byte first, docs/pcp.md "Frame"), and back.
+constexpr bool kWholeFrames = std::endian::native == std::endian::little;
+constexpr std::uint64_t kLowBytes = 0x00FF00FF00FF00FFULL;
+constexpr std::uint64_t swap_word_bytes(std::uint64_t x) {
+  return ((x >> 8U) & kLowBytes) | ((x & kLowBytes) << 8U);
+}
 
 }  // namespace
 
@@ -170,16 +179,11 @@ LinkEvents Link::receive(Time now, std::span<const Word> in) {
   // invalid or foreign frame, ABORT, ABORT-ACK, a control frame with data) goes the general way.
   if (state_ == LinkState::ready &&
       !(tx_active_ && tx_shown_[0] && now - tx_since_ >= cfg_.ack_timeout)) {
-    switch (cfg_.channel_words) {
-      case 4:
-        if (in.size() >= 4) return receive_ready<4>(now, in);
-        break;
-      case 2:
-        if (in.size() >= 2) return receive_ready<2>(now, in);
-        break;
-      default:
-        if (!in.empty()) return receive_ready<1>(now, in);
-        break;
+    const auto words = static_cast<std::size_t>(cfg_.channel_words);  // 1, 2 or 4 (validate)
+    if (in.size() >= words) {
+      if (words == 4) return receive_ready<4>(now, in);
+      if (words == 2) return receive_ready<2>(now, in);
+      return receive_ready<1>(now, in);
     }
   }
   return receive_general(now, in);
@@ -261,16 +265,25 @@ LinkEvents Link::receive_ready(Time now, std::span<const Word> in) {
     return ev;
   }
   std::size_t size = rx_size_;
-  if (size + kData > rx_.size()) {
+  if (size + kData > kRxLimit) {
     rx_in_message_ = false;
     ++stats_.messages_dropped;
     return ev;
   }
   std::uint8_t* p = rx_.data() + size;
-  p[0] = low_byte(w[0]);
-  for (std::size_t i = 1; i < N; ++i) {
-    p[2 * i - 1] = high_byte(w[i]);
-    p[2 * i] = low_byte(w[i]);
+  if constexpr (N == 4 && kWholeFrames) {
+    // The whole frame at once: its bytes without the admin byte, and a zero after them (rx_ has
+    // the room; nothing reads past rx_size_).
+    std::uint64_t x = 0;
+    std::memcpy(&x, w.data(), sizeof x);
+    const std::uint64_t data = swap_word_bytes(x) >> 8U;
+    std::memcpy(p, &data, sizeof data);
+  } else {
+    p[0] = low_byte(w[0]);
+    for (std::size_t i = 1; i < N; ++i) {
+      p[2 * i - 1] = high_byte(w[i]);
+      p[2 * i] = low_byte(w[i]);
+    }
   }
   size += kData;
   rx_size_ = size;
@@ -447,7 +460,7 @@ void Link::process_data(const AdminByte& a, std::span<const std::uint8_t> data, 
     ++stats_.fragments_orphaned;
     return;
   }
-  if (rx_size_ + data.size() > rx_.size()) {
+  if (rx_size_ + data.size() > kRxLimit) {
     rx_in_message_ = false;
     ++stats_.messages_dropped;
     return;
@@ -477,9 +490,19 @@ bool Link::finish_message() {
       rx_expected_ != 0 && rx_size_ >= rx_expected_ && rx_size_ - rx_expected_ < data_size_;
   bool ok = length_ok;
   if (ok) {
-    unsigned padding = 0;
-    for (std::size_t i = rx_expected_; i < rx_size_; ++i) padding |= rx_[i];
-    ok = padding == 0;
+    // The LAST fragment's padding (fewer than a frame's data bytes, so < 8) must be zeros.
+    const std::size_t n = rx_size_ - rx_expected_;
+    if constexpr (kWholeFrames) {
+      // As one 8-byte load (rx_ holds kMaxMessageSize + 8 bytes), the bytes past it masked off.
+      static_assert(kMaxFrameData < 8 && kRxLimit + 1 >= kMaxMessageSize + 8);
+      std::uint64_t x = 0;
+      std::memcpy(&x, rx_.data() + rx_expected_, sizeof x);
+      ok = (x & ((std::uint64_t{1} << (8U * n)) - 1U)) == 0;
+    } else {
+      unsigned padding = 0;
+      for (std::size_t i = 0; i < n; ++i) padding |= rx_[rx_expected_ + i];
+      ok = padding == 0;
+    }
   }
   if (!ok) {
     ++stats_.messages_dropped;
@@ -497,16 +520,11 @@ void Link::transmit(Time now, std::span<Word> out) {
   // transmit_general chooses, its words made straight from the PDU (transmit_ready). ABORT,
   // ABORT-ACK and a short output go the general way.
   if (state_ == LinkState::ready) {
-    switch (cfg_.channel_words) {
-      case 4:
-        if (out.size() >= 4) return transmit_ready<4>(now, out);
-        break;
-      case 2:
-        if (out.size() >= 2) return transmit_ready<2>(now, out);
-        break;
-      default:
-        if (!out.empty()) return transmit_ready<1>(now, out);
-        break;
+    const auto words = static_cast<std::size_t>(cfg_.channel_words);  // 1, 2 or 4 (validate)
+    if (out.size() >= words) {
+      if (words == 4) return transmit_ready<4>(now, out);
+      if (words == 2) return transmit_ready<2>(now, out);
+      return transmit_ready<1>(now, out);
     }
   }
   transmit_general(now, out);
@@ -543,8 +561,17 @@ void Link::transmit_ready(Time now, std::span<Word> out) {
   admin |= kParityBit[admin >> 1U];
   // The fragment's bytes, then the zeros after the PDU in tx_ as the LAST frame's padding.
   const std::uint8_t* d = tx_.data() + offset;
-  out[0] = make_word(static_cast<std::uint8_t>(admin), d[0]);
-  for (std::size_t i = 1; i < N; ++i) out[i] = make_word(d[2 * i - 1], d[2 * i]);
+  if constexpr (N == 4 && kWholeFrames) {
+    // The whole frame at once: the admin byte and the 7 bytes from offset (offset < tx_size_, so
+    // the 8 bytes read lie in tx_; the 8th is shifted out).
+    std::uint64_t x = 0;
+    std::memcpy(&x, d, sizeof x);
+    x = swap_word_bytes((x << 8U) | admin);
+    std::memcpy(out.data(), &x, sizeof x);
+  } else {
+    out[0] = make_word(static_cast<std::uint8_t>(admin), d[0]);
+    for (std::size_t i = 1; i < N; ++i) out[i] = make_word(d[2 * i - 1], d[2 * i]);
+  }
 }
 
 [[gnu::noinline]] void Link::transmit_general(Time now, std::span<Word> out) {

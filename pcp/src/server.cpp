@@ -63,10 +63,12 @@ Server::Server(const ServerConfig& cfg, ServedParameters& served)
       latency_(latency_of(cfg)),
       served_(&served),
       link_(link_config(cfg)),
-      workload_(cfg.workload) {}
+      workload_(cfg.workload),
+      processing_(latency_.processing(workload_)) {}
 
 void Server::set_workload(double workload) {
   workload_ = std::clamp(workload, 0.0, 1.0);
+  processing_ = latency_.processing(workload_);
 }
 
 void Server::power_on(Time now) {
@@ -164,7 +166,7 @@ void Server::handle_message(Time now, std::span<const std::uint8_t> msg) {
   }
   ++stats_.requests;
   job_active_ = true;
-  job_at_ = now + latency_.processing(workload_);
+  job_at_ = now + processing_;  // docs/pcp.md, "Latency model"
 }
 
 PcpError Server::do_read(Time now, ResponsePdu& r) {
@@ -179,6 +181,19 @@ PcpError Server::do_read(Time now, ResponsePdu& r) {
 
 void Server::execute(Time now) {
   job_active_ = false;
+  if (job_.service == ServiceCode::read) {
+    // A Read's confirmation (seed 001, 4.2) in a member kept for Read confirmations only, rather
+    // than a fresh ResponsePdu that clears its ~250 bytes on every request: only a Read
+    // confirmation's fields are ever written to it (InvokeID, CR, the result, the data), and the
+    // last value's bytes are cleared before the next one, so it always equals a fresh one.
+    ResponsePdu& r = read_answer_;
+    r.invoke_id = job_.invoke_id;
+    r.cr = job_.cr;
+    std::fill_n(r.data.data.begin(), r.data.size, std::uint8_t{0});
+    r.data.size = 0;
+    answer(r, do_read(now, r), now);
+    return;
+  }
   ResponsePdu r;
   r.service = job_.service;
   r.invoke_id = job_.invoke_id;
@@ -197,8 +212,7 @@ void Server::execute(Time now) {
         cr_ = job_.cr;
       }
       break;
-    case ServiceCode::read:
-      err = do_read(now, r);
+    case ServiceCode::read:  // above
       break;
     case ServiceCode::write: {
       const WriteAnswer a = served_->write(now, job_.index, job_.subindex, job_.data.view());
@@ -229,6 +243,10 @@ void Server::execute(Time now) {
     case ServiceCode::information_report:
       return;
   }
+  answer(r, err, now + extra_delay);
+}
+
+void Server::answer(ResponsePdu& r, PcpError err, Time at) {
   r.positive = err == PcpError{};
   r.error = err;
   if (r.positive) {
@@ -239,7 +257,7 @@ void Server::execute(Time now) {
   if (encode(r, out_)) {
     out_pending_ = true;
     out_is_report_ = false;
-    out_at_ = now + extra_delay;
+    out_at_ = at;
   }
 }
 

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
 #include "pcp_harness.hpp"
 #include "peers.hpp"
 
@@ -131,6 +134,55 @@ TEST(Client, AConfirmationThatDoesNotAnswerTheRequestIsAProtocolError) {
   EXPECT_EQ(client.link().state(), LinkState::aborting) << "the channel is resynchronised";
 }
 
+TEST(Client, EveryReadRequestHasTheBytesOfAFreshOne) {
+  // The client builds its Read requests in one reused member: between Writes with data, plain,
+  // typed and subindex Reads, each Read's PDU must be encode() of a fresh RequestPdu.
+  Client client(test::client_config(4));
+  FakeServer fake(
+      client, [](const std::vector<std::uint8_t>& m) -> std::optional<std::vector<std::uint8_t>> {
+        const Word iid_cr = static_cast<Word>(m[4] << 8 | m[5]);
+        if (m[1] == 0x8B)
+          return pdu_bytes({0x808B, 0x0007, iid_cr, 0x0000, 134, 134, 0x0000, 0x0004, 0x0304});
+        if (m[1] == 0x82) return pdu_bytes({0x8082, 0x0002, iid_cr, 0x0000});
+        return pdu_bytes({0x8081, 0x0004, iid_cr, 0x0000, 0x0002, 0x1234});
+      });
+  ASSERT_EQ(client.initiate(fake.now()), SubmitStatus::accepted);
+  ASSERT_TRUE(fake.await()->ok());
+  std::mt19937 rng(26);
+  for (int k = 0; k < 200; ++k) {
+    const auto index = static_cast<std::uint16_t>(rng());
+    const auto subindex = static_cast<std::uint8_t>(rng());
+    const unsigned how = rng() % 4;
+    SubmitStatus st{};
+    if (how == 0) {
+      std::vector<std::uint8_t> data(1 + rng() % 16);
+      for (auto& b : data) b = static_cast<std::uint8_t>(rng());
+      st = client.write_bytes(fake.now(), ParameterRef{index}, data, subindex);
+    } else if (how == 1) {
+      st = client.read(fake.now(), ParameterRef{index});
+    } else if (how == 2) {
+      st = client.read(fake.now(), ParameterRef{index}, DataType::usign16);
+    } else {
+      st = client.read_subindex(fake.now(), ParameterRef{index}, subindex);
+    }
+    ASSERT_EQ(st, SubmitStatus::accepted);
+    ASSERT_TRUE(fake.await().has_value());
+    if (how == 0) continue;
+    const std::vector<std::uint8_t>& m = fake.received().back();
+    RequestPdu fresh;
+    fresh.service = ServiceCode::read;
+    fresh.index = index;
+    fresh.subindex = how == 3 ? subindex : 0;
+    fresh.invoke_id = m.size() > 4 ? m[4] : 0;
+    fresh.cr = client.config().communication_reference;
+    Pdu expected;
+    ASSERT_TRUE(encode(fresh, expected));
+    ASSERT_TRUE(std::equal(m.begin(), m.end(), expected.view().begin(), expected.view().end()))
+        << "request " << k;
+    EXPECT_EQ(fresh.invoke_id, static_cast<std::uint8_t>(k + 1)) << "the InvokeIDs count on";
+  }
+}
+
 TEST(Client, AServerAbortEndsTheRequest) {
   Client client(test::client_config(1));
   FakeServer fake(
@@ -147,6 +199,49 @@ TEST(Client, AServerAbortEndsTheRequest) {
   EXPECT_EQ(r->kind, ResultKind::aborted);
   EXPECT_EQ(r->abort_reason, AbortReason::not_initiated);
   EXPECT_FALSE(client.associated());
+}
+
+TEST(Client, TakeResultViewIsTakeResultWithoutACopy) {
+  // Two sessions alike: one takes its results with take_result(), the other with
+  // take_result_view(); the same results in the same cycles, each taken once.
+  Session a(4);
+  Session b(4);
+  const auto take = [](Session& s, bool view) -> std::optional<Result> {
+    if (!view) return s.client.take_result();
+    const Result* r = s.client.take_result_view();
+    if (r == nullptr) return std::nullopt;
+    EXPECT_EQ(s.client.take_result_view(), nullptr) << "taken once";
+    EXPECT_FALSE(s.client.take_result().has_value()) << "taken once";
+    return *r;
+  };
+  const std::array<std::uint16_t, 3> numbers{kSerr, kIbstu, 999};  // 999: no such parameter
+  for (int k = 0; k < 4; ++k) {
+    for (Session* s : {&a, &b}) {
+      const Time t = s->bus.now();
+      ASSERT_EQ(k == 0 ? s->client.initiate(t)
+                       : s->client.read(t, ParameterRef::number(numbers[static_cast<std::size_t>(k - 1)])),
+                SubmitStatus::accepted);
+    }
+    std::optional<Result> ra;
+    std::optional<Result> rb;
+    for (int c = 0; c < 1000 && !ra; ++c) {
+      a.bus.cycle();
+      b.bus.cycle();
+      ra = take(a, false);
+      rb = take(b, true);
+      ASSERT_EQ(ra.has_value(), rb.has_value()) << "cycle " << c;
+    }
+    ASSERT_TRUE(ra && rb);
+    EXPECT_EQ(ra->service, rb->service);
+    EXPECT_EQ(ra->kind, rb->kind);
+    EXPECT_EQ(ra->index, rb->index);
+    EXPECT_EQ(ra->invoke_id, rb->invoke_id);
+    EXPECT_EQ(ra->error, rb->error);
+    EXPECT_EQ(ra->data, rb->data);
+    EXPECT_EQ(ra->peer_kbl, rb->peer_kbl);
+    EXPECT_EQ(ra->submitted_at, rb->submitted_at);
+    EXPECT_EQ(ra->completed_at, rb->completed_at);
+  }
 }
 
 TEST(Client, ASilentServoEndsInATimeout) {

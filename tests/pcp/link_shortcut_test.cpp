@@ -56,6 +56,63 @@ void expect_same(const Link& fast, const Link& general, const char* what, int cy
   ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << what << " cycle " << cycle;
 }
 
+// Frames of one message from a to_server peer: the PDU in fragments, the LAST one's padding zeros
+// except the byte `dirty` bytes after the PDU's end (none when dirty < 0), set to `value`.
+std::vector<Frame> message_frames(int words, const std::vector<std::uint8_t>& pdu, int dirty,
+                                  std::uint8_t value) {
+  const std::size_t data = frame_data_size(words);
+  std::vector<Frame> frames;
+  for (std::size_t offset = 0, k = 0; offset < pdu.size(); offset += data, ++k) {
+    const bool last = pdu.size() - offset <= data;
+    const FrameType type = last ? FrameType::last
+                                : (offset == 0 ? FrameType::first : FrameType::middle);
+    std::array<std::uint8_t, kMaxFrameBytes> b{};
+    b[0] = encode_admin(AdminByte{Direction::to_server, type, static_cast<std::uint8_t>(k % 4), 3});
+    for (std::size_t i = 0; i < data && offset + i < pdu.size(); ++i) b[1 + i] = pdu[offset + i];
+    if (last && dirty >= 0) b[1 + pdu.size() - offset + static_cast<std::size_t>(dirty)] = value;
+    Frame f{};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(words); ++i)
+      f[i] = make_word(b[2 * i], b[2 * i + 1]);
+    frames.push_back(f);
+  }
+  return frames;
+}
+
+TEST(LinkShortcuts, EveryPaddingByteOfTheLastFrameIsChecked) {
+  // docs/pcp.md ("Link"): a message is delivered only when its length and its zero padding check.
+  // Every width, every PDU size, every padding byte of its LAST frame set to a random non-zero
+  // value: dropped by both ways; with zero padding: delivered.
+  std::mt19937 rng(26);
+  for (const int words : {1, 2, 4}) {
+    const std::size_t data = frame_data_size(words);
+    for (std::size_t count = 1; count <= (kMaxPduSize - 4) / 2; ++count) {
+      std::vector<std::uint8_t> pdu(4 + 2 * count);
+      for (auto& x : pdu) x = static_cast<std::uint8_t>(rng());
+      pdu[2] = high_byte(static_cast<Word>(count));
+      pdu[3] = low_byte(static_cast<Word>(count));
+      if (words < 4 && pdu.size() <= data) continue;
+      const int padding = static_cast<int>((data - pdu.size() % data) % data);
+      for (int dirty = -1; dirty < padding; ++dirty) {
+        const auto value = static_cast<std::uint8_t>(1 + below(rng, 255));
+        const LinkConfig cfg{words, Direction::to_client, 100ms, true};
+        Link fast(cfg);
+        Link general(cfg);
+        for (const Frame& f : message_frames(words, pdu, dirty, value)) {
+          const auto in = std::span<const Word>(f.data(), static_cast<std::size_t>(words));
+          ASSERT_EQ(fast.receive(Time{}, in), general.receive_general(Time{}, in));
+        }
+        expect_same(fast, general, "padding", dirty);
+        ASSERT_EQ(fast.has_message(), dirty < 0) << words << " words, " << pdu.size() << " bytes";
+        ASSERT_EQ(fast.stats().messages_dropped, dirty < 0 ? 0U : 1U);
+        if (dirty < 0) {
+          const auto m = fast.message();
+          ASSERT_TRUE(std::equal(m.begin(), m.end(), pdu.begin(), pdu.end()));
+        }
+      }
+    }
+  }
+}
+
 // One random run: `words` wide, the pair on side `dir`, a general peer on the other side; `total`
 // gets the fast link's counters.
 void run(int words, Direction dir, std::uint32_t seed, int cycles, LinkStats& total) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <random>
 
 #include "pcp_harness.hpp"
 #include "peers.hpp"
@@ -67,6 +68,44 @@ TEST(Server, ReadsAndWritesEveryDataTypeOfTheMc6000Table) {
     EXPECT_EQ(signed_raw(*r.value), 0);
     EXPECT_TRUE(s.write(82, u8(17)).ok());
     EXPECT_EQ(s.read(82).data.data[0], 17);
+  }
+}
+
+TEST(Server, EveryReadAnswersTheStoredValueBetweenOtherServices) {
+  // The server builds its Read confirmations in one reused member: reads of values of every length
+  // (and of missing parameters) in random order, between Identify, Status and Get-OV answers, must
+  // each confirm exactly the stored value's bytes (seed 001, 4.2).
+  Session s(4);
+  ASSERT_TRUE(s.initiate().ok());
+  const auto table = s.server.served().table();
+  std::mt19937 rng(26);
+  for (int k = 0; k < 300; ++k) {
+    const unsigned how = rng() % 8;
+    if (how == 0) {
+      EXPECT_TRUE(s.run([](Client& c, Time t) { return c.identify(t); }).ok());
+      continue;
+    }
+    if (how == 1) {
+      EXPECT_TRUE(s.run([](Client& c, Time t) { return c.status(t); }).ok());
+      continue;
+    }
+    const std::uint16_t number =
+        how == 2 ? std::uint16_t{999} : table[rng() % table.size()].number;
+    if (how == 3) {
+      s.run([&](Client& c, Time t) { return c.get_ov(t, ParameterRef::number(number)); });
+      continue;
+    }
+    const std::optional<Value> stored = s.server.served().value(number);
+    const Result r = s.read(number);
+    ASSERT_EQ(r.ok(), stored.has_value()) << number;
+    if (!stored) {
+      EXPECT_EQ(error_of(r), errors::kObjectDoesNotExist);
+      continue;
+    }
+    std::array<std::uint8_t, kMaxValueSize> b{};
+    DataBytes expected;
+    expected.assign(std::span<const std::uint8_t>(b.data(), encode(*stored, b)));
+    ASSERT_EQ(r.data, expected) << number;
   }
 }
 

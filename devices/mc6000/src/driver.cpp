@@ -103,7 +103,7 @@ void Mc6000Driver::complete(const Pending& p, ParamKind kind, std::int64_t value
 }
 
 void Mc6000Driver::take_results(Time) {
-  while (auto r = client_->take_result()) {
+  while (const pcp::Result* r = client_->take_result_view()) {  // no copy: complete() makes one
     if (!active_ || queue_.empty()) continue;  // nobody waits for it (e.g. after a restart)
     const Pending head = queue_.front();
     active_ = false;

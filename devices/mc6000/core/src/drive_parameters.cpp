@@ -67,7 +67,7 @@ void DriveParameters::power_on(Time now) {
   download_ = Download::idle;
 }
 
-void DriveParameters::advance(Time now) {
+void DriveParameters::advance_pending(Time now) {
   if (eeprom_pending_ && now >= eeprom_busy_until_) {
     store_.commit_eeprom(eeprom_number_, eeprom_value_);
     eeprom_pending_ = false;

@@ -7,7 +7,8 @@
 // or timeout / link reset / abort / protocol error. A timeout or protocol error aborts the
 // channel, which ends the association: the next request needs a new Initiate.
 //
-// The cycle path (submissions, step, take_result) allocates nothing, throws nothing.
+// The cycle path (submissions, step, take_result, take_result_view) allocates nothing, throws
+// nothing.
 #pragma once
 
 #include <cstdint>
@@ -127,6 +128,13 @@ class Client {
   [[nodiscard]] bool busy() const { return outstanding_; }
   [[nodiscard]] bool associated() const { return associated_; }
   std::optional<Result> take_result();
+  // take_result() without copying the Result (312 bytes): the client's own, valid until the
+  // client is next used (step, a submission, abort); nullptr when no result is ready.
+  [[nodiscard]] const Result* take_result_view() {
+    if (!result_ready_) return nullptr;
+    result_ready_ = false;
+    return &result_;
+  }
   std::optional<InformationReport> take_information_report();
 
   [[nodiscard]] const Link& link() const { return link_; }
@@ -149,9 +157,13 @@ class Client {
 
   bool outstanding_ = false;
   bool sent_ = false;
-  RequestPdu request_{};
+  // What a confirmation must match of the outstanding request (its PDU is in pdu_).
+  ServiceCode request_service_ = ServiceCode::read;
+  std::uint8_t request_invoke_id_ = 0;
+  std::uint8_t request_cr_ = 0;
   std::optional<DataType> expected_type_;
   Pdu pdu_{};
+  RequestPdu read_request_{};  // the Read requests' (read_subindex)
   Time deadline_{};
   Result result_{};
   bool result_ready_ = false;

@@ -123,12 +123,16 @@ class Server {
   void queue_abort(AbortReason reason, std::uint8_t cr);
   void drop_association();
   PcpError do_read(Time now, ResponsePdu& r);
+  // A confirmation with its result `err`: counted, encoded into out_, to be sent from `at`.
+  void answer(ResponsePdu& r, PcpError err, Time at);
 
   ServerConfig cfg_;
   LatencyModel latency_;
   ServedParameters* served_;
   Link link_;
   double workload_ = 0.0;
+  // latency_.processing(workload_), formed when the workload is set rather than per request.
+  Duration processing_{};
 
   bool associated_ = false;
   std::uint8_t cr_ = 0;
@@ -136,6 +140,8 @@ class Server {
   bool job_active_ = false;
   RequestPdu job_{};
   Time job_at_{};
+
+  ResponsePdu read_answer_{};  // Read confirmations' (execute)
 
   bool out_pending_ = false;
   bool out_is_report_ = false;
