@@ -131,21 +131,27 @@ class ParameterServer {
   // A request telegram (already decoded) at `now`.
   void receive(const ParameterTelegram& request, Time now);
   // The reply once it is due (at once, or after the drive's delay). One at a time.
-  // Inline: a node asks after every request and every step (issue 26).
-  std::optional<ParameterTelegram> take_reply(Time now) {
+  // Into `out`: false when none is due. Inline: a node asks after every request and every
+  // step (issue 26: the telegram is not carried out in an optional).
+  bool take_reply(Time now, ParameterTelegram& out) {
     if (busy_reply_) {
-      const auto b = busy_reply_;
+      out = *busy_reply_;
       busy_reply_.reset();
       ++counters_.replies;
-      return b;
+      return true;
     }
     if (pending_ && now >= pending_at_) {
-      const auto p = pending_;
+      out = *pending_;
       pending_.reset();
       ++counters_.replies;
-      return p;
+      return true;
     }
-    return std::nullopt;
+    return false;
+  }
+  std::optional<ParameterTelegram> take_reply(Time now) {
+    ParameterTelegram t;
+    if (!take_reply(now, t)) return std::nullopt;
+    return t;
   }
   [[nodiscard]] Time next_deadline() const;
   [[nodiscard]] ServerState state() const { return state_; }
