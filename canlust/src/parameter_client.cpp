@@ -347,7 +347,7 @@ Time ParameterClient::next_deadline() const {
   return t;
 }
 
-Poll ParameterClient::poll(RequestId id) const {
+Poll ParameterClient::poll_general(RequestId id) const {
   if (id == 0) return {RequestState::unknown, nullptr};
   for (const Address b : busy_) {
     if (active_[b].id == id) return {RequestState::active, nullptr};

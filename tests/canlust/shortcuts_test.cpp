@@ -162,6 +162,7 @@ TEST(CanlustShortcuts, ParameterTelegramCodingIsTheBytesOf45) {
 // The comparison's access to the general path (friend of ParameterClient).
 struct ParameterClientProbe {
   static Submitted general(ParameterClient& c, const Request& r) { return c.submit_general(r); }
+  static Poll poll_general(const ParameterClient& c, RequestId id) { return c.poll_general(id); }
 };
 
 namespace {
@@ -179,7 +180,8 @@ bool same_outcome(const Poll& a, const Poll& b) {
 // addresses, texts of 0..120 characters on every kind, timeouts <= 0, full queues), one through
 // submit() (numeric requests inline), the other through the general path for all of them; both
 // get the same steps and the same replies (random status and data, sometimes none, sometimes
-// stray). Every Submitted, frame, poll, outcome, counter and deadline must agree.
+// stray). Every Submitted, frame, poll, outcome, counter and deadline must agree, and poll's
+// inline look at the newest outcome must give what its general walk gives.
 TEST(CanlustShortcuts, InlineSubmitIsTheGeneralSubmitForRandomRequests) {
   std::mt19937 rng(2611);
   std::uniform_int_distribution<int> pct(0, 99);
@@ -254,6 +256,14 @@ TEST(CanlustShortcuts, InlineSubmitIsTheGeneralSubmitForRandomRequests) {
       ASSERT_EQ(a.counters().timeouts, b.counters().timeouts);
       ASSERT_EQ(a.counters().dropped_frames, b.counters().dropped_frames);
       for (const RequestId id : ids) ASSERT_TRUE(same_outcome(a.poll(id), b.poll(id))) << id;
+      // poll's inline newest-first look against its general walk, for every id submitted, 0,
+      // and ids never handed out.
+      for (RequestId id = 0; id <= static_cast<RequestId>(ids.size()) + 2; ++id) {
+        const Poll p = a.poll(id);
+        const Poll g = ParameterClientProbe::poll_general(a, id);
+        ASSERT_EQ(p.state, g.state) << id;
+        ASSERT_EQ(p.outcome, g.outcome) << id;  // the same entry of the ring
+      }
     }
   }
 }
