@@ -182,8 +182,8 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
  private:
   using Values = std::array<std::uint32_t, kParameters.size()>;
   [[nodiscard]] std::uint32_t get(std::uint16_t number) const;
-  // value() of the table's row i (not a STRING).
-  [[nodiscard]] std::uint32_t value_at(std::size_t i) const;
+  // value() of the table's row i (not a STRING). Inlined into read() and value() (issue 26).
+  [[gnu::always_inline]] [[nodiscard]] inline std::uint32_t value_at(std::size_t i) const;
   void set(std::uint16_t number, std::uint32_t value);
   void apply_live(std::uint16_t number, Time now);
   void load_preset(std::uint32_t data_set, Time now);
