@@ -97,6 +97,7 @@ ParameterClient::ParameterClient(const ClientConfig& config)
   }
   busy_.reserve(active_.size());
   completed_.resize(std::max<std::size_t>(1, config_.completed_capacity));
+  completed_capacity_ = completed_.size();
 }
 
 // submit()'s general path (the header's inline part hands a string write here): the same
@@ -183,7 +184,7 @@ void ParameterClient::unlist_busy(Active& a) {
 void ParameterClient::finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status,
                              std::uint32_t value) {
   Completed& c = completed_[completed_next_];
-  if (++completed_next_ == completed_.size()) completed_next_ = 0;
+  if (++completed_next_ == completed_capacity_) completed_next_ = 0;
   c.id = a.id;
   c.outcome.kind = kind;
   c.outcome.status = status;

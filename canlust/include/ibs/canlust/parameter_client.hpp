@@ -162,7 +162,7 @@ class ParameterClient {
   // finished (issue 26); else the general walk. An id is in one place only (queued, active or
   // done), so where it is looked for first does not change the answer.
   [[nodiscard]] Poll poll(RequestId id) const {
-    const Completed& newest = completed_[completed_next_ == 0 ? completed_.size() - 1 : completed_next_ - 1];
+    const Completed& newest = completed_[completed_next_ == 0 ? completed_capacity_ - 1 : completed_next_ - 1];
     if (id != 0 && newest.id == id) return {RequestState::done, &newest.outcome};
     return poll_general(id);
   }
@@ -243,6 +243,7 @@ class ParameterClient {
   std::vector<Address> busy_;
   BoundedQueue<CanFrame> outbox_;
   std::vector<Completed> completed_;  // ring
+  std::size_t completed_capacity_ = 1;  // completed_.size(), kept (no division for it)
   std::size_t completed_next_ = 0;
   RequestId next_id_ = 1;
   ClientCounters counters_{};
