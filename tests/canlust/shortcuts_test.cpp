@@ -14,7 +14,9 @@
 #include <utility>
 #include <vector>
 
+#include "fake_drive.hpp"
 #include "ibs/canlust/identifiers.hpp"
+#include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
 
@@ -160,6 +162,12 @@ TEST(CanlustShortcuts, ParameterTelegramCodingIsTheBytesOf45) {
 }  // namespace
 
 // The comparison's access to the general path (friend of ParameterClient).
+struct ParameterServerProbe {
+  static void general(ParameterServer& s, const ParameterTelegram& r, Time now) {
+    s.receive_general(r, now);
+  }
+};
+
 struct ParameterClientProbe {
   static Submitted general(ParameterClient& c, const Request& r) { return c.submit_general(r); }
   static Poll poll_general(const ParameterClient& c, RequestId id) { return c.poll_general(id); }
@@ -264,6 +272,62 @@ TEST(CanlustShortcuts, InlineSubmitIsTheGeneralSubmitForRandomRequests) {
         ASSERT_EQ(p.state, g.state) << id;
         ASSERT_EQ(p.outcome, g.outcome) << id;  // the same entry of the ring
       }
+    }
+  }
+}
+
+
+// The server's inline read (mode 05 with no reply pending) against its general path: two fake
+// drives, the same random request telegrams of every mode (string transfers with right and
+// wrong blocks, reads of slow, unknown and string parameters, unknown modes), the same random
+// moments to take replies. Every reply, counter, state and deadline must agree, and what the
+// drives were asked.
+TEST(CanlustShortcuts, InlineServerReadIsTheGeneralReceive) {
+  std::mt19937 rng(2612);
+  std::uniform_int_distribution<int> pct(0, 99);
+  const auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  constexpr std::array<std::uint16_t, 9> kNumbers = {test::kParamDisp,  test::kParamText,
+                                                     test::kParamName,  test::kParamFixed,
+                                                     test::kParamSlow,  test::kParamQ16,
+                                                     test::kParamSigned, 0, 4711};
+  constexpr std::array<std::uint8_t, 8> kModes = {kModeRead,        kModeRead,       kModeWrite,
+                                                  kModeDescribe,    kModeStringRead, kModeStringWrite,
+                                                  kModeListEnd,     0x33};
+  for (int round = 0; round < 200; ++round) {
+    test::FakeDrive da;
+    test::FakeDrive db;
+    ParameterServer a(da);
+    ParameterServer b(db);
+    Time now{0};
+    for (int i = 0; i < 300; ++i) {
+      ParameterTelegram r;
+      r.parameter = kNumbers[static_cast<std::size_t>(pick(0, static_cast<int>(kNumbers.size()) - 1))];
+      r.code = kModes[static_cast<std::size_t>(pick(0, static_cast<int>(kModes.size()) - 1))];
+      r.block = static_cast<std::uint8_t>(pct(rng) < 70 ? pick(0, 3) : pick(0, 255));
+      r.data = pct(rng) < 30 ? 0U : static_cast<std::uint32_t>(rng());
+      a.receive(r, now);
+      ParameterServerProbe::general(b, r, now);
+      if (pct(rng) < 80) {
+        for (;;) {
+          ParameterTelegram ta;
+          const bool ha = a.take_reply(now, ta);
+          const auto tb = b.take_reply(now);
+          ASSERT_EQ(ha, tb.has_value());
+          if (!ha) break;
+          ASSERT_EQ(ta, *tb);
+        }
+      }
+      ASSERT_EQ(a.state(), b.state());
+      ASSERT_EQ(a.next_deadline(), b.next_deadline());
+      ASSERT_EQ(a.counters().requests, b.counters().requests);
+      ASSERT_EQ(a.counters().replies, b.counters().replies);
+      ASSERT_EQ(a.counters().busy, b.counters().busy);
+      ASSERT_EQ(a.counters().block_errors, b.counters().block_errors);
+      ASSERT_EQ(a.counters().checksum_errors, b.counters().checksum_errors);
+      ASSERT_EQ(a.counters().overlong_strings, b.counters().overlong_strings);
+      ASSERT_EQ(da.text_view(), db.text_view());
+      ASSERT_EQ(da.disp, db.disp);
+      now += std::chrono::milliseconds(pick(0, 200));
     }
   }
 }

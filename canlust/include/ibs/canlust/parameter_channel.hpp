@@ -124,12 +124,25 @@ struct ServerCounters {
   std::uint32_t overlong_strings = 0;   // string write of more than 100 bytes
 };
 
+struct ParameterServerProbe;
+
 class ParameterServer {
  public:
   explicit ParameterServer(ParameterAccess& drive) : drive_(&drive) {}
 
-  // A request telegram (already decoded) at `now`.
-  void receive(const ParameterTelegram& request, Time now);
+  // A request telegram (already decoded) at `now`. Inline for a read (4.5: mode 05) with no reply
+  // pending (issue 26): what the general path does for it, without the call; every other
+  // request, and a read while a reply is pending, goes the general path.
+  void receive(const ParameterTelegram& request, Time now) {
+    if (request.code != kModeRead || pending_) {
+      receive_general(request, now);
+      return;
+    }
+    ++counters_.requests;
+    state_ = ServerState::idle;  // any other request than a string's abandons an open transfer
+    const auto v = drive_->read(request.parameter, request.block, now);
+    reply(request, v.status, v.status == kStatusOk ? v.value : 0U, now + v.delay);
+  }
   // The reply once it is due (at once, or after the drive's delay). One at a time.
   // Into `out`: false when none is due. Inline: a node asks after every request and every
   // step (issue 26: the telegram is not carried out in an optional).
@@ -160,7 +173,12 @@ class ParameterServer {
   void reset();
 
  private:
-  void reply(const ParameterTelegram& request, std::uint8_t status, std::uint32_t data, Time at);
+  friend struct ParameterServerProbe;  // tests: the general path (shortcuts_test.cpp)
+  void receive_general(const ParameterTelegram& request, Time now);
+  void reply(const ParameterTelegram& request, std::uint8_t status, std::uint32_t data, Time at) {
+    pending_ = ParameterTelegram{request.parameter, status, data, request.block};
+    pending_at_ = at;
+  }
   void string_read(const ParameterTelegram& r, Time now);
   void string_write(const ParameterTelegram& r, Time now);
   void list_end(const ParameterTelegram& r, Time now);
