@@ -118,14 +118,15 @@ struct Cda3000Pair {
   }
 };
 
+// The frames are taken into one frame of the caller (take_frame(CanFrame&), issue 26).
 [[gnu::noinline]] std::uint32_t cda3000_read_once(Cda3000Pair& p) {
   const auto id = p.client.submit(read(1, 571)).id;
   p.client.step(p.now);
-  const auto req = p.client.take_frame();
-  p.drive.receive(*req, p.now);
+  CanFrame f;
+  if (p.client.take_frame(f)) p.drive.receive(f, p.now);
   p.drive.step(p.now);
   std::uint32_t value = ~0U;
-  while (const auto rep = p.drive.take_frame()) p.client.receive(*rep, p.now);
+  while (p.drive.take_frame(f)) p.client.receive(f, p.now);
   if (const Poll r = p.client.poll(id); r.outcome != nullptr && r.outcome->kind == OutcomeKind::done) {
     value = r.outcome->value;
   }

@@ -125,7 +125,7 @@ void Node::receive(const CanFrame& f, Time now) {
       }
       // 5.2: parameter access is possible in every system state.
       server_.receive(d.value, now);
-      while (const auto r = server_.take_reply(now)) push_reply(*r);
+      for (ParameterTelegram r; server_.take_reply(now, r);) push_reply(r);
       return;
     }
     default:
@@ -161,7 +161,7 @@ void Node::step(Time now) {
       push(encode_error(config_.ids, config_.address, *e));
     }
   }
-  while (const auto r = server_.take_reply(now)) push_reply(*r);
+  for (ParameterTelegram r; server_.take_reply(now, r);) push_reply(r);
 }
 
 void Node::push_reply(const ParameterTelegram& t) {

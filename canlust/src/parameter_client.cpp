@@ -52,30 +52,6 @@ std::string describe(const Outcome& o) {
   return s;
 }
 
-Request read(Address a, std::uint16_t parameter, std::uint8_t index) {
-  Request r;
-  r.kind = RequestKind::read;
-  r.address = a;
-  r.parameter = parameter;
-  r.index = index;
-  return r;
-}
-Request write(Address a, std::uint16_t parameter, std::uint32_t value, std::uint8_t index) {
-  Request r = read(a, parameter, index);
-  r.kind = RequestKind::write;
-  r.value = value;
-  return r;
-}
-Request describe(Address a, std::uint16_t parameter, std::uint8_t item) {
-  Request r = read(a, parameter, item);
-  r.kind = RequestKind::describe;
-  return r;
-}
-Request read_string(Address a, std::uint16_t parameter) {
-  Request r = read(a, parameter);
-  r.kind = RequestKind::read_string;
-  return r;
-}
 Request write_string(Address a, std::uint16_t parameter, std::string_view text) {
   Request r = read(a, parameter);
   r.kind = RequestKind::write_string;
@@ -111,20 +87,28 @@ ParameterClient::ParameterClient(const ClientConfig& config)
       replies_(config_.ids, TelegramKind::parameter_reply),
       outbox_(std::max<std::size_t>(config.outbox_capacity, static_cast<std::size_t>(config.ids.max_address) + 1)) {
   queue_.resize(std::max<std::size_t>(1, config_.queue_capacity));
+  queue_capacity_ = queue_.size();
   if (config_.timeout <= Duration::zero()) config_.timeout = 1ms;
   if (config_.string_timeout <= Duration::zero()) config_.string_timeout = 1ms;
   active_.resize(static_cast<std::size_t>(config_.ids.max_address) + 1);
+  for (std::size_t k = 0; k < active_.size(); ++k) {
+    const auto id = config_.ids.id(TelegramKind::parameter_request, static_cast<Address>(k));
+    active_[k].request_id = id ? static_cast<std::int32_t>(*id) : -1;
+  }
   busy_.reserve(active_.size());
   completed_.resize(std::max<std::size_t>(1, config_.completed_capacity));
+  completed_capacity_ = completed_.size();
 }
 
-Submitted ParameterClient::submit(const Request& r) {
+// submit()'s general path (the header's inline part hands a string write here): the same
+// checks, the text checked and copied.
+Submitted ParameterClient::submit_general(const Request& r) {
   if (r.address > config_.ids.max_address) return {0, SubmitError::invalid_address};
   if (r.kind == RequestKind::write_string && (r.text_too_long || r.text.length > kMaxStringChars)) {
     return {0, SubmitError::text_too_long};
   }
   if (r.timeout && *r.timeout <= Duration::zero()) return {0, SubmitError::invalid_timeout};
-  if (queued_ == queue_.size()) return {0, SubmitError::queue_full};
+  if (queued_ == queue_capacity_) return {0, SubmitError::queue_full};
   const RequestId id = next_id_++;
   Queued& q = queue_[queued_++];
   q.id = id;
@@ -148,10 +132,11 @@ void ParameterClient::send(Active& a, std::uint8_t mode, std::uint32_t data, std
   a.block = block;
   a.sent_data = data;
   ++a.telegrams;
-  // encode_parameter_request, written straight into the outbox (issue 26).
-  const auto id = config_.ids.id(TelegramKind::parameter_request, a.request.address);
-  if (!id) return;  // address checked at submit
-  if (!outbox_.push(detail::parameter_frame(*id, {a.request.parameter, mode, data, block}))) {
+  // encode_parameter_request, written straight into the outbox (issue 26), with the identifier
+  // the constructor found for the slot (5.5: 1101 + address).
+  if (a.request_id < 0) return;  // address checked at submit
+  const auto id = static_cast<std::uint16_t>(a.request_id);
+  if (!outbox_.push(detail::parameter_frame(id, {a.request.parameter, mode, data, block}))) {
     ++counters_.dropped_frames;
   }
 }
@@ -199,7 +184,7 @@ void ParameterClient::unlist_busy(Active& a) {
 void ParameterClient::finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status,
                              std::uint32_t value) {
   Completed& c = completed_[completed_next_];
-  if (++completed_next_ == completed_.size()) completed_next_ = 0;
+  if (++completed_next_ == completed_capacity_) completed_next_ = 0;
   c.id = a.id;
   c.outcome.kind = kind;
   c.outcome.status = status;
@@ -363,7 +348,7 @@ Time ParameterClient::next_deadline() const {
   return t;
 }
 
-Poll ParameterClient::poll(RequestId id) const {
+Poll ParameterClient::poll_general(RequestId id) const {
   if (id == 0) return {RequestState::unknown, nullptr};
   for (const Address b : busy_) {
     if (active_[b].id == id) return {RequestState::active, nullptr};

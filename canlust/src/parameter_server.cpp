@@ -54,12 +54,6 @@ void ParameterServer::reset() {
   busy_reply_.reset();
 }
 
-void ParameterServer::reply(const ParameterTelegram& request, std::uint8_t status,
-                            std::uint32_t data, Time at) {
-  pending_ = ParameterTelegram{request.parameter, status, data, request.block};
-  pending_at_ = at;
-}
-
 void ParameterServer::block_error(const ParameterTelegram& r, Time now) {
   // public-facts "String transfer": a wrong block counter resets the drive's string machine;
   // the status it answers is not public: 80H (decision D11).
@@ -68,7 +62,9 @@ void ParameterServer::block_error(const ParameterTelegram& r, Time now) {
   reply(r, kStatusImpermissibleValue, r.data, now);
 }
 
-void ParameterServer::receive(const ParameterTelegram& r, Time now) {
+// receive()'s general path: every mode (the header's inline part serves a read with no reply
+// pending the same way).
+void ParameterServer::receive_general(const ParameterTelegram& r, Time now) {
   ++counters_.requests;
   if (pending_) {
     // One request at a time per drive (CAL): a second one while the first is unanswered gets

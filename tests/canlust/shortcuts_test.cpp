@@ -1,7 +1,8 @@
 // Issue 26's shortcuts on the CANLust frame path, each compared with the general path it stands
 // for on random maps, identifiers and telegrams: KindMatcher and IdentifierMap::own_id against
 // IdentifierMap::classify (what the client and the node use instead of classifying every frame),
-// and the parameter telegram's 64-bit coding against the bytes of 4.5 written one by one.
+// and the parameter telegram's 64-bit coding against the bytes of 4.5 written one by one; the
+// client's inline submit for numeric requests against its general path.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -9,10 +10,14 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "fake_drive.hpp"
 #include "ibs/canlust/identifiers.hpp"
+#include "ibs/canlust/parameter_channel.hpp"
+#include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
 
 namespace ibs::canlust {
@@ -148,6 +153,182 @@ TEST(CanlustShortcuts, ParameterTelegramCodingIsTheBytesOf45) {
     const auto want = reference_decode(f);
     ASSERT_EQ(got.error, want.error);
     ASSERT_EQ(got.value, want.value);
+  }
+}
+
+
+// ---- The client's inline submit (issue 26) --------------------------------------------------
+
+}  // namespace
+
+// The comparison's access to the general path (friend of ParameterClient).
+struct ParameterServerProbe {
+  static void general(ParameterServer& s, const ParameterTelegram& r, Time now) {
+    s.receive_general(r, now);
+  }
+};
+
+struct ParameterClientProbe {
+  static Submitted general(ParameterClient& c, const Request& r) { return c.submit_general(r); }
+  static Poll poll_general(const ParameterClient& c, RequestId id) { return c.poll_general(id); }
+};
+
+namespace {
+
+bool same_outcome(const Poll& a, const Poll& b) {
+  if (a.state != b.state || (a.outcome == nullptr) != (b.outcome == nullptr)) return false;
+  if (a.outcome == nullptr) return true;
+  const Outcome& x = *a.outcome;
+  const Outcome& y = *b.outcome;
+  return x.kind == y.kind && x.status == y.status && x.value == y.value && x.text == y.text &&
+         x.telegrams == y.telegrams && x.started == y.started && x.finished == y.finished;
+}
+
+// Two clients with one random configuration, fed the same random requests of every kind (bad
+// addresses, texts of 0..120 characters on every kind, timeouts <= 0, full queues), one through
+// submit() (numeric requests inline), the other through the general path for all of them; both
+// get the same steps and the same replies (random status and data, sometimes none, sometimes
+// stray). Every Submitted, frame, poll, outcome, counter and deadline must agree, and poll's
+// inline look at the newest outcome must give what its general walk gives.
+TEST(CanlustShortcuts, InlineSubmitIsTheGeneralSubmitForRandomRequests) {
+  std::mt19937 rng(2611);
+  std::uniform_int_distribution<int> pct(0, 99);
+  const auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  for (int round = 0; round < 60; ++round) {
+    ClientConfig cfg;
+    cfg.ids = IdentifierMap{static_cast<std::uint8_t>(pick(1, 3)), static_cast<Address>(pick(0, 6))};
+    cfg.queue_capacity = static_cast<std::size_t>(pick(1, 8));
+    cfg.completed_capacity = static_cast<std::size_t>(pick(1, 16));
+    cfg.outbox_capacity = static_cast<std::size_t>(pick(1, 8));
+    cfg.timeout = std::chrono::milliseconds(pick(1, 30));
+    cfg.string_timeout = std::chrono::milliseconds(pick(1, 80));
+    ParameterClient a(cfg);
+    ParameterClient b(cfg);
+    std::vector<RequestId> ids;
+    Time now{0};
+    for (int action = 0; action < 400; ++action) {
+      if (pct(rng) < 45) {
+        Request r;
+        r.kind = static_cast<RequestKind>(pick(0, 4));
+        r.address = static_cast<Address>(pick(0, cfg.ids.max_address + 2));
+        r.parameter = static_cast<std::uint16_t>(pick(0, 3));
+        r.index = static_cast<std::uint8_t>(pick(0, 255));
+        r.value = static_cast<std::uint32_t>(rng());
+        const int n = pick(0, 120);
+        std::string text;
+        for (int i = 0; i < n; ++i) text.push_back(static_cast<char>(pick(1, 127)));
+        r.text = FixedString::from(text);
+        r.text_too_long = pct(rng) < 20;
+        if (pct(rng) < 40) r.timeout = std::chrono::milliseconds(pick(-5, 60));
+        const Submitted sa = a.submit(r);
+        const Submitted sb = ParameterClientProbe::general(b, r);
+        ASSERT_EQ(sa.id, sb.id);
+        ASSERT_EQ(sa.error, sb.error);
+        if (sa) ids.push_back(sa.id);
+        continue;
+      }
+      now += std::chrono::milliseconds(pick(0, 12));
+      a.step(now);
+      b.step(now);
+      CanFrame fa;
+      CanFrame fb;
+      for (;;) {
+        const bool ha = a.take_frame(fa);
+        const auto hb = b.take_frame();  // the optional form on one side
+        ASSERT_EQ(ha, hb.has_value());
+        if (!ha) break;
+        fb = *hb;
+        ASSERT_EQ(fa, fb);
+        if (pct(rng) < 15) continue;  // no reply
+        const auto req = decode_parameter(fa);
+        ASSERT_TRUE(req);
+        const auto c = cfg.ids.classify(fa.id);
+        ASSERT_TRUE(c);
+        ParameterTelegram t = req.value;
+        t.code = pct(rng) < 75 ? kStatusOk : static_cast<std::uint8_t>(1U << pick(0, 7));
+        if (pct(rng) < 50) t.data = static_cast<std::uint32_t>(rng());
+        if (pct(rng) < 5) t.block = static_cast<std::uint8_t>(t.block + 1);  // stray
+        const auto reply = encode_parameter_reply(cfg.ids, c->address, t);
+        ASSERT_TRUE(reply);
+        const Time at = now + std::chrono::milliseconds(pick(0, 3));
+        a.receive(*reply, at);
+        b.receive(*reply, at);
+      }
+      if (pct(rng) < 3) {
+        a.abort_all(now);
+        b.abort_all(now);
+      }
+      ASSERT_EQ(a.next_deadline(), b.next_deadline());
+      ASSERT_EQ(a.idle(), b.idle());
+      ASSERT_EQ(a.counters().stray_replies, b.counters().stray_replies);
+      ASSERT_EQ(a.counters().timeouts, b.counters().timeouts);
+      ASSERT_EQ(a.counters().dropped_frames, b.counters().dropped_frames);
+      for (const RequestId id : ids) ASSERT_TRUE(same_outcome(a.poll(id), b.poll(id))) << id;
+      // poll's inline newest-first look against its general walk, for every id submitted, 0,
+      // and ids never handed out.
+      for (RequestId id = 0; id <= static_cast<RequestId>(ids.size()) + 2; ++id) {
+        const Poll p = a.poll(id);
+        const Poll g = ParameterClientProbe::poll_general(a, id);
+        ASSERT_EQ(p.state, g.state) << id;
+        ASSERT_EQ(p.outcome, g.outcome) << id;  // the same entry of the ring
+      }
+    }
+  }
+}
+
+
+// The server's inline read (mode 05 with no reply pending) against its general path: two fake
+// drives, the same random request telegrams of every mode (string transfers with right and
+// wrong blocks, reads of slow, unknown and string parameters, unknown modes), the same random
+// moments to take replies. Every reply, counter, state and deadline must agree, and what the
+// drives were asked.
+TEST(CanlustShortcuts, InlineServerReadIsTheGeneralReceive) {
+  std::mt19937 rng(2612);
+  std::uniform_int_distribution<int> pct(0, 99);
+  const auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  constexpr std::array<std::uint16_t, 9> kNumbers = {test::kParamDisp,  test::kParamText,
+                                                     test::kParamName,  test::kParamFixed,
+                                                     test::kParamSlow,  test::kParamQ16,
+                                                     test::kParamSigned, 0, 4711};
+  constexpr std::array<std::uint8_t, 8> kModes = {kModeRead,        kModeRead,       kModeWrite,
+                                                  kModeDescribe,    kModeStringRead, kModeStringWrite,
+                                                  kModeListEnd,     0x33};
+  for (int round = 0; round < 200; ++round) {
+    test::FakeDrive da;
+    test::FakeDrive db;
+    ParameterServer a(da);
+    ParameterServer b(db);
+    Time now{0};
+    for (int i = 0; i < 300; ++i) {
+      ParameterTelegram r;
+      r.parameter = kNumbers[static_cast<std::size_t>(pick(0, static_cast<int>(kNumbers.size()) - 1))];
+      r.code = kModes[static_cast<std::size_t>(pick(0, static_cast<int>(kModes.size()) - 1))];
+      r.block = static_cast<std::uint8_t>(pct(rng) < 70 ? pick(0, 3) : pick(0, 255));
+      r.data = pct(rng) < 30 ? 0U : static_cast<std::uint32_t>(rng());
+      a.receive(r, now);
+      ParameterServerProbe::general(b, r, now);
+      if (pct(rng) < 80) {
+        for (;;) {
+          ParameterTelegram ta;
+          const bool ha = a.take_reply(now, ta);
+          const auto tb = b.take_reply(now);
+          ASSERT_EQ(ha, tb.has_value());
+          if (!ha) break;
+          ASSERT_EQ(ta, *tb);
+        }
+      }
+      ASSERT_EQ(a.state(), b.state());
+      ASSERT_EQ(a.next_deadline(), b.next_deadline());
+      ASSERT_EQ(a.counters().requests, b.counters().requests);
+      ASSERT_EQ(a.counters().replies, b.counters().replies);
+      ASSERT_EQ(a.counters().busy, b.counters().busy);
+      ASSERT_EQ(a.counters().block_errors, b.counters().block_errors);
+      ASSERT_EQ(a.counters().checksum_errors, b.counters().checksum_errors);
+      ASSERT_EQ(a.counters().overlong_strings, b.counters().overlong_strings);
+      ASSERT_EQ(da.text_view(), db.text_view());
+      ASSERT_EQ(da.disp, db.disp);
+      now += std::chrono::milliseconds(pick(0, 200));
+    }
   }
 }
 

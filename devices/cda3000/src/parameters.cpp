@@ -60,34 +60,12 @@ std::optional<std::uint16_t> response_parameter(std::uint8_t error) {
   }
 }
 
-namespace {
-// Every parameter's row by its number, made at compile time from kParameters: the parameter
-// channel looks a number up on every request (issue 26), a walk of the table took more than the
-// rest of the drive's read.
-constexpr std::uint16_t kHighestNumber = [] {
-  std::uint16_t m = 0;
-  for (const auto& p : kParameters) m = std::max(m, p.number);
-  return m;
-}();
-constexpr std::uint8_t kNoRow = 0xFF;
-static_assert(kParameters.size() < kNoRow);
-constexpr auto kRowByNumber = [] {
-  std::array<std::uint8_t, kHighestNumber + 1> rows{};
-  rows.fill(kNoRow);
-  for (std::size_t i = 0; i < kParameters.size(); ++i) rows[kParameters[i].number] = static_cast<std::uint8_t>(i);
-  return rows;
-}();
-}  // namespace
 
 const ParameterInfo* find_parameter(std::uint16_t number) {
   const auto i = parameter_index(number);
   return i ? &kParameters[*i] : nullptr;
 }
 
-std::optional<std::size_t> parameter_index(std::uint16_t number) {
-  if (number > kHighestNumber || kRowByNumber[number] == kNoRow) return std::nullopt;
-  return kRowByNumber[number];
-}
 
 const ParameterInfo* find_parameter(std::string_view text) {
   const auto dash = text.find('-');

@@ -12,7 +12,7 @@ namespace ibs {
 template <typename T>
 class BoundedQueue {
  public:
-  explicit BoundedQueue(std::size_t capacity) : items_(capacity) {}
+  explicit BoundedQueue(std::size_t capacity) : items_(capacity), capacity_(capacity) {}
 
   // Appends `v`; false, and nothing changed, when the queue is full.
   bool push(const T& v) noexcept {
@@ -40,16 +40,19 @@ class BoundedQueue {
 
   [[nodiscard]] std::size_t size() const noexcept { return count_; }
   [[nodiscard]] bool empty() const noexcept { return count_ == 0; }
-  [[nodiscard]] bool full() const noexcept { return count_ == items_.size(); }
-  [[nodiscard]] std::size_t capacity() const noexcept { return items_.size(); }
+  [[nodiscard]] bool full() const noexcept { return count_ == capacity_; }
+  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
 
  private:
   [[nodiscard]] std::size_t slot(std::size_t i) const noexcept {
     const std::size_t s = head_ + i;
-    return s >= items_.size() ? s - items_.size() : s;
+    return s >= capacity_ ? s - capacity_ : s;
   }
 
   std::vector<T> items_;
+  // items_.size(), kept: the vector's size is a division of its ends by sizeof(T) (issue 26:
+  // every push and pop of a CANLust frame asked for it).
+  std::size_t capacity_;
   std::size_t head_ = 0;
   std::size_t count_ = 0;
 };

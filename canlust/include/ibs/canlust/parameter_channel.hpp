@@ -124,28 +124,47 @@ struct ServerCounters {
   std::uint32_t overlong_strings = 0;   // string write of more than 100 bytes
 };
 
+struct ParameterServerProbe;
+
 class ParameterServer {
  public:
   explicit ParameterServer(ParameterAccess& drive) : drive_(&drive) {}
 
-  // A request telegram (already decoded) at `now`.
-  void receive(const ParameterTelegram& request, Time now);
+  // A request telegram (already decoded) at `now`. Inline for a read (4.5: mode 05) with no reply
+  // pending (issue 26): what the general path does for it, without the call; every other
+  // request, and a read while a reply is pending, goes the general path.
+  void receive(const ParameterTelegram& request, Time now) {
+    if (request.code != kModeRead || pending_) {
+      receive_general(request, now);
+      return;
+    }
+    ++counters_.requests;
+    state_ = ServerState::idle;  // any other request than a string's abandons an open transfer
+    const auto v = drive_->read(request.parameter, request.block, now);
+    reply(request, v.status, v.status == kStatusOk ? v.value : 0U, now + v.delay);
+  }
   // The reply once it is due (at once, or after the drive's delay). One at a time.
-  // Inline: a node asks after every request and every step (issue 26).
-  std::optional<ParameterTelegram> take_reply(Time now) {
+  // Into `out`: false when none is due. Inline: a node asks after every request and every
+  // step (issue 26: the telegram is not carried out in an optional).
+  bool take_reply(Time now, ParameterTelegram& out) {
     if (busy_reply_) {
-      const auto b = busy_reply_;
+      out = *busy_reply_;
       busy_reply_.reset();
       ++counters_.replies;
-      return b;
+      return true;
     }
     if (pending_ && now >= pending_at_) {
-      const auto p = pending_;
+      out = *pending_;
       pending_.reset();
       ++counters_.replies;
-      return p;
+      return true;
     }
-    return std::nullopt;
+    return false;
+  }
+  std::optional<ParameterTelegram> take_reply(Time now) {
+    ParameterTelegram t;
+    if (!take_reply(now, t)) return std::nullopt;
+    return t;
   }
   [[nodiscard]] Time next_deadline() const;
   [[nodiscard]] ServerState state() const { return state_; }
@@ -154,7 +173,12 @@ class ParameterServer {
   void reset();
 
  private:
-  void reply(const ParameterTelegram& request, std::uint8_t status, std::uint32_t data, Time at);
+  friend struct ParameterServerProbe;  // tests: the general path (shortcuts_test.cpp)
+  void receive_general(const ParameterTelegram& request, Time now);
+  void reply(const ParameterTelegram& request, std::uint8_t status, std::uint32_t data, Time at) {
+    pending_ = ParameterTelegram{request.parameter, status, data, request.block};
+    pending_at_ = at;
+  }
   void string_read(const ParameterTelegram& r, Time now);
   void string_write(const ParameterTelegram& r, Time now);
   void list_end(const ParameterTelegram& r, Time now);

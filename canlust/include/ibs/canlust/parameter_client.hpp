@@ -5,6 +5,7 @@
 //   client.submit(read(1, 360));          // queued
 //   client.step(now);                      // starts requests, times them out
 //   while (auto f = client.take_frame()) bus.send(*f);
+//                                          // or: CanFrame f; while (client.take_frame(f)) ...
 //   client.receive(frame, now);            // every frame from the bus (others are ignored)
 //   client.poll(id)                        // queued / active / done + the outcome
 //
@@ -51,10 +52,31 @@ struct Request {
   bool text_too_long = false;   // write_string(): the text had more than 99 characters
   std::optional<Duration> timeout;
 };
-Request read(Address a, std::uint16_t parameter, std::uint8_t index = 0);
-Request write(Address a, std::uint16_t parameter, std::uint32_t value, std::uint8_t index = 0);
-Request describe(Address a, std::uint16_t parameter, std::uint8_t item);
-Request read_string(Address a, std::uint16_t parameter);
+// Inline, like submit's numeric part (issue 26): no call for building a request.
+inline Request read(Address a, std::uint16_t parameter, std::uint8_t index = 0) {
+  Request r;
+  r.kind = RequestKind::read;
+  r.address = a;
+  r.parameter = parameter;
+  r.index = index;
+  return r;
+}
+inline Request write(Address a, std::uint16_t parameter, std::uint32_t value, std::uint8_t index = 0) {
+  Request r = read(a, parameter, index);
+  r.kind = RequestKind::write;
+  r.value = value;
+  return r;
+}
+inline Request describe(Address a, std::uint16_t parameter, std::uint8_t item) {
+  Request r = read(a, parameter, item);
+  r.kind = RequestKind::describe;
+  return r;
+}
+inline Request read_string(Address a, std::uint16_t parameter) {
+  Request r = read(a, parameter);
+  r.kind = RequestKind::read_string;
+  return r;
+}
 Request write_string(Address a, std::uint16_t parameter, std::string_view text);
 
 enum class OutcomeKind : std::uint8_t {
@@ -99,24 +121,51 @@ struct ClientCounters {
   std::uint32_t dropped_frames = 0;  // outbox full (frames not taken): the request times out
 };
 
+struct ParameterClientProbe;  // tests: submit's general path (tests/canlust/shortcuts_test.cpp)
+
 class ParameterClient {
  public:
   explicit ParameterClient(const ClientConfig& config = {});
 
-  Submitted submit(const Request& r);
+  // Inline for the numeric requests (issue 26): the same checks in the same order as the
+  // general path, which a string write takes (its text is copied).
+  Submitted submit(const Request& r) {
+    if (r.kind == RequestKind::write_string) return submit_general(r);
+    if (r.address > config_.ids.max_address) return {0, SubmitError::invalid_address};
+    if (r.timeout && *r.timeout <= Duration::zero()) return {0, SubmitError::invalid_timeout};
+    if (queued_ == queue_capacity_) return {0, SubmitError::queue_full};
+    const RequestId id = next_id_++;
+    Queued& q = queue_[queued_++];
+    q.id = id;
+    copy_numeric(q.request, r);
+    return {id, SubmitError::none};
+  }
   void step(Time now);
-  // Inline: asked until it has nothing (issue 26).
-  std::optional<CanFrame> take_frame() {
-    if (outbox_.empty()) return std::nullopt;
-    const CanFrame f = outbox_.front();
+  // The next frame into `out`; false when there is none. Inline: asked until it has nothing
+  // (issue 26: the frame is not carried out in an optional).
+  bool take_frame(CanFrame& out) {
+    if (outbox_.empty()) return false;
+    out = outbox_.front();
     outbox_.pop();
+    return true;
+  }
+  std::optional<CanFrame> take_frame() {
+    CanFrame f;
+    if (!take_frame(f)) return std::nullopt;
     return f;
   }
   // Any frame; parameter replies of drives with an active request are taken, others ignored.
   void receive(const CanFrame& f, Time now);
   [[nodiscard]] Time next_deadline() const;
 
-  [[nodiscard]] Poll poll(RequestId id) const;
+  // Inline: the newest outcome first, the one a request is mostly polled for right after it
+  // finished (issue 26); else the general walk. An id is in one place only (queued, active or
+  // done), so where it is looked for first does not change the answer.
+  [[nodiscard]] Poll poll(RequestId id) const {
+    const Completed& newest = completed_[completed_next_ == 0 ? completed_capacity_ - 1 : completed_next_ - 1];
+    if (id != 0 && newest.id == id) return {RequestState::done, &newest.outcome};
+    return poll_general(id);
+  }
   [[nodiscard]] bool idle() const;
   [[nodiscard]] const ClientConfig& config() const { return config_; }
   [[nodiscard]] const ClientCounters& counters() const { return counters_; }
@@ -138,6 +187,9 @@ class ParameterClient {
     std::size_t bytes = 0;         // string read: bytes received; write: bytes to send
     bool terminator = false;       // string read: the 0 has arrived
     std::uint8_t awaiting_mode = 0;
+    // config_.ids.id of this address's parameter requests, -1 for none: found once by the
+    // constructor (issue 26), the map does not change.
+    std::int32_t request_id = -1;
     FixedString text{};
   };
   struct Queued {
@@ -149,21 +201,41 @@ class ParameterClient {
     Outcome outcome{};
   };
 
-  void start(Active& a, Time now);
-  void send(Active& a, std::uint8_t mode, std::uint32_t data, std::uint8_t block, Time now);
+  // Inlined into their callers in parameter_client.cpp (issue 26: start into step, on_reply into
+  // receive, send into both; one call fewer per frame each).
+  [[gnu::always_inline]] inline void start(Active& a, Time now);
+  [[gnu::always_inline]] inline void send(Active& a, std::uint8_t mode, std::uint32_t data,
+                                          std::uint8_t block, Time now);
   void finish(Active& a, OutcomeKind kind, Time now, std::uint8_t status = 0, std::uint32_t value = 0);
-  void on_reply(Active& a, const ParameterTelegram& t, Time now);
+  [[gnu::always_inline]] inline void on_reply(Active& a, const ParameterTelegram& t, Time now);
   void send_write_block(Active& a, Time now);
   void list_busy(Active& a, Address address);
   void unlist_busy(Active& a);
 
+  friend struct ParameterClientProbe;
   void dequeue(std::size_t k);
+  // submit()'s general path, for every kind; the inline part hands it a string write.
+  Submitted submit_general(const Request& r);
+  // poll()'s general path: active, queued, then the outcomes newest first.
+  [[nodiscard]] Poll poll_general(RequestId id) const;
+  // A request without its text: what every kind but a string write needs (the text's length 0).
+  static void copy_numeric(Request& to, const Request& from) {
+    to.kind = from.kind;
+    to.address = from.address;
+    to.parameter = from.parameter;
+    to.index = from.index;
+    to.value = from.value;
+    to.text_too_long = from.text_too_long;
+    to.timeout = from.timeout;
+    to.text.length = 0;
+  }
 
   ClientConfig config_;
   KindMatcher replies_;  // config_.ids' parameter replies
   // The first queued_ entries, in submission order; sized by the constructor, so that queueing
   // neither constructs nor zeroes a request with its text buffer (issue 26).
   std::vector<Queued> queue_;
+  std::size_t queue_capacity_ = 0;  // queue_.size()
   std::size_t queued_ = 0;
   std::vector<Active> active_;  // one per address 0..max_address
   // The addresses whose slot is busy, in no order (issue 26: step, poll and next_deadline touch
@@ -171,6 +243,7 @@ class ParameterClient {
   std::vector<Address> busy_;
   BoundedQueue<CanFrame> outbox_;
   std::vector<Completed> completed_;  // ring
+  std::size_t completed_capacity_ = 1;  // completed_.size(), kept (no division for it)
   std::size_t completed_next_ = 0;
   RequestId next_id_ = 1;
   ClientCounters counters_{};

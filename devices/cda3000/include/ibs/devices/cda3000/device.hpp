@@ -8,7 +8,7 @@
 //   drive.power_on(now);
 //   drive.receive(frame, now);    // every frame from the bus
 //   drive.step(now);              // cyclic telegrams, watchdog, delayed replies, the plant
-//   while (auto f = drive.take_frame()) bus.send(*f);
+//   while (auto f = drive.take_frame()) bus.send(*f);  // or take_frame(CanFrame&)
 //   drive.next_deadline();        // when step() next has something to do
 //
 // Time is passed in; nothing inside reads a clock or starts a thread. receive, step, take_frame
@@ -104,7 +104,9 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   void power_off();
   void receive(const canlust::CanFrame& f, Time now);
   void step(Time now);
-  // Inline (issue 26: asked until it has nothing, twice a parameter read at least).
+  // The next frame into `out`; false when there is none (mains off included). Inline (issue
+  // 26: asked until it has nothing, twice a parameter read at least).
+  bool take_frame(canlust::CanFrame& out) { return node_ && node_->take_frame(out); }
   std::optional<canlust::CanFrame> take_frame() {
     if (!node_) return std::nullopt;
     return node_->take_frame();
@@ -180,8 +182,8 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
  private:
   using Values = std::array<std::uint32_t, kParameters.size()>;
   [[nodiscard]] std::uint32_t get(std::uint16_t number) const;
-  // value() of the table's row i (not a STRING).
-  [[nodiscard]] std::uint32_t value_at(std::size_t i) const;
+  // value() of the table's row i (not a STRING). Inlined into read() and value() (issue 26).
+  [[gnu::always_inline]] [[nodiscard]] inline std::uint32_t value_at(std::size_t i) const;
   void set(std::uint16_t number, std::uint32_t value);
   void apply_live(std::uint16_t number, Time now);
   void load_preset(std::uint32_t data_set, Time now);

@@ -7,6 +7,7 @@
 // `invented` with what was invented (docs/canlust.md, "The CDA3000 wing", decisions D21-D33).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -278,8 +279,31 @@ constexpr bool card_writeable(const ParameterInfo& p) {
 const ParameterInfo* find_parameter(std::uint16_t number);
 // By "574", "CAWDG" or "574-CAWDG" (case-insensitive names); nullptr when none matches.
 const ParameterInfo* find_parameter(std::string_view text);
-// The row's position in kParameters (for per-parameter storage); nullopt when none.
-std::optional<std::size_t> parameter_index(std::uint16_t number);
+namespace detail {
+// Every parameter's row by its number, made at compile time from kParameters: the parameter
+// channel looks a number up on every request (issue 26), a walk of the table took more than the
+// rest of the drive's read.
+inline constexpr std::uint16_t kHighestNumber = [] {
+  std::uint16_t m = 0;
+  for (const auto& p : kParameters) m = std::max(m, p.number);
+  return m;
+}();
+inline constexpr std::uint8_t kNoRow = 0xFF;
+static_assert(kParameters.size() < kNoRow);
+inline constexpr auto kRowByNumber = [] {
+  std::array<std::uint8_t, kHighestNumber + 1> rows{};
+  rows.fill(kNoRow);
+  for (std::size_t i = 0; i < kParameters.size(); ++i) rows[kParameters[i].number] = static_cast<std::uint8_t>(i);
+  return rows;
+}();
+}  // namespace detail
+
+// The row's position in kParameters (for per-parameter storage); nullopt when none. Inline
+// (issue 26: one lookup per parameter request).
+inline std::optional<std::size_t> parameter_index(std::uint16_t number) {
+  if (number > detail::kHighestNumber || detail::kRowByNumber[number] == detail::kNoRow) return std::nullopt;
+  return detail::kRowByNumber[number];
+}
 // "574-CAWDG".
 std::string display_name(const ParameterInfo& p);
 
