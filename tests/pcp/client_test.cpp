@@ -212,7 +212,7 @@ TEST(Client, EveryReadResultIsAFreshResultWithTheReadsFields) {
     const auto index = static_cast<std::uint16_t>(rng());
     const unsigned how = rng() % 4;  // 0: Write, 1: Read, 2: typed Read, 3: negative Read
     negative = how == 3;
-    value.resize(rng() % 4 == 0 ? 2 : rng() % 41);
+    value.resize(rng() % 4 == 0 ? 2 : rng() % (kMaxDataSize + 1));
     for (auto& b : value) b = static_cast<std::uint8_t>(rng() | 1U);
     SubmitStatus st{};
     if (how == 0) {
