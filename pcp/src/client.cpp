@@ -1,10 +1,7 @@
 #include "ibs/pcp/client.hpp"
 
-#include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 
 namespace ibs::pcp {
 
@@ -118,15 +115,7 @@ void Client::reset_result() {
   result_.kind = ResultKind::ok;
   result_.error = PcpError{};
   result_.abort_reason = AbortReason::user;
-  // By 8-byte stores, the last one ending at the array's end: bytes past the size are zeros
-  // already, and a call of memset costs more than the value's few bytes.
-  auto& bytes = result_.data.data;
-  static_assert(std::tuple_size_v<std::remove_reference_t<decltype(bytes)>> >= 8);
-  constexpr std::uint64_t kZero = 0;
-  for (std::size_t i = 0; i < result_.data.size; i += 8) {
-    std::memcpy(bytes.data() + std::min(i, bytes.size() - 8), &kZero, 8);
-  }
-  result_.data.size = 0;
+  result_.data.clear_zero_tail();
   result_.value.reset();
   result_.completed_at = Time{};
 }
