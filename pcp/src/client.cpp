@@ -90,7 +90,7 @@ SubmitStatus Client::submit(Time now, RequestPdu& req, Duration timeout, bool ne
   outstanding_ = true;
   sent_ = false;
   deadline_ = now + (timeout > Duration::zero() ? timeout : cfg_.request_timeout);
-  result_ = Result{};
+  reset_result();
   result_.service = req.service;
   result_.index = req.index;
   result_.invoke_id = req.invoke_id;
@@ -99,6 +99,25 @@ SubmitStatus Client::submit(Time now, RequestPdu& req, Duration timeout, bool ne
   expected_type_.reset();
   ++stats_.requests;
   return SubmitStatus::accepted;
+}
+
+void Client::reset_result() {
+  // After a Read (or none yet) only what a Read's completion writes can differ from a fresh
+  // Result: kind and completed_at (complete), abort_reason (abort, the server's Abort), error (a
+  // negative confirmation), data and value (handle_message). Only data's first data.size bytes
+  // can be non-zero: it is set only as a whole copy of a decoded PDU's data, which is fresh past
+  // its size. So clearing those gives a fresh Result without clearing all of its 312 bytes on
+  // every Read. After any other service, the whole Result.
+  if (result_.service != ServiceCode::read) {
+    result_ = Result{};
+    return;
+  }
+  result_.kind = ResultKind::ok;
+  result_.error = PcpError{};
+  result_.abort_reason = AbortReason::user;
+  result_.data.clear_zero_tail();
+  result_.value.reset();
+  result_.completed_at = Time{};
 }
 
 SubmitStatus Client::initiate(Time now, Duration timeout) {

@@ -161,17 +161,6 @@ bool Link::send(std::span<const std::uint8_t> pdu) {
   return true;
 }
 
-std::span<const std::uint8_t> Link::message() const {
-  if (!rx_complete_) return {};
-  return {rx_.data(), rx_expected_};
-}
-
-void Link::release_message() {
-  rx_complete_ = false;
-  rx_size_ = 0;
-  rx_expected_ = 0;
-}
-
 LinkEvents Link::receive(Time now, std::span<const Word> in) {
   // The shortcut: a ready link, no ack timeout due, and a valid IDLE or data frame of the peer --
   // every cycle of a transfer. It decides as receive_general does (docs/pcp.md, "Go-back-N"),

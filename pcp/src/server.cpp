@@ -189,8 +189,7 @@ void Server::execute(Time now) {
     ResponsePdu& r = read_answer_;
     r.invoke_id = job_.invoke_id;
     r.cr = job_.cr;
-    std::fill_n(r.data.data.begin(), r.data.size, std::uint8_t{0});
-    r.data.size = 0;
+    r.data.clear_zero_tail();
     answer(r, do_read(now, r), now);
     return;
   }

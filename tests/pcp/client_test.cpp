@@ -183,6 +183,90 @@ TEST(Client, EveryReadRequestHasTheBytesOfAFreshOne) {
   }
 }
 
+TEST(Client, EveryReadResultIsAFreshResultWithTheReadsFields) {
+  // After a Read the client resets only what a Read's completion writes (reset_result): every
+  // Read's result, between Writes and Reads that end positive with values of every length,
+  // typed (matching or not), or negative, must be a fresh Result but for the fields a Read sets,
+  // and hold no byte of an earlier value past its size.
+  Client client(test::client_config(4));
+  std::mt19937 rng(2626);
+  std::vector<std::uint8_t> value;
+  bool negative = false;
+  FakeServer fake(
+      client, [&](const std::vector<std::uint8_t>& m) -> std::optional<std::vector<std::uint8_t>> {
+        const Word iid_cr = static_cast<Word>(m[4] << 8 | m[5]);
+        if (m[1] == 0x8B)
+          return pdu_bytes({0x808B, 0x0007, iid_cr, 0x0000, 134, 134, 0x0000, 0x0004, 0x0304});
+        if (m[1] == 0x82) return pdu_bytes({0x8082, 0x0002, iid_cr, 0x0000});
+        if (negative) return pdu_bytes({0x8081, 0x0003, iid_cr, 0x0607, 0x0001});
+        std::vector<std::uint8_t> b{0x80, 0x81, 0, 0, m[4], m[5], 0, 0, 0,
+                                    static_cast<std::uint8_t>(value.size())};
+        b.insert(b.end(), value.begin(), value.end());
+        if (b.size() % 2 != 0) b.push_back(0);
+        b[3] = static_cast<std::uint8_t>((b.size() - 4) / 2);
+        return b;
+      });
+  ASSERT_EQ(client.initiate(fake.now()), SubmitStatus::accepted);
+  ASSERT_TRUE(fake.await()->ok());
+  for (int k = 0; k < 300; ++k) {
+    const auto index = static_cast<std::uint16_t>(rng());
+    const unsigned how = rng() % 4;  // 0: Write, 1: Read, 2: typed Read, 3: negative Read
+    negative = how == 3;
+    value.resize(rng() % 4 == 0 ? 2 : rng() % (kMaxDataSize + 1));
+    for (auto& b : value) b = static_cast<std::uint8_t>(rng() | 1U);
+    SubmitStatus st{};
+    if (how == 0) {
+      st = client.write_bytes(fake.now(), ParameterRef{index}, value, 0);
+    } else if (how == 2) {
+      st = client.read(fake.now(), ParameterRef{index}, DataType::usign16);
+    } else {
+      st = client.read(fake.now(), ParameterRef{index});
+    }
+    ASSERT_EQ(st, SubmitStatus::accepted);
+    const std::optional<Result> r = fake.await();
+    ASSERT_TRUE(r.has_value());
+    if (how == 0) {
+      ASSERT_TRUE(r->ok());
+      continue;
+    }
+    const Result fresh{};
+    EXPECT_EQ(r->service, ServiceCode::read);
+    EXPECT_EQ(r->index, index);
+    if (how == 3) {
+      EXPECT_EQ(r->kind, ResultKind::negative);
+      EXPECT_EQ(r->error.error_class, 6);
+      EXPECT_EQ(r->error.error_code, 7);
+      EXPECT_EQ(r->data.size, 0U);
+      EXPECT_FALSE(r->value.has_value());
+    } else {
+      EXPECT_EQ(r->error, fresh.error) << k;
+      ASSERT_EQ(r->data.size, value.size()) << k;
+      EXPECT_TRUE(std::equal(value.begin(), value.end(), r->data.data.begin())) << k;
+      if (how == 2 && value.size() == 2) {
+        EXPECT_EQ(r->kind, ResultKind::ok) << k;
+        EXPECT_TRUE(r->value.has_value()) << k;
+      } else if (how == 2) {
+        EXPECT_EQ(r->kind, ResultKind::type_mismatch) << k;
+        EXPECT_FALSE(r->value.has_value()) << k;
+      } else {
+        EXPECT_EQ(r->kind, ResultKind::ok) << k;
+        EXPECT_FALSE(r->value.has_value()) << k;
+      }
+    }
+    // Everything past the value, and every field a Read does not set, as in a fresh Result.
+    EXPECT_TRUE(std::all_of(r->data.data.begin() + static_cast<std::ptrdiff_t>(r->data.size),
+                            r->data.data.end(), [](std::uint8_t b) { return b == 0; }))
+        << "read " << k;
+    EXPECT_EQ(r->abort_reason, fresh.abort_reason);
+    EXPECT_EQ(r->mismatch, fresh.mismatch);
+    EXPECT_EQ(r->description, fresh.description);
+    EXPECT_EQ(r->identity, fresh.identity);
+    EXPECT_EQ(r->status, fresh.status);
+    EXPECT_EQ(r->peer_kbl, fresh.peer_kbl);
+    EXPECT_LT(r->submitted_at, r->completed_at);
+  }
+}
+
 TEST(Client, AServerAbortEndsTheRequest) {
   Client client(test::client_config(1));
   FakeServer fake(

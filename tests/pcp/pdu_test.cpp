@@ -44,6 +44,22 @@ ResponsePdu confirmation(ServiceCode s) {
   return r;
 }
 
+TEST(Pdu, ClearZeroTailGivesAFreshDataBytesForEverySize) {
+  // clear_zero_tail() zeros only the first size bytes, by 8-byte stores: for a DataBytes filled
+  // by assign() from fresh, or emptied so before, of every size, the result is a fresh one.
+  DataBytes d;
+  for (int round = 0; round < 2; ++round) {
+    for (std::size_t n = 0; n <= kMaxDataSize; ++n) {
+      std::vector<std::uint8_t> v(n);
+      for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<std::uint8_t>(0x80U | (i + n));
+      ASSERT_TRUE(d.assign(v));
+      d.clear_zero_tail();
+      EXPECT_EQ(d.size, 0U) << n;
+      EXPECT_EQ(d.data, DataBytes{}.data) << "size " << n;
+    }
+  }
+}
+
 TEST(Pdu, ReadRequestFollowsThePublicLayout) {
   RequestPdu r = request(ServiceCode::read);
   r.index = 0x5D97;  // 407-IBSTU (seed 001, 4.2.1)

@@ -146,6 +146,7 @@ class Client {
  private:
   SubmitStatus submit(Time now, RequestPdu& req, Duration timeout, bool needs_association);
   void complete(Time now, ResultKind kind);
+  void reset_result();  // result_ as a fresh Result (the submission's fields are set after)
   void handle_message(Time now, std::span<const std::uint8_t> msg);
   void fail_protocol(Time now);
 

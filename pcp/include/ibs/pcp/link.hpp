@@ -157,8 +157,16 @@ class Link {
 
   // The received message (its PDU) until release_message().
   [[nodiscard]] bool has_message() const { return rx_complete_; }
-  [[nodiscard]] std::span<const std::uint8_t> message() const;
-  void release_message();
+  // Inline (as has_message): the server and client call them on every message they take.
+  [[nodiscard]] std::span<const std::uint8_t> message() const {
+    if (!rx_complete_) return {};
+    return {rx_.data(), rx_expected_};
+  }
+  void release_message() {
+    rx_complete_ = false;
+    rx_size_ = 0;
+    rx_expected_ = 0;
+  }
 
  private:
   void reset_transfers();

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <string_view>
@@ -146,6 +147,17 @@ struct FixedBytes {
     for (std::size_t i = 0; i < in.size(); ++i) data[i] = in[i];
     size = in.size();
     return true;
+  }
+  // Back to a fresh (all-zero) one, for one whose bytes past size are zeros (a fresh one after
+  // assign(), or one emptied so): zeros over the first size bytes only, by 8-byte stores (the
+  // last ends at the array's end), cheaper than a memset call for a value's few bytes.
+  void clear_zero_tail() {
+    static_assert(N >= 8);
+    constexpr std::uint64_t kZero = 0;
+    for (std::size_t i = 0; i < size; i += 8) {
+      std::memcpy(data.data() + (i < N - 8 ? i : N - 8), &kZero, sizeof kZero);
+    }
+    size = 0;
   }
   friend bool operator==(const FixedBytes& a, const FixedBytes& b) {
     if (a.size != b.size) return false;
