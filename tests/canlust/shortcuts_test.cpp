@@ -16,6 +16,7 @@
 
 #include "fake_drive.hpp"
 #include "ibs/canlust/identifiers.hpp"
+#include "ibs/canlust/master.hpp"
 #include "ibs/canlust/parameter_channel.hpp"
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/canlust/telegrams.hpp"
@@ -330,6 +331,75 @@ TEST(CanlustShortcuts, InlineServerReadIsTheGeneralReceive) {
       now += std::chrono::milliseconds(pick(0, 200));
     }
   }
+}
+
+}  // namespace
+}  // namespace ibs::canlust
+
+namespace ibs::canlust {
+namespace {
+
+// Master::take_frame(CanFrame&) against the optional form: two masters with a small outbox get
+// the same random broadcasts, control telegrams and parameter reads (so both their own outbox and
+// the client's fill, overflow and drain); one takes its frames by reference, the other as
+// optionals. The same frames in the same order, the same "none", the same counters.
+TEST(CanlustShortcuts, MasterTakeFrameIntoTheCallersFrameIsTheOptionalForm) {
+  std::mt19937 rng(2711);
+  const auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  std::size_t frames = 0;
+  for (int round = 0; round < 40; ++round) {
+    MasterConfig mc;
+    mc.outbox_capacity = static_cast<std::size_t>(pick(1, 6));
+    mc.client.outbox_capacity = static_cast<std::size_t>(pick(1, 6));
+    Master a(mc);
+    Master b(mc);
+    Time now{0};
+    for (int i = 0; i < 300; ++i) {
+      switch (pick(0, 5)) {
+        case 0:
+          a.system_start();
+          b.system_start();
+          break;
+        case 1:
+          a.system_stop();
+          b.system_stop();
+          break;
+        case 2: {
+          const auto addr = static_cast<Address>(pick(0, 4));
+          const ControlTelegram t{static_cast<std::uint16_t>(pick(0, 0xFFFF)), pick(-1000, 1000)};
+          ASSERT_EQ(a.send_control(addr, t), b.send_control(addr, t));
+          break;
+        }
+        case 3: {
+          const Request r = read(static_cast<Address>(pick(1, 4)), static_cast<std::uint16_t>(pick(1, 999)));
+          const Submitted x = a.parameters().submit(r);
+          const Submitted y = b.parameters().submit(r);
+          ASSERT_EQ(x.id, y.id);
+          ASSERT_EQ(x.error, y.error);
+          break;
+        }
+        case 4:
+          now += std::chrono::milliseconds(pick(0, 30));
+          a.step(now);
+          b.step(now);
+          break;
+        default:
+          for (int k = pick(1, 8); k > 0; --k) {
+            CanFrame f{};
+            const bool got = a.take_frame(f);
+            const std::optional<CanFrame> g = b.take_frame();
+            ASSERT_EQ(got, g.has_value()) << "round " << round << " action " << i;
+            if (!got) break;
+            ASSERT_EQ(f, *g) << "round " << round << " action " << i;
+            ++frames;
+          }
+      }
+      ASSERT_EQ(a.next_deadline(), b.next_deadline());
+      ASSERT_EQ(a.counters().dropped_frames, b.counters().dropped_frames);
+      ASSERT_EQ(a.parameters().counters().dropped_frames, b.parameters().counters().dropped_frames);
+    }
+  }
+  EXPECT_GT(frames, 2000U);  // both outboxes were really drained, not only found empty
 }
 
 }  // namespace

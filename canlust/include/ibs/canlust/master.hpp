@@ -68,6 +68,9 @@ class Master {
 
   void receive(const CanFrame& f, Time now);
   void step(Time now);
+  // The next frame into `out`, false when there is none; the same frames as the optional form,
+  // without carrying one out through the stack (docs/canlust.md, "Parameter channel").
+  bool take_frame(CanFrame& out);
   std::optional<CanFrame> take_frame();
   // Time::min() while frames wait in the outbox (take them now).
   [[nodiscard]] Time next_deadline() const {

@@ -110,6 +110,7 @@ class Driver {
   // One master cycle: late logons, the sequencers on the drives' last status words, and the
   // control telegrams that are due.
   void cycle(Time now);
+  bool take_frame(canlust::CanFrame& out) { return master_.take_frame(out); }
   std::optional<canlust::CanFrame> take_frame() { return master_.take_frame(); }
   // Time::min() when a frame waits or a status arrived since the last cycle.
   [[nodiscard]] Time next_deadline() const;
