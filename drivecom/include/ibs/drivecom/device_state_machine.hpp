@@ -219,7 +219,9 @@ class DeviceStateMachine {
           detail::kChainLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(decode_command(in.control))];
       if (c.settles) {
         last_control_ = in.control;
-        state_ = c.state;
+        // A hold (no transition) writes no state: a drive that holds then does not wait each
+        // sample for the state stored by the last (store to load).
+        if (c.count != 0) state_ = c.state;
         return c.result();
       }
     }
