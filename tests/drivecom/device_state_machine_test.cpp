@@ -1,6 +1,8 @@
 // Seed 001, 5.1.1-5.1.3: the drive's state machine, exhaustively against an independent table.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <random>
 #include <vector>
 
 #include "ibs/drivecom/device_state_machine.hpp"
@@ -207,6 +209,47 @@ TEST(DeviceStateMachine, PowerOnClearsBit7History) {
   m.power_on();
   EXPECT_EQ(m.state(), State::not_ready);
   EXPECT_EQ(m.last_control(), 0);
+}
+
+// sample()'s lookup (detail::kChainLut) against the general loop (sample_general): two machines,
+// the same random inputs -- control words mostly the start-up's and the commands', sometimes any
+// word; random faults, reactions, standstill, enable locks, power-ons and forced states -- the
+// same result, state and last control word after every sample.
+TEST(DeviceStateMachineShortcut, SampleEqualsTheGeneralLoop) {
+  constexpr std::array<Word, 8> kWords{0x0000, 0x0002, 0x0006, 0x0007, 0x000F, 0x0080, 0x0086, 0x008F};
+  for (const auto exit : {EmergencyStopExit::on_block_power_only, EmergencyStopExit::automatic_when_stopped}) {
+    for (std::uint32_t seed = 1; seed <= 60; ++seed) {
+      std::mt19937 rng(seed);
+      const auto initial = static_cast<State>(rng() % kStateCount);
+      DeviceStateMachine fast(exit, initial), general(exit, initial);
+      for (int i = 0; i < 3000; ++i) {
+        const unsigned r = rng();
+        if (r % 97 == 0) {
+          fast.power_on();
+          general.power_on();
+        } else if (r % 89 == 0) {
+          const auto s = static_cast<State>(rng() % kStateCount);
+          const auto w = static_cast<Word>(rng());
+          fast.force(s, w);
+          general.force(s, w);
+        }
+        DeviceInputs in;
+        in.control = (r >> 8) % 4 == 0 ? static_cast<Word>(rng()) : kWords[(r >> 10) % kWords.size()];
+        in.initialised = (r >> 13) % 8 != 0;
+        in.fault_present = (r >> 16) % 16 == 0;
+        in.fault_reaction_done = (r >> 20) % 4 != 0;
+        in.stopped = (r >> 22) % 3 != 0;
+        in.enable_locked = (r >> 24) % 8 == 0;
+        const SampleResult a = fast.sample(in);
+        const SampleResult b = general.sample_general(in);
+        ASSERT_EQ(a.packed, b.packed) << "seed " << seed << " sample " << i;
+        ASSERT_EQ(a.count, b.count) << "seed " << seed << " sample " << i;
+        ASSERT_EQ(a.state, b.state) << "seed " << seed << " sample " << i;
+        ASSERT_EQ(fast.state(), general.state()) << "seed " << seed << " sample " << i;
+        ASSERT_EQ(fast.last_control(), general.last_control()) << "seed " << seed << " sample " << i;
+      }
+    }
+  }
 }
 
 }  // namespace

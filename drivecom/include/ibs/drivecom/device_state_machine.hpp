@@ -134,34 +134,66 @@ constexpr bool commanded_state(State s) { return s >= State::start_up_inhibit &&
 // What one sample does in a commanded state under one command with no fault and no enable lock:
 // the transitions of kTransitionLut taken until the state moves no more (READY + ENABLE takes
 // 3 then 4, 5.3.4), and where they end. Derived once from the table, so that such a sample -- the
-// whole start-up, every hold -- is one lookup instead of the general loop of sample_transitions.
-// `settles` is false where the chain ends outside the commanded states (ENABLED + EMERGENCY STOP
-// -> EMERGENCY STOP ACTIVE, whose exit depends on the drive's other inputs): the loop decides.
-struct Chain {
-  SampleResult result;
-  bool settles = true;
+// whole start-up, every hold (no transition: count 0, the state itself) -- is one lookup instead
+// of the general loop of sample_transitions. `settles` is false where the chain ends outside the
+// commanded states (ENABLED + EMERGENCY STOP -> EMERGENCY STOP ACTIVE, whose exit depends on the
+// drive's other inputs) and for every state that is no commanded state (NOT READY, the fault
+// states, EMERGENCY STOP ACTIVE: automatic transitions leave them): the loop decides. Eight bytes
+// a cell, so that the lookup is one load of one cell.
+struct alignas(8) Chain {
+  std::uint32_t packed = 0;  // as SampleResult::packed
+  std::uint8_t count = 0;
+  State state = State::not_ready;
+  bool settles = false;
+  [[nodiscard]] constexpr SampleResult result() const {
+    SampleResult r;
+    r.packed = packed;
+    r.count = count;
+    r.state = state;
+    return r;
+  }
 };
+static_assert(sizeof(Chain) == 8);
 constexpr std::array<std::array<Chain, 5>, kStateCount> make_chain_lut() {
   std::array<std::array<Chain, 5>, kStateCount> lut{};
   for (std::size_t s = 0; s < kStateCount; ++s) {
     for (std::size_t c = 0; c < 5; ++c) {
-      Chain& ch = lut[s][c];
+      SampleResult r;
       State at = static_cast<State>(s);
-      while (ch.result.count < SampleResult::kMax && commanded_state(at)) {
+      while (r.count < SampleResult::kMax && commanded_state(at)) {
         const Cell t = kTransitionLut[static_cast<std::size_t>(at)][c];
         if (t.number == 0) break;
-        ch.result.add(t.number);
+        r.add(t.number);
         at = t.to;
       }
-      ch.result.state = at;
-      ch.settles = commanded_state(at);
+      // settles: started and ended in the commanded states (a state that is none takes no step
+      // of the loop above, so it must be excluded here).
+      lut[s][c] = {r.packed, r.count, at, commanded_state(static_cast<State>(s)) && commanded_state(at)};
     }
   }
   return lut;
 }
 inline constexpr auto kChainLut = make_chain_lut();
-static_assert(kChainLut[static_cast<std::size_t>(State::ready)][static_cast<std::size_t>(Command::enable)].result.packed == 0x43,
+static_assert(kChainLut[static_cast<std::size_t>(State::ready)][static_cast<std::size_t>(Command::enable)].packed == 0x43,
               "READY + ENABLE: 3 then 4 in one sample (5.3.4)");
+// The lookup replaces the hold of kTransitionLut too: in a commanded state a command the table
+// does not move on is a settled chain of no transition that stays where it is; a settled chain
+// starts in a commanded state.
+constexpr bool chain_lut_consistent() {
+  for (std::size_t s = 0; s < kStateCount; ++s) {
+    for (std::size_t c = 0; c < 5; ++c) {
+      const Chain& ch = kChainLut[s][c];
+      const auto st = static_cast<State>(s);
+      if (ch.settles && !commanded_state(st)) return false;
+      if (commanded_state(st) && kTransitionLut[s][c].number == 0 &&
+          !(ch.settles && ch.count == 0 && ch.packed == 0 && ch.state == st)) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+static_assert(chain_lut_consistent(), "kChainLut holds where kTransitionLut takes no transition");
 }  // namespace detail
 
 // True where the power stage drives the motor.
@@ -179,25 +211,26 @@ class DeviceStateMachine {
   // reaches ENABLED in one sample (5.3.4). Never allocates, never throws.
   SampleResult sample(const DeviceInputs& in) {
     // The common cases of every sample, inline: a commanded state, no fault, no enable lock.
-    // Its transitions follow from the state and the command alone: a hold (the most common) from
-    // kTransitionLut, a move from detail::kChainLut.
-    if (!in.fault_present && !in.enable_locked && detail::commanded_state(state_)) {
-      const auto cmd = static_cast<std::size_t>(decode_command(in.control));
-      if (detail::kTransitionLut[static_cast<std::size_t>(state_)][cmd].number == 0) {
-        last_control_ = in.control;
-        SampleResult stable;
-        stable.state = state_;
-        return stable;
-      }
-      const detail::Chain& c = detail::kChainLut[static_cast<std::size_t>(state_)][cmd];
+    // Its transitions follow from the state and the command alone: a hold (the most common) or
+    // a move, one lookup in detail::kChainLut (whose `settles` is false outside the commanded
+    // states, so the state needs no check of its own).
+    if (!in.fault_present && !in.enable_locked) {
+      const detail::Chain c =
+          detail::kChainLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(decode_command(in.control))];
       if (c.settles) {
         last_control_ = in.control;
-        state_ = c.result.state;
-        return c.result;
+        // A hold (no transition) writes no state: a drive that holds then does not wait each
+        // sample for the state stored by the last (store to load).
+        if (c.count != 0) state_ = c.state;
+        return c.result();
       }
     }
     return sample_transitions(in);
   }
+  // sample() without its lookup (detail::kChainLut): every sample through the general loop.
+  // The same result and the same state as sample(); DeviceStateMachineShortcut.* compares the
+  // two over random runs.
+  SampleResult sample_general(const DeviceInputs& in) { return sample_transitions(in); }
   // True when a sample with these inputs takes no transition and changes nothing but the last
   // control word: a stable state (START-UP INHIBIT .. ENABLED), no fault, and a command that
   // does not move it. The same inputs again then hold it again.

@@ -271,7 +271,8 @@ class Sequencer {
       } else {
         w = emit(m.word);
       }
-      hold_code_ = kNotHolding;
+      // hold_code_ stays kNotHolding: path_mask_ is non-zero only while the phase is moving, and
+      // every function that sets a hold code (a reached phase) clears path_mask_ with it.
     }
     prev_seen_ = s;
     known_ = s;
