@@ -223,7 +223,7 @@ TEST(DeviceStateMachineShortcut, SampleEqualsTheGeneralLoop) {
       const auto initial = static_cast<State>(rng() % kStateCount);
       DeviceStateMachine fast(exit, initial), general(exit, initial);
       for (int i = 0; i < 3000; ++i) {
-        const unsigned r = rng();
+        const auto r = static_cast<unsigned>(rng());
         if (r % 97 == 0) {
           fast.power_on();
           general.power_on();
