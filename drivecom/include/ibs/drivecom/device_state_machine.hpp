@@ -194,6 +194,21 @@ constexpr bool chain_lut_consistent() {
   return true;
 }
 static_assert(chain_lut_consistent(), "kChainLut holds where kTransitionLut takes no transition");
+// kChainLut indexed by the control word's bits 0-3 instead of its command (decode_command folded
+// in), so that sample() finds its chain with one load rather than two in a row: in a closed loop
+// every cycle waits for the last one's status word, and each dependent load adds to that wait.
+constexpr std::array<std::array<Chain, 16>, kStateCount> make_chain_by_control() {
+  std::array<std::array<Chain, 16>, kStateCount> lut{};
+  for (std::size_t s = 0; s < kStateCount; ++s) {
+    for (std::size_t bits = 0; bits < 16; ++bits) {
+      lut[s][bits] = kChainLut[s][static_cast<std::size_t>(decode_command(static_cast<Word>(bits)))];
+    }
+  }
+  return lut;
+}
+alignas(64) inline constexpr auto kChainByControl = make_chain_by_control();
+static_assert(kChainByControl[static_cast<std::size_t>(State::ready)][0x0F].packed == 0x43,
+              "READY + 000FH: 3 then 4 in one sample (5.3.4)");
 }  // namespace detail
 
 // True where the power stage drives the motor.
@@ -212,11 +227,10 @@ class DeviceStateMachine {
   SampleResult sample(const DeviceInputs& in) {
     // The common cases of every sample, inline: a commanded state, no fault, no enable lock.
     // Its transitions follow from the state and the command alone: a hold (the most common) or
-    // a move, one lookup in detail::kChainLut (whose `settles` is false outside the commanded
-    // states, so the state needs no check of its own).
+    // a move, one lookup in detail::kChainByControl (kChainLut by bits 0-3; `settles` is false
+    // outside the commanded states, so the state needs no check of its own).
     if (!in.fault_present && !in.enable_locked) {
-      const detail::Chain c =
-          detail::kChainLut[static_cast<std::size_t>(state_)][static_cast<std::size_t>(decode_command(in.control))];
+      const detail::Chain c = detail::kChainByControl[static_cast<std::size_t>(state_)][in.control & 0x0FU];
       if (c.settles) {
         last_control_ = in.control;
         // A hold (no transition) writes no state: a drive that holds then does not wait each
@@ -227,7 +241,7 @@ class DeviceStateMachine {
     }
     return sample_transitions(in);
   }
-  // sample() without its lookup (detail::kChainLut): every sample through the general loop.
+  // sample() without its lookup (detail::kChainByControl): every sample through the general loop.
   // The same result and the same state as sample(); DeviceStateMachineShortcut.* compares the
   // two over random runs.
   SampleResult sample_general(const DeviceInputs& in) { return sample_transitions(in); }
