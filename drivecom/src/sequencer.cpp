@@ -96,10 +96,18 @@ inline constexpr auto kPaths = make_paths();
 
 constexpr PathStep path(State s, Target t) { return kPaths[static_cast<std::size_t>(t)][idx(s)]; }
 
-constexpr std::array<std::array<detail::PathMove, kStateCount>, kTargets> make_path_moves() {
-  std::array<std::array<detail::PathMove, kStateCount>, kTargets> moves{};
+// kPaths by the status word seen (detail::kStatusMoves): the state each value of bits 0-6 shows
+// and, for a state, its path step as the word sent.
+constexpr std::array<std::array<detail::StatusMove, 128>, kTargets> make_status_moves() {
+  std::array<std::array<detail::StatusMove, 128>, kTargets> moves{};
   for (std::size_t t = 0; t < kTargets; ++t) {
-    for (std::size_t s = 0; s < kStateCount; ++s) moves[t][s] = {command_word(kPaths[t][s].command), kPaths[t][s].transition};
+    for (std::size_t bits = 0; bits < 128; ++bits) {
+      const std::uint8_t code = detail::kStateLut[bits];
+      moves[t][bits] = {0, 0, code};
+      if (code == detail::kNoState) continue;
+      moves[t][bits].word = command_word(kPaths[t][code].command);
+      moves[t][bits].transition = kPaths[t][code].transition;
+    }
   }
   return moves;
 }
@@ -121,19 +129,38 @@ static_assert(kCommands == 5);
 
 }  // namespace
 
-// kPaths as the words sent (declared in the header for Sequencer::step_path).
-constexpr std::array<std::array<detail::PathMove, kStateCount>, 4> detail::kPathMoves = make_path_moves();
+// kPaths by the status word seen (declared in the header for Sequencer::step).
+alignas(64) constexpr std::array<std::array<detail::StatusMove, 128>, 4> detail::kStatusMoves = make_status_moves();
 // step_path takes a plain path state with nothing to wait for as the target reached and held.
 constexpr bool plain_states_hold_only_at_target() {
   for (std::size_t t = 0; t < 4; ++t) {
-    for (std::size_t s = 0; s < kStateCount; ++s) {
-      if (((detail::kPlainPathStates >> s) & 1U) == 0) continue;
-      const bool at_target = static_cast<State>(s) == target_state(static_cast<Target>(t));
-      if ((detail::kPathMoves[t][s].transition == 0) != at_target) return false;
+    for (const detail::StatusMove& m : detail::kStatusMoves[t]) {
+      if (m.code == detail::kNoState || ((detail::kPlainPathStates >> m.code) & 1U) == 0) continue;
+      const bool at_target = static_cast<State>(m.code) == target_state(static_cast<Target>(t));
+      if ((m.transition == 0) != at_target) return false;
     }
   }
   return true;
 }
+// Every value of bits 0-6 carries kStateLut's state and, for a state, kPaths' step as a word.
+constexpr bool status_moves_follow_the_paths() {
+  for (std::size_t t = 0; t < 4; ++t) {
+    for (std::size_t bits = 0; bits < 128; ++bits) {
+      const detail::StatusMove& m = detail::kStatusMoves[t][bits];
+      if (m.code != detail::kStateLut[bits]) return false;
+      if (m.code == detail::kNoState) continue;
+      const PathStep p = path(static_cast<State>(m.code), static_cast<Target>(t));
+      if (m.word != command_word(p.command) || m.transition != p.transition) return false;
+    }
+  }
+  return true;
+}
+static_assert(status_moves_follow_the_paths());
+// The start-up of 5.3.4 as step() sees it: 0240H (START-UP INHIBIT) answered with 0006H, waiting
+// for 2; 0231H (READY) with 000FH, waiting for 3.
+constexpr auto kToEnabled = static_cast<std::size_t>(Target::enabled);
+static_assert(detail::kStatusMoves[kToEnabled][0x40].word == 0x0006 && detail::kStatusMoves[kToEnabled][0x40].transition == 2);
+static_assert(detail::kStatusMoves[kToEnabled][0x31].word == 0x000F && detail::kStatusMoves[kToEnabled][0x31].transition == 3);
 static_assert(plain_states_hold_only_at_target());
 static_assert(detail::kPlainPathStates == ((1U << idx(State::start_up_inhibit)) | (1U << idx(State::ready)) |
                                            (1U << idx(State::on)) | (1U << idx(State::enabled)) |
@@ -156,13 +183,7 @@ std::string_view to_string(Failure f) {
 void Sequencer::restart() {
   report_ = Report{};
   last_control_ = 0;
-  prev_seen_.reset();
-  known_.reset();
-  reset_allowed_ = false;
-  up_since_request_ = false;
-  reset_edge_sent_ = false;
-  edge_out_ = false;
-  pulse_started_ = false;
+  track_ = Track{};
   hold_code_ = kNotHolding;
   update_path_mask();
 }
@@ -171,11 +192,11 @@ void Sequencer::request_emergency_stop(Time now) { begin(Goal::emergency_stop, n
 void Sequencer::request_block_power(Time now) { begin(Goal::block_power, now); }
 
 void Sequencer::wait_for(std::uint8_t transition, Time now) {
-  if (transition != report_.transition || report_.state_seen != prev_seen_) {
+  if (transition != report_.transition || report_.state_seen != prev_state()) {
     report_.since = now;
   }
   report_.transition = transition;
-  report_.timeout = config_.transition_timeout[transition & 0x0FU];
+  report_.timeout = timeout_of(transition);
   report_.waited = now - report_.since;
   if (report_.waited > report_.timeout) fail(Failure::timeout);
 }
@@ -184,20 +205,20 @@ Word Sequencer::fail(Failure f) {
   if (report_.phase != Phase::failed) report_.failed_command = last_control_;
   report_.phase = Phase::failed;
   report_.failure = f;
-  pulse_started_ = false;
+  set(kPulseStarted, false);
   return emit(command_word(Command::block_power));
 }
 
 Sequencer::Move Sequencer::reset_pulse(Time now) {
   // 15: a real rising edge of bit 7, repeated as a pulse while the drive stays in FAULT.
   const bool high = (last_control_ & kResetBit) != 0;
-  if (!pulse_started_) {
-    pulse_started_ = true;
+  if (!has(kPulseStarted)) {
+    set(kPulseStarted, true);
     pulse_edge_ = now;
     // Coming from a word with bit 7 high there is no edge yet: drop it first.
     return {high ? Word{0} : kResetBit, 15};
   }
-  if (now - pulse_edge_ >= config_.reset_pulse) {
+  if (now - pulse_edge_ >= reset_pulse_) {
     pulse_edge_ = now;
     return {high ? Word{0} : kResetBit, 15};
   }
@@ -211,15 +232,14 @@ Sequencer::Move Sequencer::plan(State s, Time now) {
     case State::fault_response_active: return {command_word(Command::block_power), 14};  // wait, bit 7 low
     default: break;
   }
-  pulse_started_ = false;
+  set(kPulseStarted, false);
   const PathStep p = path(s, report_.target);
   return {command_word(p.command), p.transition};
 }
 
 Word Sequencer::step_moving(std::uint8_t code, Time now) {
   // step() took the plain moves along a target's path (step_path); everything else decides here.
-  const std::optional<State> st =
-      code == detail::kNoState ? std::nullopt : std::optional<State>(static_cast<State>(code));
+  const std::optional<State> st = detail::state_of_code(code);
   report_.state_seen = st;
   Word w = 0;
   switch (report_.goal) {
@@ -228,9 +248,9 @@ Word Sequencer::step_moving(std::uint8_t code, Time now) {
     case Goal::block_power: w = step_stop(st, now); break;
     case Goal::target: w = step_target(st, now); break;
   }
-  prev_seen_ = st;
-  if (st) known_ = st;
-  if (st && *st != State::fault) edge_out_ = false;
+  track_.prev_seen = code;
+  if (st) track_.known = code;
+  if (st && *st != State::fault) set(kEdgeOut, false);
   hold_code_ = report_.goal == Goal::target && report_.phase == Phase::reached && st == target_state(report_.target)
                    ? static_cast<std::uint8_t>(*st)
                    : kNotHolding;
@@ -274,44 +294,45 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
   if (!st) {
     // An unreadable status word erases nothing: the command stays the one for the last state
     // seen (a new request may have changed it), and the transition's timeout decides.
-    const Move m = plan(known_.value_or(State::not_ready), now);
+    const Move m = plan(known_state().value_or(State::not_ready), now);
     wait_for(m.transition, now);
     if (report_.phase == Phase::failed) return fail(Failure::invalid_status);
     return emit(m.word);
   }
   if (is_fault_state(*st)) {
     // A fault the request did not cover: it appeared after the drive was seen in another state.
-    if (!reset_allowed_) return fail(Failure::fault);
+    if (!has(kResetAllowed)) return fail(Failure::fault);
   } else {
-    reset_allowed_ = false;
+    set(kResetAllowed, false);
   }
   if (report_.phase == Phase::reached && *st != target_state(report_.target)) return fail(Failure::left_target);
   if (*st == State::not_ready) {
     // NOT READY straight after the RESET FAULT this request sent is the drive booting from it
     // (the VF1000 performs a software reset, seed 001 5.2.1), not a restart: the request goes on
     // as after power-on. The fault was reset; one that comes back ends the request (above).
-    const bool booting_from_reset = known_ == State::fault && reset_edge_sent_;
+    const std::optional<State> known = known_state();
+    const bool booting_from_reset = known == State::fault && has(kResetEdgeSent);
     // A drive last seen up and now NOT READY has restarted, perhaps during an outage in which
     // the request was made: the master cannot tell whether the power cycle came before the
     // request or after it, and takes it as after -- the request ends rather than enable a drive
     // that was switched off and on since somebody asked (docs/errata.md DC-D1).
-    const bool restarted_unseen = known_ && *known_ != State::not_ready;
-    if ((up_since_request_ || restarted_unseen) && !booting_from_reset) return fail(Failure::restarted);
-    up_since_request_ = false;
-    reset_edge_sent_ = false;
+    const bool restarted_unseen = known && *known != State::not_ready;
+    if ((has(kUpSinceRequest) || restarted_unseen) && !booting_from_reset) return fail(Failure::restarted);
+    set(kUpSinceRequest, false);
+    set(kResetEdgeSent, false);
   } else {
     // Out of FAULT RESPONSE ACTIVE or FAULT into a healthy state without a reset edge from this
     // master: only a power-on leaves a fault state that way (5.1.2: FAULT is left by transition
     // 15 alone), its NOT READY between two samples -- a restart, as above (DC-D1).
-    if (!is_fault_state(*st) && known_ && is_fault_state(*known_) && !edge_out_) return fail(Failure::restarted);
-    up_since_request_ = true;
+    if (!is_fault_state(*st) && detail::is_fault_code(track_.known) && !has(kEdgeOut)) return fail(Failure::restarted);
+    set(kUpSinceRequest, true);
   }
   const Move m = plan(*st, now);
   if (*st == State::fault && (m.word & kResetBit) != 0 && (last_control_ & kResetBit) == 0) {
-    reset_edge_sent_ = true;
-    edge_out_ = true;
+    set(kResetEdgeSent, true);
+    set(kEdgeOut, true);
   }
-  if (*st != State::fault) reset_edge_sent_ = false;
+  if (*st != State::fault) set(kResetEdgeSent, false);
   if (m.transition == 0) {
     report_.phase = Phase::reached;
     report_.transition = 0;

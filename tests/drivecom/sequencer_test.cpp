@@ -339,5 +339,63 @@ TEST(Sequencer, TargetsAreNamedByTheirStatesKeys) {
   EXPECT_EQ(target_named("fault"), std::nullopt) << "a state, but no target";
 }
 
+// A sequencer keeps the timeouts it was built with, whether they are the defaults (which it does
+// not copy) or its own (one table that copies share).
+TEST(SequencerConfigured, EveryTransitionHasTheTimeoutItWasBuiltWith) {
+  SequencerConfig own = SequencerConfig::defaults();
+  for (std::size_t i = 0; i < own.transition_timeout.size(); ++i) {
+    own.transition_timeout[i] = std::chrono::milliseconds(7 * static_cast<int>(i) + 1);
+  }
+  const SequencerConfig defaults = SequencerConfig::defaults();
+  const Sequencer built_plain;
+  const Sequencer built_with_defaults(defaults);
+  const Sequencer built_with_own(own);
+  for (std::uint8_t n = 0; n < 16; ++n) {
+    EXPECT_EQ(built_plain.transition_timeout(n), defaults.transition_timeout[n]) << int(n);
+    EXPECT_EQ(built_with_defaults.transition_timeout(n), defaults.transition_timeout[n]) << int(n);
+    EXPECT_EQ(built_with_own.transition_timeout(n), own.transition_timeout[n]) << int(n);
+  }
+}
+
+// Steps START-UP INHIBIT (0240H) until the request to ENABLED fails; returns when it failed.
+Time time_out_on_transition_2(Sequencer& seq) {
+  seq.request(Target::enabled, 0ms);
+  Time now{0};
+  for (; now < 20s && seq.report().phase != Phase::failed; now += 1ms) seq.step(0x0240, now);
+  EXPECT_EQ(seq.report().failure, Failure::timeout);
+  EXPECT_EQ(seq.report().transition, 2);
+  return now;
+}
+
+TEST(SequencerConfigured, ACopyKeepsItsTimeoutsAfterTheOriginalIsGone) {
+  SequencerConfig cfg = SequencerConfig::defaults();
+  cfg.transition_timeout[2] = 30ms;
+  Sequencer copy;
+  {
+    const Sequencer original(cfg);
+    copy = original;
+  }
+  // Failed in the step after 30 ms had been waited for (the last step's `now` is 31 ms, the loop
+  // stops one later).
+  EXPECT_EQ(time_out_on_transition_2(copy), 32ms);
+  Sequencer copied_again(copy);
+  EXPECT_EQ(time_out_on_transition_2(copied_again), 32ms);
+  // A plain sequencer assigned over it brings the defaults back.
+  copied_again = Sequencer{};
+  EXPECT_EQ(time_out_on_transition_2(copied_again), SequencerConfig::defaults().transition_timeout[2] + 2ms);
+}
+
+TEST(SequencerConfigured, AResetPulseOfItsOwnWithTheDefaultTimeouts) {
+  SequencerConfig cfg = SequencerConfig::defaults();
+  cfg.reset_pulse = 20ms;
+  Sequencer seq(cfg);
+  seq.request(Target::enabled, 0ms);
+  EXPECT_EQ(seq.step(0x0208, 0ms), 0x0080);   // the edge
+  EXPECT_EQ(seq.step(0x0208, 19ms), 0x0080);  // high for 20 ms, not the default's 50
+  EXPECT_EQ(seq.step(0x0208, 20ms), 0x0000);  // then low
+  EXPECT_EQ(seq.step(0x0208, 40ms), 0x0080);  // and a new edge
+  EXPECT_EQ(seq.transition_timeout(15), SequencerConfig::defaults().transition_timeout[15]);
+}
+
 }  // namespace
 }  // namespace ibs::drivecom

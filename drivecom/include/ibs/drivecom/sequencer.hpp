@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -90,14 +91,26 @@ struct SequencerConfig {
 
 namespace detail {
 constexpr bool is_fault_state(State s) { return s == State::fault || s == State::fault_response_active; }
-// A target's path as the words sent: for each target and state, the word of the path's command
-// and the transition it waits for (0: holding the target). Derived in sequencer.cpp from
-// kCommandTransitions (5.1.2); declared here for Sequencer::step_path.
-struct PathMove {
-  Word word;
-  std::uint8_t transition;
+// is_fault_state for a state code (kNoState: no state, no fault state).
+constexpr bool is_fault_code(std::uint8_t code) {
+  return code == static_cast<std::uint8_t>(State::fault) || code == static_cast<std::uint8_t>(State::fault_response_active);
+}
+// The state of a state code of kStateLut; nullopt for kNoState.
+constexpr std::optional<State> state_of_code(std::uint8_t code) {
+  return code == kNoState ? std::nullopt : std::optional<State>(static_cast<State>(code));
+}
+// A target's path by the status word seen: for each target and each value of status bits 0-6,
+// the state code the word shows (kStateLut: kNoState for none) and, for a state, the word of the
+// path's command and the transition it waits for (0: holding the target). Derived in
+// sequencer.cpp from kCommandTransitions (5.1.2); declared here for Sequencer::step. One load
+// gives step() both the state and the move, where a lookup of the state and then of its move
+// would be two in a row on the path from one cycle's status word to the next control word.
+struct StatusMove {
+  Word word;                // bits 0-3 and 7 of the path's command
+  std::uint8_t transition;  // waited for; 0: none (holding, or no state)
+  std::uint8_t code;        // kStateLut's state code
 };
-extern const std::array<std::array<PathMove, kStateCount>, kTargets.size()> kPathMoves;
+extern const std::array<std::array<StatusMove, 128>, kTargets.size()> kStatusMoves;
 // The states on a target's path in which step_target decides nothing beyond the path: START-UP
 // INHIBIT, READY, ON, ENABLED, EMERGENCY STOP ACTIVE (neither a fault state, with its reset or
 // refusal, nor NOT READY, with its start or restart). A bit per state code; checked in the .cpp.
@@ -125,9 +138,22 @@ std::string describe(const Report& r);
 
 class Sequencer {
  public:
-  // Inline, so that a sequencer with the default configuration is built from constants.
-  explicit Sequencer(const SequencerConfig& config = SequencerConfig::defaults())
-      : config_(config), app_bits_(static_cast<Word>(config.application_bits & ~kOwnedBits)) {}
+  // The default configuration (SequencerConfig::defaults()). Inline and written out rather than
+  // defaulted, so that a sequencer is built with a few stores of constants (a defaulted one is
+  // zero-filled as a block first, which costs more than the rest of a start-up); it stores no
+  // timeout table: the defaults' is a constant (timeout_of).
+  Sequencer() noexcept {}  // NOLINT(modernize-use-equals-default)
+  // A configuration of one's own. Timeouts other than the defaults are kept in one immutable
+  // table that copies of this sequencer share (allocated here, so this may throw std::bad_alloc;
+  // never on the cycle path). Timeouts equal to the defaults allocate nothing.
+  explicit Sequencer(const SequencerConfig& config)
+      : reset_pulse_(config.reset_pulse), app_bits_(static_cast<Word>(config.application_bits & ~kOwnedBits)) {
+    if (config.transition_timeout != kDefaultConfig.transition_timeout) {
+      own_timeouts_ = std::make_shared<const std::array<Duration, 16>>(config.transition_timeout);
+    }
+  }
+  // The timeout of transition `number` (0-15) as configured.
+  [[nodiscard]] Duration transition_timeout(std::uint8_t number) const { return timeout_of(number); }
 
   // Requests a target state; clears an emergency-stop or block-power request. A fault the drive
   // is in (or shows first, when its state is not known yet) is reset on the way; a fault that
@@ -136,9 +162,10 @@ class Sequencer {
   void request(Target t, Time now) {
     report_.target = t;
     begin(Goal::target, now);
-    reset_allowed_ = !known_ || detail::is_fault_state(*known_);
-    up_since_request_ = false;
-    reset_edge_sent_ = false;
+    const std::optional<State> known = known_state();
+    set(kResetAllowed, !known || detail::is_fault_state(*known));
+    set(kUpSinceRequest, false);
+    set(kResetEdgeSent, false);
   }
   // Sends EMERGENCY STOP from the next step on, whatever the state, until the next request().
   void request_emergency_stop(Time now);
@@ -149,13 +176,13 @@ class Sequencer {
   // never throws. After any failure it sends BLOCK POWER with bit 7 low until the next request.
   Word step(Word status, Time now) {
     // The common case of every cycle, one compare: the reached target shown again.
-    const std::uint8_t code = detail::kStateLut[status & 0x7FU];
+    const detail::StatusMove p = detail::kStatusMoves[static_cast<std::size_t>(report_.target)][status & 0x7FU];
     report_.status_seen = status;
-    if (code == hold_code_) return emit(last_control_);
+    if (p.code == hold_code_) return emit(last_control_);
     // The next common case, a drive moving along the target's path, inline too (step_path).
     // path_mask_ is kPlainPathStates or 0; kNoState (0xFF) & 31 is bit 31, never set.
-    if (((path_mask_ >> (code & 31U)) & 1U) != 0) return step_path(code, now);
-    return step_moving(code, now);
+    if (((path_mask_ >> (p.code & 31U)) & 1U) != 0) return step_path(p, now);
+    return step_moving(p.code, now);
   }
 
   // step() without its two shortcuts (the hold, step_path): every status word through the
@@ -212,14 +239,14 @@ class Sequencer {
     report_.since = now;
     report_.waited = 0ns;
     report_.timeout = 0ns;
-    pulse_started_ = false;
+    set(kPulseStarted, false);
     update_path_mask();
   }
   // path_mask_ from the goal, the phase and the last state seen: kPlainPathStates while the
   // sequencer moves to a target and the drive was not last seen in a fault state, else 0.
   void update_path_mask() {
     path_mask_ = report_.goal == Goal::target && report_.phase == Phase::moving &&
-                         !(known_ && detail::is_fault_state(*known_))
+                         !detail::is_fault_code(track_.known)
                      ? detail::kPlainPathStates
                      : 0U;
   }
@@ -239,31 +266,24 @@ class Sequencer {
   // state; the restart check needs a fault state seen last; NOT READY is no plain path state; a
   // moving phase has left no reached target. SequencerSafety.* and the exhaustive monitors
   // (tests/support/sequencer_monitor.hpp) check both paths against the rules.
-  Word step_path(std::uint8_t code, Time now) {
+  Word step_path(detail::StatusMove m, Time now) {
+    const std::uint8_t code = m.code;
     const auto s = static_cast<State>(code);
     report_.state_seen = s;
-    // A healthy state ends a reset's cover, counts as up since the request, ends any reset pulse
-    // and any edge's credit (step_target, plan).
-    reset_allowed_ = false;
-    up_since_request_ = true;
-    reset_edge_sent_ = false;
-    edge_out_ = false;
-    pulse_started_ = false;
-    const detail::PathMove m = detail::kPathMoves[static_cast<std::size_t>(report_.target)][code];
     Word w = 0;
     if (m.transition == 0) {
       report_.phase = Phase::reached;
       report_.transition = 0;
       report_.waited = 0ns;
       w = emit(m.word);
-      // A plain path state holds only at its target (checked on kPathMoves in the .cpp).
+      // A plain path state holds only at its target (checked on kStatusMoves in the .cpp).
       hold_code_ = code;
       path_mask_ = 0;
     } else {
       // wait_for: the timer restarts when the transition waited for or the state changes.
-      if (m.transition != report_.transition || prev_seen_ != s) report_.since = now;
+      if (m.transition != report_.transition || track_.prev_seen != code) report_.since = now;
       report_.transition = m.transition;
-      report_.timeout = config_.transition_timeout[m.transition & 0x0FU];
+      report_.timeout = timeout_of(m.transition);
       report_.waited = now - report_.since;
       if (report_.waited > report_.timeout) {
         w = fail(Failure::timeout);
@@ -274,39 +294,60 @@ class Sequencer {
       // hold_code_ stays kNotHolding: path_mask_ is non-zero only while the phase is moving, and
       // every function that sets a hold code (a reached phase) clears path_mask_ with it.
     }
-    prev_seen_ = s;
-    known_ = s;
+    // The state seen and known; a healthy state ends a reset's cover, counts as up since the
+    // request, ends any reset pulse and any edge's credit (step_target, plan): one store.
+    track_ = Track{code, code, kUpSinceRequest, 0};
     return w;
   }
 
-  SequencerConfig config_;
-  Word app_bits_;
+  static constexpr SequencerConfig kDefaultConfig = SequencerConfig::defaults();
+  [[nodiscard]] Duration timeout_of(std::uint8_t transition) const {
+    return (own_timeouts_ ? own_timeouts_->data() : kDefaultConfig.transition_timeout.data())[transition & 0x0FU];
+  }
+  // The configured transition timeouts when they differ from the defaults', else null.
+  std::shared_ptr<const std::array<Duration, 16>> own_timeouts_;
+  Duration reset_pulse_ = kDefaultConfig.reset_pulse;
+  Word app_bits_ = 0;
   Report report_;
   Word last_control_ = 0;
-  // The state decoded from the previous status word (nullopt: it matched no state); a change
-  // restarts the transition timer.
-  std::optional<State> prev_seen_;
-  // The last state a status word showed: an undecodable word does not erase it.
-  std::optional<State> known_;
+  // What the sequencer keeps of the drive from step to step, in four bytes, so that a step along
+  // the path (step_path) writes all of it with one store.
+  struct Track {
+    // The state code of the previous status word (kNoState: it matched no state); a change
+    // restarts the transition timer.
+    std::uint8_t prev_seen = detail::kNoState;
+    // The state code the last decodable status word showed: an undecodable word does not erase it.
+    std::uint8_t known = detail::kNoState;
+    std::uint8_t flags = 0;  // the k* flags below
+    std::uint8_t unused = 0;
+  };
   // The request covers resetting a fault: the drive was in a fault state (or its state was not
   // known) when the target was requested, and no other state has been seen since. A fault that
   // appears after the drive was seen healthy is never reset without a new request.
-  bool reset_allowed_ = false;
+  static constexpr std::uint8_t kResetAllowed = 1U << 0U;
   // A state other than NOT READY has been seen since the request: NOT READY now means the drive
   // restarted (only power-on leads there, 5.1.1), and the request does not carry across that.
-  bool up_since_request_ = false;
+  static constexpr std::uint8_t kUpSinceRequest = 1U << 1U;
   // This request sent a rising edge of bit 7 while the drive showed FAULT: NOT READY next is the
   // drive booting from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart.
-  bool reset_edge_sent_ = false;
+  static constexpr std::uint8_t kResetEdgeSent = 1U << 2U;
   // A rising edge of bit 7 went out (this request's or an earlier one's) since the drive showed
   // FAULT: a healthy state next is the reset done; without it a drive out of a fault state has
   // restarted unseen (DC-D1).
-  bool edge_out_ = false;
+  static constexpr std::uint8_t kEdgeOut = 1U << 3U;
+  // A RESET FAULT pulse is running; its last edge went out at pulse_edge_.
+  static constexpr std::uint8_t kPulseStarted = 1U << 4U;
+  [[nodiscard]] bool has(std::uint8_t flag) const { return (track_.flags & flag) != 0; }
+  void set(std::uint8_t flag, bool on) {
+    track_.flags = static_cast<std::uint8_t>(on ? (track_.flags | flag) : (track_.flags & ~flag));
+  }
+  [[nodiscard]] std::optional<State> prev_state() const { return detail::state_of_code(track_.prev_seen); }
+  [[nodiscard]] std::optional<State> known_state() const { return detail::state_of_code(track_.known); }
+  Track track_;
   Time pulse_edge_{0};
-  bool pulse_started_ = false;
   // The state code of the reached target while the sequencer holds it, else kNotHolding. Set
   // only at the end of a step that reached or held the target, with report_.state_seen,
-  // prev_seen_ and known_ all that state; cleared by every request and restart. A step whose
+  // track_.prev_seen and track_.known all that state; cleared by every request and restart. A step whose
   // status word shows that state again changes none of them: it sends the last word again.
   std::uint8_t hold_code_ = kNotHolding;
   // The states step() hands to step_path, a bit per state code: kPlainPathStates while the goal
