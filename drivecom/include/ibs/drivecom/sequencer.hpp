@@ -295,7 +295,8 @@ class Sequencer {
       // every function that sets a hold code (a reached phase) clears path_mask_ with it.
     }
     // The state seen and known; a healthy state ends a reset's cover, counts as up since the
-    // request, ends any reset pulse and any edge's credit (step_target, plan): one store.
+    // request, ends any reset pulse and any edge's credit (step_target, plan). All in one
+    // assignment of four bytes, not six stores of single bytes.
     track_ = Track{code, code, kUpSinceRequest, 0};
     return w;
   }
@@ -311,7 +312,7 @@ class Sequencer {
   Report report_;
   Word last_control_ = 0;
   // What the sequencer keeps of the drive from step to step, in four bytes, so that a step along
-  // the path (step_path) writes all of it with one store.
+  // the path (step_path) writes all of it in one assignment.
   struct Track {
     // The state code of the previous status word (kNoState: it matched no state); a change
     // restarts the transition timer.
@@ -347,8 +348,9 @@ class Sequencer {
   Time pulse_edge_{0};
   // The state code of the reached target while the sequencer holds it, else kNotHolding. Set
   // only at the end of a step that reached or held the target, with report_.state_seen,
-  // track_.prev_seen and track_.known all that state; cleared by every request and restart. A step whose
-  // status word shows that state again changes none of them: it sends the last word again.
+  // track_.prev_seen and track_.known all that state; cleared by every request and restart. A
+  // step whose status word shows that state again changes none of them: it sends the last word
+  // again.
   std::uint8_t hold_code_ = kNotHolding;
   // The states step() hands to step_path, a bit per state code: kPlainPathStates while the goal
   // is a target, the phase moving and the last state seen no fault state, else 0. Kept by every
