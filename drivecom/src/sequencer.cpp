@@ -196,7 +196,7 @@ void Sequencer::wait_for(std::uint8_t transition, Time now) {
     report_.since = now;
   }
   report_.transition = transition;
-  report_.timeout = timeout_of(transition);
+  report_.timeout = transition_timeout(transition);
   report_.waited = now - report_.since;
   if (report_.waited > report_.timeout) fail(Failure::timeout);
 }

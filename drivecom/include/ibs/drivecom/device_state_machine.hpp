@@ -176,19 +176,19 @@ constexpr std::array<std::array<Chain, 5>, kStateCount> make_chain_lut() {
 inline constexpr auto kChainLut = make_chain_lut();
 static_assert(kChainLut[static_cast<std::size_t>(State::ready)][static_cast<std::size_t>(Command::enable)].packed == 0x43,
               "READY + ENABLE: 3 then 4 in one sample (5.3.4)");
-// The lookup replaces the hold of kTransitionLut too: in a commanded state a command the table
-// does not move on is a settled chain of no transition that stays where it is; a settled chain
-// starts in a commanded state.
+// The lookup replaces the hold of kTransitionLut too (sample() and holds()): in a commanded state
+// a command the table does not move on is a settled chain of no transition that stays where it
+// is, and a settled chain of no transition is such a hold; a settled chain starts in a commanded
+// state.
 constexpr bool chain_lut_consistent() {
   for (std::size_t s = 0; s < kStateCount; ++s) {
     for (std::size_t c = 0; c < 5; ++c) {
       const Chain& ch = kChainLut[s][c];
       const auto st = static_cast<State>(s);
       if (ch.settles && !commanded_state(st)) return false;
-      if (commanded_state(st) && kTransitionLut[s][c].number == 0 &&
-          !(ch.settles && ch.count == 0 && ch.packed == 0 && ch.state == st)) {
-        return false;
-      }
+      const bool table_holds = commanded_state(st) && kTransitionLut[s][c].number == 0;
+      if (table_holds != (ch.settles && ch.count == 0)) return false;
+      if (table_holds && !(ch.packed == 0 && ch.state == st)) return false;
     }
   }
   return true;
@@ -248,11 +248,11 @@ class DeviceStateMachine {
   // True when a sample with these inputs takes no transition and changes nothing but the last
   // control word: a stable state (START-UP INHIBIT .. ENABLED), no fault, and a command that
   // does not move it. The same inputs again then hold it again.
+  // The same lookup as sample()'s: a settled chain of no transition (chain_lut_consistent()).
   [[nodiscard]] bool holds(const DeviceInputs& in) const {
-    return !in.fault_present && !in.enable_locked && detail::commanded_state(state_) &&
-           detail::kTransitionLut[static_cast<std::size_t>(state_)]
-                                 [static_cast<std::size_t>(decode_command(in.control))]
-                                     .number == 0;
+    if (in.fault_present || in.enable_locked) return false;
+    const detail::Chain c = detail::kChainByControl[static_cast<std::size_t>(state_)][in.control & 0x0FU];
+    return c.settles && c.count == 0;
   }
 
   [[nodiscard]] State state() const { return state_; }

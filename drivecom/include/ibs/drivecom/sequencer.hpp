@@ -93,11 +93,8 @@ namespace detail {
 constexpr bool is_fault_state(State s) { return s == State::fault || s == State::fault_response_active; }
 // is_fault_state for a state code (kNoState: no state, no fault state).
 constexpr bool is_fault_code(std::uint8_t code) {
-  return code == static_cast<std::uint8_t>(State::fault) || code == static_cast<std::uint8_t>(State::fault_response_active);
-}
-// The state of a state code of kStateLut; nullopt for kNoState.
-constexpr std::optional<State> state_of_code(std::uint8_t code) {
-  return code == kNoState ? std::nullopt : std::optional<State>(static_cast<State>(code));
+  const std::optional<State> s = state_of_code(code);
+  return s && is_fault_state(*s);
 }
 // A target's path by the status word seen: for each target and each value of status bits 0-6,
 // the state code the word shows (kStateLut: kNoState for none) and, for a state, the word of the
@@ -141,7 +138,7 @@ class Sequencer {
   // The default configuration (SequencerConfig::defaults()). Inline and written out rather than
   // defaulted, so that a sequencer is built with a few stores of constants (a defaulted one is
   // zero-filled as a block first, which costs more than the rest of a start-up); it stores no
-  // timeout table: the defaults' is a constant (timeout_of).
+  // timeout table: the defaults' is a constant (transition_timeout).
   Sequencer() noexcept {}  // NOLINT(modernize-use-equals-default)
   // A configuration of one's own. Timeouts other than the defaults are kept in one immutable
   // table that copies of this sequencer share (allocated here, so this may throw std::bad_alloc;
@@ -152,8 +149,11 @@ class Sequencer {
       own_timeouts_ = std::make_shared<const std::array<Duration, 16>>(config.transition_timeout);
     }
   }
-  // The timeout of transition `number` (0-15) as configured.
-  [[nodiscard]] Duration transition_timeout(std::uint8_t number) const { return timeout_of(number); }
+  // The timeout of transition `number` (0-15) as configured: the defaults' constant table, or
+  // the one of its own (own_timeouts_).
+  [[nodiscard]] Duration transition_timeout(std::uint8_t number) const {
+    return (own_timeouts_ ? own_timeouts_->data() : kDefaultConfig.transition_timeout.data())[number & 0x0FU];
+  }
 
   // Requests a target state; clears an emergency-stop or block-power request. A fault the drive
   // is in (or shows first, when its state is not known yet) is reset on the way; a fault that
@@ -283,7 +283,7 @@ class Sequencer {
       // wait_for: the timer restarts when the transition waited for or the state changes.
       if (m.transition != report_.transition || track_.prev_seen != code) report_.since = now;
       report_.transition = m.transition;
-      report_.timeout = timeout_of(m.transition);
+      report_.timeout = transition_timeout(m.transition);
       report_.waited = now - report_.since;
       if (report_.waited > report_.timeout) {
         w = fail(Failure::timeout);
@@ -302,9 +302,6 @@ class Sequencer {
   }
 
   static constexpr SequencerConfig kDefaultConfig = SequencerConfig::defaults();
-  [[nodiscard]] Duration timeout_of(std::uint8_t transition) const {
-    return (own_timeouts_ ? own_timeouts_->data() : kDefaultConfig.transition_timeout.data())[transition & 0x0FU];
-  }
   // The configured transition timeouts when they differ from the defaults', else null.
   std::shared_ptr<const std::array<Duration, 16>> own_timeouts_;
   Duration reset_pulse_ = kDefaultConfig.reset_pulse;

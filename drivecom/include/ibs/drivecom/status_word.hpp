@@ -96,14 +96,14 @@ constexpr std::array<std::uint8_t, 128> make_state_lut() {
   return lut;
 }
 inline constexpr std::array<std::uint8_t, 128> kStateLut = make_state_lut();
+// The state of a state code of kStateLut; nullopt for kNoState.
+constexpr std::optional<State> state_of_code(std::uint8_t code) {
+  return code == kNoState ? std::nullopt : std::optional<State>(static_cast<State>(code));
+}
 }  // namespace detail
 
 // The state a status word shows, or nullopt for a word that matches no row.
-constexpr std::optional<State> decode_state(Word status) {
-  const std::uint8_t s = detail::kStateLut[status & 0x7FU];
-  if (s == detail::kNoState) return std::nullopt;
-  return static_cast<State>(s);
-}
+constexpr std::optional<State> decode_state(Word status) { return detail::state_of_code(detail::kStateLut[status & 0x7FU]); }
 
 // Bits 0-6 of the status word for a state, with bits 4 and 5 showing the block-power and
 // emergency-stop requests of the last control word received (5.1.3: 0 = request received; the
