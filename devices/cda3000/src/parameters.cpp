@@ -60,12 +60,10 @@ std::optional<std::uint16_t> response_parameter(std::uint8_t error) {
   }
 }
 
-
 const ParameterInfo* find_parameter(std::uint16_t number) {
   const auto i = parameter_index(number);
   return i ? &kParameters[*i] : nullptr;
 }
-
 
 const ParameterInfo* find_parameter(std::string_view text) {
   const auto dash = text.find('-');

@@ -19,13 +19,10 @@ DriveConfig standalone(DriveConfig c) {
 }
 
 // 2.3.1: the value as "%04X", formatted into the answer itself (the one object returned, so the
-// caller's answer is this one); NAK, with no VALUE, should it not format.
+// caller's answer is this one); NAK should it not format.
 lb::EnquiryAnswer value_answer(Word raw, Duration reaction) {
   lb::EnquiryAnswer a{lb::Reply::text, reaction, {}};
-  if (lb::format_raw(a.value, lb::Family::standard, raw) != lb::ValueError::none) {
-    a.reply = lb::Reply::nak;
-    a.value.clear();
-  }
+  if (lb::format_raw(a.value, lb::Family::standard, raw) != lb::ValueError::none) a = lb::EnquiryAnswer::nak(reaction);
   return a;
 }
 
