@@ -60,27 +60,17 @@ Request write_string(Address a, std::uint16_t parameter, std::string_view text) 
   return r;
 }
 
-namespace {
 // A request without the unused part of its text buffer: only a string write reads its text, and
 // only its first `length` characters (issue 26: the 100-byte buffer was copied into the queue
 // and again into the drive's slot for every numeric request).
-void copy_request(Request& to, const Request& from) {
-  to.kind = from.kind;
-  to.address = from.address;
-  to.parameter = from.parameter;
-  to.index = from.index;
-  to.value = from.value;
-  to.text_too_long = from.text_too_long;
-  to.timeout = from.timeout;
+void ParameterClient::copy_request(Request& to, const Request& from) {
+  copy_numeric(to, from);
   if (from.kind == RequestKind::write_string) {
     const std::size_t n = std::min<std::size_t>(from.text.length, from.text.chars.size());
     std::copy_n(from.text.chars.data(), n, to.text.chars.data());
     to.text.length = from.text.length;
-  } else {
-    to.text.length = 0;
   }
 }
-}  // namespace
 
 ParameterClient::ParameterClient(const ClientConfig& config)
     : config_(config),

@@ -218,6 +218,8 @@ class ParameterClient {
   Submitted submit_general(const Request& r);
   // poll()'s general path: active, queued, then the outcomes newest first.
   [[nodiscard]] Poll poll_general(RequestId id) const;
+  // A request with its text's characters only (copy_numeric, and a string write's text).
+  static void copy_request(Request& to, const Request& from);
   // A request without its text: what every kind but a string write needs (the text's length 0).
   static void copy_numeric(Request& to, const Request& from) {
     to.kind = from.kind;
