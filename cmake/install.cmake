@@ -86,11 +86,12 @@ function(ibs_install)
     # The hosts of the other buses with their transports (docs/embedding.md, "Hosts on the other
     # buses"), each library after the ones that need it, then the system's.
     ibs_host_pc(ibs-lustbus "ibs LUSTBUS host (seed 000) with serial ports and pseudo-terminals"
-                "ibs_lustbus_serial ibs_lustbus ibs_serial ibs_drive ibs_base" "-lutil -pthread")
+                "ibs_lustbus_serial ibs_serial_capture ibs_lustbus ibs_serial ibs_pcap ibs_drive ibs_base"
+                "-lutil -pthread -lpcap")
     ibs_host_pc(ibs-canlust "ibs CANLust master side (seed 003) with CAN over UDP and SocketCAN"
                 "ibs_can_transport ibs_canlust ibs_base" "-lpcap")
     ibs_host_pc(ibs-dfs1 "ibs PowerTec DFS-1 host (seed 004) with serial ports and pseudo-terminals"
-                "ibs_dfs1_serial ibs_dfs1 ibs_serial ibs_base" "-lutil -pthread")
+                "ibs_dfs1_serial ibs_serial_capture ibs_dfs1 ibs_serial ibs_pcap ibs_base" "-lutil -pthread -lpcap")
     # The cycle simulator and the drives' emulators (ibs::sim), in the link order CMake derives for
     # ibs::sim (tools/check_install.sh links a program through this file and runs it).
     set(sim_requires "eigen3 tomlplusplus")
@@ -100,10 +101,11 @@ function(ibs_install)
     ibs_host_pc(ibs-sim "ibs cycle simulator and the drives' emulators (INTERBUS, with captures and VCD)"
                 "ibs_sim ibs_master ibs_scenario ibs_devices ibs_vf1000_device ibs_vf1000_master ibs_vf1000_channel
                  ibs_vf1000_core ibs_vf1000_table ibs_mc6000_device ibs_plant ibs_mc6000_master ibs_mc6000_core ibs_pcp
-                 ibs_drive ibs_devices_api ibs_drivecom ibs_interbus_bus ibs_vcd ibs_interbus_core ibs_base"
+                 ibs_drive ibs_devices_api ibs_drivecom ibs_interbus_bus ibs_vcd ibs_interbus_core ibs_pcap ibs_base"
                 "-pthread" REQUIRES "${sim_requires}")
     # The Wireshark dissectors, laid out as a Wireshark plugin folder (docs/pcap.md, "Installed").
     install(FILES ${PROJECT_SOURCE_DIR}/tools/wireshark/interbus.lua ${PROJECT_SOURCE_DIR}/tools/wireshark/canlust.lua
+                  ${PROJECT_SOURCE_DIR}/tools/wireshark/lustbus.lua ${PROJECT_SOURCE_DIR}/tools/wireshark/dfs1.lua
             DESTINATION ${CMAKE_INSTALL_DATADIR}/ibs/wireshark/plugins)
   endif()
 endfunction()

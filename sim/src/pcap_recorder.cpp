@@ -1,14 +1,9 @@
 #include "ibs/sim/pcap_recorder.hpp"
 
-#include <cstdio>
-#include <chrono>
 #include <limits>
 
 #include "ibs/devices/registry.hpp"
 
-#ifdef IBS_SIM_HAVE_PCAP
-#include <pcap/pcap.h>
-#endif
 
 namespace ibs::sim {
 
@@ -155,92 +150,6 @@ Configuration configuration_of(const Simulator& sim, const Scenario& scenario) {
 }
 
 }  // namespace capture
-
-#ifdef IBS_SIM_HAVE_PCAP
-
-bool pcap_available() { return true; }
-
-namespace {
-
-// libpcap writes to a FILE*; this one passes every byte on to the std::ostream.
-ssize_t cookie_write(void* cookie, const char* data, std::size_t size) {
-  auto* out = static_cast<std::ostream*>(cookie);
-  out->write(data, static_cast<std::streamsize>(size));
-  return *out ? static_cast<ssize_t>(size) : -1;
-}
-int cookie_close(void* cookie) {
-  auto* out = static_cast<std::ostream*>(cookie);
-  out->flush();
-  return *out ? 0 : -1;
-}
-
-}  // namespace
-
-struct PcapFile::Handles {
-  pcap_t* pcap = nullptr;
-  pcap_dumper_t* dumper = nullptr;
-  ~Handles() {
-    if (dumper) pcap_dump_close(dumper);
-    if (pcap) pcap_close(pcap);
-  }
-};
-
-PcapFile::PcapFile(std::ostream& out, int linktype, Time epoch)
-    : h_(std::make_unique<Handles>()), out_(out), epoch_(epoch) {
-  h_->pcap = pcap_open_dead_with_tstamp_precision(linktype, 65535, PCAP_TSTAMP_PRECISION_NANO);
-  if (h_->pcap == nullptr) throw PcapError("libpcap: pcap_open_dead(" + std::to_string(linktype) + ") failed");
-  cookie_io_functions_t io{};
-  io.write = cookie_write;
-  io.close = cookie_close;
-  FILE* f = fopencookie(&out_, "w", io);
-  if (f == nullptr) throw PcapError("cannot open a stream for libpcap");
-  h_->dumper = pcap_dump_fopen(h_->pcap, f);
-  if (h_->dumper == nullptr) {
-    std::fclose(f);
-    throw PcapError(std::string("libpcap: ") + pcap_geterr(h_->pcap));
-  }
-}
-
-PcapFile::~PcapFile() = default;
-
-void PcapFile::write(Time at, std::span<const std::uint8_t> packet) {
-  if (h_->dumper == nullptr) throw PcapError("the capture was closed already");
-  pcap_pkthdr hdr{};
-  const auto ns = (at.count() < 0 ? 0 : at.count()) + (epoch_.count() < 0 ? 0 : epoch_.count());
-  hdr.ts.tv_sec = ns / 1'000'000'000;
-  hdr.ts.tv_usec = ns % 1'000'000'000;  // nanoseconds in this precision
-  hdr.caplen = static_cast<bpf_u_int32>(packet.size());
-  hdr.len = static_cast<bpf_u_int32>(packet.size());
-  pcap_dump(reinterpret_cast<u_char*>(h_->dumper), &hdr, packet.data());
-  ++packets_;
-}
-
-void PcapFile::close() {
-  if (h_->dumper == nullptr) return;
-  const bool flushed = pcap_dump_flush(h_->dumper) == 0;
-  pcap_dump_close(h_->dumper);  // closes the FILE*, which flushes into the stream
-  h_->dumper = nullptr;
-  if (!flushed || !out_) throw PcapError("cannot write the capture (disk full?)");
-}
-
-#else
-
-bool pcap_available() { return false; }
-
-struct PcapFile::Handles {};
-
-PcapFile::PcapFile(std::ostream& out, int /*linktype*/, Time epoch) : out_(out), epoch_(epoch) {
-  throw PcapError("this ibs was built without libpcap (Debian package libpcap-dev): no captures");
-}
-PcapFile::~PcapFile() = default;
-void PcapFile::write(Time /*at*/, std::span<const std::uint8_t> /*packet*/) {}
-void PcapFile::close() {}
-
-#endif
-
-Time wall_clock_epoch() {
-  return std::chrono::duration_cast<Time>(std::chrono::system_clock::now().time_since_epoch());
-}
 
 PcapRecorder::PcapRecorder(Simulator& sim, const Scenario& scenario, std::ostream& out, Time epoch)
     : config_(capture::configuration_of(sim, scenario)), file_(out, kLinktypeInterbus, epoch) {

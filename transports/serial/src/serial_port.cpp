@@ -63,6 +63,7 @@ struct SerialPort::Impl {
   Rs485Status rs485 = Rs485Status::not_requested;
   std::vector<std::string> notes;
   ByteLog* log = nullptr;
+  ByteTap* tap = nullptr;
   std::uint32_t baud = 0;
 };
 
@@ -186,6 +187,7 @@ std::size_t SerialPort::read(std::span<std::uint8_t> buf, std::chrono::nanosecon
     throw std::system_error(result, "serial port " + p.name + ": read");
   }
   if (got > 0 && p.log != nullptr) p.log->record(Direction::rx, p.name, buf.first(got));
+  if (got > 0 && p.tap != nullptr) p.tap->bytes(Direction::rx, buf.first(got));
   return got;
 }
 
@@ -195,6 +197,7 @@ void SerialPort::write(std::span<const std::uint8_t> bytes) {
   asio::write(p.port, asio::buffer(bytes.data(), bytes.size()), ec);
   if (ec) throw std::system_error(ec, "serial port " + p.name + ": write");
   if (p.log != nullptr) p.log->record(Direction::tx, p.name, bytes);
+  if (p.tap != nullptr && !bytes.empty()) p.tap->bytes(Direction::tx, bytes);
   ::tcdrain(p.port.native_handle());  // a pty may refuse; the bytes are in its buffer then
 }
 
@@ -219,6 +222,9 @@ int SerialPort::native_handle() const {
 }
 void SerialPort::set_log(ByteLog* log) {
   impl_->log = log;
+}
+void SerialPort::set_tap(ByteTap* tap) {
+  impl_->tap = tap;
 }
 
 }  // namespace ibs::serial

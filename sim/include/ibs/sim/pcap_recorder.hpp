@@ -19,6 +19,7 @@
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
 #include "ibs/devices/capture.hpp"
+#include "ibs/pcap/pcap_file.hpp"
 #include "ibs/sim/scenario.hpp"
 #include "ibs/sim/simulator.hpp"
 
@@ -86,41 +87,13 @@ Configuration configuration_of(const Simulator& sim, const Scenario& scenario);
 
 }  // namespace capture
 
-class PcapError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
+// The pcap file itself (ibs/pcap/pcap_file.hpp), under the names the simulator has always had.
+using PcapError = pcap::PcapError;
+using PcapFile = pcap::PcapFile;
 // Whether this build writes pcap files (libpcap was found at configuration time).
-bool pcap_available();
-
+inline bool pcap_available() { return pcap::available(); }
 // Now as nanoseconds since 1970 (the system clock), for PcapFile's epoch: read once, at a run's start.
-Time wall_clock_epoch();
-
-// A pcap file with nanosecond timestamps under `linktype`, written through libpcap to `out`
-// (an OutputFiles stream, so that the file appears all or nothing). A packet's timestamp is
-// `epoch` (the wall-clock start of the run, as nanoseconds since 1970; 0 writes the bare run time)
-// plus its time in the run, so that Wireshark's absolute view shows when it happened. Throws
-// PcapError when libpcap refuses or this build has no libpcap.
-class PcapFile {
- public:
-  PcapFile(std::ostream& out, int linktype, Time epoch = Time{0});
-  ~PcapFile();
-  PcapFile(const PcapFile&) = delete;
-  PcapFile& operator=(const PcapFile&) = delete;
-
-  void write(Time at, std::span<const std::uint8_t> packet);
-  // Flushes and closes the file; throws PcapError when the stream failed.
-  void close();
-  [[nodiscard]] std::uint64_t packets() const { return packets_; }
-
- private:
-  struct Handles;
-  std::unique_ptr<Handles> h_;
-  std::ostream& out_;
-  Time epoch_{0};
-  std::uint64_t packets_ = 0;
-};
+inline Time wall_clock_epoch() { return pcap::wall_clock_epoch(); }
 
 // Records a simulated run as a capture: the configuration at time 0, then one packet per bus
 // cycle with the master's process image after its cycle (IN as received in that cycle, OUT as

@@ -18,6 +18,20 @@ namespace ibs::serial {
 
 enum class Direction : std::uint8_t { tx, rx };
 
+// What sees every byte a SerialPort reads (rx) or writes (tx) besides its byte log
+// (SerialPort::set_tap): a capture of the line's telegrams (capture.hpp). Called on the port's
+// thread, after a read and after a write has been handed to the driver.
+class ByteTap {
+ public:
+  virtual void bytes(Direction d, std::span<const std::uint8_t> bytes) = 0;
+
+ protected:
+  ByteTap() = default;
+  ByteTap(const ByteTap&) = default;
+  ByteTap& operator=(const ByteTap&) = default;
+  ~ByteTap() = default;
+};
+
 class ByteLog {
  public:
   // Throws std::runtime_error "log FILE: cannot open for writing".

@@ -22,6 +22,7 @@
 namespace ibs::serial {
 
 class ByteLog;
+class ByteTap;
 
 enum class Parity : std::uint8_t { none, even, odd };
 
@@ -77,6 +78,9 @@ class SerialPort {
 
   // Every byte read or written goes to `log` (nullptr: none); the log must outlive the port.
   void set_log(ByteLog* log);
+  // Every byte read or written also goes to `tap` (nullptr: none): a capture (capture.hpp). The
+  // tap must outlive the port's use; what it throws, the read or write throws.
+  void set_tap(ByteTap* tap);
 
   struct Impl;  // the Asio state, defined in serial_port.cpp
 
