@@ -98,7 +98,7 @@ grep -q '^\.TH IBS "1"' "$work/full/share/man/man1/ibs.1" && grep -q "lustbus" "
 bash -c "source '$work/full/share/bash-completion/completions/ibs' && COMP_WORDS=(ibs ru) && COMP_CWORD=1 && _ibs && [[ \${COMPREPLY[*]} == run ]]" \
   || { echo "check_install: the bash completion does not complete 'ibs ru'" >&2; exit 1; }
 # The Wireshark dissectors, as a plugin folder (docs/pcap.md, "Installed dissectors").
-for lua in interbus canlust; do
+for lua in interbus canlust lustbus dfs1; do
   [[ -f "$work/full/share/ibs/wireshark/plugins/$lua.lua" ]] || { echo "check_install: $lua.lua not installed" >&2; exit 1; }
 done
 if command -v tshark >/dev/null; then
@@ -106,6 +106,11 @@ if command -v tshark >/dev/null; then
   tshark -G protocols -X lua_script:"$work/full/share/ibs/wireshark/plugins/interbus.lua" >"$work/protocols.txt" 2>/dev/null || true
   grep -q $'\tinterbus$' "$work/protocols.txt" \
     || { echo "check_install: tshark does not load the installed interbus.lua" >&2; exit 1; }
+  for lua in lustbus dfs1; do
+    tshark -G protocols -X lua_script:"$work/full/share/ibs/wireshark/plugins/$lua.lua" >"$work/protocols.txt" 2>/dev/null || true
+    grep -q $'\t'"$lua"'$' "$work/protocols.txt" \
+      || { echo "check_install: tshark does not load the installed $lua.lua" >&2; exit 1; }
+  done
 fi
 cmake -S examples/embed -B "$work/embed-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/embed-build" -j "$jobs" >/dev/null

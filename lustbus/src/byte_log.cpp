@@ -294,11 +294,19 @@ ByteLogReading read_byte_log(std::span<const std::string> lines, const Parameter
   }
   r.host_tx = first->tx;
   r.host_port = first->port;
+  std::vector<LineBytes> chunks;
+  chunks.reserve(parsed.size());
+  for (LogLine& l : parsed) chunks.push_back({std::move(l.at), l.tx == r.host_tx, std::move(l.bytes)});
+  r.text = explain_line(chunks, lookup);
+  return r;
+}
+
+std::string explain_line(std::span<const LineBytes> chunks, const ParameterLookup& lookup) {
   std::ostringstream out;
   LogReader reader(out, lookup);
-  for (const LogLine& l : parsed) {
+  for (const LineBytes& l : chunks) {
     for (const std::uint8_t b : l.bytes) {
-      if (l.tx == r.host_tx) {
+      if (l.from_host) {
         reader.host_byte(b, l.at);
       } else {
         reader.device_byte(b, l.at);
@@ -306,8 +314,7 @@ ByteLogReading read_byte_log(std::span<const std::string> lines, const Parameter
     }
   }
   reader.end();
-  r.text = out.str();
-  return r;
+  return out.str();
 }
 
 }  // namespace ibs::lustbus

@@ -25,6 +25,7 @@
 
 #include "ibs/devices/drives.hpp"
 #include "lustbus_cmd.hpp"
+#include "serial_decode.hpp"
 
 #include "../support/cli_harness.hpp"
 

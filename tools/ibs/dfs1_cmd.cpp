@@ -23,6 +23,7 @@
 #include "ibs/serial/serve.hpp"
 #include "ibs/tool/format.hpp"
 #include "control_input.hpp"
+#include "line_outputs.hpp"
 #include "watched_line_device.hpp"
 #include "stop_signals.hpp"
 
@@ -87,13 +88,6 @@ const char* json_kind(const nlohmann::json& v) {
     default:
       return "a value of another kind";
   }
-}
-
-// The byte log of --log: none, the file, or for `-` the command's standard output.
-std::unique_ptr<serial::ByteLog> open_byte_log(const Dfs1PortOptions& o) {
-  if (o.log.empty()) return nullptr;
-  if (o.log == "-" && o.log_stream != nullptr) return std::make_unique<serial::ByteLog>(*o.log_stream);
-  return std::make_unique<serial::ByteLog>(o.log);
 }
 
 // The control channel of `emulate --control`: lines are parsed as they come, their events posted
@@ -244,12 +238,13 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
 
   std::unique_ptr<serial::ByteLog> log;
   try {
-    log = open_byte_log(o.port);
+    log = open_byte_log(o.port.log, o.port.log_stream);
   } catch (const std::exception& e) {
     err << "ibs dfs1 emulate: " << e.what() << "\n";
     return kExitDfs1BadInput;
   }
   port.set_log(log.get());
+  port.set_tap(o.port.tap);
 
   // With --json each controller's line is watched: after each byte, what its receiver counted
   // (a request, a frame for another UID, a corrupt frame, a fragment dropped after silence, D13).
@@ -374,11 +369,12 @@ int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
   try {
     if (o.port.port.empty()) return bad("--port PATH is required");
     port.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
-    log = open_byte_log(o.port);
+    log = open_byte_log(o.port.log, o.port.log_stream);
   } catch (const std::exception& e) {
     return bad(e.what());
   }
   port->set_log(log.get());
+  port->set_tap(o.port.tap);
 
   const proto::HostResult r = serial::transact(
       *port, plan.request, {std::chrono::milliseconds(o.timeout_ms), kInterByteTimeout});
@@ -477,9 +473,7 @@ void add_port_options(CLI::App* cmd, Dfs1PortOptions& p) {
   cmd->add_option("--baud", p.baud, "baud rate (default 9600; a pty ignores it)");
   cmd->add_option("--framing", p.framing, "data bits, parity, stop bits (default 8N1)");
   cmd->add_flag("--rs485", p.rs485, "let the driver switch the RS-485 transmitter (TIOCSRS485)");
-  cmd->add_option("--log", p.log,
-                  "write every byte with time and direction to FILE; - writes them to standard output (and what "
-                  "the command prints to standard error)");
+  add_line_output_options(cmd, p.log, p.pcap);
 }
 
 void add_client_options(CLI::App* cmd, Dfs1ClientOptions& o) {
@@ -552,28 +546,27 @@ void add_dfs1_commands(CLI::App& app, Dfs1CommandState& state) {
 std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream& out,
                                      std::ostream& err) {
   if (state.dfs1 == nullptr || !state.dfs1->parsed()) return std::nullopt;
-  // `--log -` (issue 27.1): the byte log is standard output, and what the command prints itself
-  // goes to standard error, as `ibs run --pcap -` does.
+  // `--log -` (issue 27.1) and `--pcap -`: that is standard output, and what the command prints
+  // itself goes to standard error, as `ibs run --pcap -` does (line_outputs.hpp).
   Dfs1EmulateOptions eo = state.emulate_options;
   Dfs1ClientOptions co = state.client_options;
-  const bool log_stdout = (state.emulate->parsed() ? eo.port.log : co.port.log) == "-";
-  if (log_stdout) eo.port.log_stream = co.port.log_stream = &out;
-  std::ostream& say = log_stdout ? err : out;
-  if (state.emulate->parsed()) return emulate(eo, say, err);
-  for (const CLI::App* c : {state.status, state.read}) {
-    if (c->parsed()) {
-      return repeat_readings(co.repeat, "ibs dfs1 " + c->get_name(), err, kExitDfs1BadInput,
-                             [&] {
-                               const int rc = client(*c, co, say, err);
-                               say.flush();  // a pipe sees each reading as it comes
-                               return rc;
-                             });
-    }
-  }
-  for (const CLI::App* c : {state.write, state.speed}) {
-    if (c->parsed()) return client(*c, co, say, err);
-  }
-  return kExitDfs1BadInput;
+  const Dfs1PortOptions& port = state.emulate->parsed() ? eo.port : co.port;
+  if (port.log == "-") eo.port.log_stream = co.port.log_stream = &out;
+  const std::vector<CLI::App*> chosen = state.dfs1->get_subcommands();  // the one parsed (require_subcommand(1))
+  if (chosen.empty()) return kExitDfs1BadInput;
+  const CLI::App& c = *chosen.front();
+  const LineOutputs outputs{port.log, port.pcap, serial::LineProtocol::dfs1, state.emulate->parsed(),
+                            "ibs dfs1 " + c.get_name(), kExitDfs1BadInput};
+  return run_with_line_outputs(outputs, out, err, [&](serial::ByteTap* tap, std::ostream& say) {
+    eo.port.tap = co.port.tap = tap;
+    if (state.emulate->parsed()) return emulate(eo, say, err);
+    if (&c != state.status && &c != state.read) return client(c, co, say, err);
+    return repeat_readings(co.repeat, "ibs dfs1 " + c.get_name(), err, kExitDfs1BadInput, [&] {
+      const int rc = client(c, co, say, err);
+      say.flush();  // a pipe sees each reading as it comes
+      return rc;
+    });
+  });
 }
 
 dev::ParsedControl parse_dfs1_control_line(std::string_view text) {

@@ -6,7 +6,7 @@
 //   ibs dfs1 write  --port PATH --uid N PARAM VALUE
 //   ibs dfs1 speed  --port PATH --uid N [RPM] [--set | --execute]
 //
-// with [--baud N] [--framing 8N1] [--timeout-ms N] [--rs485] [--json] [--log FILE]. Exit codes:
+// with [--baud N] [--framing 8N1] [--timeout-ms N] [--rs485] [--json] [--log FILE] [--pcap FILE]. Exit codes:
 // 0 ok, 1 the device answered NAK or not at all (the decoded error is printed), 2 bad input.
 // This is floor 4: real time from the steady clock, real ports; the protocol machines inside are
 // the sans-I/O ones of dfs1/ and devices/dfs1/.
@@ -44,6 +44,8 @@ struct Dfs1PortOptions {
   // For `--log -`: the stream the log goes to (the command's standard output, set by
   // run_dfs1_commands, which then prints the command's own output on standard error).
   std::ostream* log_stream = nullptr;
+  std::string pcap;  // --pcap: empty none, "-" standard output (line_outputs.hpp)
+  serial::ByteTap* tap = nullptr;  // the capture's, set on the port (run_dfs1_commands sets it)
 };
 
 struct Dfs1EmulateOptions {

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "control_input.hpp"
+#include "line_outputs.hpp"
 #include "watched_line_device.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/base/time_text.hpp"
@@ -400,13 +401,6 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
   return c;
 }
 
-// The byte log of --log: none, the file, or for `-` the command's standard output.
-std::unique_ptr<serial::ByteLog> open_byte_log(const LustbusPortOptions& o) {
-  if (o.log.empty()) return nullptr;
-  if (o.log == "-" && o.log_stream != nullptr) return std::make_unique<serial::ByteLog>(*o.log_stream);
-  return std::make_unique<serial::ByteLog>(o.log);
-}
-
 int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err) {
   const auto bad = [&](const std::string& what) {
     err << "ibs lustbus emulate: " << what << "\n";
@@ -483,7 +477,7 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
     } else {
       opened.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
     }
-    log = open_byte_log(o.port);
+    log = open_byte_log(o.port.log, o.port.log_stream);
   } catch (const std::exception& e) {
     return bad(e.what());
   }
@@ -494,6 +488,7 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
                  link ? link->path() : std::string());
   for (const std::string& n : port.notes()) err << "ibs lustbus emulate: " << n << "\n";
   port.set_log(log.get());
+  port.set_tap(o.port.tap);
   // With --json each drive's line is watched: what its receiver took or threw away after each
   // byte (3, LB-D23) and the answers it gave.
   std::vector<std::vector<std::uint8_t>> telegrams(specs.size());
@@ -698,11 +693,12 @@ HostPort open_host_port(const LustbusPortOptions& o) {
   HostPort h;
   try {
     h.port.emplace(serial::SerialPort::open(o.port, port_options(o)));
-    h.log = open_byte_log(o);
+    h.log = open_byte_log(o.log, o.log_stream);
   } catch (const std::exception& e) {
     throw BadInput(e.what());
   }
   h.port->set_log(h.log.get());
+  h.port->set_tap(o.tap);
   return h;
 }
 
@@ -947,9 +943,7 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
 
 void add_port_options(CLI::App* cmd, LustbusPortOptions& p) {
   cmd->add_option("--baud", p.baud, "baud rate (default 9600; a pty ignores it); 7E1 always");
-  cmd->add_option("--log", p.log,
-                  "write every byte with time and direction to FILE; - writes them to standard output (and what "
-                  "the command prints to standard error)");
+  add_line_output_options(cmd, p.log, p.pcap);
 }
 
 void add_client_options(CLI::App* cmd, LustbusClientOptions& o, bool parameter) {
@@ -998,43 +992,6 @@ std::vector<devices::SettingValues> lustbus_drive_settings(const devices::Settin
     }
   }
   return out;
-}
-
-// How much of a file is read to tell its kind.
-constexpr std::size_t kSniffBytes = 64 * 1024;
-
-std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out, std::ostream& err) {
-  // The first line tells; only then is the file read whole (bounded, regular files only), so that
-  // a 2 GiB file of another kind is not read to look at its first line.
-  try {
-    const std::string head = read_text_head(file, kSniffBytes);
-    const auto first = lines_of(head, head.size() < kSniffBytes);
-    if (first.empty() || first.front() != lb::kByteLogHeader) return std::nullopt;
-  } catch (const FileReadError&) {
-    return std::nullopt;  // not looked at (not a regular file, unreadable): the trace reader says why
-  }
-  std::vector<std::string> lines;
-  try {
-    lines = lines_of(read_text_file(file));
-  } catch (const FileReadError& e) {
-    err << "ibs decode: " << file << ": " << e.what() << "\n";
-    return kExitLustbusBadInput;
-  }
-  lines.erase(lines.begin());  // the header
-  // The names, units and types of the parameters: the drives' tables, through the registry.
-  const lb::ByteLogReading r = lb::read_byte_log(lines, devices::lustbus_parameter_lookup());
-  if (r.error && r.error->line == 0) {
-    err << "ibs decode: " << file << ": " << r.error->what << "; DFS-1 logs are read by eye\n";
-    return kExitLustbusBadInput;
-  }
-  if (r.error) {
-    err << "ibs decode: " << file << ":" << r.error->line << ": " << r.error->what
-        << " (the byte log of docs/dfs1.md: <seconds> <tx|rx> <PORT> <hex bytes>)\n";
-    return kExitLustbusBadInput;
-  }
-  out << file << ": LUSTBUS byte log, host = " << (r.host_tx ? "tx" : "rx") << " (" << r.host_port << ")\n"
-      << r.text;
-  return kExitLustbusOk;
 }
 
 void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
@@ -1097,27 +1054,30 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
 std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::ostream& out,
                                         std::ostream& err) {
   if (state.lustbus == nullptr || !state.lustbus->parsed()) return std::nullopt;
-  // `--log -` (issue 27.1): the byte log is standard output, and what the command prints itself
-  // goes to standard error, as `ibs run --pcap -` does.
+  // `--log -` (issue 27.1) and `--pcap -`: that is standard output, and what the command prints
+  // itself goes to standard error, as `ibs run --pcap -` does (line_outputs.hpp).
   LustbusEmulateOptions eo = state.emulate_options;
   LustbusClientOptions co = state.client_options;
-  const bool log_stdout = (state.emulate->parsed() ? eo.port.log : co.port.log) == "-";
-  if (log_stdout) eo.port.log_stream = co.port.log_stream = &out;
-  std::ostream& say = log_stdout ? err : out;
-  if (state.emulate->parsed()) return emulate(eo, say, err);
-  if (state.download->parsed()) return download_file(co, say, err);
-  if (state.read->parsed()) {
-    return repeat_readings(co.repeat, "ibs lustbus read", err, kExitLustbusBadInput,
-                           [&] {
-                             const int rc = client(*state.read, co, say, err);
-                             say.flush();  // a pipe sees each reading as it comes
-                             return rc;
-                           });
-  }
-  for (const CLI::App* c : {state.write, state.describe, state.scan}) {
-    if (c->parsed()) return client(*c, co, say, err);
-  }
-  return kExitLustbusBadInput;
+  const LustbusPortOptions& port = state.emulate->parsed() ? eo.port : co.port;
+  if (port.log == "-") eo.port.log_stream = co.port.log_stream = &out;
+  const std::vector<CLI::App*> chosen = state.lustbus->get_subcommands();  // the one parsed (require_subcommand(1))
+  if (chosen.empty()) return kExitLustbusBadInput;
+  const CLI::App* which = chosen.front();
+  const LineOutputs outputs{port.log, port.pcap, serial::LineProtocol::lustbus, state.emulate->parsed(),
+                            "ibs lustbus " + which->get_name(), kExitLustbusBadInput};
+  return run_with_line_outputs(outputs, out, err, [&](serial::ByteTap* tap, std::ostream& say) {
+    eo.port.tap = co.port.tap = tap;
+    if (state.emulate->parsed()) return emulate(eo, say, err);
+    if (state.download->parsed()) return download_file(co, say, err);
+    if (state.read->parsed()) {
+      return repeat_readings(co.repeat, "ibs lustbus read", err, kExitLustbusBadInput, [&] {
+        const int rc = client(*state.read, co, say, err);
+        say.flush();  // a pipe sees each reading as it comes
+        return rc;
+      });
+    }
+    return client(*which, co, say, err);
+  });
 }
 
 std::optional<int> run_lustbus_commands(const LustbusCommandState& state) {

@@ -8,7 +8,7 @@
 //   ibs lustbus scan     --port PATH
 //   ibs lustbus download --port PATH --addr N FILE                      (MC6000, 11.4)
 //
-// with [--baud N] [--timeout-ms N] [--json] [--log FILE]. 7E1 (2.1); RS-485 direction control
+// with [--baud N] [--timeout-ms N] [--json] [--log FILE] [--pcap FILE]. 7E1 (2.1); RS-485 direction control
 // (TIOCSRS485) is asked for and used where the port has it. PARAM is a number or a name; VALUE is
 // in the parameter's engineering unit, or raw with a 0x prefix. Exit codes: 0 ok, 1 the device
 // answered NAK (the 85-SIOF/SERR cause is printed) or not at all, 2 bad input. Floor 4: the
@@ -47,6 +47,8 @@ struct LustbusPortOptions {
   // For `--log -`: the stream the log goes to (the command's standard output, set by
   // run_lustbus_commands, which then prints the command's own output on standard error).
   std::ostream* log_stream = nullptr;
+  std::string pcap;  // --pcap: empty none, "-" standard output (line_outputs.hpp)
+  serial::ByteTap* tap = nullptr;  // the capture's, set on the port (run_lustbus_commands sets it)
 };
 
 struct LustbusEmulateOptions {
@@ -113,11 +115,7 @@ std::vector<devices::SettingValues> lustbus_drive_settings(const devices::Settin
 
 // The emulator serves its drives with serial::serve (transports/serial/serve.hpp) through
 // lustbus::ServedReceiver; the host commands run their requests with serial::transact
-// (transports/serial/lustbus_host.hpp).
-//
-// `ibs decode FILE` for a byte log of `--log` (docs/lustbus.md, "Reading a byte log"): nullopt
-// when FILE is no byte log (the caller tries the other formats); otherwise every telegram and
-// answer explained, one per line, and the exit code (2: a malformed line, named file:line).
-std::optional<int> decode_lustbus_log(const std::string& file, std::ostream& out, std::ostream& err);
+// (transports/serial/lustbus_host.hpp). `ibs decode` of their byte logs and captures is
+// serial_decode.hpp's.
 
 }  // namespace ibs::cli

@@ -14,6 +14,7 @@
 #include "dfs1_cmd.hpp"
 #include "help.hpp"
 #include "lustbus_cmd.hpp"
+#include "serial_decode.hpp"
 #include "commands.hpp"
 #include "trace_input.hpp"
 
@@ -98,8 +99,8 @@ int run_ibs(int argc, char** argv) {
   unsigned decode_id_step = 2;
   unsigned decode_cacnf = 2;
   auto* decode = app.add_subcommand(
-      "decode", "print a trace with every word explained in the remark, a CANLust candump log with every frame explained, or a LUSTBUS byte log (--log) telegram by telegram");
-  decode->add_option("FILE", decode_files, "trace files, candump -l logs or byte logs of --log; - reads a trace from standard input")
+      "decode", "print a trace with every word explained in the remark, a CANLust candump log with every frame explained, or a LUSTBUS byte log (--log) or LUSTBUS / DFS-1 capture (--pcap) telegram by telegram");
+  decode->add_option("FILE", decode_files, "trace files, candump -l logs, byte logs of --log or captures of --pcap; - reads a trace from standard input")
       ->required();
   decode->add_flag("-j,--json", decode_json, "traces: one JSON object per file, each on one line (docs/replay.md)");
   decode->add_option("--id-step", decode_id_step, "candump log: CANLust identifier step (default 2)")
@@ -177,6 +178,16 @@ int run_ibs(int argc, char** argv) {
       int rc = ibs::cli::kExitOk;
       if (replay->parsed()) {
         rc = ibs::cli::replay(emulate, file, replay_pcap, replay_json);
+      } else if (std::ostringstream capture_text; const auto capture = file == "-" ? std::nullopt
+                                                  : ibs::cli::decode_line_capture(file, capture_text, std::cerr)) {
+        // A LUSTBUS or DFS-1 capture of --pcap (docs/pcap.md): explained as text, as a byte log is.
+        rc = *capture;
+        if (decode_json) {
+          std::cerr << file << ": --json is for traces; a capture is explained as text (leave out --json)\n";
+          rc = ibs::cli::kExitBadInput;
+        } else {
+          std::cout << capture_text.str() << std::flush;
+        }
       } else if (std::ostringstream log_text; const auto log = file == "-" ? std::nullopt
                                                   : ibs::cli::decode_lustbus_log(file, log_text, std::cerr)) {
         // A log is explained as text; with --json the output is JSON or an error, never the text

@@ -142,7 +142,7 @@ local function request_data(t, d, cmd)
   elseif cmd == 0x85 or cmd == 0x86 then
     if n >= 1 then
       t:add(f.parameter, d(0, 1))
-      info = string.format(" parameter %d", d(0, 1):uint())
+      info = string.format(" %d", d(0, 1):uint())
     end
     if cmd == 0x86 and n >= 5 then
       t:add(f.value, d(1, 4))
@@ -186,8 +186,8 @@ local function bits(t, field, flag_fields, names, range, prefix)
   return text
 end
 
--- The data of an ACK answering `cmd` (nil: the request is not in the capture).
-local function response_data(t, d, cmd)
+-- The data of an ACK answering `cmd` (`arg`: the request's parameter or channel number).
+local function response_data(t, d, cmd, arg)
   local n = d and d:len() or 0
   if cmd == 0x81 and n >= 16 then
     t:add(f.commanded, d(0, 4), s32(d(0, 4)))
@@ -204,7 +204,8 @@ local function response_data(t, d, cmd)
   end
   if (cmd == 0x85 or (cmd >= 0x87 and cmd <= 0x8B)) and n >= 4 then
     t:add(f.value, d(0, 4))
-    return string.format(" %s = %d", commands[cmd], d(0, 4):uint())
+    return string.format(" %s%s = %d", cmd == 0x85 and "parameter" or commands[cmd], arg and " " .. arg or "",
+                         d(0, 4):uint())
   end
   return ""
 end
@@ -274,7 +275,7 @@ function p.dissector(tvb, pinfo, tree)
     -- A response belongs to the last request to its UID.
     if not pinfo.visited then
       if not is_response then
-        last_request[uid] = { frame = pinfo.number, command = code }
+        last_request[uid] = { frame = pinfo.number, command = code, arg = d and d(0, 1):uint() or nil }
       elseif last_request[uid] then
         request_of[pinfo.number] = last_request[uid]
         response_of[last_request[uid].frame] = pinfo.number
@@ -284,7 +285,7 @@ function p.dissector(tvb, pinfo, tree)
     local rq = request_of[pinfo.number]
     if rq then
       t:add(f.request_in, rq.frame):set_generated()
-      if code == ACK then info = info .. response_data(t, d, rq.command) end
+      if code == ACK then info = info .. response_data(t, d, rq.command, rq.arg) end
     end
     if response_of[pinfo.number] then t:add(f.response_in, response_of[pinfo.number]):set_generated() end
   else

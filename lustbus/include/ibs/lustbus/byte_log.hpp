@@ -20,6 +20,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "ibs/lustbus/code.hpp"
 #include "ibs/lustbus/value.hpp"
@@ -53,6 +54,17 @@ struct ByteLogReading {
 // `lines`: the log's lines after its header (kByteLogHeader), without their '\n'. Empty lines are
 // skipped.
 ByteLogReading read_byte_log(std::span<const std::string> lines, const ParameterLookup& lookup);
+
+// Bytes one side put on the line, with their time as the text starts each line with: a line of a
+// byte log, a packet of a capture (serial/capture.hpp).
+struct LineBytes {
+  std::string at;  // "0.020601"
+  bool from_host = false;
+  std::vector<std::uint8_t> bytes;
+};
+// Every telegram and answer in `chunks` explained, one a line, as read_byte_log() does: the text of
+// ByteLogReading.
+std::string explain_line(std::span<const LineBytes> chunks, const ParameterLookup& lookup);
 
 // A bit pattern as a person reads it in the type's unit ("1000", "23.15" for FIXPOINT16); empty
 // for a type with no engineering value (the error structures).
