@@ -8,6 +8,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <iostream>
+#include <sstream>
 #include <thread>
 
 #include "ibs/devices/dfs1/controller.hpp"
@@ -20,6 +22,7 @@
 #include "ibs/serial/dfs1_host.hpp"
 #include "ibs/serial/lustbus_host.hpp"
 #include "ibs/serial/serial_port.hpp"
+#include "ibs/serial/capture.hpp"
 
 namespace ibs::sim {
 namespace {
@@ -338,6 +341,58 @@ TEST(Bench, AServedLineIsRefusedForADriveThatDoesNotRunAtItsRate) {
     FAIL() << "a VF1000 at 57600 baud was served";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "bench.toml: device 'fan': a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not 57600");
+  }
+}
+
+// A served line as a capture (`ibs run --lustbus-pcap`, docs/pcap.md "Serial lines"): the host's
+// ENQUIRY and the drive's answer each its way, stamped with the run's clock (the epoch plus the
+// simulated time of the turn that read or wrote them) like the INTERBUS capture of the same run.
+TEST(Bench, AServedLineIsCapturedOnTheRunsClock) {
+  const Scenario s = parse_scenario_toml(R"(
+name = "bench-capture"
+duration = "800 ms"
+
+[[device]]
+name = "servo"
+type = "mc6000"
+lustbus = 1
+
+[lustbus]
+pty = true
+)", "capture.toml");
+  Simulator sim(s);
+  Bench bench(sim, s, "capture.toml");
+  EXPECT_TRUE(bench.serves_line("lustbus"));
+  EXPECT_FALSE(bench.serves_line("dfs1"));
+  EXPECT_THROW(bench.capture("dfs1", std::cout, Time{0}), std::invalid_argument);
+  std::ostringstream out;
+  const Time epoch{1'700'000'000'000'000'000};
+  bench.capture("lustbus", out, epoch);
+  const std::string path = bench.ready_lines().at(0).substr(std::string("lustbus pty: ").size());
+  std::optional<std::uint32_t> type;
+  std::thread host_thread([&] {
+    Host h(path);
+    type = h.poll(91, [](std::uint32_t) { return true; }, Clock::now() + std::chrono::milliseconds(600));
+  });
+  RealtimeOptions rt;
+  rt.each_cycle = [&bench](Time now) { bench.turn(now); };
+  run_realtime(sim, rt);
+  host_thread.join();
+  ASSERT_TRUE(type.has_value());
+  const std::uint64_t packets = bench.finish_capture("lustbus");
+  const std::string file = out.str();
+  const auto r = serial::read_line_capture(std::span(reinterpret_cast<const std::uint8_t*>(file.data()), file.size()));
+  ASSERT_FALSE(r.error) << r.error->what;
+  EXPECT_EQ(r.protocol, serial::LineProtocol::lustbus);
+  ASSERT_EQ(r.packets.size(), packets);
+  ASSERT_GE(r.packets.size(), 2U);
+  EXPECT_EQ(r.packets[0].from, base::LineSide::host);
+  EXPECT_EQ(r.packets[0].address, 1);
+  EXPECT_EQ(r.packets[1].from, base::LineSide::device);
+  EXPECT_EQ(r.packets[1].flags, 0);
+  for (const auto& p : r.packets) {
+    EXPECT_GE(p.at, epoch);
+    EXPECT_LE(p.at, epoch + s.duration) << "stamped with the simulated time";
   }
 }
 

@@ -182,6 +182,18 @@ TEST(Captures, ABadPathFailsBeforeTheRunAndLeavesNothing) {
   fs::remove_all(dir);
 }
 
+// The test bench's lines as captures (docs/pcap.md, "Serial lines") need a scenario that serves
+// them; asked of one that does not, the run is refused before it starts and writes nothing.
+TEST(Captures, ABenchLineCaptureNeedsTheLineServed) {
+  const std::string dir = fresh_dir("bench_line_pcap");
+  const Result r = run("run --lustbus-pcap " + dir + "/lustbus.pcap");
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(r.out, "--lustbus-pcap " + dir + "/lustbus.pcap: the scenario serves no [lustbus] line to capture "
+                   "(docs/testbench.md)\n");
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
 TEST(Captures, AFullDiskLeavesNoHalfWrittenCapture) {
   const std::string dir = fresh_dir("full_pcap");
   const std::string pcap = dir + "/run.pcap";

@@ -6,6 +6,9 @@
 #include <stdexcept>
 
 #include "ibs/devices/dfs1/events.hpp"
+#include "ibs/dfs1/capture_framer.hpp"
+#include "ibs/lustbus/capture_framer.hpp"
+#include "ibs/serial/capture.hpp"
 #include "ibs/devices/dfs1/served_controller.hpp"
 #include "ibs/devices/drives.hpp"
 #include "ibs/lustbus/receiver.hpp"
@@ -37,6 +40,10 @@ struct Line {
 
   serial::SerialPort& port() { return pair ? pair->master() : *opened; }
   std::vector<std::string> notes;  // what the port refused when opened
+  // The capture of the line (Bench::capture): its framer, and the time of the turn under way.
+  std::unique_ptr<base::TelegramFramer> framer;
+  std::optional<serial::LineCapture> capture;
+  Time now{0};
   [[nodiscard]] std::string ready() const {
     return key + (pair ? " pty: " + pair->slave_path() : " port: " + path);
   }
@@ -224,8 +231,43 @@ void Bench::turn(Time now) {
     apply(m.controller_entries[m.next_entry++], now);
   }
   for (std::optional<Line>* l : {&m.lustbus, &m.controller_line}) {
-    if (*l) serial::serve_turn((*l)->port(), (*l)->devices, now);
+    if (!*l) continue;
+    (*l)->now = now;  // the capture's clock
+    serial::serve_turn((*l)->port(), (*l)->devices, now);
   }
+}
+
+namespace {
+
+std::optional<Line>& line_of(std::optional<Line>& lustbus, std::optional<Line>& dfs1, std::string_view key) {
+  return key == "lustbus" ? lustbus : dfs1;
+}
+
+}  // namespace
+
+bool Bench::serves_line(std::string_view key) const {
+  return (key == "lustbus" && impl_->lustbus) || (key == "dfs1" && impl_->controller_line);
+}
+
+void Bench::capture(std::string_view key, std::ostream& out, Time epoch) {
+  std::optional<Line>& l = line_of(impl_->lustbus, impl_->controller_line, key);
+  if (!serves_line(key) || !l) throw std::invalid_argument("the scenario serves no " + std::string(key) + " line");
+  const bool lustbus = key == "lustbus";
+  l->framer = lustbus ? std::unique_ptr<base::TelegramFramer>(std::make_unique<lustbus::CaptureFramer>())
+                      : std::make_unique<dfs1::CaptureFramer>();
+  Line* line = &*l;
+  // The bench serves devices: the host's bytes are the ones its port reads.
+  l->capture.emplace(out, lustbus ? serial::LineProtocol::lustbus : serial::LineProtocol::dfs1, *l->framer,
+                     serial::Direction::rx, epoch, [line] { return line->now; });
+  l->port().set_tap(&*l->capture);
+}
+
+std::uint64_t Bench::finish_capture(std::string_view key) {
+  std::optional<Line>& l = line_of(impl_->lustbus, impl_->controller_line, key);
+  if (!l || !l->capture) return 0;
+  l->port().set_tap(nullptr);
+  l->capture->finish();
+  return l->capture->packets();
 }
 
 bool Bench::serves_controller(const std::string& name) const {

@@ -10,9 +10,11 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ibs/base/time.hpp"
@@ -73,6 +75,18 @@ class Bench {
   bool apply(const sim::TimelineEntry& e, Time now);
 
   [[nodiscard]] BenchReport report() const;
+
+  // Whether the bench serves the line `key` ("lustbus", "dfs1").
+  [[nodiscard]] bool serves_line(std::string_view key) const;
+  // Records the served line `key` as a capture into `out` (docs/pcap.md, "Serial lines"): every
+  // telegram, the host's and the served devices', stamped with the simulated time of the turn
+  // that read or wrote it plus `epoch` (the run's wall-clock start, as the INTERBUS capture has
+  // it, so that the two merge into one timeline). Before the run. Throws std::invalid_argument
+  // when the bench serves no such line, pcap::PcapError when libpcap refuses.
+  void capture(std::string_view key, std::ostream& out, Time epoch);
+  // After the run: the telegrams still pending written and the capture closed; its packets.
+  // Throws pcap::PcapError when the stream failed.
+  std::uint64_t finish_capture(std::string_view key);
 
  private:
   struct Impl;

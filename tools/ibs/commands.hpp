@@ -21,6 +21,8 @@ struct RunOptions {
   std::string trace_dir;  // empty: no traces
   std::string vcd_file;   // empty: no VCD (else also FILE.states.txt and FILE.gtkw)
   std::string pcap_file;  // empty: no capture for Wireshark (docs/pcap.md)
+  std::string lustbus_pcap;  // the test bench's [lustbus] line as a capture (docs/pcap.md, "Serial lines")
+  std::string dfs1_pcap;     // the test bench's [dfs1] line as a capture
   std::string plot_file;  // empty: no plot; FILE.svg or FILE.png through gnuplot
   unsigned threads = 1;   // device-stepping threads (sim::SimOptions::threads): 0 = automatic
   bool realtime = false;  // the master paced at the bus cycle in real time (sim/realtime.hpp)

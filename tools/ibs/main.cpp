@@ -61,6 +61,10 @@ int run_ibs(int argc, char** argv) {
                   "write the run as a VCD file for gtkwave, with FILE.gtkw to open it ready to read");
   run->add_option("--pcap", run_options.pcap_file,
                   "write every bus cycle to a pcap file for Wireshark (tools/wireshark/interbus.lua)");
+  run->add_option("--lustbus-pcap", run_options.lustbus_pcap,
+                  "with --realtime and [lustbus]: write every telegram of the served line to a pcap file (tools/wireshark/lustbus.lua)");
+  run->add_option("--dfs1-pcap", run_options.dfs1_pcap,
+                  "with --realtime and [dfs1]: write every frame of the served line to a pcap file (tools/wireshark/dfs1.lua)");
   run->add_option("--plot", run_options.plot_file,
                   "draw each drive's reference, actual value and state over time, faults and parameter "
                   "transactions marked, as FILE.svg or FILE.png (needs gnuplot)");

@@ -1,5 +1,5 @@
 // `ibs run [SCENARIO] [--json] [--trace DIR] [--vcd FILE] [--pcap FILE] [--plot FILE] [--threads N]
-// [--realtime [--rt-priority N] [--control SPEC]]`:
+// [--realtime [--rt-priority N] [--control SPEC] [--lustbus-pcap FILE] [--dfs1-pcap FILE]]`:
 // the main job.
 #include <unistd.h>
 
@@ -122,7 +122,8 @@ sim::AnyScenario load_run_scenario(const RunOptions& o) {
 int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
                                     {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1},
-                                    {"--rt-priority", o.rt_priority != 0}}) {
+                                    {"--rt-priority", o.rt_priority != 0}, {"--lustbus-pcap", !o.lustbus_pcap.empty()},
+                                    {"--dfs1-pcap", !o.dfs1_pcap.empty()}}) {
     if (given) {
       std::cerr << o.scenario << ": " << flag
                 << " is for INTERBUS scenarios; a CANLust run has --json, --pcap, --realtime and --control\n";
@@ -328,6 +329,8 @@ int run(const RunOptions& o) {
     vcd = std::make_unique<sim::VcdRecorder>(*simulator, *vcd_stream, date);
     simulator->add_observer(vcd.get());
   }
+  // One wall-clock start for every capture of the run: they merge into one timeline (mergecap).
+  const Time epoch = sim::wall_clock_epoch();
   std::unique_ptr<sim::PcapRecorder> pcap;
   if (!o.pcap_file.empty()) {
     if (o.pcap_file == "-" && ::isatty(STDOUT_FILENO) != 0) {
@@ -340,12 +343,34 @@ int run(const RunOptions& o) {
       return kExitBadInput;
     }
     try {
-      pcap = std::make_unique<sim::PcapRecorder>(*simulator, scenario, *pcap_stream, sim::wall_clock_epoch());
+      pcap = std::make_unique<sim::PcapRecorder>(*simulator, scenario, *pcap_stream, epoch);
     } catch (const std::exception& e) {
       std::cerr << o.pcap_file << ": " << e.what() << "\n";
       return kExitBadInput;
     }
     simulator->add_observer(pcap.get());
+  }
+  // The test bench's served lines as captures (docs/pcap.md, "Serial lines").
+  std::vector<std::pair<std::string_view, std::string>> line_captures;
+  for (const auto& [key, file] : {std::pair<std::string_view, std::string>{"lustbus", o.lustbus_pcap}, {"dfs1", o.dfs1_pcap}}) {
+    if (file.empty()) continue;
+    if (!bench || !bench->serves_line(key)) {
+      std::cerr << "--" << key << "-pcap " << file << ": the scenario serves no [" << key
+                << "] line to capture (docs/testbench.md)\n";
+      return kExitBadInput;
+    }
+    std::ostream* stream = outputs.open(file, error);
+    if (stream == nullptr) {
+      std::cerr << error << "\n";
+      return kExitBadInput;
+    }
+    try {
+      bench->capture(key, *stream, epoch);
+    } catch (const std::exception& e) {
+      std::cerr << file << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
+    line_captures.emplace_back(key, file);
   }
   std::unique_ptr<sim::PlotRecorder> plot;
   std::ostream* plot_stream = nullptr;
@@ -439,6 +464,15 @@ int run(const RunOptions& o) {
       return kExitBadInput;
     }
   }
+  std::vector<std::uint64_t> line_packets;
+  for (const auto& [key, file] : line_captures) {
+    try {
+      line_packets.push_back(bench->finish_capture(key));
+    } catch (const std::exception& e) {
+      std::cerr << file << ": " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
   if (plot) {
     plot->finish(scenario.duration);
     if (!run_gnuplot(plot->script(simulator->summary(), *format), *plot_stream, error)) {
@@ -497,6 +531,10 @@ int run(const RunOptions& o) {
           << ".gtkw; state names for gtkwave: " << o.vcd_file << ".states.txt)\n";
     }
     if (pcap) say << "capture written: " << written_to(o.pcap_file) << " (" << pcap->packets() << " packets)\n";
+    for (std::size_t i = 0; i < line_captures.size(); ++i) {
+      say << line_captures[i].first << " capture written: " << written_to(line_captures[i].second) << " ("
+          << line_packets[i] << " packets)\n";
+    }
     if (plot) say << "plot written: " << o.plot_file << "\n";
   }
   return kExitOk;
