@@ -302,4 +302,44 @@ put("lustbus_fuzz", "receiver_cut_after_address", lustbus_receiver(
 p6_cut = bytes([0x10, 0x02, 0x01, 0x86, 0x06, 0x00, 0x00, 0x00])
 status_request = bytes([0x10, 0x02, 0x01, 0x81, 0x10, 0x03, 0x7E])
 put("dfs1_frame_fuzz", "cut_write_then_status", bytes([0x01, len(p6_cut), 0x00]) + p6_cut + status_request)
+# line_capture_fuzz: byte 0 the mode. Mode 0: a capture file (pcap, nanosecond magic, link type
+# 148 LUSTBUS or 149 DFS-1; each packet the 8-byte header of docs/pcap.md, then the telegram).
+# Mode 1: byte 1 the protocol (0 LUSTBUS, 1 DFS-1), then chunks [bit 7 side, bits 0-6 length][bytes].
+def line_capture(linktype, packets):
+    out = struct.pack("<IHHiIII", 0xA1B23C4D, 2, 4, 0, 0, 65535, linktype)
+    for i, (side, flags, address, data) in enumerate(packets):
+        body = bytes([1, side, flags | (0x80 if address is not None else 0), address or 0]) + struct.pack(">I", 0) + data
+        out += struct.pack("<IIII", 1700000000, i * 10000000, len(body), len(body)) + body
+    return out
+
+
+def lb_text(head, text, tail):
+    return bytes(head) + text.encode() + bytes(tail)
+
+
+lb_seed = [(0, 0, 0, lb_text([EOT, 0x40], "00112", [ENQ])), (1, 0, 0, lb_text([0x40, STX], "00112=03E8", [ETX, 0x72])),
+           (0, 0, None, bytes([EOT])), (0, 0, 0, lb_text([EOT, 0x40, STX], "00105=03E8", [ETX, 0x74])),
+           (1, 0, 0, bytes([0x40, 0x06])), (0, 0, None, bytes([EOT]))]
+put("line_capture_fuzz", "file_lustbus_seed_000", b"\x00" + line_capture(148, lb_seed))
+df_seed = [(0, 0, 1, bytes([0x10, 0x02, 0x01, 0x82, 0x00, 0x00, 0x10, 0x10, 0x00, 0x10, 0x03, 0x6D])),
+           (1, 0, 1, bytes([0x10, 0x02, 0x01, 0x06, 0x10, 0x03, 0xF9]))]
+put("line_capture_fuzz", "file_dfs1_seed_004", b"\x00" + line_capture(149, df_seed))
+put("line_capture_fuzz", "file_cut_record", b"\x00" + line_capture(149, df_seed)[:-3])
+
+
+def chunks(*items):
+    out = b""
+    for side, data in items:
+        out += bytes([(0x80 if side else 0) | len(data)]) + bytes(data)
+    return out
+
+
+put("line_capture_fuzz", "line_lustbus_seed_000", b"\x01\x00" + chunks(*[(s, d) for s, _, _, d in lb_seed]))
+put("line_capture_fuzz", "line_lustbus_bad_bcc_and_cut", b"\x01\x00" + chunks(
+    (0, lb_text([EOT, 0x40], "20077", [ENQ])), (1, lb_text([0x40, STX], "20077=04FA4000", [ETX, 0x3B])),
+    (0, [EOT, 0x40]), (0, list(b"00112")), (1, lb_text([0x40, STX], "001", []))))
+put("line_capture_fuzz", "line_dfs1_seed_004", b"\x01\x01" + chunks(*[(s, d) for s, _, _, d in df_seed]))
+put("line_capture_fuzz", "line_dfs1_noise_and_interrupted", b"\x01\x01" + chunks(
+    (0, [0x55, 0x10, 0x10, 0x10, 0x02, 0x01, 0x81]), (0, [0x10, 0x02, 0x01, 0x81, 0x10, 0x03, 0x7E]),
+    (1, [0x10, 0x02, 0x01, 0x06, 0x00])))
 print("seeds written to", CORPUS)
