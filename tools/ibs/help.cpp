@@ -22,6 +22,7 @@ std::string metavariable(const std::string& long_name) {
       {"sw-us", "US"},          {"supi", "N"},              {"ibcnf", "N"},            {"emulate", "SIDE"},
       {"listen-ms", "MS"},      {"duration-ms", "MS"},      {"id-step", "N"},          {"cacnf", "N"},
       {"watchdog-reaction", "REACTION"},
+      {"lustbus-pcap", "FILE"}, {"dfs1-pcap", "FILE"},
   };
   if (const auto it = names.find(long_name); it != names.end()) return it->second;
   std::string n;
@@ -55,7 +56,7 @@ constexpr Footer kFooters[] = {
                "  ibs replay --emulate master - < /tmp/traces/vf1000.trace\n"
                "Exit codes: 0 every row matched; 1 a row did not match; 2 bad input"},
     {"decode", "Examples:\n  ibs run --trace /tmp/traces && ibs decode /tmp/traces/mc6000.trace\n"
-               "  ibs decode /tmp/lustbus.log   (a byte log of ibs lustbus ... --log)\n"
+               "  ibs decode /tmp/lustbus.log   (a byte log of ibs lustbus ... --log; a capture of --pcap too)\n"
                "Exit codes: 0 ok; 2 bad input"},
     {"campaign", "Examples:\n  ibs campaign --transactions 1000\n  ibs campaign --seed 7 --json\n"
                  "Exit codes: 0 no violation; 1 a check failed; 2 bad input"},
