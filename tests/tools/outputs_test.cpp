@@ -666,6 +666,25 @@ TEST(OutputFileRules, ASignalDuringARunLeavesNothingAndSaysSo) {
 
 namespace {
 
+// The test bench's line capture is an output of the run like its --pcap: a signal during the run
+// leaves neither (issue 36).
+TEST(OutputFileRules, ASignalDuringABenchRunLeavesNoLineCapture) {
+  const std::string dir = fresh_dir("signal_bench");
+  const std::string scenario = std::string(IBS_SOURCE_DIR) + "/examples/testbench/bench.toml";
+  const Result r = run_shell(
+      "cd " + dir + " && { env --default-signal=INT " + std::string(IBS_CLI) + " run --realtime " + scenario +
+      " --pcap run.pcap --lustbus-pcap line.pcap > out.txt 2> err.txt & pid=$!; "
+      "for i in $(seq 1 100); do ls | grep -q line.pcap.ibs-partial && break; sleep 0.1; done; "
+      "sleep 0.3; kill -INT $pid; wait $pid; echo \"exit $?\" > rc.txt; cat rc.txt err.txt; }");
+  EXPECT_TRUE(contains(r.out, "exit 130")) << r.out;
+  EXPECT_TRUE(contains(r.out, "no output was written")) << r.out;
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"err.txt", "out.txt", "rc.txt"}));
+  fs::remove_all(dir);
+}
+
 // Issue 23, defect 5: `ibs run examples/canlust/conveyors.toml --pcap U.pcap` wrote U.pcap.tmp
 // over the user's file of that name and then removed it. The CANLust capture takes the rules of
 // every output.

@@ -262,6 +262,14 @@ void Bench::capture(std::string_view key, std::ostream& out, Time epoch) {
   l->port().set_tap(&*l->capture);
 }
 
+void Bench::drop_captures() {
+  for (std::optional<Line>* l : {&impl_->lustbus, &impl_->controller_line}) {
+    if (!*l || !(*l)->capture) continue;
+    (*l)->port().set_tap(nullptr);
+    (*l)->capture.reset();
+  }
+}
+
 std::uint64_t Bench::finish_capture(std::string_view key) {
   std::optional<Line>& l = line_of(impl_->lustbus, impl_->controller_line, key);
   if (!l || !l->capture) return 0;

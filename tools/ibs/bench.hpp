@@ -87,6 +87,9 @@ class Bench {
   // After the run: the telegrams still pending written and the capture closed; its packets.
   // Throws pcap::PcapError when the stream failed.
   std::uint64_t finish_capture(std::string_view key);
+  // Drops the captures not finished (a run that fails or is interrupted): what they hold goes into
+  // their streams now, while those still exist, and is then thrown away with them.
+  void drop_captures();
 
  private:
   struct Impl;

@@ -350,7 +350,14 @@ int run(const RunOptions& o) {
     }
     simulator->add_observer(pcap.get());
   }
-  // The test bench's served lines as captures (docs/pcap.md, "Serial lines").
+  // The test bench's served lines as captures (docs/pcap.md, "Serial lines"). Their streams are
+  // the outputs': on every way out they are dropped before the outputs go.
+  struct DropLineCaptures {
+    Bench* bench;
+    ~DropLineCaptures() {
+      if (bench != nullptr) bench->drop_captures();
+    }
+  } drop_line_captures{bench.get()};
   std::vector<std::pair<std::string_view, std::string>> line_captures;
   for (const auto& [key, file] : {std::pair<std::string_view, std::string>{"lustbus", o.lustbus_pcap}, {"dfs1", o.dfs1_pcap}}) {
     if (file.empty()) continue;
