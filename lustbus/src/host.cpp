@@ -40,6 +40,7 @@ Host::Host(const HostConfig& config) : config_(config) {
   capacity_ = config_.queue_capacity == 0 ? 1 : config_.queue_capacity;
   queue_.resize(capacity_ + 1);
   done_.resize(config_.completed_capacity == 0 ? 1 : config_.completed_capacity);
+  eeprom_free_.fill(Time::min());
 }
 
 Submitted Host::submit(const Request& r) {
@@ -221,7 +222,7 @@ void Host::send_later(const Tx& tx, Time at) {
 }
 
 void Host::transmit_tx(Time now) {
-  (void)now;
+  tx_started_ = now;
   if (tx_.enquiry) {
     encode_enquiry(out_frame_, tx_.address, tx_.code);
     decoder_.start(tx_.address, tx_.code, AnswerDecoder::Expect::text_or_nak, answer_binary_prefix(tx_.code));
@@ -256,7 +257,39 @@ void Host::select_phase(Phase p, const Code& c, const Value& v, Time now) {
   tx_attempts_ = 0;
   select_attempts_ = 1;
   select_tx_ = Tx{request().address, c, v, false, timeout_of(request())};
-  send(select_tx_, now);
+  send_select(select_tx_, p == Phase::main, now);
+}
+
+void Host::send_select(const Tx& tx, bool own_step, Time now) {
+  // 10.2.2: "For SELECT-telegrams to EEPROM parameters, a wait time is needed, if the duration
+  // of a telegram sequence is shorter than the time required to save the parameter in EEPROM."
+  const Time free = own_step && request().eeprom_width > 0 ? eeprom_free_at(tx.address) : Time::min();
+  if (free > now) {
+    out_->eeprom_wait = free - now;
+    send_later(tx, free);
+    return;
+  }
+  send(tx, now);
+}
+
+Time Host::eeprom_free_at(Address a) const {
+  // Address 0 reaches whichever device answers there, 31 every device: wait for all of them.
+  if (a != kAddressAny && a != kAddressBroadcast) return std::max(eeprom_free_[a], eeprom_free_[kAddressAny]);
+  return *std::max_element(eeprom_free_.begin(), eeprom_free_.end());
+}
+
+void Host::note_eeprom_save() {
+  const std::uint8_t width = request().eeprom_width;
+  if (width == 0) return;
+  // 10.2.2: "memory time = parameter data width · 3 · 5 ms", from the start of the sequence whose
+  // duration the wait time subtracts; the device saves while the sequence goes on.
+  const Time done = tx_started_ + eeprom_wait(width, config_.eeprom_write_time, Duration{0});
+  const Address a = request().address;
+  if (a != kAddressAny && a != kAddressBroadcast) {
+    eeprom_free_[a] = std::max(eeprom_free_[a], done);
+    return;
+  }
+  for (Time& t : eeprom_free_) t = std::max(t, done);
 }
 
 void Host::next_scan_address(Time now) {

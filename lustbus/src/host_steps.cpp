@@ -32,6 +32,7 @@ void Host::start_job(Time now) {
   out_->answer_error = AnswerError::none;
   out_->siof.reset();
   out_->attempts = 0;
+  out_->eeprom_wait = Duration{0};
   out_->scan.count = 0;
   out_->failed_step = 0;
   out_->rejected_parameter = 0;
@@ -49,7 +50,7 @@ void Host::start_job(Time now) {
       return;
     case RequestKind::broadcast:
       phase_ = Phase::main;
-      send(Tx{kAddressBroadcast, r.code, r.value, false, timeout_of(r)}, now);
+      send_select(Tx{kAddressBroadcast, r.code, r.value, false, timeout_of(r)}, true, now);
       return;
     case RequestKind::scan:
       scan_address_ = 0;
@@ -83,6 +84,7 @@ void Host::on_select_like_ack(Time now) {
   out_->attempts = select_attempts_;
   switch (select_return_) {
     case Phase::main:
+      note_eeprom_save();  // 10.2.2: the servo saves it in the background from now
       finish(OutcomeKind::acknowledged, now);
       return;
     case Phase::dl_start:
@@ -190,6 +192,7 @@ void Host::tx_done(Time now) {
     case Phase::main:
       if (r.kind == RequestKind::broadcast) {
         out_->attempts = tx_attempts_;
+        note_eeprom_save();  // every device saves it (4.2: none answers)
         finish(OutcomeKind::sent, now);
         return;
       }

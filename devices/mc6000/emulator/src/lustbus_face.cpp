@@ -49,9 +49,12 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
   const bool numeric = !text.empty() && r.ec == std::errc{} && r.ptr == text.data() + text.size();
   for (const pcp::ParameterInfo& p : parameters()) {
     if (numeric ? p.number == n : p.name == text) {
-      // 11.4: 80-SLOAD runs the download; it is no part of the dataset.
-      return LustbusParameter{p.number, std::string(p.name),   "",    lustbus_type(p.type), p.min, p.max,
-                              p.writable(), p.number == kProg, p.writable() && p.number != kSload};
+      // 11.4: 80-SLOAD runs the download; it is no part of the dataset. 10.2.2: the servo saves
+      // an EEPROM value in the background, its data width x 15 ms.
+      LustbusParameter lp{p.number, std::string(p.name),   "",    lustbus_type(p.type), p.min, p.max,
+                          p.writable(), p.number == kProg, p.writable() && p.number != kSload};
+      if (p.category == pcp::Category::eeprom) lp.eeprom_width = static_cast<std::uint8_t>(pcp::size_of(p.type));
+      return lp;
     }
   }
   return std::nullopt;
