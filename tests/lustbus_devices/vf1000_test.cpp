@@ -217,7 +217,7 @@ TEST(Vf1000Lustbus, ADriveOnLustbusAloneHasTheStandardFactoryValues) {
     ibs::Word interbus;  // seed 001, 3.1.1
   };
   const Row rows[] = {{pnr::kMode, 0, 4}, {pnr::kCsel, 0, 5}, {pnr::kFssel, 0, 25}, {pnr::kFmax1, 1000, 1000},
-                      {pnr::kSouta, 0, 0}, {pnr::kSioc, 2, 2}};
+                      {pnr::kSouta, 0, 0}, {pnr::kSioc, 9600, 9600}};
   Vf dev;
   const ibs::devices::vf1000::Drive on_interbus(ibs::devices::vf1000::DriveConfig{}, ibs::DeviceStart::operational,
                                                 Time{0});

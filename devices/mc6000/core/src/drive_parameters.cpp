@@ -160,6 +160,11 @@ WriteResult DriveParameters::write(Time now, std::uint16_t number, std::optional
       return refused(Refusal::too_low);
     }
   }
+  // Seed 000, 4: the servo's rates "in steps ... from 2400 Baud to 57600 Baud", in baud as the
+  // inverter's 81 (1: numerically compatible; LB-E18).
+  if (number == kParamSbaud && !receiving && !drive::is_baud_step(raw_value, kHighestBaud)) {
+    return refused(Refusal::bad_value);
+  }
   const bool eeprom = p->category == pcp::Category::eeprom && !receiving;
   if (eeprom && eeprom_busy(now)) return refused(Refusal::eeprom_busy);  // 3: wait and repeat
 

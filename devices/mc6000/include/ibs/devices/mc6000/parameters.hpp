@@ -27,6 +27,8 @@ inline constexpr std::uint16_t kSload = 80;   // seed 000, 11.4
 inline constexpr std::uint16_t kSdmmy = 83;   // seed 000, 5.2
 inline constexpr std::uint16_t kSwdgt = 84;   // seed 000, 5.2
 inline constexpr std::uint16_t kParamSbaud = 81;  // seed 000, 4, 11.5
+// Seed 000, 4: "from 2400 Baud to 57600 Baud for Servocontrollers" (81-SBAUD, in baud: LB-E18).
+inline constexpr std::uint32_t kHighestBaud = 57600;
 inline constexpr std::uint16_t kSerr = drive::kSiofNumber;  // seed 000, 9.2
 inline constexpr std::uint16_t kType = 91;    // seed 000, 5.2
 inline constexpr std::uint16_t kStext = 108;  // seed 000, 11.3
