@@ -855,7 +855,6 @@ int client(const CLI::App& which, const LustbusClientOptions& o, std::ostream& o
       if (!p.writable) throw BadInput(label(p) + " is read-only");
       written = parse_value(p, *o.value);
       req = lb::select(addr, value_code(p, false), format_value(p, written));
-      req.eeprom_width = p.eeprom_width;  // 10.2.2: a servo's EEPROM value is saved after its ACK
       if (p.prog) req.response_timeout = std::chrono::seconds(10);  // 10 exception 1
     } else {
       if (o.value) throw BadInput(name + " takes no VALUE");
