@@ -106,7 +106,12 @@ bool ParameterStore::commit_eeprom(std::uint16_t number, std::uint32_t raw) {
 
 void ParameterStore::power_on() {
   for (std::size_t i = 0; i < table_.size(); ++i) {
-    ram_[i] = table_[i].category == Category::eeprom ? eeprom_[i] : default_raw(table_[i]);
+    const ParameterInfo& p = table_[i];
+    if (p.category == Category::eeprom) {
+      ram_[i] = eeprom_[i];
+    } else if (p.category != Category::ram_control || (p.attributes & kAttrNoInit) == 0) {
+      ram_[i] = default_raw(p);
+    }
   }
 }
 

@@ -290,6 +290,85 @@ TEST(McDescription, ElementsAtTheTablesOffsetsFortyTwoOrFortyThree) {
   EXPECT_EQ(kHwMptc, 0x4000);  // LB-E8
 }
 
+// 11.2.1's tables as printed, row by row (name, "Bit-position", "Bit-mask" / "Sequential Number",
+// "Value"): every row is the library's, every mask is 1 << its bit -- but MPTC, printed "14
+// 8000H" beside Brake's "15 8000H" (LB-E8): the printed mask is corrected to the bit position's
+// 4000H, and 8000H stays Brake's alone.
+TEST(McDescription1121, EveryRowOfTheTablesAsPrinted) {
+  struct Printed {
+    std::string_view name;
+    unsigned bit;
+    unsigned mask;
+  };
+  const Printed attributes[] = {{"ShowParaText", 2, 0x0004}, {"ShowNoFract", 3, 0x0008}, {"ShowFract1", 4, 0x0010},
+                                {"ShowText", 5, 0x0020},     {"InitControl", 6, 0x0040}, {"NoInit", 7, 0x0080},
+                                {"ShowHex", 8, 0x0100},      {"Password", 9, 0x0200}};
+  const Printed hardware[] = {{"Resolver", 0, 0x0001},      {"EncoderSin", 1, 0x0002},   {"EncoderRec", 2, 0x0004},
+                              {"EncdSsiSingle", 3, 0x0008}, {"EncdSsiMulti", 4, 0x0010}, {"Option1", 5, 0x0020},
+                              {"Option2", 6, 0x0040},       {"ASM", 7, 0x0080},          {"SM", 8, 0x0100},
+                              {"Special-drive", 9, 0x0200}, {"EA1", 10, 0x0400},         {"EA2", 11, 0x0800},
+                              {"CAN", 12, 0x1000},          {"Extended Memory", 13, 0x2000},
+                              {"MPTC", 14, 0x8000},         {"Brake", 15, 0x8000}};
+  const Printed structure[] = {{"TorqueCtrl", 0, 0x0001}, {"SpeedCtrl", 1, 0x0002}, {"PosCtrl", 2, 0x0004},
+                               {"VF_Conv", 3, 0x0008},    {"EMaster", 4, 0x0010},   {"ESlave", 5, 0x0020}};
+  const auto check = [](std::span<const Printed> printed, std::span<const FlagRow> ours) {
+    ASSERT_EQ(printed.size(), ours.size());
+    for (std::size_t i = 0; i < printed.size(); ++i) {
+      SCOPED_TRACE(printed[i].name);
+      EXPECT_EQ(ours[i].name, printed[i].name);
+      EXPECT_EQ(ours[i].bit, printed[i].bit);
+      EXPECT_EQ(ours[i].mask, 1U << ours[i].bit);
+      if (printed[i].name == "MPTC") {
+        EXPECT_NE(ours[i].mask, printed[i].mask);  // LB-E8: 8000H corrected
+        EXPECT_EQ(ours[i].mask, 0x4000);
+      } else {
+        EXPECT_EQ(ours[i].mask, printed[i].mask);
+      }
+    }
+  };
+  check(attributes, kAttributeFlags);
+  check(hardware, kHardwareFlags);
+  check(structure, kStructureFlags);
+  // "The Subject Areas are sequentially numbered and thus are not combinable": CONF 0 .. VAL 21.
+  const std::string_view subjects[] = {"CONF", "ENCD", "OPT1", "OPT2", "MOT",  "TCON", "SCON", "PCON",
+                                       "VFCN", "SIO",  "KPAD", "PWM",  "SCTY", "USER", "SYS",  "REF",
+                                       "IO1",  "IO2",  "CAN",  "PMOD", "MENU", "VAL"};
+  ASSERT_EQ(std::size(subjects), kSubjectAreas.size());
+  for (std::size_t i = 0; i < kSubjectAreas.size(); ++i) {
+    EXPECT_EQ(kSubjectAreas[i].name, subjects[i]);
+    EXPECT_EQ(kSubjectAreas[i].code, i);
+  }
+  const std::string_view activities[] = {"SC_Nothing", "SC_OPT1", "SC_OPT2", "SC_APP", "SC_SYS",
+                                         "SC_DRIVE",   "SC_REF",  "SC_CAN",  "SC_PMOD"};
+  ASSERT_EQ(std::size(activities), kActivityAreas.size());
+  for (std::size_t i = 0; i < kActivityAreas.size(); ++i) {
+    EXPECT_EQ(kActivityAreas[i].name, activities[i]);
+    EXPECT_EQ(kActivityAreas[i].code, i);
+  }
+  // Every row travels in a description (LB-D10, LB-E15) but those with a byte of 80H, which a
+  // 7-bit line cannot carry: Brake (8000H), ASM (0080H), NoInit (0080H); the MPTC of the printed
+  // table would be Brake's too.
+  McDescription m;
+  m.name = {'X', '\0', '\0', '\0', '\0', '\0'};
+  for (const FlagRow& r : kHardwareFlags) {
+    m.hardware_filter = r.mask;
+    EXPECT_EQ(format_mc_description(m).has_value(), r.mask != kHwBrake && r.mask != 0x0080) << r.name;
+  }
+  m.hardware_filter = 0;
+  for (const FlagRow& r : kAttributeFlags) {
+    m.attribute = r.mask;
+    EXPECT_EQ(format_mc_description(m).has_value(), r.mask != kAttrNoInit) << r.name;
+  }
+  m.attribute = 0;
+  for (const AreaRow& r : kSubjectAreas) {
+    m.hardware_filter = 0;
+    m.subject_area = r.code;
+    const auto v = format_mc_description(m);
+    ASSERT_TRUE(v) << r.name;
+    EXPECT_EQ(parse_mc_description(v->view()).value.subject_area, r.code) << r.name;
+  }
+}
+
 TEST(SubstitutionText, TrailingBlanksAndNulsGo) {
   EXPECT_EQ(substitution_text("SCON  "), "SCON");
   EXPECT_EQ(substitution_text(std::string_view("1/min\0", 6)), "1/min");

@@ -116,6 +116,116 @@ TEST(HostSiof, EepromBusyIsRepeatedAfterTheWait) {
   EXPECT_GE(o.finished - o.started, cfg.eeprom_busy_wait);
 }
 
+// 10.2.2's example, row by row: "Minimum telegram duration time = 22 ms" (10.1.2, example 2, the
+// servo's minimum: the host's 19 bytes 16 ms, reaction 1 ms, the answer's 2 bytes 2 ms, the host's
+// reaction 2 ms, its EOT 1 ms), "memory time is: 4 bytes · 3 · 5 ms/byte = 60 ms", "wait time =
+// memory time - telegram duration time = 60 ms - 22 ms = 38 ms". The host is driven with the
+// table's own times (its 8-bit characters, LB-E10): the second EEPROM SELECT goes out 38 ms after
+// the first sequence's EOT, 60 ms after its first byte, and is acknowledged at once (no 04H, no
+// repetition after it).
+TEST(Timing1022, TheHostWaitsTheWaitTimeOfTheExampleBeforeTheNextEepromSelect) {
+  HostConfig cfg;
+  cfg.turnaround = 2ms;  // 10.1: "Reaction time of the Host computer e.g., 2 ms"
+  Host host(cfg);
+  Request first = select(1, make_code(20409), make_value("0000EA60"));  // 4 bytes (8 characters)
+  first.eeprom_width = 4;
+  Request second = first;
+  second.value = make_value("0000EA61");
+  const auto id1 = host.submit(first).id;
+  const auto id2 = host.submit(second).id;
+  const Time t0{0};
+  host.step(t0);
+  EXPECT_EQ(host.take_output().size(), 19U);  // "Host computer sends telegram 19 Byte"
+  host.output_done(t0 + 16ms);                // "... / 9600 bps = 16 ms"
+  host.receive(0x41, t0 + 17ms);              // "Reaction time of the servocontroller Min. 1 ms"
+  host.receive(kAck, t0 + 19ms);              // "Servocontroller answer 2 Byte ... = 2 ms"
+  host.step(t0 + 21ms);                       // "Reaction time of the Host computer e.g., 2 ms"
+  EXPECT_EQ(host.take_output().size(), 1U);   // EOT
+  host.output_done(t0 + 22ms);                // "Host computer sends EOT 1 ... = 1 ms": total 22 ms
+  ASSERT_NE(host.outcome(id1), nullptr);
+  EXPECT_EQ(host.outcome(id1)->kind, OutcomeKind::acknowledged);
+  EXPECT_EQ(host.outcome(id1)->finished, t0 + 22ms);
+  // "wait time = 60 ms - 22 ms = 38 ms": nothing on the line until then.
+  host.step(t0 + 22ms);
+  EXPECT_TRUE(host.take_output().empty());
+  EXPECT_EQ(host.next_deadline(), t0 + 60ms);
+  host.step(t0 + 59ms);
+  EXPECT_TRUE(host.take_output().empty());
+  host.step(t0 + 60ms);
+  EXPECT_EQ(host.take_output().size(), 19U);
+  host.output_done(t0 + 76ms);
+  host.receive(0x41, t0 + 77ms);
+  host.receive(kAck, t0 + 79ms);
+  host.step(t0 + 81ms);
+  EXPECT_EQ(host.take_output().size(), 1U);
+  host.output_done(t0 + 82ms);
+  const Outcome* o = host.outcome(id2);
+  ASSERT_NE(o, nullptr);
+  EXPECT_EQ(o->kind, OutcomeKind::acknowledged);
+  EXPECT_EQ(o->attempts, 1);
+  EXPECT_EQ(o->eeprom_wait, 38ms);
+  EXPECT_EQ(eeprom_wait(4, cfg.eeprom_write_time, 22ms), 38ms);  // the formula of 10.2.2
+}
+
+// 10.2.2: "For ENQUIRY-telegrams and SELECT-telegrams to RAM parameters, no wait time is
+// necessary", and the wait is the device's: another address, an ENQUIRY or a RAM SELECT go out at
+// once; a SELECT after the memory time has passed waits nothing.
+TEST(Timing1022, OnlyAnEepromSelectToTheSavingDeviceWaits) {
+  auto mc = make_mc6000();
+  mc.siof = 0;
+  mc.mc_eeprom_per_byte = 15ms;  // seed 000, 3: 15 ms a byte
+  auto other = make_mc6000();
+  other.siof = 0;
+  other.mc_eeprom_per_byte = 15ms;
+  Bus bus;
+  bus.add(mc, 4);
+  bus.add(other, 5);
+  Request eeprom = select(4, make_code(20500), make_value("1"));
+  eeprom.eeprom_width = 4;
+  ASSERT_EQ(bus.run(eeprom).kind, OutcomeKind::acknowledged);
+  Request elsewhere = eeprom;
+  elsewhere.address = 5;
+  const Outcome o5 = bus.run(elsewhere);
+  EXPECT_EQ(o5.kind, OutcomeKind::acknowledged);
+  EXPECT_EQ(o5.eeprom_wait, Duration{0});
+  const Outcome ram = bus.run(select(4, make_code(20500), make_value("3")));  // eeprom_width 0
+  EXPECT_EQ(ram.eeprom_wait, Duration{0});
+  bus.line.run_until(bus.line.now() + 100ms);
+  const Outcome later = bus.run(eeprom);
+  EXPECT_EQ(later.kind, OutcomeKind::acknowledged);
+  EXPECT_EQ(later.eeprom_wait, Duration{0});
+  EXPECT_EQ(later.attempts, 1);
+}
+
+// 10.2.2 against a servo that saves 15 ms a byte (3): EEPROM SELECTs in series each wait the
+// computed time and are acknowledged at the first attempt; without the wait the second one meets
+// "EEPROM busy" (04H) and is only repeated after 9.2's "> 60 ms" -- the host keeps that repetition
+// for a drive slower than the manual.
+TEST(Timing1022, EepromSelectsInSeriesAreNeverRefusedAsBusy) {
+  for (const bool declared : {true, false}) {
+    auto mc = make_mc6000();
+    mc.siof = 0;
+    mc.mc_eeprom_per_byte = 15ms;
+    Bus bus;
+    bus.add(mc, 4);
+    for (int i = 1; i <= 3; ++i) {
+      Request r = select(4, make_code(20500), make_value(std::to_string(i)));
+      r.eeprom_width = declared ? 4 : 0;
+      const Outcome o = bus.run(r);
+      ASSERT_EQ(o.kind, OutcomeKind::acknowledged) << i;
+      if (declared) {
+        EXPECT_EQ(o.attempts, 1) << i;
+        if (i > 1) {
+          EXPECT_GT(o.eeprom_wait, Duration{0}) << i;
+        }
+      } else if (i > 1) {
+        EXPECT_EQ(o.attempts, 2) << "undeclared, the servo refuses with 04H first: " << i;
+      }
+    }
+    EXPECT_EQ(mc.value_of(500), 3U);
+  }
+}
+
 // 9.2 bit 3: a SELECT corrupted on the way is refused with a checksum error and repeated.
 TEST(HostSiof, ChecksumErrorIsRepeated) {
   auto vf = make_vf1000();

@@ -134,6 +134,38 @@ TEST(SeedExamples, Select623Mc6000AsPrintedAndCorrected) {
 
 // 7.1.1: MODE 0, CSEL 3, FSSEL 8, FSSIO 23.15 Hz = 463 = 01CFH, CNTL 128 = 0080H. LB-E11: the
 // printed list shifts the values against the parameters; corrected, with CNTL (the start) last.
+// 6.2.3's number row as printed: "4 64 2 48 48 48 48 53 = 48 51 69 56 49 48 54 3 ?". Its VALUE
+// numbers are the characters "03E8106" -- the first four 6.2.2's "03E8" (48 51 69 56), a copy --
+// not the character row's "14D4106" that the text computes ("333.254 · 65536 = 21840134 =
+// 14D4106H"); 03E8106H is 62.5 1/min (LB-E5). The VALUE the text computes is the one the encoder
+// gives, and the numbers of the corrected telegram are pinned; the telegram of the printed numbers
+// is refused by a servo as the character row's is (CODE 00005 is no MC6000 CODE, 2.4.2: 20H).
+TEST(SeedExamples, Select623NumberRowAsPrintedIsACopyOf622AndRefused) {
+  const std::vector<std::uint8_t> printed_numbers = {4,  64, 2,  48, 48, 48, 48, 53, 61,
+                                                     48, 51, 69, 56, 49, 48, 54, 3};
+  const std::string printed_value(printed_numbers.begin() + 9, printed_numbers.end() - 1);
+  EXPECT_EQ(printed_value, "03E8106");
+  EXPECT_EQ(printed_value.substr(0, 4), "03E8");  // 6.2.2's 50.00 Hz
+  const auto as_printed = decode(Family::enhanced, DataType::int32q16, printed_value);
+  ASSERT_TRUE(as_printed.ok());
+  EXPECT_NEAR(as_printed.value, 62.5, 0.01);  // not the example's 333.254
+  const auto computed = encode(Family::enhanced, DataType::int32q16, 333.254).value;
+  EXPECT_EQ(computed.view(), "14D4106");
+  EXPECT_EQ(21840134U, 0x14D4106U);
+  // The corrected telegram's numbers, BCC by the rule of 2.2: 20428 as 7.2.1 writes 428-RSIO.
+  EXPECT_EQ(v(encode_select(0, make_code(20428), computed)),
+            (std::vector<std::uint8_t>{4, 64, 2, 50, 48, 52, 50, 56, 61, 49, 52, 68, 52, 49, 48, 54, 3, 0x40}));
+  // The printed numbers as a telegram (their BCC by 2.2) reach a servo: refused, 20H.
+  std::vector<std::uint8_t> t = printed_numbers;
+  t.push_back(bcc(std::span<const std::uint8_t>(t).subspan(3)));
+  EXPECT_EQ(t, v(encode_select(0, make_code(5), make_value("03E8106"))));
+  auto servo = test::make_mc6000();
+  servo.siof = 0;
+  Receiver rx(servo, 1);
+  EXPECT_EQ(feed(rx, t), (Bytes{}(64)(kNak).v));
+  EXPECT_EQ(servo.siof, 0x20);
+}
+
 TEST(SeedExamples, ControlSequence711Corrected) {
   struct Row {
     unsigned code;

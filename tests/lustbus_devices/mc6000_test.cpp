@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "ibs/devices/mc6000/lustbus_device.hpp"
+#include "ibs/devices/mc6000/lustbus_face.hpp"
 #include "ibs/devices/vf1000/lustbus_device.hpp"
 #include "ibs/devices/vf1000/lustbus_face.hpp"
 #include "ibs/lustbus/description.hpp"
@@ -74,6 +75,41 @@ TEST(Mc6000Lustbus, ControlOnlyFromTheSerialInterface) {
   EXPECT_EQ(f.dev.reference_rpm(), 2.0);
   ASSERT_EQ(f.send(sel(3, 20300, "3")).answer, (Bytes{}(0x43)(6).v));  // PCON: not modelled
   EXPECT_FALSE(f.dev.running());
+}
+
+// 10.2.2 against the servo itself: 409-BUTWD is an EEPROM USIGN16, "memory time = parameter data
+// width · 3 · 5 ms" = 30 ms, longer than a sequence of its SELECT at 9600 Bd (about 21 ms). With
+// the width its face gives (LustbusParameter::eeprom_width) the host waits the difference and
+// every SELECT of a series is acknowledged at once; without it the servo refuses the second one
+// with 04H (3: "EEPROM busy") and the host repeats it after 9.2's wait.
+TEST(Mc6000Lustbus, EepromSelectsInSeriesWaitTheTimeOf1022) {
+  const auto butwd = mc::lustbus_face().find_parameter("BUTWD");
+  ASSERT_TRUE(butwd.has_value());
+  EXPECT_EQ(butwd->eeprom_width, 2);
+  EXPECT_EQ(mc::lustbus_face().find_parameter("RSIO")->eeprom_width, 0);  // RAM: no wait (10.2.2)
+  for (const bool told : {true, false}) {
+    Mc dev;
+    Bus bus;
+    bus.add(dev, 3);
+    EXPECT_EQ(bus.read(3, 85).value.view(), "01");
+    for (int i = 1; i <= 4; ++i) {
+      Request r = select(3, make_code(20409), make_value(std::to_string(100 * i)));
+      r.eeprom_width = told ? butwd->eeprom_width : 0;
+      const Outcome o = bus.run(r);
+      ASSERT_EQ(o.kind, OutcomeKind::acknowledged) << i;
+      if (told) {
+        EXPECT_EQ(o.attempts, 1) << i;
+        if (i > 1) {
+          EXPECT_GT(o.eeprom_wait, 0ms) << i;
+          EXPECT_LT(o.eeprom_wait, 30ms) << i;
+        }
+      } else if (i > 1) {
+        EXPECT_EQ(o.attempts, 2) << i;
+        EXPECT_EQ(o.siof, std::optional<std::uint8_t>(0x04)) << i;
+      }
+    }
+    EXPECT_EQ(dev.value(409), 0x400U);  // 1024 ms, the last one
+  }
 }
 
 // 6.2.3 (LB-E5): the printed CODE 00005 is no servo CODE (20H); the corrected 20428 is taken.

@@ -186,6 +186,29 @@ TEST(McDescriptionAreas, CarryFrameCharacters) {
   }
 }
 
+// The wing's service structure codes its areas as 11.2.1's tables do (the protocol core's rows,
+// pinned as printed in McDescription1121.EveryRowOfTheTablesAsPrinted).
+TEST(McDescriptionAreas, TheWingsCodesAreThoseOfTheTables) {
+  const auto code_of = [](std::span<const AreaRow> rows, std::string_view name) -> int {
+    for (const AreaRow& r : rows) {
+      if (r.name == name) return r.code;
+    }
+    return -1;
+  };
+  const std::pair<mc::Subject, std::string_view> subjects[] = {
+      {mc::Subject::conf, "CONF"}, {mc::Subject::opt1, "OPT1"}, {mc::Subject::scon, "SCON"},
+      {mc::Subject::sio, "SIO"},   {mc::Subject::scty, "SCTY"}, {mc::Subject::sys, "SYS"},
+      {mc::Subject::ref, "REF"},   {mc::Subject::menu, "MENU"}, {mc::Subject::val, "VAL"}};
+  for (const auto& [s, name] : subjects) EXPECT_EQ(static_cast<int>(s), code_of(kSubjectAreas, name)) << name;
+  const std::pair<mc::Activity, std::string_view> activities[] = {
+      {mc::Activity::nothing, "SC_Nothing"}, {mc::Activity::opt1, "SC_OPT1"}, {mc::Activity::sys, "SC_SYS"},
+      {mc::Activity::drive, "SC_DRIVE"},     {mc::Activity::ref, "SC_REF"}};
+  for (const auto& [a, name] : activities) EXPECT_EQ(static_cast<int>(a), code_of(kActivityAreas, name)) << name;
+  std::uint16_t all = 0;
+  for (const FlagRow& r : kStructureFlags) all = static_cast<std::uint16_t>(all | r.mask);
+  EXPECT_EQ(mc::kAllControlTypes, all);  // TorqueCtrl .. ESlave
+}
+
 // 10: reaction times drawn from the table, with and without KEYPAD; the same seed, the same times.
 TEST(ReactionTimes, Of10SeededWithinTheTable) {
   for (const bool keypad : {false, true}) {

@@ -70,6 +70,34 @@ TEST(Vf1000Lustbus, SeedExamples622And6111ByteExact) {
   EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::ready);
 }
 
+// Seed 000, 2.4.1: "Devices No.: For VF1000, always 1"; yet 2.4.1's own C example builds "000%02u"
+// (device digit 0), 7.1.1's telegram list and 5.2's shared CODEs use 000xx, and 11.1 says that for
+// basis parameters "the device number in the telegram CODE ... can contain a 0 (general for basis
+// parameter) as well as the specific device number" (LB-E19): the inverter answers a basis
+// parameter under device digit 0 and 1 alike -- value, description and SELECT -- and another
+// device digit is no CODE of its (NAK, 20H on a SELECT). Every row of its table is a basis
+// parameter (kinds '0'..'3'); the parser hands the digit on, and an inverter-specific kind ('4'..
+// '7') would need the 1 (vf1000::LustbusDevice::resolve).
+TEST(Vf1000Lustbus, DeviceDigit0And1ReachTheBasisParameters) {
+  Fresh f;
+  const auto value0 = f.send(enq(5, 1)).answer;    // 00001
+  const auto value1 = f.send(enq(5, 101)).answer;  // 00101
+  ASSERT_EQ(value0.size(), 14U);
+  EXPECT_EQ(std::vector<std::uint8_t>(value0.begin() + 8, value0.end() - 2),
+            std::vector<std::uint8_t>(value1.begin() + 8, value1.end() - 2));
+  EXPECT_EQ(f.send(enq(5, 10001)).answer.size(), 36U);  // 11.1: 26 characters either way
+  EXPECT_EQ(f.send(enq(5, 10101)).answer.size(), 36U);
+  EXPECT_EQ(f.send(enq(5, 201)).answer, (Bytes{}(0x45)(0x15).v));  // device 2: NAK (6.1 note)
+  EXPECT_EQ(f.send(sel(5, 5, "0064")).answer, (Bytes{}(0x45)(6).v));
+  EXPECT_EQ(f.send(sel(5, 105, "00C8")).answer, (Bytes{}(0x45)(6).v));
+  EXPECT_EQ(f.dev.value(pnr::kFssio), 0x00C8);
+  EXPECT_EQ(f.send(sel(5, 205, "0001")).answer, (Bytes{}(0x45)(0x15).v));
+  EXPECT_EQ(f.dev.siof(), 0x20);
+  for (const auto& p : f.dev.table().params()) {
+    EXPECT_LE(static_cast<int>(p.category), 3) << p.number << ": a basis parameter";
+  }
+}
+
 // 7.1: 3-CNTL commands the inverter only with 1-MODE = 0 and 2-CSEL = 3 (the standard factory
 // CSEL 0 of a drive on LUSTBUS alone, VF-E20, leaves it to the terminals); 40H is the start bit
 // counter-clockwise.
@@ -217,7 +245,7 @@ TEST(Vf1000Lustbus, ADriveOnLustbusAloneHasTheStandardFactoryValues) {
     ibs::Word interbus;  // seed 001, 3.1.1
   };
   const Row rows[] = {{pnr::kMode, 0, 4}, {pnr::kCsel, 0, 5}, {pnr::kFssel, 0, 25}, {pnr::kFmax1, 1000, 1000},
-                      {pnr::kSouta, 0, 0}, {pnr::kSioc, 2, 2}};
+                      {pnr::kSouta, 0, 0}, {pnr::kSioc, 9600, 9600}};
   Vf dev;
   const ibs::devices::vf1000::Drive on_interbus(ibs::devices::vf1000::DriveConfig{}, ibs::DeviceStart::operational,
                                                 Time{0});

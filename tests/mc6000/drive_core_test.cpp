@@ -417,6 +417,50 @@ TEST(Mc6000Faces, ControlLocationDecidesWhichFaceCommands) {
   EXPECT_EQ(s.core().state(), State::ready);
 }
 
+// Seed 001, 4.2: "When the servocontroller parameters have been changed, parameter 15-PLRDY should
+// be set to 1 to trigger recalculation of the controller parameters and set the servocontroller
+// to 'READY' mode"; seed 000, 11.2.1, InitControl (0040H): "If a parameter is overwritten with the
+// attribute, then the [servo] will register a[n] ... initialization because it must calculate its
+// initialization value anew" (MC-D11). The same through either face, in the core: a changed
+// 300-CFCON (InitControl) takes the servo out of READY mode -- 15-PLRDY reads 0 on both faces and
+// ENABLE stops in ON (the servo cannot be engaged, as during 11.4's download) -- until 15-PLRDY = 1
+// recalculates (counted) and READY mode is back: PLRDY reads 1 and ENABLE goes on. An InitControl
+// parameter written with the value it has registers nothing (7.2.1 writes 300 = SCON, the factory
+// value, and starts at once); a start (power-on) calculates the controller: READY mode.
+TEST(Mc6000Faces, Plrdy1RecalculatesAndSetsReadyModeThroughEitherFace) {
+  for (const Face f : kFaces) {
+    const Face other = f == Face::pcp ? Face::lustbus : Face::pcp;
+    Servo s;
+    EXPECT_EQ(s.read(f, mc::kPlrdy).raw, 1U) << name(f) << ": READY mode from the start";
+    ASSERT_TRUE(s.write(f, mc::kCfcon, mc::kCfconScon).ok) << name(f);
+    EXPECT_EQ(s.read(other, mc::kPlrdy).raw, 1U) << name(f) << ": its own value registers nothing";
+    s.idle(40ms);  // the EEPROM save of the one before (seed 000, 3)
+    ASSERT_TRUE(s.write(f, mc::kCfcon, 1).ok) << name(f);  // another control type
+    EXPECT_EQ(s.read(f, mc::kPlrdy).raw, 0U) << name(f);
+    EXPECT_EQ(s.read(other, mc::kPlrdy).raw, 0U) << name(f);
+    EXPECT_FALSE(s.core().ready_mode()) << name(f);
+    s.set_control_word(0x0006);  // SHUTDOWN
+    s.idle(5ms);
+    s.set_control_word(0x000F);  // ENABLE OPERATION
+    s.idle(20ms);
+    EXPECT_EQ(s.core().state(), State::on) << name(f) << ": not engaged before the recalculation";
+    const std::uint32_t before = s.core().recalculations();
+    ASSERT_TRUE(s.write(f, mc::kPlrdy, 1).ok) << name(f);
+    EXPECT_EQ(s.core().recalculations(), before + 1) << name(f);
+    EXPECT_EQ(s.read(other, mc::kPlrdy).raw, 1U) << name(f);
+    s.idle(5ms);
+    EXPECT_EQ(s.core().state(), State::enabled) << name(f) << ": READY mode, ENABLE goes on";
+    // 15-PLRDY has the attribute itself: 0 registers an initialization, a new start ends it.
+    s.set_control_word(0x0006);
+    s.idle(5ms);
+    ASSERT_TRUE(s.write(f, mc::kPlrdy, 0).ok) << name(f);
+    EXPECT_FALSE(s.core().ready_mode()) << name(f);
+    s.core().power_on(s.now());
+    EXPECT_TRUE(s.core().ready_mode()) << name(f);
+    EXPECT_EQ(s.core().parameters().raw(mc::kPlrdy), 1U) << name(f);
+  }
+}
+
 // DeviceEmulator::clone: a copy of the INTERBUS face is an independent servo with its own core.
 TEST(Mc6000Faces, CloneOfAFaceClonesItsCore) {
   Servo s;

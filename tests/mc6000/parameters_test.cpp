@@ -127,5 +127,30 @@ TEST(ParameterStore, PowerOnKeepsEepromAndResetsRam) {
   EXPECT_EQ(s.get(82)->raw, 0xFFU) << "a USIGN8 keeps 8 bits";
 }
 
+// Seed 000, 11.2.1, the attribute NoInit (0080H): "RAM-control parameters that have this
+// attribute will not be pre-initialized, during start up, with the factory setting from the
+// parameter list." The store keeps such a RAM control value over a power-on; a RAM actual value
+// and an EEPROM value are not RAM control parameters and go as before; 4-PROG = 1 (10 exception
+// 1: "overwrites all parameter settings") resets it too. The MC6000's own table marks none (the
+// seeds name none; docs/errata.md MC-D11).
+TEST(ParameterStore, NoInitKeepsARamControlValueOverAPowerOn) {
+  EXPECT_EQ(kAttrNoInit, 0x0080);
+  static constexpr std::array<ParameterInfo, 3> table{{
+      {10, "KEEP", DataType::usign16, Category::ram_control, 0, 65535, 7, kAttrNoInit},
+      {11, "GO", DataType::usign16, Category::ram_control, 0, 65535, 7, 0},
+      {12, "ACT", DataType::usign16, Category::ram_actual, 0, 65535, 7, kAttrNoInit},
+  }};
+  ParameterStore s(table);
+  EXPECT_EQ(s.get(10)->raw, 7U) << "a new device starts from the list";
+  for (const std::uint16_t n : std::array<std::uint16_t, 3>{10, 11, 12}) ASSERT_TRUE(s.set(n, 99));
+  s.power_on();
+  EXPECT_EQ(s.get(10)->raw, 99U) << "NoInit: not pre-initialized at the start";
+  EXPECT_EQ(s.get(11)->raw, 7U);
+  EXPECT_EQ(s.get(12)->raw, 7U) << "NoInit names RAM-control parameters only";
+  s.factory_defaults();
+  EXPECT_EQ(s.get(10)->raw, 7U);
+  for (const ParameterInfo& p : kParameters) EXPECT_EQ(p.attributes & kAttrNoInit, 0) << p.number;
+}
+
 }  // namespace
 }  // namespace ibs::pcp

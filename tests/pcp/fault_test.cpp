@@ -417,6 +417,9 @@ class Campaign {
       static_error = errors::kValueTooHigh;
     } else if (compare(p->type, v->raw, ParameterStore::to_raw(*p, p->min)) < 0) {
       static_error = errors::kValueTooLow;
+    } else if (op.number == ibs::devices::mc6000::kParamSbaud &&
+               !ibs::drive::is_baud_step(v->raw, ibs::devices::mc6000::kHighestBaud)) {
+      static_error = errors::kValueTooHigh;  // seed 000, 4: the rates in steps (LB-E18)
     }
     if (static_error) {
       ASSERT_EQ(r.kind, ResultKind::negative) << "write " << op.number;

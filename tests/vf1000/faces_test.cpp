@@ -257,6 +257,10 @@ TEST(Vf1000Faces, EachRefusalSetsTheSameBitThroughEitherFace) {
     EXPECT_EQ(untimed(write(*r, v, pnr::kType, 1)), (Result{"nak", 0, 0x40, {}}));
     EXPECT_EQ(untimed(write(*r, v, pnr::kFssel, 26)), (Result{"nak", 0, 0x80, {}}));
     EXPECT_EQ(untimed(write(*r, v, pnr::kStat, 1)), (Result{"nak", 0, 0x80, {}}));
+    // 81-SIOC in baud, the steps of seed 000 4 up to 9600 (LB-E18): 5000 is none, 19200 too high.
+    EXPECT_EQ(untimed(write(*r, v, pnr::kSioc, 5000)), (Result{"nak", 0, 0x80, {}}));
+    EXPECT_EQ(untimed(write(*r, v, pnr::kSioc, 19200)), (Result{"nak", 0, 0x80, {}}));
+    EXPECT_EQ(r->drive->value(pnr::kSioc), 9600);
     EXPECT_EQ(r->drive->value(pnr::kFssel), 25);
     EXPECT_EQ(r->drive->siof(), 0);
     // A value inquiry of a missing parameter is refused without an entry in 85 (seed 001 4.1.4,

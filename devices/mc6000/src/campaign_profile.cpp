@@ -103,7 +103,11 @@ class Profile final : public CampaignProfile {
       m.eeprom_save = std::chrono::milliseconds(15) * static_cast<std::int64_t>(pcp::size_of(p.type)) +
                       kSamplePeriod + 2 * c.jitter;
       m.card_writeable = card_writeable(p.number);
-      m.role = !p.writable()           ? CampaignRole::device_owned
+      // 15-PLRDY reads the servo's READY mode, which a changed InitControl parameter (300-CFCON)
+      // ends and a start, 4-PROG = 1 or an accepted download sets (MC-D11): the servo's, not a
+      // value the oracle models. Neither it nor an InitControl parameter is written at random, so
+      // that the servos stay engageable for the state commands.
+      m.role = !p.writable() || p.number == kPlrdy ? CampaignRole::device_owned
                : p.number == kProg     ? CampaignRole::command
                : p.number == kSload    ? CampaignRole::download
                                        : CampaignRole::normal;
@@ -114,7 +118,7 @@ class Profile final : public CampaignProfile {
       // watchdog, and its oracle expects the reset of 5.1.2 to end that fault, which LOCK and RESET
       // do not (a power-on, a boot).
       if (m.role != CampaignRole::normal || p.number == kSupi || p.number == kIbcnf || p.number == kReop1 ||
-          p.number == kResio || p.number == kRedev) {
+          p.number == kResio || p.number == kRedev || (p.attributes & pcp::kAttrInitControl) != 0) {
         continue;
       }
       CampaignWrites w;
@@ -123,6 +127,8 @@ class Profile final : public CampaignProfile {
       for (int k = 0; k < 3; ++k) add(w.in_range, rng.uniform(p.min, p.max));
       // Watchdog times the campaign's outages (550 ms) always exceed.
       if (p.number == kButwd) w.in_range = {0, 40, 100, 250, m.initial};
+      // 81-SBAUD takes the rates of seed 000 4 in baud (LB-E18), no number between them.
+      if (p.number == kParamSbaud) w.in_range = {2400, 4800, 9600, 19200, 38400, 57600};
       for (const std::int64_t v : {p.min - 1, p.max + 1}) w.out_of_range.push_back(v);
       d.writes.push_back(std::move(w));
     }

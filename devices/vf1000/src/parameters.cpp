@@ -54,9 +54,10 @@ constexpr std::array kVf1000Parameters = {
     // seed 000, 10, exception 1: 1 loads the factory settings.
     ParameterInfo{pnr::kProg, "PROG", "", C::eeprom, T::usign8, 0, 1, 0, 1.0,
                   "Load factory settings"},
-    // seed 000, 4 and 5.2: 81..85 and 91 are numerically compatible across the drive family.
-    ParameterInfo{pnr::kSioc, "SIOC", "", C::eeprom, T::usign8, 0, 2, 2, 1.0,
-                  "Baud rate (0: 2400, 1: 4800, 2: 9600)"},
+    // seed 000, 4 and 5.2: 81..85 and 91 are numerically compatible across the drive family
+    // (1): the rate in baud, as the servo's 81-SBAUD; the steps 2400, 4800, 9600 (4; LB-E18).
+    ParameterInfo{pnr::kSioc, "SIOC", "Bd", C::eeprom, T::usign16, 2400, 9600, 9600, 1.0,
+                  "Baud rate (2400, 4800, 9600 Bd)"},
     ParameterInfo{pnr::kSioa, "SIOA", "", C::eeprom, T::usign8, 1, 30, 1, 1.0, "Serial address"},
     ParameterInfo{pnr::kSiow, "SIOW", "", C::ram_control, T::usign16, 0, 0xFFFF, 0, 1.0,
                   "Dummy / watchdog trigger"},

@@ -317,7 +317,7 @@ void Drive::sample_one(Time now, Word control, double reference_rpm) {
   bus_expired_ = expired;
   fieldbus_control_ = control;
   apply_reactions();
-  pd_.set_enable_locked(params_.downloading());
+  pd_.set_enable_locked(params_.engage_locked());
   if (serial_control()) {
     pd_.step_held(serial_word(), serial_reference_rpm(), kSamplePeriod, 1);
   } else {
@@ -353,7 +353,7 @@ void Drive::sample(Time first, Duration period, std::uint32_t count, Word contro
     return;
   }
   if (count == 1 || period <= Duration{0} || serial_control() || bus_fault_ || serial_fault_ ||
-      params_.downloading() || params_.raw(kSwdgt) != 0 || reset_pending_ || external_fault_ || held_) {
+      params_.engage_locked() || params_.raw(kSwdgt) != 0 || reset_pending_ || external_fault_ || held_) {
     for (std::uint32_t k = 0; k < count; ++k) sample_one(first + static_cast<std::int64_t>(k) * period, control, reference_rpm);
     refresh_readings();
     return;
@@ -385,7 +385,7 @@ void Drive::serial_samples(std::uint32_t count, Duration dt) {
   // with the word it holds on (Mc6000PdDevice::step_held moves the plant in one loop).
   for (std::uint32_t k = 0; k < count; ++k) {
     apply_reactions();
-    pd_.set_enable_locked(params_.downloading());
+    pd_.set_enable_locked(params_.engage_locked());
     const Word w = serial_word();
     pd_.step_held(w, serial_reference_rpm(), dt, 1);
     reset_pending_ = false;

@@ -101,6 +101,10 @@ void DriveParameters::finish_download() {
     }
   }
   store_.set(kSload, rejected);
+  // 11.4 steps 3-4: a valid dataset is taken and "The drive is freed and can be started": its
+  // controller is calculated for it (READY mode, MC-D11); a rejected one brings the old dataset
+  // back, and the mode it had.
+  if (rejected == 0) store_.set(kPlrdy, 1);
   download_ = Download::idle;
 }
 
@@ -160,10 +164,17 @@ WriteResult DriveParameters::write(Time now, std::uint16_t number, std::optional
       return refused(Refusal::too_low);
     }
   }
+  // Seed 000, 4: the servo's rates "in steps ... from 2400 Baud to 57600 Baud", in baud as the
+  // inverter's 81 (1: numerically compatible; LB-E18). A number between the steps is refused as
+  // too high, as 80-SLOAD's numbers the host may not write (80H in 85-SERR either way).
+  if (number == kParamSbaud && !receiving && !drive::is_baud_step(raw_value, kHighestBaud)) {
+    return refused(Refusal::too_high);
+  }
   const bool eeprom = p->category == pcp::Category::eeprom && !receiving;
   if (eeprom && eeprom_busy(now)) return refused(Refusal::eeprom_busy);  // 3: wait and repeat
 
   WriteResult result{};
+  const bool changed = raw(number) != raw_value;
   store_.set(number, raw_value);
   if (eeprom) {
     // 3, 10.2.2: RAM at once, the EEPROM copy in the background, data width x 3 x 5 ms.
@@ -185,8 +196,16 @@ WriteResult DriveParameters::write(Time now, std::uint16_t number, std::optional
       ++baud_activations_;  // 11.5: the serial face takes the new 81-SBAUD
     }
     store_.set(kProg, 0);  // a command, not a setting
-  } else if (number == kPlrdy && n == 1) {
-    ++plrdy_requests_;
+  } else if (number == kPlrdy) {
+    // Seed 001, 4.2: "15-PLRDY should be set to 1 to trigger recalculation of the controller
+    // parameters and set the servocontroller to 'READY' mode"; 0 (the attribute InitControl of
+    // its own) registers an initialization. It reads the mode (MC-D11).
+    if (n == 1) ++plrdy_requests_;
+  } else if (changed && !receiving && (p->attributes & pcp::kAttrInitControl) != 0) {
+    // Seed 000, 11.2.1, InitControl: "If a parameter is overwritten with the attribute, then the
+    // [drive] will register a[n] ... initialization because it must calculate its initialization
+    // value anew": out of READY mode until 15-PLRDY = 1 (MC-D11).
+    store_.set(kPlrdy, 0);
   }
   return result;
 }

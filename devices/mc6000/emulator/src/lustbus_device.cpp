@@ -41,7 +41,7 @@ std::uint32_t LustbusDevice::eeprom_value(std::uint16_t number) const {
 }
 
 bool LustbusDevice::set_line_baud(std::uint32_t baud) {
-  if (!drive_->parameters().preset(kParamSbaud, baud)) return false;
+  if (!drive::is_baud_step(baud, kHighestBaud) || !drive_->parameters().preset(kParamSbaud, baud)) return false;
   line_baud_ = baud;
   return true;
 }

@@ -24,7 +24,7 @@ LustbusEmulated make_on(std::shared_ptr<Drive> drive, const LustbusFaceOptions& 
                                        : lustbus_reaction(o.settings.boolean(kLustbusKeypadSetting), o.seed);
   auto d = drive ? std::make_unique<LustbusDevice>(std::move(drive), timing) : std::make_unique<LustbusDevice>(timing);
   if (!d->set_line_baud(o.baud)) {
-    throw std::invalid_argument("an MC6000 runs at 2400..57600 baud (seed 000, 4), not " + std::to_string(o.baud));
+    throw std::invalid_argument("an MC6000 runs at 2400, 4800, 9600, 19200, 38400 or 57600 baud (seed 000, 4), not " + std::to_string(o.baud));
   }
   LustbusDevice* p = d.get();
   // Events act on the core the face serves, at the time given (the face advances it first).
@@ -49,9 +49,12 @@ std::optional<LustbusParameter> find_parameter(std::string_view text) {
   const bool numeric = !text.empty() && r.ec == std::errc{} && r.ptr == text.data() + text.size();
   for (const pcp::ParameterInfo& p : parameters()) {
     if (numeric ? p.number == n : p.name == text) {
-      // 11.4: 80-SLOAD runs the download; it is no part of the dataset.
-      return LustbusParameter{p.number, std::string(p.name),   "",    lustbus_type(p.type), p.min, p.max,
-                              p.writable(), p.number == kProg, p.writable() && p.number != kSload};
+      // 11.4: 80-SLOAD runs the download; it is no part of the dataset. 10.2.2: the servo saves
+      // an EEPROM value in the background, its data width x 15 ms.
+      LustbusParameter lp{p.number, std::string(p.name),   "",    lustbus_type(p.type), p.min, p.max,
+                          p.writable(), p.number == kProg, p.writable() && p.number != kSload};
+      if (p.category == pcp::Category::eeprom) lp.eeprom_width = static_cast<std::uint8_t>(pcp::size_of(p.type));
+      return lp;
     }
   }
   return std::nullopt;

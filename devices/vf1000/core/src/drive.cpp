@@ -92,6 +92,10 @@ drive::WriteCheck Drive::check_write(const drive::ParameterInfo* p, Word raw,
   if (c == drive::WriteCheck::ok && p->number == pnr::kStat && raw != kStatReset) {
     return drive::WriteCheck::invalid_value;
   }
+  // Seed 000, 4: the rate "in steps ranging from 2400 Baud to 9600 Baud" (LB-E18).
+  if (c == drive::WriteCheck::ok && p->number == pnr::kSioc && !drive::is_baud_step(raw, kHighestBaud)) {
+    return drive::WriteCheck::invalid_value;
+  }
   return c;
 }
 

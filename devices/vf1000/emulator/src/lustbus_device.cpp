@@ -37,7 +37,7 @@ LustbusDevice::LustbusDevice(std::shared_ptr<Drive> drive, LustbusTiming timing)
       reactions_(timing.reaction),
       seen_starts_(drive_->starts()) {
   drive_->attach(Face::serial);
-  line_baud_ = sioc_baud(drive_->value(pnr::kSioc));
+  line_baud_ = drive_->value(pnr::kSioc);
 }
 
 LustbusDevice::LustbusDevice(const LustbusDevice& other)
@@ -53,13 +53,10 @@ LustbusDevice::LustbusDevice(const LustbusDevice& other)
 LustbusDevice::~LustbusDevice() { drive_->detach(Face::serial); }
 
 bool LustbusDevice::set_line_baud(std::uint32_t baud) {
-  for (Word code = 0; code <= 2; ++code) {
-    if (sioc_baud(code) != baud) continue;
-    drive_->set_value(pnr::kSioc, code);
-    line_baud_ = baud;
-    return true;
-  }
-  return false;
+  if (!drive::is_baud_step(baud, kHighestBaud)) return false;
+  drive_->set_value(pnr::kSioc, static_cast<Word>(baud));
+  line_baud_ = baud;
+  return true;
 }
 
 void LustbusDevice::set_fault(bool present, Time now) {
@@ -71,7 +68,7 @@ void LustbusDevice::follow_starts() {
   // 11.5: a new rate is active after a restart, once the drive is back.
   if (drive_->starts() == seen_starts_ || drive_->starting()) return;
   seen_starts_ = drive_->starts();
-  line_baud_ = sioc_baud(drive_->value(pnr::kSioc));
+  line_baud_ = drive_->value(pnr::kSioc);
 }
 
 void LustbusDevice::restart(Time now) {

@@ -42,6 +42,20 @@ struct ParameterInfo {
 // The value of a drive's PROG command parameter that loads every parameter's factory default
 // (seed 000, 10, exception 1; the VF1000's 71-PROG, the MC6000's 4-PROG).
 inline constexpr Word kLoadDefaults = 1;
+// 81-SIOC/SBAUD, the line's transmission rate (seed 000, 4): "The transfer rates can be set in
+// steps ranging from 2400 Baud to 9600 Baud for frequency Inverters, and from 2400 Baud to 57600
+// Baud for Servocontrollers. The configuration is set via parameter 81-SIOC/SBAUD"; 1: the
+// parameters for network control, the transmission rate among them, are "numerically compatible"
+// across the family. The value is the rate in baud on every drive (docs/errata.md LB-E18), and a
+// drive takes the steps up to its own highest rate.
+inline constexpr std::uint16_t kBaudRateNumber = 81;
+inline constexpr std::uint32_t kFamilyBaudRates[] = {2400, 4800, 9600, 19200, 38400, 57600};
+constexpr bool is_baud_step(std::uint32_t baud, std::uint32_t highest) {
+  for (const std::uint32_t r : kFamilyBaudRates) {
+    if (r == baud) return baud <= highest;
+  }
+  return false;
+}
 // The download handshake of a drive's SLOAD parameter (seed 000, 11.4; the MC6000's 80-SLOAD): the
 // master writes -1 to begin a parameter download and -2 to end it.
 inline constexpr std::int64_t kDownloadBegin = -1;

@@ -99,6 +99,48 @@ inline constexpr std::uint16_t kAttrPassword = 0x0200;
 inline constexpr std::uint16_t kHwMptc = 0x4000;
 inline constexpr std::uint16_t kHwBrake = 0x8000;
 
+// 11.2.1's tables, row by row: the attribute bits, the hardware flags and the structure word's
+// flags ("Bit-position", "Bit-mask"), the subject areas and the activity areas ("Sequential
+// Number", "Value"). Each mask is 1 << bit; the printed table gives MPTC the mask 8000H beside its
+// bit position 14 (LB-E8): here 4000H.
+struct FlagRow {
+  std::string_view name;
+  std::uint8_t bit;
+  std::uint16_t mask;
+};
+inline constexpr std::array<FlagRow, 8> kAttributeFlags{{
+    {"ShowParaText", 2, kAttrShowParaText}, {"ShowNoFract", 3, kAttrShowNoFract},
+    {"ShowFract1", 4, kAttrShowFract1},     {"ShowText", 5, kAttrShowText},
+    {"InitControl", 6, kAttrInitControl},   {"NoInit", 7, kAttrNoInit},
+    {"ShowHex", 8, kAttrShowHex},           {"Password", 9, kAttrPassword},
+}};
+inline constexpr std::array<FlagRow, 16> kHardwareFlags{{
+    {"Resolver", 0, 0x0001},       {"EncoderSin", 1, 0x0002},     {"EncoderRec", 2, 0x0004},
+    {"EncdSsiSingle", 3, 0x0008},  {"EncdSsiMulti", 4, 0x0010},   {"Option1", 5, 0x0020},
+    {"Option2", 6, 0x0040},        {"ASM", 7, 0x0080},            {"SM", 8, 0x0100},
+    {"Special-drive", 9, 0x0200},  {"EA1", 10, 0x0400},           {"EA2", 11, 0x0800},
+    {"CAN", 12, 0x1000},           {"Extended Memory", 13, 0x2000}, {"MPTC", 14, kHwMptc},
+    {"Brake", 15, kHwBrake},
+}};
+inline constexpr std::array<FlagRow, 6> kStructureFlags{{
+    {"TorqueCtrl", 0, 0x0001}, {"SpeedCtrl", 1, 0x0002}, {"PosCtrl", 2, 0x0004},
+    {"VF_Conv", 3, 0x0008},    {"EMaster", 4, 0x0010},   {"ESlave", 5, 0x0020},
+}};
+struct AreaRow {
+  std::string_view name;
+  std::uint8_t code;
+};
+inline constexpr std::array<AreaRow, 22> kSubjectAreas{{
+    {"CONF", 0},  {"ENCD", 1}, {"OPT1", 2},  {"OPT2", 3},  {"MOT", 4},   {"TCON", 5},
+    {"SCON", 6},  {"PCON", 7}, {"VFCN", 8},  {"SIO", 9},   {"KPAD", 10}, {"PWM", 11},
+    {"SCTY", 12}, {"USER", 13}, {"SYS", 14}, {"REF", 15},  {"IO1", 16},  {"IO2", 17},
+    {"CAN", 18},  {"PMOD", 19}, {"MENU", 20}, {"VAL", 21},
+}};
+inline constexpr std::array<AreaRow, 9> kActivityAreas{{
+    {"SC_Nothing", 0}, {"SC_OPT1", 1}, {"SC_OPT2", 2}, {"SC_APP", 3},  {"SC_SYS", 4},
+    {"SC_DRIVE", 5},   {"SC_REF", 6},  {"SC_CAN", 7},  {"SC_PMOD", 8},
+}};
+
 Parsed<McDescription> parse_mc_description(std::string_view value);
 // How many VALUE characters of the answer to an ENQUIRY of `c` are binary, to be taken as they
 // come (LB-D10): an MC6000 description (specifier 3, 2.4.2) has its 42 elements; others none.

@@ -50,7 +50,14 @@ struct HostConfig {
   std::uint8_t enquiry_retries = 2;
   // SELECT repeated when the 85-SIOF read after its NAK allows it (select_may_be_repeated).
   std::uint8_t select_retries = 3;
-  Duration eeprom_busy_wait = 70ms;  // 9.2: "> 60 ms"
+  // 10.2.2: before a SELECT to an EEPROM parameter of a device that saves in the background (the
+  // servo, 3), the host waits until the device's last EEPROM save is done: "memory time =
+  // parameter data width · 3 · 5 ms", and "wait time = memory time - telegram duration" of the
+  // sequence that wrote it, "if ... positive" (Request::eeprom_width says which SELECTs are such).
+  Duration eeprom_write_time = 5ms;
+  // 9.2's "EEPROM busy: wait (> 60 ms) and repeat telegram": only for a device slower than 10.2.2
+  // (or a SELECT its caller did not say was an EEPROM one).
+  Duration eeprom_busy_wait = 70ms;
   Duration scan_response_timeout = 100ms;
   Duration download_poll_interval = 100ms;
   Duration download_timeout = 10s;  // 11.4, step 4
@@ -131,6 +138,11 @@ struct Request {
   Value value{};
   // Overrides HostConfig::response_timeout (e.g. 10 s for PROG = 1, 10 exception 1).
   std::optional<Duration> response_timeout;
+  // select / broadcast: the data width in bytes of the EEPROM parameter it writes on a device
+  // that saves in the background after its ACK (the servo: seed 000, 3, 10.2.2); 0 for a RAM
+  // parameter or a device that answers only once its EEPROM is written (the inverter, 10.2.1).
+  // The host waits 10.2.2's wait time before such a SELECT (HostConfig::eeprom_write_time).
+  std::uint8_t eeprom_width = 0;
   // download: the records, kept alive by the caller until the request is done.
   std::span<const Assignment> records;
   // indexed_text: the parameter and the value whose text is wanted.
@@ -207,6 +219,8 @@ struct Outcome {
   AnswerError answer_error = AnswerError::none;
   std::optional<std::uint8_t> siof;
   std::uint8_t attempts = 0;  // telegrams of the request's own (last) step
+  // 10.2.2: how long the host waited before the SELECT for the device's EEPROM save.
+  Duration eeprom_wait{};
   ScanResult scan{};
   std::int32_t failed_step = 0;  // download: kDownloadStartStep, 0..n-1 a record, n the end
   std::uint32_t rejected_parameter = 0;
@@ -308,6 +322,12 @@ class Host {
   void on_select_like_ack(Time now);
   void on_select_like_failure(OutcomeKind k, Time now);
   void select_phase(Phase p, const Code& c, const Value& v, Time now);
+  // 10.2.2: the time the device at `a` is done saving its EEPROM, and its record after an
+  // acknowledged (or broadcast) EEPROM SELECT of the active request.
+  [[nodiscard]] Time eeprom_free_at(Address a) const;
+  // send(tx), after 10.2.2's wait when `own_step` is the request's own EEPROM SELECT.
+  void send_select(const Tx& tx, bool own_step, Time now);
+  void note_eeprom_save();
   void enquiry_phase(Phase p, Address a, const Code& c, Duration timeout, Time now);
   void next_scan_address(Time now);
   void finish(OutcomeKind k, Time now);
@@ -354,6 +374,9 @@ class Host {
   bool out_taken_ = false;
   Time deadline_ = Time::max();
   Time exchange_ends_ = Time::max();  // the overall deadline of the exchange on the line
+  Time tx_started_{};                 // when the telegram of the exchange was handed out
+  // 10.2.2: when each address's last background EEPROM save is done (0 and 31: every device's).
+  std::array<Time, kAddressBroadcast + 1> eeprom_free_{};
   Time last_now_{};
 };
 

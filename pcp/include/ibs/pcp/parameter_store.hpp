@@ -40,7 +40,8 @@ class ParameterStore {
   bool commit_eeprom(std::uint16_t number, std::uint32_t raw);
 
   // Power-on: EEPROM values copied to RAM, RAM control values and actual values set to their
-  // defaults (seed 000, 11.2.1).
+  // defaults (seed 000, 11.2.1) -- but for RAM control values with the attribute NoInit, which
+  // "will not be pre-initialized, during start up, with the factory setting" (11.2.1).
   void power_on();
   // 4-PROG = 1: every value, RAM and EEPROM, back to its default (seed 000, 10).
   void factory_defaults();

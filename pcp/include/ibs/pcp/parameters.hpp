@@ -42,6 +42,7 @@ std::string_view to_string(Category c);
 inline constexpr std::uint16_t kAttrShowParaText = 0x0004;
 inline constexpr std::uint16_t kAttrShowText = 0x0020;
 inline constexpr std::uint16_t kAttrInitControl = 0x0040;
+inline constexpr std::uint16_t kAttrNoInit = 0x0080;
 inline constexpr std::uint16_t kAttrShowHex = 0x0100;
 inline constexpr std::uint16_t kAttrPassword = 0x0200;
 

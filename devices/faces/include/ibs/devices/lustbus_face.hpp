@@ -58,6 +58,9 @@ struct LustbusParameter {
   bool writable = true;
   bool prog = false;        // PROG: 1 takes up to 10 s (10 exception 1)
   bool in_dataset = false;  // may be part of an 11.4 dataset download
+  // 10.2.2: the data width of an EEPROM parameter the drive saves after its ACK, for
+  // lustbus::Request::eeprom_width (0: RAM, or a drive that answers once it is saved).
+  std::uint8_t eeprom_width = 0;
 };
 
 struct LustbusFace {

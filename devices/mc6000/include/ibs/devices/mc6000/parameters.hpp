@@ -27,6 +27,8 @@ inline constexpr std::uint16_t kSload = 80;   // seed 000, 11.4
 inline constexpr std::uint16_t kSdmmy = 83;   // seed 000, 5.2
 inline constexpr std::uint16_t kSwdgt = 84;   // seed 000, 5.2
 inline constexpr std::uint16_t kParamSbaud = 81;  // seed 000, 4, 11.5
+// Seed 000, 4: "from 2400 Baud to 57600 Baud for Servocontrollers" (81-SBAUD, in baud: LB-E18).
+inline constexpr std::uint32_t kHighestBaud = 57600;
 inline constexpr std::uint16_t kSerr = drive::kSiofNumber;  // seed 000, 9.2
 inline constexpr std::uint16_t kType = 91;    // seed 000, 5.2
 inline constexpr std::uint16_t kStext = 108;  // seed 000, 11.3
@@ -124,7 +126,7 @@ inline constexpr std::int64_t kQ16Max = 2147483647LL;
 inline constexpr std::array<pcp::ParameterInfo, 34> kParameters{{
   // number name     type                 category               min     max      default          attributes
   {4,   "PROG",  pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               0},  // type, range chosen
-  {15,  "PLRDY", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      1,       0,               pcp::kAttrInitControl},  // type chosen
+  {15,  "PLRDY", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      1,       1,               pcp::kAttrInitControl},  // seed 001 4.2; reads READY mode (1 after a start), type chosen (MC-D11)
   {77,  "SPEED", pcp::DataType::int32q16,  pcp::Category::ram_actual,   kQ16Min, kQ16Max, 0,              0},  // seed 000 6.1.1.2: Q16 rpm
   {80,  "SLOAD", pcp::DataType::integer16, pcp::Category::ram_control,  -2,     999,     0,               0},  // seed 000 11.4: -2, -1, 0, parameter number
   {81,  "SBAUD", pcp::DataType::usign16,   pcp::Category::eeprom,       2400,   57600,   9600,            0},  // seed 000 4: 2400..57600, factory 9600

@@ -176,6 +176,9 @@ class Drive final : public DriveAccess {
   [[nodiscard]] bool bus_watchdog_fault() const { return bus_fault_; }
   [[nodiscard]] bool serial_watchdog_fault() const { return serial_fault_; }
   [[nodiscard]] std::uint32_t recalculations() const { return params_.plrdy_requests(); }
+  // Seed 001, 4.2: the servo's READY mode, which 15-PLRDY reads; out of it ENABLE stops in ON
+  // (DriveParameters::ready_mode, MC-D11).
+  [[nodiscard]] bool ready_mode() const { return params_.ready_mode(); }
 
  private:
   void sample_one(Time now, Word control, double reference_rpm);

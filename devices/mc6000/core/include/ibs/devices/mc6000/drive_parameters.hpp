@@ -2,7 +2,8 @@
 // "One drive, many faces"): the one store (RAM, the EEPROM copy, and the dataset a rejected
 // download brings back), the write checks, the 85-SERR latch with its power-on bit (seed 000, 6
 // and 9.2), the EEPROM save in the background (3, 10.2.2: 15 ms per byte, "EEPROM busy"), 4-PROG
-// (10 exception 1: factory defaults; 11.5: 111 activates 81-SBAUD), 15-PLRDY (seed 001, 4.2) and
+// (10 exception 1: factory defaults; 11.5: 111 activates 81-SBAUD), 15-PLRDY and READY mode (seed
+// 001, 4.2; the attributes InitControl and NoInit of seed 000, 11.2.1: MC-D11) and
 // the 80-SLOAD download of the CardWriteable parameters (seed 000, 11.4).
 //
 // It knows no bus: a face turns its telegram or PDU into number + raw value and the refusal back
@@ -120,11 +121,18 @@ class DriveParameters {
   [[nodiscard]] bool download_testing() const { return download_ == Download::testing; }
   // How many times 15-PLRDY = 1 asked for a controller recalculation (seed 001, 4.2).
   [[nodiscard]] std::uint32_t plrdy_requests() const { return plrdy_requests_; }
+  // READY mode (seed 001, 4.2; MC-D11): the controller is calculated for the parameters as they
+  // stand -- after a start, 4-PROG = 1, an accepted download or 15-PLRDY = 1; not after a changed
+  // InitControl parameter (seed 000, 11.2.1) or 15-PLRDY = 0. 15-PLRDY reads it.
+  [[nodiscard]] bool ready_mode() const { return raw(kPlrdyNumber) == 1; }
+  // The servo may not be engaged: during a download (11.4) or out of READY mode (MC-D11).
+  [[nodiscard]] bool engage_locked() const { return downloading() || !ready_mode(); }
   // How many times 4-PROG = 111 asked to activate 81-SBAUD (11.5; the serial face acts on it).
   [[nodiscard]] std::uint32_t baud_activations() const { return baud_activations_; }
 
  private:
   static constexpr std::uint16_t kSerrNumber = drive::kSiofNumber;
+  static constexpr std::uint16_t kPlrdyNumber = 15;  // parameters.hpp's kPlrdy (seed 001, 4.2)
   enum class Download : std::uint8_t { idle, receiving, testing };
   void advance_pending(Time now);  // advance() with an EEPROM save or a download test pending
   WriteResult refused(Refusal r);

@@ -57,6 +57,8 @@ inline constexpr Word kStatRunning = 0x02;
 inline constexpr Word kStatCounterClockwise = 0x04;
 inline constexpr Word kStatError = 0x80;
 inline constexpr Word kStatReset = 0x000F;
+// Seed 000, 4: "from 2400 Baud to 9600 Baud for frequency Inverters" (81-SIOC, in baud: LB-E18).
+inline constexpr std::uint32_t kHighestBaud = 9600;
 
 class Drive final : public drive::ParameterAccess {
  public:

@@ -122,9 +122,5 @@ class LustbusDevice final : public lustbus::Responder {
   std::uint32_t line_baud_ = 9600;
 };
 
-// 81-SIOC's codes (its table row: 0 2400, 1 4800, 2 9600 Bd).
-constexpr std::uint32_t sioc_baud(Word code) {
-  return code == 0 ? 2400U : code == 1 ? 4800U : 9600U;
-}
 
 }  // namespace ibs::devices::vf1000
