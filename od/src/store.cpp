@@ -8,7 +8,9 @@ namespace ibs::od {
 
 namespace {
 
-std::string label(const Entry& e) { return std::to_string(e.number) + "-" + std::string(e.name); }
+std::string label(const Entry& e) {
+  return std::to_string(e.number) + "-" + std::string(e.name);
+}
 
 const Dictionary& checked(const Dictionary& d, std::span<const DefaultOverride> defaults) {
   ibs::detail::require<std::invalid_argument>(Store::validate(d, defaults));
@@ -20,16 +22,21 @@ const Dictionary& checked(const Dictionary& d, std::span<const DefaultOverride> 
 Error Store::validate(const Dictionary& d, std::span<const DefaultOverride> defaults) {
   for (std::size_t i = 0; i < defaults.size(); ++i) {
     const DefaultOverride& o = defaults[i];
-    const std::string who = "default override " + std::to_string(i) + " (parameter " + std::to_string(o.number) + ")";
+    const std::string who =
+        "default override " + std::to_string(i) + " (parameter " + std::to_string(o.number) + ")";
     const Entry* e = d.find(o.number);
-    if (e == nullptr) return {ErrorCode::table_number_out_of_range, who + ": the dictionary has no such entry"};
+    if (e == nullptr)
+      return {ErrorCode::table_number_out_of_range, who + ": the dictionary has no such entry"};
     for (std::size_t j = 0; j < i; ++j) {
-      if (defaults[j].number == o.number) return {ErrorCode::table_number_repeated, who + ": number given twice"};
+      if (defaults[j].number == o.number)
+        return {ErrorCode::table_number_repeated, who + ": number given twice"};
     }
-    if (e->is_text()) return {ErrorCode::table_limits_outside_type, who + ": " + label(*e) + " is a text"};
+    if (e->is_text())
+      return {ErrorCode::table_limits_outside_type, who + ": " + label(*e) + " is a text"};
     if (!fits(e->type, o.value) || fit(*e, raw(e->type, o.value)) != Fit::ok) {
-      return {ErrorCode::table_default_outside_limits,
-              who + ": " + std::to_string(o.value) + " is no value of " + label(*e) + " (min..max, type, choices)"};
+      return {ErrorCode::table_default_outside_limits, who + ": " + std::to_string(o.value) +
+                                                           " is no value of " + label(*e) +
+                                                           " (min..max, type, choices)"};
     }
   }
   return {};
@@ -43,8 +50,10 @@ Store::Store(const Dictionary& d, std::span<const DefaultOverride> defaults)
     factory_[i] = entries[i].default_raw();
     if (entries[i].is_text()) chars += 3 * static_cast<std::size_t>(entries[i].max);
   }
-  for (const DefaultOverride& o : defaults) factory_[d.slot(o.number)] = raw(d.find(o.number)->type, o.value);
-  if (chars > 0 || std::any_of(entries.begin(), entries.end(), [](const Entry& e) { return e.is_text(); })) {
+  for (const DefaultOverride& o : defaults)
+    factory_[d.slot(o.number)] = raw(d.find(o.number)->type, o.value);
+  if (chars > 0 ||
+      std::any_of(entries.begin(), entries.end(), [](const Entry& e) { return e.is_text(); })) {
     texts_.resize(entries.size());
     chars_.resize(chars);
     std::uint32_t offset = 0;
@@ -61,7 +70,8 @@ Store::Store(const Dictionary& d, std::span<const DefaultOverride> defaults)
   for (std::size_t i = 0; i < entries.size(); ++i) cells_[i] = {factory_[i], factory_[i]};
   for (std::size_t i = 0; i < texts_.size(); ++i) {
     if (!entries[i].is_text()) continue;
-    const std::string_view f(chars_.data() + texts_[i].offset + 2U * texts_[i].capacity, texts_[i].factory_size);
+    const std::string_view f(chars_.data() + texts_[i].offset + 2U * texts_[i].capacity,
+                             texts_[i].factory_size);
     put_text(texts_[i], 0, f);
     put_text(texts_[i], 1, f);
   }
@@ -69,7 +79,8 @@ Store::Store(const Dictionary& d, std::span<const DefaultOverride> defaults)
 }
 
 void Store::put_text(TextCell& c, std::size_t which, std::string_view t) {
-  std::copy(t.begin(), t.end(), chars_.begin() + static_cast<std::ptrdiff_t>(c.offset + which * c.capacity));
+  std::copy(t.begin(), t.end(),
+            chars_.begin() + static_cast<std::ptrdiff_t>(c.offset + which * c.capacity));
   const auto n = static_cast<std::uint16_t>(t.size());
   (which == 0 ? c.ram_size : which == 1 ? c.kept_size : c.factory_size) = n;
 }
@@ -141,7 +152,8 @@ void Store::factory_defaults() {
       std::copy_n(factory, c.factory_size, chars_.begin() + static_cast<std::ptrdiff_t>(c.offset));
       c.ram_size = c.factory_size;
       if (!keep_kept) {
-        std::copy_n(factory, c.factory_size, chars_.begin() + static_cast<std::ptrdiff_t>(c.offset + c.capacity));
+        std::copy_n(factory, c.factory_size,
+                    chars_.begin() + static_cast<std::ptrdiff_t>(c.offset + c.capacity));
         c.kept_size = c.factory_size;
       }
     }
@@ -174,7 +186,8 @@ bool Store::write_text(Slot s, std::string_view t, bool power_stage_enabled) {
   if (!text_ok(s, t)) return false;
   put_text(texts_[s], 0, t);
   const Storage k = (*dict_)[s].storage;
-  if (k == Storage::eeprom || (k == Storage::eeprom_ram && !power_stage_enabled)) put_text(texts_[s], 1, t);
+  if (k == Storage::eeprom || (k == Storage::eeprom_ram && !power_stage_enabled))
+    put_text(texts_[s], 1, t);
   return true;
 }
 

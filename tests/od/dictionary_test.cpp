@@ -1,5 +1,7 @@
 // The dictionary: its index (made at compile time, one load a lookup), the lookups by number, name
 // and "NNN-NAME", the roles, and every refusal of check()/validate() with the entry it names.
+#include "ibs/od/dictionary.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "ibs/od/dictionary.hpp"
 #include "sample.hpp"
 
 namespace ibs::od {
@@ -34,7 +35,8 @@ TEST(OdDictionary, SlotIsOneLookup) {
         if (d->entries()[i].number == n) walk = static_cast<Slot>(i);
       }
       ASSERT_EQ(d->slot(static_cast<std::uint16_t>(n)), walk) << n;
-      ASSERT_EQ(d->find(static_cast<std::uint16_t>(n)), walk == kNoSlot ? nullptr : &d->entries()[walk]);
+      ASSERT_EQ(d->find(static_cast<std::uint16_t>(n)),
+                walk == kNoSlot ? nullptr : &d->entries()[walk]);
     }
   }
   // (What it costs -- a compare and one load -- bench/od measures: BM_Slot, slot_once.)
@@ -74,7 +76,9 @@ TEST(OdDictionary, RolesAndProfile) {
 }
 
 // One valid entry, then one thing wrong with it per row.
-Entry good() { return {.number = 574, .name = "CAWDG", .type = Type::usign8, .min = 0, .max = 255, .unit = "ms"}; }
+Entry good() {
+  return {.number = 574, .name = "CAWDG", .type = Type::usign8, .min = 0, .max = 255, .unit = "ms"};
+}
 
 constexpr std::array kTwoChoices{Choice{0, "OFF", ""}, Choice{6, "OPTN2", ""}};
 constexpr std::array kRepeatedChoice{Choice{0, "OFF", ""}, Choice{1, "off", ""}};
@@ -95,39 +99,95 @@ std::vector<Refused> refused_rows() {
     change(e);
     rows.push_back({name, e, code, what});
   };
-  row("NumberAbove3FFH", [](Entry& e) { e.number = 0x400; }, ErrorCode::table_number_out_of_range, "above 3FFH");
-  row("EmptyName", [](Entry& e) { e.name = ""; }, ErrorCode::table_bad_name, "name must be printable");
-  row("NameWithALeadingDigit", [](Entry& e) { e.name = "9AB"; }, ErrorCode::table_bad_name, "no digit");
-  row("NameEndingInADash", [](Entry& e) { e.name = "AB-"; }, ErrorCode::table_bad_name, "'-'");
-  row("NameWithATab", [](Entry& e) { e.name = "A\tB"; }, ErrorCode::table_bad_name, "printable");
-  row("UnitNotPrintable", [](Entry& e) { e.unit = "\x01"; }, ErrorCode::table_bad_unit, "unit");
-  row("ScaleZero", [](Entry& e) { e.scale = 0.0; }, ErrorCode::table_scale_not_positive, "scale");
-  row("ScaleNaN", [](Entry& e) { e.scale = std::nan(""); }, ErrorCode::table_scale_not_positive, "scale");
-  row("NoElements", [](Entry& e) { e.elements = 0; }, ErrorCode::table_bad_elements, "element");
-  row("MaxOutsideTheType", [](Entry& e) { e.max = 256; }, ErrorCode::table_limits_outside_type, "outside the data type");
-  row("MinOutsideTheType", [](Entry& e) { e.min = -1; }, ErrorCode::table_limits_outside_type, "outside the data type");
-  row("MinAboveMax", [](Entry& e) { e.min = 10, e.max = 9, e.default_value = 9; }, ErrorCode::table_min_above_max, "min above max");
-  row("DefaultAboveMax", [](Entry& e) { e.max = 9, e.default_value = 10; }, ErrorCode::table_default_outside_limits, "default");
-  row("DefaultTextOfANumber", [](Entry& e) { e.default_text = "x"; }, ErrorCode::table_default_outside_limits, "text");
-  row("TextLongerThan255", [](Entry& e) { e.type = Type::string, e.max = 256; }, ErrorCode::table_limits_outside_type, "0..255");
-  row("DefaultTextTooLong", [](Entry& e) { e.type = Type::string, e.max = 3, e.default_text = "LCAN"; },
-      ErrorCode::table_default_outside_limits, "default text");
-  row("FloatMinAboveMax", [](Entry& e) { e.type = Type::float_ieee, e.min = 0x40000000, e.max = 0x3F800000, e.default_value = 0x3F800000; },
+  row(
+      "NumberAbove3FFH", [](Entry& e) { e.number = 0x400; }, ErrorCode::table_number_out_of_range,
+      "above 3FFH");
+  row(
+      "EmptyName", [](Entry& e) { e.name = ""; }, ErrorCode::table_bad_name,
+      "name must be printable");
+  row(
+      "NameWithALeadingDigit", [](Entry& e) { e.name = "9AB"; }, ErrorCode::table_bad_name,
+      "no digit");
+  row(
+      "NameEndingInADash", [](Entry& e) { e.name = "AB-"; }, ErrorCode::table_bad_name, "'-'");
+  row(
+      "NameWithATab", [](Entry& e) { e.name = "A\tB"; }, ErrorCode::table_bad_name, "printable");
+  row(
+      "UnitNotPrintable", [](Entry& e) { e.unit = "\x01"; }, ErrorCode::table_bad_unit, "unit");
+  row(
+      "ScaleZero", [](Entry& e) { e.scale = 0.0; }, ErrorCode::table_scale_not_positive, "scale");
+  row(
+      "ScaleNaN", [](Entry& e) { e.scale = std::nan(""); }, ErrorCode::table_scale_not_positive,
+      "scale");
+  row(
+      "NoElements", [](Entry& e) { e.elements = 0; }, ErrorCode::table_bad_elements, "element");
+  row(
+      "MaxOutsideTheType", [](Entry& e) { e.max = 256; }, ErrorCode::table_limits_outside_type,
+      "outside the data type");
+  row(
+      "MinOutsideTheType", [](Entry& e) { e.min = -1; }, ErrorCode::table_limits_outside_type,
+      "outside the data type");
+  row(
+      "MinAboveMax", [](Entry& e) { e.min = 10, e.max = 9, e.default_value = 9; },
       ErrorCode::table_min_above_max, "min above max");
-  row("ShowTextWithoutChoices", [](Entry& e) { e.attributes = attr::kShowText; }, ErrorCode::table_bad_choices, "ShowText");
-  row("ChoicesOnlyWithoutChoices", [](Entry& e) { e.choices_only = true; }, ErrorCode::table_bad_choices, "choices_only");
-  row("ChoiceNameTwice", [](Entry& e) { e.choices = kRepeatedChoice; }, ErrorCode::table_bad_choices, "used twice");
-  row("ChoiceNoValueOfTheType", [](Entry& e) { e.choices = kWideChoice; }, ErrorCode::table_bad_choices, "no value of the type");
-  row("DefaultNoneOfTheChoices", [](Entry& e) { e.choices = kTwoChoices, e.choices_only = true, e.default_value = 3; },
+  row(
+      "DefaultAboveMax", [](Entry& e) { e.max = 9, e.default_value = 10; },
+      ErrorCode::table_default_outside_limits, "default");
+  row(
+      "DefaultTextOfANumber", [](Entry& e) { e.default_text = "x"; },
+      ErrorCode::table_default_outside_limits, "text");
+  row(
+      "TextLongerThan255", [](Entry& e) { e.type = Type::string, e.max = 256; },
+      ErrorCode::table_limits_outside_type, "0..255");
+  row(
+      "DefaultTextTooLong",
+      [](Entry& e) { e.type = Type::string, e.max = 3, e.default_text = "LCAN"; },
+      ErrorCode::table_default_outside_limits, "default text");
+  row(
+      "FloatMinAboveMax",
+      [](Entry& e) {
+        e.type = Type::float_ieee, e.min = 0x40000000, e.max = 0x3F800000,
+        e.default_value = 0x3F800000;
+      },
+      ErrorCode::table_min_above_max, "min above max");
+  row(
+      "ShowTextWithoutChoices", [](Entry& e) { e.attributes = attr::kShowText; },
+      ErrorCode::table_bad_choices, "ShowText");
+  row(
+      "ChoicesOnlyWithoutChoices", [](Entry& e) { e.choices_only = true; },
+      ErrorCode::table_bad_choices, "choices_only");
+  row(
+      "ChoiceNameTwice", [](Entry& e) { e.choices = kRepeatedChoice; },
+      ErrorCode::table_bad_choices, "used twice");
+  row(
+      "ChoiceNoValueOfTheType", [](Entry& e) { e.choices = kWideChoice; },
+      ErrorCode::table_bad_choices, "no value of the type");
+  row(
+      "DefaultNoneOfTheChoices",
+      [](Entry& e) { e.choices = kTwoChoices, e.choices_only = true, e.default_value = 3; },
       ErrorCode::table_bad_choices, "default is none");
-  row("SiofNotAt85", [](Entry& e) { e.role = Role::error_flags, e.storage = Storage::ram_actual; }, ErrorCode::table_bad_role, "number 85");
-  row("SiofWritable", [](Entry& e) { e.number = 85, e.role = Role::error_flags; }, ErrorCode::table_bad_role, "not writable");
-  row("SloadUnsigned", [](Entry& e) { e.role = Role::download; }, ErrorCode::table_bad_role, "signed");
-  row("ProgReadOnly", [](Entry& e) { e.role = Role::load_defaults, e.read_only = true; }, ErrorCode::table_bad_role, "PROG");
-  row("SaveWithoutOne", [](Entry& e) { e.role = Role::save, e.max = 0; }, ErrorCode::table_bad_role, "take 1");
-  row("KeypadActivityOutsideTheDataSet", [](Entry& e) { e.keypad = &kInDataSet; }, ErrorCode::table_bad_role, "activity area");
-  row("ReadOnlyInTheDataSet", [](Entry& e) { e.in_data_set = true, e.storage = Storage::ram_actual; }, ErrorCode::table_bad_role,
-      "only writable values");
+  row(
+      "SiofNotAt85", [](Entry& e) { e.role = Role::error_flags, e.storage = Storage::ram_actual; },
+      ErrorCode::table_bad_role, "number 85");
+  row(
+      "SiofWritable", [](Entry& e) { e.number = 85, e.role = Role::error_flags; },
+      ErrorCode::table_bad_role, "not writable");
+  row(
+      "SloadUnsigned", [](Entry& e) { e.role = Role::download; }, ErrorCode::table_bad_role,
+      "signed");
+  row(
+      "ProgReadOnly", [](Entry& e) { e.role = Role::load_defaults, e.read_only = true; },
+      ErrorCode::table_bad_role, "PROG");
+  row(
+      "SaveWithoutOne", [](Entry& e) { e.role = Role::save, e.max = 0; }, ErrorCode::table_bad_role,
+      "take 1");
+  row(
+      "KeypadActivityOutsideTheDataSet", [](Entry& e) { e.keypad = &kInDataSet; },
+      ErrorCode::table_bad_role, "activity area");
+  row(
+      "ReadOnlyInTheDataSet",
+      [](Entry& e) { e.in_data_set = true, e.storage = Storage::ram_actual; },
+      ErrorCode::table_bad_role, "only writable values");
   return rows;
 }
 
@@ -141,7 +201,8 @@ TEST(OdDictionary, ValidateRefusesEveryBrokenRuleNamingTheEntry) {
     EXPECT_EQ(f.entry, 1U);
     const Error e = Dictionary::validate(entries);
     EXPECT_EQ(e.code, r.code);
-    EXPECT_EQ(e.message.rfind("dictionary entry 1 (" + std::to_string(r.entry.number) + "-", 0), 0U) << e.message;
+    EXPECT_EQ(e.message.rfind("dictionary entry 1 (" + std::to_string(r.entry.number) + "-", 0), 0U)
+        << e.message;
     EXPECT_NE(e.message.find(r.what), std::string::npos) << e.message;
     // The constructor of the default build throws the same message.
     try {
@@ -154,7 +215,8 @@ TEST(OdDictionary, ValidateRefusesEveryBrokenRuleNamingTheEntry) {
 }
 
 TEST(OdDictionary, ValidateRefusesRepeatsAcrossEntries) {
-  const Entry a{.number = 4, .name = "PROG", .type = Type::usign8, .max = 1, .role = Role::load_defaults};
+  const Entry a{
+      .number = 4, .name = "PROG", .type = Type::usign8, .max = 1, .role = Role::load_defaults};
   Entry b = a;
   b.name = "PROG2";
   EXPECT_EQ(check(std::array{a, b}).code, ErrorCode::table_number_repeated);
@@ -162,7 +224,8 @@ TEST(OdDictionary, ValidateRefusesRepeatsAcrossEntries) {
   EXPECT_EQ(check(std::array{a, b}).code, ErrorCode::table_bad_role);
   b.role = Role::value;
   b.name = "prog";
-  EXPECT_EQ(check(std::array{a, b}).code, ErrorCode::table_bad_name);  // names are found in any case
+  EXPECT_EQ(check(std::array{a, b}).code,
+            ErrorCode::table_bad_name);  // names are found in any case
   b.name = "FOO";
   EXPECT_TRUE(check(std::array{a, b}).ok());
   EXPECT_TRUE(Dictionary::validate(std::array{a, b}).ok());

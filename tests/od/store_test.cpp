@@ -1,6 +1,8 @@
 // The one store: each storage kind across write, power-on, save and factory defaults; the
 // overlays; texts; the download's spare; no allocation after construction; and, operation by
 // operation, the same values as the stores of today (drive::ParameterStore, pcp::ParameterStore).
+#include "ibs/od/store.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -8,7 +10,6 @@
 #include <string>
 
 #include "ibs/drive/parameters.hpp"
-#include "ibs/od/store.hpp"
 #include "ibs/pcp/parameter_store.hpp"
 #include "sample.hpp"
 
@@ -16,13 +17,21 @@ namespace ibs::od {
 namespace {
 
 // One entry of each kind, each with the default 7 and the range 0..100.
-constexpr Entry kind(std::uint16_t n, std::string_view name, Storage s, std::uint16_t attributes = 0) {
-  return {.number = n, .name = name, .type = Type::usign16, .min = 0, .max = 100, .default_value = 7, .storage = s,
+constexpr Entry kind(std::uint16_t n, std::string_view name, Storage s,
+                     std::uint16_t attributes = 0) {
+  return {.number = n,
+          .name = name,
+          .type = Type::usign16,
+          .min = 0,
+          .max = 100,
+          .default_value = 7,
+          .storage = s,
           .attributes = attributes};
 }
-constexpr std::array kKinds{kind(1, "RAMC", Storage::ram_control), kind(2, "RAMA", Storage::ram_actual),
-                            kind(3, "EE", Storage::eeprom),       kind(4, "EERAM", Storage::eeprom_ram),
-                            kind(5, "FLASH", Storage::flash),     kind(6, "NOINI", Storage::ram_control, attr::kNoInit)};
+constexpr std::array kKinds{
+    kind(1, "RAMC", Storage::ram_control), kind(2, "RAMA", Storage::ram_actual),
+    kind(3, "EE", Storage::eeprom),        kind(4, "EERAM", Storage::eeprom_ram),
+    kind(5, "FLASH", Storage::flash),      kind(6, "NOINI", Storage::ram_control, attr::kNoInit)};
 constexpr Dictionary kKindsDict{kKinds};
 enum : Slot { kRamControl, kRamActual, kEeprom, kEepromRam, kFlash, kNoInit };
 
@@ -40,9 +49,9 @@ struct KindRow {
   Slot slot;
   bool kept_on_write_stage_off;  // the kept copy follows a write with the power stage disabled
   bool kept_on_write_stage_on;
-  bool ram_back_at_power_on;     // power-on brings back the written value (else the default)
-  bool kept_by_save;             // save(kind) keeps RAM
-  bool kept_reset_by_defaults;   // factory_defaults() resets the kept copy
+  bool ram_back_at_power_on;    // power-on brings back the written value (else the default)
+  bool kept_by_save;            // save(kind) keeps RAM
+  bool kept_reset_by_defaults;  // factory_defaults() resets the kept copy
 };
 // Seed 000 11.1 / seed 001 4.1.3.3 (RAM, EEPROM, EEPROM/RAM), 11.2.1 (NoInit), seed 003 3.5.1 and
 // p. 13 (flash: kept by 150-SAVE only, PROG leaves it alone).
@@ -64,7 +73,8 @@ TEST(OdStore, EachStorageKindAcrossWritePowerOnSaveAndDefaults) {
       EXPECT_EQ(changed, kept);
       EXPECT_EQ(s.kept(row.slot), kept ? 42U : 7U);
       s.power_on();
-      EXPECT_EQ(s.ram(row.slot), kept || (row.ram_back_at_power_on && e.storage == Storage::ram_control) ? 42U : 7U);
+      EXPECT_EQ(s.ram(row.slot),
+                kept || (row.ram_back_at_power_on && e.storage == Storage::ram_control) ? 42U : 7U);
     }
     Store s(kKindsDict);
     s.write(row.slot, 42, true);
@@ -125,7 +135,8 @@ TEST(OdStore, DefaultOverlays) {
   const DefaultOverride text[] = {{90, 1}};
   EXPECT_EQ(Store::validate(test::kCda, text).code, ErrorCode::table_limits_outside_type);
   const DefaultOverride not_a_choice[] = {{260, 3}};
-  EXPECT_EQ(Store::validate(test::kCda, not_a_choice).code, ErrorCode::table_default_outside_limits);
+  EXPECT_EQ(Store::validate(test::kCda, not_a_choice).code,
+            ErrorCode::table_default_outside_limits);
 }
 
 // The CDA3000's 90-NAME (flash: 150-SAVE keeps it) and 578-OPTN2 (a RAM constant).
@@ -195,7 +206,8 @@ TEST(OdStoreKeepsTodays, DriveParameterStore) {
       {3, "CNTL", "", Category::ram_control, drive::DataType::binary8, 0, 0xFF, 0, 1.0, ""},
       {5, "FSSIO", "Hz", Category::eeprom_ram, drive::DataType::fixpoint16, 0, 19999, 0, 0.05, ""},
       {12, "FOUT", "Hz", Category::ram_actual, drive::DataType::fixpoint16, 0, 0xFFFF, 0, 0.05, ""},
-      {911, "FDRIV", "Hz", Category::ram_control, drive::DataType::integer16, 0x8000, 0x7FFF, 0, 0.05, ""},
+      {911, "FDRIV", "Hz", Category::ram_control, drive::DataType::integer16, 0x8000, 0x7FFF, 0,
+       0.05, ""},
   };
   drive::ParameterStore old(today);
   Store now(test::kVf);  // the same numbers in the sample (kVf* entries)
@@ -236,7 +248,8 @@ TEST(OdStoreKeepsTodays, DriveParameterStore) {
 TEST(OdStoreKeepsTodays, PcpParameterStore) {
   const pcp::ParameterInfo today[] = {
       {4, "PROG", pcp::DataType::usign8, pcp::Category::ram_control, 0, 255, 0, 0},
-      {77, "SPEED", pcp::DataType::int32q16, pcp::Category::ram_actual, -2147483648LL, 2147483647LL, 0, 0},
+      {77, "SPEED", pcp::DataType::int32q16, pcp::Category::ram_actual, -2147483648LL, 2147483647LL,
+       0, 0},
       {80, "SLOAD", pcp::DataType::integer16, pcp::Category::ram_control, -2, 999, 0, 0},
       {417, "RSSL1", pcp::DataType::usign8, pcp::Category::eeprom, 0, 7, 0, 0},
       {419, "RSSL3", pcp::DataType::usign8, pcp::Category::eeprom, 0, 7, 6, 0},

@@ -2,6 +2,8 @@
 // type up to 16 bits and a sample of the 32-bit ones, the engineering conversions with the
 // manuals' examples, and -- so that nothing is lost when the four families of today go -- every
 // type of drive::, pcp::, lustbus:: and canlust:: against its od::Type.
+#include "ibs/od/types.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -11,15 +13,15 @@
 #include "ibs/canlust/data_types.hpp"
 #include "ibs/drive/data_types.hpp"
 #include "ibs/lustbus/value.hpp"
-#include "ibs/od/types.hpp"
 #include "ibs/pcp/data_types.hpp"
 
 namespace ibs::od {
 namespace {
 
-constexpr std::array kAll{Type::binary8, Type::usign8,     Type::int8,       Type::usign16, Type::int16,
-                          Type::usign32, Type::int32,      Type::fixpoint16, Type::int32q16, Type::float_ieee,
-                          Type::password, Type::error16,   Type::error32,    Type::string};
+constexpr std::array kAll{Type::binary8,  Type::usign8,     Type::int8,     Type::usign16,
+                          Type::int16,    Type::usign32,    Type::int32,    Type::fixpoint16,
+                          Type::int32q16, Type::float_ieee, Type::password, Type::error16,
+                          Type::error32,  Type::string};
 
 TEST(OdTypes, TheTableIsInTheEnumsOrder) {
   ASSERT_EQ(kAll.size(), kTypeCount);
@@ -43,8 +45,9 @@ TEST(OdTypes, NumberAndRawRoundTripForEveryRawOfEveryType) {
     const std::uint32_t patterns = 1U << b;
     for (std::uint32_t p = 0; p < patterns; ++p) {
       const std::int64_t n = number(t, p);
-      const std::int64_t expected = is_signed(t) && p >= patterns / 2 ? static_cast<std::int64_t>(p) - patterns
-                                                                      : static_cast<std::int64_t>(p);
+      const std::int64_t expected = is_signed(t) && p >= patterns / 2
+                                        ? static_cast<std::int64_t>(p) - patterns
+                                        : static_cast<std::int64_t>(p);
       ASSERT_EQ(n, expected) << p;
       ASSERT_TRUE(fits(t, n));
       const Raw r = raw(t, n);
@@ -57,7 +60,8 @@ TEST(OdTypes, NumberAndRawRoundTripForEveryRawOfEveryType) {
       ASSERT_EQ(number(t, p | (0xA5A5U << b)), n) << p;
     }
     EXPECT_EQ(min_number(t), is_signed(t) ? -static_cast<std::int64_t>(patterns / 2) : 0);
-    EXPECT_EQ(max_number(t), is_signed(t) ? static_cast<std::int64_t>(patterns / 2) - 1 : patterns - 1);
+    EXPECT_EQ(max_number(t),
+              is_signed(t) ? static_cast<std::int64_t>(patterns / 2) - 1 : patterns - 1);
     EXPECT_FALSE(fits(t, max_number(t) + 1));
     EXPECT_FALSE(fits(t, min_number(t) - 1));
   }
@@ -66,7 +70,8 @@ TEST(OdTypes, NumberAndRawRoundTripForEveryRawOfEveryType) {
 TEST(OdTypes, NumberAndRawRoundTripSampledAt32Bits) {
   std::mt19937 gen(38);
   std::uniform_int_distribution<std::uint32_t> any;
-  const std::uint32_t edges[] = {0, 1, 0x7FFFFFFF, 0x80000000, 0xFFFFFFFF, 0x0000FFFF, 0x00010000, 0xFFFF0000};
+  const std::uint32_t edges[] = {0,          1,          0x7FFFFFFF, 0x80000000,
+                                 0xFFFFFFFF, 0x0000FFFF, 0x00010000, 0xFFFF0000};
   for (const Type t : kAll) {
     if (bits(t) != 32) continue;
     SCOPED_TRACE(std::string(to_string(t)));
@@ -158,56 +163,91 @@ TEST(OdTypes, ErrorStructures) {
 
 Type of(drive::DataType t) {
   switch (t) {
-    case drive::DataType::binary8: return Type::binary8;
-    case drive::DataType::fixpoint16: return Type::fixpoint16;
-    case drive::DataType::usign16: return Type::usign16;
-    case drive::DataType::usign8: return Type::usign8;
-    case drive::DataType::vf_error: return Type::error16;
-    case drive::DataType::password: return Type::password;
-    case drive::DataType::integer16: return Type::int16;
+    case drive::DataType::binary8:
+      return Type::binary8;
+    case drive::DataType::fixpoint16:
+      return Type::fixpoint16;
+    case drive::DataType::usign16:
+      return Type::usign16;
+    case drive::DataType::usign8:
+      return Type::usign8;
+    case drive::DataType::vf_error:
+      return Type::error16;
+    case drive::DataType::password:
+      return Type::password;
+    case drive::DataType::integer16:
+      return Type::int16;
   }
   return Type::string;
 }
 Type of(pcp::DataType t) {
   switch (t) {
-    case pcp::DataType::usign8: return Type::usign8;
-    case pcp::DataType::usign16: return Type::usign16;
-    case pcp::DataType::fixpoint16: return Type::fixpoint16;
-    case pcp::DataType::integer16: return Type::int16;
-    case pcp::DataType::int32q16: return Type::int32q16;
-    case pcp::DataType::float_ieee: return Type::float_ieee;
-    case pcp::DataType::mc_error: return Type::error32;
-    case pcp::DataType::password: return Type::password;
+    case pcp::DataType::usign8:
+      return Type::usign8;
+    case pcp::DataType::usign16:
+      return Type::usign16;
+    case pcp::DataType::fixpoint16:
+      return Type::fixpoint16;
+    case pcp::DataType::integer16:
+      return Type::int16;
+    case pcp::DataType::int32q16:
+      return Type::int32q16;
+    case pcp::DataType::float_ieee:
+      return Type::float_ieee;
+    case pcp::DataType::mc_error:
+      return Type::error32;
+    case pcp::DataType::password:
+      return Type::password;
   }
   return Type::string;
 }
 Type of(lustbus::DataType t) {
   switch (t) {
-    case lustbus::DataType::binary8: return Type::binary8;
-    case lustbus::DataType::usign8: return Type::usign8;
-    case lustbus::DataType::usign16: return Type::usign16;
-    case lustbus::DataType::fixpoint16: return Type::fixpoint16;
-    case lustbus::DataType::integer16: return Type::int16;
-    case lustbus::DataType::int32q16: return Type::int32q16;
-    case lustbus::DataType::float_ieee: return Type::float_ieee;
-    case lustbus::DataType::vf_error: return Type::error16;
-    case lustbus::DataType::mc_error: return Type::error32;
-    case lustbus::DataType::password: return Type::password;
+    case lustbus::DataType::binary8:
+      return Type::binary8;
+    case lustbus::DataType::usign8:
+      return Type::usign8;
+    case lustbus::DataType::usign16:
+      return Type::usign16;
+    case lustbus::DataType::fixpoint16:
+      return Type::fixpoint16;
+    case lustbus::DataType::integer16:
+      return Type::int16;
+    case lustbus::DataType::int32q16:
+      return Type::int32q16;
+    case lustbus::DataType::float_ieee:
+      return Type::float_ieee;
+    case lustbus::DataType::vf_error:
+      return Type::error16;
+    case lustbus::DataType::mc_error:
+      return Type::error32;
+    case lustbus::DataType::password:
+      return Type::password;
   }
   return Type::string;
 }
 Type of(canlust::DataType t) {
   switch (t) {
-    case canlust::DataType::usign8: return Type::usign8;
-    case canlust::DataType::int8: return Type::int8;
-    case canlust::DataType::usign16: return Type::usign16;
-    case canlust::DataType::int16: return Type::int16;
-    case canlust::DataType::usign32: return Type::usign32;
-    case canlust::DataType::int32: return Type::int32;
-    case canlust::DataType::int32q16: return Type::int32q16;
-    case canlust::DataType::fixpoint16: return Type::fixpoint16;
-    case canlust::DataType::err_struc: return Type::error32;
-    case canlust::DataType::string: return Type::string;
+    case canlust::DataType::usign8:
+      return Type::usign8;
+    case canlust::DataType::int8:
+      return Type::int8;
+    case canlust::DataType::usign16:
+      return Type::usign16;
+    case canlust::DataType::int16:
+      return Type::int16;
+    case canlust::DataType::usign32:
+      return Type::usign32;
+    case canlust::DataType::int32:
+      return Type::int32;
+    case canlust::DataType::int32q16:
+      return Type::int32q16;
+    case canlust::DataType::fixpoint16:
+      return Type::fixpoint16;
+    case canlust::DataType::err_struc:
+      return Type::error32;
+    case canlust::DataType::string:
+      return Type::string;
   }
   return Type::binary8;
 }
@@ -245,12 +285,15 @@ TEST(OdTypesKeepTodays, PcpTypes) {
     EXPECT_EQ(pcp::size_of(p), bytes(t));
     EXPECT_EQ(pcp::is_signed(p), is_signed(t));
     for (int i = 0; i < 70000; ++i) {
-      const std::uint32_t r = pcp::size_of(p) == 4 ? any(gen) : static_cast<std::uint32_t>(i) & ((1U << (8 * pcp::size_of(p))) - 1U);
+      const std::uint32_t r = pcp::size_of(p) == 4 ? any(gen)
+                                                   : static_cast<std::uint32_t>(i) &
+                                                         ((1U << (8 * pcp::size_of(p))) - 1U);
       const pcp::Value v{p, r};
       if (p != pcp::DataType::float_ieee && p != pcp::DataType::mc_error) {
         ASSERT_EQ(number(t, r), pcp::signed_raw(v)) << r;
         ASSERT_DOUBLE_EQ(*engineering(t, r), pcp::to_engineering(v)) << r;
-        ASSERT_EQ(pcp::value_from_signed_raw(p, number(t, r))->raw, pattern(t, raw(t, number(t, r))));
+        ASSERT_EQ(pcp::value_from_signed_raw(p, number(t, r))->raw,
+                  pattern(t, raw(t, number(t, r))));
       }
       if (p == pcp::DataType::float_ieee) {
         const double e = pcp::to_engineering(v);
@@ -260,7 +303,8 @@ TEST(OdTypesKeepTodays, PcpTypes) {
       }
       ASSERT_EQ(pcp::compare(p, r, r ^ 1U) < 0, compare(t, r, r ^ 1U) < 0) << r;
     }
-    for (const double x : {0.0, 1.0, 23.15, 3276.75, 3276.8, -1.0, 255.0, 256.0, 32767.0, -32768.0, 12345.678}) {
+    for (const double x :
+         {0.0, 1.0, 23.15, 3276.75, 3276.8, -1.0, 255.0, 256.0, 32767.0, -32768.0, 12345.678}) {
       const pcp::Converted today = pcp::from_engineering(p, x);
       const Converted now = from_engineering(t, x);
       if (p == pcp::DataType::mc_error) {
@@ -282,7 +326,8 @@ TEST(OdTypesKeepTodays, LustbusTypes) {
     const Type t = of(l);
     SCOPED_TRACE(std::string(lustbus::to_string(l)));
     EXPECT_EQ(lustbus::width_bits(l), bits(t));
-    for (std::uint32_t r : {0U, 1U, 0x7FU, 0x80U, 0xFFU, 0x1F4U, 0x7FFFU, 0x8000U, 0xFFFFU, 0x000A8000U, 0xFFFFFFFFU}) {
+    for (std::uint32_t r : {0U, 1U, 0x7FU, 0x80U, 0xFFU, 0x1F4U, 0x7FFFU, 0x8000U, 0xFFFFU,
+                            0x000A8000U, 0xFFFFFFFFU}) {
       r = pattern(t, r);
       const auto today = lustbus::to_engineering(l, r);
       const auto now = engineering(t, r);
@@ -316,7 +361,8 @@ TEST(OdTypesKeepTodays, CanlustTypesAreTheirWireImages) {
     const auto k = static_cast<canlust::DataType>(c);
     const Type t = of(k);
     SCOPED_TRACE(std::string(canlust::to_string(k)));
-    EXPECT_EQ(canlust::to_string(k) == "ERR_STRUC" ? "MC_ERROR" : canlust::to_string(k), to_string(t));
+    EXPECT_EQ(canlust::to_string(k) == "ERR_STRUC" ? "MC_ERROR" : canlust::to_string(k),
+              to_string(t));
     for (int i = 0; i < 70000; ++i) {
       std::uint32_t w = any(gen);
       if (i < 0x200) w = static_cast<std::uint32_t>(i);
@@ -324,7 +370,8 @@ TEST(OdTypesKeepTodays, CanlustTypesAreTheirWireImages) {
       ASSERT_EQ(canlust::wire_fits(k, w), is_canonical(t, w)) << w;
     }
   }
-  EXPECT_EQ(canlust::q16_from_double(10.5), static_cast<std::int32_t>(from_engineering(Type::int32q16, 10.5).raw));
+  EXPECT_EQ(canlust::q16_from_double(10.5),
+            static_cast<std::int32_t>(from_engineering(Type::int32q16, 10.5).raw));
   EXPECT_EQ(*canlust::fixpoint16_from_double(10.05), from_engineering(Type::fixpoint16, 10.05).raw);
   const canlust::ErrStruc e{16, 172, 85};
   EXPECT_EQ(canlust::wire_from_err_struc(e), error_record_raw({16, 172, 85}));

@@ -52,7 +52,9 @@ struct Finding {
 };
 
 namespace detail {
-constexpr char upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
+constexpr char upper(char c) {
+  return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
+}
 constexpr bool iequal(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -66,10 +68,13 @@ constexpr bool printable(std::string_view s) {
   }
   return true;
 }
-constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
+constexpr bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
 constexpr bool in_entry_range(const Entry& e, std::int64_t n) {
   if (e.type == Type::float_ieee) {
-    return compare(e.type, raw(e.type, n), e.min_raw()) >= 0 && compare(e.type, raw(e.type, n), e.max_raw()) <= 0;
+    return compare(e.type, raw(e.type, n), e.min_raw()) >= 0 &&
+           compare(e.type, raw(e.type, n), e.max_raw()) <= 0;
   }
   return n >= e.min && n <= e.max;
 }
@@ -84,15 +89,19 @@ constexpr Finding check_entry(const Entry& e, std::size_t i);
 // non-empty printable names, present when attr::kShowText or choices_only asks for them; each role
 // but `value` at most once -- 85-SIOF/SERR at number 85, an 8-bit unsigned actual value; SLOAD a
 // signed type; PROG and SAVE writable -- and a KEYPAD activity area exactly where the entry is in
-// the data set (seed 000 11.2.1: "If the value does not equal 0, ... appropriate for data exchange").
+// the data set (seed 000 11.2.1: "If the value does not equal 0, ... appropriate for data
+// exchange").
 constexpr Finding check(std::span<const Entry> entries) {
-  if (entries.size() > std::size_t{kMaxNumber} + 1) return {ErrorCode::table_too_large, 0, "more entries than numbers 0..3FFH"};
+  if (entries.size() > std::size_t{kMaxNumber} + 1)
+    return {ErrorCode::table_too_large, 0, "more entries than numbers 0..3FFH"};
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const Finding f = detail::check_entry(entries[i], i);
     if (!f.ok()) return f;
     for (std::size_t j = 0; j < i; ++j) {
-      if (entries[j].number == entries[i].number) return {ErrorCode::table_number_repeated, i, "number used twice"};
-      if (detail::iequal(entries[j].name, entries[i].name)) return {ErrorCode::table_bad_name, i, "name used twice"};
+      if (entries[j].number == entries[i].number)
+        return {ErrorCode::table_number_repeated, i, "number used twice"};
+      if (detail::iequal(entries[j].name, entries[i].name))
+        return {ErrorCode::table_bad_name, i, "name used twice"};
       if (entries[i].role != Role::value && entries[j].role == entries[i].role) {
         return {ErrorCode::table_bad_role, i, "a second entry of the same role"};
       }
@@ -105,29 +114,39 @@ constexpr Finding detail::check_entry(const Entry& e, std::size_t i) {
   if (e.number > kMaxNumber) return {ErrorCode::table_number_out_of_range, i, "number above 3FFH"};
   if (e.name.empty() || !printable(e.name) || is_digit(e.name.front()) || e.name.front() == ' ' ||
       e.name.back() == ' ' || e.name.front() == '-' || e.name.back() == '-') {
-    return {ErrorCode::table_bad_name, i, "name must be printable, start with no digit and neither start nor end with a blank or '-'"};
+    return {ErrorCode::table_bad_name, i,
+            "name must be printable, start with no digit and neither start nor end with a blank or "
+            "'-'"};
   }
   if (!printable(e.unit)) return {ErrorCode::table_bad_unit, i, "unit must be printable"};
-  if (!(e.scale > 0.0) || e.scale > 1.0e300) return {ErrorCode::table_scale_not_positive, i, "scale must be positive and finite"};
-  if (e.elements == 0) return {ErrorCode::table_bad_elements, i, "an entry has at least one element"};
+  if (!(e.scale > 0.0) || e.scale > 1.0e300)
+    return {ErrorCode::table_scale_not_positive, i, "scale must be positive and finite"};
+  if (e.elements == 0)
+    return {ErrorCode::table_bad_elements, i, "an entry has at least one element"};
   if (e.is_text()) {
-    if (e.min < 0 || e.max > kMaxTextLength) return {ErrorCode::table_limits_outside_type, i, "text lengths outside 0..255"};
+    if (e.min < 0 || e.max > kMaxTextLength)
+      return {ErrorCode::table_limits_outside_type, i, "text lengths outside 0..255"};
     if (e.min > e.max) return {ErrorCode::table_min_above_max, i, "min above max"};
     const auto n = static_cast<std::int64_t>(e.default_text.size());
     if (n < e.min || n > e.max || !printable(e.default_text) || e.default_value != 0) {
-      return {ErrorCode::table_default_outside_limits, i, "the default text's length outside min..max, or not printable"};
+      return {ErrorCode::table_default_outside_limits, i,
+              "the default text's length outside min..max, or not printable"};
     }
   } else {
     if (!fits(e.type, e.min) || !fits(e.type, e.max) || !fits(e.type, e.default_value)) {
       return {ErrorCode::table_limits_outside_type, i, "min, max or default outside the data type"};
     }
-    if (compare(e.type, e.min_raw(), e.max_raw()) > 0) return {ErrorCode::table_min_above_max, i, "min above max"};
-    if (!in_entry_range(e, e.default_value)) return {ErrorCode::table_default_outside_limits, i, "default outside min..max"};
-    if (!e.default_text.empty()) return {ErrorCode::table_default_outside_limits, i, "a default text for a number"};
+    if (compare(e.type, e.min_raw(), e.max_raw()) > 0)
+      return {ErrorCode::table_min_above_max, i, "min above max"};
+    if (!in_entry_range(e, e.default_value))
+      return {ErrorCode::table_default_outside_limits, i, "default outside min..max"};
+    if (!e.default_text.empty())
+      return {ErrorCode::table_default_outside_limits, i, "a default text for a number"};
   }
   for (std::size_t c = 0; c < e.choices.size(); ++c) {
     const Choice& ch = e.choices[c];
-    if (e.is_text() || !is_canonical(e.type, ch.code)) return {ErrorCode::table_bad_choices, i, "a choice's code is no value of the type"};
+    if (e.is_text() || !is_canonical(e.type, ch.code))
+      return {ErrorCode::table_bad_choices, i, "a choice's code is no value of the type"};
     if (ch.name.empty() || !printable(ch.name) || !printable(ch.text)) {
       return {ErrorCode::table_bad_choices, i, "a choice's name must be printable and not empty"};
     }
@@ -140,17 +159,20 @@ constexpr Finding detail::check_entry(const Entry& e, std::size_t i) {
   if ((e.choices_only || e.has(attr::kShowText)) && e.choices.empty()) {
     return {ErrorCode::table_bad_choices, i, "ShowText or choices_only without choices"};
   }
-  if (e.choices_only && e.choice(e.default_raw()) == nullptr) return {ErrorCode::table_bad_choices, i, "the default is none of the choices"};
+  if (e.choices_only && e.choice(e.default_raw()) == nullptr)
+    return {ErrorCode::table_bad_choices, i, "the default is none of the choices"};
   switch (e.role) {
     case Role::value:
       break;
     case Role::error_flags:
       if (e.number != 85 || (e.type != Type::usign8 && e.type != Type::binary8) || e.writable()) {
-        return {ErrorCode::table_bad_role, i, "85-SIOF/SERR is number 85, an 8-bit unsigned value, not writable"};
+        return {ErrorCode::table_bad_role, i,
+                "85-SIOF/SERR is number 85, an 8-bit unsigned value, not writable"};
       }
       break;
     case Role::download:
-      if (!is_signed(e.type) || !e.writable()) return {ErrorCode::table_bad_role, i, "SLOAD is a writable signed value (-1, -2)"};
+      if (!is_signed(e.type) || !e.writable())
+        return {ErrorCode::table_bad_role, i, "SLOAD is a writable signed value (-1, -2)"};
       break;
     case Role::load_defaults:
     case Role::save:
@@ -160,7 +182,8 @@ constexpr Finding detail::check_entry(const Entry& e, std::size_t i) {
       break;
   }
   if (e.keypad != nullptr && (e.keypad->activity != 0) != e.in_data_set) {
-    return {ErrorCode::table_bad_role, i, "a KEYPAD activity area exactly where the entry is in the data set (11.2.1)"};
+    return {ErrorCode::table_bad_role, i,
+            "a KEYPAD activity area exactly where the entry is in the data set (11.2.1)"};
   }
   if (e.in_data_set && (e.is_text() || !e.writable() || e.role != Role::value)) {
     return {ErrorCode::table_bad_role, i, "only writable values can be in the data set"};
@@ -182,12 +205,15 @@ class Dictionary {
     roles_.fill(kNoSlot);
     for (std::size_t i = 0; i < entries.size(); ++i) {
       index_[entries[i].number] = static_cast<Slot>(i);
-      if (entries[i].role != Role::value) roles_[static_cast<std::size_t>(entries[i].role)] = static_cast<Slot>(i);
+      if (entries[i].role != Role::value)
+        roles_[static_cast<std::size_t>(entries[i].role)] = static_cast<Slot>(i);
     }
   }
 
   // One compare and one indexed load.
-  [[nodiscard]] constexpr Slot slot(std::uint16_t number) const { return number > kMaxNumber ? kNoSlot : index_[number]; }
+  [[nodiscard]] constexpr Slot slot(std::uint16_t number) const {
+    return number > kMaxNumber ? kNoSlot : index_[number];
+  }
   [[nodiscard]] constexpr const Entry& operator[](Slot s) const { return entries_[s]; }
   [[nodiscard]] constexpr const Entry* find(std::uint16_t number) const {
     const Slot s = slot(number);
@@ -201,7 +227,9 @@ class Dictionary {
     return e == nullptr ? kNoSlot : static_cast<Slot>(e - entries_.data());
   }
   // The entry of a role (PROG, SLOAD, 85, SAVE); kNoSlot when the dictionary has none.
-  [[nodiscard]] constexpr Slot slot_of(Role r) const { return r == Role::value ? kNoSlot : roles_[static_cast<std::size_t>(r)]; }
+  [[nodiscard]] constexpr Slot slot_of(Role r) const {
+    return r == Role::value ? kNoSlot : roles_[static_cast<std::size_t>(r)];
+  }
   [[nodiscard]] constexpr std::span<const Entry> entries() const { return entries_; }
   [[nodiscard]] constexpr std::size_t size() const { return entries_.size(); }
   [[nodiscard]] constexpr Profile profile() const { return profile_; }

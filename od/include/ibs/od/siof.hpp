@@ -24,12 +24,16 @@ enum class SiofBit : std::uint8_t {
   invalid_value = 7,  // 80H: value outside min/max
 };
 
-constexpr std::uint8_t siof_mask(SiofBit b) { return static_cast<std::uint8_t>(1U << static_cast<unsigned>(b)); }
-constexpr bool siof_has(std::uint8_t siof, SiofBit b) { return (siof & siof_mask(b)) != 0; }
+constexpr std::uint8_t siof_mask(SiofBit b) {
+  return static_cast<std::uint8_t>(1U << static_cast<unsigned>(b));
+}
+constexpr bool siof_has(std::uint8_t siof, SiofBit b) {
+  return (siof & siof_mask(b)) != 0;
+}
 
-inline constexpr SiofBit kSiofBits[] = {SiofBit::power_on,     SiofBit::watchdog,  SiofBit::eeprom_busy,
-                                        SiofBit::checksum,     SiofBit::no_parameter, SiofBit::no_change,
-                                        SiofBit::invalid_value};
+inline constexpr SiofBit kSiofBits[] = {
+    SiofBit::power_on,     SiofBit::watchdog,  SiofBit::eeprom_busy,  SiofBit::checksum,
+    SiofBit::no_parameter, SiofBit::no_change, SiofBit::invalid_value};
 
 // "power on", "invalid value", ...
 std::string_view to_string(SiofBit b);

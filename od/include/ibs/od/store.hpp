@@ -25,7 +25,8 @@ class Store {
  public:
   // The overlay's numbers must be entries of the dictionary, each once, not text, each value a
   // number of the entry's type within its min..max (ErrorCode::table_*; the message names it).
-  [[nodiscard]] static Error validate(const Dictionary& d, std::span<const DefaultOverride> defaults = {});
+  [[nodiscard]] static Error validate(const Dictionary& d,
+                                      std::span<const DefaultOverride> defaults = {});
   // Every value and text at its factory default, RAM and kept copy (a factory-fresh drive). An
   // overlay validate() refuses throws std::invalid_argument, or, in the embedded build, aborts.
   // `d` must outlive the store.
@@ -49,7 +50,9 @@ class Store {
   // A value transfer that passed the checks (`r` canonical, fit() ok), by the entry's storage:
   // RAM always; the kept copy too for eeprom, and for eeprom_ram while the power stage is disabled
   // (seed 001 4.1.3.3); flash waits for save(). Returns whether the kept copy changed.
-  bool write(Slot s, Raw r, bool power_stage_enabled) { return write(s, r, (*dict_)[s].storage, power_stage_enabled); }
+  bool write(Slot s, Raw r, bool power_stage_enabled) {
+    return write(s, r, (*dict_)[s].storage, power_stage_enabled);
+  }
   // The same, with the entry's storage the caller has at hand.
   bool write(Slot s, Raw r, Storage storage, bool power_stage_enabled) {
     Cell& c = cells_[s];
@@ -105,7 +108,8 @@ class Store {
     Raw kept = 0;
   };
   struct TextCell {
-    std::uint32_t offset = 0;  // of the RAM text in chars_; the kept text follows at offset + capacity
+    std::uint32_t offset =
+        0;  // of the RAM text in chars_; the kept text follows at offset + capacity
     std::uint16_t capacity = 0;
     std::uint16_t ram_size = 0;
     std::uint16_t kept_size = 0;

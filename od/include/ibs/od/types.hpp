@@ -31,7 +31,7 @@ enum class Type : std::uint8_t {
   int16,       // -32768..32767 (PCP INTEGER16; the VF1000's 901-912 "Integer 16", seed 001 4.1.1)
   usign32,     // 0..4294967295 (CANLust; the DFS-1's values)
   int32,       // signed 32 bits (CANLust)
-  fixpoint16,  // unsigned 16 bits, 0.05 a step: 0.00..3276.75 (seed 000 2.3.1/2.3.2, seed 003 p. 32)
+  fixpoint16,  // unsigned, 0.05 a step: 0.00..3276.75 (seed 000 2.3.1/2.3.2; seed 003 p. 32)
   int32q16,    // signed 32 bits, 1/65536 a step (seed 000 2.3.2, seed 003 4.1.1)
   float_ieee,  // the 32-bit IEEE 754 pattern (seed 000 2.3.2)
   password,    // unsigned 16 bits (PT_PASSWORD)
@@ -43,11 +43,11 @@ inline constexpr std::size_t kTypeCount = 14;
 
 struct TypeInfo {
   Type type;
-  std::uint8_t bits;          // of the pattern: 8, 16 or 32 (string: 0)
-  bool is_signed;             // two's complement
-  double per_unit;            // numbers per engineering unit: fixpoint16 20 (0.05 a step), int32q16 65536
-  bool numeric;               // has an engineering value (not the error structures, not text)
-  std::string_view name;      // the manuals' name without the PT_ of seed 000: "FIXPOINT16"
+  std::uint8_t bits;  // of the pattern: 8, 16 or 32 (string: 0)
+  bool is_signed;     // two's complement
+  double per_unit;    // numbers per engineering unit: fixpoint16 20 (0.05 a step), int32q16 65536
+  bool numeric;       // has an engineering value (not the error structures, not text)
+  std::string_view name;  // the manuals' name without the PT_ of seed 000: "FIXPOINT16"
 };
 
 inline constexpr std::array<TypeInfo, kTypeCount> kTypes{{
@@ -67,19 +67,32 @@ inline constexpr std::array<TypeInfo, kTypeCount> kTypes{{
     {Type::string, 0, false, 1.0, false, "STRING"},
 }};
 
-constexpr const TypeInfo& info(Type t) { return kTypes[static_cast<std::size_t>(t)]; }
-constexpr std::string_view to_string(Type t) { return info(t).name; }
-constexpr unsigned bits(Type t) { return info(t).bits; }
-constexpr bool is_signed(Type t) { return info(t).is_signed; }
+constexpr const TypeInfo& info(Type t) {
+  return kTypes[static_cast<std::size_t>(t)];
+}
+constexpr std::string_view to_string(Type t) {
+  return info(t).name;
+}
+constexpr unsigned bits(Type t) {
+  return info(t).bits;
+}
+constexpr bool is_signed(Type t) {
+  return info(t).is_signed;
+}
 // Bytes of the value's pattern: 1, 2 or 4 (string: 0).
-constexpr unsigned bytes(Type t) { return info(t).bits / 8U; }
-constexpr bool is_text(Type t) { return t == Type::string; }
+constexpr unsigned bytes(Type t) {
+  return info(t).bits / 8U;
+}
+constexpr bool is_text(Type t) {
+  return t == Type::string;
+}
 
 // Longest text a string entry can hold (its max); each bus's codec has its own limit below it
 // (CANLust: 99 characters, seed 003 4.1.1).
 inline constexpr std::int64_t kMaxTextLength = 255;
 
-// The smallest and largest number of the type (float_ieee: its patterns 0..FFFFFFFFH; string: lengths).
+// The smallest and largest number of the type (float_ieee: its patterns 0..FFFFFFFFH; string:
+// lengths).
 constexpr std::int64_t min_number(Type t) {
   if (t == Type::string) return 0;
   const unsigned b = bits(t);
@@ -90,16 +103,20 @@ constexpr std::int64_t max_number(Type t) {
   const unsigned b = bits(t);
   return is_signed(t) ? (std::int64_t{1} << (b - 1U)) - 1 : (std::int64_t{1} << b) - 1;
 }
-constexpr bool fits(Type t, std::int64_t n) { return n >= min_number(t) && n <= max_number(t); }
+constexpr bool fits(Type t, std::int64_t n) {
+  return n >= min_number(t) && n <= max_number(t);
+}
 
 // The raw bits read as a number of the type: the low bits(t) bits, sign-extended for the signed
 // types (a string's Raw is its length).
 constexpr std::int64_t number(Type t, Raw r) {
   switch (bits(t)) {
     case 8:
-      return is_signed(t) ? std::int64_t{static_cast<std::int8_t>(r & 0xFFU)} : std::int64_t{r & 0xFFU};
+      return is_signed(t) ? std::int64_t{static_cast<std::int8_t>(r & 0xFFU)}
+                          : std::int64_t{r & 0xFFU};
     case 16:
-      return is_signed(t) ? std::int64_t{static_cast<std::int16_t>(r & 0xFFFFU)} : std::int64_t{r & 0xFFFFU};
+      return is_signed(t) ? std::int64_t{static_cast<std::int16_t>(r & 0xFFFFU)}
+                          : std::int64_t{r & 0xFFFFU};
     case 32:
       return is_signed(t) ? std::int64_t{static_cast<std::int32_t>(r)} : std::int64_t{r};
     default:
@@ -112,8 +129,12 @@ constexpr Raw raw(Type /*t*/, std::int64_t n) {
   return static_cast<Raw>(static_cast<std::uint64_t>(n) & 0xFFFFFFFFULL);
 }
 // The canonical image of any Raw: what raw(number()) gives.
-constexpr Raw canonical(Type t, Raw r) { return raw(t, number(t, r)); }
-constexpr bool is_canonical(Type t, Raw r) { return t != Type::string && canonical(t, r) == r; }
+constexpr Raw canonical(Type t, Raw r) {
+  return raw(t, number(t, r));
+}
+constexpr bool is_canonical(Type t, Raw r) {
+  return t != Type::string && canonical(t, r) == r;
+}
 // The type's bit pattern, zero-extended: what PCP, LUSTBUS and the communication word carry.
 constexpr Raw pattern(Type t, Raw r) {
   const unsigned b = bits(t);
@@ -155,17 +176,24 @@ constexpr std::optional<double> engineering(Type t, Raw r, double scale = 1.0) {
   return static_cast<double>(number(t, r)) / info(t).per_unit * scale;
 }
 // The engineering value of one step of the number (fixpoint16: 0.05 x scale).
-constexpr double step(Type t, double scale = 1.0) { return scale / info(t).per_unit; }
+constexpr double step(Type t, double scale = 1.0) {
+  return scale / info(t).per_unit;
+}
 
 // Why an engineering value has no Raw.
 enum class Conversion : std::uint8_t { ok, too_high, too_low, not_a_number, wrong_type };
 constexpr std::string_view to_string(Conversion c) {
   switch (c) {
-    case Conversion::ok: return "ok";
-    case Conversion::too_high: return "value too high";
-    case Conversion::too_low: return "value too low";
-    case Conversion::not_a_number: return "not a number";
-    case Conversion::wrong_type: return "no engineering value for this type";
+    case Conversion::ok:
+      return "ok";
+    case Conversion::too_high:
+      return "value too high";
+    case Conversion::too_low:
+      return "value too low";
+    case Conversion::not_a_number:
+      return "not a number";
+    case Conversion::wrong_type:
+      return "no engineering value for this type";
   }
   return "?";
 }
@@ -213,7 +241,8 @@ constexpr VfError vf_error(Raw r) {
 }
 // nullopt when a field is above 14.
 constexpr std::optional<Raw> vf_error_raw(const VfError& e) {
-  if ((e.code && *e.code >= kVfNoError) || (e.time_tenths && *e.time_tenths >= kVfNoError)) return std::nullopt;
+  if ((e.code && *e.code >= kVfNoError) || (e.time_tenths && *e.time_tenths >= kVfNoError))
+    return std::nullopt;
   return (Raw{e.code.value_or(kVfNoError)} << 8U) | e.time_tenths.value_or(kVfNoError);
 }
 
