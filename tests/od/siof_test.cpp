@@ -1,11 +1,12 @@
-// 85-SIOF/SERR (seed 000 9.2 table) in od, the one definition: its bits, their texts, and
-// drive::'s names, which forward here.
+// 85-SIOF/SERR (seed 000 9.2 table) in od, the one definition: its bits, their texts, each
+// refusal's bit, and drive::'s names, which forward here.
+#include "ibs/drive/siof.hpp"
+
 #include <gtest/gtest.h>
 
 #include <type_traits>
 
-#include "ibs/drive/siof.hpp"
-#include "ibs/od/siof.hpp"
+#include "ibs/od/served.hpp"
 
 namespace ibs::od {
 namespace {
@@ -21,6 +22,25 @@ TEST(OdSiof, BitValuesOfTheLustbusTable) {
   EXPECT_EQ(describe_siof(0x21), "21H: power on, no parameter");
   EXPECT_EQ(describe_siof(0x10), "10H: undefined bit 4");
   EXPECT_EQ(kSiofNumber, 85);
+}
+
+// Seed 000 9.2: 20H "no parameter", 40H "change not permitted", 80H "invalid value", 04H "EEPROM
+// busy", 08H "error in the data transfer"; a latched write and a taken one enter nothing.
+TEST(OdSiof, EachRefusalsBit) {
+  EXPECT_EQ(error_flag(Refusal::none), 0);
+  EXPECT_EQ(error_flag(Refusal::latched), 0);
+  EXPECT_EQ(error_flag(Refusal::no_parameter), 0x20);
+  EXPECT_EQ(error_flag(Refusal::read_only), 0x40);
+  EXPECT_EQ(error_flag(Refusal::not_now), 0x40);
+  EXPECT_EQ(error_flag(Refusal::wrong_kind), 0x40);
+  EXPECT_EQ(error_flag(Refusal::busy), 0x04);
+  EXPECT_EQ(error_flag(Refusal::transfer_error), 0x08);
+  for (const Refusal r :
+       {Refusal::bad_value, Refusal::too_high, Refusal::too_low, Refusal::not_a_choice}) {
+    EXPECT_EQ(error_flag(r), 0x80) << to_string(r);
+  }
+  EXPECT_EQ(refusal_of(Fit::too_low), Refusal::too_low);
+  EXPECT_EQ(refusal_of(Fit::wrong_type), Refusal::bad_value);
 }
 
 TEST(OdSiof, DriveNamesAreTheseOnes) {
