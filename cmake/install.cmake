@@ -71,7 +71,7 @@ function(ibs_install)
   # pkg-config: the master's libraries in link order (each after the ones that need it).
   set(IBS_MASTER_PKG_LIBS "")
   set(libs ibs_master ibs_vf1000_master ibs_mc6000_master ibs_devices_api ibs_vf1000_channel
-           ibs_vf1000_table ibs_mc6000_core ibs_pcp ibs_drive ibs_drivecom ibs_interbus_bus)
+           ibs_vf1000_table ibs_mc6000_core ibs_pcp ibs_drive ibs_od ibs_drivecom ibs_interbus_bus)
   if(NOT IBS_EMBEDDED)
     list(APPEND libs ibs_interbus_core)  # traces and replay: headers only in the embedded build
   endif()
@@ -86,7 +86,7 @@ function(ibs_install)
     # The hosts of the other buses with their transports (docs/embedding.md, "Hosts on the other
     # buses"), each library after the ones that need it, then the system's.
     ibs_host_pc(ibs-lustbus "ibs LUSTBUS host (seed 000) with serial ports and pseudo-terminals"
-                "ibs_lustbus_serial ibs_serial_capture ibs_lustbus ibs_serial ibs_pcap ibs_drive ibs_base"
+                "ibs_lustbus_serial ibs_serial_capture ibs_lustbus ibs_serial ibs_pcap ibs_drive ibs_od ibs_base"
                 "-lutil -pthread -lpcap")
     ibs_host_pc(ibs-canlust "ibs CANLust master side (seed 003) with CAN over UDP and SocketCAN"
                 "ibs_can_transport ibs_canlust ibs_base" "-lpcap")
@@ -101,7 +101,7 @@ function(ibs_install)
     ibs_host_pc(ibs-sim "ibs cycle simulator and the drives' emulators (INTERBUS, with captures and VCD)"
                 "ibs_sim ibs_master ibs_scenario ibs_devices ibs_vf1000_device ibs_vf1000_master ibs_vf1000_channel
                  ibs_vf1000_core ibs_vf1000_table ibs_mc6000_device ibs_plant ibs_mc6000_master ibs_mc6000_core ibs_pcp
-                 ibs_drive ibs_devices_api ibs_drivecom ibs_interbus_bus ibs_vcd ibs_interbus_core ibs_pcap ibs_base"
+                 ibs_drive ibs_od ibs_devices_api ibs_drivecom ibs_interbus_bus ibs_vcd ibs_interbus_core ibs_pcap ibs_base"
                 "-pthread" REQUIRES "${sim_requires}")
     # The Wireshark dissectors, laid out as a Wireshark plugin folder (docs/pcap.md, "Installed").
     install(FILES ${PROJECT_SOURCE_DIR}/tools/wireshark/interbus.lua ${PROJECT_SOURCE_DIR}/tools/wireshark/canlust.lua

@@ -46,7 +46,7 @@ done
 
 echo "check_embedded: the installed libraries" >&2
 mapfile -t libs < <(find "$work/prefix" -name 'libibs_*.a' | sort)
-((${#libs[@]} == 12)) || fail "expected the 12 master libraries, found ${#libs[@]}: ${libs[*]}"
+((${#libs[@]} == 14)) || fail "expected the 14 master libraries, found ${#libs[@]}: ${libs[*]}"
 # Mangled names: the C++ runtime's throw, catch and personality; typeinfo and its name; the
 # standard streams (narrow and wide) and their initialiser.
 forbidden='__cxa_throw|__cxa_rethrow|__cxa_allocate_exception|__cxa_begin_catch|__cxa_end_catch'

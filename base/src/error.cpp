@@ -30,6 +30,9 @@ std::string_view to_string(ErrorCode c) {
     case ErrorCode::table_default_outside_limits: return "table_default_outside_limits";
     case ErrorCode::table_scale_not_positive: return "table_scale_not_positive";
     case ErrorCode::table_lacks_siof: return "table_lacks_siof";
+    case ErrorCode::table_bad_choices: return "table_bad_choices";
+    case ErrorCode::table_bad_role: return "table_bad_role";
+    case ErrorCode::table_bad_elements: return "table_bad_elements";
     case ErrorCode::channel_capacity_zero: return "channel_capacity_zero";
     case ErrorCode::channel_timeout_not_positive: return "channel_timeout_not_positive";
     case ErrorCode::channel_width_invalid: return "channel_width_invalid";

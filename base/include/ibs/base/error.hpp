@@ -55,6 +55,9 @@ enum class ErrorCode : std::uint8_t {
   table_default_outside_limits,  // the default outside min..max
   table_scale_not_positive,      // a scale of zero, below zero or NaN
   table_lacks_siof,              // no 85-SIOF, which the VF1000 channel depends on
+  table_bad_choices,             // od::Dictionary: a substitution text's code or name, or none where asked
+  table_bad_role,                // od::Dictionary: a PROG/SLOAD/85/SAVE entry twice or of the wrong kind
+  table_bad_elements,            // od::Dictionary: an entry of no element
   // Parameter channels: vf1000_channel::Client/Server, pcp::Client/Link/Server ::validate
   // (std::invalid_argument)
   channel_capacity_zero,          // a request queue or completed ring of no entries

@@ -1,8 +1,8 @@
-#include "ibs/drive/siof.hpp"
+#include "ibs/od/siof.hpp"
 
 #include <cstdio>
 
-namespace ibs::drive {
+namespace ibs::od {
 
 std::string_view to_string(SiofBit b) {
   switch (b) {
@@ -46,4 +46,4 @@ std::string describe_siof(std::uint8_t siof) {
   return s;
 }
 
-}  // namespace ibs::drive
+}  // namespace ibs::od
