@@ -52,19 +52,35 @@ std::vector<std::string> section_heads(const std::string& help, const std::strin
   return heads;
 }
 
-// Every command path below the root, depth first, as --help lists them.
-void walk(const std::string& path, std::vector<std::string>& out) {
-  for (const std::string& sub : section_heads(help_of(path), "Subcommands:")) {
-    const std::string next = path.empty() ? sub : path + " " + sub;
-    out.push_back(next);
-    walk(next, out);
-  }
+struct Command {
+  std::string path;  // "lustbus read"; "" the root
+  std::string help;  // what `ibs PATH --help` prints
+};
+
+// Every command, the root first, then depth first as --help lists them, each with its help (read
+// once per test process: the sanitizer build starts the tool slowly).
+void walk(const std::string& path, std::vector<Command>& out) {
+  out.push_back({path, help_of(path)});
+  const std::string help = out.back().help;
+  for (const std::string& sub : section_heads(help, "Subcommands:")) walk(path.empty() ? sub : path + " " + sub, out);
 }
 
-std::vector<std::string> all_commands() {
-  std::vector<std::string> commands;
-  walk("", commands);
+const std::vector<Command>& tree() {
+  static const std::vector<Command> commands = [] {
+    std::vector<Command> c;
+    walk("", c);
+    return c;
+  }();
   return commands;
+}
+
+// The paths below the root.
+std::vector<std::string> all_commands() {
+  std::vector<std::string> paths;
+  for (const Command& c : tree()) {
+    if (!c.path.empty()) paths.push_back(c.path);
+  }
+  return paths;
 }
 
 std::string read_file(const std::string& path) {
@@ -103,12 +119,10 @@ TEST(HelpReference, TheWalkFindsEveryCommand) {
 // help of CLI11's validators: a value is named by a word that says what it is, or by its choices.
 TEST(HelpReference, EveryCommandsHelpNamesItsValuesByMeaning) {
   const std::regex parser_word(R"(\b(TEXT|INT|UINT|FLOAT|NUMBER|BOOLEAN|BOOL)\b)");
-  std::vector<std::string> commands = all_commands();
-  commands.insert(commands.begin(), "");
-  commands.emplace_back("reference");
+  std::vector<Command> commands = tree();
+  commands.push_back({"reference", help_of("reference")});
   std::size_t options = 0;
-  for (const std::string& path : commands) {
-    const std::string help = help_of(path);
+  for (const auto& [path, help] : commands) {
     for (const char* title : {"Options:", "Positionals:"}) {
       for (const std::string& head : section_heads(help, title)) {
         ++options;
@@ -164,7 +178,8 @@ TEST(HelpReference, DocsCliMdIsWhatTheToolPrints) {
 // The reference holds each command's section with every option line its --help shows.
 TEST(HelpReference, TheReferenceHasEveryOptionOfEveryHelp) {
   const std::string page = reference();
-  for (const std::string& path : all_commands()) {
+  for (const auto& [path, help] : tree()) {
+    if (path.empty()) continue;
     const auto at = page.find("\n## ibs " + path + "\n");
     ASSERT_NE(at, std::string::npos) << "no section for ibs " << path;
     const auto next = page.find("\n## ", at + 1);
@@ -172,7 +187,6 @@ TEST(HelpReference, TheReferenceHasEveryOptionOfEveryHelp) {
     EXPECT_NE(page.find("| [`ibs " + path + "`](#ibs-" + std::regex_replace(path, std::regex(" "), "-") + ") |"),
               std::string::npos)
         << "ibs " << path << " is not in the table of commands";
-    const std::string help = help_of(path);
     for (const char* title : {"Options:", "Positionals:"}) {
       for (const std::string& head : section_heads(help, title)) {
         if (head == "-h,--help") continue;  // said once at the top
