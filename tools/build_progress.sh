@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # A build that says how far it is (issue 36.1), for dev.sh (sourced; bash). The build's own output
 # goes to a log, shown whole only when the build fails; standard error gets its progress, and
 # standard output nothing, so that what the caller runs next keeps its output to itself.
@@ -56,9 +57,9 @@ build_progress() {
         fi
       fi
     fi
-    local elapsed=$((SECONDS - start))
+    local elapsed=$((SECONDS - start)) text
     if ((tty)); then
-      local text="dev.sh: building $label: ${pct:+$pct% }($what), $(progress_duration "$elapsed")"
+      text="dev.sh: building $label: ${pct:+$pct% }($what), $(progress_duration "$elapsed")"
       printf '\r\033[K%s' "${text:0:$((width - 1))}" >&2
     elif [[ -n $pct && $pct != "$shown_pct" ]] && ((shown_at < 0 || elapsed - shown_at >= every)); then
       echo "dev.sh: building $label: $pct% after $(progress_duration "$elapsed")" >&2
