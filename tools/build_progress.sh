@@ -7,7 +7,8 @@
 #     on a terminal, one line rewritten in place -- "dev.sh: building LABEL: 45% (timing_cmd.cpp), 1m05s"
 #       -- and cleared when the build ends;
 #     elsewhere (a pipe, a CI log), a line when the percentage has moved, at most one every
-#       IBS_PROGRESS_EVERY seconds (default 10), so that a long build shows it is alive in a short log;
+#       IBS_PROGRESS_EVERY seconds (default 10) and none in the first ones, so that a long build shows
+#       it is alive in a short log and a build with nothing to do says only that it is done;
 #     then "dev.sh: built LABEL in 1m23s". When COMMAND fails: its whole output, and the exit status 1.
 #
 # The percentage is CMake's (Makefile generator: "[ 45%] Building CXX object ..."); before the first
@@ -29,7 +30,7 @@ build_progress() {
     width=$(tput cols 2>/dev/null || echo 80)
     ((width > 20)) || width=80
   fi
-  local start=$SECONDS pct="" what="configuring" shown_pct="" shown_at=-1 buf="" line status ended=0
+  local start=$SECONDS pct="" what="configuring" shown_pct="" shown_at=0 buf="" line status ended=0
   while ((!ended)); do
     line=""
     if IFS= read -r -t 1 line; then
@@ -61,7 +62,7 @@ build_progress() {
     if ((tty)); then
       text="dev.sh: building $label: ${pct:+$pct% }($what), $(progress_duration "$elapsed")"
       printf '\r\033[K%s' "${text:0:$((width - 1))}" >&2
-    elif [[ -n $pct && $pct != "$shown_pct" ]] && ((shown_at < 0 || elapsed - shown_at >= every)); then
+    elif [[ -n $pct && $pct != "$shown_pct" ]] && ((elapsed - shown_at >= every)); then
       echo "dev.sh: building $label: $pct% after $(progress_duration "$elapsed")" >&2
       shown_pct=$pct
       shown_at=$elapsed
