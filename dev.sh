@@ -14,6 +14,9 @@ cd "$(dirname "$0")"
 
 packages=(g++ cmake make libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev libcli11-dev
           nlohmann-json3-dev libtomlplusplus-dev libasio-dev libpcap-dev libfmt-dev help2man)
+# The compiler cache: CMakeLists.txt compiles through it when it is there (IBS_CCACHE), so that a
+# second build of the same sources -- another preset, CI's install checks, a clean clone -- is quick.
+packages+=(ccache)
 # The tests only: tshark runs the Wireshark dissectors (CANLust and INTERBUS) over the captures the
 # tests write (WiresharkDissector.*, CanlustCli.*, the capture tests; installed
 # without its setuid question: DEBIAN_FRONTEND=noninteractive keeps the default, no setuid);
@@ -34,7 +37,7 @@ ensure_packages() {
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
   done
   ((${#missing[@]} == 0)) && return 0
-  echo "dev.sh: installing missing Debian packages with apt-get: ${missing[*]}" >&2
+  echo "dev.sh: installing missing Debian packages with apt-get (a minute or two): ${missing[*]}" >&2
   local sudo=()
   [[ $(id -u) -ne 0 ]] && sudo=(sudo)
   "${sudo[@]}" apt-get update -qq
@@ -51,25 +54,25 @@ build() {
   cmake --build --preset "$preset" -j "$jobs" "$@"
 }
 
-# The main job keeps its output to the run itself: the build is quiet unless it fails.
-quiet_build() {
-  local log
-  log=$(mktemp)
-  if ! build "$@" >"$log" 2>&1; then
-    cat "$log" >&2
-    rm -f "$log"
-    echo "dev.sh: the build failed" >&2
-    exit 1
-  fi
-  rm -f "$log"
-}
+# The main job keeps its output to the run itself: the build shows its progress on standard error
+# and its output only when it fails (quiet_build, tools/build_progress.sh).
+source tools/build_progress.sh
+# What a first release build of ibs takes: about 7 CPU-minutes of compiling (measured on
+# 2026-11-29, g++ 12, no compiler cache), shared by the cores.
+first_build_minutes() { echo $(((7 + jobs - 1) / jobs)); }
 
 cmd=${1:-}
 case "$cmd" in
   run)
     shift
     ensure_packages
-    quiet_build release --target ibs
+    if [[ -x build/release/tools/ibs/ibs ]]; then
+      echo "dev.sh: building ibs (release, build/release) if the sources changed, then ibs run" >&2
+    else
+      echo "dev.sh: building ibs (release, build/release) for the first time: about $(first_build_minutes) minutes on" \
+           "$jobs cores (seconds with a warm compiler cache), then ibs run" >&2
+    fi
+    quiet_build ibs build release --target ibs || exit 1
     exec ./build/release/tools/ibs/ibs run "$@"
     ;;
   test)

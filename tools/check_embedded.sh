@@ -23,13 +23,16 @@ trap 'rm -rf "$work"' EXIT
 jobs=$(nproc 2>/dev/null || echo 2)
 
 echo "check_embedded: the embedded build" >&2
-cmake -S . -B "$work/build" --no-warn-unused-cli -DIBS_EMBEDDED=ON -DCMAKE_BUILD_TYPE=Release -DIBS_WERROR=ON \
+# In build/embedded, the folder docs/embedding.md builds the same configuration in, so that
+# check_docs finds it built (and ccache, hashing paths below the source folder, finds its objects).
+embedded_build=build/embedded
+cmake -S . -B "$embedded_build" --no-warn-unused-cli -DIBS_EMBEDDED=ON -DCMAKE_BUILD_TYPE=Release -DIBS_WERROR=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_fmt=ON >/dev/null
-cmake --build "$work/build" -j "$jobs" >/dev/null
-cmake --install "$work/build" --prefix "$work/prefix" >/dev/null
+cmake --build "$embedded_build" -j "$jobs" >/dev/null
+cmake --install "$embedded_build" --prefix "$work/prefix" >/dev/null
 fail() {
   echo "check_embedded: $*" >&2
   exit 1

@@ -25,13 +25,20 @@ trap 'rm -rf "$work"' EXIT
 jobs=$(nproc 2>/dev/null || echo 2)
 
 echo "check_install: master-only build" >&2
-cmake -S . -B "$work/master-build" --no-warn-unused-cli -DIBS_MASTER_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
+# In build/master-only, the folder docs/embedding.md builds the same configuration in, so that
+# check_docs finds it built (and ccache, hashing paths below the source folder, finds its objects).
+# With -Werror in CI as dev.sh builds the presets, so that these objects are the release preset's
+# too (the same flags: ccache hands them to check_docs's release build).
+master_build=build/master-only
+werror=()
+[[ "${CI:-}" == "true" ]] && werror=(-DIBS_WERROR=ON)
+cmake -S . -B "$master_build" --no-warn-unused-cli -DIBS_MASTER_ONLY=ON -DCMAKE_BUILD_TYPE=Release "${werror[@]}" \
   -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_fmt=ON >/dev/null
-cmake --build "$work/master-build" -j "$jobs" >/dev/null
-cmake --install "$work/master-build" --prefix "$work/master" >/dev/null
+cmake --build "$master_build" -j "$jobs" >/dev/null
+cmake --install "$master_build" --prefix "$work/master" >/dev/null
 if [[ -e "$work/master/bin/ibs" ]] || ls "$work/master"/lib*/libibs_sim* >/dev/null 2>&1; then
   echo "check_install: the master-only installation holds the simulator or the tool" >&2
   exit 1

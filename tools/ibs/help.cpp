@@ -1,5 +1,7 @@
 #include "help.hpp"
 
+#include "reference.hpp"
+
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -138,14 +140,46 @@ std::string path_of(const CLI::App* app) {
   return p;
 }
 
+// A validator's text stays out of the value's name (issue 36.2: `--interval MS:UINT in [1 - 3600000]`):
+// a choice of words becomes the name (`--format toml|json`), a range is said in the description
+// as the other options say theirs (`1..3600000`), added at its end when the description does not
+// say it already.
+CLI::Validator* validator_at(CLI::Option* opt, int index) {
+  try {
+    return opt->get_validator(index);
+  } catch (const CLI::OptionNotFound&) {  // CLI11 2.1 has no count: past the last one
+    return nullptr;
+  }
+}
+
+void name_by_meaning(CLI::Option* opt) {
+  std::string choices;
+  for (int i = 0; CLI::Validator* v = validator_at(opt, i); ++i) {
+    const std::string d = v->get_description();
+    v->description("");
+    if (d.size() > 2 && d.front() == '{' && d.back() == '}') {
+      choices = d.substr(1, d.size() - 2);
+      for (char& c : choices) c = c == ',' ? '|' : c;
+    } else if (const auto at = d.find(" in ["); at != std::string::npos && d.back() == ']') {
+      std::string range = d.substr(at + 5, d.size() - at - 6);  // "1 - 3600000"
+      if (const auto dash = range.find(" - "); dash != std::string::npos) range.replace(dash, 3, "..");
+      if (opt->get_description().find(range) == std::string::npos) {
+        opt->description(opt->get_description() + " (" + range + ")");
+      }
+    }
+  }
+  if (!choices.empty() && !opt->get_lnames().empty()) opt->type_name(choices);
+}
+
 void polish(CLI::App* app) {
   for (CLI::Option* opt : app->get_options()) {
     if (opt->get_type_size() == 0) continue;  // a flag takes no value
+    name_by_meaning(opt);
     if (opt->get_positional() && opt->get_lnames().empty()) {
       opt->type_name("");  // a positional's name says what it is already (PARAM, FILE, DEVICE)
       continue;
     }
-    if (!parser_name(opt->get_type_name())) continue;  // named already (N, MS, UINT by a validator)
+    if (!parser_name(opt->get_type_name())) continue;  // named already (N, MS, toml|json)
     const auto& longs = opt->get_lnames();
     if (!longs.empty()) opt->type_name(metavariable(longs.front()));
   }
@@ -158,7 +192,7 @@ void polish(CLI::App* app) {
 
 void completion_case(const CLI::App* app, const std::string& path, std::ostringstream& s) {
   std::string words;
-  for (const CLI::App* sub : app->get_subcommands({})) words += sub->get_name() + " ";
+  for (const CLI::App* sub : visible_subcommands(*app)) words += sub->get_name() + " ";
   std::string files;
   for (const CLI::Option* opt : app->get_options()) {
     for (const std::string& l : opt->get_lnames()) words += "--" + l + " ";
@@ -176,7 +210,7 @@ void completion_case(const CLI::App* app, const std::string& path, std::ostrings
   s << "      COMPREPLY=($(compgen -W \"" << words << "\" -- \"$cur\"))\n";
   s << "      if [ ${#COMPREPLY[@]} -eq 0 ]; then COMPREPLY=($(compgen -f -- \"$cur\")); fi\n";
   s << "      ;;\n";
-  for (const CLI::App* sub : app->get_subcommands({})) {
+  for (const CLI::App* sub : visible_subcommands(*app)) {
     completion_case(sub, path.empty() ? sub->get_name() : path + " " + sub->get_name(), s);
   }
 }
@@ -202,7 +236,7 @@ std::string bash_completion(const CLI::App& app) {
   while (!stack.empty()) {
     const auto [path, a] = stack.back();
     stack.pop_back();
-    for (const CLI::App* sub : a->get_subcommands({})) {
+    for (const CLI::App* sub : visible_subcommands(*a)) {
       const std::string next = path.empty() ? sub->get_name() : path + " " + sub->get_name();
       s << "      \"" << path << ":" << sub->get_name() << "\") path=\"" << next << "\" ;;\n";
       stack.emplace_back(next, sub);

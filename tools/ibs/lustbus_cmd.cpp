@@ -1012,7 +1012,7 @@ void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
                             "a PATH that exists is refused, the link is removed at exit");
   add_drive_setting_options(state.emulate, eo.settings);
   state.emulate->add_option("--seed", eo.seed, "seed of the reaction times (default 1; + address)");
-  state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time in ms instead")
+  state.emulate->add_option("--reaction-ms", eo.reaction_ms, "a fixed reaction time instead, 0..10000 ms")
       ->check(CLI::Range(0, 10000));
   add_port_options(state.emulate, eo.port);
   state.emulate->add_flag("-j,--json", eo.json,

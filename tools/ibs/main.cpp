@@ -15,6 +15,7 @@
 #include "help.hpp"
 #include "lustbus_cmd.hpp"
 #include "serial_decode.hpp"
+#include "reference.hpp"
 #include "commands.hpp"
 #include "trace_input.hpp"
 
@@ -69,8 +70,8 @@ int run_ibs(int argc, char** argv) {
                   "draw each drive's reference, actual value and state over time, faults and parameter "
                   "transactions marked, as FILE.svg or FILE.png (needs gnuplot)");
   run->add_option("--threads", run_options.threads,
-                  "threads that step the devices (the run is the same for any number; 0: one per core "
-                  "as far as the ring has work for them)")
+                  "threads that step the devices, 0..256 (the run is the same for any number; 0: one per "
+                  "core as far as the ring has work for them)")
       ->check(CLI::Range(0U, 256U))
       ->default_val(1U);
   run->add_flag("--realtime", run_options.realtime,
@@ -88,7 +89,7 @@ int run_ibs(int argc, char** argv) {
   std::vector<std::string> replay_files;
   auto* replay = app.add_subcommand(
       "replay", "replay an ibs-trace 1 file against the emulated device or master side");
-  replay->add_option("--emulate", emulate, "which side the project emulates")
+  replay->add_option("--emulate", emulate, "which side the project emulates: device or master")
       ->required()
       ->check(CLI::IsMember({"device", "master"}));
   replay->add_option("FILE", replay_files, "the trace files; - reads one from standard input")->required();
@@ -118,7 +119,7 @@ int run_ibs(int argc, char** argv) {
   campaign->add_option("--seed", campaign_options.seed, "the random seed (default 1)")
       ->check(unsigned_decimal(std::numeric_limits<std::uint64_t>::max()));
   campaign->add_option("--transactions", campaign_options.transactions,
-                       "parameter transactions to run (default 100000, at most 100 million)")
+                       "parameter transactions to run, 1..100000000 (default 100000)")
       ->check(unsigned_decimal(std::numeric_limits<std::uint64_t>::max()))
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100000000}));
   campaign->add_flag("-j,--json", campaign_options.json, "print the result as JSON");
@@ -140,6 +141,13 @@ int run_ibs(int argc, char** argv) {
   std::string completion_shell;
   auto* completion = app.add_subcommand("completion", "print the shell completion script for ibs (bash)");
   completion->add_option("SHELL", completion_shell, "bash")->required()->check(CLI::IsMember({"bash"}));
+  // Hidden (group ""): docs/cli.md and the man page's COMMANDS section, from this same tree.
+  std::string reference_format;
+  auto* reference = app.add_subcommand("reference", "print every command and option: docs/cli.md or a help2man include")
+                        ->group("");
+  reference->add_option("FORMAT", reference_format, "markdown (docs/cli.md) or man (help2man --include)")
+      ->required()
+      ->check(CLI::IsMember({"markdown", "man"}));
   ibs::cli::polish_help(app);  // after every command: metavariables, examples and exit codes
 
   try {
@@ -156,6 +164,10 @@ int run_ibs(int argc, char** argv) {
   }
   if (completion->parsed()) {
     std::cout << ibs::cli::bash_completion(app);
+    return ibs::cli::kExitOk;
+  }
+  if (reference->parsed()) {
+    std::cout << (reference_format == "man" ? ibs::cli::man_reference(app) : ibs::cli::markdown_reference(app));
     return ibs::cli::kExitOk;
   }
   if (const auto rc = ibs::cli::run_bus_commands(bus_state)) return *rc;

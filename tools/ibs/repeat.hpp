@@ -24,7 +24,7 @@ struct RepeatOptions {
 inline void add_repeat_options(CLI::App* cmd, RepeatOptions& r) {
   cmd->add_option("--repeat", r.repeat, "read N times (0: until Ctrl-C), one line or JSON object each (default 1)")
       ->type_name("N");
-  cmd->add_option("--interval", r.interval_ms, "with --repeat: MS from one reading's start to the next (default 1000)")
+  cmd->add_option("--interval", r.interval_ms, "with --repeat: MS from one reading's start to the next, 1..3600000 (default 1000)")
       ->type_name("MS")
       ->check(CLI::Range(1U, 3'600'000U));
 }
