@@ -77,8 +77,14 @@ slow_build | build_progress "$log" slow 2>/dev/null
 # 5. On a terminal (script(1) gives the build a pseudo-terminal): one line rewritten in place with
 # the file being compiled, cleared at the end; the total stays.
 if command -v script >/dev/null; then
-  export -f fake_build quiet_build build_progress progress_duration
-  script -qec "bash -c 'quiet_build fake fake_build'" /dev/null >"$work/tty" 2>&1 </dev/null || fail "the build on a terminal failed"
+  # A script of its own, not exported functions: script(1) runs its command with $SHELL, and a
+  # shell other than bash (dash when SHELL is unset, as under CI) drops bash's exported functions.
+  {
+    echo "source '$1/tools/build_progress.sh'"
+    declare -f fake_build
+    echo "quiet_build fake fake_build"
+  } >"$work/on_tty.sh"
+  script -qec "bash '$work/on_tty.sh'" /dev/null >"$work/tty" 2>&1 </dev/null || fail "the build on a terminal failed"
   esc=$'\033'
   grep -qF $'\r'"${esc}[Kdev.sh: building fake: 10% (simulator.cpp), " "$work/tty" || fail "no in-place line with the file: $(cat -v "$work/tty")"
   grep -qF $'\r'"${esc}[Kdev.sh: building fake: 50% (linking ibs), " "$work/tty" || fail "no in-place line for the link: $(cat -v "$work/tty")"
