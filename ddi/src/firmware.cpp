@@ -130,6 +130,10 @@ void Firmware::cycle(interbus::ProcessImage& image, Time now, const master::Exch
     }
   }
   std::copy(user_.out.begin(), user_.out.begin() + static_cast<std::ptrdiff_t>(config_.out_words), image.out.begin());
+  if (start_confirmation_) {
+    confirm(S_START_DATA_TRANSFER, *start_confirmation_, RES_OK);
+    start_confirmation_.reset();
+  }
   for (Cr& c : crs_) {
     const interbus::Device& d = config_.devices[c.device];
     c.client->step(now, interbus::pcp_in_slice(image, d), interbus::pcp_out_slice(image, d));
@@ -141,6 +145,7 @@ void Firmware::restart(Time /*now*/) {
   // The scenario's master restart is the board's controller failing: SysFail until the nodes
   // are closed and opened again (the board starts anew).
   sysfail_ = true;
+  start_confirmation_.reset();
   running_ = false;
   active_ = false;
   sim_.set_bus_running(false);
@@ -213,6 +218,8 @@ void Firmware::set_segment(std::size_t head, bool off) {
 }
 
 void Firmware::stop_transfer(std::uint16_t abort_reason) {
+  if (start_confirmation_) confirm(S_START_DATA_TRANSFER, *start_confirmation_, RES_OK);  // it did start
+  start_confirmation_.reset();
   running_ = false;
   bus_error_now_ = false;
   std::fill(pf_now_.begin(), pf_now_.end(), false);
@@ -240,9 +247,12 @@ void Firmware::service(std::span<const std::uint16_t> words, std::uint16_t user_
     case S_START_DATA_TRANSFER:
       if (!p.empty()) return confirm(code, user_id, RES_INVALID_PARAMETER);
       if (!active_ || running_) return confirm(code, user_id, RES_WRONG_STATE);
+      // Running from now (RUN in the register); confirmed when the first data cycle has brought
+      // the devices' inputs (cycle()), so that what the application reads after it is theirs.
       running_ = true;
       sim_.set_bus_running(true);
-      return confirm(code, user_id, RES_OK);
+      start_confirmation_ = user_id;
+      return;
     case S_STOP_DATA_TRANSFER:
       if (!p.empty()) return confirm(code, user_id, RES_INVALID_PARAMETER);
       if (!running_) return confirm(code, user_id, RES_WRONG_STATE);

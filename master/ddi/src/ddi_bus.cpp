@@ -256,7 +256,9 @@ void DdiBus::read_diagnostics(Time now) noexcept {
     if (!user) {
       if (const auto i = position_of(d.diagPara)) set_peripheral_fault(*i, true, now);
     }
-  } else {
+  } else if (!bus) {
+    // Gone, as far as a cycle with valid data can tell (during a bus error the board sees no
+    // device's module error, so PF says nothing then).
     for (std::size_t i = 0; i < pf_.size(); ++i) set_peripheral_fault(i, false, now);
   }
 }
@@ -358,7 +360,7 @@ void DdiBus::service_confirmed(std::span<const Word> m, Time now) noexcept {
       for (std::size_t e = 0; e < entries; ++e) {
         listed = listed || (m[4 + 2 * e] == numbers_[i] && m[5 + 2 * e] == DIAG_CODE_MODULE_ERROR);
       }
-      set_peripheral_fault(i, listed, now);
+      if (listed || !bus_error_) set_peripheral_fault(i, listed, now);
     }
     confirm_due_ = true;
   } else if (code == confirmed_code(S_CONFIRM_DIAGNOSTICS)) {

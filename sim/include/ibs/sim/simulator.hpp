@@ -122,6 +122,9 @@ struct RealtimeStats {
 };
 
 struct Summary {
+  // The report's first line when the run was not the simulator's (`ibs master --board`: the
+  // master against a board, in real time); empty: "ibs run: scenario ..., simulated ...".
+  std::string headline;
   std::string scenario;
   Duration simulated{0};
   Duration cycle_time{0};
