@@ -21,7 +21,8 @@ std::string metavariable(const std::string& long_name) {
       {"pty-link", "LINK"},     {"framing", "FRAMING"},     {"format", "FORMAT"},      {"bus", "BUS"},
       {"sw-us", "US"},          {"supi", "N"},              {"ibcnf", "N"},            {"emulate", "SIDE"},
       {"listen-ms", "MS"},      {"duration-ms", "MS"},      {"id-step", "N"},          {"cacnf", "N"},
-      {"watchdog-reaction", "REACTION"}, {"board", "NODE"},          {"duration", "S"},
+      {"watchdog-reaction", "REACTION"},
+      {"board", "NODE"},        {"duration", "S"},
   };
   if (const auto it = names.find(long_name); it != names.end()) return it->second;
   std::string n;
@@ -51,8 +52,8 @@ constexpr Footer kFooters[] = {
          "Exit codes: 0 ok; 1 a device refused or did not answer, a replay or check failed; 2 bad input; 130 interrupted"},
     {"run", "Examples:\n  ibs run --trace /tmp/traces --vcd /tmp/run.vcd\n  ibs run - --format toml < my.toml --json\n"
             "Exit codes: 0 ok; 2 bad input (FILE:LINE: what); 130 interrupted, nothing written"},
-    {"master", "Examples:\n  ibs master --board IBB1N1\n  ibs master --board IBB1N1 examples/faults.toml --json --duration 10\n"
-               "ibs's virtual board takes the same file's ring and faults: IBS_DDI_SCENARIO=FILE "
+    {"master", "Examples:\n  ibs master --board IBB1N1\n  ibs master --board IBB1N1 examples/default.toml --json --duration 3\n"
+               "ibs's virtual board takes another file's ring and faults with IBS_DDI_SCENARIO=FILE "
                "IBS_DDI_MASTER_COMMANDS=ibs-master (docs/board.md).\n"
                "Exit codes: 0 ok; 2 bad input, or a DDI error (the call and its code); 130 interrupted (the drives "
                "stopped, the board shut down, the summary printed)"},

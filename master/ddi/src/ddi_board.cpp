@@ -110,9 +110,11 @@ Error DdiBoard::bring_up(const interbus::BusConfig& config) {
   if (!activated) return activated.error();
   std::vector<std::uint16_t> numbers;
   if (const Error e = compare(config, numbers)) return e;
+  // From here a failure stops the data transfer again (close()), whether or not its confirmation
+  // came: the board may run it all the same.
+  started_ = true;
   auto started = service("Start_Data_Transfer (0701H)", {S_START_DATA_TRANSFER, 0});
   if (!started) return started.error();
-  started_ = true;
   if (const Error e = running_without_errors()) return e;
   bus_ = std::make_unique<DdiBus>(data_, mailbox_, config, std::move(numbers), options_.bus);
   return {};
