@@ -102,7 +102,7 @@ TEST(MasterCli, ASignalStopsTheDrivesShutsTheBoardDownAndPrintsTheSummary) {
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 130);
-    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(7));
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(8));  // the run alone is 8 s
     std::ifstream in(out);
     const std::string text{std::istreambuf_iterator<char>(in), {}};
     EXPECT_NE(text.find("ibs master: scenario \"default\""), std::string::npos) << text;
