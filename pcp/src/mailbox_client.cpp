@@ -125,7 +125,7 @@ SubmitStatus MailboxClient::write_bytes(Time now, ParameterRef p, std::span<cons
   const std::size_t words = (data.size() + 1) / 2;
   request_[1] = static_cast<Word>(3 + words);
   request_[3] = p.index;
-  request_[4] = static_cast<Word>((subindex << 8U) | data.size());
+  request_[4] = static_cast<Word>((static_cast<std::size_t>(subindex) << 8U) | data.size());
   for (std::size_t k = 0; k < words; ++k) {
     const std::uint8_t lo = 2 * k + 1 < data.size() ? data[2 * k + 1] : 0;
     request_[5 + k] = static_cast<Word>((data[2 * k] << 8U) | lo);
