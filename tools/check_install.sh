@@ -15,7 +15,13 @@
 #     installed tool's emulators, then built through pkg-config (ibs-lustbus, ibs-canlust, ibs-dfs1);
 #  5. the package is relocatable (installed, moved, used), each header installed once, the Lua
 #     dissectors in share/ibs/wireshark/plugins, and the simulator linked through pkg-config (ibs-sim);
-#     the .pc files force no -std on a program, and an older standard gets a clear message.
+#     the .pc files force no -std on a program, and an older standard gets a clear message;
+#  6. examples/board, ibs's master on a controller board through the DDI bus adapter
+#     (ibs::master_ddi, docs/board.md): built with CMake and through pkg-config (ibs-master-ddi with
+#     ibs-ddi) against the virtual board and run in real time and stepped; and against a board
+#     driver of one's own (a stand-in library with the DDI calls that refuses to open), chosen by
+#     the CMake variable IBS_DDI_LIBRARY in the master-only build and by another -l: no source
+#     change, the board's refusal with the call and its code, exit 2.
 # Usage: tools/check_install.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,15 +30,37 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 jobs=$(nproc 2>/dev/null || echo 2)
 
+# A board driver's library of one's own: the DDI calls, and a board that is not there.
+fakeddi=$PWD/build/fake-ddi
+mkdir -p "$fakeddi"
+cat >"$work/fake_ddi.c" <<'C'
+#include <ibs/ddi.h>
+#include <ibs/phoenix/ibs_util.h>
+IBDDIRET DDI_DevOpenNode(const char* n, int16_t p, IBDDIHND* h) { (void)n; (void)p; (void)h; return ERR_NODE_NOT_READY; }
+IBDDIRET DDI_DevCloseNode(IBDDIHND h) { (void)h; return ERR_INVLD_NODE_HD; }
+IBDDIRET DDI_DTI_ReadData(IBDDIHND h, T_DDI_DTI_ACCESS* a) { (void)h; (void)a; return ERR_INVLD_NODE_HD; }
+IBDDIRET DDI_DTI_WriteData(IBDDIHND h, T_DDI_DTI_ACCESS* a) { (void)h; (void)a; return ERR_INVLD_NODE_HD; }
+IBDDIRET DDI_DTI_ReadWriteData(IBDDIHND h, T_DDI_DTI_ACCESS* w, T_DDI_DTI_ACCESS* r) { (void)h; (void)w; (void)r; return ERR_INVLD_NODE_HD; }
+IBDDIRET DDI_MXI_SndMessage(IBDDIHND h, T_DDI_MXI_ACCESS* a) { (void)h; (void)a; return ERR_INVLD_NODE_HD; }
+IBDDIRET DDI_MXI_RcvMessage(IBDDIHND h, T_DDI_MXI_ACCESS* a) { (void)h; (void)a; return ERR_INVLD_NODE_HD; }
+IBDDIRET DDI_GetInfo(IBDDIHND h, T_DDI_INFO* i) { (void)h; (void)i; return ERR_INVLD_NODE_HD; }
+IBDDIRET GetIBSDiagnostic(IBDDIHND h, T_IBS_DIAG* d) { (void)h; (void)d; return ERR_INVLD_NODE_HD; }
+C
+gcc -std=c99 -Wall -Wextra -Werror -shared -fPIC -Iddi/include "$work/fake_ddi.c" -o "$fakeddi/libfakeddi.so"
+fake_refusal="board: DDI_DevOpenNode(IBB1N1_D): ERR_NODE_NOT_READY (0087H)"
+
 echo "check_install: master-only build" >&2
 # In build/master-only, the folder docs/embedding.md builds the same configuration in, so that
 # check_docs finds it built (and ccache, hashing paths below the source folder, finds its objects).
 # With -Werror in CI as dev.sh builds the presets, so that these objects are the release preset's
-# too (the same flags: ccache hands them to check_docs's release build).
+# too (the same flags: ccache hands them to check_docs's release build). Its DDI library is the
+# fake board below, kept in build/fake-ddi so that the cached IBS_DDI_LIBRARY stays valid for
+# check_docs's build of the same folder.
 master_build=build/master-only
 werror=()
 [[ "${CI:-}" == "true" ]] && werror=(-DIBS_WERROR=ON)
 cmake -S . -B "$master_build" --no-warn-unused-cli -DIBS_MASTER_ONLY=ON -DCMAKE_BUILD_TYPE=Release "${werror[@]}" \
+  -DIBS_DDI_LIBRARY="$fakeddi/libfakeddi.so" \
   -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON -DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON \
   -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
@@ -81,6 +109,14 @@ if g++ -std=c++17 -c "$work/master_only.cpp" -o "$work/old.o" $(pkg-config --cfl
   exit 1
 fi
 grep -q "ibs needs C++20 or later" "$work/old.txt" || { echo "check_install: no clear message for a C++17 build" >&2; exit 1; }
+# The DDI bus adapter of the master-only installation runs on the board library IBS_DDI_LIBRARY
+# named: examples/board unchanged, the board's refusal with the call and its code, exit 2.
+cmake -S examples/board -B "$work/board-own" -DCMAKE_PREFIX_PATH="$work/master" >/dev/null
+cmake --build "$work/board-own" -j "$jobs" >/dev/null
+rc=0
+LD_LIBRARY_PATH="$work" "$work/board-own/board" 2>"$work/board-own.txt" || rc=$?
+[[ $rc == 2 ]] && grep -qF "$fake_refusal" "$work/board-own.txt" \
+  || { echo "check_install: examples/board on IBS_DDI_LIBRARY's board: exit $rc, $(cat "$work/board-own.txt")" >&2; exit 1; }
 
 echo "check_install: the whole package from $built, moved after installing, examples/embed against it" >&2
 # Installed in one place and used from another: the package must be relocatable (no absolute
@@ -155,6 +191,24 @@ gcc -std=c99 -Wall -Wextra -Werror examples/ddi/ibs_hli.c -o "$work/ibs_hli_pc" 
   -Wl,-rpath,"$(pkg-config --variable=libdir ibs-ddi)"
 IBS_DDI_MODE=stepped "$work/ibs_hli_pc" | tee "$work/ibs_hli.txt"
 grep -qx "done" "$work/ibs_hli.txt"
+echo "check_install: examples/board (the master on a board through the DDI bus adapter) against the same installation" >&2
+cmake -S examples/board -B "$work/board-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
+cmake --build "$work/board-build" -j "$jobs" >/dev/null
+"$work/board-build/board" | tee "$work/board.txt"
+grep -qx "done" "$work/board.txt"
+IBS_DDI_MODE=stepped "$work/board-build/board" | grep -qx "406-IBCNF = 2 (PCP through the board's mailbox)"
+# Through pkg-config: the adapter, and the DDI calls from ibs-ddi -- or from another -l.
+# shellcheck disable=SC2046
+g++ -std="$(pkg-config --variable=cxx_std ibs-master-ddi)" -Wall -Wextra -Werror examples/board/main.cpp \
+  -o "$work/board_pc" $(pkg-config --cflags --libs ibs-master-ddi ibs-ddi) -Wl,-rpath,"$(pkg-config --variable=libdir ibs-ddi)"
+IBS_DDI_MODE=stepped "$work/board_pc" | grep -qx "done"
+# shellcheck disable=SC2046
+g++ -std=c++20 examples/board/main.cpp -o "$work/board_own_pc" $(pkg-config --cflags --libs ibs-master-ddi) \
+  -L"$fakeddi" -lfakeddi -Wl,-rpath,"$fakeddi"
+rc=0
+"$work/board_own_pc" 2>"$work/board-own-pc.txt" || rc=$?
+[[ $rc == 2 ]] && grep -qF "$fake_refusal" "$work/board-own-pc.txt" \
+  || { echo "check_install: examples/board with -lfakeddi: exit $rc, $(cat "$work/board-own-pc.txt")" >&2; exit 1; }
 echo "check_install: examples/hosts (LUSTBUS, CANLust and DFS-1 hosts) against the same installation" >&2
 cmake -S examples/hosts -B "$work/hosts-build" -DCMAKE_PREFIX_PATH="$work/full" >/dev/null
 cmake --build "$work/hosts-build" -j "$jobs" >/dev/null

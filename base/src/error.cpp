@@ -50,6 +50,12 @@ std::string_view to_string(ErrorCode c) {
     case ErrorCode::setting_invalid: return "setting_invalid";
     case ErrorCode::master_driver_count: return "master_driver_count";
     case ErrorCode::master_device_outside_image: return "master_device_outside_image";
+    case ErrorCode::channel_reference_invalid: return "channel_reference_invalid";
+    case ErrorCode::board_call_failed: return "board_call_failed";
+    case ErrorCode::board_plug_and_play: return "board_plug_and_play";
+    case ErrorCode::board_configuration_mismatch: return "board_configuration_mismatch";
+    case ErrorCode::board_service_refused: return "board_service_refused";
+    case ErrorCode::board_no_answer: return "board_no_answer";
   }
   return "?";
 }

@@ -30,6 +30,12 @@ BoardOptions options_from_environment() {
     throw std::invalid_argument("IBS_DDI_MODE = '" + mode + "': expected realtime or stepped");
   }
   o.scenario = env("IBS_DDI_SCENARIO");
+  const std::string commands = env("IBS_DDI_MASTER_COMMANDS");
+  if (commands == "ibs-master") {
+    o.master_commands = MasterCommands::ibs_master;
+  } else if (!commands.empty() && commands != "ignore") {
+    throw std::invalid_argument("IBS_DDI_MASTER_COMMANDS = '" + commands + "': expected ignore or ibs-master");
+  }
   const std::string prio = env("IBS_DDI_RT_PRIORITY");
   if (!prio.empty()) {
     char* end = nullptr;
@@ -42,7 +48,7 @@ BoardOptions options_from_environment() {
   return o;
 }
 
-sim::Scenario board_scenario(const std::string& path) {
+sim::Scenario board_scenario(const std::string& path, MasterCommands commands, std::string* note) {
   sim::Scenario s;
   if (path.empty()) {
     s = sim::default_scenario();
@@ -50,31 +56,49 @@ sim::Scenario board_scenario(const std::string& path) {
   } else {
     s = sim::load_scenario(path);
   }
+  // The board runs the ring's faults and the drives' events; what commands a master is the
+  // application's. A master restart is the board's controller failing (SysFail) unless ibs's
+  // master runs the file's master side, whose restart it is then.
+  std::vector<sim::TimelineEntry> kept;
+  std::vector<const sim::TimelineEntry*> left;
   for (const sim::TimelineEntry& e : s.timeline) {
     switch (e.action) {
       case sim::Action::fault_corrupt:
       case sim::Action::fault_power_cycle:
       case sim::Action::fault_device:
       case sim::Action::fault_lost:
-      case sim::Action::master_restart:
       case sim::Action::mains:
       case sim::Action::load:
       case sim::Action::input:
       case sim::Action::smartcard:
       case sim::Action::option_card:
+        kept.push_back(e);
+        break;
+      case sim::Action::master_restart:
+        if (commands == MasterCommands::ibs_master) continue;
+        kept.push_back(e);
         break;
       default:
-        throw sim::ScenarioError(path, e.source_line,
-                                 "'" + std::string(sim::to_string(e.action)) +
-                                     "' is a command of ibs's master; behind the DDI the application is the "
-                                     "master, so a board's timeline holds faults only");
+        left.push_back(&e);
+        break;
     }
   }
+  if (!left.empty() && commands == MasterCommands::ignore && note != nullptr) {
+    *note = path + ":" + std::to_string(left.front()->source_line) + ": " + std::to_string(left.size()) +
+            " timeline entr" + (left.size() == 1 ? "y commands" : "ies command") +
+            " a master (the first: '" + std::string(sim::to_string(left.front()->action)) +
+            "'); the board runs the ring and its faults and ignores them: behind the DDI the application is the "
+            "master (IBS_DDI_MASTER_COMMANDS=ibs-master leaves them to `ibs master --board` without this note)";
+  }
+  s.timeline = std::move(kept);
   s.duration = kForever;
   return s;
 }
 
-Board::Board(const BoardOptions& options) : options_(options), scenario_(board_scenario(options.scenario)) {
+Board::Board(const BoardOptions& options) : options_(options) {
+  std::string note;
+  scenario_ = board_scenario(options.scenario, options.master_commands, &note);
+  if (!note.empty()) std::fprintf(stderr, "ibs-ddi: %s\n", note.c_str());
   sim_ = std::make_unique<sim::Simulator>(scenario_);
   firmware_ = std::make_unique<Firmware>(*sim_, sim_->bus(), sim_->cycle_time());
   sim_->set_external_master(firmware_.get());

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "firmware.hpp"
 #include "ibs/sim/scenario.hpp"
@@ -18,20 +19,30 @@ namespace ibs::ddi {
 
 enum class Mode : std::uint8_t { realtime, stepped };
 
+// What the board does with the timeline entries of a scenario that command a master (`state`,
+// `speed`, `read`, `wait_state`, ...): behind the DDI the application is the master.
+enum class MasterCommands : std::uint8_t {
+  ignore,      // leaves them out, with one note on stderr; master_restart is the board's SysFail
+  ibs_master,  // leaves them to `ibs master --board` running the same file, master_restart too
+};
+
 struct BoardOptions {
   Mode mode = Mode::realtime;
   std::string scenario;  // a scenario file; empty: the default bus
   int rt_priority = 0;   // the real-time thread's SCHED_FIFO priority (0: none)
+  MasterCommands master_commands = MasterCommands::ignore;
 };
 
 // The options from the environment: IBS_DDI_MODE (realtime | stepped), IBS_DDI_SCENARIO,
-// IBS_DDI_RT_PRIORITY. Throws std::invalid_argument naming the variable for a value it cannot use.
+// IBS_DDI_RT_PRIORITY, IBS_DDI_MASTER_COMMANDS (ignore | ibs-master). Throws
+// std::invalid_argument naming the variable for a value it cannot use.
 BoardOptions options_from_environment();
 
-// The scenario for a board: the file's (or the default bus's) ring and faults. Commands for
-// ibs's master in its timeline are refused (sim::ScenarioError with file and line): behind the
-// DDI the application is the master.
-sim::Scenario board_scenario(const std::string& path);
+// The scenario for a board: the file's (or the default bus's) ring and faults; the entries that
+// command a master are left out, as `commands` says (`note` gets the one note of
+// MasterCommands::ignore, when there were any).
+sim::Scenario board_scenario(const std::string& path, MasterCommands commands = MasterCommands::ignore,
+                             std::string* note = nullptr);
 
 class Board {
  public:
@@ -45,6 +56,11 @@ class Board {
   std::mutex& mutex() { return mutex_; }
   // Stepped mode: one bus cycle (with the lock held).
   void step();
+  // Stepped mode: a DTI read ran a bus cycle; the next mailbox receive that finds nothing then
+  // runs none (take_read_cycle), so that a loop that reads the data and then empties the mailbox
+  // runs one bus cycle a pass.
+  void note_read_cycle() { read_cycle_ = true; }
+  bool take_read_cycle() { return std::exchange(read_cycle_, false); }
 
   Firmware& firmware() { return *firmware_; }
   [[nodiscard]] const interbus::BusConfig& config() const { return sim_->bus(); }
@@ -61,6 +77,7 @@ class Board {
   std::unique_ptr<Firmware> firmware_;
   std::mutex mutex_;
   std::uint64_t cycle_ = 0;  // the bus cycles run
+  bool read_cycle_ = false;  // a DTI read ran the last cycle (stepped mode)
   std::atomic<bool> stop_{false};
   std::thread thread_;  // last: it stops before the rest goes
 };

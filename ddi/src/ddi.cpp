@@ -93,7 +93,10 @@ IBDDIRET check_access(const T_DDI_DTI_ACCESS* a) {
 }
 
 IBDDIRET read_locked(Board& b, T_DDI_DTI_ACCESS* a) {
-  if (b.mode() == ibs::ddi::Mode::stepped) b.step();
+  if (b.mode() == ibs::ddi::Mode::stepped) {
+    b.step();
+    b.note_read_cycle();
+  }
   if (b.firmware().sysfail()) return ERR_IBS_SYSFAIL;
   if (!b.firmware().running()) return ERR_IB_STOPPED;
   b.firmware().read_inputs(a->address, {a->data, a->length});
@@ -197,7 +200,9 @@ IBDDIRET DDI_MXI_RcvMessage(IBDDIHND handle, T_DDI_MXI_ACCESS* access) {
   if (access == nullptr || access->msgBlk == nullptr) return ERR_INVLD_PARAM;
   const std::lock_guard<std::mutex> board(d.board->mutex());
   Board& b = *d.board;
-  if (b.firmware().front() == nullptr && b.mode() == ibs::ddi::Mode::stepped) b.step();
+  // Stepped: an empty mailbox runs a bus cycle, unless a DTI read has run one since the last
+  // empty receive (one cycle a pass of a loop that reads the data, then empties the mailbox).
+  if (b.firmware().front() == nullptr && b.mode() == ibs::ddi::Mode::stepped && !b.take_read_cycle()) b.step();
   const ibs::ddi::Message* m = b.firmware().front();
   if (m == nullptr) return b.firmware().sysfail() ? ERR_IBS_SYSFAIL : ERR_NO_MSG;
   if (m->bytes.size() > access->msgLength) return ERR_MSG_TO_LONG;  // kept for a larger buffer

@@ -130,6 +130,10 @@ void Firmware::cycle(interbus::ProcessImage& image, Time now, const master::Exch
     }
   }
   std::copy(user_.out.begin(), user_.out.begin() + static_cast<std::ptrdiff_t>(config_.out_words), image.out.begin());
+  if (start_confirmation_) {
+    confirm(S_START_DATA_TRANSFER, *start_confirmation_, RES_OK);
+    start_confirmation_.reset();
+  }
   for (Cr& c : crs_) {
     const interbus::Device& d = config_.devices[c.device];
     c.client->step(now, interbus::pcp_in_slice(image, d), interbus::pcp_out_slice(image, d));
@@ -141,6 +145,7 @@ void Firmware::restart(Time /*now*/) {
   // The scenario's master restart is the board's controller failing: SysFail until the nodes
   // are closed and opened again (the board starts anew).
   sysfail_ = true;
+  start_confirmation_.reset();
   running_ = false;
   active_ = false;
   sim_.set_bus_running(false);
@@ -188,7 +193,8 @@ void Firmware::indicate(std::uint16_t code, std::span<const std::uint16_t> param
 Accept Firmware::request(std::span<const std::uint16_t> words, std::uint16_t user_id, Time now) {
   if (outbox_.size() >= kMailboxCapacity) return Accept::mailbox_full;
   const std::uint16_t code = words[0];
-  if (code == S_PCP_READ || code == S_PCP_WRITE || code == S_PCP_INITIATE || code == S_PCP_ABORT) {
+  if (code == S_PCP_READ || code == S_PCP_WRITE || code == S_PCP_GET_OV || code == S_PCP_INITIATE ||
+      code == S_PCP_ABORT) {
     pcp_service(words, user_id, now);
   } else {
     service(words, user_id);
@@ -212,6 +218,8 @@ void Firmware::set_segment(std::size_t head, bool off) {
 }
 
 void Firmware::stop_transfer(std::uint16_t abort_reason) {
+  if (start_confirmation_) confirm(S_START_DATA_TRANSFER, *start_confirmation_, RES_OK);  // it did start
+  start_confirmation_.reset();
   running_ = false;
   bus_error_now_ = false;
   std::fill(pf_now_.begin(), pf_now_.end(), false);
@@ -239,9 +247,12 @@ void Firmware::service(std::span<const std::uint16_t> words, std::uint16_t user_
     case S_START_DATA_TRANSFER:
       if (!p.empty()) return confirm(code, user_id, RES_INVALID_PARAMETER);
       if (!active_ || running_) return confirm(code, user_id, RES_WRONG_STATE);
+      // Running from now (RUN in the register); confirmed when the first data cycle has brought
+      // the devices' inputs (cycle()), so that what the application reads after it is theirs.
       running_ = true;
       sim_.set_bus_running(true);
-      return confirm(code, user_id, RES_OK);
+      start_confirmation_ = user_id;
+      return;
     case S_STOP_DATA_TRANSFER:
       if (!p.empty()) return confirm(code, user_id, RES_INVALID_PARAMETER);
       if (!running_) return confirm(code, user_id, RES_WRONG_STATE);
@@ -281,6 +292,15 @@ void Firmware::service(std::span<const std::uint16_t> words, std::uint16_t user_
         if (pf_latched_[i]) list.insert(list.end(), {numbers_[i], DIAG_CODE_MODULE_ERROR});
       }
       list[0] = static_cast<std::uint16_t>((list.size() - 1) / 2);
+      return confirm(code, user_id, RES_OK, list);
+    }
+    case S_READ_CONFIGURATION: {
+      // [count][(device number, ID code) ...]: the active configuration in ring order, what a
+      // master compares with its own before it writes process data (ibs's service, docs/ddi.md).
+      if (!p.empty()) return confirm(code, user_id, RES_INVALID_PARAMETER);
+      if (!active_) return confirm(code, user_id, RES_WRONG_STATE);
+      std::vector<std::uint16_t> list{static_cast<std::uint16_t>(config_.devices.size())};
+      for (std::size_t i = 0; i < numbers_.size(); ++i) list.insert(list.end(), {numbers_[i], config_.devices[i].id.raw});
       return confirm(code, user_id, RES_OK, list);
     }
     case S_CONFIRM_DIAGNOSTICS: {
@@ -338,7 +358,7 @@ void Firmware::pcp_service(std::span<const std::uint16_t> words, std::uint16_t u
     return confirm(code, user_id, RES_UNKNOWN_DEVICE);
   }
   // Initiate [id,CR][password][access groups]; Read [id,CR][index][subindex << 8];
-  // Write [id,CR][index][subindex << 8 | length][data].
+  // Write [id,CR][index][subindex << 8 | length][data]; Get-OV [id,CR][index].
   if (p.empty()) return confirm(code, user_id, RES_INVALID_PARAMETER);
   Cr probe;
   probe.cr = static_cast<std::uint8_t>(p[0] & 0xFFU);
@@ -348,15 +368,18 @@ void Firmware::pcp_service(std::span<const std::uint16_t> words, std::uint16_t u
   if (it == crs_.end()) return pcp_negative(probe, code, kUnknownCr);
   Cr& c = *it;
   const bool shape = (code == S_PCP_INITIATE && p.size() == 3) || (code == S_PCP_READ && p.size() == 3) ||
+                     (code == S_PCP_GET_OV && p.size() == 2) ||
                      (code == S_PCP_WRITE && p.size() >= 3 && (p[2] & 0xFFU) > 0 &&
                       p.size() == 3 + ((p[2] & 0xFFU) + 1U) / 2U);
   if (!shape) return confirm(code, user_id, RES_INVALID_PARAMETER);
   if (c.pending || !running_) return pcp_negative(probe, code, kBusyOrStopped);
   const pcp::ParameterRef ref = pcp::ParameterRef::object(code == S_PCP_INITIATE ? 0 : p[1]);
-  const auto subindex = static_cast<std::uint8_t>(code == S_PCP_INITIATE ? 0 : p[2] >> 8U);
+  const auto subindex = static_cast<std::uint8_t>(code == S_PCP_INITIATE || code == S_PCP_GET_OV ? 0 : p[2] >> 8U);
   pcp::SubmitStatus s = pcp::SubmitStatus::invalid_argument;
   if (code == S_PCP_INITIATE) {
     s = c.client->initiate(now);
+  } else if (code == S_PCP_GET_OV) {
+    s = c.client->get_ov(now, ref);
   } else if (code == S_PCP_READ) {
     s = subindex == 0 ? c.client->read(now, ref) : c.client->read_subindex(now, ref, subindex);
   } else {
@@ -400,6 +423,12 @@ void Firmware::pcp_results(Cr& c) {
           push_bytes(w, r->data.view());
         } else if (c.code == S_PCP_INITIATE) {
           w.insert(w.end(), {r->peer_kbl.max_pdu_sending, r->peer_kbl.max_pdu_receiving});
+        } else if (c.code == S_PCP_GET_OV) {
+          // The object description as the channel carried it (docs/pcp.md, 26 bytes).
+          std::array<std::uint8_t, pcp::kObjectDescriptionSize> d{};
+          const std::size_t n = pcp::encode(r->description, d);
+          w.push_back(static_cast<std::uint16_t>(n));
+          push_bytes(w, {d.data(), n});
         }
         break;
       case pcp::ResultKind::negative:

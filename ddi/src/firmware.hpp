@@ -103,6 +103,8 @@ class Firmware final : public sim::ExternalMaster {
   std::vector<bool> pf_now_;           // per device: the module error of the last cycle
   std::uint16_t diag_parameter_ = 0;
   std::uint64_t cycles_ = 0;
+  // Start_Data_Transfer is confirmed once the first data cycle has run (its user ID till then).
+  std::optional<std::uint16_t> start_confirmation_;
 };
 
 }  // namespace ibs::ddi

@@ -96,9 +96,13 @@ std::vector<Budget> budgets() {
 std::string format_text(const Summary& s) {
   std::string o;
   const double sim_s = static_cast<double>(s.simulated.count()) / 1e9;
-  o += printf_string("ibs run: scenario \"%s\", %.3f s simulated in %.3f s of wall time on %u thread%s (%.0fx real time)\n",
-                     s.scenario.c_str(), sim_s, s.wall_seconds, s.threads, s.threads == 1 ? "" : "s",
-                     s.wall_seconds > 0 ? sim_s / s.wall_seconds : 0.0);
+  if (s.headline.empty()) {
+    o += printf_string("ibs run: scenario \"%s\", %.3f s simulated in %.3f s of wall time on %u thread%s (%.0fx real time)\n",
+                       s.scenario.c_str(), sim_s, s.wall_seconds, s.threads, s.threads == 1 ? "" : "s",
+                       s.wall_seconds > 0 ? sim_s / s.wall_seconds : 0.0);
+  } else {
+    o += s.headline + "\n";
+  }
   o += printf_string("bus: %zu device(s), cycle time %.3f ms (%s)\n", s.devices.size(), to_ms(s.cycle_time),
                      s.cycle_time_basis.c_str());
   o += printf_string("     %llu cycles, %llu with valid data\n", static_cast<unsigned long long>(s.cycles),

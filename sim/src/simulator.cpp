@@ -81,6 +81,7 @@ Simulator::Simulator(const Scenario& scenario) : scenario_(scenario), rng_(scena
     d->pcp_in = cut(interbus::pcp_in_slice(image_, bd), d->pcp_words);
     d->pcp_out = cut(interbus::pcp_out_slice(image_, bd), d->pcp_words);
   }
+  master_side_ = std::make_unique<MasterTimeline>(*loop_, image_, summary_);
   links_.resize(devices_.size());
   summary_.devices.resize(devices_.size());
   summary_.scenario = scenario_.name;
@@ -211,9 +212,7 @@ void Simulator::finish() {
     r.final_actual = device_actual(d->index);
     r.samples = d->k;
   }
-  for (auto& r : summary_.transactions) {
-    if (!r.finished) r.result = "still pending at the end of the run";
-  }
+  master_side_->finish();
   if (!master_ns_.empty()) {
     const auto budgets = processing_budgets();
     summary_.master = timing_stats(master_ns_, cycle_time_, budgets);

@@ -1,6 +1,5 @@
 // The cycle end: the bus exchange with the emulated devices (the far side of the master's bus seam,
 // master/bus.hpp), then the master's half of the cycle and what the summary takes from it.
-#include "ibs/base/number_text.hpp"
 #include "simulator_internal.hpp"
 
 namespace ibs::sim {
@@ -103,7 +102,7 @@ void Simulator::observe_master(Time t) {
   for (auto& d : devices_) {
     // Under another master (ExternalMaster) what ibs's drivers saw is not there; the devices'
     // watchdog errors are.
-    if (external_ == nullptr) observe_driver(*d, t);
+    if (external_ == nullptr) master_side_->observe_device(d->index, t);
     const auto err = d->error_at_cycle;
     if (err && err != d->reported_error) {
       const std::string what((*d->kind)->facts().watchdog_error);
@@ -112,56 +111,7 @@ void Simulator::observe_master(Time t) {
     }
     d->reported_error = err;
   }
-  for (auto& r : summary_.transactions) {
-    if (r.finished) continue;
-    const auto i = index_of(r.device);
-    const devices::ParameterAccess& pa = loop_->driver(*i).parameters();
-    if (!r.answered) {
-      const devices::ParamStatus s = pa.status(r.id);
-      if (!s.done()) continue;
-      r.answered = t;
-      r.kind = s.kind;
-      r.result_value = s.value;
-      r.result = pa.describe(r.id);
-    }
-    if (!pa.closing()) r.finished = t;
-  }
-}
-
-void Simulator::observe_driver(Device& d, Time t) {
-  devices::DeviceDriver& drv = loop_->driver(d.index);
-  const auto seen = drv.sequencer().report().state_seen;
-  auto& states = summary_.devices[d.index].states;
-  if (seen && seen != d.last_seen) {
-    states.push_back({t, std::string(drivecom::to_string(*seen))});
-    d.last_seen = seen;
-  }
-  // A reference the master sees reached (status bit 10 while ENABLED, the actual at it).
-  const std::span<const Word> in = d.in_slot;
-  // (the actual must be at the new reference too: the status word may still show the old one)
-  const bool at_reference = std::fabs(drv.actual() - d.reached_for) <= 0.01 * std::fabs(d.reached_for) + 0.1;
-  if (!d.reached_reported && !in.empty() && seen == State::enabled &&
-      bit(in[0], drivecom::sw::kReferenceReached) && at_reference) {
-    d.reached_reported = true;
-    // Numbers a person reads (base/number_text.hpp): "reference 1000 rpm reached (actual 994.60)".
-    states.push_back({t, "reference " + fmt_value(d.reached_for) + " " + std::string(drv.unit()) +
-                             " reached (actual " + quantity_text(drv.actual(), drv.unit()) + ")"});
-  }
-  if (d.waiting_for && (seen == d.waiting_for || t >= d.wait_deadline)) {
-    if (seen != d.waiting_for) {
-      states.push_back({t, "wait for " + std::string(drivecom::to_string(*d.waiting_for)) + " timed out"});
-    }
-    d.waiting_for.reset();
-  }
-  const drivecom::Report& rep = drv.sequencer().report();
-  if (rep.phase != drivecom::Phase::failed) {
-    d.failure_reported = false;
-  } else if (!d.failure_reported) {
-    d.failure_reported = true;
-    const std::string why = drivecom::describe(rep);
-    states.push_back({t, "master: request failed (" + std::string(drivecom::to_string(rep.failure)) + ")"});
-    summary_.devices[d.index].failures.push_back({t, std::string(drivecom::to_string(rep.failure)), why});
-  }
+  master_side_->observe_transactions(t);
 }
 
 void Simulator::merge_device_records() {

@@ -17,7 +17,7 @@ void Simulator::apply_timeline(Time t) {
   auto waiting = [&](const TimelineEntry& e) {
     if (e.device.empty()) return false;
     const auto i = index_of(e.device);
-    return i && devices_[*i]->waiting_for.has_value();
+    return i && master_side_->waiting(*i);
   };
   for (auto it = deferred_.begin(); it != deferred_.end();) {
     if (!waiting(**it)) {
@@ -43,7 +43,7 @@ void Simulator::control(const TimelineEntry& e) {
   const TimelineEntry& kept = control_entries_.back();
   if (!kept.device.empty()) {
     const auto i = index_of(kept.device);
-    if (i && devices_[*i]->waiting_for.has_value()) {
+    if (i && master_side_->waiting(*i)) {
       deferred_.push_back(&kept);
       return;
     }
@@ -68,53 +68,16 @@ void Simulator::apply(const TimelineEntry& e, Time t) {
     if (!idx) return;  // checked when the scenario was read
   }
   switch (e.action) {
-    case Action::state: {
-      const auto target = drivecom::target_named(e.value);
-      if (idx && target) loop_->driver(*idx).sequencer().request(*target, t);
-      break;
-    }
+    case Action::state:
     case Action::emergency_stop:
-      if (idx) loop_->driver(*idx).sequencer().request_emergency_stop(t);
-      break;
     case Action::block_power:
-      if (idx) loop_->driver(*idx).sequencer().request_block_power(t);
-      break;
     case Action::speed:
     case Action::frequency:
-      if (idx) {
-        loop_->driver(*idx).set_reference(e.number);
-        devices_[*idx]->reached_reported = false;
-        devices_[*idx]->reached_for = e.number;
-      }
-      break;
     case Action::read:
     case Action::write:
-    case Action::describe: {
-      if (!idx) break;
-      const devices::ParamOp op = e.action == Action::read    ? devices::ParamOp::read
-                                  : e.action == Action::write ? devices::ParamOp::write
-                                                              : devices::ParamOp::describe;
-      TransactionRecord r;
-      r.device = e.device;
-      r.op = op;
-      r.number = e.parameter;
-      r.value = static_cast<std::int64_t>(e.number);
-      r.submitted = t;
-      r.source_line = e.source_line;
-      r.id = loop_->driver(*idx).parameters().submit(op, e.parameter, r.value);
-      if (r.id == 0) {
-        r.answered = r.finished = t;
-        r.kind = devices::ParamKind::refused;
-        r.result = loop_->driver(*idx).parameters().describe(0);
-      }
-      summary_.transactions.push_back(std::move(r));
-      break;
-    }
+    case Action::describe:
     case Action::wait_state:
-      if (idx) {
-        devices_[*idx]->waiting_for = drivecom::state_named(e.value);
-        devices_[*idx]->wait_deadline = e.duration > Duration{0} ? t + e.duration : Time::max();
-      }
+      if (idx) master_side_->apply(e, *idx, t);  // the master's (master_timeline.hpp)
       break;
     case Action::fault_corrupt:
     case Action::fault_power_cycle:

@@ -25,6 +25,7 @@
 
 #include "ibs/interbus/cycle_time.hpp"
 #include "ibs/interbus/id_code.hpp"
+#include "ibs/sim/master_timeline.hpp"
 #include "ibs/sim/simulator.hpp"
 
 namespace ibs::sim {
@@ -118,13 +119,7 @@ struct Simulator::Device {
   std::uint64_t jitter_state = 0;
   alignas(64) Time lost_until{-1};
   Time fault_until{-1};
-  std::optional<State> waiting_for;
-  Time wait_deadline{0};
-  std::optional<State> last_seen;
-  double reached_for = 0.0;  // the reference whose "reached" was last reported
-  bool reached_reported = true;
   std::optional<int> reported_error;
-  bool failure_reported = false;  // the sequencer's current failure is in the summary
   std::vector<Recording> recordings;
   bool recording = false;
   bool power_cycled = false;

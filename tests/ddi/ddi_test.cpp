@@ -40,6 +40,7 @@ class Ddi : public ::testing::Test {
     setenv("IBS_DDI_MODE", "stepped", 1);
     unsetenv("IBS_DDI_SCENARIO");
     unsetenv("IBS_DDI_RT_PRIORITY");
+    unsetenv("IBS_DDI_MASTER_COMMANDS");
   }
   void TearDown() override {
     if (data_ != 0) {
@@ -82,7 +83,11 @@ class Ddi : public ::testing::Test {
     for (int k = 0; k < cycles; ++k) {
       T_DDI_MXI_ACCESS a{0, static_cast<std::uint16_t>(b.size()), 0, b.data()};
       const IBDDIRET r = DDI_MXI_RcvMessage(mbx_, &a);
-      if (r == ERR_NO_MSG) continue;
+      if (r == ERR_NO_MSG) {
+        // In real time the board's thread brings what comes; stepped, each empty receive a cycle.
+        if (realtime()) std::this_thread::sleep_for(std::chrono::microseconds(200));
+        continue;
+      }
       EXPECT_EQ(r, ERR_OK);
       if (r != ERR_OK) return {};
       if (type != nullptr) *type = a.msgType;
@@ -92,6 +97,10 @@ class Ddi : public ::testing::Test {
       return w;
     }
     return {};
+  }
+  static bool realtime() {
+    const char* m = std::getenv("IBS_DDI_MODE");
+    return m != nullptr && std::string(m) == "realtime";
   }
   Words call(const Words& request) {
     EXPECT_EQ(send(request), ERR_OK);
@@ -454,19 +463,103 @@ TEST_F(Ddi, SwitchingASegmentOffBypassesIt) {
   EXPECT_NE(read_words(kVf, 1)[0], 0);
 }
 
-TEST_F(Ddi, AScenarioWithMasterCommandsOrAnUnknownModeDoesNotStart) {
-  use_scenario("ddi_commands.toml", "", kServo, R"([[timeline]]
+TEST_F(Ddi, AScenarioWithMasterCommandsStartsAndLeavesThemWithANote) {
+  use_scenario("ddi_commands.toml", "1 ms", kServo, R"([[timeline]]
 at = "0 s"
 device = "servo"
 state = "enabled"
+
+[[timeline]]
+at = "0 s"
+device = "servo"
+read = 85
+
+[[timeline]]
+at = "10 ms"
+master_restart = true
 )");
+  // The default: the master's entries are ignored with one note; master_restart is SysFail.
+  ::testing::internal::CaptureStderr();
+  open();
+  const std::string note = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(note.find("ddi_commands.toml:7: 2 timeline entries command a master (the first: 'state')"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("IBS_DDI_MASTER_COMMANDS=ibs-master"), std::string::npos) << note;
+  start(1);
+  run_cycles(5);
+  EXPECT_EQ(read_words(0, 1)[0] & 0x4F, 0x40);  // START-UP INHIBIT: nobody asked the servo for more
+  std::uint8_t b[2];
+  IBDDIRET r = ERR_OK;
+  for (int k = 0; k < 20 && r == ERR_OK; ++k) r = read(0, 2, b);
+  EXPECT_EQ(r, ERR_IBS_SYSFAIL);
+  ASSERT_EQ(DDI_DevCloseNode(data_), ERR_OK);
+  ASSERT_EQ(DDI_DevCloseNode(mbx_), ERR_OK);
+  data_ = mbx_ = 0;
+  // Left to ibs's master: no note, and the restart is the master's, not the board's.
+  setenv("IBS_DDI_MASTER_COMMANDS", "ibs-master", 1);
+  ::testing::internal::CaptureStderr();
+  open();
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  start(1);
+  run_cycles(50);
+  EXPECT_EQ(diag(), DIAG_READY | DIAG_ACTIVE | DIAG_RUN);
+}
+
+TEST_F(Ddi, AnUnknownModeOrScenarioDoesNotStart) {
   IBDDIHND h = 0;
-  EXPECT_EQ(DDI_DevOpenNode(DDI_DATA_NODE, DDI_RW, &h), ERR_NODE_NOT_READY);
   setenv("IBS_DDI_SCENARIO", "/nonexistent/ddi.toml", 1);
   EXPECT_EQ(DDI_DevOpenNode(DDI_DATA_NODE, DDI_RW, &h), ERR_NODE_NOT_READY);
   unsetenv("IBS_DDI_SCENARIO");
   setenv("IBS_DDI_MODE", "fast", 1);
   EXPECT_EQ(DDI_DevOpenNode(DDI_DATA_NODE, DDI_RW, &h), ERR_NODE_NOT_READY);
+  setenv("IBS_DDI_MODE", "stepped", 1);
+  setenv("IBS_DDI_MASTER_COMMANDS", "mine", 1);
+  EXPECT_EQ(DDI_DevOpenNode(DDI_DATA_NODE, DDI_RW, &h), ERR_NODE_NOT_READY);
+}
+
+TEST_F(Ddi, ReadConfigurationListsTheDevicesWithTheirIdCodes) {
+  open();
+  EXPECT_EQ(call({S_READ_CONFIGURATION, 0}), (Words{0x8308, 1, RES_WRONG_STATE}));  // nothing active
+  ASSERT_EQ(call({S_ACTIVATE_CONFIGURATION, 0}), (Words{0x8711, 2, RES_OK, 2}));
+  // The MC6000 (SUPI 11: 3 + 1 words, PCP) 0100H with 4DBH, the VF1000 0200H with 33BH.
+  EXPECT_EQ(call({S_READ_CONFIGURATION, 0}), (Words{0x8308, 6, RES_OK, 2, 0x0100, 0x04DB, 0x0200, 0x033B}));
+  EXPECT_EQ(call({S_READ_CONFIGURATION, 1, 1}), (Words{0x8308, 1, RES_INVALID_PARAMETER}));
+}
+
+TEST_F(Ddi, GetOvDescribesAServoParameter) {
+  open();
+  start();
+  ASSERT_EQ(call({S_PCP_INITIATE, 3, 0x0102, 0, 0}), (Words{0x808B, 4, 0x0102, 0, 134, 134}));
+  // 406-IBCNF: 26 bytes of description (docs/pcp.md): index 5D96H, object code 7, USIGN8 (1),
+  // length 1, EEPROM ('2'), ...
+  const Words c = call({S_PCP_GET_OV, 2, 0x0202, 0x5C00 + 406});
+  ASSERT_EQ(c.size(), 18U);
+  EXPECT_EQ((Words{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]}),
+            (Words{0x8088, 16, 0x0202, 0, 26, 0x5D96, 0x0701, 0x0132}));
+  EXPECT_EQ(call({S_PCP_GET_OV, 3, 0x0302, 0x5C00 + 406, 0}), (Words{0x8088, 1, RES_INVALID_PARAMETER}));
+  // An object the servo lacks: its negative confirmation (class 6, code 7).
+  EXPECT_EQ(call({S_PCP_GET_OV, 2, 0x0402, 0x5C00 + 998}), (Words{0x8088, 3, 0x0402, 0x0607, 0}));
+}
+
+TEST_F(Ddi, SteppedAReadsCycleServesTheNextEmptyReceive) {
+  open();
+  start();
+  T_DDI_INFO info{};
+  auto cycles = [&] {
+    EXPECT_EQ(DDI_GetInfo(data_, &info), ERR_OK);
+    return info.cycles;
+  };
+  const std::uint32_t before = cycles();
+  std::uint8_t b[2];
+  ASSERT_EQ(read(0, 2, b), ERR_OK);  // one cycle
+  std::uint8_t m[64];
+  T_DDI_MXI_ACCESS a{0, sizeof m, 0, m};
+  EXPECT_EQ(DDI_MXI_RcvMessage(mbx_, &a), ERR_NO_MSG);  // the read's cycle: none more
+  EXPECT_EQ(cycles(), before + 1);
+  a.msgLength = sizeof m;
+  EXPECT_EQ(DDI_MXI_RcvMessage(mbx_, &a), ERR_NO_MSG);  // a receive alone runs one
+  EXPECT_EQ(cycles(), before + 2);
 }
 
 TEST_F(Ddi, InRealTimeTheBoardCyclesByItself) {

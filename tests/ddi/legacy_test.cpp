@@ -23,6 +23,7 @@ class Legacy : public ::testing::Test {
     setenv("IBS_DDI_MODE", "stepped", 1);
     unsetenv("IBS_DDI_SCENARIO");
     unsetenv("IBS_DDI_RT_PRIORITY");
+    unsetenv("IBS_DDI_MASTER_COMMANDS");
   }
   void TearDown() override {
     if (dti_ != 0) {

@@ -46,7 +46,7 @@ TEST(Cli, HelpEndsWithExamplesAndExitCodes) {
                                  "lustbus download", "dfs1 emulate", "dfs1 status", "dfs1 read", "dfs1 write",
                                  "dfs1 speed", "canlust emulate", "canlust start", "canlust stop", "canlust read",
                                  "canlust write", "canlust describe", "canlust download", "canlust monitor",
-                                 "canlust send", "canlust play", "completion"}) {
+                                 "canlust send", "canlust play", "completion", "master"}) {
     const Result r = run(path + " --help");
     EXPECT_EQ(r.exit_code, 0) << path << "\n" << r.out;
     EXPECT_NE(r.out.find("Usage: ibs " + path), std::string::npos) << path << "\n" << r.out;

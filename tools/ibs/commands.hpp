@@ -31,6 +31,14 @@ struct RunOptions {
   ProgressOptions progress;  // -q, --progress (progress.hpp)
 };
 
+// `ibs master --board NODE [SCENARIO] [--json] [--duration S]` (docs/board.md).
+struct MasterOptions {
+  std::string board;        // the board without the node suffix: IBB1N1, IBETH01N1
+  std::string scenario;     // empty: the built-in default scenario
+  bool json = false;
+  double duration_s = 0.0;  // > 0: run this long instead of the scenario's duration
+};
+
 struct CampaignOptions {
   std::uint64_t seed = 1;
   std::uint64_t transactions = 100000;
@@ -45,6 +53,8 @@ int replay(const std::string& emulate, const std::string& file, const std::strin
 // `json`: one JSON object per file on one line (trace_input.hpp) instead of the decoded trace.
 int decode(const std::string& file, bool json = false);
 int run(const RunOptions& options);
+// A scenario's master side against a controller board: 0 ok, 2 bad input or a DDI error, 130 interrupted.
+int master(const MasterOptions& options);
 // The fault campaign (sim/campaign.hpp): exit 1 when a check failed.
 int campaign(const CampaignOptions& options);
 

@@ -25,6 +25,7 @@ std::string metavariable(const std::string& long_name) {
       {"listen-ms", "MS"},      {"duration-ms", "MS"},      {"id-step", "N"},          {"cacnf", "N"},
       {"watchdog-reaction", "REACTION"},
       {"lustbus-pcap", "FILE"}, {"dfs1-pcap", "FILE"},
+      {"board", "NODE"},        {"duration", "S"},
   };
   if (const auto it = names.find(long_name); it != names.end()) return it->second;
   std::string n;
@@ -54,6 +55,11 @@ constexpr Footer kFooters[] = {
          "Exit codes: 0 ok; 1 a device refused or did not answer, a replay or check failed; 2 bad input; 130 interrupted"},
     {"run", "Examples:\n  ibs run --trace /tmp/traces --vcd /tmp/run.vcd\n  ibs run - --format toml < my.toml --json\n"
             "Exit codes: 0 ok; 2 bad input (FILE:LINE: what); 130 interrupted, nothing written"},
+    {"master", "Examples:\n  ibs master --board IBB1N1\n  ibs master --board IBB1N1 examples/default.toml --json --duration 3\n"
+               "ibs's virtual board takes another file's ring and faults with IBS_DDI_SCENARIO=FILE "
+               "IBS_DDI_MASTER_COMMANDS=ibs-master (docs/board.md).\n"
+               "Exit codes: 0 ok; 2 bad input, or a DDI error (the call and its code); 130 interrupted (the drives "
+               "stopped, the board shut down, the summary printed)"},
     {"replay", "Examples:\n  ibs run --trace /tmp/traces && ibs replay --emulate device /tmp/traces/mc6000.trace\n"
                "  ibs replay --emulate master - < /tmp/traces/vf1000.trace\n"
                "Exit codes: 0 every row matched; 1 a row did not match; 2 bad input"},

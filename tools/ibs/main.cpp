@@ -85,6 +85,19 @@ int run_ibs(int argc, char** argv) {
                   "with --realtime: a live control channel, '-' (standard input) or unix:PATH, of JSON "
                   "lines, each a timeline entry without 'at' applied at once (docs/scenarios.md)");
 
+  ibs::cli::MasterOptions master_options;
+  auto* master = app.add_subcommand(
+      "master", "run a scenario's master side (its commands and parameter requests) in real time against an INTERBUS "
+                "controller board through the DDI; prints the summary of ibs run (docs/board.md)");
+  master->add_option("--board", master_options.board,
+                     "the board, without the node suffix: IBB1N1 (ISA and PCI boards), IBETH01N1 (Ethernet controllers)")
+      ->required();
+  master->add_option("SCENARIO", master_options.scenario,
+                     "a scenario file (.toml or .json, docs/scenarios.md); without one the default of ibs run");
+  master->add_flag("-j,--json", master_options.json, "print the summary as JSON");
+  master->add_option("--duration", master_options.duration_s, "run this many seconds instead of the scenario's duration")
+      ->check(CLI::Range(0.001, 86400.0));
+
   std::string emulate;
   std::vector<std::string> replay_files;
   auto* replay = app.add_subcommand(
@@ -175,6 +188,7 @@ int run_ibs(int argc, char** argv) {
   if (const auto rc = ibs::cli::run_lustbus_commands(lustbus_state)) return *rc;
   if (const auto rc = ibs::cli::run_canlust_commands(canlust_state)) return *rc;
   if (run->parsed()) return ibs::cli::run(run_options);
+  if (master->parsed()) return ibs::cli::master(master_options);
   if (replay->parsed() || decode->parsed()) {
     const auto& files = replay->parsed() ? replay_files : decode_files;
     if (const std::string problem = ibs::cli::check_inputs(files); !problem.empty()) {

@@ -128,9 +128,11 @@ IBDDIRET DDI_GetInfo(IBDDIHND handle, T_DDI_INFO* info);
 #define S_READ_VALUE 0x0351
 #define S_GET_DIAG_INFO 0x032B
 #define S_CONFIRM_DIAGNOSTICS 0x0760
+#define S_READ_CONFIGURATION 0x0308 /* ibs's code: the active configuration, device by device */
 /* PCP services towards the devices (communication reference 2 = the first PCP device). */
 #define S_PCP_READ 0x0081
 #define S_PCP_WRITE 0x0082
+#define S_PCP_GET_OV 0x0088 /* Get-OV long, one object per request */
 #define S_PCP_INITIATE 0x008B
 #define S_PCP_ABORT 0x088D            /* unconfirmed */
 #define S_PCP_ABORT_IND 0x408D        /* ibs: the board ended an association */
@@ -172,7 +174,9 @@ IBDDIRET DDI_GetInfo(IBDDIHND handle, T_DDI_INFO* info);
 /* The switch between real time and stepping, read when the board starts (the first open): the
  * environment variable IBS_DDI_MODE = "realtime" (the default) or "stepped"; IBS_DDI_SCENARIO
  * names a scenario file (TOML or JSON, docs/scenarios.md) with the bus and its faults, else the
- * default bus. */
+ * default bus; IBS_DDI_MASTER_COMMANDS = "ignore" (the default: the file's commands for a master
+ * are ignored with a note on stderr) or "ibs-master" (`ibs master --board` runs them, its
+ * master_restart entries too). docs/ddi.md, "The board". */
 
 #ifdef __cplusplus
 }

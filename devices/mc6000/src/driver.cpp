@@ -29,9 +29,17 @@ ParamKind kind_of(const pcp::Result& r, ParamOp op) {
 Mc6000Driver::Mc6000Driver(const mc6000::Layout& layout, const drivecom::SequencerConfig& config)
     : master_(layout, config) {
   if (layout.pcp_words > 0) {
+    channel_ = true;
     pcp_config_.channel_words = layout.pcp_words;
     client_.emplace(pcp_config_);
   }
+}
+
+bool Mc6000Driver::use_pcp_client(pcp::ParameterClient& client) {
+  if (!channel_) return false;
+  carrier_ = &client;
+  client_.reset();
+  return true;
 }
 
 void Mc6000Driver::initial(const DriverIo& io) {
@@ -50,7 +58,7 @@ void Mc6000Driver::cycle(const DriverIo& io, Time now) {
   // A driver with a PCP channel out of line; one without (SUPI 12) is the process data alone,
   // and its common case calls nothing (Mc6000PdMaster::cycle) and saves no register: every call
   // from here is the last thing it does.
-  if (client_) {
+  if (channel_) {
     cycle_with_pcp(io, now);
     return;
   }
@@ -72,25 +80,40 @@ void Mc6000Driver::cycle_with_pcp(const DriverIo& io, Time now) {
   last_cycle_ = now;
   cycled_ = true;
   if (!io.pd_out.empty()) master_.cycle(io.pd_in, io.pd_out, now);
+  if (carrier_ != nullptr) {
+    run_channel(*carrier_, now, {}, {});  // the channel is not in the words
+    return;
+  }
   if (io.pcp_out.empty()) return;
-  take_results(now);
-  start_next(now);
-  client_->step(now, io.pcp_in, io.pcp_out);
-  take_results(now);
+  run_channel(*client_, now, io.pcp_in, io.pcp_out);
+}
+
+template <typename Channel>
+void Mc6000Driver::run_channel(Channel& c, Time now, std::span<const Word> s2m, std::span<Word> m2s) {
+  take_results(c);
+  start_next(c, now);
+  c.step(now, s2m, m2s);
+  take_results(c);
 }
 
 void Mc6000Driver::restart(Time now) {
   skip_ = nullptr;
   master_.sequencer().restart();
   master_.set_reference_rpm(0.0);
-  if (!client_) return;
-  // Everything queued ends aborted; the new client starts without an association.
+  if (!channel_) return;
+  // Everything queued ends aborted; the channel starts over without an association.
   pcp::Result r;
   r.kind = pcp::ResultKind::aborted;
   r.completed_at = now;
   for (; !queue_.empty(); queue_.pop()) complete(queue_.front(), ParamKind::aborted, 0, r);
   active_ = initiating_ = false;
-  client_.emplace(pcp_config_);
+  if (carrier_ != nullptr) {
+    carrier_->abort(now);  // ends the association; an outstanding request's result is nobody's
+    while (carrier_->take_result_view() != nullptr) {
+    }
+  } else {
+    client_.emplace(pcp_config_);
+  }
 }
 
 void Mc6000Driver::complete(const Pending& p, ParamKind kind, std::int64_t value, const pcp::Result& r) {
@@ -102,8 +125,9 @@ void Mc6000Driver::complete(const Pending& p, ParamKind kind, std::int64_t value
   c.result = r;
 }
 
-void Mc6000Driver::take_results(Time) {
-  while (const pcp::Result* r = client_->take_result_view()) {  // no copy: complete() makes one
+template <typename Channel>
+void Mc6000Driver::take_results(Channel& c) {
+  while (const pcp::Result* r = c.take_result_view()) {  // no copy: complete() makes one
     if (!active_ || queue_.empty()) continue;  // nobody waits for it (e.g. after a restart)
     const Pending head = queue_.front();
     active_ = false;
@@ -126,12 +150,13 @@ void Mc6000Driver::take_results(Time) {
   }
 }
 
-void Mc6000Driver::start_next(Time now) {
+template <typename Channel>
+void Mc6000Driver::start_next(Channel& c, Time now) {
   // The first request waits for a second cycle: its timeout needs the cycle time.
-  if (active_ || queue_.empty() || client_->busy() || period_ == Duration::zero()) return;
+  if (active_ || queue_.empty() || c.busy() || period_ == Duration::zero()) return;
   const Pending& p = queue_.front();
-  if (!client_->associated()) {
-    if (client_->initiate(now, request_timeout(Duration::zero())) == pcp::SubmitStatus::accepted) {
+  if (!c.associated()) {
+    if (c.initiate(now, request_timeout(Duration::zero())) == pcp::SubmitStatus::accepted) {
       active_ = initiating_ = true;
     }
     return;
@@ -141,8 +166,8 @@ void Mc6000Driver::start_next(Time now) {
   pcp::SubmitStatus s = pcp::SubmitStatus::invalid_argument;
   switch (p.op) {
     case ParamOp::read:
-      s = info != nullptr ? client_->read(now, ref, info->type, request_timeout(Duration::zero()))
-                          : client_->read(now, ref, request_timeout(Duration::zero()));
+      s = info != nullptr ? c.read(now, ref, info->type, request_timeout(Duration::zero()))
+                          : c.read(now, ref, request_timeout(Duration::zero()));
       break;
     case ParamOp::write: {
       // The value's type is the parameter's; for a number the table does not know, 16 bits (the
@@ -153,10 +178,10 @@ void Mc6000Driver::start_next(Time now) {
       const Duration timeout = request_timeout(p.number == mc6000::kProg && p.value == mc6000::kProgFactoryDefaults
                                                    ? kFactoryDefaultsTimeout
                                                    : Duration::zero());
-      if (const auto v = pcp::value_from_signed_raw(t, p.value)) s = client_->write(now, ref, *v, timeout);
+      if (const auto v = pcp::value_from_signed_raw(t, p.value)) s = c.write(now, ref, *v, timeout);
       break;
     }
-    case ParamOp::describe: s = client_->get_ov(now, ref, request_timeout(Duration::zero())); break;
+    case ParamOp::describe: s = c.get_ov(now, ref, request_timeout(Duration::zero())); break;
   }
   if (s == pcp::SubmitStatus::accepted) {
     active_ = true;
@@ -170,7 +195,7 @@ void Mc6000Driver::start_next(Time now) {
 }
 
 ParamId Mc6000Driver::submit(ParamOp op, std::uint16_t number, std::int64_t value) {
-  if (!client_) {
+  if (!channel_) {
     refusal_ = Refusal::no_channel;
     return 0;
   }

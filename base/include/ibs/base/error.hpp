@@ -82,6 +82,14 @@ enum class ErrorCode : std::uint8_t {
   // master::MasterLoop::validate (std::invalid_argument)
   master_driver_count,          // not one driver per device
   master_device_outside_image,  // a device's words outside the process image
+  // pcp::MailboxClient::validate (std::invalid_argument)
+  channel_reference_invalid,  // a board's communication reference below 2
+  // A controller board behind the DDI (master/ddi: ibs::master::DdiBoard)
+  board_call_failed,             // a DDI call returned an error: the call and its code
+  board_plug_and_play,           // the board's plug & play mode is on (2240H)
+  board_configuration_mismatch,  // the board's configuration is not the master's
+  board_service_refused,         // a firmware service was confirmed negatively
+  board_no_answer,               // a firmware service's confirmation did not come in time
 };
 
 // The enumerator's name ("layout_setting_out_of_range"), for a log line.

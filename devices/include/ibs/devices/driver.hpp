@@ -15,6 +15,10 @@
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
 
+namespace ibs::pcp {
+class ParameterClient;  // pcp/parameter_client.hpp
+}  // namespace ibs::pcp
+
 namespace ibs::devices {
 
 enum class ParamOp : std::uint8_t { read, write, describe };
@@ -85,6 +89,16 @@ class DeviceDriver {
   [[nodiscard]] virtual double reference() const = 0;
   [[nodiscard]] virtual double actual() const = 0;
   [[nodiscard]] virtual std::string_view unit() const = 0;
+
+  // The device's PCP channel carried otherwise than in its process-data words -- through a
+  // controller board's mailbox (pcp::MailboxClient; master/ddi) -- for every parameter
+  // transaction from now on; `client` must outlive the driver's use of it. The words of the
+  // channel in DriverIo are then not the driver's. False, and nothing changed, for a driver
+  // without a PCP channel. Configuration time, before the first cycle.
+  virtual bool use_pcp_client(pcp::ParameterClient& client) {
+    static_cast<void>(client);
+    return false;
+  }
 
   // The master loop's skip of a holding driver (MasterLoop::cycle, docs/performance.md). A driver
   // points it at its sequencer at the end of a cycle that did nothing but hold: it wrote its

@@ -8,7 +8,8 @@
 // channel, which ends the association: the next request needs a new Initiate.
 //
 // The cycle path (submissions, step, take_result, take_result_view) allocates nothing, throws
-// nothing.
+// nothing. The interface it shares with the client over a controller board's mailbox
+// (mailbox_client.hpp), for a driver that runs over either, is parameter_client.hpp.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "ibs/base/words.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/link.hpp"
+#include "ibs/pcp/parameter_client.hpp"
 #include "ibs/pcp/parameters.hpp"
 #include "ibs/pcp/pdu.hpp"
 
@@ -35,52 +37,6 @@ struct ClientConfig {
   Duration link_ack_timeout = 100ms;
 };
 
-enum class SubmitStatus : std::uint8_t {
-  accepted,
-  busy,              // a request is outstanding
-  not_initiated,     // Read, Write, Get-OV, Identify, Status need an association
-  invalid_argument,  // a value that does not convert, or data too long for the PDU
-};
-std::string_view to_string(SubmitStatus s);
-
-enum class ResultKind : std::uint8_t {
-  ok,              // positive confirmation
-  negative,        // negative confirmation: Result::error
-  incompatible,    // Initiate: the server's KBL does not fit ours (Result::mismatch); aborted
-  type_mismatch,   // typed Read: the data length is not the type's
-  aborted,         // Abort from the server (Result::abort_reason) or by our user
-  link_reset,      // the channel was reset (servo restart, its timeout) before the confirmation
-  timeout,         // no confirmation in time; the client aborted the channel
-  protocol_error,  // a message that does not answer the request; the client aborted the channel
-};
-std::string_view to_string(ResultKind k);
-
-struct Result {
-  ServiceCode service = ServiceCode::read;
-  ResultKind kind = ResultKind::ok;
-  std::uint16_t index = 0;  // Read, Write, Get-OV: the object
-  std::uint8_t invoke_id = 0;
-  PcpError error{};
-  AbortReason abort_reason = AbortReason::user;
-  KblMismatch mismatch = KblMismatch::none;
-  DataBytes data;                 // Read: the value's bytes
-  std::optional<Value> value;     // typed Read: the value
-  ObjectDescription description;  // Get-OV
-  IdentifyInfo identity;          // Identify
-  StatusInfo status;              // Status
-  Kbl peer_kbl{};                 // Initiate (also when negative or incompatible)
-  Time submitted_at{};
-  Time completed_at{};
-
-  [[nodiscard]] bool ok() const { return kind == ResultKind::ok; }
-};
-
-struct InformationReport {
-  std::uint16_t index = 0;
-  DataBytes data;
-  Time at{};
-};
-
 struct ClientStats {
   std::uint32_t requests = 0;
   std::uint32_t confirmations = 0;
@@ -90,7 +46,7 @@ struct ClientStats {
   std::uint32_t aborts_received = 0;
 };
 
-class Client {
+class Client final : public ParameterClient {
  public:
   // Refuses KBL max PDU sizes outside 20..134 bytes (ErrorCode::channel_pdu_size_invalid), a
   // request_timeout that is not positive (ErrorCode::channel_timeout_not_positive), then what
@@ -101,36 +57,36 @@ class Client {
   explicit Client(const ClientConfig& cfg);
 
   // Submissions. `timeout` zero means the configured request_timeout.
-  SubmitStatus initiate(Time now, Duration timeout = Duration::zero());
-  SubmitStatus read(Time now, ParameterRef p, Duration timeout = Duration::zero());
+  SubmitStatus initiate(Time now, Duration timeout = Duration::zero()) override;
+  SubmitStatus read(Time now, ParameterRef p, Duration timeout = Duration::zero()) override;
   SubmitStatus read(Time now, ParameterRef p, DataType expected,
-                    Duration timeout = Duration::zero());
+                    Duration timeout = Duration::zero()) override;
   SubmitStatus read_subindex(Time now, ParameterRef p, std::uint8_t subindex,
                              Duration timeout = Duration::zero());
-  SubmitStatus write(Time now, ParameterRef p, Value v, Duration timeout = Duration::zero());
+  SubmitStatus write(Time now, ParameterRef p, Value v, Duration timeout = Duration::zero()) override;
   // Engineering value converted to the type (seed 000, 2.3.2).
   SubmitStatus write(Time now, ParameterRef p, DataType t, double value,
                      Duration timeout = Duration::zero());
   SubmitStatus write_bytes(Time now, ParameterRef p, std::span<const std::uint8_t> data,
                            std::uint8_t subindex = 0, Duration timeout = Duration::zero());
-  SubmitStatus get_ov(Time now, ParameterRef p, Duration timeout = Duration::zero());
+  SubmitStatus get_ov(Time now, ParameterRef p, Duration timeout = Duration::zero()) override;
   SubmitStatus identify(Time now, Duration timeout = Duration::zero());
   SubmitStatus status(Time now, Duration timeout = Duration::zero());
   // Abort (unconfirmed): ends the association. An outstanding request ends as `aborted` and
   // the channel is reset; otherwise the Abort message is sent.
-  void abort(Time now);
+  void abort(Time now) override;
 
   // One bus cycle: reads the servo's channel words, writes the master's.
-  void step(Time now, std::span<const Word> s2m, std::span<Word> m2s);
+  void step(Time now, std::span<const Word> s2m, std::span<Word> m2s) override;
   // The frame the master shows before its first step (a trace's m2s[0]).
   void show(Time now, std::span<Word> m2s);
 
-  [[nodiscard]] bool busy() const { return outstanding_; }
-  [[nodiscard]] bool associated() const { return associated_; }
+  [[nodiscard]] bool busy() const override { return outstanding_; }
+  [[nodiscard]] bool associated() const override { return associated_; }
   std::optional<Result> take_result();
   // take_result() without copying the Result (312 bytes): the client's own, valid until the
   // client is next used (step, a submission, abort); nullptr when no result is ready.
-  [[nodiscard]] const Result* take_result_view() {
+  [[nodiscard]] const Result* take_result_view() override {
     if (!result_ready_) return nullptr;
     result_ready_ = false;
     return &result_;

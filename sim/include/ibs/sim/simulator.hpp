@@ -27,6 +27,8 @@
 
 namespace ibs::sim {
 
+class MasterTimeline;  // master_timeline.hpp
+
 struct StateRecord {
   Time at{0};
   std::string what;  // a DRIVECOM state as the master saw it, or an event such as a reached reference
@@ -120,6 +122,9 @@ struct RealtimeStats {
 };
 
 struct Summary {
+  // The report's first line when the run was not the simulator's (`ibs master --board`: the
+  // master against a board, in real time); empty: "ibs run: scenario ..., simulated ...".
+  std::string headline;
   std::string scenario;
   Duration simulated{0};
   Duration cycle_time{0};
@@ -266,7 +271,6 @@ class Simulator {
   void plant(Time t, std::size_t i, const TimelineEntry& e, FaultRecord& f);
   void record_control(const TimelineEntry& e, Time t);
   void observe_master(Time t);
-  void observe_driver(Device& d, Time t);  // what ibs's driver of `d` saw, into the summary
   Time next_sample_time(Device& d);
   void reschedule_front(Time at);
   void finish();
@@ -280,6 +284,8 @@ class Simulator {
   };
   std::vector<Prototype> prototypes_;  // while the ring is built, until the run starts
   std::unique_ptr<master::MasterLoop> loop_;
+  // The master's side of the scenario: its commands, what its drivers saw (master_timeline.hpp).
+  std::unique_ptr<MasterTimeline> master_side_;
   std::vector<std::unique_ptr<Device>> devices_;
   interbus::ProcessImage image_;
   std::vector<master::LinkState> links_;  // the exchange of the cycle end (master/bus.hpp)

@@ -1,5 +1,7 @@
 // The MC6000's master driver: the DRIVECOM sequencer, the reference and actual in the words of
-// its 405-SUPI / 406-IBCNF layout, and parameter access through PCP (pcp/client.hpp, seed 001 4.2).
+// its 405-SUPI / 406-IBCNF layout, and parameter access through PCP (seed 001 4.2): over the
+// channel words of its layout (pcp/client.hpp), or, on a controller board, through the board's
+// mailbox (use_pcp_client, pcp/mailbox_client.hpp) -- the same transactions over either.
 #pragma once
 
 #include <array>
@@ -45,6 +47,9 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   [[nodiscard]] double reference() const override { return master_.reference_rpm(); }
   [[nodiscard]] double actual() const override { return master_.actual_rpm(); }
   [[nodiscard]] std::string_view unit() const override { return "rpm"; }
+  // A layout with a PCP channel: the transactions go through `client` from now on.
+  bool use_pcp_client(pcp::ParameterClient& client) override;
+  // The client over the channel words; nullptr without a channel or with another client.
   [[nodiscard]] const pcp::Client* pcp() const { return client_ ? &*client_ : nullptr; }
 
  private:
@@ -70,17 +75,26 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
   // (when the cycle hands the driver the channel's words).
   // Never inline: cycle() would then save registers for its calls on every driver's path.
   [[gnu::noinline]] void cycle_with_pcp(const DriverIo& io, Time now);
-  void take_results(Time now);
+  // The channel's part of a cycle, written once for either client: `Channel` is pcp::Client
+  // (the words', called directly) or pcp::ParameterClient (another carrier's, through the
+  // interface).
+  template <typename Channel>
+  void run_channel(Channel& c, Time now, std::span<const Word> s2m, std::span<Word> m2s);
+  template <typename Channel>
+  void take_results(Channel& c);
   // The timeout for the next request: kTimeoutCycles of the cycle time seen, at least the
   // client's own.
   [[nodiscard]] Duration request_timeout(Duration at_least) const;
-  void start_next(Time now);
+  template <typename Channel>
+  void start_next(Channel& c, Time now);
   void complete(const Pending& p, ParamKind kind, std::int64_t value, const pcp::Result& r);
   [[nodiscard]] const Completed* find_completed(ParamId id) const;
 
   Mc6000PdMaster master_;
   pcp::ClientConfig pcp_config_{};
-  std::optional<pcp::Client> client_;
+  bool channel_ = false;                    // the layout has a PCP channel
+  std::optional<pcp::Client> client_;        // over the channel words, unless...
+  pcp::ParameterClient* carrier_ = nullptr;  // ...another carrier's client is used (use_pcp_client)
   BoundedQueue<Pending> queue_{kQueueCapacity};  // the active request stays at the front until it completes
   bool active_ = false;      // the queue head has been sent
   bool initiating_ = false;  // an Initiate is outstanding for the queue head
