@@ -302,4 +302,28 @@ put("lustbus_fuzz", "receiver_cut_after_address", lustbus_receiver(
 p6_cut = bytes([0x10, 0x02, 0x01, 0x86, 0x06, 0x00, 0x00, 0x00])
 status_request = bytes([0x10, 0x02, 0x01, 0x81, 0x10, 0x03, 0x7E])
 put("dfs1_frame_fuzz", "cut_write_then_status", bytes([0x01, len(p6_cut), 0x00]) + p6_cut + status_request)
+# control_fuzz, the channel (byte 0 bit 1): [clients][max_clients][max_line][read_budget]
+# [lines_per_poll] then operations: (client << 2) | 0 write (a length byte, the bytes), | 2 the
+# client's end of input, | 3 a poll (issue 41).
+def channel(clients, max_clients, max_line, budget, lines, *ops):
+    out = bytes([0x02, clients - 1, max_clients - 1, max_line - 1, budget - 1, lines - 1])
+    for op in ops:
+        if isinstance(op, tuple):
+            client, data = op
+            out += bytes([client << 2, len(data)]) + data
+        else:  # "poll"
+            out += bytes([3])
+    return out
+
+
+def end(client):
+    return bytes([(client << 2) | 2])
+
+
+put("control_fuzz", "channel_two_clients_interleaved", channel(
+    2, 4, 48, 16, 4, (0, b'{"device": "servo", "spe'), (1, b'{"device": "fan", "load": 1}\n'), "poll",
+    (0, b'ed": 5}\n# comment\n\r\n'), (1, b"not json\r\n"), "poll") + end(0) + bytes([3]))
+put("control_fuzz", "channel_endless_line_and_a_refused_client", channel(
+    3, 2, 8, 8, 2, (0, b"x" * 40), (1, b'{"a": 1}\n'), "poll", (0, b"x" * 40), "poll", (0, b"\nok\n"),
+    (1, b"last without newline"), "poll") + end(1) + bytes([3]))
 print("seeds written to", CORPUS)

@@ -20,13 +20,13 @@
 
 #include "bench.hpp"
 #include "commands.hpp"
-#include "control_input.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
 #include "stop_signals.hpp"
 #include "trace_input.hpp"
 #include "ibs/base/text_file.hpp"
+#include "ibs/control/channel.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
@@ -54,21 +54,23 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
   return std::nullopt;
 }
 
-// The live control channel of `ibs run --realtime --control SPEC`: once per cycle, every line that
-// has arrived is read as a timeline entry without `at` and applied at the simulated time reached;
-// a bad one is reported on stderr as `control:LINE: what is wrong` and skipped.
+// The live control channel of `ibs run --realtime --control SPEC`: once per cycle, the lines that
+// have arrived (control::Limits bounds them) are read as timeline entries without `at` and applied
+// at the simulated time reached; a bad one is reported on stderr as `control:LINE: what is wrong`
+// (`control:CLIENT:LINE` for a socket's client) and skipped.
 // An entry for a DFS-1 controller of the test bench goes to the bench, which lists it in its part
 // of the summary; every other to the simulator.
-std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator& simulator,
+std::function<void(Time)> control_each_cycle(control::Channel& input, sim::Simulator& simulator,
                                              const sim::Scenario& scenario, Bench* bench) {
   return [&input, &simulator, &scenario, bench](Time now) {
     input.poll(
-        [&](std::size_t number, std::string_view text) {
+        [&](const control::Origin& from, std::string_view text) {
           try {
-            sim::TimelineEntry e = sim::parse_control_line(std::string(text), number, scenario);
+            sim::TimelineEntry e = sim::parse_control_line(std::string(text), from.line, scenario, std::string(from.name));
+            e.source_client = from.client;
             if (bench != nullptr && bench->serves_controller(e.device)) {
               if (const auto why = bench->check(e)) {
-                std::cerr << "control:" << number << ": " << *why << "\n";
+                std::cerr << from << ": " << *why << "\n";
               } else {
                 bench->apply(e, now);
               }
@@ -79,9 +81,8 @@ std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator
             std::cerr << e.what() << "\n";
           }
         },
-        [](std::size_t number, std::string_view what) {
-          std::cerr << "control:" << number << ": " << what << "\n";
-        });
+        [](const control::Origin& from, std::string_view what) { std::cerr << from << ": " << what << "\n"; },
+        [](std::string_view notice) { std::cerr << notice << "\n"; });
   };
 }
 
@@ -140,10 +141,10 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
                  "have no time to land in\n";
     return kExitBadInput;
   }
-  std::unique_ptr<ControlInput> control;
+  std::unique_ptr<control::Channel> control;
   if (!o.control.empty()) {
     std::string error;
-    control = ControlInput::open(o.control, error);
+    control = control::Channel::open(o.control, error);
     if (!control) {
       std::cerr << "--control " << o.control << ": " << error << "\n";
       return kExitBadInput;
@@ -177,16 +178,16 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
       if (control) {
         rt.each_step = [&](Time, std::vector<sim::canlust::Entry>& out) {
           control->poll(
-              [&](std::size_t number, std::string_view text) {
+              [&](const control::Origin& from, std::string_view text) {
                 try {
-                  out.push_back(sim::canlust::parse_control_entry(scenario, std::string(text), number));
+                  out.push_back(sim::canlust::parse_control_entry(scenario, std::string(text), from.line,
+                                                                  std::string(from.name)));
                 } catch (const sim::ScenarioError& e) {
                   std::cerr << e.what() << "\n";  // "control:LINE: what is wrong"; the run goes on
                 }
               },
-              [](std::size_t number, std::string_view what) {
-                std::cerr << "control:" << number << ": " << what << "\n";
-              });
+              [](const control::Origin& from, std::string_view what) { std::cerr << from << ": " << what << "\n"; },
+              [](std::string_view notice) { std::cerr << notice << "\n"; });
         };
       }
       report = sim::canlust::run_realtime(scenario, rt, pcap_path);
@@ -243,7 +244,7 @@ int run(const RunOptions& o) {
   }
   // A live entry needs wall-clock time to land in: without --realtime the simulation runs as
   // fast as it can and is over before anyone could type.
-  std::unique_ptr<ControlInput> control;
+  std::unique_ptr<control::Channel> control;
   if (!o.control.empty()) {
     if (!o.realtime) {
       std::cerr << "--control " << o.control
@@ -252,7 +253,7 @@ int run(const RunOptions& o) {
       return kExitBadInput;
     }
     std::string error;
-    control = ControlInput::open(o.control, error);
+    control = control::Channel::open(o.control, error);
     if (!control) {
       std::cerr << "--control " << o.control << ": " << error << "\n";
       return kExitBadInput;

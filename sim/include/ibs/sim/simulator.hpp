@@ -58,7 +58,8 @@ struct FaultRecord {
 // An entry of the live control channel that was applied (`ibs run --control`).
 struct ControlRecord {
   Time at{0};              // when it was applied (deferred ones: when their device's wait ended)
-  std::size_t line = 0;    // its line on the channel
+  std::size_t line = 0;    // its line on the channel (in its client's input)
+  std::uint32_t client = 0;  // the socket's client that sent it (0: standard input)
   std::string entry;       // as a control line (write_control_line)
   std::string device;      // its device; empty: bus-wide
 };
