@@ -73,6 +73,11 @@ put("trace_fuzz", "no_data_watchdog.trace", b"# format: ibs-trace 1\n# device: m
     b"9, 0000 0000 0000, 0240 0000 0000\n")
 put("trace_fuzz", "step_time_vf1000.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: pd\n# watchdog_ms: 200\n"
     b"# step-time: 8.2 ms\n0, 0000 0000 0000, 0240 0000 8000\n! no-data 30\n31, 0000 0000 0000, 0240 0000 8000\n")
+put("trace_fuzz", "settings_and_writes.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: pd\n"
+    b"# watchdog_ms: 100\n# step-time: 8.2 ms\n# setting: watchdog_reaction 1\n# setting: keypad true\n"
+    b"# setting: reset_time \"2 s\"\n# init: operational\n0, 0000 0000 0000, 0240 0000 8000\n! write 85 0\n"
+    b"! write 22 1000 over LUSTBUS\n1, 0000 0000 0000, 0240 0000 8000\n! no-data 20\n"
+    b"22, 0000 0000 0000, 0208 0000 8000\n")
 put("trace_fuzz", "comm_step_time.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# step-time: 726 us\n"
     b"# request: read 0x16\n0, 0000, 8000\n1, 2416, 8000\n2, 2416, A003\n")
 

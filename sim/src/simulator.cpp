@@ -1,6 +1,8 @@
 // The cycle simulator: the ring built from a scenario, and the run from start to finish (simulator_internal.hpp lists the other parts).
 #include "simulator_internal.hpp"
 
+#include "ibs/devices/trace_adapters.hpp"
+
 namespace ibs::sim {
 
 using detail::fmt_value;
@@ -144,6 +146,10 @@ void Simulator::start(const SimOptions& options) {
       r.trace.header.device = std::string((*d->kind)->name());
       r.trace.header.words = trace::WordsKind::pd;
       (*d->kind)->write_trace_settings(d->configuration, r.trace.header);
+      // The settings without a header of their own (`setting: NAME VALUE`), and the parameters
+      // the channels the recorded words do not carry change (`! write PNR VALUE`).
+      devices::write_device_settings(*d->kind, d->configuration.settings, r.trace.header);
+      d->emu->record_changes(true);
       // The watchdog as the scenario set it (without one the device's own default, which a
       // replay takes without the header too); one step is one sample of the device, the time a
       // row stands for (the bus cycle of the run is another: samples no cycle reached are the

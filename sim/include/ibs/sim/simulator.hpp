@@ -259,6 +259,7 @@ class Simulator {
   void step_part(unsigned part);
   void handle_sample(std::size_t i, Time t);
   void record_sample(Device& d, const std::array<Word, 4>& before, Time t);
+  void record_changes(Device& d);
   void apply_timeline(Time t);
   void apply(const TimelineEntry& e, Time t);
   void apply_random_faults(Time t);
