@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ibs/base/time.hpp"
@@ -73,6 +74,16 @@ class Bench {
   bool apply(const sim::TimelineEntry& e, Time now);
 
   [[nodiscard]] BenchReport report() const;
+  // The same counters as report()'s devices, one served drive or controller at a time, without
+  // allocating (`ibs run --stats-every`, on the simulator's thread between two deadlines).
+  struct Counters {
+    std::string_view name;
+    std::string_view line;  // "lustbus" or "dfs1"
+    int address = 0;
+    std::uint64_t telegrams = 0, answers = 0, errors = 0, dropped = 0;
+  };
+  [[nodiscard]] std::size_t served() const;
+  [[nodiscard]] Counters counters(std::size_t i) const;
 
  private:
   struct Impl;

@@ -21,7 +21,7 @@ std::string metavariable(const std::string& long_name) {
       {"pty-link", "LINK"},     {"framing", "FRAMING"},     {"format", "FORMAT"},      {"bus", "BUS"},
       {"sw-us", "US"},          {"supi", "N"},              {"ibcnf", "N"},            {"emulate", "SIDE"},
       {"listen-ms", "MS"},      {"duration-ms", "MS"},      {"id-step", "N"},          {"cacnf", "N"},
-      {"watchdog-reaction", "REACTION"},
+      {"watchdog-reaction", "REACTION"}, {"stats-every", "TIME"},
   };
   if (const auto it = names.find(long_name); it != names.end()) return it->second;
   std::string n;

@@ -23,6 +23,7 @@
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "run_stats.hpp"
 #include "stop_signals.hpp"
 #include "trace_input.hpp"
 #include "ibs/base/text_file.hpp"
@@ -123,7 +124,7 @@ sim::AnyScenario load_run_scenario(const RunOptions& o) {
 int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
                                     {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1},
-                                    {"--rt-priority", o.rt_priority != 0}}) {
+                                    {"--rt-priority", o.rt_priority != 0}, {"--stats-every", !o.stats_every.empty()}}) {
     if (given) {
       std::cerr << o.scenario << ": " << flag
                 << " is for INTERBUS scenarios; a CANLust run has --json, --pcap, --realtime and --control\n";
@@ -220,6 +221,15 @@ int run(const RunOptions& o) {
   if (o.rt_priority != 0 && !o.realtime) {
     std::cerr << "--rt-priority " << o.rt_priority << " needs --realtime\n";
     return kExitBadInput;
+  }
+  StatsEvery stats;
+  if (!o.stats_every.empty()) {
+    stats = parse_stats_every(o.stats_every);
+    if (stats.error.empty() && !o.realtime) stats.error = "--stats-every " + o.stats_every + " needs --realtime";
+    if (!stats.error.empty()) {
+      std::cerr << stats.error << "\n";
+      return kExitBadInput;
+    }
   }
   // The file is read once; its [bus] says which bus's simulation runs it.
   sim::Scenario scenario;
@@ -392,6 +402,12 @@ int run(const RunOptions& o) {
       rt.each_cycle = [&bench, &control_turn](Time now) {
         if (bench) bench->turn(now);
         if (control_turn) control_turn(now);
+      };
+    }
+    if (stats.every > Duration{0}) {
+      rt.interval = stats.every;
+      rt.each_interval = [&simulator, &control, &bench](const sim::RealtimeInterval& iv) {
+        write_stats_line(iv, *simulator, control.get(), bench.get());
       };
     }
     sim::run_realtime(*simulator, rt, options);
