@@ -293,7 +293,7 @@ class Bench:
         cycles, valid = bus.get("cycles"), bus.get("valid_cycles")
         c.append(("every bus cycle valid", cycles is not None and cycles == valid, f"{valid} of {cycles}"))
         samples = [x for x in self.samples if x.get("rss_kib") is not None]
-        c.append(("a sample every minute", len(samples) >= max(1, int(self.minutes) - 1),
+        c.append(("a sample every minute", len(samples) >= max(1, int(self.minutes)),
                   f"{len(samples)} samples in {self.minutes} min"))
         if samples:
             fds = [x["fds"] for x in samples]

@@ -116,6 +116,18 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
   std::uint64_t interval_overruns = 0;
   const bool reports = realtime.interval > Duration{0} && realtime.each_interval;
   Time next_report = reports ? Time{0} + realtime.interval : Time::max();
+  const auto report = [&] {
+    const RealtimeInterval iv{sim.now(),
+                              interval_wake.total(),
+                              interval_overruns,
+                              interval_wake.quantile(0.5),
+                              interval_wake.quantile(0.99),
+                              interval_wake.quantile(0.999),
+                              static_cast<std::int64_t>(interval_wake.max())};
+    realtime.each_interval(iv);
+    interval_wake.clear();
+    interval_overruns = 0;
+  };
   // The first deadline one cycle from now: the cycles of the run are k = 1 .. n.
   const std::int64_t start = monotonic_ns();
   bool stopped = false;
@@ -144,19 +156,12 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
       }
     }
     if (t >= next_report) {
-      const RealtimeInterval iv{sim.now(),
-                                interval_wake.total(),
-                                interval_overruns,
-                                interval_wake.quantile(0.5),
-                                interval_wake.quantile(0.99),
-                                interval_wake.quantile(0.999),
-                                static_cast<std::int64_t>(interval_wake.max())};
-      realtime.each_interval(iv);
-      interval_wake.clear();
-      interval_overruns = 0;
+      report();
       next_report += realtime.interval;
     }
   }
+  // The cycles after the last whole interval: a last, shorter one.
+  if (reports && interval_wake.total() > 0) report();
   wake.resize(recorded);
   if (!stopped) sim.run(options);  // the rest of the scenario after the last whole cycle
   r.wake = timing_stats(wake, cycle, processing_budgets());

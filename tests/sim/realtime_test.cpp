@@ -90,13 +90,15 @@ TEST(Realtime, IntervalReportsAddUpToTheRun) {
   run_realtime(paced, rt);
   ASSERT_TRUE(paced.summary().realtime.has_value());
   const RealtimeStats& r = *paced.summary().realtime;
-  ASSERT_GE(reports.size(), 3U);
-  ASSERT_LE(reports.size(), 4U);
+  ASSERT_GE(reports.size(), 4U);  // at 100, 200, 300 ms, and the last cycles up to 400 ms
+  ASSERT_LE(reports.size(), 5U);
   std::uint64_t cycles = 0;
   std::uint64_t overruns = 0;
   for (std::size_t i = 0; i < reports.size(); ++i) {
     const RealtimeInterval& iv = reports[i];
-    EXPECT_GE(iv.now, Time{100ms * static_cast<int>(i + 1)});
+    if (i + 1 < reports.size()) {
+      EXPECT_GE(iv.now, Time{100ms * static_cast<int>(i + 1)});  // the last: the cycles after 300 ms
+    }
     EXPECT_GT(iv.cycles, 0U);
     EXPECT_LE(iv.wake_p50_ns, iv.wake_p99_ns);
     EXPECT_LE(iv.wake_p99_ns, iv.wake_p999_ns);
@@ -105,16 +107,12 @@ TEST(Realtime, IntervalReportsAddUpToTheRun) {
     cycles += iv.cycles;
     overruns += iv.overruns;
   }
-  EXPECT_LE(cycles, r.wake.cycles);
-  EXPECT_GE(cycles + 200, r.wake.cycles) << "the reports cover the run but its last part";
-  EXPECT_LE(overruns, r.overruns);
-  // The histogram's percentiles lie within 1/16 of the exact ones over the same cycles, and its
-  // maximum is exact: the whole run's maximum is one report's.
+  EXPECT_EQ(cycles, r.wake.cycles) << "the reports cover every cycle of the run";
+  EXPECT_EQ(overruns, r.overruns);
+  // The maximum is exact: the whole run's is one report's.
   std::int64_t largest = 0;
   for (const RealtimeInterval& iv : reports) largest = std::max(largest, iv.wake_max_ns);
-  if (reports.back().now >= Time{s.duration} - paced.cycle_time()) {
-    EXPECT_EQ(static_cast<double>(largest), r.wake.max_ns);
-  }
+  EXPECT_EQ(static_cast<double>(largest), r.wake.max_ns);
 }
 
 }  // namespace

@@ -35,12 +35,14 @@ TEST(RunStats, OneLineAnIntervalWithTheRunsCounters) {
     ASSERT_EQ(line.rfind("ibs-stats: ", 0), 0U) << line;
     lines.push_back(nlohmann::json::parse(line.substr(11)));
   }
-  ASSERT_GE(lines.size(), 3U);
-  ASSERT_LE(lines.size(), 4U);
+  ASSERT_GE(lines.size(), 4U);  // at 250, 500, 750 ms and the last cycles up to 1 s
+  ASSERT_LE(lines.size(), 5U);
   std::uint64_t cycles = 0;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const nlohmann::json& j = lines[i];
-    EXPECT_GE(j["t_s"].get<double>(), 0.25 * static_cast<double>(i + 1) - 1e-9);
+    if (i + 1 < lines.size()) {
+      EXPECT_GE(j["t_s"].get<double>(), 0.25 * static_cast<double>(i + 1) - 1e-9);
+    }
     cycles += j["cycles"].get<std::uint64_t>();
     EXPECT_EQ(j["bus"]["cycles"].get<std::uint64_t>(), cycles) << "the interval's cycles add up to the bus's";
     EXPECT_EQ(j["bus"]["valid_cycles"], j["bus"]["cycles"]);

@@ -48,9 +48,10 @@ struct RealtimeOptions {
   // simulator's own thread: nothing is shared, nothing locks). Its time counts into the cycle's:
   // an overrun it causes is counted like any other.
   std::function<void(Time now)> each_cycle{};
-  // Every `interval` of the run (0: never), after a cycle's work: the figures of the cycles since
-  // the last call (a soak's minute, docs/robustness.md). The runner keeps them without allocating;
-  // the call's own time counts into its cycle, as each_cycle's does.
+  // Every `interval` of the run (0: never), after a cycle's work, and once more at its end for the
+  // cycles after the last whole interval: the figures of the cycles since the last call (a soak's
+  // minute, docs/robustness.md). The runner keeps them without allocating; the call's own time
+  // counts into its cycle, as each_cycle's does.
   Duration interval{0};
   std::function<void(const RealtimeInterval&)> each_interval{};
 };
