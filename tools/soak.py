@@ -14,7 +14,8 @@
    run. Each minute (each `ibs-stats:` line) it samples the process's resident memory and open
    descriptors from /proc beside the line's wake-up latency, overruns and counters.
    It fails on growth -- descriptors that are not flat, resident memory that grows more than
-   2 MiB + 64 KiB a minute after the first minute -- and on every count the traffic does not
+   2 MiB + 64 KiB a minute after the first minute (the samples while the run runs; the last one,
+   at its end, is the summary's work) -- and on every count the traffic does not
    explain: a LUSTBUS or DFS-1 check error, dropped telegram or unanswered request, a control
    line reported bad that was good or not reported that was bad, an error of a drive other than
    the injected faults, a bus cycle without valid data, an exit other than 0, a socket left.
@@ -265,14 +266,21 @@ class Bench:
                 self.sent["control_bad"] += len(bad)
             time.sleep(0.02)
         os.close(lb)
+        # The rest of standard output (the JSON summary) on a thread of its own: standard error stays
+        # the reader's, which must see the run's last `ibs-stats:` line.
+        rest = []
+        tail = threading.Thread(target=lambda: rest.append(proc.stdout.read()), daemon=True)
+        tail.start()
         try:
-            out, _ = proc.communicate(timeout=120)
+            proc.wait(timeout=120)
         except subprocess.TimeoutExpired:
             proc.kill()
-            out, _ = proc.communicate()
-            self.checks.append(("the run ended on time", False, "killed after 120 s past its end"))
+            proc.wait()
+            self.checks.append(("the run ended on time", False, "killed 120 s after its end"))
+        tail.join(timeout=30)
+        reader.join(timeout=30)
+        out = "".join(rest)
         idle.close()
-        reader.join(timeout=10)
         with open(os.path.join(self.out, "stderr.txt"), "w") as f:
             f.write("\n".join(self.stderr_lines) + "\n")
         with open(os.path.join(self.out, "samples.json"), "w") as f:
@@ -292,9 +300,11 @@ class Bench:
         bus = s.get("bus", {})
         cycles, valid = bus.get("cycles"), bus.get("valid_cycles")
         c.append(("every bus cycle valid", cycles is not None and cycles == valid, f"{valid} of {cycles}"))
-        samples = [x for x in self.samples if x.get("rss_kib") is not None]
-        c.append(("a sample every minute", len(samples) >= max(1, int(self.minutes)),
-                  f"{len(samples)} samples in {self.minutes} min"))
+        c.append(("a sample every minute", len(self.samples) >= max(1, int(self.minutes)),
+                  f"{len(self.samples)} samples in {self.minutes} min"))
+        # Growth: the samples taken while the run ran (not its last, at its end, when it builds its
+        # summary).
+        samples = [x for x in self.samples if x.get("rss_kib") is not None and not x.get("last")]
         if samples:
             fds = [x["fds"] for x in samples]
             c.append(("descriptors flat", len(set(fds)) == 1, f"{fds[0]} .. {fds[-1]} (min {min(fds)}, max {max(fds)})"))
@@ -334,7 +344,8 @@ class Bench:
             b = {d["name"]: d for d in x.get("bench", [])}
             errors = sum(d["errors"] + d["dropped"] for d in x.get("bench", []))
             w = x["wake_ns"]
-            rows.append(f"| {x['t_s'] / 60:.0f} | {x['rss_kib']} | {x['fds']} | {w['p50'] / 1000:.0f} | "
+            minute = f"{x['t_s'] / 60:.0f}" + (" (end)" if x.get("last") else "")
+            rows.append(f"| {minute} | {x['rss_kib']} | {x['fds']} | {w['p50'] / 1000:.0f} | "
                         f"{w['p99'] / 1000:.0f} | {w['p999'] / 1000:.0f} | {w['max'] / 1000:.0f} | {x['overruns']} | "
                         f"{x['cycles']} | {b.get('servo', {}).get('telegrams')}/{b.get('fan', {}).get('telegrams')} | "
                         f"{b.get('press', {}).get('telegrams')} | {x.get('control', {}).get('lines')} | {errors} |")

@@ -116,14 +116,15 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
   std::uint64_t interval_overruns = 0;
   const bool reports = realtime.interval > Duration{0} && realtime.each_interval;
   Time next_report = reports ? Time{0} + realtime.interval : Time::max();
-  const auto report = [&] {
+  const auto report = [&](bool last) {
     const RealtimeInterval iv{sim.now(),
                               interval_wake.total(),
                               interval_overruns,
                               interval_wake.quantile(0.5),
                               interval_wake.quantile(0.99),
                               interval_wake.quantile(0.999),
-                              static_cast<std::int64_t>(interval_wake.max())};
+                              static_cast<std::int64_t>(interval_wake.max()),
+                              last};
     realtime.each_interval(iv);
     interval_wake.clear();
     interval_overruns = 0;
@@ -156,12 +157,12 @@ void run_realtime(Simulator& sim, const RealtimeOptions& realtime, const SimOpti
       }
     }
     if (t >= next_report) {
-      report();
+      report(false);
       next_report += realtime.interval;
     }
   }
   // The cycles after the last whole interval: a last, shorter one.
-  if (reports && interval_wake.total() > 0) report();
+  if (reports && interval_wake.total() > 0) report(true);
   wake.resize(recorded);
   if (!stopped) sim.run(options);  // the rest of the scenario after the last whole cycle
   r.wake = timing_stats(wake, cycle, processing_budgets());

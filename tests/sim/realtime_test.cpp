@@ -100,6 +100,7 @@ TEST(Realtime, IntervalReportsAddUpToTheRun) {
       EXPECT_GE(iv.now, Time{100ms * static_cast<int>(i + 1)});  // the last: the cycles after 300 ms
     }
     EXPECT_GT(iv.cycles, 0U);
+    EXPECT_EQ(iv.last, i + 1 == reports.size());
     EXPECT_LE(iv.wake_p50_ns, iv.wake_p99_ns);
     EXPECT_LE(iv.wake_p99_ns, iv.wake_p999_ns);
     EXPECT_LE(iv.wake_p999_ns, iv.wake_max_ns);

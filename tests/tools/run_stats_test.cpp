@@ -49,6 +49,7 @@ TEST(RunStats, OneLineAnIntervalWithTheRunsCounters) {
     EXPECT_LE(j["wake_ns"]["p50"].get<std::int64_t>(), j["wake_ns"]["p99"].get<std::int64_t>());
     EXPECT_LE(j["wake_ns"]["p99"].get<std::int64_t>(), j["wake_ns"]["max"].get<std::int64_t>());
     EXPECT_TRUE(j.contains("overruns"));
+    EXPECT_EQ(j["last"], i + 1 == lines.size()) << "the last line is the end's";
     EXPECT_FALSE(j.contains("control")) << "no control channel";
     EXPECT_FALSE(j.contains("bench")) << "no test bench";
   }

@@ -67,8 +67,9 @@ void write_stats_line(const sim::RealtimeInterval& iv, sim::Simulator& simulator
     failures += d.failures.size();
   }
   Line l;
-  l.add("ibs-stats: {\"t_s\":%.3f,\"cycles\":%llu,\"overruns\":%llu,", to_ms(iv.now) / 1000.0,
-        static_cast<unsigned long long>(iv.cycles), static_cast<unsigned long long>(iv.overruns));
+  l.add("ibs-stats: {\"t_s\":%.3f,\"last\":%s,\"cycles\":%llu,\"overruns\":%llu,", to_ms(iv.now) / 1000.0,
+        iv.last ? "true" : "false", static_cast<unsigned long long>(iv.cycles),
+        static_cast<unsigned long long>(iv.overruns));
   l.add("\"wake_ns\":{\"p50\":%lld,\"p99\":%lld,\"p999\":%lld,\"max\":%lld},", static_cast<long long>(iv.wake_p50_ns),
         static_cast<long long>(iv.wake_p99_ns), static_cast<long long>(iv.wake_p999_ns),
         static_cast<long long>(iv.wake_max_ns));

@@ -485,8 +485,7 @@ AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint3
       return {};
     case kSave:
       if (v == 1) {
-        // 3.5.1 / 4.3.3: the flash settings into flash, "a few hundred milliseconds"; a RAM value
-        // (80-SLOAD naming a rejected set's parameter, D39) is none: factory at a mains reset.
+        // 3.5.1 / 4.3.3: "a few hundred milliseconds"; RAM values (80-SLOAD, D39) stay out.
         for (std::size_t i = 0; i < kParameters.size(); ++i) {
           if (kParameters[i].memory == Memory::flash) saved_[i] = current_[i];
         }

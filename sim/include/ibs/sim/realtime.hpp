@@ -36,6 +36,7 @@ struct RealtimeInterval {
   std::int64_t wake_p99_ns = 0;
   std::int64_t wake_p999_ns = 0;
   std::int64_t wake_max_ns = 0;
+  bool last = false;  // the report at the end, of the cycles after the last whole interval
 };
 
 struct RealtimeOptions {
