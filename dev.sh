@@ -6,6 +6,10 @@
 #   ./dev.sh fuzz [SECONDS] [TARGET...]
 #                            build the libFuzzer targets (clang, preset `fuzz`) and run each for
 #                            SECONDS (default 10) on its seed corpus: fuzz/run.sh, docs/robustness.md
+#   ./dev.sh soak [MINUTES]  the soak (tools/soak.py, docs/robustness.md "Soak"; not in CI): a real-time
+#                            test bench for MINUTES (default 60) under traffic, sampled each minute, then
+#                            the campaign (10^7 transactions) and every fuzz target for 10 minutes
+#                            (SOAK_FUZZ_SECONDS, SOAK_FUZZ_JOBS, SOAK_TRANSACTIONS change those)
 #
 # Each first checks for the Debian packages the build needs and installs the missing ones through
 # apt-get (saying so); nothing is downloaded at build time. Only `fuzz` needs clang.
@@ -87,6 +91,14 @@ case "$cmd" in
     ensure_packages
     ensure_packages "${fuzz_packages[@]}"
     exec fuzz/run.sh "$@"
+    ;;
+  soak)
+    minutes=${2:-60}
+    ensure_packages
+    ensure_packages "${test_packages[@]}"
+    ensure_packages "${fuzz_packages[@]}"
+    quiet_build release --target ibs
+    exec python3 tools/soak.py --ibs ./build/release/tools/ibs/ibs --minutes "$minutes"
     ;;
   *)
     echo "usage: ./dev.sh run [ARGS...] | ./dev.sh test [debug|asan] | ./dev.sh fuzz [SECONDS] [TARGET...]" >&2

@@ -73,6 +73,11 @@ put("trace_fuzz", "no_data_watchdog.trace", b"# format: ibs-trace 1\n# device: m
     b"9, 0000 0000 0000, 0240 0000 0000\n")
 put("trace_fuzz", "step_time_vf1000.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: pd\n# watchdog_ms: 200\n"
     b"# step-time: 8.2 ms\n0, 0000 0000 0000, 0240 0000 8000\n! no-data 30\n31, 0000 0000 0000, 0240 0000 8000\n")
+put("trace_fuzz", "settings_and_writes.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: pd\n"
+    b"# watchdog_ms: 100\n# step-time: 8.2 ms\n# setting: watchdog_reaction 1\n# setting: keypad true\n"
+    b"# setting: reset_time \"2 s\"\n# init: operational\n0, 0000 0000 0000, 0240 0000 8000\n! write 85 0\n"
+    b"! write 22 1000 over LUSTBUS\n1, 0000 0000 0000, 0240 0000 8000\n! no-data 20\n"
+    b"22, 0000 0000 0000, 0208 0000 8000\n")
 put("trace_fuzz", "comm_step_time.trace", b"# format: ibs-trace 1\n# device: vf1000\n# words: comm\n# step-time: 726 us\n"
     b"# request: read 0x16\n0, 0000, 8000\n1, 2416, 8000\n2, 2416, A003\n")
 
@@ -342,4 +347,28 @@ put("line_capture_fuzz", "line_dfs1_seed_004", b"\x01\x01" + chunks(*[(s, d) for
 put("line_capture_fuzz", "line_dfs1_noise_and_interrupted", b"\x01\x01" + chunks(
     (0, [0x55, 0x10, 0x10, 0x10, 0x02, 0x01, 0x81]), (0, [0x10, 0x02, 0x01, 0x81, 0x10, 0x03, 0x7E]),
     (1, [0x10, 0x02, 0x01, 0x06, 0x00])))
+# control_fuzz, the channel (byte 0 bit 1): [clients][max_clients][max_line][read_budget]
+# [lines_per_poll] then operations: (client << 2) | 0 write (a length byte, the bytes), | 2 the
+# client's end of input, | 3 a poll (issue 41).
+def channel(clients, max_clients, max_line, budget, lines, *ops):
+    out = bytes([0x02, clients - 1, max_clients - 1, max_line - 1, budget - 1, lines - 1])
+    for op in ops:
+        if isinstance(op, tuple):
+            client, data = op
+            out += bytes([client << 2, len(data)]) + data
+        else:  # "poll"
+            out += bytes([3])
+    return out
+
+
+def end(client):
+    return bytes([(client << 2) | 2])
+
+
+put("control_fuzz", "channel_two_clients_interleaved", channel(
+    2, 4, 48, 16, 4, (0, b'{"device": "servo", "spe'), (1, b'{"device": "fan", "load": 1}\n'), "poll",
+    (0, b'ed": 5}\n# comment\n\r\n'), (1, b"not json\r\n"), "poll") + end(0) + bytes([3]))
+put("control_fuzz", "channel_endless_line_and_a_refused_client", channel(
+    3, 2, 8, 8, 2, (0, b"x" * 40), (1, b'{"a": 1}\n'), "poll", (0, b"x" * 40), "poll", (0, b"\nok\n"),
+    (1, b"last without newline"), "poll") + end(1) + bytes([3]))
 print("seeds written to", CORPUS)

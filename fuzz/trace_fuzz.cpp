@@ -10,8 +10,13 @@
 //   escapes (std::invalid_argument, std::out_of_range, ...) is a finding; so is a crash or an
 //   out-of-bounds read (AddressSanitizer), e.g. an explainer reading past the end of a row;
 // - a parsed trace has rows, and write() gives text that parses again and writes the same text
-//   (the writer's round trip);
-// - decode() gives a trace that write() and parse() accept;
+//   (the writer's round trip) -- `setting: NAME VALUE` headers and `! write PNR VALUE` events
+//   included (issue 41);
+// - the reader with the registry's vocabulary (devices::parse_trace, what `ibs` reads with)
+//   refuses only with FILE:LINE, and what it accepts the plain reader accepts alike (its rows and
+//   `setting:` headers);
+// - decode() gives a trace that write() and parse() accept, with the same events (kind, steps,
+//   parameter and value; only a write's text gains its reading);
 // - replay ends: it runs at most `rows + gaps * (max-gap + 1) + no-data steps` steps, and a trace that the reader
 //   accepts must not allow more than 10^10 of them (hours of replay: it would never end).
 //   Each replay is given a budget of steps here so that an input runs in milliseconds; a replay
@@ -131,6 +136,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (r.line < 1 || r.line > lines) fail("a row names line " + std::to_string(r.line));
   }
 
+  // The registry's vocabulary: the names it knows (drives, targets, settings) on their lines.
+  std::unique_ptr<trace::Trace> named;
+  stage("parse with the vocabulary", lines, nullptr,
+        [&] { named = std::make_unique<trace::Trace>(devices::parse_trace(text, kFile)); });
+  if (named && (named->rows.size() != t->rows.size() || named->header.device_settings != t->header.device_settings)) {
+    fail("the vocabulary's reader read another trace");
+  }
+
   // The writer's round trip.
   const std::string written = trace::write(*t);
   try {
@@ -145,6 +158,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!explain) return 0;
   stage("decode", lines, t.get(), [&] {
     const trace::Trace decoded = trace::decode(*t, *explain);
+    for (std::size_t i = 0; i < t->rows.size(); ++i) {
+      const auto& before = t->rows[i].events_before;
+      const auto& after = decoded.rows[i].events_before;
+      if (before.size() != after.size()) fail("decode changed the events of a row");
+      for (std::size_t k = 0; k < before.size(); ++k) {
+        if (before[k].kind != after[k].kind || before[k].steps != after[k].steps ||
+            before[k].parameter != after[k].parameter || before[k].value != after[k].value) {
+          fail("decode changed an event");
+        }
+      }
+    }
     const std::string out = trace::write(decoded);
     try {
       (void)trace::parse(out, kFile);

@@ -310,6 +310,13 @@ Trace decode(const Trace& t, const Explainer& e) {
   check_counts(t, e.m2s_words(), e.s2m_words());
   Trace out = t;
   for (Row& r : out.rows) {
+    for (Event& ev : r.events_before) {
+      if (ev.kind != Event::Kind::write) continue;
+      std::string text = e.explain_write(ev.parameter, ev.value);
+      if (text.empty() || ev.text == text || ev.text.rfind(text + " | ", 0) == 0) continue;
+      if (!ev.text.empty()) text += " | " + ev.text;
+      ev.text = std::move(text);
+    }
     if (r.gap) continue;
     const auto m = values_of(r.m2s);
     const auto s = values_of(r.s2m);

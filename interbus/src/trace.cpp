@@ -1,5 +1,7 @@
 #include "ibs/interbus/trace.hpp"
 
+#include "trace_text.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -11,166 +13,9 @@
 
 namespace ibs::trace {
 
+using namespace detail;
+
 namespace {
-
-constexpr std::string_view kFormat = "ibs-trace 1";
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
-
-[[noreturn]] void fail(const std::string& file, std::size_t line, const std::string& what) {
-  throw TraceError(file, line, what);
-}
-
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-// Four hex digits, `?` allowed where `allow_any`; returns value and mask.
-WordPattern parse_hex4(std::string_view s, bool allow_any, const std::string& file,
-                       std::size_t line) {
-  if (s.size() != 4) {
-    fail(file, line, "word '" + std::string(s) + "' must be exactly four hex digits");
-  }
-  unsigned value = 0;
-  unsigned mask = 0;
-  for (char c : s) {
-    value <<= 4U;
-    mask <<= 4U;
-    if (c == '?') {
-      if (!allow_any) fail(file, line, "'?' is not allowed in the mask of '" + std::string(s) + "'");
-      continue;
-    }
-    const int d = hex_digit(c);
-    if (d < 0) fail(file, line, "word '" + std::string(s) + "' has a non-hex digit '" + c + "'");
-    value |= static_cast<unsigned>(d);
-    mask |= 0xFU;
-  }
-  return {static_cast<Word>(value & mask), static_cast<Word>(mask)};
-}
-
-// A decimal or 0x-prefixed hex number.
-std::optional<std::int64_t> parse_number(std::string_view s) {
-  s = trim(s);
-  if (s.empty()) return std::nullopt;
-  bool negative = false;
-  if (s.front() == '-') {
-    negative = true;
-    s.remove_prefix(1);
-  }
-  int base = 10;
-  if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X')) {
-    base = 16;
-    s.remove_prefix(2);
-  }
-  std::int64_t v = 0;
-  const auto* end = s.data() + s.size();
-  const auto [ptr, ec] = std::from_chars(s.data(), end, v, base);
-  if (ec != std::errc{} || ptr != end) return std::nullopt;
-  return negative ? -v : v;
-}
-
-std::vector<std::string_view> split_spaces(std::string_view s) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && s[i] != ' ' && s[i] != '\t') ++i;
-    if (i > start) out.push_back(s.substr(start, i - start));
-  }
-  return out;
-}
-
-template <typename E, std::size_t N>
-std::optional<E> lookup(std::string_view s, const std::array<std::pair<std::string_view, E>, N>& t) {
-  for (const auto& [name, e] : t) {
-    if (name == s) return e;
-  }
-  return std::nullopt;
-}
-
-constexpr std::array<std::pair<std::string_view, WordsKind>, 3> kWords{
-    {{"comm", WordsKind::comm}, {"pd", WordsKind::pd}, {"pcp", WordsKind::pcp}}};
-constexpr std::array<std::pair<std::string_view, DeviceStart>, 3> kInits{
-    {{"operational", DeviceStart::operational},
-     {"power-on", DeviceStart::initialised},
-     {"fault", DeviceStart::fault}}};
-constexpr std::array<std::pair<std::string_view, Event::Kind>, 3> kEvents{
-    {{"fault", Event::Kind::fault}, {"fault-cleared", Event::Kind::fault_cleared}, {"no-data", Event::Kind::no_data}}};
-// A name from a vocabulary list, or any single word when the list is empty.
-bool known(std::string_view name, std::span<const std::string_view> names) {
-  if (names.empty()) return !name.empty() && name.find_first_of(" \t") == std::string_view::npos;
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-std::string listed(std::span<const std::string_view> names) {
-  if (names.empty()) return "a single word";
-  std::string s;
-  for (const std::string_view n : names) s += (s.empty() ? "" : ", ") + std::string(n);
-  return s;
-}
-
-template <typename E, std::size_t N>
-std::string_view name_of(E e, const std::array<std::pair<std::string_view, E>, N>& t) {
-  for (const auto& [name, v] : t) {
-    if (v == e) return name;
-  }
-  return "?";
-}
-
-template <typename E, std::size_t N>
-std::string choices(const std::array<std::pair<std::string_view, E>, N>& t) {
-  std::string s;
-  for (const auto& [name, v] : t) {
-    if (!s.empty()) s += ", ";
-    s += name;
-  }
-  return s;
-}
-
-std::uint64_t parse_count(std::string_view value, std::string_view key, const std::string& file,
-                          std::size_t line) {
-  const auto n = parse_number(value);
-  if (!n || *n < 0) {
-    fail(file, line, std::string(key) + ": '" + std::string(value) +
-                         "' is not a non-negative integer");
-  }
-  return static_cast<std::uint64_t>(*n);
-}
-
-std::string hex4(unsigned v) { return hex_text(v, 4); }
-
-// Text of a file put into a message: a byte that is not printable is shown as \xNN (a NUL would
-// otherwise end the message where a reader sees it).
-std::string printable(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u < 0x7F) {
-      out += c;
-    } else {
-      static constexpr std::string_view kHex = "0123456789ABCDEF";
-      out += "\\x";
-      out += kHex[u >> 4U];
-      out += kHex[u & 0xFU];
-    }
-  }
-  return out;
-}
-
-// A header name as the format writes them: lower-case letters, digits, '-' and '_'.
-bool header_name(std::string_view key) {
-  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
-  });
-}
 
 // The line a header key was first given on (0: not yet).
 std::size_t* header_line(Header& h, std::string_view key) {
@@ -253,6 +98,8 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
                            format_time(kMaxStepTime));
     }
     h.step_time = d;
+  } else if (key == "setting") {
+    parse_device_setting(h, value, file, line, vocabulary);
   } else if (header_name(key) && (vocabulary.settings.empty() || known(key, vocabulary.settings))) {
     // A drive's setting: its range is the drive's (the replay adapters check it); the format
     // holds 0..255.
@@ -276,6 +123,22 @@ void parse_header(Header& h, std::string_view key, std::string_view value, const
 }
 
 }  // namespace
+
+const DeviceSetting* Header::device_setting(std::string_view name) const {
+  const auto it = std::find_if(device_settings.begin(), device_settings.end(),
+                               [name](const DeviceSetting& d) { return d.name == name; });
+  return it == device_settings.end() ? nullptr : &*it;
+}
+
+void Header::set_device_setting(std::string_view name, std::string_view value) {
+  for (DeviceSetting& d : device_settings) {
+    if (d.name == name) {
+      d.value = std::string(value);
+      return;
+    }
+  }
+  device_settings.push_back({std::string(name), std::string(value), 0});
+}
 
 const HeaderSetting* Header::setting(std::string_view key) const {
   for (const HeaderSetting& s : settings) {
@@ -491,31 +354,7 @@ Trace parse(std::string_view text, const std::string& file, const Vocabulary& vo
       if (t.rows.back().gap) {
         fail(file, line_no, "an event cannot follow a gap '...': it would happen at no known step");
       }
-      const std::string_view body = trim(line.substr(1));
-      const auto space = body.find_first_of(" \t");
-      const std::string_view name = body.substr(0, space);
-      const auto kind = lookup(name, kEvents);
-      if (!kind) {
-        fail(file, line_no, "unknown event '" + std::string(name) + "' (one of: " + choices(kEvents) + ")");
-      }
-      std::string_view remark = space == std::string_view::npos ? std::string_view{} : trim(body.substr(space));
-      std::uint64_t steps = 0;
-      if (*kind == Event::Kind::no_data) {
-        // `no-data N [text]`: N steps without valid data, 1..kMaxNoDataSteps.
-        const auto end = remark.find_first_of(" \t");
-        const std::string_view count = remark.substr(0, end);
-        const auto n = parse_number(count);
-        if (count.empty() || !n || *n < 1 || count.find_first_not_of("0123456789") != std::string_view::npos) {
-          fail(file, line_no, "no-data: '" + printable(count) + "' is not a number of steps (N >= 1: `! no-data N`)");
-        }
-        if (static_cast<std::uint64_t>(*n) > kMaxNoDataSteps) {
-          fail(file, line_no, "no-data: " + std::string(count) + " is more than the " +
-                                  std::to_string(kMaxNoDataSteps) + " steps one event may stand for");
-        }
-        steps = static_cast<std::uint64_t>(*n);
-        remark = end == std::string_view::npos ? std::string_view{} : trim(remark.substr(end));
-      }
-      pending_events.push_back({*kind, std::string(remark), line_no, steps});
+      pending_events.push_back(parse_event(trim(line.substr(1)), file, line_no));
       continue;
     }
     // A data row.
@@ -627,13 +466,10 @@ std::string write(const Trace& t) {
   if (h.max_gap_given) out += "# max-gap: " + std::to_string(h.max_gap) + "\n";
   if (h.watchdog_ms) out += "# watchdog_ms: " + std::to_string(*h.watchdog_ms) + "\n";
   if (h.step_time) out += "# step-time: " + format_time(*h.step_time) + "\n";
+  for (const DeviceSetting& d : h.device_settings) out += "# setting: " + d.name + " " + d.value + "\n";
   for (const Row& r : t.rows) {
     for (const auto& c : r.comments_before) out += c + "\n";
-    for (const Event& e : r.events_before) {
-      out += "! " + std::string(to_string(e.kind));
-      if (e.kind == Event::Kind::no_data) out += " " + std::to_string(e.steps);
-      out += (e.text.empty() ? "" : " " + e.text) + "\n";
-    }
+    for (const Event& e : r.events_before) out += write_event(e) + "\n";
     if (r.gap) {
       out += "...\n";
       continue;

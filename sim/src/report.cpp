@@ -136,7 +136,9 @@ std::string format_text(const Summary& s) {
     // The control channel's entries (`ibs run --control`), as applied, like timeline entries.
     o += "\ncontrol entries\n";
     for (const ControlRecord& c : s.control) {
-      o += printf_string("  %10s  line %-5zu ", ms(c.at).c_str(), c.line) + c.entry + "\n";
+      o += (c.client == 0 ? printf_string("  %10s  line %-5zu ", ms(c.at).c_str(), c.line)
+                          : printf_string("  %10s  client %u line %-5zu ", ms(c.at).c_str(), c.client, c.line)) +
+           c.entry + "\n";
     }
   }
   if (s.master.cycles > 0) {
@@ -250,13 +252,10 @@ std::string format_json(const Summary& s) {
                                   {"ok", true}});
   }
   for (const ControlRecord& c : s.control) {
-    timed.emplace_back(c.at, json{{"at_ms", to_ms(c.at)},
-                                  {"device", c.device},
-                                  {"type", "control"},
-                                  {"what", c.entry},
-                                  {"outcome", "applied"},
-                                  {"ok", true},
-                                  {"line", c.line}});
+    json j{{"at_ms", to_ms(c.at)}, {"device", c.device}, {"type", "control"}, {"what", c.entry},
+           {"outcome", "applied"}, {"ok", true},   {"line", c.line}};
+    if (c.client != 0) j["client"] = c.client;
+    timed.emplace_back(c.at, std::move(j));
   }
   std::stable_sort(timed.begin(), timed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   json events = json::array();

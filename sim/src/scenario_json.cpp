@@ -198,8 +198,9 @@ Node json_tree(const std::string& text, const std::string& file) {
 
 }  // namespace detail
 
-TimelineEntry parse_control_line(const std::string& text, std::size_t line, const Scenario& running) {
-  const std::string file = "control";
+TimelineEntry parse_control_line(const std::string& text, std::size_t line, const Scenario& running,
+                                 const std::string& source) {
+  const std::string& file = source;
   try {
     const detail::Node root = detail::json_tree(text, file);
     detail::EntryLines entry_lines;

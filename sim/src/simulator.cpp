@@ -1,6 +1,8 @@
 // The cycle simulator: the ring built from a scenario, and the run from start to finish (simulator_internal.hpp lists the other parts).
 #include "simulator_internal.hpp"
 
+#include "ibs/devices/trace_adapters.hpp"
+
 namespace ibs::sim {
 
 using detail::fmt_value;
@@ -145,6 +147,10 @@ void Simulator::start(const SimOptions& options) {
       r.trace.header.device = std::string((*d->kind)->name());
       r.trace.header.words = trace::WordsKind::pd;
       (*d->kind)->write_trace_settings(d->configuration, r.trace.header);
+      // The settings without a header of their own (`setting: NAME VALUE`), and the parameters
+      // the channels the recorded words do not carry change (`! write PNR VALUE`).
+      devices::write_device_settings(*d->kind, d->configuration.settings, r.trace.header);
+      d->emu->record_changes(true);
       // The watchdog as the scenario set it (without one the device's own default, which a
       // replay takes without the header too); one step is one sample of the device, the time a
       // row stands for (the bus cycle of the run is another: samples no cycle reached are the
@@ -164,7 +170,12 @@ void Simulator::start(const SimOptions& options) {
   }
   prototypes_.clear();
   if (observers_.empty()) start_threads(options_.threads);
-  if (options_.measure_master_time) master_ns_.reserve(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2);
+  if (options_.measure_master_time) {
+    // Written once now (then emptied, its memory kept): a cycle that records its time takes no
+    // page fault, and a long run's memory does not grow with its cycles.
+    master_ns_.assign(static_cast<std::size_t>(scenario_.duration / cycle_time_) + 2, 0);
+    master_ns_.clear();
+  }
   samples_.reserve(devices_.size());
   next_cycle_ = cycle_time_;
   const auto& r = scenario_.random;

@@ -55,7 +55,7 @@ void Simulator::control(const TimelineEntry& e) {
 void Simulator::record_control(const TimelineEntry& e, Time t) {
   for (const TimelineEntry& c : control_entries_) {
     if (&c == &e) {
-      summary_.control.push_back({t, e.source_line, write_control_line(e), e.device});
+      summary_.control.push_back({t, e.source_line, e.source_client, write_control_line(e), e.device});
       return;
     }
   }

@@ -56,6 +56,23 @@ void Simulator::record_sample(Device& d, const std::array<Word, 4>& before, Time
   }
 }
 
+void Simulator::record_changes(Device& d) {
+  // What the drive's other channels changed (the MC6000's PCP, a test bench's LUSTBUS face) since
+  // the last sample: `! write PNR VALUE` before the step whose sample comes next, as an injected
+  // fault (trace-format.md, "Events"). Outside a recording they are dropped.
+  std::array<drive::ParameterChange, drive::ParameterJournal::kCapacity> changes{};
+  const std::size_t n = d.emu->take_changes(changes);
+  if (n == 0 || !d.recording) return;
+  Recording& r = d.recordings.back();
+  for (std::size_t i = 0; i < n; ++i) {
+    trace::Event e;
+    e.kind = trace::Event::Kind::write;
+    e.parameter = changes[i].number;
+    e.value = changes[i].value;
+    r.events_pending.push_back(std::move(e));
+  }
+}
+
 std::vector<Simulator::RecordedTrace> Simulator::traces() const {
   std::vector<RecordedTrace> out;
   for (const auto& d : devices_) {

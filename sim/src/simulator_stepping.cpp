@@ -170,7 +170,10 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   d.last_sample = t;
   const bool recording = !d.recordings.empty();  // only with SimOptions::record_traces
   std::array<Word, 4> before{};
-  if (recording) before = d.s2m;
+  if (recording) {
+    before = d.s2m;
+    record_changes(d);  // made by other channels before this sample: they act before it
+  }
   // The PCP words move at the cycle end (pcp_cycle): the sample gets none.
   d.emu->sample({d.pd_m2s(), d.pd_s2m(), {}, {}}, t);
   ++d.k;

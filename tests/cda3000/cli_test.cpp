@@ -918,14 +918,16 @@ TEST(CanlustBench, EmulateControlSocketInjectsAFault) {
   EXPECT_EQ(emu.stop(SIGTERM), 0);
   std::ifstream in(err_path);
   const std::string err((std::istreambuf_iterator<char>(in)), {});
+  // A socket's client is named with its number (issue 41): control:CLIENT:LINE.
   EXPECT_EQ(err,
-            "control:1: cda3000@1: fault E-PLS: 9 E-PLS (plausibility error in parameter or program sequence), FAULT, "
+            "control:1: connected (pid " + std::to_string(::getpid()) + ")\n"
+            "control:1:1: cda3000@1: fault E-PLS: 9 E-PLS (plausibility error in parameter or program sequence), FAULT, "
             "error telegram sent\n"
-            "control:2: cda3000@1: load 50.0 %: set: the motor slips 1.50 Hz below the output frequency\n"
-            "control:3: control entries apply at once: no 'at'\n"
-            "control:4: cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
+            "control:1:2: cda3000@1: load 50.0 %: set: the motor slips 1.50 Hz below the output frequency\n"
+            "control:1:3: control entries apply at once: no 'at'\n"
+            "control:1:4: cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
             "11 E-FLT, 12 E-PWR, 16 E-OP2; its warnings (6.3) are 0004H W-I2T, 0008H W-TM, 0010H W-TH\n"
-            "control:5: device 7 is not served (give its address or NAME@ADDR as on the command line)\n");
+            "control:1:5: device 7 is not served (give its address or NAME@ADDR as on the command line)\n");
   std::remove(err_path.c_str());
 }
 

@@ -155,5 +155,42 @@ TEST(Cda3000Download, TheEndIsAnsweredAfterTheCheck) {
   EXPECT_EQ(finish(b, m, write(1, kSload, 5)).status, kStatusImpermissibleValue);
 }
 
+// Issue 41, canlust_fuzz's "the flash changed without 150-SAVE"
+// (fuzz/corpus/canlust_fuzz/drive_rejected_download_then_save): a 150-SAVE after a rejected data
+// set. 4.3.3: SAVE backs up the settings; 80-SLOAD is a RAM handshake (D39) that still names the
+// implausible parameter, so after the SAVE the flash holds every flash setting but no 80-SLOAD:
+// it reads the parameter until a mains reset, then 0. The drive was right; the fuzz oracle
+// compared RAM values with the flash.
+TEST(Cda3000Download, SaveAfterARejectedSetStoresTheSettingsNotTheHandshake) {
+  Master m;
+  Bus<Master> b(m);
+  b.add(commissioned(1));
+  m.system_start();
+  b.run_for(5ms);
+  ASSERT_EQ(finish(b, m, write(1, kCawdg, 30)).kind, OutcomeKind::done);  // a setting, not yet saved
+  const DownloadResult r = run(b, m, {{kCascy, 40, 1}, {kCawmk, 0x10000, 2}});
+  ASSERT_EQ(r.state, DownloadState::rejected);
+  EXPECT_EQ(r.rejected_parameter, kCawmk);
+  EXPECT_EQ(*b.drive(0).value(kCascy), 80U);  // nothing of the rejected set taken
+  EXPECT_EQ(*b.drive(0).saved_value(kCascy), 80U);
+  EXPECT_EQ(*b.drive(0).saved_value(kCawdg), 0U);
+  Request save = write(1, kSave, 1);
+  save.timeout = 1s;
+  ASSERT_EQ(finish(b, m, save).kind, OutcomeKind::done);
+  EXPECT_EQ(*b.drive(0).saved_value(kCawdg), 30U);  // the setting is in flash
+  EXPECT_EQ(*b.drive(0).saved_value(kCascy), 80U);
+  EXPECT_FALSE(b.drive(0).saved_value(kSload).has_value());  // RAM: no flash copy
+  EXPECT_EQ(finish(b, m, read(1, kSload)).value, static_cast<std::uint32_t>(kCawmk));
+  b.mains_reset(0);
+  EXPECT_EQ(*b.drive(0).value(kCawdg), 30U);
+  EXPECT_EQ(*b.drive(0).value(kCascy), 80U);
+  EXPECT_EQ(*b.drive(0).value(kSload), 0U);
+  for (const auto& p : kParameters) {
+    if (p.memory == Memory::flash && !p.is_string()) {
+      EXPECT_EQ(b.drive(0).saved_value(p.number), b.drive(0).value(p.number)) << display_name(p);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ibs::devices::cda3000

@@ -407,16 +407,16 @@ TEST(Dfs1Cli, AFaultSentOnTheControlSocketShowsInTheStatusTheHostReads) {
   ASSERT_EQ(emu.first_line().rfind("pty: ", 0), 0U) << emu.first_line();
   const std::string port = emu.pty();
 
-  // A bad line first: reported with its number, skipped; the emulator goes on serving.
+  // A bad line first: reported with its client and number, skipped; the emulator goes on serving.
   int fd = send_control(sock, "{\"device\": \"dfs1@7\", \"fault\": \"melt\"}\n");
   ASSERT_GE(fd, 0);
-  EXPECT_TRUE(emu.err_has("control:1: \"fault\": \"melt\" is no DFS-1 fault event; allowed: \"device\", "
+  EXPECT_TRUE(emu.err_has("control:1:1: \"fault\": \"melt\" is no DFS-1 fault event; allowed: \"device\", "
                           "\"power-cycle\"\n"))
       << emu.err();
   ASSERT_GE(send_control(sock, "not json\n", fd), 0);
-  EXPECT_TRUE(emu.err_has("control:2: not JSON: ")) << emu.err();
+  EXPECT_TRUE(emu.err_has("control:1:2: not JSON: ")) << emu.err();
   ASSERT_GE(send_control(sock, "{\"fault\": \"device\", \"cause\": \"IOC\"}\n", fd), 0);
-  EXPECT_TRUE(emu.err_has("control:3: no \"device\": 2 controllers are served (dfs1@1, dfs1@7); name one"))
+  EXPECT_TRUE(emu.err_has("control:1:3: no \"device\": 2 controllers are served (dfs1@1, dfs1@7); name one"))
       << emu.err();
 
   ASSERT_GE(send_control(sock, "{\"device\": \"dfs1@7\", \"fault\": \"device\", \"cause\": \"Overvolt\"}\n", fd), 0);
@@ -431,10 +431,10 @@ TEST(Dfs1Cli, AFaultSentOnTheControlSocketShowsInTheStatusTheHostReads) {
   // The other controller is untouched.
   EXPECT_EQ(status_until(port, 1, [](const nlohmann::json&) { return true; })["st1"], 0);
 
-  // The next client: line numbers go on; the E-stop opened resets the fault.
+  // The next client: its own number, its lines from 1; the E-stop opened resets the fault.
   fd = send_control(sock, "{\"device\": 7, \"input\": \"E-stop\", \"level\": \"low\"}\n{\"device\": 9, \"mains\": \"off\"}\n");
   ASSERT_GE(fd, 0);
-  EXPECT_TRUE(emu.err_has("control:6: \"device\": UID 9 is not served here; served: dfs1@1, dfs1@7")) << emu.err();
+  EXPECT_TRUE(emu.err_has("control:2:2: \"device\": UID 9 is not served here; served: dfs1@1, dfs1@7")) << emu.err();
   EXPECT_EQ(status_until(port, 7, [](const nlohmann::json& s) { return s["st1"] == 0; })["st1"], 0);
   ::close(fd);
   EXPECT_EQ(emu.stop(SIGTERM), 0);

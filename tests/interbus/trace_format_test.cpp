@@ -282,7 +282,7 @@ TEST(TraceFormat, EventLinesBetweenRowsAreReadAndWrittenBack) {
                     "5: an event must stand between two data rows; no row follows this one"),
             "");
   EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n! brownout\n1, 0000 0000 0000, 0240 0000 0000\n",
-                    "5: unknown event 'brownout' (one of: fault, fault-cleared, no-data)"),
+                    "5: unknown event 'brownout' (one of: fault, fault-cleared, no-data, write)"),
             "");
   EXPECT_EQ(refused("0, 0000 0000 0000, 0240 0000 0000\n...\n! fault\n1, 0000 0000 0000, 0240 0000 0000\n",
                     "6: an event cannot follow a gap '...': it would happen at no known step"),
@@ -391,6 +391,72 @@ TEST(TraceFormat, OnlyRegularFilesAreRead) {
   } catch (const TraceError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("/proc/self/mem:0: read error: ", 0), 0U) << e.what();
   }
+}
+
+// trace-format.md (issue 41): `setting: NAME VALUE` headers, repeatable, in the scenario's syntax
+// (quotes optional), and `! write PNR VALUE [text]` events; both read and written back as read.
+TEST(TraceFormat, SettingHeadersAndWriteEventsAreReadAndWrittenBack) {
+  constexpr std::string_view kDeviceSettings[] = {"watchdog_reaction", "keypad", "reset_time"};
+  const Vocabulary v{kDevices, kTargets, kSettings, kDeviceSettings};
+  const std::string head = "# format: ibs-trace 1\n# device: vf1000\n# words: pd\n# watchdog_ms: 100\n";
+  const std::string text = head + "# setting: watchdog_reaction 1\n# setting: reset_time 2 s\n# setting: keypad true\n"
+                                  "0, 0000 0000 0000, 0240 0000 8000\n! write 906 200 over LUSTBUS\n! write 85 0\n"
+                                  "1, 0000 0000 0000, 0240 0000 8000\n";
+  const Trace t = parse(text, "s.trace", v);
+  ASSERT_EQ(t.header.device_settings.size(), 3U);
+  EXPECT_EQ(t.header.device_settings[0], (DeviceSetting{"watchdog_reaction", "1", 5}));
+  EXPECT_EQ(t.header.device_settings[1].value, "2 s");
+  EXPECT_EQ(t.header.device_settings[1].line, 6U);
+  EXPECT_EQ(t.header.device_setting("keypad")->value, "true");
+  EXPECT_EQ(t.header.device_setting("supi"), nullptr);
+  ASSERT_EQ(t.rows[1].events_before.size(), 2U);
+  const Event& w = t.rows[1].events_before[0];
+  EXPECT_EQ(w.kind, Event::Kind::write);
+  EXPECT_EQ(w.parameter, 906);
+  EXPECT_EQ(w.value, 200);
+  EXPECT_EQ(w.text, "over LUSTBUS");
+  EXPECT_EQ(w.line, 9U);
+  EXPECT_EQ(t.rows[1].events_before[1].parameter, 85);
+  EXPECT_EQ(write(t), text);
+  EXPECT_EQ(parse(write(t), "again", v).header.device_settings, t.header.device_settings);
+  // Quotes as the scenario writes a time; hex and negative values of a write.
+  const Trace q = parse(head + "# setting: reset_time \"500 ms\"\n0, 0000 0000 0000, 0240 0000 8000\n! write 0x196 -1\n"
+                               "1, 0000 0000 0000, 0240 0000 8000\n",
+                        "q.trace", v);
+  EXPECT_EQ(q.header.device_settings[0].value, "500 ms");
+  EXPECT_EQ(q.rows[1].events_before[0].parameter, 0x196);
+  EXPECT_EQ(q.rows[1].events_before[0].value, -1);
+  const auto refused = [&](const std::string& body, const std::string& why) {
+    try {
+      parse(head + body, "s.trace", v);
+      return std::string("accepted");
+    } catch (const TraceError& e) {
+      return std::string(e.what()) == "s.trace:" + why ? std::string() : std::string(e.what());
+    }
+  };
+  const std::string rows = "0, 0000 0000 0000, 0240 0000 8000\n";
+  EXPECT_EQ(refused("# setting: watchdog_reaktion 1\n" + rows,
+                    "5: setting: unknown setting 'watchdog_reaktion' (known: watchdog_reaction, keypad, reset_time)"),
+            "");
+  EXPECT_EQ(refused("# setting: keypad\n" + rows, "5: setting: 'keypad' needs a value (`setting: NAME VALUE`)"), "");
+  EXPECT_EQ(refused("# setting:\n" + rows, "5: setting: '' is not a setting's name (`setting: NAME VALUE`)"), "");
+  EXPECT_EQ(refused("# setting: keypad true\n# setting: keypad false\n" + rows,
+                    "6: setting: 'keypad' given twice (first on line 5)"),
+            "");
+  EXPECT_EQ(refused("# setting: reset_time \"2 s\n" + rows, "5: setting: reset_time: '\"2 s' is not a value (a stray quote)"),
+            "");
+  const std::string next = "1, 0000 0000 0000, 0240 0000 8000\n";
+  EXPECT_EQ(refused(rows + "! write 906\n" + next, "6: write: needs a parameter number and a value (`! write PNR VALUE`)"), "");
+  EXPECT_EQ(refused(rows + "! write 70000 1\n" + next, "6: write: parameter number '70000' is not 0..65535"), "");
+  EXPECT_EQ(refused(rows + "! write 906 4294967296\n" + next,
+                    "6: write: value '4294967296' is not an integer -2147483648..4294967295 (a channel's raw value)"),
+            "");
+  EXPECT_EQ(refused(rows + "! write 906 2x\n" + next,
+                    "6: write: value '2x' is not an integer -2147483648..4294967295 (a channel's raw value)"),
+            "");
+  EXPECT_EQ(refused("! write 906 1\n" + rows,
+                    "5: an event must stand between two data rows; this one comes before the first row"),
+            "");
 }
 
 TEST(TraceFormat, WithoutAVocabularyAnyWordNamesADeviceAndATarget) {

@@ -77,5 +77,44 @@ TEST(Realtime, SameRunAsTheSimulatorWithItsStatistics) {
   EXPECT_NE(format_text(a).find("p99.9"), std::string::npos);
 }
 
+// Issue 41, the soak: every `interval` of a paced run the runner reports the cycles since the last
+// report, their overruns and their wake-up latency's percentiles; the reports add up to the run.
+TEST(Realtime, IntervalReportsAddUpToTheRun) {
+  Scenario s = default_scenario();
+  s.duration = 400ms;
+  Simulator paced(s);
+  RealtimeOptions rt;
+  rt.interval = 100ms;
+  std::vector<RealtimeInterval> reports;
+  rt.each_interval = [&reports](const RealtimeInterval& iv) { reports.push_back(iv); };
+  run_realtime(paced, rt);
+  ASSERT_TRUE(paced.summary().realtime.has_value());
+  const RealtimeStats& r = *paced.summary().realtime;
+  ASSERT_GE(reports.size(), 4U);  // at 100, 200, 300 ms, and the last cycles up to 400 ms
+  ASSERT_LE(reports.size(), 5U);
+  std::uint64_t cycles = 0;
+  std::uint64_t overruns = 0;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    const RealtimeInterval& iv = reports[i];
+    if (i + 1 < reports.size()) {
+      EXPECT_GE(iv.now, Time{100ms * static_cast<int>(i + 1)});  // the last: the cycles after 300 ms
+    }
+    EXPECT_GT(iv.cycles, 0U);
+    EXPECT_EQ(iv.last, i + 1 == reports.size());
+    EXPECT_LE(iv.wake_p50_ns, iv.wake_p99_ns);
+    EXPECT_LE(iv.wake_p99_ns, iv.wake_p999_ns);
+    EXPECT_LE(iv.wake_p999_ns, iv.wake_max_ns);
+    EXPECT_LE(static_cast<double>(iv.wake_max_ns), r.wake.max_ns);
+    cycles += iv.cycles;
+    overruns += iv.overruns;
+  }
+  EXPECT_EQ(cycles, r.wake.cycles) << "the reports cover every cycle of the run";
+  EXPECT_EQ(overruns, r.overruns);
+  // The maximum is exact: the whole run's is one report's.
+  std::int64_t largest = 0;
+  for (const RealtimeInterval& iv : reports) largest = std::max(largest, iv.wake_max_ns);
+  EXPECT_EQ(static_cast<double>(largest), r.wake.max_ns);
+}
+
 }  // namespace
 }  // namespace ibs::sim

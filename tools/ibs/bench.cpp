@@ -307,21 +307,30 @@ bool Bench::apply(const TimelineEntry& e, Time now) {
   return false;
 }
 
+std::size_t Bench::served() const { return impl_->lustbus_drives.size() + impl_->controllers.size(); }
+
+Bench::Counters Bench::counters(std::size_t i) const {
+  const Impl& m = *impl_;
+  if (i < m.lustbus_drives.size()) {
+    const Impl::LustbusDrive& d = m.lustbus_drives[i];
+    const lustbus::ReceiverCounters& n = d.receiver->counters();
+    return {d.name, "lustbus", d.address, n.enquiries + n.selects + n.broadcasts, n.answers, n.checksum_errors,
+            n.dropped + n.fragments};
+  }
+  const Impl::Controller& c = m.controllers[i - m.lustbus_drives.size()];
+  const auto& n = c.controller->counters();
+  return {c.name, "dfs1", c.uid, n.requests, n.requests - n.globals - n.dropped_replies, n.decode_errors, n.fragments};
+}
+
 BenchReport Bench::report() const {
   const Impl& m = *impl_;
   BenchReport r;
   r.lines = ready_lines();
-  for (const Impl::LustbusDrive& d : m.lustbus_drives) {
-    const lustbus::ReceiverCounters& n = d.receiver->counters();
-    r.devices.push_back({d.name, "lustbus", d.address, n.enquiries + n.selects + n.broadcasts, n.answers,
-                         n.checksum_errors, n.dropped + n.fragments});
-  }
-  for (const Impl::Controller& c : m.controllers) {
-    const auto& n = c.controller->counters();
-    // Every request is answered (an ACK, data or a NAK) but a global one (seed 004: UID 0 gets no
-    // reply) and one overtaken by the next request.
-    r.devices.push_back({c.name, "dfs1", c.uid, n.requests, n.requests - n.globals - n.dropped_replies,
-                         n.decode_errors, n.fragments});
+  // A DFS-1 controller answers every request (an ACK, data or a NAK) but a global one (seed 004:
+  // UID 0 gets no reply) and one overtaken by the next request.
+  for (std::size_t i = 0; i < served(); ++i) {
+    const Counters c = counters(i);
+    r.devices.push_back({std::string(c.name), std::string(c.line), c.address, c.telegrams, c.answers, c.errors, c.dropped});
   }
   r.events = m.events;
   return r;

@@ -75,6 +75,16 @@ class Bench {
   bool apply(const sim::TimelineEntry& e, Time now);
 
   [[nodiscard]] BenchReport report() const;
+  // The same counters as report()'s devices, one served drive or controller at a time, without
+  // allocating (`ibs run --stats-every`, on the simulator's thread between two deadlines).
+  struct Counters {
+    std::string_view name;
+    std::string_view line;  // "lustbus" or "dfs1"
+    int address = 0;
+    std::uint64_t telegrams = 0, answers = 0, errors = 0, dropped = 0;
+  };
+  [[nodiscard]] std::size_t served() const;
+  [[nodiscard]] Counters counters(std::size_t i) const;
 
   // Whether the bench serves the line `key` ("lustbus", "dfs1").
   [[nodiscard]] bool serves_line(std::string_view key) const;

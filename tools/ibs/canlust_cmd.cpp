@@ -20,6 +20,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "ibs/control/channel.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/can/can_text.hpp"
 #include "ibs/can/candump.hpp"
@@ -29,7 +30,6 @@
 #include "ibs/canlust/parameter_client.hpp"
 #include "ibs/devices/drives.hpp"
 #include "ibs/tool/format.hpp"
-#include "control_input.hpp"
 #include "emulate_events.hpp"
 #include "stop_signals.hpp"
 #ifdef IBS_HAVE_PCAP
@@ -322,10 +322,10 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   } catch (const std::invalid_argument& e) {
     return bad(e.what());
   }
-  std::unique_ptr<ControlInput> control;
+  std::unique_ptr<control::Channel> control;
   if (!o.control.empty()) {
     std::string error;
-    control = ControlInput::open(o.control, error);
+    control = control::Channel::open(o.control, error);
     if (!control) return bad("--control " + o.control + ": " + error);
   }
   EmulateEvents events(out);
@@ -338,8 +338,8 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
   if (control) {
     each_turn = [&](Time now) {
       control->poll(
-          [&](std::size_t number, std::string_view text) {
-            const std::string where = "control:" + std::to_string(number) + ": ";
+          [&](const control::Origin& from, std::string_view text) {
+            const std::string where = control::to_string(from) + ": ";
             ControlEvent ev;
             const std::string why = parse_control_event(text, o.devices, raw, ev);
             if (!why.empty()) {
@@ -354,7 +354,8 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
               nlohmann::ordered_json j = drive_event(ev.drive, now, "control");
               j["what"] = event_words(ev.event);
               j["taken"] = true;
-              j["control_line"] = number;
+              j["control_line"] = from.line;
+              if (from.client != 0) j["control_client"] = from.client;
               j["result"] = r.text;
               events.print(j);
             } else {
@@ -362,9 +363,10 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
                   << std::flush;
             }
           },
-          [&](std::size_t number, std::string_view what) {
-            err << "control:" << number << ": " << what << "\n" << std::flush;
-          });
+          [&](const control::Origin& from, std::string_view what) {
+            err << from << ": " << what << "\n" << std::flush;
+          },
+          [&](std::string_view notice) { err << notice << "\n" << std::flush; });
     };
   }
   // With --json the loop is watched: each frame from the bus that a drive takes as its own (a

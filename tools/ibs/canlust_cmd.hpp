@@ -67,7 +67,7 @@ struct CanlustEmulateOptions {
   std::vector<std::string> devices;  // cda3000@ADDR
   std::string watchdog_reaction = "disable-power";
   bool factory = false;  // factory settings (CLADR 0, CLSEL TERM): ADDR is the connector's, 0..7
-  std::string control;   // live control channel: "-" or "unix:PATH" (control_input.hpp); empty: none
+  std::string control;   // live control channel: "-" or "unix:PATH" (ibs/control/channel.hpp); empty: none
 };
 
 struct CanlustClientOptions {

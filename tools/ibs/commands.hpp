@@ -28,6 +28,7 @@ struct RunOptions {
   bool realtime = false;  // the master paced at the bus cycle in real time (sim/realtime.hpp)
   int rt_priority = 0;    // with realtime: SCHED_FIFO priority 1..99 and mlockall
   std::string control;    // with realtime: the live control channel ("-", "unix:PATH"); empty: none
+  std::string stats_every;  // with realtime: a time ("60 s"): one `ibs-stats:` line on stderr each; empty: none
   ProgressOptions progress;  // -q, --progress (progress.hpp)
 };
 

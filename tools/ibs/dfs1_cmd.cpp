@@ -13,6 +13,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "ibs/control/channel.hpp"
 #include "ibs/devices/dfs1/parameters.hpp"
 #include "ibs/devices/drives.hpp"
 #include "ibs/devices/dfs1/served_controller.hpp"
@@ -22,7 +23,6 @@
 #include "ibs/serial/pty.hpp"
 #include "ibs/serial/serve.hpp"
 #include "ibs/tool/format.hpp"
-#include "control_input.hpp"
 #include "line_outputs.hpp"
 #include "watched_line_device.hpp"
 #include "stop_signals.hpp"
@@ -95,7 +95,7 @@ const char* json_kind(const nlohmann::json& v) {
 // did is printed once applied. A bad line is reported and skipped; nothing here ends the run.
 class EmulatorControl {
  public:
-  EmulatorControl(std::unique_ptr<ControlInput> input, const std::vector<std::string>& names,
+  EmulatorControl(std::unique_ptr<control::Channel> input, const std::vector<std::string>& names,
                   const std::vector<std::uint8_t>& uids, const std::vector<std::unique_ptr<dev::ServedController>>& served,
                   std::ostream& err, EmulateEvents* events)
       : input_(std::move(input)), names_(names), uids_(uids), served_(served), err_(err), events_(events) {}
@@ -103,8 +103,9 @@ class EmulatorControl {
   // Called from the serve loop's stop(): what the last turn applied, then the new lines.
   void turn() {
     print_reports();
-    input_->poll([this](std::size_t n, std::string_view text) { take(n, text); },
-                 [this](std::size_t n, std::string_view what) { bad(n, what); });
+    input_->poll([this](const control::Origin& from, std::string_view text) { take(from, text); },
+                 [this](const control::Origin& from, std::string_view what) { bad(from, what); },
+                 [this](std::string_view notice) { err_ << notice << "\n"; });
     while (!waiting_.empty() && served_[waiting_.front().first]->post(waiting_.front().second)) waiting_.pop_front();
   }
   void print_reports() {
@@ -124,9 +125,9 @@ class EmulatorControl {
   }
 
  private:
-  void bad(std::size_t n, std::string_view what) { err_ << "control:" << n << ": " << what << "\n"; }
+  void bad(const control::Origin& n, std::string_view what) { err_ << n << ": " << what << "\n"; }
 
-  void take(std::size_t n, std::string_view text) {
+  void take(const control::Origin& n, std::string_view text) {
     const dev::ParsedControl p = parse_dfs1_control_line(text);
     if (!p.event) return bad(n, p.error);
     std::optional<std::size_t> which;
@@ -158,7 +159,7 @@ class EmulatorControl {
     return s;
   }
 
-  std::unique_ptr<ControlInput> input_;
+  std::unique_ptr<control::Channel> input_;
   const std::vector<std::string>& names_;
   const std::vector<std::uint8_t>& uids_;
   const std::vector<std::unique_ptr<dev::ServedController>>& served_;
@@ -206,7 +207,7 @@ int emulate(const Dfs1EmulateOptions& o, std::ostream& out, std::ostream& err) {
   std::optional<EmulatorControl> control;
   if (!o.control.empty()) {
     std::string why;
-    auto input = ControlInput::open(o.control, why);
+    auto input = control::Channel::open(o.control, why);
     if (!input) {
       err << "ibs dfs1 emulate: --control " << o.control << ": " << why << "\n";
       return kExitDfs1BadInput;

@@ -23,7 +23,7 @@ std::string metavariable(const std::string& long_name) {
       {"pty-link", "LINK"},     {"framing", "FRAMING"},     {"format", "FORMAT"},      {"bus", "BUS"},
       {"sw-us", "US"},          {"supi", "N"},              {"ibcnf", "N"},            {"emulate", "SIDE"},
       {"listen-ms", "MS"},      {"duration-ms", "MS"},      {"id-step", "N"},          {"cacnf", "N"},
-      {"watchdog-reaction", "REACTION"},
+      {"watchdog-reaction", "REACTION"}, {"stats-every", "TIME"},
       {"lustbus-pcap", "FILE"}, {"dfs1-pcap", "FILE"},
       {"board", "NODE"},        {"duration", "S"},
   };

@@ -18,9 +18,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "control_input.hpp"
 #include "line_outputs.hpp"
 #include "watched_line_device.hpp"
+#include "ibs/control/channel.hpp"
 #include "ibs/base/text_file.hpp"
 #include "ibs/base/time_text.hpp"
 #include "ibs/devices/plant_event.hpp"
@@ -450,11 +450,11 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
     return bad(e.what());
   }
   // The control channel, opened before the port so that a bad spec serves nothing.
-  std::unique_ptr<ControlInput> control;
+  std::unique_ptr<control::Channel> control;
   std::vector<ControlledDrive> controlled;
   if (!o.control.empty()) {
     std::string error;
-    control = ControlInput::open(o.control, error);
+    control = control::Channel::open(o.control, error);
     if (!control) return bad("--control " + o.control + ": " + error);
     for (std::size_t i = 0; i < specs.size(); ++i) {
       const std::string name = specs[i].spec.substr(0, specs[i].spec.find('@'));
@@ -576,7 +576,7 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
       it = clears.erase(it);
     }
     control->poll(
-        [&](std::size_t number, std::string_view text) {
+        [&](const control::Origin& from, std::string_view text) {
           try {
             const ControlEvent c = parse_emulate_control(text, controlled);
             const ControlledDrive& d = controlled[c.drive];
@@ -585,19 +585,21 @@ int emulate(const LustbusEmulateOptions& o, std::ostream& out, std::ostream& err
               nlohmann::ordered_json j = drive_event(c.drive, now, "control");
               j["what"] = c.text;
               j["taken"] = taken;
-              j["control_line"] = number;
+              j["control_line"] = from.line;
+              if (from.client != 0) j["control_client"] = from.client;
               events.print(j);
             } else {
-              err << "ibs lustbus emulate: control:" << number << ": " << d.spec << ": " << c.text
+              err << "ibs lustbus emulate: " << from << ": " << d.spec << ": " << c.text
                   << (taken ? "" : " (not taken by the drive)") << "\n"
                   << std::flush;
             }
             if (taken && c.clear_after) clears.push_back({c.drive, now + *c.clear_after});
           } catch (const std::invalid_argument& e) {
-            err << "control:" << number << ": " << e.what() << "\n" << std::flush;
+            err << from << ": " << e.what() << "\n" << std::flush;
           }
         },
-        [&](std::size_t number, std::string_view what) { err << "control:" << number << ": " << what << "\n"; });
+        [&](const control::Origin& from, std::string_view what) { err << from << ": " << what << "\n"; },
+        [&](std::string_view notice) { err << notice << "\n" << std::flush; });
   };
   serial::serve(port, lines, [&]() {
     if (control) poll_control();

@@ -84,6 +84,9 @@ int run_ibs(int argc, char** argv) {
   run->add_option("--control", run_options.control,
                   "with --realtime: a live control channel, '-' (standard input) or unix:PATH, of JSON "
                   "lines, each a timeline entry without 'at' applied at once (docs/scenarios.md)");
+  run->add_option("--stats-every", run_options.stats_every,
+                  "with --realtime: every TIME (\"60 s\") one line 'ibs-stats: {JSON}' on standard error: "
+                  "wake-up latency, overruns and every counter since the last (docs/robustness.md, \"Soak\")");
 
   ibs::cli::MasterOptions master_options;
   auto* master = app.add_subcommand(

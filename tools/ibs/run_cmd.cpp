@@ -20,13 +20,14 @@
 
 #include "bench.hpp"
 #include "commands.hpp"
-#include "control_input.hpp"
 #include "gnuplot.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "run_stats.hpp"
 #include "stop_signals.hpp"
 #include "trace_input.hpp"
 #include "ibs/base/text_file.hpp"
+#include "ibs/control/channel.hpp"
 #include "ibs/sim/canlust_scenario.hpp"
 #include "ibs/sim/pcap_recorder.hpp"
 #include "ibs/sim/plot_recorder.hpp"
@@ -54,21 +55,23 @@ std::optional<sim::PlotFormat> plot_format(const std::string& file) {
   return std::nullopt;
 }
 
-// The live control channel of `ibs run --realtime --control SPEC`: once per cycle, every line that
-// has arrived is read as a timeline entry without `at` and applied at the simulated time reached;
-// a bad one is reported on stderr as `control:LINE: what is wrong` and skipped.
+// The live control channel of `ibs run --realtime --control SPEC`: once per cycle, the lines that
+// have arrived (control::Limits bounds them) are read as timeline entries without `at` and applied
+// at the simulated time reached; a bad one is reported on stderr as `control:LINE: what is wrong`
+// (`control:CLIENT:LINE` for a socket's client) and skipped.
 // An entry for a DFS-1 controller of the test bench goes to the bench, which lists it in its part
 // of the summary; every other to the simulator.
-std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator& simulator,
+std::function<void(Time)> control_each_cycle(control::Channel& input, sim::Simulator& simulator,
                                              const sim::Scenario& scenario, Bench* bench) {
   return [&input, &simulator, &scenario, bench](Time now) {
     input.poll(
-        [&](std::size_t number, std::string_view text) {
+        [&](const control::Origin& from, std::string_view text) {
           try {
-            sim::TimelineEntry e = sim::parse_control_line(std::string(text), number, scenario);
+            sim::TimelineEntry e = sim::parse_control_line(std::string(text), from.line, scenario, std::string(from.name));
+            e.source_client = from.client;
             if (bench != nullptr && bench->serves_controller(e.device)) {
               if (const auto why = bench->check(e)) {
-                std::cerr << "control:" << number << ": " << *why << "\n";
+                std::cerr << from << ": " << *why << "\n";
               } else {
                 bench->apply(e, now);
               }
@@ -79,9 +82,8 @@ std::function<void(Time)> control_each_cycle(ControlInput& input, sim::Simulator
             std::cerr << e.what() << "\n";
           }
         },
-        [](std::size_t number, std::string_view what) {
-          std::cerr << "control:" << number << ": " << what << "\n";
-        });
+        [](const control::Origin& from, std::string_view what) { std::cerr << from << ": " << what << "\n"; },
+        [](std::string_view notice) { std::cerr << notice << "\n"; });
   };
 }
 
@@ -123,7 +125,7 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
   for (const auto& [flag, given] : {std::pair{"--trace", !o.trace_dir.empty()}, {"--vcd", !o.vcd_file.empty()},
                                     {"--plot", !o.plot_file.empty()}, {"--threads", o.threads != 1},
                                     {"--rt-priority", o.rt_priority != 0}, {"--lustbus-pcap", !o.lustbus_pcap.empty()},
-                                    {"--dfs1-pcap", !o.dfs1_pcap.empty()}}) {
+                                    {"--dfs1-pcap", !o.dfs1_pcap.empty()}, {"--stats-every", !o.stats_every.empty()}}) {
     if (given) {
       std::cerr << o.scenario << ": " << flag
                 << " is for INTERBUS scenarios; a CANLust run has --json, --pcap, --realtime and --control\n";
@@ -141,10 +143,10 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
                  "have no time to land in\n";
     return kExitBadInput;
   }
-  std::unique_ptr<ControlInput> control;
+  std::unique_ptr<control::Channel> control;
   if (!o.control.empty()) {
     std::string error;
-    control = ControlInput::open(o.control, error);
+    control = control::Channel::open(o.control, error);
     if (!control) {
       std::cerr << "--control " << o.control << ": " << error << "\n";
       return kExitBadInput;
@@ -178,16 +180,16 @@ int run_canlust(const RunOptions& o, const sim::canlust::Scenario& scenario) {
       if (control) {
         rt.each_step = [&](Time, std::vector<sim::canlust::Entry>& out) {
           control->poll(
-              [&](std::size_t number, std::string_view text) {
+              [&](const control::Origin& from, std::string_view text) {
                 try {
-                  out.push_back(sim::canlust::parse_control_entry(scenario, std::string(text), number));
+                  out.push_back(sim::canlust::parse_control_entry(scenario, std::string(text), from.line,
+                                                                  std::string(from.name)));
                 } catch (const sim::ScenarioError& e) {
                   std::cerr << e.what() << "\n";  // "control:LINE: what is wrong"; the run goes on
                 }
               },
-              [](std::size_t number, std::string_view what) {
-                std::cerr << "control:" << number << ": " << what << "\n";
-              });
+              [](const control::Origin& from, std::string_view what) { std::cerr << from << ": " << what << "\n"; },
+              [](std::string_view notice) { std::cerr << notice << "\n"; });
         };
       }
       report = sim::canlust::run_realtime(scenario, rt, pcap_path);
@@ -221,6 +223,15 @@ int run(const RunOptions& o) {
     std::cerr << "--rt-priority " << o.rt_priority << " needs --realtime\n";
     return kExitBadInput;
   }
+  StatsEvery stats;
+  if (!o.stats_every.empty()) {
+    stats = parse_stats_every(o.stats_every);
+    if (stats.error.empty() && !o.realtime) stats.error = "--stats-every " + o.stats_every + " needs --realtime";
+    if (!stats.error.empty()) {
+      std::cerr << stats.error << "\n";
+      return kExitBadInput;
+    }
+  }
   // The file is read once; its [bus] says which bus's simulation runs it.
   sim::Scenario scenario;
   try {
@@ -244,7 +255,7 @@ int run(const RunOptions& o) {
   }
   // A live entry needs wall-clock time to land in: without --realtime the simulation runs as
   // fast as it can and is over before anyone could type.
-  std::unique_ptr<ControlInput> control;
+  std::unique_ptr<control::Channel> control;
   if (!o.control.empty()) {
     if (!o.realtime) {
       std::cerr << "--control " << o.control
@@ -253,7 +264,7 @@ int run(const RunOptions& o) {
       return kExitBadInput;
     }
     std::string error;
-    control = ControlInput::open(o.control, error);
+    control = control::Channel::open(o.control, error);
     if (!control) {
       std::cerr << "--control " << o.control << ": " << error << "\n";
       return kExitBadInput;
@@ -423,6 +434,12 @@ int run(const RunOptions& o) {
       rt.each_cycle = [&bench, &control_turn](Time now) {
         if (bench) bench->turn(now);
         if (control_turn) control_turn(now);
+      };
+    }
+    if (stats.every > Duration{0}) {
+      rt.interval = stats.every;
+      rt.each_interval = [&simulator, &control, &bench](const sim::RealtimeInterval& iv) {
+        write_stats_line(iv, *simulator, control.get(), bench.get());
       };
     }
     sim::run_realtime(*simulator, rt, options);

@@ -66,6 +66,12 @@ void write_decoded_json(const trace::Trace& t, const trace::Explainer& e, std::o
   header["max_gap"] = h.max_gap;
   if (h.watchdog_ms) header["watchdog_ms"] = *h.watchdog_ms;
   if (h.step_time) header["step_time"] = format_time(*h.step_time);
+  // `setting: NAME VALUE`: each as its text, under `settings`.
+  if (!h.device_settings.empty()) {
+    nlohmann::json settings = nlohmann::json::object();
+    for (const trace::DeviceSetting& d : h.device_settings) settings[d.name] = d.value;
+    header["settings"] = std::move(settings);
+  }
   nlohmann::json rows = nlohmann::json::array();
   for (const trace::Row& r : t.rows) {
     nlohmann::json row;
@@ -86,6 +92,11 @@ void write_decoded_json(const trace::Trace& t, const trace::Explainer& e, std::o
       for (const trace::Event& ev : r.events_before) {
         nlohmann::json event{{"event", std::string(trace::to_string(ev.kind))}, {"text", ev.text}, {"line", ev.line}};
         if (ev.kind == trace::Event::Kind::no_data) event["steps"] = ev.steps;
+        if (ev.kind == trace::Event::Kind::write) {
+          event["parameter"] = ev.parameter;
+          event["value"] = ev.value;
+          event["decoded"] = e.explain_write(ev.parameter, ev.value);
+        }
         events.push_back(std::move(event));
       }
       row["events"] = std::move(events);

@@ -85,7 +85,7 @@ std::uint32_t Cda3000::value_at(std::size_t i) const {
 
 std::optional<std::uint32_t> Cda3000::saved_value(std::uint16_t number) const {
   const auto i = parameter_index(number);
-  if (!i || kParameters[*i].is_string()) return std::nullopt;
+  if (!i || kParameters[*i].is_string() || kParameters[*i].memory != Memory::flash) return std::nullopt;
   return saved_[*i];
 }
 
@@ -485,9 +485,10 @@ AccessResult Cda3000::write(std::uint16_t number, std::uint8_t index, std::uint3
       return {};
     case kSave:
       if (v == 1) {
-        // 3.5.1 / 4.3.3: the settings into flash; "takes a few hundred milliseconds".
-        saved_ = current_;
-        saved_[*parameter_index(kSload)] = 0;  // a handshake in RAM, no setting (D39)
+        // 3.5.1 / 4.3.3: "a few hundred milliseconds"; RAM values (80-SLOAD, D39) stay out.
+        for (std::size_t i = 0; i < kParameters.size(); ++i) {
+          if (kParameters[i].memory == Memory::flash) saved_[i] = current_[i];
+        }
         name_saved_ = name_;
         return {kStatusOk, config_.save_time};
       }

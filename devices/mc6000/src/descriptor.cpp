@@ -1,11 +1,14 @@
 #include "ibs/devices/mc6000/descriptor.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 #include "ibs/devices/mc6000/driver.hpp"
 #include "ibs/devices/mc6000/layout.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/devices/mc6000/settings.hpp"
 #include "ibs/drivecom/control_word.hpp"
+#include "ibs/pcp/parameter_store.hpp"
 #include "ibs/pcp/parameters.hpp"
 
 #if !IBS_EMBEDDED
@@ -215,6 +218,7 @@ class Descriptor final : public DriveDescriptor {
   std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const override {
     return make_pcp_explainer(h);
   }
+  std::optional<std::string> check_trace_write(std::uint16_t number, std::int64_t value) const override;
 #endif
 
   std::optional<std::string> check_layout_options(const SettingValues& given, bool) const override {
@@ -237,6 +241,28 @@ class Descriptor final : public DriveDescriptor {
     return std::string(kName) + ":" + std::to_string(supi_of(s)) + (s.bus == interbus::BusKind::local ? ":local" : "");
   }
 };
+
+#if !IBS_EMBEDDED
+std::optional<std::string> Descriptor::check_trace_write(std::uint16_t number, std::int64_t value) const {
+  const auto table = parameters();
+  const auto p = std::find_if(table.begin(), table.end(), [number](const pcp::ParameterInfo& i) { return i.number == number; });
+  if (p == table.end()) return "parameter " + std::to_string(number) + " is not in the MC6000's table";
+  const std::string name = std::to_string(number) + "-" + std::string(p->name);
+  if (number == kSerr) {  // the bits a channel's requests left
+    if (value < 0 || value > 0xFF) return name + ": " + std::to_string(value) + " is not a value of it (8 bits)";
+    return std::nullopt;
+  }
+  if (!p->writable()) return name + " is an actual value: no channel writes it";
+  const auto v = trace_raw(p->type, value);
+  if (!v) return name + ": " + std::to_string(value) + " is no value of its type";
+  // 80-SLOAD's handshake values (11.4) lie outside its range of answers.
+  if (number != kSload && (pcp::compare(p->type, *v, pcp::ParameterStore::to_raw(*p, p->max)) > 0 ||
+                           pcp::compare(p->type, *v, pcp::ParameterStore::to_raw(*p, p->min)) < 0)) {
+    return name + " = " + std::to_string(value) + " is out of its range";
+  }
+  return std::nullopt;
+}
+#endif
 
 LayoutDescription Descriptor::layout(const Configuration& config) const {
   const Layout l = layout_of(config.settings);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ibs/devices/mc6000/descriptor.hpp"
+#include "ibs/devices/mc6000/parameters.hpp"
 #include "ibs/devices/mc6000/pd_master.hpp"
 #include "ibs/devices/trace_support.hpp"
 
@@ -61,6 +62,13 @@ class Explainer final : public trace::Explainer {
   explicit Explainer(const Layout& l) : layout_(l) {}
   std::size_t m2s_words() const override { return static_cast<std::size_t>(layout_.pd_words); }
   std::size_t s2m_words() const override { return static_cast<std::size_t>(layout_.pd_words); }
+  // `! write PNR VALUE` (another channel's write): the parameter's name from the drive's table.
+  std::string explain_write(std::uint16_t parameter, std::int64_t value) const override {
+    for (const auto& p : parameters()) {
+      if (p.number == parameter) return std::to_string(parameter) + "-" + std::string(p.name) + " = " + std::to_string(value);
+    }
+    return "parameter " + std::to_string(parameter) + " = " + std::to_string(value);
+  }
   std::string explain_m2s(std::span<const Word> w) const override {
     if (w.empty()) return "no process data";
     std::string s = "control " + explain_control_word(w[0], prev_control_);

@@ -165,7 +165,15 @@ trace::Vocabulary trace_vocabulary() {
     }
     return out;
   }();
-  return {names(), drivecom::kTargetKeys, settings};
+  // `setting: NAME VALUE`: the watchdog's reaction and every other declared setting.
+  static const std::vector<std::string_view> device_settings = [] {
+    std::vector<std::string_view> out{"watchdog_reaction"};
+    for (const std::string_view name : declared_setting_names()) {
+      if (std::find(settings.begin(), settings.end(), name) == settings.end()) out.push_back(name);
+    }
+    return out;
+  }();
+  return {names(), drivecom::kTargetKeys, settings, device_settings};
 }
 
 }  // namespace ibs::devices

@@ -1,10 +1,13 @@
 #include "ibs/devices/trace_adapters.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 #include <string>
 
+#include "ibs/base/time_text.hpp"
 #include "ibs/devices/registry.hpp"
 #include "ibs/drivecom/sequencer.hpp"
 
@@ -38,15 +41,92 @@ const DriveKind& kind_of(const trace::Trace& t) {
 // the other setting's line and then to the device line.
 std::size_t line_of(const Header& h, std::string_view setting) {
   if (setting == "watchdog_ms") return h.lines.watchdog_ms;
+  if (const trace::DeviceSetting* d = h.device_setting(setting)) return d->line;
   const trace::HeaderSetting* s = h.setting(setting);
   return s != nullptr ? s->line : 0;
 }
 
-// The settings the header gives the device: the wing's own (supi, ibcnf) and the bus watchdog
-// every drive has (`watchdog_ms`; its range and "off" are the wing's, validate_watchdog).
+// The bus watchdog's reaction (DeviceSettings::watchdog_reaction), which every trace may name and
+// the drive's wing judges (validate_watchdog).
+constexpr std::string_view kWatchdogReaction = "watchdog_reaction";
+
+// A declared setting with a trace header of its own (`# supi: 11`, registry.cpp's vocabulary):
+// the integers that place a device on the ring.
+bool own_header(const SettingSpec& spec) {
+  return spec.kind == SettingKind::integer && uses(spec.faces, SettingFace::interbus);
+}
+
+// A setting's value in the scenario's syntax (without quotes), and back.
+std::string setting_text(const SettingSpec& spec, std::int64_t v) {
+  switch (spec.kind) {
+    case SettingKind::integer: return std::to_string(v);
+    case SettingKind::boolean: return v != 0 ? "true" : "false";
+    case SettingKind::duration: return format_time(Duration{v});
+    case SettingKind::choice:
+      if (v >= 0 && static_cast<std::size_t>(v) < spec.choices.size()) return std::string(spec.choices[static_cast<std::size_t>(v)]);
+      return std::to_string(v);
+  }
+  return std::to_string(v);
+}
+
+std::optional<std::int64_t> parse_whole(std::string_view text) {
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
+// Reads `setting: NAME VALUE`'s value by the declaration's type; throws TraceError on its line.
+std::int64_t setting_value(const trace::Trace& t, const trace::DeviceSetting& d, const SettingSpec& spec) {
+  const auto refuse = [&](const std::string& expected) -> std::int64_t {
+    throw TraceError(t.file, d.line, "setting: " + d.name + ": '" + d.value + "' is not " + expected);
+  };
+  switch (spec.kind) {
+    case SettingKind::integer:
+      if (const auto v = parse_whole(d.value)) return *v;
+      return refuse("an integer (" + std::string(spec.range) + ")");
+    case SettingKind::boolean:
+      if (d.value == "true" || d.value == "false") return d.value == "true" ? 1 : 0;
+      return refuse("true or false");
+    case SettingKind::duration:
+      try {
+        return parse_time(d.value).count();
+      } catch (const std::invalid_argument& e) {
+        return refuse(std::string("a time (") + e.what() + ")");
+      }
+    case SettingKind::choice:
+      for (std::size_t i = 0; i < spec.choices.size(); ++i) {
+        if (spec.choices[i] == d.value) return static_cast<std::int64_t>(i);
+      }
+      return refuse("one of its choices");
+  }
+  return refuse("a value of its type");
+}
+
+// The settings the header gives the device: the wing's own with their own headers (supi, ibcnf),
+// the bus watchdog every drive has (`watchdog_ms`; its range and "off" are the wing's,
+// validate_watchdog) and the `setting:` headers (the watchdog's reaction, the drive's other
+// declared settings). A name the drive does not take is refused on its line here; a value out
+// of its range by the checks of configuration_of.
 DeviceSettings settings_of(const trace::Trace& t, const DriveKind& k) {
   DeviceSettings s = k->trace_settings(t.header);
   s.watchdog_ms = t.header.watchdog_ms;
+  for (const trace::DeviceSetting& d : t.header.device_settings) {
+    if (d.name == kWatchdogReaction) {
+      const auto v = parse_whole(d.value);
+      if (!v || *v < 0 || *v > 255) {
+        throw TraceError(t.file, d.line, "setting: watchdog_reaction: '" + d.value + "' is not an integer 0..255");
+      }
+      s.watchdog_reaction = static_cast<int>(*v);
+      continue;
+    }
+    if (const auto refusal = refuse_setting_name(k, d.name)) throw TraceError(t.file, d.line, "setting: " + refusal->message);
+    const SettingSpec& spec = *k->setting(d.name);
+    if (own_header(spec)) {
+      throw TraceError(t.file, d.line, "setting: '" + d.name + "' has a header of its own: `# " + d.name + ": " + d.value + "`");
+    }
+    s.drive.set(spec.name, spec.kind, setting_value(t, d, spec));
+  }
   return s;
 }
 
@@ -89,8 +169,8 @@ void require_state_request(const trace::Trace& t) {
 // bus_cycle(), the master's words not copied). Recorded simulator traces replay unchanged.
 class EmulatedDeviceSide final : public trace::DeviceSide {
  public:
-  EmulatedDeviceSide(std::size_t words, Duration period, std::unique_ptr<DeviceEmulator> device)
-      : words_(words), period_(period), device_(std::move(device)), taken_(words, Word{0}) {}
+  EmulatedDeviceSide(std::string file, std::size_t words, Duration period, std::unique_ptr<DeviceEmulator> device)
+      : file_(std::move(file)), words_(words), period_(period), device_(std::move(device)), taken_(words, Word{0}) {}
   std::size_t m2s_words() const override { return words_; }
   std::size_t s2m_words() const override { return words_; }
   void initial(std::span<Word> s2m) override { device_->output(s2m); }
@@ -104,14 +184,23 @@ class EmulatedDeviceSide final : public trace::DeviceSide {
     now_ += period_;
     device_->sample({taken_, s2m, {}, {}}, now_);
   }
-  // The device faults a recording injects and the steps without data (trace-format.md, "Events").
+  // The device faults a recording injects, the steps without data and the parameters another
+  // channel wrote (trace-format.md, "Events"); a write the drive refuses is an error on its line.
   bool supports(trace::Event::Kind) const override { return true; }
   void apply(const trace::Event& e) override {
     if (e.kind == trace::Event::Kind::no_data) return;  // replay_device runs step_without_data()
+    if (e.kind == trace::Event::Kind::write) {
+      const std::string why = device_->write_parameter(e.parameter, e.value, now_);
+      if (!why.empty()) {
+        throw TraceError(file_, e.line, "write " + std::to_string(e.parameter) + " " + std::to_string(e.value) + ": " + why);
+      }
+      return;
+    }
     device_->set_fault(e.kind == trace::Event::Kind::fault);
   }
 
  private:
+  std::string file_;
   std::size_t words_;
   Duration period_;
   std::unique_ptr<DeviceEmulator> device_;
@@ -177,7 +266,14 @@ void validate_trace(const trace::Trace& t) {
     const Configuration c = configuration_of(t, k);
     require_state_request(t);
     trace::validate(t);
-    // The device model acts on every event (trace-format.md, "Events").
+    // The device model acts on every event (trace-format.md, "Events"); a write must suit the
+    // drive's table (its state at that step the replay judges).
+    for (const trace::Row& r : t.rows) {
+      for (const trace::Event& ev : r.events_before) {
+        if (ev.kind != trace::Event::Kind::write) continue;
+        if (const auto why = k->check_trace_write(ev.parameter, ev.value)) throw TraceError(t.file, ev.line, "write: " + *why);
+      }
+    }
     check_counts(t, c.pd_words, c.pd_words);
     return;
   }
@@ -213,7 +309,7 @@ std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t) {
   const DriveKind& k = kind_of(t);
   if (h.words == WordsKind::pd) {
     const Configuration c = configuration_of(t, k);
-    return std::make_unique<EmulatedDeviceSide>(c.pd_words, pd_step(t, k), k.make_emulator(c, h.init, Time{0}));
+    return std::make_unique<EmulatedDeviceSide>(t.file, c.pd_words, pd_step(t, k), k.make_emulator(c, h.init, Time{0}));
   }
   return channel_adapter(t, [&] { return k->make_channel_device(h); });
 }
@@ -232,6 +328,15 @@ std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t) {
   const DriveKind& k = kind_of(t);
   if (h.words == WordsKind::pd) return k->make_pd_explainer(configuration_of(t, k));
   return channel_adapter(t, [&] { return k->make_channel_explainer(h); });
+}
+
+void write_device_settings(const DriveKind& kind, const DeviceSettings& settings, trace::Header& h) {
+  if (settings.watchdog_reaction) h.set_device_setting(kWatchdogReaction, std::to_string(*settings.watchdog_reaction));
+  for (const SettingSpec& spec : kind->settings()) {
+    if (own_header(spec) || !settings.drive.given(spec.name)) continue;
+    const std::int64_t v = settings.drive.value(spec);
+    if (v != spec.fallback) h.set_device_setting(spec.name, setting_text(spec, v));
+  }
 }
 
 trace::Trace parse_trace(std::string_view text, const std::string& file) {

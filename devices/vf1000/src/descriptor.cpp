@@ -167,6 +167,20 @@ class Descriptor final : public DriveDescriptor {
   std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header&) const override {
     return vf1000_channel::make_comm_explainer();
   }
+  std::optional<std::string> check_trace_write(std::uint16_t number, std::int64_t value) const override {
+    const auto table = parameters();
+    const auto p = std::find_if(table.begin(), table.end(), [number](const drive::ParameterInfo& i) { return i.number == number; });
+    if (p == table.end()) return "parameter " + std::to_string(number) + " is not in the VF1000's table";
+    if (value < 0 || value > (number == pnr::kSiof ? 0xFF : 0xFFFF)) {
+      return std::to_string(number) + "-" + std::string(p->name) + ": " + std::to_string(value) + " is not a value of it (" +
+             (number == pnr::kSiof ? "8 bits" : "a 16-bit word") + ")";
+    }
+    if (number == pnr::kSiof) return std::nullopt;  // the bits a channel's requests left
+    const drive::WriteCheck c = drive::check_write(&*p, static_cast<Word>(value), false);
+    if (c == drive::WriteCheck::ok) return std::nullopt;
+    return std::to_string(number) + "-" + std::string(p->name) + " = " + std::to_string(value) + ": " +
+           std::string(drive::to_string(c));
+  }
 #endif
 
   std::optional<std::string> check_layout_options(const SettingValues& given, bool bus) const override {

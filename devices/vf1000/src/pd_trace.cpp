@@ -8,6 +8,7 @@
 #include "ibs/base/number_text.hpp"
 #include "ibs/devices/trace_support.hpp"
 #include "ibs/devices/vf1000/descriptor.hpp"
+#include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/devices/vf1000/pd_master.hpp"
 
 namespace ibs::devices::vf1000 {
@@ -56,6 +57,13 @@ class Explainer final : public trace::Explainer {
  public:
   std::size_t m2s_words() const override { return kWords; }
   std::size_t s2m_words() const override { return kWords; }
+  // `! write PNR VALUE` (another channel's write): the parameter's name from the drive's table.
+  std::string explain_write(std::uint16_t parameter, std::int64_t value) const override {
+    for (const auto& p : parameters()) {
+      if (p.number == parameter) return std::to_string(parameter) + "-" + std::string(p.name) + " = " + std::to_string(value);
+    }
+    return "parameter " + std::to_string(parameter) + " = " + std::to_string(value);
+  }
   std::string explain_m2s(std::span<const Word> w) const override {
     std::string s = "control " + explain_control_word(w[0], prev_control_);
     prev_control_ = w[0];

@@ -283,18 +283,19 @@ Entry read_entry(const Reader& r, const Node& t, const Scenario& s, bool control
 
 }  // namespace
 
-Entry parse_control_entry(const Scenario& s, const std::string& line, std::size_t number) {
+Entry parse_control_entry(const Scenario& s, const std::string& line, std::size_t number,
+                          const std::string& source) {
   detail::Node root;
   try {
-    root = detail::json_tree(line, "control");
+    root = detail::json_tree(line, source);
   } catch (const ScenarioError& e) {
     // The JSON reader counts lines inside the text; a control line is one line of the channel.
     std::string what = e.what();
-    const std::string prefix = "control:" + std::to_string(e.line()) + ": ";
+    const std::string prefix = source + ":" + std::to_string(e.line()) + ": ";
     if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
-    throw ScenarioError("control", number, what);
+    throw ScenarioError(source, number, what);
   }
-  const Reader r("control", number);
+  const Reader r(source, number);
   if (root.kind != Node::Kind::table) r.fail(number, "a control line is a JSON object: a timeline entry without 'at'");
   return read_entry(r, root, s, true);
 }

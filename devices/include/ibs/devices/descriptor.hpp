@@ -214,6 +214,14 @@ class DriveDescriptor {
   [[nodiscard]] virtual std::unique_ptr<trace::DeviceSide> make_channel_device(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::MasterSide> make_channel_master(const trace::Header& h) const = 0;
   [[nodiscard]] virtual std::unique_ptr<trace::Explainer> make_channel_explainer(const trace::Header& h) const = 0;
+  // A `! write PNR VALUE` event against the drive's table (a parameter it has, that a channel may
+  // write, a value of its type and range; 85-SIOF/SERR takes its 8 bits): nullopt when the table
+  // takes it -- the replay's drive may still refuse it in the state it is then in -- else why not.
+  [[nodiscard]] virtual std::optional<std::string> check_trace_write(std::uint16_t number, std::int64_t value) const {
+    (void)number;
+    (void)value;
+    return std::nullopt;
+  }
 #endif
 
   // --- the command line ------------------------------------------------------------------------

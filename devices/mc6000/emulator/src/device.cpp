@@ -161,6 +161,29 @@ void Mc6000Device::step(std::span<const Word> pd_m2s, Time now, std::span<const 
   }
 }
 
+std::string Mc6000Device::write_parameter(std::uint16_t number, std::int64_t value, Time now) {
+  mc6000::DriveParameters& params = drive_->parameters();
+  const pcp::ParameterInfo* p = params.store().info(number);
+  if (p == nullptr) return "parameter " + std::to_string(number) + " is not in the MC6000's table";
+  if (number == mc6000::kSerr) {
+    // No channel writes 85-SERR: a read erases its bits, a refusal sets one; it takes what the
+    // channel left.
+    if (value < 0 || value > 0xFF) return "85-SERR holds 8 bits, not " + std::to_string(value);
+    drive_->advance(now);
+    params.set_reading(number, static_cast<std::uint32_t>(value));
+    return {};
+  }
+  // The raw value as PCP carries it; a negative one is a signed type's.
+  const auto raw = mc6000::trace_raw(p->type, value);
+  if (!raw) return std::to_string(value) + " is no value of " + std::to_string(number) + "'s type";
+  const mc6000::WriteResult r = drive_->write(now, number, *raw);
+  if (!r.ok()) {
+    return "the MC6000 refuses " + std::to_string(number) + " = " + std::to_string(value) + " (85-SERR " +
+           std::to_string(drive_->siof()) + "; " + pcp::to_string(mc6000::pcp_error(r.refusal)) + ")";
+  }
+  return {};
+}
+
 namespace mc6000 {
 
 std::unique_ptr<DeviceEmulator> make_emulator(const Configuration& config, DeviceStart start, Time now) {

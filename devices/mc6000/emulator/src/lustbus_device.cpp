@@ -121,6 +121,8 @@ lb::EnquiryAnswer LustbusDevice::substitution_text(std::uint16_t parameter) {
 
 lb::EnquiryAnswer LustbusDevice::enquiry(const lb::Code& code, const lb::Context& ctx) {
   advance(ctx.now);
+  // For a recording of the INTERBUS words, which do not carry this channel (parameter_journal.hpp).
+  const drive::SiofNote<Drive> noted(*drive_, drive::kSiofNumber);
   if (const auto mc = lb::as_mc_code(code)) {
     if (mc->kind == lb::McCodeKind::posmod) {  // 11.6.2
       const auto v = posmod_.enquiry(ctx.now);
@@ -147,6 +149,7 @@ lb::EnquiryAnswer LustbusDevice::enquiry(const lb::Code& code, const lb::Context
 lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& value,
                                        const lb::Context& ctx) {
   advance(ctx.now);
+  const drive::SiofNote<Drive> noted(*drive_, drive::kSiofNumber);
   const auto mc = lb::as_mc_code(code);
   if (mc && mc->kind == lb::McCodeKind::posmod) {
     // 11.6.1: the option's own channel. Its refusals are read with %RDF, not from 85-SERR, and
@@ -165,6 +168,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
   } else {
     const auto parsed = lb::parse_typed(lb::Family::enhanced, lustbus_type(p->type), value.view());
     r = drive_->write(ctx.now, p->number, parsed.ok() ? std::optional<std::uint32_t>(parsed.value) : std::nullopt);
+    if (r.ok() && parsed.ok()) drive_->journal().note(p->number, parsed.value);
   }
   if (!r.ok()) return lb::SelectAnswer::nak(reaction());
   // 8.1.2: a reaction-5 error reset boots the servo "immediately after the receipt": only the ADR
@@ -186,6 +190,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
 
 void LustbusDevice::checksum_error(const lb::Context& ctx) {
   (void)ctx;
+  const drive::SiofNote<Drive> noted(*drive_, drive::kSiofNumber);
   drive_->serial_checksum_error();  // 9.2 bit 3
 }
 

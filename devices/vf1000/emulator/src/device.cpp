@@ -180,4 +180,31 @@ std::unique_ptr<DeviceEmulator> make_emulator(const Configuration& config, Devic
 
 }  // namespace vf1000
 
+std::string Vf1000Device::write_parameter(std::uint16_t number, std::int64_t value, Time now) {
+  const drive::ParameterInfo* p = drive_->find(number);
+  if (p == nullptr) return "parameter " + std::to_string(number) + " is not in the VF1000's table";
+  if (value < 0 || value > 0xFFFF) return "the VF1000's values are 16-bit words (0..65535), not " + std::to_string(value);
+  const auto w = static_cast<Word>(value);
+  drive_->advance(now);
+  const std::uint8_t bits = drive_->siof();
+  if (number == vf1000::pnr::kSiof) {
+    // No channel writes 85-SIOF: a read erases its bits, a refusal sets one; it takes what the
+    // channel left.
+    if (w > 0xFF) return "85-SIOF holds 8 bits, not " + std::to_string(w);
+    drive_->clear_siof(static_cast<std::uint8_t>(bits & ~w));
+    drive_->raise_siof(static_cast<std::uint8_t>(w & ~bits));
+    return {};
+  }
+  // Seed 000, 6 and 9.2; seed 001, 4.1.4: every value transfer is refused while a bit is set.
+  if (bits != 0) return "85-SIOF holds " + std::to_string(bits) + ": every value transfer is refused until it is read";
+  const bool powered = drive_->power_stage_enabled();
+  const drive::WriteCheck check = drive_->check_write(p, w, powered);
+  if (check != drive::WriteCheck::ok) {
+    return "the VF1000 refuses " + std::to_string(number) + " = " + std::to_string(w) + ": " +
+           std::string(drive::to_string(check));
+  }
+  drive_->write(static_cast<std::size_t>(drive_->table().slot(number)), w, powered, now);
+  return {};
+}
+
 }  // namespace ibs::devices

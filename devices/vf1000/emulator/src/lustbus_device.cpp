@@ -99,6 +99,8 @@ const drive::ParameterInfo* LustbusDevice::resolve(const lb::Code& code, bool& d
 
 lb::EnquiryAnswer LustbusDevice::enquiry(const lb::Code& code, const lb::Context& ctx) {
   advance(ctx.now);
+  // For a recording of the INTERBUS words, which do not carry this channel (parameter_journal.hpp).
+  const drive::SiofNote<Drive> noted(*drive_, pnr::kSiof);
   bool description = false;
   const drive::ParameterInfo* p = resolve(code, description);
   // 6.1 note: NAK for a parameter that is not there; no cause enters 85-SIOF on an ENQUIRY.
@@ -123,6 +125,7 @@ lb::SelectAnswer LustbusDevice::refuse(SiofBit b) {
 lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& value,
                                        const lb::Context& ctx) {
   advance(ctx.now);
+  const drive::SiofNote<Drive> noted(*drive_, pnr::kSiof);
   // 6, 9.2: every SELECT is refused while a bit is set; the bits stay as they are.
   if (drive_->siof() != 0) return lb::SelectAnswer::nak(reaction());
   bool description = false;
@@ -144,6 +147,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
   const std::uint32_t starts = drive_->starts();
   const drive::WriteEffect effect =
       drive_->write(static_cast<std::size_t>(drive_->table().slot(p->number)), w, powered, ctx.now);
+  drive_->journal().note(p->number, w);
   if (drive_->starts() != starts) {
     // 8.1.1: 11-STAT = 000FH reset a fault: "the reset happens immediately after the receipt",
     // the inverter boots (deaf meanwhile) and the ACK may not get out whole.
@@ -163,6 +167,7 @@ lb::SelectAnswer LustbusDevice::select(const lb::Code& code, const lb::Value& va
 
 void LustbusDevice::checksum_error(const lb::Context& ctx) {
   (void)ctx;
+  const drive::SiofNote<Drive> noted(*drive_, pnr::kSiof);
   drive_->raise_siof(drive::siof_mask(SiofBit::checksum));  // 9.2 bit 3
 }
 

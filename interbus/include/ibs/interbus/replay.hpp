@@ -26,6 +26,10 @@ class Explainer {
   [[nodiscard]] virtual std::size_t s2m_words() const = 0;
   [[nodiscard]] virtual std::string explain_m2s(std::span<const Word> m2s) const = 0;
   [[nodiscard]] virtual std::string explain_s2m(std::span<const Word> s2m) const = 0;
+  // A `! write PNR VALUE` in words ("409-BUTWD = 100 ms"); empty: nothing to add.
+  [[nodiscard]] virtual std::string explain_write(std::uint16_t /*parameter*/, std::int64_t /*value*/) const {
+    return {};
+  }
 };
 
 // The device side of a trace: s2m[0] = initial(); s2m[k] = step(m2s[k-1]).
@@ -110,8 +114,9 @@ ReplayResult replay_device(const Trace& t, DeviceSide& device, const Explainer& 
 ReplayResult replay_master(const Trace& t, MasterSide& master, const Explainer& explain);
 
 // The trace with every row's remark replaced by the explainer's reading of its words
-// (the original remark kept after ` | `), ready for write(). A row that already carries this
-// reading is left as it is, so decode(decode(t)) == decode(t). Throws TraceError (FILE:LINE) for a
+// (the original remark kept after ` | `), and every `! write` event's text by its reading
+// (likewise), ready for write(). A row or event that already carries this reading is left as it
+// is, so decode(decode(t)) == decode(t). Throws TraceError (FILE:LINE) for a
 // row whose word counts are not the explainer's.
 Trace decode(const Trace& t, const Explainer& explain);
 

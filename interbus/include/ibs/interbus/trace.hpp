@@ -68,18 +68,26 @@ std::string format_patterns(std::span<const WordPattern> words);
 // a `! EVENT [text]` line between two data rows, after the previous row's step and before the
 // next row's.
 // `no-data N` stands for N steps (rows not written) in which the device got no valid data from the
-// master; its timers run on.
+// master; its timers run on. `write PNR VALUE` is a parameter changed through a channel the trace
+// does not carry: the device's value is VALUE from the next step on, as if written through its
+// own channel (the drive checks it; the format knows numbers only).
 struct Event {
-  enum class Kind { fault, fault_cleared, no_data };
+  enum class Kind { fault, fault_cleared, no_data, write };
   Kind kind = Kind::fault;
   std::string text;         // the free text after the event's name (and no-data's N; may be empty)
   std::size_t line = 0;     // 1-based line in the file (0 when built in memory)
   std::uint64_t steps = 0;  // no-data: N, 1..kMaxNoDataSteps; 0 for the other kinds
+  std::uint16_t parameter = 0;  // write: PNR, 0..65535
+  std::int64_t value = 0;       // write: VALUE, the raw value as a channel carries it (kMinWriteValue..kMaxWriteValue)
 
   friend bool operator==(const Event& a, const Event& b) {
-    return a.kind == b.kind && a.text == b.text && a.steps == b.steps;
+    return a.kind == b.kind && a.text == b.text && a.steps == b.steps && a.parameter == b.parameter &&
+           a.value == b.value;
   }
 };
+// The raw values a `! write` may carry: what a 32-bit value of a channel holds, read signed or not.
+inline constexpr std::int64_t kMinWriteValue = -2147483648LL;
+inline constexpr std::int64_t kMaxWriteValue = 4294967295LL;
 std::string_view to_string(Event::Kind k);
 
 struct Row {
@@ -114,6 +122,20 @@ struct HeaderSetting {
   friend bool operator==(const HeaderSetting&, const HeaderSetting&) = default;
 };
 
+// A device setting the recording ran with (`setting: NAME VALUE`, repeatable): NAME as the scenario
+// file spells it, VALUE its text in the scenario's syntax without quotes ("1", "true", "2 s").
+// Which names a drive takes and their ranges are its declarations' (devices/settings.hpp and the
+// bus watchdog's reaction), checked by the trace validation (devices/trace_adapters.hpp).
+struct DeviceSetting {
+  std::string name;
+  std::string value;
+  std::size_t line = 0;  // 0: set in code
+
+  friend bool operator==(const DeviceSetting& a, const DeviceSetting& b) {
+    return a.name == b.name && a.value == b.value;
+  }
+};
+
 struct Header {
   std::string device;  // the drive kind's name ("vf1000", "mc6000")
   WordsKind words = WordsKind::pd;
@@ -134,6 +156,8 @@ struct Header {
   // `step-time`: the time one step stands for; nullopt: the adapters' own step time
   // (docs/replay.md, "What one step is").
   std::optional<Duration> step_time;
+  // `setting: NAME VALUE` headers, in the file's order (written after `step-time`).
+  std::vector<DeviceSetting> device_settings;
   // The line each header was read from (0 = not given), for errors found after parsing.
   struct Lines {
     std::size_t device = 0, words = 0, init = 0, request = 0, request_at = 0, outcome = 0, max_gap = 0,
@@ -144,6 +168,10 @@ struct Header {
   [[nodiscard]] const HeaderSetting* setting(std::string_view key) const;
   // Gives (or replaces) a setting, appended after the others.
   void set_setting(std::string_view key, int value);
+  // A `setting:` by name; nullptr when the header does not give it.
+  [[nodiscard]] const DeviceSetting* device_setting(std::string_view name) const;
+  // Gives (or replaces) a `setting:`, appended after the others.
+  void set_device_setting(std::string_view name, std::string_view value);
 };
 
 struct Trace {
@@ -175,6 +203,8 @@ struct Vocabulary {
   // The drives' settings a header may give (`# NAME: VALUE`); empty: any key that is no other
   // header.
   std::span<const std::string_view> settings;
+  // The names a `setting: NAME VALUE` header may give; empty: any name of the header's letters.
+  std::span<const std::string_view> device_settings{};
 };
 
 // Parses a whole trace; `file` names it in errors.

@@ -120,6 +120,7 @@ struct TimelineEntry {
                               // a generic external fault
   bool level = false;         // input: true = high
   std::size_t source_line = 0;  // where it was read from (0 = built in)
+  std::uint32_t source_client = 0;  // a control entry: the socket's client it came from (0: a file or standard input)
 };
 
 // Faults drawn at random over the run (all rates per simulated second; 0 = off).
@@ -192,9 +193,11 @@ Scenario parse_scenario_json(const std::string& text, const std::string& file);
 // One line of a live control channel (`ibs run --control`, docs/scenarios.md "Control channel"):
 // a JSON object that is a timeline entry without `at`, read and checked as the files' entries
 // are, against the devices of `running`. Throws ScenarioError whose what() is
-// `control:LINE: what is wrong`. The entry's `at` is 0 (it applies when it arrives) and its
+// `SOURCE:LINE: what is wrong` (`control:LINE`, or `control:CLIENT:LINE` for a socket's client:
+// control::Origin::name). The entry's `at` is 0 (it applies when it arrives) and its
 // source_line is `line`.
-TimelineEntry parse_control_line(const std::string& text, std::size_t line, const Scenario& running);
+TimelineEntry parse_control_line(const std::string& text, std::size_t line, const Scenario& running,
+                                 const std::string& source = "control");
 // An entry as a control line (JSON, without `at`): parse_control_line reads it back equal.
 std::string write_control_line(const TimelineEntry& e);
 // Writes a valid scenario so that the parsers read it back equal (operator== below).

@@ -60,7 +60,8 @@ struct FaultRecord {
 // An entry of the live control channel that was applied (`ibs run --control`).
 struct ControlRecord {
   Time at{0};              // when it was applied (deferred ones: when their device's wait ended)
-  std::size_t line = 0;    // its line on the channel
+  std::size_t line = 0;    // its line on the channel (in its client's input)
+  std::uint32_t client = 0;  // the socket's client that sent it (0: standard input)
   std::string entry;       // as a control line (write_control_line)
   std::string device;      // its device; empty: bus-wide
 };
@@ -263,6 +264,7 @@ class Simulator {
   void step_part(unsigned part);
   void handle_sample(std::size_t i, Time t);
   void record_sample(Device& d, const std::array<Word, 4>& before, Time t);
+  void record_changes(Device& d);
   void apply_timeline(Time t);
   void apply(const TimelineEntry& e, Time t);
   void apply_random_faults(Time t);

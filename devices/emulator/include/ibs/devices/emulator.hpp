@@ -9,9 +9,11 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "ibs/devices/plant_event.hpp"
+#include "ibs/drive/parameter_journal.hpp"
 #include "ibs/drivecom/status_word.hpp"
 #include "ibs/interbus/device_start.hpp"
 #include "ibs/base/time.hpp"
@@ -101,6 +103,20 @@ class DeviceEmulator {
   // The trace `init` a device now at rest would be recorded with: initialised (power-on bit set)
   // or operational.
   [[nodiscard]] virtual DeviceStart trace_start() const { return DeviceStart::initialised; }
+
+  // A recording of the process-data words (../shared/specs/trace-format.md, `! write PNR VALUE`):
+  // the parameter changes the drive's channels made that those words do not carry -- the MC6000's
+  // PCP, a LUSTBUS face serving the same drive core -- kept from record_changes(true) on and taken
+  // in order (at most out.size() a call; the rest stay). Cycle path: no allocation.
+  virtual void record_changes(bool /*on*/) {}
+  virtual std::size_t take_changes(std::span<drive::ParameterChange> /*out*/) { return 0; }
+  // The same change in a replay: the parameter takes `value` (a channel's raw value) as if written
+  // through the device's own channel, with its checks; 85-SIOF/SERR, which no channel writes, takes
+  // the bits a channel's requests left (docs/replay.md, "Events"). Empty when taken, else why not.
+  // Replay only: may allocate.
+  virtual std::string write_parameter(std::uint16_t number, std::int64_t /*value*/, Time /*now*/) {
+    return "parameter " + std::to_string(number) + ": this device takes no parameter writes";
+  }
 
  protected:
   DeviceEmulator() = default;

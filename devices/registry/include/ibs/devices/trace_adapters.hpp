@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "ibs/devices/registry.hpp"
 #include "ibs/interbus/replay.hpp"
 #include "ibs/interbus/trace.hpp"
 
@@ -28,6 +29,13 @@ void validate_trace(const trace::Trace& t);
 std::unique_ptr<trace::DeviceSide> make_device_side(const trace::Trace& t);
 std::unique_ptr<trace::MasterSide> make_master_side(const trace::Trace& t);
 std::unique_ptr<trace::Explainer> make_explainer(const trace::Trace& t);
+
+// The `setting: NAME VALUE` headers a recording of a device of `kind` writes
+// (../shared/specs/trace-format.md, "Headers"): each of its declared settings that has no header of
+// its own (as `supi` has) and differs from its default, in the scenario's syntax without quotes
+// ("true", "2 s"), and `watchdog_reaction` when the settings give one. The trace validation reads
+// them back (an unknown name or a value out of the setting's range is refused on its line).
+void write_device_settings(const DriveKind& kind, const DeviceSettings& settings, trace::Header& h);
 
 // The trace reader with the registry's vocabulary (registry.hpp): an unknown drive or target is
 // refused on its header's line.

@@ -112,8 +112,10 @@ struct Scenario {
 Scenario load_scenario(const std::string& path);
 Scenario parse_scenario(const std::string& text, const std::string& file, bool json);
 // One line of a live control channel (`ibs run --control`): a JSON object, a timeline entry
-// without `at`, checked as the file's entries are; throws sim::ScenarioError("control", number, ...).
-Entry parse_control_entry(const Scenario& s, const std::string& line, std::size_t number);
+// without `at`, checked as the file's entries are; throws sim::ScenarioError(source, number, ...)
+// (source: `control`, or `control:CLIENT` for a socket's client, control::Origin::name).
+Entry parse_control_entry(const Scenario& s, const std::string& line, std::size_t number,
+                          const std::string& source = "control");
 
 // What a run shows.
 struct StateChange {

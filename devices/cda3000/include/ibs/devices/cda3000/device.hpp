@@ -158,6 +158,8 @@ class Cda3000 final : public canlust::DriveProcess, public canlust::ParameterAcc
   [[nodiscard]] std::optional<canlust::ErrorReaction> fault() const { return fault_; }
   // A parameter's setting (the wire image) / text; nullopt for numbers the table lacks.
   [[nodiscard]] std::optional<std::uint32_t> value(std::uint16_t number) const;
+  // Its copy in flash (what 150-SAVE stored, what a mains reset loads); nullopt also for a
+  // parameter the table keeps in RAM (04-PROG, 80-SLOAD, 150-SAVE, the read-only values).
   [[nodiscard]] std::optional<std::uint32_t> saved_value(std::uint16_t number) const;
   [[nodiscard]] std::string_view text(std::uint16_t number) const;
   [[nodiscard]] std::string_view saved_text(std::uint16_t number) const;

@@ -167,6 +167,11 @@ inline constexpr std::array<pcp::ParameterInfo, 34> kParameters{{
 // The table as a span (what the server and the drivers take).
 std::span<const pcp::ParameterInfo> parameters();
 
+// A trace's `! write PNR VALUE` value (../shared/specs/trace-format.md: the raw value a channel
+// carries, or a negative value of a signed type) as the raw value of type `t`; nullopt when it
+// is none (wider than the type's bytes, or negative for an unsigned type).
+std::optional<std::uint32_t> trace_raw(pcp::DataType t, std::int64_t value);
+
 // The MC6000's parameter core (drive_parameters.hpp) as this table and the service structure
 // (service.hpp: CardWriteable, seed 000 11.4) define it.
 DriveParametersConfig drive_parameters_config(const DriveTiming& timing = {});

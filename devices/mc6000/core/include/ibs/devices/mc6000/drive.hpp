@@ -27,6 +27,7 @@
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
 #include "ibs/devices/mc6000/drive_parameters.hpp"
+#include "ibs/drive/parameter_journal.hpp"
 #include "ibs/devices/plant_event.hpp"
 #include "ibs/devices/mc6000/pd_device.hpp"
 #include "ibs/drivecom/device_state_machine.hpp"
@@ -73,6 +74,12 @@ class Drive final : public DriveAccess {
   [[nodiscard]] DriveParameters& parameters() { return params_; }
   // The one parameter store (RAM and EEPROM) every face serves.
   [[nodiscard]] const pcp::ParameterStore& store() const { return params_.store(); }
+  // 85-SERR's bits (seed 000, 9.2).
+  [[nodiscard]] std::uint8_t siof() const { return params_.serr(); }
+  // The changes the faces' channels made (parameter_journal.hpp): the PCP face and the LUSTBUS
+  // face note theirs; a recording of the process-data words takes them.
+  [[nodiscard]] drive::ParameterJournal& journal() { return journal_; }
+  drive::ParameterJournal* changes() override { return &journal_; }
 
   // The fieldbus face. From the first call of set_fieldbus_sampling(true) the face's samples are
   // the drive's 1 ms samples (seed 001, 7.2).
@@ -206,6 +213,7 @@ class Drive final : public DriveAccess {
   void set_option_defaults(bool with_card);
 
   DriveParameters params_;
+  drive::ParameterJournal journal_;
   Mc6000PdDevice pd_;
   bool fieldbus_sampling_ = false;
   bool serial_face_ = false;

@@ -18,6 +18,7 @@
 #include <span>
 
 #include "ibs/base/time.hpp"
+#include "ibs/drive/parameter_journal.hpp"
 #include "ibs/drive/siof.hpp"
 #include "ibs/pcp/data_types.hpp"
 #include "ibs/pcp/parameter_store.hpp"
@@ -165,6 +166,8 @@ class DriveAccess {
   [[nodiscard]] virtual const DriveParameters& parameters() const = 0;
   // The drive is in FAULT or FAULT RESPONSE ACTIVE (PCP Status: physical status 1).
   [[nodiscard]] virtual bool fault() const = 0;
+  // Where a channel notes the changes it made (parameter_journal.hpp); nullptr: nobody records them.
+  virtual drive::ParameterJournal* changes() { return nullptr; }
 };
 
 // The parameters without a servo behind them: the `words: pcp` replay adapter and the PCP tests,

@@ -128,6 +128,11 @@ class Mc6000Device final : public DeviceEmulator {
     return watchdog_tripped() ? std::optional<int>(mc6000::kWatchdogLocation) : std::nullopt;
   }
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return drive_->last_sample(); }
+  // A recording's `! write` events: every change a channel made (the process-data words carry no
+  // parameter channel: PCP and a LUSTBUS face note theirs); and their replay, as a PCP write.
+  void record_changes(bool on) override { drive_->journal().enable(on); }
+  std::size_t take_changes(std::span<drive::ParameterChange> out) override { return drive_->journal().take(out); }
+  std::string write_parameter(std::uint16_t number, std::int64_t value, Time now) override;
   // The PCP server (nullptr for a layout without PCP words); it serves drive().parameters().
   [[nodiscard]] pcp::Server* pcp() { return pcp_ ? &*pcp_ : nullptr; }
   [[nodiscard]] const pcp::Server* pcp() const { return pcp_ ? &*pcp_ : nullptr; }

@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 
+#include "ibs/drive/parameter_journal.hpp"
 #include "ibs/base/time.hpp"
 #include "ibs/base/words.hpp"
 #include "ibs/devices/plant_event.hpp"
@@ -100,6 +101,9 @@ class Drive final : public drive::ParameterAccess {
 
   // The one store, for the faces and tests (its address is the same through every face).
   [[nodiscard]] const drive::ParameterStore& store() const { return params_.store(); }
+  // The changes the faces' channels made (parameter_journal.hpp): the LUSTBUS face notes its own;
+  // the communication word's are in the INTERBUS words themselves.
+  [[nodiscard]] drive::ParameterJournal& journal() { return journal_; }
   [[nodiscard]] const drive::ParameterInfo* find(std::uint16_t number) const {
     return params_.table().find(number);
   }
@@ -255,6 +259,7 @@ class Drive final : public drive::ParameterAccess {
 
   DriveConfig config_;
   drive::StoredParameters params_;
+  drive::ParameterJournal journal_;
   SampleSlots slots_;
   Vf1000PdDevice pd_;
   Time ready_at_{0};

@@ -110,6 +110,11 @@ class Vf1000Device final : public DeviceEmulator {
   [[nodiscard]] std::optional<int> error_number() const override {
     return drive_->e_ibs() ? std::optional<int>(vf1000::kWatchdogError) : std::nullopt;
   }
+  // A recording's `! write` events: the LUSTBUS face's changes (the communication word's are in
+  // these words); and their replay, through the drive's checks as a value transfer has them.
+  void record_changes(bool on) override { drive_->journal().enable(on); }
+  std::size_t take_changes(std::span<drive::ParameterChange> out) override { return drive_->journal().take(out); }
+  std::string write_parameter(std::uint16_t number, std::int64_t value, Time now) override;
   [[nodiscard]] const vf1000_channel::Server& channel() const { return server_; }
   [[nodiscard]] vf1000_channel::Server& channel() { return server_; }
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return drive_->pd().last_sample(); }
