@@ -290,6 +290,21 @@ TEST(OdStoredServed, CheckAgreesWithWrite) {
 // The VF1000 of today: drive::StoredParameters behind the communication word's rules (the latch,
 // drive::check_write, siof_bits_for). Random writes, reads of 85, power-ons: od::StoredServed keeps
 // the same values and the same 85-SIOF.
+// What a description reports as the factory default: the drive's own, its overlay's where it has
+// one (VF-E20), the entry's elsewhere; a bare ServedParameters falls back on the entry's.
+TEST(OdStoredServed, FactoryDefaultIsTheDrivesOwn) {
+  const StoredServed interbus(kVf);
+  const StoredServed standalone(kVf, {.defaults = test::kVfStandalone});
+  EXPECT_EQ(interbus.factory_default(at(kVf, 1)), 4U);
+  EXPECT_EQ(standalone.factory_default(at(kVf, 1)), 0U);
+  EXPECT_EQ(standalone.factory_default(at(kVf, 906)), 200U);
+  EXPECT_EQ(standalone.factory_default(kNoSlot), 0U);
+  const ServedParameters& plain = standalone;
+  EXPECT_EQ(plain.ServedParameters::factory_default(at(kVf, 1)), 4U);
+  EXPECT_EQ(plain.ServedParameters::factory_default(at(kVf, 911)), 0U);
+  EXPECT_EQ(plain.ServedParameters::factory_default(kNoSlot), 0U);
+}
+
 TEST(OdStoredServedKeepsTodays, DriveStoredParametersUnderTheCommWordsRules) {
   using drive::Category;
   using T = drive::DataType;

@@ -23,7 +23,6 @@ namespace ibs::devices::mc6000 {
 
 namespace {
 
-constexpr std::uint16_t kButwd = 409;  // seed 001, 3.2.4: ms, 0 = off
 // The PCP client's timeout per confirmation (docs/pcp.md).
 const Duration kPcpTimeout = pcp::ClientConfig{}.request_timeout;
 

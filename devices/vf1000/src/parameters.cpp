@@ -10,9 +10,7 @@ using drive::ParameterInfo;
 using C = drive::Category;
 using T = drive::DataType;
 
-// Frequencies in PT_FIXPOINT16 are limited to 999.95 Hz, the KP100's display range for the type
-// (seed 000, 2.3.1), where the manuals give no parameter-specific range.
-constexpr Word kFixpointDisplayMax = 19999;
+// Frequencies in PT_FIXPOINT16 are limited to 999.95 Hz (kFixpointDisplayMax, dictionary.hpp).
 
 // The table. Rows the manuals specify completely cite them; every other value is a modelling
 // choice listed in docs/vf1000_channel.md ("Parameter table").

@@ -15,7 +15,6 @@ namespace {
 
 using drivecom::State;
 
-constexpr std::uint16_t kButwd = 409;  // seed 001, 3.2.4
 constexpr Word kResetBit = 0x0080;     // seed 001, 5.1.2: RESET FAULT
 constexpr Word kOs00Bit = 0x4000;      // seed 001, 5.3.1: bit 14, output OS00
 constexpr Word kOs01Bit = 0x8000;      // bit 15, output OS01

@@ -11,7 +11,7 @@ namespace ibs::devices {
 
 namespace {
 
-constexpr std::uint16_t kButwd = 409;  // 409-BUTWD (3.2.4)
+using mc6000::kButwd;  // 409-BUTWD (3.2.4), the dictionary's
 constexpr Word kResetFault = 0x0080;   // control word bit 7 (5.1.2)
 
 mc6000::DriveConfig drive_config(const Mc6000DeviceConfig& c) {

@@ -118,6 +118,11 @@ class ServedParameters {
   // The value as it stands, without acting (an Information Report, a latched comm-word value;
   // 0 for kNoSlot).
   [[nodiscard]] virtual Raw peek(Slot s) const = 0;
+  // The factory default as this drive has it -- its wing's overlay may change the entry's (VF-E20,
+  // MC-D10) -- for a description (the comm word's record, PCP's Get-OV, LUSTBUS 11.1/11.2).
+  [[nodiscard]] virtual Raw factory_default(Slot s) const {
+    return s < dictionary().size() ? dictionary()[s].default_raw() : 0;
+  }
   // Would a write be taken now? nullopt: the access only (the comm word's PNR, seed 001
   // 4.1.3.2.1), else the value too. Enters nothing.
   [[nodiscard]] virtual Refusal check(Slot s, std::optional<Raw> r, Time now) const = 0;

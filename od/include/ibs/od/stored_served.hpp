@@ -61,6 +61,9 @@ class StoredServed final : public ServedParameters {
   }
   Reading read(Slot s, Time now) override;
   [[nodiscard]] Raw peek(Slot s) const override { return s < store_.size() ? store_.ram(s) : 0; }
+  [[nodiscard]] Raw factory_default(Slot s) const override {
+    return s < store_.size() ? store_.default_raw(s) : 0;
+  }
   [[nodiscard]] Refusal check(Slot s, std::optional<Raw> r, Time now) const override;
   Answer write(Slot s, Raw r, Time now) override;
   Answer refuse(Refusal r) override;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <span>
 
+#include "ibs/devices/mc6000/dictionary.hpp"
 #include "ibs/devices/mc6000/drive_parameters.hpp"
 #include "ibs/drive/parameters.hpp"
 #include "ibs/drive/siof.hpp"
@@ -19,41 +20,9 @@
 namespace ibs::devices::mc6000 {
 
 
-// Numbers with behaviour beyond storing a value (server.hpp says what they do).
-inline constexpr std::uint16_t kProg = 4;     // seed 000, 10 and 11.5
-inline constexpr std::uint16_t kPlrdy = 15;   // seed 001, 4.2
-inline constexpr std::uint16_t kSpeed = 77;   // seed 000, 6.1.1.2
-inline constexpr std::uint16_t kSload = 80;   // seed 000, 11.4
-inline constexpr std::uint16_t kSdmmy = 83;   // seed 000, 5.2
-inline constexpr std::uint16_t kSwdgt = 84;   // seed 000, 5.2
-inline constexpr std::uint16_t kParamSbaud = 81;  // seed 000, 4, 11.5
-// Seed 000, 4: "from 2400 Baud to 57600 Baud for Servocontrollers" (81-SBAUD, in baud: LB-E18).
-inline constexpr std::uint32_t kHighestBaud = 57600;
-inline constexpr std::uint16_t kSerr = drive::kSiofNumber;  // seed 000, 9.2
-inline constexpr std::uint16_t kType = 91;    // seed 000, 5.2
-inline constexpr std::uint16_t kStext = 108;  // seed 000, 11.3
-inline constexpr std::uint16_t kCfcon = 300;  // seed 000, 7.2.1
-inline constexpr std::uint16_t kClsel = 402;  // seed 000, 7.2.1
-inline constexpr std::uint16_t kSupi = 405;   // seed 001, 3.2.2
-inline constexpr std::uint16_t kIbcnf = 406;  // seed 001, 3.2.3
-inline constexpr std::uint16_t kIbstu = 407;  // seed 001, 4.2.1
-inline constexpr std::uint16_t kIbsta = 408;  // seed 001, 4.2.1
-inline constexpr std::uint16_t kSctl1 = 416;  // seed 000, 7.2, 8.1.2
-inline constexpr std::uint16_t kRssl1 = 417;  // seed 000, 7.2.1
-inline constexpr std::uint16_t kRssl2 = 418;
-inline constexpr std::uint16_t kRssl3 = 419;
-inline constexpr std::uint16_t kRssl4 = 420;
-inline constexpr std::uint16_t kRsio = 428;   // seed 000, 7.2.1
-inline constexpr std::uint16_t kFis00 = 439;  // seed 001, 3.2.1, 5.3.2
-inline constexpr std::uint16_t kFis01 = 440;
-inline constexpr std::uint16_t kFos00 = 445;  // seed 001, 3.2.1, 5.3.1
-inline constexpr std::uint16_t kFos01 = 446;
-// The error reactions (seed 000, 8: "programmable, in five steps, for every error"; 5.2: the
-// watchdog's "error reaction of the device via parameter"). The seeds give neither numbers nor
-// names: chosen (docs/errata.md MC-D7), one per error the servo raises.
-inline constexpr std::uint16_t kReop1 = 510;  // error 16 E-OP1 (seed 001, 3.2.4: the bus watchdog)
-inline constexpr std::uint16_t kResio = 511;  // the serial watchdog 84-SWDGT (seed 000, 5.2)
-inline constexpr std::uint16_t kRedev = 512;  // every other device error (a cause 0..255 but 16)
+// The parameter numbers and the named values (selector codes, reaction steps, 91-TYPE's code,
+// the highest rate) are the dictionary's (dictionary.hpp), written once there.
+inline constexpr std::uint16_t kParamSbaud = kSbaud;  // seed 000, 4, 11.5
 
 // 85-SERR bits (seed 000, 9.2): the family's 85-SIOF bits (drive/siof.hpp).
 inline constexpr std::uint8_t kSerrPowerOn = drive::siof_mask(drive::SiofBit::power_on);
@@ -75,23 +44,6 @@ inline constexpr std::int64_t kProgActivateBaudrate = 111;
 inline constexpr std::int64_t kSloadBegin = drive::kDownloadBegin;
 inline constexpr std::int64_t kSloadEnd = drive::kDownloadEnd;
 
-// Selector values the seeds name. RCON 0, RSIO 3, OPT1 6 (reference selectors: seed 000 7.2,
-// seed 001 5.3.4), SIO 2, OPT1 4 (402-CLSEL: same places), SCON 2 (300-CFCON: seed 000 7.2.1).
-// The function selectors' codes (OFF, ROPT1) are not in the seeds: chosen, docs/pcp.md.
-inline constexpr std::int64_t kRsslRcon = 0;
-inline constexpr std::int64_t kRsslRsio = 3;
-inline constexpr std::int64_t kRsslOpt1 = 6;
-inline constexpr std::int64_t kClselSio = 2;
-inline constexpr std::int64_t kClselOpt1 = 4;
-inline constexpr std::int64_t kCfconScon = 2;
-inline constexpr std::int64_t kFunctionOff = 0;
-inline constexpr std::int64_t kFunctionRopt1 = 6;
-// The five reaction steps (seed 000, 8); 8.1.2 names step 5 "RESET", 1-4 are chosen (MC-D7).
-inline constexpr std::int64_t kReactionWarn = 1;   // WARN: status bit 7 (alarm), the drive runs on
-inline constexpr std::int64_t kReactionStop = 2;   // STOP: brake to standstill, then FAULT
-inline constexpr std::int64_t kReactionOff = 3;    // OFF: power stage off at once, FAULT, coasting
-inline constexpr std::int64_t kReactionLock = 4;   // LOCK: as OFF; only a power-on ends it
-inline constexpr std::int64_t kReactionReset = 5;  // RESET: as OFF; the fault reset boots the servo
 // Seed 001, 3.2.1 "Modified Factory Default": the parameters the servo changes for INTERBUS
 // operation the first time it detects the INTERBUS card at power-on (the table's defaults), and
 // resets "to their factory defaults the next time the device is powered-up" after the card was
@@ -113,12 +65,9 @@ inline constexpr std::array<OptionDefault, 11> kOptionDefaults{{
     {kFis01, kFunctionRopt1, kFunctionOff},
     {kFos00, kFunctionRopt1, kFunctionOff},
     {kFos01, kFunctionRopt1, kFunctionOff},
-    {443, kFunctionOff, kFunctionOff},  // FIF0
-    {444, kFunctionOff, kFunctionOff},  // FIF1
+    {kFif0, kFunctionOff, kFunctionOff},
+    {kFif1, kFunctionOff, kFunctionOff},
 }};
-// 91-TYPE: the seeds name the parameter, not the MC6000's code: chosen.
-inline constexpr std::int64_t kMc6000TypeCode = 6000;
-
 inline constexpr std::int64_t kQ16Min = -2147483648LL;
 inline constexpr std::int64_t kQ16Max = 2147483647LL;
 
@@ -129,13 +78,13 @@ inline constexpr std::array<pcp::ParameterInfo, 34> kParameters{{
   {15,  "PLRDY", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      1,       1,               pcp::kAttrInitControl},  // seed 001 4.2; reads READY mode (1 after a start), type chosen (MC-D11)
   {77,  "SPEED", pcp::DataType::int32q16,  pcp::Category::ram_actual,   kQ16Min, kQ16Max, 0,              0},  // seed 000 6.1.1.2: Q16 rpm
   {80,  "SLOAD", pcp::DataType::integer16, pcp::Category::ram_control,  -2,     999,     0,               0},  // seed 000 11.4: -2, -1, 0, parameter number
-  {81,  "SBAUD", pcp::DataType::usign16,   pcp::Category::eeprom,       2400,   57600,   9600,            0},  // seed 000 4: 2400..57600, factory 9600
-  {82,  "SADDR", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      30,      1,               0},  // seed 000 4.2: addresses 1..30; default chosen
+  {kSbaud, "SBAUD", pcp::DataType::usign16,   pcp::Category::eeprom,       2400,   57600,   9600,            0},  // seed 000 4: 2400..57600, factory 9600
+  {kSaddr, "SADDR", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      30,      1,               0},  // seed 000 4.2: addresses 1..30; default chosen
   {83,  "SDMMY", pcp::DataType::usign16,   pcp::Category::ram_control,  0,      65535,   0,               0},  // seed 000 5.2: free RAM word
   {84,  "SWDGT", pcp::DataType::usign16,   pcp::Category::eeprom,       0,      65535,   0,               0},  // seed 000 1, 5.2: 0 = no watchdog (factory)
   {85,  "SERR",  pcp::DataType::usign8,    pcp::Category::ram_actual,   0,      255,     0,               pcp::kAttrShowHex},  // seed 000 9.2 bits
   {91,  "TYPE",  pcp::DataType::usign16,   pcp::Category::ram_actual,   0,      65535,   kMc6000TypeCode, 0},  // value chosen
-  {107, "UNIT",  pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               pcp::kAttrShowText},  // seed 000 11.2.1
+  {kUnit, "UNIT",  pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               pcp::kAttrShowText},  // seed 000 11.2.1
   {108, "STEXT", pcp::DataType::usign8,    pcp::Category::ram_control,  0,      255,     0,               0},  // seed 000 11.3
   {300, "CFCON", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      6,       kCfconScon,      pcp::kAttrShowText | pcp::kAttrInitControl},  // codes follow the structure filter
   {402, "CLSEL", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      5,       kClselOpt1,      pcp::kAttrShowText},  // seed 001 3.2.1: OPT1
@@ -143,7 +92,7 @@ inline constexpr std::array<pcp::ParameterInfo, 34> kParameters{{
   {406, "IBCNF", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      4,       2,               0},  // seed 001 3.2.3, 5.3.3: Q16 is the default
   {407, "IBSTU", pcp::DataType::usign16,   pcp::Category::ram_control,  0,      65535,   0,               pcp::kAttrShowHex},  // seed 001 4.2.1 (the control word)
   {408, "IBSTA", pcp::DataType::usign16,   pcp::Category::ram_actual,   0,      65535,   0,               pcp::kAttrShowHex},  // seed 001 4.2.1
-  {409, "BUTWD", pcp::DataType::usign16,   pcp::Category::eeprom,       0,      65535,   0,               0},  // seed 001 3.2.4: ms, 0 = off; rest chosen
+  {kButwd, "BUTWD", pcp::DataType::usign16,   pcp::Category::eeprom,       0,      65535,   0,               0},  // seed 001 3.2.4: ms, 0 = off; rest chosen
   {416, "SCTL1", pcp::DataType::usign16,   pcp::Category::ram_control,  0,      65535,   0,               pcp::kAttrShowHex},  // seed 000 7.2, 8.1.2
   {417, "RSSL1", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      7,       kRsslRcon,       pcp::kAttrShowText},  // seed 001 3.2.1
   {418, "RSSL2", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      7,       kRsslRcon,       pcp::kAttrShowText},
@@ -152,8 +101,8 @@ inline constexpr std::array<pcp::ParameterInfo, 34> kParameters{{
   {428, "RSIO",  pcp::DataType::int32q16,  pcp::Category::ram_control,  kQ16Min, kQ16Max, 0,              0},  // seed 000 7.2.1
   {439, "FIS00", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},  // seed 001 3.2.1, 5.3.2
   {440, "FIS01", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},
-  {443, "FIF0",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
-  {444, "FIF1",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
+  {kFif0, "FIF0",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
+  {kFif1, "FIF1",  pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionOff,    pcp::kAttrShowText},
   {445, "FOS00", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},  // seed 001 3.2.1, 5.3.1
   {446, "FOS01", pcp::DataType::usign8,    pcp::Category::eeprom,       0,      255,     kFunctionRopt1,  pcp::kAttrShowText},
   {510, "REOP1", pcp::DataType::usign8,    pcp::Category::eeprom,       1,      5,       kReactionStop,   pcp::kAttrShowText},  // seed 000 8; number, name, default chosen (MC-D7)

@@ -10,38 +10,13 @@
 #include <optional>
 #include <span>
 
+#include "ibs/devices/vf1000/dictionary.hpp"
 #include "ibs/drive/parameters.hpp"
 #include "ibs/base/words.hpp"
 
 namespace ibs::devices::vf1000 {
 
-// Numbers of the parameters the manuals name.
-namespace pnr {
-inline constexpr std::uint16_t kMode = 1;     // 1-MODE
-inline constexpr std::uint16_t kCsel = 2;     // 2-CSEL
-inline constexpr std::uint16_t kCntl = 3;     // 3-CNTL
-inline constexpr std::uint16_t kFssel = 4;    // 4-FSSEL
-inline constexpr std::uint16_t kFssio = 5;    // 5-FSSIO
-inline constexpr std::uint16_t kStat = 11;    // 11-STAT
-inline constexpr std::uint16_t kFout = 12;    // 12: rotary-field frequency (seed 000, 6.1.1.1)
-inline constexpr std::uint16_t kFmax1 = 22;   // FMAX1: 16H in the examples of 4.1.3.1.1 / 4.1.3.2.1
-inline constexpr std::uint16_t kRstop = 36;   // 36-RSTOP
-inline constexpr std::uint16_t kVb2 = 45;     // 45-VB2
-inline constexpr std::uint16_t kSouta = 61;   // 61-SOUTA
-inline constexpr std::uint16_t kProg = 71;    // 71-PROG
-inline constexpr std::uint16_t kSioc = 81;    // 81-SIOC
-inline constexpr std::uint16_t kSioa = 82;    // 82-SIOA
-inline constexpr std::uint16_t kSiow = 83;    // 83-SIOW
-inline constexpr std::uint16_t kSiot = 84;    // 84-SIOT
-inline constexpr std::uint16_t kSiof = drive::kSiofNumber;  // 85-SIOF
-inline constexpr std::uint16_t kType = 91;    // 91-TYPE
-inline constexpr std::uint16_t kIcntl = 901;  // 901-ICNTL
-inline constexpr std::uint16_t kFdriv = 905;  // 905-FDRIV
-inline constexpr std::uint16_t kIbWd = 906;   // 906-IB-WD
-inline constexpr std::uint16_t kIbcod = 907;  // 907-IBCOD
-inline constexpr std::uint16_t kIbsta = 911;  // 911-IBSTA
-inline constexpr std::uint16_t kFist = 912;   // 912-FIST
-}  // namespace pnr
+// The parameter numbers (pnr::) are the dictionary's (dictionary.hpp), written once there.
 
 // The VF1000 parameter table with the INTERBUS factory defaults (sorted by number; static data).
 std::span<const drive::ParameterInfo> parameters();
