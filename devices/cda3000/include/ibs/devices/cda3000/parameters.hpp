@@ -16,6 +16,7 @@
 #include <string_view>
 
 #include "ibs/canlust/data_types.hpp"
+#include "ibs/devices/cda3000/dictionary.hpp"
 
 namespace ibs::devices::cda3000 {
 
@@ -28,12 +29,9 @@ enum class Access : std::uint8_t { read_write, read_only };
 // the bus settings act after a mains reset; the others at once.
 enum class Effect : std::uint8_t { at_once, after_mains_reset };
 
-// A substitution text of a selector parameter (4.1: "numerical value = substitution text").
-struct Choice {
-  std::uint32_t code;
-  std::string_view name;
-  std::string_view text;
-};
+// A substitution text of a selector parameter (4.1: "numerical value = substitution text"): the
+// dictionary's (dictionary.hpp holds the texts).
+using Choice = od::Choice;
 
 struct ParameterInfo {
   std::uint16_t number;
@@ -55,103 +53,8 @@ struct ParameterInfo {
   [[nodiscard]] constexpr bool is_string() const { return type == DataType::string; }
 };
 
-// Numbers with behaviour beyond storing a value.
-inline constexpr std::uint16_t kProg = 4;      // 1.x exceptions: 1 = factory settings
-// 4.x "Downloading parameter data sets": the handshake of a download (number, name and codes
-// invented after the MC6000's 80-SLOAD of seed 000, 11.4; D39): -1 opens, -2 closes and checks,
-// 0 drops an open download; reads -1 while one is open, then 0 (valid, in the EEPROM) or the
-// number of the first implausible parameter.
-inline constexpr std::uint16_t kSload = 80;
-inline constexpr std::uint32_t kSloadStart = 0xFFFFFFFFU;  // -1, INT16 sign-filled (4.1.1)
-inline constexpr std::uint32_t kSloadEnd = 0xFFFFFFFEU;    // -2
-inline constexpr std::uint32_t kSloadCancel = 0;
-inline constexpr std::uint16_t kName = 90;     // invented: a user text (a writable string)
-inline constexpr std::uint16_t kErr1 = 95;     // invented: the last error as ERR_STRUC (D34)
-inline constexpr std::uint16_t kFisa0 = 180;
-inline constexpr std::uint16_t kSave = 150;    // 3.5.1 / 4.3.3
-inline constexpr std::uint16_t kAstpr = 151;   // 4.2 table: original application data set
-inline constexpr std::uint16_t kAster = 152;   // current application data set
-inline constexpr std::uint16_t kClsel = 260;   // 4.3.2 control location
-inline constexpr std::uint16_t kRssl1 = 280;   // 4.3.2 reference selector 1
-inline constexpr std::uint16_t kDisp = 360;    // 7.1.3 continuous actual value
-inline constexpr std::uint16_t kReff = 406;    // 7.1.3 current reference frequency
-inline constexpr std::uint16_t kClbdr = 489;   // 4.3.1
-inline constexpr std::uint16_t kCacnf = 492;   // 4.3.2
-inline constexpr std::uint16_t kCamod = 570;   // 4.3.1
-inline constexpr std::uint16_t kCladr = 571;   // 2.1, 4.3.1
-inline constexpr std::uint16_t kCawdg = 574;   // 4.3.1
-inline constexpr std::uint16_t kCascy = 575;   // 4.3.1
-inline constexpr std::uint16_t kOptn2 = 578;   // 3.3: the module found at option slot 2
-inline constexpr std::uint16_t kCdssl = 651;   // 5.4.1 footnote 2
-// 6.1: "the error response is programmable for each error in four stages": one response per
-// error of table 5.9, numbers and names invented (CAN-E16). 525-ROP2 is the bus watchdog's too
-// (it reports E-OP2 at 172, D15).
-inline constexpr std::uint16_t kRoti = 520;
-inline constexpr std::uint16_t kRpls = 521;
-inline constexpr std::uint16_t kRpar = 522;
-inline constexpr std::uint16_t kRflt = 523;
-inline constexpr std::uint16_t kRpwr = 524;
-inline constexpr std::uint16_t kRop2 = 525;
-// 6.3 "Parameterizable warnings on the CAN": the mask of the warnings reported over the bus and
-// the warnings present (bits 0004H, 0008H, 0010H ... of 6.3); numbers and names invented (CAN-E17).
-inline constexpr std::uint16_t kCawmk = 576;
-inline constexpr std::uint16_t kCawrn = 577;
+// The named numbers, codes and substitution texts are the dictionary's (dictionary.hpp).
 
-// Substitution-text codes. Seed 003 prints three: 280-RSSL1 "7 TBSEL" (5.4.1 footnote 1), the
-// range "0 FCON .. 11 FMAX" with 1 FA0, 2 FA1, 4 FPOT (4.3.2), and 651-CDSSL "6 OPTN2" (footnote
-// 2). OPTN2 is 6 in every selector (the one code the seed gives for it, decision D22).
-inline constexpr std::uint32_t kOptn2Code = 6;
-inline constexpr std::uint32_t kClselTerm = 0;      // invented
-inline constexpr std::uint32_t kRsslFcon = 0;
-inline constexpr std::uint32_t kRsslFa0 = 1;
-inline constexpr std::uint32_t kRsslTbsel = 7;
-inline constexpr std::uint32_t kRsslFmax = 11;
-inline constexpr std::uint32_t kDataSetDrv1 = 0;    // invented codes of the application data sets
-inline constexpr std::uint32_t kDataSetBus1 = 1;
-inline constexpr std::uint32_t kCamodSlave = 0;     // invented
-inline constexpr std::uint32_t kCamodMaster = 1;    // invented; the emulator refuses it (D26)
-inline constexpr std::uint32_t kFunctionOff = 0;    // invented
-
-inline constexpr std::array<Choice, 2> kChoicesProg{{
-    {0, "-", "no action"}, {1, "DEF", "overwrite every setting with its factory value"}}};
-inline constexpr std::array<Choice, 2> kChoicesSave{{
-    {0, "READY", "nothing to do / backup finished"}, {1, "START", "back up the settings (BUSY meanwhile)"}}};
-inline constexpr std::array<Choice, 2> kChoicesDataSet{{
-    {kDataSetDrv1, "DRV_1", "drive data set 1 (terminal operation)"},
-    {kDataSetBus1, "BUS_1", "bus data set 1 (control and reference over the bus)"}}};
-inline constexpr std::array<Choice, 2> kChoicesFisa0{{
-    {kFunctionOff, "OFF", "no function"}, {kOptn2Code, "OPTN2", "module at option slot 2"}}};
-inline constexpr std::array<Choice, 2> kChoicesClsel{{
-    {kClselTerm, "TERM", "control terminals"},
-    {kOptn2Code, "OPTN2", "module at option slot 2: bytes 0-1 of the control telegram"}}};
-inline constexpr std::array<Choice, 7> kChoicesRssl1{{
-    {kRsslFcon, "FCON", "constant frequency"},
-    {kRsslFa0, "FA0", "analog input 0"},
-    {2, "FA1", "analog input 1"},
-    {4, "FPOT", "MOP function"},
-    {kOptn2Code, "OPTN2", "module at option slot 2: bytes 2-5 of the control telegram"},
-    {kRsslTbsel, "TBSEL", "table references selected by control bits"},
-    {kRsslFmax, "FMAX", "maximum frequency"}}};
-inline constexpr std::array<Choice, 4> kChoicesCacnf{{
-    {1, "DC16", "DRIVECOM, 16-bit reference and actual value"},
-    {2, "DCQ16", "DRIVECOM, Q16 reference and actual value"},
-    {3, "DCQ16I16", "DRIVECOM, Q16 reference, 16-bit actual value"},
-    {4, "EASY", "EasyDrive direct control, Q16 values"}}};
-inline constexpr std::array<Choice, 2> kChoicesCamod{{
-    {kCamodSlave, "SLAVE", "CANLust slave"}, {kCamodMaster, "MASTER", "CANLust master"}}};
-inline constexpr std::array<Choice, 3> kChoicesCdssl{{
-    {0, "CDS1", "characteristic data set 1"},
-    {1, "CDS2", "characteristic data set 2"},
-    {kOptn2Code, "OPTN2", "selected by the CUSEL bit over the bus"}}};
-
-// The four stages of 6.1 as codes of the error reaction (D7: 0 WRN, 1 STOP, 2 quick stop, 3 the
-// power stage off, the default of 6.1); the names besides WRN and STOP invented.
-inline constexpr std::uint32_t kResponseDefault = 3;
-inline constexpr std::array<Choice, 4> kChoicesResponse{{
-    {0, "WRN", "warning message: status bit 7, the drive runs on"},
-    {1, "STOP", "controlled stop, then FAULT"},
-    {2, "QSTOP", "quick stop, then FAULT"},
-    {kResponseDefault, "PWOFF", "power stage disabled at once, the motor coasts (6.1 default)"}}};
 // The response parameter of an error of table 5.9; nullopt for a number the table lacks.
 std::optional<std::uint16_t> response_parameter(std::uint8_t error);
 
@@ -263,10 +166,6 @@ inline constexpr std::array<ParameterInfo, 28> kParameters{{
    "2; CDS1, CDS2 and the factory setting invented"},
 }};
 // clang-format on
-
-// The factory text of 90-NAME and the constant of 578-OPTN2 (3.3: the CM-CAN1 shows as LCAN).
-inline constexpr std::string_view kNameFactory = "CDA3000";
-inline constexpr std::string_view kOptn2Module = "LCAN";
 
 // 4.x "Card Writeable": the parameters a data set holds, the writable values kept in flash
 // (D39); RAM commands (04-PROG, 150-SAVE, 80-SLOAD), read-only values and 90-NAME (a STRING,

@@ -9,6 +9,8 @@
 #include <optional>
 #include <string_view>
 
+#include "ibs/devices/dfs1/dictionary.hpp"
+
 namespace ibs::devices::dfs1 {
 
 struct ParameterInfo {
@@ -22,22 +24,7 @@ struct ParameterInfo {
   std::string_view note;  // the source, and what is invented
 };
 
-// Numbers used by the emulator.
-inline constexpr std::uint8_t kUnitId = 1;
-inline constexpr std::uint8_t kBaudCode = 2;
-inline constexpr std::uint8_t kRemoteFunctions = 3;
-inline constexpr std::uint8_t kProtocol = 4;
-inline constexpr std::uint8_t kMaxSpeed = 6;
-inline constexpr std::uint8_t kJumpOrMop = 48;
-inline constexpr std::uint8_t kTurnaroundDelay = 56;
-inline constexpr std::uint8_t kContactorDelay = 62;
-
-// Parameter 3: which functions the serial line may command (bit meanings invented, D6).
-inline constexpr std::uint32_t kRemoteSpeedReference = 0x01;  // 82, 84
-inline constexpr std::uint32_t kRemoteStartStop = 0x02;       // 83, 84
-inline constexpr std::uint32_t kRemoteAnalogOutputs = 0x04;   // 89
-inline constexpr std::uint32_t kRemoteDigitalOutputs = 0x08;  // 8C
-inline constexpr std::uint32_t kRemoteAll = 0x0F;
+// The named numbers and parameter 3's bits are the dictionary's (dictionary.hpp).
 
 inline constexpr std::array<ParameterInfo, 8> kParameters = {{
     {kUnitId, "unit ID", "", 1, 255, 1, false, "notes: UID 1..255, default 1"},
