@@ -1,4 +1,4 @@
-// LUSTBUS (docs/lustbus.md): the host's answer decoder, the device's receiver (seed 000,
+// LUSTBUS (docs/lustbus.md): the host's answer decoder, the device's receiver (LUSTBUS manual,
 // section 3) and the host client, fed arbitrary bytes, faults and times.
 //
 // Byte 0 picks the part; the rest drives it.
@@ -192,7 +192,7 @@ void fuzz_host(In& in) {
   cfg.queue_capacity = 4;
   Host host(cfg);
   static const Assignment kRecords[] = {{make_code(20300), make_value("2")}};
-  // The procedures of seed 000, 11 as a servo describes them (80-SLOAD, 108-STEXT, PosMOD1).
+  // The procedures of the LUSTBUS manual 11 as a servo describes them (80-SLOAD, 108-STEXT, PosMOD1).
   static const DownloadProcedure kDownload{Family::enhanced, 80, -1, -2};
   static const IndexedTextProcedure kTexts{Family::enhanced, 108};
   static const BlockTransferProcedure kBlock = [] {

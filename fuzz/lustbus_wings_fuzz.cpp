@@ -1,7 +1,7 @@
 // The drive wings' LUSTBUS devices (docs/lustbus.md, "The drive wings as LUSTBUS devices"): the
 // VF1000 and MC6000 Responders behind a Receiver, fed arbitrary bytes at arbitrary times, with
 // valid telegrams mixed in so that the fuzzer reaches deep states. A checking proxy sits between
-// the receiver and the drive. Asserts (seed 000, 3, 6, 9.2):
+// the receiver and the drive. Asserts (LUSTBUS manual 3, 6, 9.2):
 // - a parameter's value changes only inside a select() the drive acknowledged (the receiver calls
 //   select() only for a complete SELECT with the right BCC: a broken telegram changes nothing);
 //   the one exception, the MC6000's end of a download (11.4), only while one is open;

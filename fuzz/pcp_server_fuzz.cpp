@@ -15,7 +15,7 @@
 //   was not still being saved;
 // - the documented exceptions: 80-SLOAD -2 reads -1 and then 0 or a parameter's number by itself;
 //   during a download (80-SLOAD = -1 until its test ends) the CardWriteable parameters take
-//   written values without the range check and a rejected dataset comes back (seed 000, 11.4);
+//   written values without the range check and a rejected dataset comes back (LUSTBUS manual 11.4);
 //   4-PROG = 1 returns every parameter to its default; 85-SERR is the drive's own; actual values
 //   never change;
 // - the server's frame always has odd parity and the servo's direction.

@@ -115,7 +115,7 @@ frequency = 25
 
 
 def open_line(path):
-    """The pty raw at 9600 baud, 7E1 (seed 000, 4), as examples/testbench/test_host.py does."""
+    """The pty raw at 9600 baud, 7E1 (LUSTBUS manual 4), as examples/testbench/test_host.py does."""
     fd = os.open(path, os.O_RDWR | os.O_NOCTTY)
     attrs = termios.tcgetattr(fd)
     attrs[0] = 0
@@ -128,7 +128,7 @@ def open_line(path):
 
 
 def enquiry(fd, address, code):
-    """One LUSTBUS ENQUIRY (seed 000: EOT ADR CODE ENQ); the VALUE text, or None."""
+    """One LUSTBUS ENQUIRY (LUSTBUS manual: EOT ADR CODE ENQ); the VALUE text, or None."""
     adr = 0x40 + address
     os.write(fd, bytes([EOT, adr]) + code.encode() + bytes([ENQ]))
     answer = b""
@@ -229,7 +229,7 @@ class Bench:
         codes = [(1, "20077"), (2, "00012"), (1, "20408"), (2, "00011")]
         while time.monotonic() < end and proc.poll() is None:
             now = time.monotonic()
-            if now - start > 2:  # the fan answers once the master has set 1-MODE (seed 001, 6.1)
+            if now - start > 2:  # the fan answers once the master has set 1-MODE (INTERBUS manual 6.1)
                 address, code = codes[k % len(codes)]
                 k += 1
                 self.sent["lustbus"] += 1

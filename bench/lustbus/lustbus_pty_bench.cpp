@@ -1,7 +1,7 @@
 // LUSTBUS over a pseudo-terminal in real time (docs/performance.md, "LUSTBUS over a pty"): the
 // host (serial::transact, transports/serial/lustbus_host.hpp) asks an emulated VF1000 (serial::serve, reaction time 0) for 91-TYPE.
 // Reported per ENQUIRY: the whole transaction (request out, answer in, closing EOT out) and the
-// host's turnaround of seed 000, 10 step 4 -- the last answer byte read to the EOT written --
+// host's turnaround of the LUSTBUS manual 10 step 4 -- the last answer byte read to the EOT written --
 // taken from the host's byte log timestamps; p50 and p99 over all iterations.
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Speed of the VF1000 parameter channel (seed 001, 4.1): single steps of the inverter (Server) and
+// Speed of the VF1000 parameter channel (INTERBUS manual 4.1): single steps of the inverter (Server) and
 // the master (Client), and whole transactions with both sides in memory, stepped by the timing
 // convention of the cycle tables (each side answers the other's previous word).
 #include <benchmark/benchmark.h>

@@ -34,7 +34,7 @@ Frame make_nak(std::uint8_t uid, ErrorCode error) {
 }
 
 std::uint8_t checksum(const Frame& f) {
-  // Seed 004, note 2: 01 + 82 + 00 + 00 + 10 + 00 = 93, 2's complement = 6D.
+  // DFS-1 manual, note 2: 01 + 82 + 00 + 00 + 10 + 00 = 93, 2's complement = 6D.
   unsigned sum = f.uid + f.code;
   for (std::uint8_t b : f.payload()) sum += b;
   return static_cast<std::uint8_t>(0x100U - (sum & 0xFFU));
@@ -44,7 +44,7 @@ namespace {
 
 void put_stuffed(EncodedFrame& out, std::uint8_t b) {
   out.bytes[out.size++] = b;
-  if (b == kDle) out.bytes[out.size++] = kDle;  // "put the datum in twice" (seed 004, note 2)
+  if (b == kDle) out.bytes[out.size++] = kDle;  // "put the datum in twice" (DFS-1 manual, note 2)
 }
 
 }  // namespace
@@ -140,7 +140,7 @@ DecodeResult FrameDecoder::push(std::uint8_t byte) {
         return kNeedMore;
       }
       if (byte != kDle) {
-        // "a single 10h is the DLE" (seed 004, note 2): DLE then data is a broken frame.
+        // "a single 10h is the DLE" (DFS-1 manual, note 2): DLE then data is a broken frame.
         state_ = State::hunt;
         ++garbage_;
         return {DecodeStatus::error, DecodeError::lone_dle};

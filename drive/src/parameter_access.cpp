@@ -14,7 +14,7 @@ std::span<const ParameterInfo> with_siof(std::span<const ParameterInfo> params) 
       has_siof ? Error{}
                : Error{ErrorCode::table_lacks_siof,
                        "drive::StoredParameters: the parameter table has no 85-SIOF, which every "
-                       "value transfer depends on (seed 001, 4.1.4)"});
+                       "value transfer depends on (INTERBUS manual 4.1.4)"});
   return params;
 }
 

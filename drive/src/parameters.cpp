@@ -55,7 +55,7 @@ Error ParameterTable::validate(std::span<const ParameterInfo> params) {
       return {code, "parameter table entry " + std::to_string(i) + " (" + label(p) + "): " + what};
     };
     if (p.number > kMaxParameterNumber) {
-      return refuse(ErrorCode::table_number_out_of_range, "number above 3FFH (seed 001, 4.1.3)");
+      return refuse(ErrorCode::table_number_out_of_range, "number above 3FFH (INTERBUS manual 4.1.3)");
     }
     if (seen[p.number]) return refuse(ErrorCode::table_number_repeated, "number used twice");
     seen[p.number] = true;

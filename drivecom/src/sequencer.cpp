@@ -308,7 +308,7 @@ Word Sequencer::step_target(std::optional<State> st, Time now) {
   if (report_.phase == Phase::reached && *st != target_state(report_.target)) return fail(Failure::left_target);
   if (*st == State::not_ready) {
     // NOT READY straight after the RESET FAULT this request sent is the drive booting from it
-    // (the VF1000 performs a software reset, seed 001 5.2.1), not a restart: the request goes on
+    // (the VF1000 performs a software reset, INTERBUS manual 5.2.1), not a restart: the request goes on
     // as after power-on. The fault was reset; one that comes back ends the request (above).
     const std::optional<State> known = known_state();
     const bool booting_from_reset = known == State::fault && has(kResetEdgeSent);

@@ -1,4 +1,4 @@
-// A CANLust master (seed 003) in a program of its own: one parameter read from a CDA3000 over CAN
+// A CANLust master (CANLust manual) in a program of its own: one parameter read from a CDA3000 over CAN
 // over UDP (cannelloni's format; a real cannelloni bridges it to a CAN interface).
 //
 //   canlust_read LOCALPORT PEERPORT ADDR PARAM      e.g.  canlust_read 29700 29701 1 360

@@ -1,4 +1,4 @@
-// A DFS-1 host (seed 004) in a program of its own: command 81 (status) to one controller.
+// A DFS-1 host (DFS-1 manual) in a program of its own: command 81 (status) to one controller.
 //
 //   dfs1_status PORT UID      e.g.  dfs1_status /dev/ttyUSB0 1
 //

@@ -1,4 +1,4 @@
-// A LUSTBUS host (seed 000) in a program of its own: one ENQUIRY to a drive on a serial port.
+// A LUSTBUS host (LUSTBUS manual) in a program of its own: one ENQUIRY to a drive on a serial port.
 //
 //   lustbus_read PORT ADDR CODE      e.g.  lustbus_read /dev/ttyUSB0 1 00012
 //
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    // Seed 000, 1: 9600 Bd, 7 data bits, even parity, 1 stop bit (a pty ignores the framing).
+    // LUSTBUS manual 1: 9600 Bd, 7 data bits, even parity, 1 stop bit (a pty ignores the framing).
     ibs::serial::SerialPort port = ibs::serial::SerialPort::open(argv[1], {9600, ibs::serial::k7E1, false});
     lb::Host host;
     const lb::Submitted s = host.submit(lb::enquiry(static_cast<lb::Address>(addr), *code));

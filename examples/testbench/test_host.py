@@ -4,7 +4,7 @@
 It is written the way a test engineer would test their own LUSTBUS host software: standard
 library only. It starts the bench (`ibs run --realtime bench.toml --json`), waits for the line
 that names the pseudo-terminal, and then talks to the emulated drives there -- byte by byte, as
-the host software under test would (seed 000: EOT ADR CODE ENQ, the answer ADR STX CODE=VALUE
+the host software under test would (LUSTBUS manual: EOT ADR CODE ENQ, the answer ADR STX CODE=VALUE
 ETX BCC) -- and through `ibs lustbus read`, while ibs's INTERBUS master runs the same drives. At
 the end it reads the run's JSON summary.
 
@@ -29,7 +29,7 @@ EOT, STX, ETX, ENQ, NAK = 0x04, 0x02, 0x03, 0x05, 0x15
 
 
 def open_line(path):
-    """The pty (or a real RS-485 port) raw at 9600 baud, 7E1 (seed 000, 4)."""
+    """The pty (or a real RS-485 port) raw at 9600 baud, 7E1 (LUSTBUS manual 4)."""
     fd = os.open(path, os.O_RDWR | os.O_NOCTTY)
     attrs = termios.tcgetattr(fd)
     attrs[0] = 0                                                             # iflag: raw
@@ -105,7 +105,7 @@ class TestMyHostAgainstTheBench(unittest.TestCase):
                 speed = poll(fd, 1, "20077", lambda v: int(v, 16) >> 16 == 1500, 3.0)
                 self.assertIsNotNone(speed, "the servo never answered")
                 self.assertEqual(int(speed, 16) >> 16, 1500)
-                # The fan (address 2) answers once the master has written 1-MODE = 1 (seed 001,
+                # The fan (address 2) answers once the master has written 1-MODE = 1 (INTERBUS manual,
                 # 6.1) and runs at 25 Hz: 12-FOUT in 0.05 Hz (000 2.4.1 CODE 00012).
                 fout = poll(fd, 2, "00012", lambda v: int(v, 16) == 500, 4.0)
                 self.assertEqual(fout is not None and int(fout, 16), 500, fout)

@@ -99,7 +99,7 @@ std::string printable(std::string_view v) {
   return out;
 }
 
-// The byte stream of one side, split into telegrams (seed 000, 2.2, 6.1, 6.2).
+// The byte stream of one side, split into telegrams (LUSTBUS manual 2.2, 6.1, 6.2).
 class LogReader {
  public:
   LogReader(std::ostream& out, const ParameterLookup& lookup) : out_(out), lookup_(lookup) {}

@@ -1,5 +1,5 @@
 // The requests a host runs and the outcomes it reports, as values: their names (to_string), the
-// CODEs a request is built from (parameter_code, text_code), the builders of seed 000's requests and
+// CODEs a request is built from (parameter_code, text_code), the builders of the LUSTBUS manual's requests and
 // procedures (6.1, 6.2, 4.2, 5.2, 11.3, 11.4, 11.6) and the text of an outcome. The host that runs
 // them is host.cpp.
 #include "ibs/lustbus/host.hpp"

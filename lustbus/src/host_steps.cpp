@@ -1,5 +1,5 @@
 // How a request begins, and what the host does once an exchange has ended (its EOT sent): the next step of the request's
-// procedure -- a repetition where seed 000 allows one (6.1, 9.2, LB-D5), the read of 85-SIOF/SERR
+// procedure -- a repetition where LUSTBUS manual allows one (6.1, 9.2, LB-D5), the read of 85-SIOF/SERR
 // after a NAK (6.2, 9.2), the scan's probe (5.2), the download's next record and its poll (11.4),
 // the text after its index (11.3), the block transfer's answer or error read (11.6) -- or its
 // outcome. The rest of the host (queue, line, timeouts) is host.cpp.

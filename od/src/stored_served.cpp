@@ -87,7 +87,7 @@ Refusal StoredServed::access(const Entry& e, Time now) const {
     return download_ == Download::testing && now < download_done_at_ ? Refusal::not_now
                                                                      : Refusal::none;
   }
-  // Seed 001 4.1.3.2: EEPROM parameters only with the power stage disabled.
+  // INTERBUS manual 4.1.3.2: EEPROM parameters only with the power stage disabled.
   if (e.storage == Storage::eeprom && power_stage_) return Refusal::not_now;
   return Refusal::none;
 }

@@ -111,7 +111,7 @@ std::string number_text(const Entry& e, Raw r) {
 
 std::string format_value(const Entry& e, Raw r, const TextStyle& style) {
   if (e.type == Type::error32) {
-    // Seed 000 2.3.2 / seed 003 4.1.1: error number, location, hours of operation.
+    // LUSTBUS manual 2.3.2 / CANLust manual 4.1.1: error number, location, hours of operation.
     const ErrorRecord rec = error_record(r);
     if (rec.number == 0) return "0 (no error)";
     const std::string_view name =
@@ -120,7 +120,7 @@ std::string format_value(const Entry& e, Raw r, const TextStyle& style) {
            " at location " + std::to_string(rec.location) + ", " + std::to_string(rec.hours) + " h";
   }
   if (e.type == Type::error16) {
-    // Seed 001 4.1.3.3 footnote: the code, and the time in tenths of an hour after power-on.
+    // INTERBUS manual 4.1.3.3 footnote: the code, and the time in tenths of an hour after power-on.
     const VfError v = vf_error(r);
     if (!v.code) return "no error";
     std::string s = "error " + std::to_string(*v.code);

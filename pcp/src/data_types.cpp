@@ -112,13 +112,13 @@ Converted from_engineering(DataType t, double value) {
     case DataType::usign16:
     case DataType::password:
       return scaled(t, value, 1.0, 0.0, 65535.0);
-    // Seed 000, 2.3.2: "scaling a normal unsigned 16-bit integer to 0.05"; the top step is 3276.75
+    // LUSTBUS manual 2.3.2: "scaling a normal unsigned 16-bit integer to 0.05"; the top step is 3276.75
     // (the table's 3276.80 is one step past 65535: docs/pcp.md, errata).
     case DataType::fixpoint16:
       return scaled(t, value, 20.0, 0.0, 65535.0);
     case DataType::integer16:
       return scaled(t, value, 1.0, -32768.0, 32767.0);
-    // Seed 000, 2.3.2: "signed long with the scaling of 1/65536", the full signed 32-bit range.
+    // LUSTBUS manual 2.3.2: "signed long with the scaling of 1/65536", the full signed 32-bit range.
     case DataType::int32q16:
       return scaled(t, value, 65536.0, -2147483648.0, 2147483647.0);
     case DataType::float_ieee: {

@@ -78,7 +78,7 @@ Error Link::validate(const LinkConfig& cfg) {
   if (!valid_channel_words(cfg.channel_words)) {
     return {ErrorCode::channel_width_invalid,
             "PCP channel of " + std::to_string(cfg.channel_words) +
-                " words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)"};
+                " words: the MC6000 offers 1, 2 or 4 (405-SUPI, INTERBUS manual 3.2.2)"};
   }
   if (cfg.ack_timeout <= Duration::zero()) {
     return {ErrorCode::channel_timeout_not_positive, "PCP link ack_timeout must be positive"};

@@ -182,7 +182,7 @@ PcpError Server::do_read(Time now, ResponsePdu& r) {
 void Server::execute(Time now) {
   job_active_ = false;
   if (job_.service == ServiceCode::read) {
-    // A Read's confirmation (seed 001, 4.2) in a member kept for Read confirmations only, rather
+    // A Read's confirmation (INTERBUS manual 4.2) in a member kept for Read confirmations only, rather
     // than a fresh ResponsePdu that clears its ~250 bytes on every request: only a Read
     // confirmation's fields are ever written to it (InvokeID, CR, the result, the data), and the
     // last value's bytes are cleared before the next one, so it always equals a fresh one.

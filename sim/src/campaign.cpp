@@ -217,7 +217,7 @@ void CampaignChecker::ended(std::size_t dev, ParamKind kind, std::int64_t value,
       break;
     case ParamRole::normal:
       if (d.download_open) {
-        // Seed 000 11.4 (MC-D2): during a download only the CardWriteable parameters take the
+        // LUSTBUS manual 11.4 (MC-D2): during a download only the CardWriteable parameters take the
         // value, into RAM; their EEPROM copy follows when the dataset is accepted.
         if (!c->spec.card_writeable) break;
         if (certain) {
@@ -331,7 +331,7 @@ void CampaignChecker::withdraw(Dev& d, Time t, const std::string& why, bool via_
 }
 
 void CampaignChecker::software_reset(std::size_t dev, Time now) {
-  // A reset from FAULT that boots the drive (RESET FAULT, seed 001, 5.2.1): its store
+  // A reset from FAULT that boots the drive (RESET FAULT, INTERBUS manual 5.2.1): its store
   // as after a power cycle, and its bus watchdog as after one too: monitoring again from the first valid cycle after the
   // self-test. The master asked for it, so its request is not touched.
   Dev& d = devices_[dev];
@@ -728,7 +728,7 @@ struct Runner {
     if (n.download && chance(1.0 / 3000)) start_download(n);
     if (!n.layout.empty() && chance(1.0 / 3000)) change_layout(n);
     if (n.factory_defaults && chance(1.0 / 6000)) {
-      // The PROG command: kLoadDefaults loads the factory defaults (seed 000 10); now and then
+      // The PROG command: kLoadDefaults loads the factory defaults (LUSTBUS manual 10); now and then
       // another of its values.
       const devices::CampaignFactoryDefaults& f = *n.factory_defaults;
       const std::int64_t v = !f.other_values.empty() && chance(f.other_chance) ? pick(f.other_values)
@@ -764,7 +764,7 @@ struct Runner {
   }
 
   void start_download(Node& n) {
-    // Seed 000 11.4: SLOAD = -1 (only at standstill), the dataset, SLOAD = -2, then poll SLOAD.
+    // LUSTBUS manual 11.4: SLOAD = -1 (only at standstill), the dataset, SLOAD = -2, then poll SLOAD.
     const devices::CampaignDownload& dl = *n.download;
     const std::string label(dl.label);
     ++res.special[label + " downloads started"];

@@ -284,11 +284,11 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
       d.watchdog_reaction = r.int_value(v, key, 0, 3);
       l.watchdog_reaction = v.line;
     } else if (key == "lustbus") {
-      // Seed 000, 9.1: a drive's LUSTBUS address is 1..30 (0 is the broadcast, 31 not used).
+      // LUSTBUS manual 9.1: a drive's LUSTBUS address is 1..30 (0 is the broadcast, 31 not used).
       d.lustbus = r.int_value(v, key, 1, 30);
       if (*d.lustbus < 1 || *d.lustbus > 30) {
         r.fail(v.line, "'lustbus' = " + std::to_string(*d.lustbus) +
-                           " is not a drive's LUSTBUS address (1..30, seed 000 9.1)");
+                           " is not a drive's LUSTBUS address (1..30, LUSTBUS manual 9.1)");
       }
       l.lustbus = v.line;
     } else {
@@ -304,7 +304,7 @@ void read_device(const Reader& r, const Node& n, DeviceConfig& d, DeviceLines& l
   if (l.name == 0) r.fail(n.line, "a device needs a 'name'");
   if (!has_type)
     r.fail(n.line, "device '" + d.name + "' needs a 'type' (" + devices::drive_kind_names(", ", " or ", "\"") + ")");
-  // A setting the kind does not declare (a VF1000 has no 405-SUPI, seed 001 3.1.2): refused on
+  // A setting the kind does not declare (a VF1000 has no 405-SUPI, INTERBUS manual 3.1.2): refused on
   // its line, in the words of the kind that declares it.
   const devices::DriveKind& kind = *devices::find_drive_kind(d.kind);
   for (const auto& [key, line] : l.settings) {
@@ -572,7 +572,7 @@ void read_line(const Reader& r, const Node& n, std::string_view key, ServedLine&
             ctl.name = r.string(cv, ck);
             has_name = true;
           } else {
-            // Seed 004: a controller's unit id is 1..255 (0 is nobody's).
+            // DFS-1 manual: a controller's unit id is 1..255 (0 is nobody's).
             ctl.uid = static_cast<int>(r.integer(cv, ck, 1, 255));
             uid_line = cv.line;
             has_uid = true;

@@ -211,13 +211,13 @@ class Validator {
       }
       if (*d.lustbus < 1 || *d.lustbus > 30) {
         fail(line, who + "'lustbus' = " + std::to_string(*d.lustbus) +
-                       " is not a drive's LUSTBUS address (1..30, seed 000 9.1)");
+                       " is not a drive's LUSTBUS address (1..30, LUSTBUS manual 9.1)");
       }
       for (const Known& o : known_) {
         if (o.config->lustbus == d.lustbus) {
           fail(line, who + "LUSTBUS address " + std::to_string(*d.lustbus) + " is already device '" +
                          o.config->name + "''s (line " + std::to_string(o.line) +
-                         "): both would answer at once (seed 000, 9.1)");
+                         "): both would answer at once (LUSTBUS manual 9.1)");
         }
       }
     }
@@ -234,7 +234,7 @@ class Validator {
         fail(table, "[" + std::string(key) + "] needs either pty = true (a new pseudo-terminal) or port = \"PATH\" "
                         "(a serial port), not " + (line->pty ? "both" : "neither"));
       }
-      // Which rates a drive runs at is its own (seed 000, 4: the VF1000 up to 9600, the MC6000 up
+      // Which rates a drive runs at is its own (LUSTBUS manual 4: the VF1000 up to 9600, the MC6000 up
       // to 57600); the bench asks each drive's face when it makes it.
       if (line->baud == 0) fail(pick(l.baud, table), "[" + std::string(key) + "] baud must not be 0");
     };
@@ -264,7 +264,7 @@ class Validator {
       }
       if (c.uid < 1 || c.uid > 255) {
         fail(i < m_.controller_uids.size() ? m_.controller_uids[i] : line,
-             "controller '" + c.name + "': uid " + std::to_string(c.uid) + " is not a unit id (1..255, seed 004)");
+             "controller '" + c.name + "': uid " + std::to_string(c.uid) + " is not a unit id (1..255, DFS-1 manual)");
       }
       for (std::size_t j = 0; j < i; ++j) {
         const LineController& o = s_.controllers[j];

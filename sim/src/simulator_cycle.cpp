@@ -72,7 +72,7 @@ void Simulator::cycle_exchange(Time t) {
     copy_words(d->pcp_out, d->pcp_m2s.data());
     copy_words({d->pcp_s2m.data(), d->pcp_in.size()}, d->pcp_in.data());
     // The device's PCP interface takes this cycle's frame and prepares its next one at the bus
-    // cycle (seed 001 3.2.2, the servo's INTERBUS CPU), not at its 1 ms sample (docs/pcp.md).
+    // cycle (INTERBUS manual 3.2.2, the servo's INTERBUS CPU), not at its 1 ms sample (docs/pcp.md).
     if (d->pcp_words > 0) d->emu->pcp_cycle(t, {d->pcp_m2s.data(), d->pcp_words}, {d->pcp_s2m.data(), d->pcp_words});
     d->emu->bus_cycle(t);
   }

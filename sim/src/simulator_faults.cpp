@@ -191,7 +191,7 @@ void Simulator::fault(Time t, std::size_t i, Action kind, Duration duration, int
               ? devices::check_cause(facts, (*d.kind)->facts().title, entry->cause).number
               : std::nullopt;
       if (cause) {
-        // The drive shows its own error (seed 000 8; docs/errata.md VF-E17, MC-D6).
+        // The drive shows its own error (LUSTBUS manual 8; docs/errata.md VF-E17, MC-D6).
         devices::PlantEvent ev;
         ev.cause = cause;
         d.emu->apply_event(ev, t);

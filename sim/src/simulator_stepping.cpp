@@ -179,7 +179,7 @@ void Simulator::handle_sample(std::size_t i, Time t) {
   ++d.k;
   d.next_sample = next_sample_time(d);
   if (const devices::Notices n = d.emu->notices(); n.count != d.notices) {
-    // E.g. 15-PLRDY = 1 makes the servo recalculate its controller parameters (seed 001, 4.2).
+    // E.g. 15-PLRDY = 1 makes the servo recalculate its controller parameters (INTERBUS manual 4.2).
     d.notices = n.count;
     d.records.push_back({t, std::string(n.what)});
   }

@@ -88,7 +88,7 @@ lost_per_s = 0.02
   Time t{0};
   for (std::size_t i = 0; i < 2; ++i) loop.driver(i).sequencer().request(drivecom::Target::enabled, t);
   // One transaction always in flight per drive: a read of 85 (which clears the power-on bit that
-  // refuses writes, seed 001 6.1) and a write by turns.
+  // refuses writes, INTERBUS manual 6.1) and a write by turns.
   struct Traffic {
     devices::ParamId id = 0;
     std::uint16_t number = 0;

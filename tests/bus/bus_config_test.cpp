@@ -14,8 +14,8 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr IdCode kMc6000Supi11Remote{0x4DB};  // seed 001 3.2.2
-constexpr IdCode kVf1000{0x33B};              // seed 001 3.1.2
+constexpr IdCode kMc6000Supi11Remote{0x4DB};  // INTERBUS manual 3.2.2
+constexpr IdCode kVf1000{0x33B};              // INTERBUS manual 3.1.2
 constexpr IdCode kBusTerminal{0x0008};        // remote bus, no data words
 constexpr IdCode kLocalNoData{0x0090};        // local bus (class 9H, type 0), no data words
 constexpr IdCode kRemoteIn16{0x1202};         // remote bus, 16 words in (length code 12H)

@@ -1,5 +1,5 @@
 // ID code decoding and encoding against public-facts.md ("ID code", "PCP width") and the ID code
-// tables of seed 001 (3.1.2 VF1000, 3.2.2 MC6000 SUPI).
+// tables of the INTERBUS manual (3.1.2 VF1000, 3.2.2 MC6000 SUPI).
 #include "ibs/interbus/id_code.hpp"
 
 #include <gmock/gmock.h>
@@ -58,7 +58,7 @@ TEST(IdCode, UnknownLengthCodeIsNamedInTheDescription) {
 }
 
 TEST(IdCode, Vf1000RemoteBusThreeWordsWithoutPcp) {
-  // Seed 001 3.1.2: "33BH Remote bus user, conforming to profile, 3 words, without PCP".
+  // INTERBUS manual 3.1.2: "33BH Remote bus user, conforming to profile, 3 words, without PCP".
   constexpr IdCode vf{0x33B};
   static_assert(vf.ring_words() == 3);
   EXPECT_EQ(vf.bus(), BusKind::remote);

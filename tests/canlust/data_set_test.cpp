@@ -1,4 +1,4 @@
-// The data set text of a download (seed 003, "Downloading parameter data sets"; docs/canlust.md
+// The data set text of a download (CANLust manual, "Downloading parameter data sets"; docs/canlust.md
 // D39): one `PARAM VALUE` a line, resolved by the drive's table; every refusal names its line.
 #include <gtest/gtest.h>
 

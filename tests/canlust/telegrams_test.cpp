@@ -1,4 +1,4 @@
-// Identifiers, telegram coding and data types against seed 003's examples, byte for byte.
+// Identifiers, telegram coding and data types against CANLust manual's examples, byte for byte.
 #include <gtest/gtest.h>
 
 #include <vector>

@@ -1,6 +1,6 @@
 // tshark with tools/wireshark/lustbus.lua and dfs1.lua over captures of the manuals' worked
-// examples (seed 000's ENQUIRY, SELECT and PosMOD1 exchanges corrected as docs/errata.md decides;
-// seed 004's set-speed frame and its ACK), every field a user filters on checked, and a wrong BCC
+// examples (LUSTBUS manual's ENQUIRY, SELECT and PosMOD1 exchanges corrected as docs/errata.md decides;
+// DFS-1 manual's set-speed frame and its ACK), every field a user filters on checked, and a wrong BCC
 // and a wrong CSM flagged as the manuals' errors would make them (skipped where tshark is missing).
 #include <gtest/gtest.h>
 
@@ -100,7 +100,7 @@ TEST(WiresharkDissector, TsharkDecodesTheLustbusExamplesOfSeed000) {
   for (std::size_t i = 0; i < want.size(); ++i) EXPECT_EQ(rows[i], want[i]) << "frame " << i + 1;
   // The tree names every control character, the ADR and the parts of the CODE.
   const std::string verbose = run(tshark("lustbus.lua", path) + " -V -c 2 2>/dev/null");
-  for (const char* s : {"LUSTBUS (seed 000), host to device", "Control character: EOT (0x04)",
+  for (const char* s : {"LUSTBUS (LUSTBUS manual), host to device", "Control character: EOT (0x04)",
                         "ADR: '@' (40H): address 0", "CODE: 00112 (VF1000 parameter 12, value)",
                         "Control character: ENQ (0x05)", "Control character: STX (0x02)",
                         "VALUE: 03E8", "Control character: ETX (0x03)", "BCC: 0x72 [correct]",
@@ -147,7 +147,7 @@ TEST(WiresharkDissector, TsharkDecodesTheDfs1ExampleOfSeed004) {
   EXPECT_EQ(rows[0], "0;1;request;0x82;;4096;00001000;0x6d;1;;2");
   EXPECT_EQ(rows[1], "1;1;ACK;;0x06;;;0xf9;1;1;");
   const std::string verbose = run(tshark("dfs1.lua", path) + " -V 2>/dev/null");
-  for (const char* s : {"DFS-1 (seed 004), host to controller", "DLE STX: 0x1002", "Command: set speed (0x82)",
+  for (const char* s : {"DFS-1 (DFS-1 manual), host to controller", "DLE STX: 0x1002", "Command: set speed (0x82)",
                         "Speed (rpm): 4096", "DLE ETX: 0x1003", "CSM: 0x6d [correct]", "Response: ACK (0x06)"}) {
     EXPECT_NE(verbose.find(s), std::string::npos) << s << "\n" << verbose;
   }

@@ -1,6 +1,6 @@
 // The CDA3000's object dictionary (dictionary.hpp, issue 38 W3) against the table the drive and
 // the master use today (parameters.hpp): entry by entry and field by field, the storage kinds,
-// effects, roles and data-set membership seed 003's columns give, the value checks and the
+// effects, roles and data-set membership CANLust manual's columns give, the value checks and the
 // lookups. While both exist, this is what keeps them one fact.
 #include "ibs/devices/cda3000/dictionary.hpp"
 
@@ -17,7 +17,7 @@
 namespace ibs::devices::cda3000 {
 namespace {
 
-// The od type of a CANLust data type (seed 003 4.1.1): written out here, not taken from a codec.
+// The od type of a CANLust data type (CANLust manual 4.1.1): written out here, not taken from a codec.
 od::Type od_type(canlust::DataType t) {
   switch (t) {
     case canlust::DataType::usign8:
@@ -45,7 +45,7 @@ od::Type od_type(canlust::DataType t) {
   return od::Type::usign32;
 }
 
-// Seed 003's memory type and access as a storage kind: flash settings, RAM commands and RAM
+// CANLust manual's memory type and access as a storage kind: flash settings, RAM commands and RAM
 // values only the drive sets.
 od::Storage storage_of(const ParameterInfo& p) {
   if (p.memory == Memory::flash) return od::Storage::flash;
@@ -91,7 +91,7 @@ TEST(CdaDictionary, MatchesTheTable) {
     EXPECT_FALSE(e.specific);
     EXPECT_EQ(e.effect == od::Effect::at_restart, p.effect == Effect::after_mains_reset);
     EXPECT_EQ(e.role, role_of(p.number));
-    EXPECT_EQ(e.attributes, 0U);  // seed 000 11.2.1's attribute word is no CANLust field
+    EXPECT_EQ(e.attributes, 0U);  // LUSTBUS manual 11.2.1's attribute word is no CANLust field
     EXPECT_EQ(e.elements, 1U);    // no CDA3000 parameter is a field (index 0 only)
     EXPECT_EQ(e.in_data_set, card_writeable(p));
     ASSERT_EQ(e.choices.size(), p.choices.size());
@@ -107,7 +107,7 @@ TEST(CdaDictionary, MatchesTheTable) {
   }
 }
 
-// Seed 003's columns as the dictionary says them: 7.1.1's bus settings act after a mains reset,
+// CANLust manual's columns as the dictionary says them: 7.1.1's bus settings act after a mains reset,
 // 4.3's flash settings are the data set, the drive's readings and 578-OPTN2 are read-only.
 TEST(CdaDictionary, SeedColumnsAsStorageEffectAndDataSet) {
   for (const std::uint16_t n : {kClbdr, kCacnf, kCamod, kCladr}) {

@@ -1,5 +1,5 @@
 // Downloading a parameter data set into the emulated CDA3000 with the core's DataSetDownload
-// (seed 003, 4.x "Downloading parameter data sets", p. 48-49; docs/canlust.md D39):
+// (CANLust manual 4.x "Downloading parameter data sets", p. 48-49; docs/canlust.md D39):
 //   "... transferred to the drive controller without individual checking of the parameter
 //   values. When the upload is finished the drive controller checks the now complete new data
 //   set for plausibility. If the data set is valid the parameters are accepted with the attribute

@@ -1,4 +1,4 @@
-// EasyDrive direct control (492-CACNF = 4, seed 003 5.4.1, 7.1.1; decision D26): the driver sends
+// EasyDrive direct control (492-CACNF = 4, CANLust manual 5.4.1, 7.1.1; decision D26): the driver sends
 // the caller's bits as they are, the drive starts clockwise with STR and counter-clockwise with
 // STL at the size of the reference, ramps down without a start bit, reports its EasyDrive status
 // bits (the seed's ACTIV 4, ROT_0 5, BRK 6, warning 7, CAN status 8; READY 0, ERROR 3 and

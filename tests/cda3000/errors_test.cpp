@@ -1,4 +1,4 @@
-// Errors and warnings of the emulated CDA3000 as seed 003 chapter 6 gives them (docs/canlust.md
+// Errors and warnings of the emulated CDA3000 as the CANLust manual chapter 6 gives them (docs/canlust.md
 // D38, errata CAN-E16, CAN-E17), on the virtual bus against the core's master:
 //   6.1 "The error response is programmable for each error in four stages": one response
 //       parameter per error of table 5.9 (520-ROTI .. 525-ROP2), written over the bus like any
@@ -69,7 +69,7 @@ struct ResponseRow {
   double max_hz_after_100ms;
 };
 
-// Seed 003, 6.1 (p. 66-67): the default disables the power stage; the response is programmable
+// CANLust manual 6.1 (p. 66-67): the default disables the power stage; the response is programmable
 // in four stages, of which the seed names WRN ("the device indicates the warning") and STOP; D7
 // gives the other two. The motor after 100 ms from 20 Hz with D28's time constants: 200 ms (STOP,
 // 12.1 Hz), 50 ms (quick stop, 2.7 Hz), 2 s coasting (PWOFF, 19.0 Hz).

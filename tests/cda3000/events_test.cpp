@@ -1,5 +1,5 @@
 // Plant and fault events of the emulated CDA3000 (issue 24; docs/canlust.md D34-D36), on the
-// virtual bus against the core's master: a device fault with each cause of seed 003's table 5.9
+// virtual bus against the core's master: a device fault with each cause of the CANLust manual's table 5.9
 // shows in the error telegram (441 + 2 x address), in the status telegram (FAULT) and in 95-ERR1
 // read over the parameter channel; the load makes the motor slip; ENPO blocks the power stage; the
 // face takes the causes by name and number and refuses the others.
@@ -48,7 +48,7 @@ std::uint32_t read_value(Bus<Master>& b, Master& m, std::uint16_t parameter) {
 
 class Cda3000DeviceFault : public ::testing::TestWithParam<ErrorInfo> {};
 
-// Seed 003, table 5.9 (6.2) row by row: the error number in byte 0 of the error telegram and of
+// CANLust manual, table 5.9 (6.2) row by row: the error number in byte 0 of the error telegram and of
 // 95-ERR1 (ERR_STRUC, 4.1.1), the default response of 6.1 (power stage off: FAULT at once,
 // reaction 3 in byte 2), FAULT in the next status telegram; the error reset bit acknowledges it.
 TEST_P(Cda3000DeviceFault, ShowsInErrorTelegramStatusAndErr1) {
@@ -150,7 +150,7 @@ TEST(Cda3000Events, EnpoLowBlocksThePowerStage) {
   EXPECT_EQ(b.drive(0).state(), drivecom::State::enabled);
 }
 
-// Seed 003, 5.1 "Controller enable (ENPO)": "The drive units require an additional hardware
+// CANLust manual 5.1 "Controller enable (ENPO)": "The drive units require an additional hardware
 // enable via control terminal X2/8 ENPO for control over the CAN bus. This control signal is
 // high-active. When this control signal is removed the motor runs out freely." Row by row: with
 // ENPO low from the power-on, no command of the bus enables the drive (DRIVECOM and EasyDrive);
@@ -218,10 +218,10 @@ TEST(Cda3000Events, FaceTakesCausesByNameOrNumberAndRefusesOthers) {
     EXPECT_EQ(*d->value(kErr1) & 0xFFU, 8U);
   }
   EXPECT_EQ(face.check_event({K::fault, "E-XYZ", 0.0, "", false}),
-            "cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, 11 E-FLT, "
+            "cause 'E-XYZ': the CDA3000's errors (CANLust manual, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, 11 E-FLT, "
             "12 E-PWR, 16 E-OP2; its warnings (6.3) are 0004H W-I2T, 0008H W-TM, 0010H W-TH");
   EXPECT_EQ(face.check_event({K::input, "", 0.0, "X9", true}),
-            "input 'X9': the CDA3000's terminals in seed 003 are ENPO (X2-8) and ISD00 (X2-9)");
+            "input 'X9': the CDA3000's terminals in the CANLust manual are ENPO (X2-8) and ISD00 (X2-9)");
   EXPECT_FALSE(face.check_event({K::load, "", 301.0, "", false}).empty());
   EXPECT_TRUE(face.check_event({K::load, "", -300.0, "", false}).empty());
   // Power cycle: back from the stored settings, the fault gone, the error kept in 95-ERR1.

@@ -1,4 +1,4 @@
-// The CDA3000 parameter table against seed 003 (CM-CAN1 manual): the rows whose range, factory
+// The CDA3000 parameter table against CANLust manual (CM-CAN1 manual): the rows whose range, factory
 // setting, unit or type the manual prints are checked against its text, transcribed here first;
 // then the value checks and conversions the drive and the master share.
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@ namespace {
 
 using canlust::DataType;
 
-// What seed 003 prints, row by row (number, name, min, max, factory, unit): 4.3.1 "489 CLBDR CAN
+// What CANLust manual prints, row by row (number, name, min, max, factory, unit): 4.3.1 "489 CLBDR CAN
 // bus baud rate 25 500 500", "574 CAWDG CAN bus watchdog time 0 255 0 ms", "575 CASCY Sampling
 // time for status message 1 32000 80 ms"; 4.3.2 "_28RS 0 FCON 11 FMAX 11 FMAX USIGN8 FLASH".
 struct ManualRow {

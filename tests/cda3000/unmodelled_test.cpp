@@ -1,4 +1,4 @@
-// Where seed 003 names a function of the CDA3000 but not its parts, ibs decides not to model it
+// Where CANLust manual names a function of the CDA3000 but not its parts, ibs decides not to model it
 // (docs/errata.md CAN-E19, CAN-E20); these tests pin what the drive does instead.
 //   6.1 (p. 67): "If the parameter setting for response to an error is a warning message WRN the
 //       device indicates the warning by way of an appropriately parameterized digital outp[ut]"

@@ -307,7 +307,7 @@ TEST_F(Ddi, ALegacyLoopEnablesBothDrivesAndReadsAParameterOverPcp) {
   // 406-IBCNF over PCP: Initiate, Read (index 5C00H + 406), then Abort.
   EXPECT_EQ(call({S_PCP_INITIATE, 3, 0x0102, 0, 0}), (Words{0x808B, 4, 0x0102, 0, 134, 134}));
   EXPECT_EQ(call({S_PCP_READ, 3, 0x0302, 0x5C00 + 406, 0}), (Words{0x8081, 4, 0x0302, 0, 1, 0x0200}));
-  // 85-SIOF read first (it clears the power-on bit, which refuses writes: seed 001, 6.1), then
+  // 85-SIOF read first (it clears the power-on bit, which refuses writes: INTERBUS manual 6.1), then
   // 409-BUTWD written with the power stage off and read back (USIGN16).
   EXPECT_EQ(call({S_PCP_READ, 3, 0x0402, 0x5C00 + 85, 0}), (Words{0x8081, 4, 0x0402, 0, 1, 0x0100}));
   EXPECT_EQ(call({S_PCP_WRITE, 4, 0x0402, 0x5C00 + 409, 2, 0x0064}), (Words{0x8082, 2, 0x0402, 0}));

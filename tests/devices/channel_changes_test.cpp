@@ -88,13 +88,13 @@ TEST(ChannelChanges, AServosPcpWritesAreKeptAndItsProcessDataChangeNothing) {
 
 TEST(ChannelChanges, AnInvertersLustbusWritesAreKeptItsCommunicationWordIsInTheWords) {
   auto core = std::make_shared<vf1000::Drive>(vf1000::DriveConfig{}, DeviceStart::initialised, Time{0});
-  // Seed 001, 6.1 (VF-E16): with the factory 1-MODE = 4 the serial interface is locked on INTERBUS.
+  // INTERBUS manual 6.1 (VF-E16): with the factory 1-MODE = 4 the serial interface is locked on INTERBUS.
   core->set_value(vf1000::pnr::kMode, 1);
   Vf1000Device interbus(Vf1000DeviceConfig{}, core, Time{0});
   vf1000::LustbusDevice serial(core);
   interbus.record_changes(true);
   EXPECT_EQ(serial.enquiry(lb::make_code(85), {1, Time{10ms}}).reply, lb::Reply::text);
-  // LUSTBUS reaches 00..99 (seed 000): 22-FMAX1 = 1000 (50.00 Hz).
+  // LUSTBUS reaches 00..99 (LUSTBUS manual): 22-FMAX1 = 1000 (50.00 Hz).
   EXPECT_EQ(serial.select(lb::make_code(22), lb::make_value("03E8"), {1, Time{20ms}}).reply, lb::Reply::ack);
   EXPECT_EQ(taken(interbus), (Changes{{85, 0}, {22, 1000}}));
 

@@ -71,15 +71,15 @@ TEST(DescriptorError, Mc6000ConfigureRefusesTheLayoutNamingTheSetting) {
   };
   const std::vector<Case> cases{
       {mc(13, 2), ErrorCode::layout_setting_out_of_range, "supi", "ibcnf",
-       "405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)"},
+       "405-SUPI = 13 is out of range (0..12, INTERBUS manual 3.2.2)"},
       {mc(-1, 2), ErrorCode::layout_setting_out_of_range, "supi", "ibcnf",
-       "405-SUPI = -1 is out of range (0..12, seed 001 3.2.2)"},
+       "405-SUPI = -1 is out of range (0..12, INTERBUS manual 3.2.2)"},
       {mc(11, 5), ErrorCode::layout_setting_out_of_range, "ibcnf", "supi",
-       "406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)"},
+       "406-IBCNF = 5 is out of range (0..4, INTERBUS manual 3.2.3)"},
       {mc(9, 4), ErrorCode::layout_setting_unsupported, "ibcnf", "supi",
        "406-IBCNF = 4 (modified LISIM software) is not supported"},
       {mc(7, 2, interbus::BusKind::local), ErrorCode::layout_settings_conflict, "ibcnf", "supi",
-       "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)"},
+       "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual 3.2.3)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.message);
@@ -127,7 +127,7 @@ TEST(DescriptorError, Vf1000ConfigureRefusesTheLocalBus) {
   const Expected<Configuration, SettingsRefusal> r = k.try_configure(s);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, ErrorCode::setting_bus_refused);
-  EXPECT_EQ(r.error().message, "a VF1000 is always a remote bus device (seed 001, 1.3)");
+  EXPECT_EQ(r.error().message, "a VF1000 is always a remote bus device (INTERBUS manual 1.3)");
   EXPECT_EQ(r.error().setting, "bus");
   expect_same(r.error(), thrown([&] { (void)k.configure(s); }));
 
@@ -222,7 +222,7 @@ TEST(DescriptorError, RingEntriesOfBothDrives) {
        {"13"},
        ErrorCode::layout_setting_out_of_range,
        "supi",
-       "405-SUPI 13 is out of range (0..12, seed 001 3.2.2)"},
+       "405-SUPI 13 is out of range (0..12, INTERBUS manual 3.2.2)"},
       {mc,
        {"11", "upper"},
        ErrorCode::setting_invalid,
@@ -232,7 +232,7 @@ TEST(DescriptorError, RingEntriesOfBothDrives) {
        {"11"},
        ErrorCode::setting_too_many_fields,
        "",
-       "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, seed 001 "
+       "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, INTERBUS manual "
        "3.1.2)"},
   };
   for (const Case& c : cases) {

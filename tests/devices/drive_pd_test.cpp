@@ -1,4 +1,4 @@
-// The drives' process-data behaviour around the state machine: seed 001 5.2 (VF1000), 5.3 (MC6000).
+// The drives' process-data behaviour around the state machine: INTERBUS manual 5.2 (VF1000), 5.3 (MC6000).
 #include <gtest/gtest.h>
 
 #include <array>

@@ -116,7 +116,7 @@ TEST(Mc6000HeldSteps, TheWatchdogRunsOutAtTheFirstSampleLaterThanItsTime) {
 }
 
 TEST(Mc6000Watchdog, ErrorSixteenAtLocationOneOf324UntilTheMasterResetsIt) {
-  // Seed 001, 3.2.4: "The watchdog error number is 16 ('E-OP1'), with error location 1."
+  // INTERBUS manual 3.2.4: "The watchdog error number is 16 ('E-OP1'), with error location 1."
   Mc6000DeviceConfig c;
   c.supi = 12;
   c.bus_watchdog = 20ms;

@@ -1,5 +1,5 @@
 // The process-data traces in tests/data, replayed against the device models and the master
-// drivers (seed 001, 5.3.4 and the project's own VF1000 traces).
+// drivers (INTERBUS manual 5.3.4 and the project's own VF1000 traces).
 #include <gtest/gtest.h>
 
 #include "ibs/devices/trace_adapters.hpp"
@@ -72,7 +72,7 @@ TEST(PdReplay, RefusedConfigurationsAndRequestsNameTheirHeaderLine) {
     FAIL();
   } catch (const trace::TraceError& e) {
     // The message is about 406-IBCNF: reported on the ibcnf line (docs/replay.md).
-    EXPECT_STREQ(e.what(), "s.trace:5: 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
+    EXPECT_STREQ(e.what(), "s.trace:5: 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual 3.2.3)");
   }
   try {
     make_master_side(trace::parse(base + "# request: read 405\n0, 0000 0000 0000, 0240 0000 0000\n", "r.trace"));

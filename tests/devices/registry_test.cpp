@@ -161,7 +161,7 @@ TEST(Registry, EveryKindHasACampaignProfileTheEmulatorAgreesWith) {
 // The watchdog's raw value and the channel's timeouts, as the manuals give them.
 TEST(Registry, CampaignProfilesTurnWatchdogValuesAndRequestsIntoTimes) {
   const CampaignProfile& vf = *find_drive_kind("vf1000")->campaign;
-  EXPECT_EQ(vf.watchdog_ms(65), 100);  // seed 001, 4.1.1: 50 ms steps, rounded up
+  EXPECT_EQ(vf.watchdog_ms(65), 100);  // INTERBUS manual 4.1.1: 50 ms steps, rounded up
   EXPECT_EQ(vf.watchdog_ms(100), 100);
   EXPECT_LE(vf.watchdog_ms(65535), 0);  // off
   EXPECT_EQ(vf.request_timeout(ParamOp::write, 71, 1), 2s);
@@ -340,7 +340,7 @@ void read_on_lustbus(const LustbusFace& face) {
   ASSERT_NE(o, nullptr);
   ASSERT_EQ(o->kind, lustbus::OutcomeKind::value) << lustbus::describe(*o);
   EXPECT_TRUE(lustbus::parse_typed(face.family, p->type, o->value.view()).ok()) << o->value.view();
-  // A rate the drive does not run at is refused when the face is made (seed 000, 4).
+  // A rate the drive does not run at is refused when the face is made (LUSTBUS manual 4).
   LustbusFaceOptions odd;
   odd.baud = 1234;
   EXPECT_THROW((void)face.make(odd), std::invalid_argument);
@@ -387,7 +387,7 @@ void read_on_canlust(const CanlustFace& face) {
 }
 
 // CANLust: what `ibs run` knows of a drive's parameters comes from its face, in the table's words
-// (seed 003, 4.3.1 / 5.5.5): names and numbers, read-only and text parameters, values parsed and
+// (CANLust manual 4.3.1 / 5.5.5): names and numbers, read-only and text parameters, values parsed and
 // formatted; and the master the face makes drives the drives it makes to DRIVECOM "operation
 // enabled" (5.4.2) with a reference, frames passed in memory.
 TEST(DriveRegistry, CanlustFaceLooksParametersUpAndRunsItsDrives) {
@@ -550,7 +550,7 @@ TEST(DriveRegistry, LustbusFacesDeclareTheirSettingsForLustbus) {
   }
 }
 
-// Seed 000, 10: a KEYPAD widens each drive's reaction times (servo 1...25 -> 1...30 ms, inverter
+// LUSTBUS manual 10: a KEYPAD widens each drive's reaction times (servo 1...25 -> 1...30 ms, inverter
 // 1...30 -> 1...60 ms); the face's declared `keypad` setting is what makes the drive draw them.
 TEST(DriveRegistry, AKeypadWidensTheLustbusReactionTimes) {
   const std::map<std::string_view, std::pair<Duration, Duration>> table = {{"mc6000", {25ms, 30ms}},

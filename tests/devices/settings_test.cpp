@@ -46,7 +46,7 @@ TEST(DriveSettings, EveryDeclarationIsWhole) {
 }
 
 TEST(DriveSettings, TheDefaultsAreTheFactorySettings) {
-  // MC6000: 405-SUPI 11 = 3 process-data words and 1 PCP word, ID code 4DBH (seed 001 3.2.2).
+  // MC6000: 405-SUPI 11 = 3 process-data words and 1 PCP word, ID code 4DBH (INTERBUS manual 3.2.2).
   const Configuration mc = kind("mc6000")->configure(DeviceSettings{});
   EXPECT_EQ(mc.pd_words, 3U);
   EXPECT_EQ(mc.pcp_words, 1U);
@@ -79,7 +79,7 @@ TEST(DriveSettings, CheckSettingsNamesTheSettingTheValueAndTheLimit) {
       {"vf1000", with("ibcnf", SettingKind::integer, 2), ErrorCode::setting_of_another_drive, "ibcnf",
        "'ibcnf' is an MC6000 setting; a VF1000 has no 406-IBCNF"},
       {"mc6000", with("keypad", SettingKind::boolean, 1), ErrorCode::setting_of_another_drive, "keypad",
-       "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times have no KEYPAD row"},
+       "'keypad' is a VF1000 setting (INTERBUS manual 7.1); the MC6000's PCP times have no KEYPAD row"},
       {"mc6000", with("reset_time", SettingKind::duration, std::chrono::nanoseconds(1s).count()),
        ErrorCode::setting_of_another_drive, "reset_time",
        "'reset_time' is a VF1000 setting (5.2.1: its RESET FAULT is a software reset)"},
@@ -90,12 +90,12 @@ TEST(DriveSettings, CheckSettingsNamesTheSettingTheValueAndTheLimit) {
       {"vf1000", with("keypad", SettingKind::integer, 1), ErrorCode::setting_invalid, "keypad",
        "'keypad' must be true or false"},
       {"mc6000", with("supi", SettingKind::integer, 13), ErrorCode::setting_out_of_range, "supi",
-       "'supi' = 13 is out of range (0..12, 405-SUPI, seed 001 3.2.2)"},
+       "'supi' = 13 is out of range (0..12, 405-SUPI, INTERBUS manual 3.2.2)"},
       {"mc6000", with("ibcnf", SettingKind::integer, -1), ErrorCode::setting_out_of_range, "ibcnf",
-       "'ibcnf' = -1 is out of range (0..4, 406-IBCNF, seed 001 3.2.3)"},
+       "'ibcnf' = -1 is out of range (0..4, 406-IBCNF, INTERBUS manual 3.2.3)"},
       {"vf1000", with("reset_time", SettingKind::duration, std::chrono::nanoseconds(61s).count()),
        ErrorCode::setting_out_of_range, "reset_time",
-       "'reset_time' = 61000000000 ns is out of range (above 0 s and at most 60 s, seed 001 5.2.1)"},
+       "'reset_time' = 61000000000 ns is out of range (above 0 s and at most 60 s, INTERBUS manual 5.2.1)"},
       {"vf1000", with("reset_time", SettingKind::duration, std::chrono::nanoseconds(60s).count()), ErrorCode::none,
        "", ""},
       {"mc6000", with("supi", SettingKind::integer, 0), ErrorCode::none, "", ""},

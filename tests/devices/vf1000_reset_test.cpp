@@ -1,6 +1,6 @@
-// RESET FAULT on the VF1000 is a software reset (seed 001, 5.2.1, bit 7: "The inverter performs a
-// software reset !"): the inverter boots again, the link is gone during the self-test (seed 000,
-// 8.1.1) and the power-on bit of 85-SIOF is set afterwards (seed 000, 9.2).
+// RESET FAULT on the VF1000 is a software reset (INTERBUS manual 5.2.1, bit 7: "The inverter performs a
+// software reset !"): the inverter boots again, the link is gone during the self-test (LUSTBUS manual,
+// 8.1.1) and the power-on bit of 85-SIOF is set afterwards (LUSTBUS manual 9.2).
 #include <gtest/gtest.h>
 
 #include <array>

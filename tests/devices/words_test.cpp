@@ -1,4 +1,4 @@
-// Control and status words in words: the DRIVECOM part (seed 001, 5.1.2, 5.1.3) and each drive's
+// Control and status words in words: the DRIVECOM part (INTERBUS manual 5.1.2, 5.1.3) and each drive's
 // own bits as its descriptor names them (VF1000 5.2.1/5.2.2, MC6000 5.3.1/5.3.2).
 #include <gtest/gtest.h>
 

@@ -76,7 +76,7 @@ struct Bench {
   SimulatedLine line;
 };
 
-// Seed 004's status list (public notes, "Status (81)"): each cause by its name shows as its bit of
+// DFS-1 manual's status list (public notes, "Status (81)"): each cause by its name shows as its bit of
 // ST1 (or ST2's uP fault) and as ST2's fault bit, in the status the host reads, and by the name
 // `ibs dfs1 status` prints.
 struct CauseRow {

@@ -1,4 +1,4 @@
-// DFS-1 frames (seed 004, 6.0): the seed's example byte-exact both ways, DLE stuffing at every
+// DFS-1 frames (DFS-1 manual 6.0): the seed's example byte-exact both ways, DLE stuffing at every
 // position a 10H can take, the checksum, and the decoder's errors and resynchronisation.
 #include "ibs/dfs1/frame.hpp"
 
@@ -36,7 +36,7 @@ Decoded decode_all(const Bytes& bytes) {
   return decode_all(bytes, d);
 }
 
-// Seed 004, note 2: [10][02] [01] [82] [00][00][10][10][00] [10] [03] [6D].
+// DFS-1 manual, note 2: [10][02] [01] [82] [00][00][10][10][00] [10] [03] [6D].
 const Bytes kSeedExample = {0x10, 0x02, 0x01, 0x82, 0x00, 0x00, 0x10, 0x10, 0x00, 0x10, 0x03, 0x6D};
 
 TEST(Dfs1Frame, SeedExampleEncodesByteExact) {
@@ -53,7 +53,7 @@ TEST(Dfs1Frame, SeedExampleDecodesByteExact) {
   EXPECT_EQ(f.uid, 0x01);
   EXPECT_EQ(f.code, 0x82);
   EXPECT_EQ(Bytes(f.payload().begin(), f.payload().end()), (Bytes{0x00, 0x00, 0x10, 0x00}));
-  EXPECT_EQ(f.value_at(0), 0x1000U);  // 4096, most significant byte first (seed 004, note 3)
+  EXPECT_EQ(f.value_at(0), 0x1000U);  // 4096, most significant byte first (DFS-1 manual, note 3)
 }
 
 TEST(Dfs1Frame, UidOf10HIsDoubled) {
@@ -211,7 +211,7 @@ TEST(Dfs1Protocol, FourByteValuesAreBigEndian) {
   EXPECT_EQ(get_u32(b), 0x12345678U);
   put_u32(b, to_unsigned(-1500));
   EXPECT_EQ(to_signed(get_u32(b)), -1500);
-  // Seed 004, note 3: parameter 48's MOP is [00][00][00][01].
+  // DFS-1 manual, note 3: parameter 48's MOP is [00][00][00][01].
   put_u32(b, 1);
   EXPECT_EQ(b, (std::array<std::uint8_t, 4>{0, 0, 0, 1}));
 }

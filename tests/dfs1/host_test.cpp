@@ -26,7 +26,7 @@ HostTransaction started(const Frame& request, Time at = 0ms) {
 TEST(Dfs1Host, RequestBytesAreTheEncodedFrame) {
   HostTransaction t;
   ASSERT_EQ(t.start(request::set_speed(1, 4096), 0ms), StartStatus::accepted);
-  // The seed's example (seed 004, note 2) is Set Speed 4096 to UID 1.
+  // The seed's example (DFS-1 manual, note 2) is Set Speed 4096 to UID 1.
   const Bytes want = {0x10, 0x02, 0x01, 0x82, 0x00, 0x00, 0x10, 0x10, 0x00, 0x10, 0x03, 0x6D};
   EXPECT_EQ(Bytes(t.tx().begin(), t.tx().end()), want);
   EXPECT_EQ(t.state(), HostTransaction::State::sending);

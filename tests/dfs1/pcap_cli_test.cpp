@@ -67,7 +67,7 @@ TEST(Dfs1Pcap, TheHostAndTheEmulatorCaptureTheSameFramesAndDecodeReadsThem) {
   const auto nak = read_capture(dir + "/nak.pcap");
   ASSERT_EQ(nak.packets.size(), 2U);
   EXPECT_EQ(nak.packets[1].bytes, frame(dfs1::make_nak(1, dfs1::ErrorCode::illegal_parameter_number)));
-  // UID 0, command 83: nobody answers (seed 004); the capture holds the one frame.
+  // UID 0, command 83: nobody answers (DFS-1 manual); the capture holds the one frame.
   r = run_cli({"dfs1", "speed", "--port", port, "--uid", "0", "--execute", "--pcap", dir + "/global.pcap"});
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(read_capture(dir + "/global.pcap").packets.size(), 1U);

@@ -1,4 +1,4 @@
-// The VF1000 data types (seed 000, 2.3.1; seed 001, 4.1.3.3): type and category codes, raw <->
+// The VF1000 data types (LUSTBUS manual 2.3.1; INTERBUS manual 4.1.3.3): type and category codes, raw <->
 // engineering conversions, the error-variable coding.
 #include "ibs/drive/data_types.hpp"
 
@@ -39,7 +39,7 @@ TEST(DataTypeRanges, SingleByteTypesHaveAZeroHighByte) {
 }
 
 TEST(Fixpoint16, ConvertsInFiveHundredthsBothWays) {
-  // seed 000, 6.2.2: 50.00 Hz = 03E8H; 7.1.1: 23.15 Hz = 463; seed 001, 4.1.3.2.1: 1F4H = 25 Hz.
+  // LUSTBUS manual 6.2.2: 50.00 Hz = 03E8H; 7.1.1: 23.15 Hz = 463; INTERBUS manual 4.1.3.2.1: 1F4H = 25 Hz.
   EXPECT_EQ(from_engineering(DataType::fixpoint16, 50.00), 0x03E8);
   EXPECT_EQ(from_engineering(DataType::fixpoint16, 23.15), 463);
   EXPECT_DOUBLE_EQ(*to_engineering(DataType::fixpoint16, 0x01F4), 25.0);
@@ -63,7 +63,7 @@ TEST(Fixpoint16, LargestValueIs3276p75NotThe3276p80OfTheTable) {
 TEST(IntegerTypes, ConvertWithinTheirRanges) {
   EXPECT_EQ(from_engineering(DataType::usign8, 255.0), 0x00FF);
   EXPECT_FALSE(from_engineering(DataType::usign8, 256.0).has_value());
-  EXPECT_EQ(from_engineering(DataType::binary8, 128.0), 0x0080);  // seed 000, 7.1.1: CNTL = 128
+  EXPECT_EQ(from_engineering(DataType::binary8, 128.0), 0x0080);  // LUSTBUS manual 7.1.1: CNTL = 128
   EXPECT_EQ(from_engineering(DataType::usign16, 65535.0), 0xFFFF);
   EXPECT_FALSE(from_engineering(DataType::usign16, 65536.0).has_value());
   EXPECT_EQ(from_engineering(DataType::password, 1234.0), 1234);
@@ -94,8 +94,8 @@ TEST(VfError, CodingOfSection4133) {
 }
 
 TEST(VfError, ErrorTimeIsInTenthsOfAnHourNotHours) {
-  // Erratum VF-E10: seed 000, 2.3.1 says "time of error (0-15h)" but its own table gives the unit
-  // 1/10 h; seed 001, 4.1.3.3: "in 6-minute increments (max. 15 * 6 minutes)". 0FH is the basic
+  // Erratum VF-E10: LUSTBUS manual 2.3.1 says "time of error (0-15h)" but its own table gives the unit
+  // 1/10 h; INTERBUS manual 4.1.3.3: "in 6-minute increments (max. 15 * 6 minutes)". 0FH is the basic
   // state, so 14 steps = 84 minutes is the longest time, never 14 hours.
   EXPECT_EQ(decode_vf_error(0x0501).time_minutes(), 6U);
   EXPECT_EQ(decode_vf_error(0x050A).time_minutes(), 60U);  // ten steps: one hour
@@ -105,7 +105,7 @@ TEST(VfError, ErrorTimeIsInTenthsOfAnHourNotHours) {
 }
 
 TEST(VfError, ErasedEepromFFFFReadsAsNoError) {
-  // seed 000, 2.3.1: erasing the EEPROM leaves FFH, "error number 15 means no error".
+  // LUSTBUS manual 2.3.1: erasing the EEPROM leaves FFH, "error number 15 means no error".
   EXPECT_EQ(decode_vf_error(0xFFFF), (VfError{}));
   EXPECT_EQ(decode_vf_error(0xF3F2), (VfError{3, 2}));  // high nibbles are ignored
 }

@@ -53,7 +53,7 @@ TEST(ParameterTableValidate, EveryRefusalHasItsCodeAndTheConstructorsMessage) {
       {"number above 3FFH",
        {with([](ParameterInfo& p) { p.number = 0x400; })},
        ErrorCode::table_number_out_of_range,
-       "parameter table entry 0 (parameter 1024-ABC): number above 3FFH (seed 001, 4.1.3)"},
+       "parameter table entry 0 (parameter 1024-ABC): number above 3FFH (INTERBUS manual 4.1.3)"},
       {"number used twice",
        {kOk, kOk},
        ErrorCode::table_number_repeated,

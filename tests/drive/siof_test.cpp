@@ -1,4 +1,4 @@
-// 85-SIOF bits (seed 000, 9.2) and their description.
+// 85-SIOF bits (LUSTBUS manual 9.2) and their description.
 #include "ibs/drive/siof.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Seed 001, 5.1.2: the device control commands from bits 0-3 and 7 of the control word.
+// INTERBUS manual 5.1.2: the device control commands from bits 0-3 and 7 of the control word.
 #include <gtest/gtest.h>
 
 #include "ibs/drivecom/control_word.hpp"

@@ -1,4 +1,4 @@
-// Seed 001, 5.1.1-5.1.3: the drive's state machine, exhaustively against an independent table.
+// INTERBUS manual 5.1.1-5.1.3: the drive's state machine, exhaustively against an independent table.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -116,7 +116,7 @@ TEST(SequencerSafety, ARestartHiddenInAnOutageEndsARequestMadeInIt) {
   EXPECT_EQ(fresh.report().failure, Failure::none);
 }
 
-// Issue 14: RESET FAULT makes the VF1000 boot (seed 001, 5.2.1, "a software reset"): NOT READY
+// Issue 14: RESET FAULT makes the VF1000 boot (INTERBUS manual 5.2.1, "a software reset"): NOT READY
 // right after the request's own reset edge is the drive coming up again, not a restart.
 TEST(SequencerSafety, NotReadyAfterTheRequestsOwnResetEdgeIsTheDriveBooting) {
   Failure f = Failure::none;

@@ -1,4 +1,4 @@
-// Seed 001, 5.1.3: the device states in the status word, bits 4/5 and the device bits.
+// INTERBUS manual 5.1.3: the device states in the status word, bits 4/5 and the device bits.
 #include <gtest/gtest.h>
 
 #include "ibs/drivecom/status_word.hpp"

@@ -1,4 +1,4 @@
-// `ibs layout` and `ibs timing`: every SUPI row of seed 001 3.2.2 on both buses, every refused
+// `ibs layout` and `ibs timing`: every SUPI row of the INTERBUS manual 3.2.2 on both buses, every refused
 // SUPI/IBCNF pair of 3.2.3, the JSON forms, the cycle time of the default bus (docs/bus.md),
 // bad arguments; first through the command functions, then through the CLI11 wiring, then
 // through the `ibs` binary.
@@ -62,7 +62,7 @@ json parse_json(const std::string& text) {
   return j;
 }
 
-// Seed 001 3.2.2, transcribed. SUPI 0 reads as configuration 4 (1 word, the footnote).
+// INTERBUS manual 3.2.2, transcribed. SUPI 0 reads as configuration 4 (1 word, the footnote).
 struct Row {
   int supi;
   int pd;
@@ -86,7 +86,7 @@ constexpr std::array<Row, 13> kRows{{
     {12, 4, 0, "493H", "47BH"},
 }};
 
-// Seed 001 3.2.3, "Possible SUPI settings" per IBCNF; 4 (LISIM) is refused by this project.
+// INTERBUS manual 3.2.3, "Possible SUPI settings" per IBCNF; 4 (LISIM) is refused by this project.
 struct Allowed {
   int first;
   int last;
@@ -203,7 +203,7 @@ TEST(LayoutCommand, Example534Text) {
   EXPECT_EQ(r.err, "");
   const std::string q16 =
       "torque, speed or position by the control mode (rpm in speed control), as value x 65536, "
-      "signed 32-bit, high word first (seed 001 5.3.3, 5.3.4)\n";
+      "signed 32-bit, high word first (INTERBUS manual 5.3.3, 5.3.4)\n";
   EXPECT_EQ(r.out,
             "MC6000 servo: 405-SUPI = 11, 406-IBCNF = 2 (32-bit Q16 reference and actual, high "
             "word first), remote bus\n"
@@ -211,16 +211,16 @@ TEST(LayoutCommand, Example534Text) {
             "+ 1 word PCP\n"
             "on the ring: 4 words (3 process data + 1 PCP), remote bus\n"
             "master -> device (output image):\n"
-            "  word 1  control word, DRIVECOM Profile 20 (seed 001 5.3.1)\n"
+            "  word 1  control word, DRIVECOM Profile 20 (INTERBUS manual 5.3.1)\n"
             "  word 2  reference, Q16 high word: " +
                 q16 +
                 "  word 3  reference, Q16 low word\n"
                 "device -> master (input image):\n"
-                "  word 1  status word, DRIVECOM Profile 20 (seed 001 5.3.2)\n"
+                "  word 1  status word, DRIVECOM Profile 20 (INTERBUS manual 5.3.2)\n"
                 "  word 2  actual value, Q16 high word: " +
                 q16 +
                 "  word 3  actual value, Q16 low word\n"
-                "PCP channel: 1 word each way, PCP 2.0 parameter channel (seed 001 3.2.2)\n"
+                "PCP channel: 1 word each way, PCP 2.0 parameter channel (INTERBUS manual 3.2.2)\n"
                 "cycle time contribution: N += 8 bytes, M += 1: 13 * 8 + 1.5 * 1 = 105.5 bit times "
                 "= 211 us at 500 kbit/s, 52.75 us at 2 Mbit/s\n");
 }
@@ -255,21 +255,21 @@ TEST(LayoutCommand, Vf1000TextAndJson) {
   const Outcome r = layout(o);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out,
-            "VF1000 frequency inverter: three words, ID code 33BH (seed 001 3.1.2)\n"
+            "VF1000 frequency inverter: three words, ID code 33BH (INTERBUS manual 3.1.2)\n"
             "ID code 33BH: remote bus device, class 3H, type 2, in/out, 3 words process data, no "
             "PCP\n"
             "on the ring: 3 words (3 process data + 0 PCP), remote bus\n"
             "master -> device (output image):\n"
-            "  word 1  control word, DRIVECOM Profile 20 (seed 001 5.2.1)\n"
+            "  word 1  control word, DRIVECOM Profile 20 (INTERBUS manual 5.2.1)\n"
             "  word 2  frequency reference, 0.05 Hz per bit, absolute value; the direction comes "
-            "from control word bits 14 STL / 15 STR (seed 001 5.2.3)\n"
-            "  word 3  communication word to the inverter: the parameter channel (seed 001 "
+            "from control word bits 14 STL / 15 STR (INTERBUS manual 5.2.3)\n"
+            "  word 3  communication word to the inverter: the parameter channel (INTERBUS manual "
             "4.1.2.1)\n"
             "device -> master (input image):\n"
-            "  word 1  status word, DRIVECOM Profile 20 (seed 001 5.2.2)\n"
+            "  word 1  status word, DRIVECOM Profile 20 (INTERBUS manual 5.2.2)\n"
             "  word 2  actual frequency, 0.05 Hz per bit, signed (modelling choice: the manual "
             "does not define this word)\n"
-            "  word 3  communication word from the inverter (seed 001 4.1.2.2)\n"
+            "  word 3  communication word from the inverter (INTERBUS manual 4.1.2.2)\n"
             "PCP channel: none: parameters travel in the communication word (word 3)\n"
             "cycle time contribution: N += 6 bytes, M += 1: 13 * 6 + 1.5 * 1 = 79.5 bit times = "
             "159 us at 500 kbit/s, 39.75 us at 2 Mbit/s\n");
@@ -308,17 +308,17 @@ TEST(LayoutCommand, RefusedPairsExitTwoWithTheManualsRange) {
           std::string expected;
           if (supi < 0 || supi > 12) {
             expected =
-                "405-SUPI = " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)";
+                "405-SUPI = " + std::to_string(supi) + " is out of range (0..12, INTERBUS manual 3.2.2)";
           } else if (ibcnf < 0 || ibcnf > 4) {
             expected =
-                "406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, seed 001 3.2.3)";
+                "406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, INTERBUS manual 3.2.3)";
           } else if (ibcnf == 4) {
             expected = "406-IBCNF = 4 (modified LISIM software) is not supported";
           } else {
             const Allowed a = kAllowed[static_cast<std::size_t>(ibcnf)];
             expected = "406-IBCNF = " + std::to_string(ibcnf) + " needs 405-SUPI " +
                        std::to_string(a.first) + ".." + std::to_string(a.last) + ", not " +
-                       std::to_string(supi) + " (seed 001 3.2.3)";
+                       std::to_string(supi) + " (INTERBUS manual 3.2.3)";
           }
           EXPECT_EQ(r.err, "ibs layout: " + expected + "\n");
         }
@@ -351,7 +351,7 @@ TEST(LayoutCommand, BadOptionsExitTwo) {
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err,
             "ibs layout: --supi, --ibcnf and --bus apply to the mc6000 only; the VF1000 always "
-            "reports 33BH on the remote bus (seed 001 3.1.2)\n");
+            "reports 33BH on the remote bus (INTERBUS manual 3.1.2)\n");
   o = {};
   o.device = "mc7000";
   r = layout(o);
@@ -475,8 +475,8 @@ TEST(TimingCommand, BadDeviceSpecsNameTheArgument) {
   const std::vector<std::pair<std::string, std::string>> cases{
       {"mc6000", "the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]"},
       {"mc6000:", "the 405-SUPI is missing, expected mc6000:SUPI[:local|remote]"},
-      {"mc6000:13", "405-SUPI 13 is out of range (0..12, seed 001 3.2.2)"},
-      {"mc6000:-1", "405-SUPI -1 is out of range (0..12, seed 001 3.2.2)"},
+      {"mc6000:13", "405-SUPI 13 is out of range (0..12, INTERBUS manual 3.2.2)"},
+      {"mc6000:-1", "405-SUPI -1 is out of range (0..12, INTERBUS manual 3.2.2)"},
       {"mc6000:x", "405-SUPI 'x' is not a number"},
       {"mc6000:11x", "405-SUPI '11x' is not a number"},
       {"mc6000:11:far", "bus 'far' is neither local nor remote"},
@@ -568,7 +568,7 @@ TEST(BusCommandsWiring, LayoutOptionsReachTheCommand) {
   const Parsed refused_pair = parse_and_run({"layout", "mc6000", "--supi", "5", "--ibcnf", "2"});
   EXPECT_EQ(refused_pair.code, 2);
   EXPECT_EQ(refused_pair.err,
-            "ibs layout: 406-IBCNF = 2 needs 405-SUPI 10..12, not 5 (seed 001 3.2.3)\n");
+            "ibs layout: 406-IBCNF = 2 needs 405-SUPI 10..12, not 5 (INTERBUS manual 3.2.3)\n");
   EXPECT_EQ(parse_and_run({"layout", "vf1000"}).code, 0);
   EXPECT_THROW(parse_and_run({"layout", "mc6000", "--supi", "x", "--ibcnf", "2"}), CLI::ParseError);
 }
@@ -585,7 +585,7 @@ TEST(BusCommandsWiring, TimingOptionsReachTheCommand) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(
       bad.err,
-      "ibs timing: device 'mc6000:99': 405-SUPI 99 is out of range (0..12, seed 001 3.2.2)\n");
+      "ibs timing: device 'mc6000:99': 405-SUPI 99 is out of range (0..12, INTERBUS manual 3.2.2)\n");
 }
 
 TEST(BusCommandsWiring, OtherSubcommandsAreNotOurs) {
@@ -631,7 +631,7 @@ TEST(IbsBinary, LayoutAndTimingAsAUserRunsThem) {
   EXPECT_EQ(parse_json(r.out)["id_code"], "4DBH");
   r = run_ibs("layout mc6000 --supi 5 --ibcnf 2");
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.out, "ibs layout: 406-IBCNF = 2 needs 405-SUPI 10..12, not 5 (seed 001 3.2.3)\n");
+  EXPECT_EQ(r.out, "ibs layout: 406-IBCNF = 2 needs 405-SUPI 10..12, not 5 (INTERBUS manual 3.2.3)\n");
   r = run_ibs("layout vf1000");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("ID code 33BH"), std::string::npos) << r.out;
@@ -645,7 +645,7 @@ TEST(IbsBinary, LayoutAndTimingAsAUserRunsThem) {
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(
       r.out,
-      "ibs timing: device 'mc6000:13': 405-SUPI 13 is out of range (0..12, seed 001 3.2.2)\n");
+      "ibs timing: device 'mc6000:13': 405-SUPI 13 is out of range (0..12, INTERBUS manual 3.2.2)\n");
   EXPECT_EQ(run_ibs("layout mc6000 --supi x --ibcnf 2").code, 2);
 }
 

@@ -1,6 +1,6 @@
 // The chunked byte paths: Receiver::receive, Host::receive and AnswerDecoder::feed taking the
 // characters a port read returned together. A transport hands over whatever one read gave, so
-// each must do exactly what the characters one at a time do (seed 000, 3; 2.2; LB-D23), wherever
+// each must do exactly what the characters one at a time do (LUSTBUS manual 3; 2.2; LB-D23), wherever
 // the chunks are cut: every answer, counter, state and outcome is compared with the one-at-a-time
 // path over every cut of each stream and over random cuts.
 #include <gtest/gtest.h>

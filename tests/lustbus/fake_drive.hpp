@@ -1,6 +1,6 @@
 // A small fake drive behind the LUSTBUS Responder interface, with a handful of parameters of each
 // family — only what the tests need; the real drive tables live in the drive wings. It keeps the
-// 85-SIOF/SERR latch of seed 000, 6 and 9.2: power-on bit after start, every SELECT refused while
+// 85-SIOF/SERR latch of the LUSTBUS manual 6 and 9.2: power-on bit after start, every SELECT refused while
 // a bit is set, the cause of a refused SELECT entered, reading 85 clears the bits it returned.
 // It never allocates on the byte path.
 #pragma once

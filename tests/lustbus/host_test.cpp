@@ -173,7 +173,7 @@ TEST(Timing1022, TheHostWaitsTheWaitTimeOfTheExampleBeforeTheNextEepromSelect) {
 TEST(Timing1022, OnlyAnEepromSelectToTheSavingDeviceWaits) {
   auto mc = make_mc6000();
   mc.siof = 0;
-  mc.mc_eeprom_per_byte = 15ms;  // seed 000, 3: 15 ms a byte
+  mc.mc_eeprom_per_byte = 15ms;  // LUSTBUS manual 3: 15 ms a byte
   auto other = make_mc6000();
   other.siof = 0;
   other.mc_eeprom_per_byte = 15ms;

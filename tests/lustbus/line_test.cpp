@@ -1,4 +1,4 @@
-// The multi-drop line and the timing tables of seed 000, 10.1 reproduced in simulated time with
+// The multi-drop line and the timing tables of the LUSTBUS manual 10.1 reproduced in simulated time with
 // 10 bits per character (LB-E10), within 10 %.
 #include <gtest/gtest.h>
 

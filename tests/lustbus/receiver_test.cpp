@@ -196,7 +196,7 @@ TEST_F(ReceiverTest, EotResetsAFragmentAtEveryPosition) {
   }
 }
 
-// Seed 000 3: "strictly as a state-machine without timeout monitoring" -- the device as the seed
+// LUSTBUS manual 3: "strictly as a state-machine without timeout monitoring" -- the device as the seed
 // describes it, with the fragment timeout off.
 TEST_F(ReceiverTest, WithTheFragmentTimeoutOffItWaitsForEver) {
   rx.set_inter_char_timeout(Duration::zero());

@@ -1,6 +1,6 @@
-// Every telegram example of seed 000 (6.1.1, 6.2.2, 6.2.3, 7.1.1, 7.2.1, 11.6.4) byte for byte
+// Every telegram example of the LUSTBUS manual (6.1.1, 6.2.2, 6.2.3, 7.1.1, 7.2.1, 11.6.4) byte for byte
 // on both sides, with the BCC filled in by the rule of 2.2, and the errata decisions pinned
-// (docs/errata.md, "LUSTBUS (seed 000)").
+// (docs/errata.md, "LUSTBUS (LUSTBUS manual)").
 #include <gtest/gtest.h>
 
 #include "ibs/lustbus/telegram.hpp"

@@ -1,4 +1,4 @@
-// The drive family on one LUSTBUS (seed 000, 1: "Both device series can be operated in a network,
+// The drive family on one LUSTBUS (LUSTBUS manual 1: "Both device series can be operated in a network,
 // since the most important parameters for network control are numerically compatible (address,
 // transmission rate, device type)"; 5.2: 81..85 and 91 "can be communicated with via the same
 // CODE-String"): the VF1000 and the MC6000 wings side by side, the same telegram to each. And
@@ -41,7 +41,7 @@ struct Family {
   }
 };
 
-// Seed 000, 1 and 4 (decision LB-E18): 81 holds the rate in baud on both drives, so one number
+// LUSTBUS manual 1 and 4 (decision LB-E18): 81 holds the rate in baud on both drives, so one number
 // written with one CODE (00081, 5.2) sets one rate on either; each takes the steps of 4 up to its
 // own highest rate ("2400 Baud to 9600 Baud for frequency Inverters, and from 2400 Baud to 57600
 // Baud for Servocontrollers"), and a number that is no step, or above the drive's range, is an
@@ -80,7 +80,7 @@ TEST(NumericallyCompatible, TheSameNumberIn81SetsTheSameRateOnEitherDrive) {
   EXPECT_FALSE(ibs::drive::is_baud_step(19200, 9600));
 }
 
-// Seed 000, 11.5: "The Baudrate of the devices is not altered immediately after each change.
+// LUSTBUS manual 11.5: "The Baudrate of the devices is not altered immediately after each change.
 // Instead, the change first becomes active once the device is restarted." Each drive takes 4800
 // with an ACK at the old rate, goes on at 9600 until its restart, then answers at 4800 only (a
 // host at 9600 hears nothing, 9.1). "The servocontroller has the possibility to activate a new

@@ -1,4 +1,4 @@
-// No parameter of the emulated drives is ever half-written (seed 000, 3): every telegram kind
+// No parameter of the emulated drives is ever half-written (LUSTBUS manual 3): every telegram kind
 // against the real VF1000 and MC6000 wings, each character on the line lost, replaced by EOT,
 // garbage, a garbled character or a NUL, or a bit flipped (a wrong BCC at the BCC). The value
 // is old or new, exactly; an ACK means new; an answer's value is the true one; afterwards (85

@@ -1,4 +1,4 @@
-// The MC6000 wing as a LUSTBUS device (seed 000): the seed's telegrams byte-exact against it, the
+// The MC6000 wing as a LUSTBUS device (LUSTBUS manual): the seed's telegrams byte-exact against it, the
 // shared CODEs of 5.2, 85-SERR, EEPROM in the background with 04H (3, 10.2.2), the description
 // (11.2), 4-PROG, the download handshake on 80-SLOAD (11.4), the watchdog (5.2).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The MC6000's procedures of seed 000, 11 (download, substitution texts, PosMOD1) as its wing
+// The MC6000's procedures of the LUSTBUS manual 11 (download, substitution texts, PosMOD1) as its wing
 // describes them to a host, for the wings' LUSTBUS tests that run them (ibs::mc6000_lustbus).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The MC6000's special functions over LUSTBUS (seed 000, 11): the description's service
+// The MC6000's special functions over LUSTBUS (LUSTBUS manual 11): the description's service
 // structure with binary elements that are frame characters (11.2.1, LB-D10), the value
 // substitution texts of 11.3 with their NAK rules, the PosMOD1 channel of 11.6 with the
 // examples of 11.6.4 byte-exact, and the reaction times of 10.

@@ -1,4 +1,4 @@
-// The VF1000 wing as a LUSTBUS device (seed 000): the seed's telegrams byte-exact against it, the
+// The VF1000 wing as a LUSTBUS device (LUSTBUS manual): the seed's telegrams byte-exact against it, the
 // 85-SIOF latch (6, 9.2), EEPROM timing (3, 10 exception 4), the description (11.1), 71-PROG,
 // 11-STAT's reset (8.1.1) and the watchdog (5.2), with the host on the simulated line.
 #include "ibs/devices/vf1000/lustbus_device.hpp"
@@ -70,7 +70,7 @@ TEST(Vf1000Lustbus, SeedExamples622And6111ByteExact) {
   EXPECT_EQ(f.dev.drive_state(), ibs::drivecom::State::ready);
 }
 
-// Seed 000, 2.4.1: "Devices No.: For VF1000, always 1"; yet 2.4.1's own C example builds "000%02u"
+// LUSTBUS manual 2.4.1: "Devices No.: For VF1000, always 1"; yet 2.4.1's own C example builds "000%02u"
 // (device digit 0), 7.1.1's telegram list and 5.2's shared CODEs use 000xx, and 11.1 says that for
 // basis parameters "the device number in the telegram CODE ... can contain a 0 (general for basis
 // parameter) as well as the specific device number" (LB-E19): the inverter answers a basis
@@ -199,7 +199,7 @@ TEST(Vf1000Lustbus, EepromAnswersOnlyOnceStored) {
   EXPECT_EQ(f.send(sel(5, 105, "0010")).due, 122ms);  // FSSIO, stopped: into EEPROM too
 }
 
-// 11.1: specifier 1, 26 characters; 45-VB2 as seed 001's 4.1.3.3.1 gives it completely.
+// 11.1: specifier 1, 26 characters; 45-VB2 as the INTERBUS manual's 4.1.3.3.1 gives it completely.
 TEST(Vf1000Lustbus, DescriptionOf111) {
   Vf dev;
   Bus bus;
@@ -234,15 +234,15 @@ TEST(Vf1000Lustbus, Prog1LoadsFactoryDefaults) {
   EXPECT_EQ(dev.value(pnr::kProg), 0);
 }
 
-// Seed 001, 3.1.1: the INTERBUS software package changes the standard factory values of 1-MODE
-// (4), 2-CSEL (5) and 4-FSSEL (25); a drive on LUSTBUS alone (seed 000, 4.1: one device, address 0)
+// INTERBUS manual 3.1.1: the INTERBUS software package changes the standard factory values of 1-MODE
+// (4), 2-CSEL (5) and 4-FSSEL (25); a drive on LUSTBUS alone (LUSTBUS manual 4.1: one device, address 0)
 // has the standard ones, which no seed lists: 0, 0, 0 (VF-E20). Its description's basis value
 // (11.1) and 71-PROG say the same; every other value is the table's.
 TEST(Vf1000Lustbus, ADriveOnLustbusAloneHasTheStandardFactoryValues) {
   struct Row {
     std::uint16_t number;
     ibs::Word standard;
-    ibs::Word interbus;  // seed 001, 3.1.1
+    ibs::Word interbus;  // INTERBUS manual 3.1.1
   };
   const Row rows[] = {{pnr::kMode, 0, 4}, {pnr::kCsel, 0, 5}, {pnr::kFssel, 0, 25}, {pnr::kFmax1, 1000, 1000},
                       {pnr::kSouta, 0, 0}, {pnr::kSioc, 9600, 9600}};
@@ -268,7 +268,7 @@ TEST(Vf1000Lustbus, ADriveOnLustbusAloneHasTheStandardFactoryValues) {
   EXPECT_EQ(dev.eeprom_value(pnr::kMode), 0);
 }
 
-// Seed 000, 4: "SMARTDRIVE Inverters with the RS-485 interface must additionally have the
+// LUSTBUS manual 4: "SMARTDRIVE Inverters with the RS-485 interface must additionally have the
 // parameter 61-SOUTA = 7 set. This activates the data direction switch of the internal interface
 // software driver." VF-E20: on RS-485 the drive hears nothing unless 61-SOUTA = 7 (ENQUIRY and
 // SELECT alike, so nothing it was sent takes effect); on a line without the switch SOUTA does not
@@ -312,7 +312,7 @@ TEST(Vf1000Lustbus, WatchdogAndStatReset) {
   Fresh f;
   f.control_on_sio();
   Time t = f.t + 1s;
-  // A reference above 0 Hz: at 0 Hz the power stage would be off (seed 001 5.2.3, VF-E19).
+  // A reference above 0 Hz: at 0 Hz the power stage would be off (INTERBUS manual 5.2.3, VF-E19).
   ASSERT_EQ(f.send(sel(5, 105, "0064")).answer, (Bytes{}(0x45)(6).v));
   t = f.t + 1s;
   // SIOT is an EEPROM parameter: set before the start (40H while running).

@@ -1,5 +1,5 @@
 // The MC6000's layouts on the bus: every 405-SUPI row's ID code decodes to its words, PCP width
-// and bus (seed 001, 3.2.2, the ID-code rules of interbus/id_code.hpp), and a Q16 reference sits in
+// and bus (INTERBUS manual 3.2.2, the ID-code rules of interbus/id_code.hpp), and a Q16 reference sits in
 // the process image as big-endian bytes (5.3.4).
 #include <gtest/gtest.h>
 
@@ -64,7 +64,7 @@ TEST(IdCode, SupiLayoutsCarryCodesThatDecodeToTheLayout) {
 }
 
 TEST(ProcessImage, Mc6000ReferenceOfExample534ReadsAsBigEndianBytes) {
-  // Seed 001 5.3.4: control word 000FH, reference 2500.25 rpm = 09C44000H, Q16 high word first.
+  // INTERBUS manual 5.3.4: control word 000FH, reference 2500.25 rpm = 09C44000H, Q16 high word first.
   const std::vector<DeviceSpec> ring{{"mc6000", IdCode{0x4DB}, {}}, {"vf1000", IdCode{0x33B}, {}}};
   const BusConfig c = make_bus_config(ring);
   ProcessImage p;

@@ -137,7 +137,7 @@ TEST(McDictionary, SlotsAreTheTablesPositions) {
   EXPECT_EQ(kDictionary.slot_of(od::Role::save), od::kNoSlot);
 }
 
-// Seed 001 3.2.1's table: the eleven parameters the servo changes when it finds its INTERBUS card
+// INTERBUS manual 3.2.1's table: the eleven parameters the servo changes when it finds its INTERBUS card
 // (the dictionary's defaults), and code 0 without the card (the overlay, MC-D10) -- the same as
 // kOptionDefaults, which the core applies today.
 TEST(McDictionary, OptionDefaultsAre3_2_1) {
@@ -218,7 +218,7 @@ TEST(McDictionary, NamedNumbersAreTheirEntries) {
 }
 
 // What the PCP table has no column for, the dictionary says: when 405/406 and 81 act (at power-on,
-// seed 001 3.2.2; 11.5), and which values a data set carries (11.4, the activity area).
+// INTERBUS manual 3.2.2; 11.5), and which values a data set carries (11.4, the activity area).
 TEST(McDictionary, KnowsWhatTheTableDidNotSay) {
   EXPECT_EQ(kDictionary.find(kSupi)->effect, od::Effect::at_restart);
   EXPECT_EQ(kDictionary.find(kIbcnf)->effect, od::Effect::at_restart);

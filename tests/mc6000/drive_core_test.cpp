@@ -96,7 +96,7 @@ class Servo {
   }
   void set_control_word(Word w) { pd_m2s_[0] = w; }
   void set_reference(Word rpm) { pd_m2s_[1] = rpm; }  // IBCNF 1: a 16-bit speed in rpm
-  // Ring cycles that never reach the servo: its bus watchdog runs (seed 001, 3.2.4).
+  // Ring cycles that never reach the servo: its bus watchdog runs (INTERBUS manual 3.2.4).
   void silent(Duration d) {
     const Time end = now_ + d;
     while (now_ < end) {
@@ -105,7 +105,7 @@ class Servo {
     }
   }
   // A LUSTBUS SELECT and its answer as it went out: ADR ACK, ADR NAK, the ADR alone of a cut ACK
-  // (seed 000, 8.1.2), or nothing.
+  // (LUSTBUS manual 8.1.2), or nothing.
   std::vector<std::uint8_t> select_answer(std::uint16_t number, std::uint32_t raw) {
     char hex[16];
     std::snprintf(hex, sizeof hex, "%X", raw);
@@ -147,7 +147,7 @@ class Servo {
  private:
   static ibs::devices::Mc6000DeviceConfig interbus_config() {
     ibs::devices::Mc6000DeviceConfig c;
-    c.supi = 9;  // 2 process-data words, 2 PCP words (seed 001, 3.2.2)
+    c.supi = 9;  // 2 process-data words, 2 PCP words (INTERBUS manual 3.2.2)
     c.ibcnf = 1;
     c.pcp_latency = pcp::LatencyModel::immediate();
     return c;
@@ -222,13 +222,13 @@ TEST(Mc6000Faces, ReadsAndWritesAlike) {
     EXPECT_TRUE(s.write(f, 83, 7).ok) << name(f);
     EXPECT_EQ(s.read(f, 83).raw, 7U) << name(f);
     EXPECT_EQ(s.read(f, mc::kSerr).raw, 0U) << name(f);
-    // Seed 000 6.1 note: a read of a missing parameter is refused and enters nothing.
+    // LUSTBUS manual 6.1 note: a read of a missing parameter is refused and enters nothing.
     EXPECT_FALSE(s.read(f, 999).ok) << name(f);
     EXPECT_EQ(s.core().parameters().serr(), 0U) << name(f);
   }
 }
 
-// Seed 000 9.2: each refusal enters its cause; while a bit is set every write is refused and
+// LUSTBUS manual 9.2: each refusal enters its cause; while a bit is set every write is refused and
 // enters nothing (MC-D3); reading 85-SERR returns the bits and clears them.
 TEST(Mc6000Faces, EachRefusalEntersItsSerrBitThroughEitherFace) {
   struct Case {
@@ -259,7 +259,7 @@ TEST(Mc6000Faces, EachRefusalEntersItsSerrBitThroughEitherFace) {
   }
 }
 
-// Seed 000 6: "After every new start of the device, the bit for flagging power on ... is set".
+// LUSTBUS manual 6: "After every new start of the device, the bit for flagging power on ... is set".
 TEST(Mc6000Faces, PowerOnBitRefusesTheFirstWriteOnEitherFace) {
   for (const Face f : kFaces) {
     Servo s(DeviceStart::initialised);
@@ -272,7 +272,7 @@ TEST(Mc6000Faces, PowerOnBitRefusesTheFirstWriteOnEitherFace) {
   }
 }
 
-// Seed 000 3, 10.2.2: RAM at once, the EEPROM copy 15 ms per byte later; another EEPROM write
+// LUSTBUS manual 3, 10.2.2: RAM at once, the EEPROM copy 15 ms per byte later; another EEPROM write
 // meanwhile is refused with 04H.
 TEST(Mc6000Faces, EepromSaveTakesFifteenMsPerByteOnEitherFace) {
   for (const Face f : kFaces) {
@@ -296,7 +296,7 @@ TEST(Mc6000Faces, EepromSaveTakesFifteenMsPerByteOnEitherFace) {
   }
 }
 
-// Seed 000 10 exception 1 (MC-D1): the answer to 4-PROG = 1 comes once every parameter is back at
+// LUSTBUS manual 10 exception 1 (MC-D1): the answer to 4-PROG = 1 comes once every parameter is back at
 // its default, 9.9 s after the command on either bus -- within the seed's "up to 10 seconds".
 TEST(Mc6000Faces, Prog1AnswersAfterTheSameTimeOnEitherFace) {
   for (const Face f : kFaces) {
@@ -314,7 +314,7 @@ TEST(Mc6000Faces, Prog1AnswersAfterTheSameTimeOnEitherFace) {
   }
 }
 
-// Seed 000 11.4 (MC-D2): the download of the CardWriteable parameters, tested 200 ms after
+// LUSTBUS manual 11.4 (MC-D2): the download of the CardWriteable parameters, tested 200 ms after
 // 80-SLOAD = -2 on either bus; a rejected dataset names its first invalid parameter and the old
 // one comes back; an accepted one goes to EEPROM.
 TEST(Mc6000Faces, DownloadResultAndTimingAlike) {
@@ -347,7 +347,7 @@ TEST(Mc6000Faces, DownloadResultAndTimingAlike) {
   }
 }
 
-// Seed 000 5.2 and 8.1.2 / seed 001 5.1.2: the serial watchdog's fault, and its reset through
+// LUSTBUS manual 5.2 and 8.1.2 / INTERBUS manual 5.1.2: the serial watchdog's fault, and its reset through
 // either face -- 416-SCTL1 bit 7 over LUSTBUS, control word bit 7 over INTERBUS, each from the
 // control location (MC-D4) -- ends in the same core call: the cause cleared, DRIVECOM out of FAULT.
 TEST(Mc6000Faces, FaultResetThroughEitherFace) {
@@ -391,7 +391,7 @@ TEST(Mc6000Faces, FaultResetThroughEitherFace) {
   }
 }
 
-// Seed 000 7.2 step 2, seed 001 3.2.1 (MC-D4): with both faces the INTERBUS face samples the
+// LUSTBUS manual 7.2 step 2, INTERBUS manual 3.2.1 (MC-D4): with both faces the INTERBUS face samples the
 // drive; 402-CLSEL decides whose commands it follows -- the fieldbus's control word with the
 // factory OPT1, 416-SCTL1 with SIO.
 TEST(Mc6000Faces, ControlLocationDecidesWhichFaceCommands) {
@@ -417,9 +417,9 @@ TEST(Mc6000Faces, ControlLocationDecidesWhichFaceCommands) {
   EXPECT_EQ(s.core().state(), State::ready);
 }
 
-// Seed 001, 4.2: "When the servocontroller parameters have been changed, parameter 15-PLRDY should
+// INTERBUS manual 4.2: "When the servocontroller parameters have been changed, parameter 15-PLRDY should
 // be set to 1 to trigger recalculation of the controller parameters and set the servocontroller
-// to 'READY' mode"; seed 000, 11.2.1, InitControl (0040H): "If a parameter is overwritten with the
+// to 'READY' mode"; LUSTBUS manual 11.2.1, InitControl (0040H): "If a parameter is overwritten with the
 // attribute, then the [servo] will register a[n] ... initialization because it must calculate its
 // initialization value anew" (MC-D11). The same through either face, in the core: a changed
 // 300-CFCON (InitControl) takes the servo out of READY mode -- 15-PLRDY reads 0 on both faces and
@@ -434,7 +434,7 @@ TEST(Mc6000Faces, Plrdy1RecalculatesAndSetsReadyModeThroughEitherFace) {
     EXPECT_EQ(s.read(f, mc::kPlrdy).raw, 1U) << name(f) << ": READY mode from the start";
     ASSERT_TRUE(s.write(f, mc::kCfcon, mc::kCfconScon).ok) << name(f);
     EXPECT_EQ(s.read(other, mc::kPlrdy).raw, 1U) << name(f) << ": its own value registers nothing";
-    s.idle(40ms);  // the EEPROM save of the one before (seed 000, 3)
+    s.idle(40ms);  // the EEPROM save of the one before (LUSTBUS manual 3)
     ASSERT_TRUE(s.write(f, mc::kCfcon, 1).ok) << name(f);  // another control type
     EXPECT_EQ(s.read(f, mc::kPlrdy).raw, 0U) << name(f);
     EXPECT_EQ(s.read(other, mc::kPlrdy).raw, 0U) << name(f);
@@ -486,8 +486,8 @@ ibs::devices::PlantEvent event(ibs::devices::PlantEvent::Kind k) {
 using Kind = ibs::devices::PlantEvent::Kind;
 
 TEST(Mc6000Events, ADeviceFaultWithItsCauseShowsOnBothFaces) {
-  // Seed 000 8: the servo shows an error in its status word on every bus; 408-IBSTA mirrors it
-  // for LUSTBUS (seed 001 4.2.1). The cause is its error number, 16 = E-OP1 (seed 001 3.2.4).
+  // LUSTBUS manual 8: the servo shows an error in its status word on every bus; 408-IBSTA mirrors it
+  // for LUSTBUS (INTERBUS manual 4.2.1). The cause is its error number, 16 = E-OP1 (INTERBUS manual 3.2.4).
   Servo s;
   auto e = event(Kind::fault);
   e.cause = 16;
@@ -503,7 +503,7 @@ TEST(Mc6000Events, ADeviceFaultWithItsCauseShowsOnBothFaces) {
 }
 
 TEST(Mc6000Events, InputsShowInStatusBits14And15WhileTheirSelectorIsRopt1) {
-  // Seed 001 5.3.2: "Bit 14 reflects the actual state of input IS00 when parameter 439-FIS00 =
+  // INTERBUS manual 5.3.2: "Bit 14 reflects the actual state of input IS00 when parameter 439-FIS00 =
   // ROPT1", bit 15 IS01 with 440-FIS01; the seeds give the inputs no other effect.
   Servo s;
   auto in = event(Kind::input);
@@ -548,7 +548,7 @@ TEST(Mc6000Events, ALoadTorqueIsHeldByTheSpeedLoop) {
 
 TEST(Mc6000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
   // MC-D6: mains lost = the servo off (a module error, no LUSTBUS answer); back = a power-on
-  // with the 85-SERR power-on bit (seed 000 9.2).
+  // with the 85-SERR power-on bit (LUSTBUS manual 9.2).
   Servo s;
   s.read(Face::lustbus, mc::kSerr);  // clears the power-on bit of the start
   ASSERT_TRUE(s.interbus().apply_event(event(Kind::mains_off), s.now()));
@@ -564,9 +564,9 @@ TEST(Mc6000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
 }
 
 TEST(Mc6000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
-  // Seed 000, 10 exception 2: "While a SMARTCARD is being read in, no communications with the
+  // LUSTBUS manual 10 exception 2: "While a SMARTCARD is being read in, no communications with the
   // device via the LUSTBUS is possible. This condition can last up to 10 seconds, depending on
-  // the device" -- "device" is either series (000, 1). Seed 001 says for the INTERBUS only, in
+  // the device" -- "device" is either series (000, 1). INTERBUS manual says for the INTERBUS only, in
   // the VF1000's 6.1, "While the SMARTCARD is being read and written to bus operation is
   // disabled"; it has no MC6000 section that says otherwise. Decision MC-D9, as VF-E21: for the
   // operation's time the INTERBUS face shows a module error and takes no words (nor PCP frames),
@@ -582,7 +582,7 @@ TEST(Mc6000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
     Servo s;
     ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);  // the power-on bit of the start read
     ASSERT_TRUE(s.write(Face::pcp, 83, 1234).ok);
-    ASSERT_TRUE(s.write(Face::lustbus, 409, 100).ok);  // 409-BUTWD: 100 ms (seed 001, 3.2.4)
+    ASSERT_TRUE(s.write(Face::lustbus, 409, 100).ok);  // 409-BUTWD: 100 ms (INTERBUS manual 3.2.4)
     s.idle(40ms);                                       // its EEPROM save
     auto card = event(row.kind);
     card.value = std::chrono::duration<double>(row.time).count();
@@ -610,7 +610,7 @@ TEST(Mc6000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
   }
 }
 
-// Seed 001, 3.2.1 "Modified Factory Default": "The MC6000 servocontroller detects the INTERBUS
+// INTERBUS manual 3.2.1 "Modified Factory Default": "The MC6000 servocontroller detects the INTERBUS
 // card automatically on power-on. The first time it is detected the following parameters are
 // changed in the MC6000 for INTERBUS operation" (the table), "After the INTERBUS card has been
 // withdrawn from the MC6000 these parameters are reset to their factory defaults the next time
@@ -655,7 +655,7 @@ TEST(Mc6000Events, WithdrawingTheInterbusCardRestoresFactoryDefaultsAtTheNextPow
   ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
   for (const OptionRow& row : kOptionTable) {
     ASSERT_TRUE(s.write(Face::lustbus, row.number, row.user).ok) << row.name;
-    s.idle(20ms);  // the EEPROM save of one byte (seed 000, 3)
+    s.idle(20ms);  // the EEPROM save of one byte (LUSTBUS manual 3)
   }
   // Withdrawn: the card is gone at once (no INTERBUS answer: a module error, MC-D10); the serial
   // interface is the servo's own; the values change only at the next power-on.
@@ -718,7 +718,7 @@ TEST(Mc6000Events, ACardWithdrawnAndPutBackBeforeAPowerOnChangesNothing) {
 
 TEST(Mc6000Events, WithTheCardWithdrawnNoCycleReachesTheServo) {
   // MC-D10: the card is physically gone: the INTERBUS face shows a module error and takes no
-  // words; the servo runs on as last commanded, and its bus watchdog 409-BUTWD (seed 001, 3.2.4)
+  // words; the servo runs on as last commanded, and its bus watchdog 409-BUTWD (INTERBUS manual 3.2.4)
   // sees no cycle: error 16 E-OP1 once it runs out.
   Servo s;
   ASSERT_TRUE(s.read(Face::lustbus, mc::kSerr).ok);
@@ -737,12 +737,12 @@ TEST(Mc6000Events, WithTheCardWithdrawnNoCycleReachesTheServo) {
   EXPECT_EQ(s.interbus().error_number(), mc::kWatchdogError);
 }
 
-// --- Programmable error reactions (seed 000, 5.2, 8, 8.1.2; docs/errata.md MC-D7) -------------
+// --- Programmable error reactions (LUSTBUS manual 5.2, 8, 8.1.2; docs/errata.md MC-D7) -------------
 
 namespace {
 
 // The servo running at 1000 rpm under the control of face `f`'s interface: the fieldbus's control
-// word for PCP, 416-SCTL1 / 428-RSIO with 402-CLSEL = SIO for LUSTBUS (seed 000, 7.2.1). 512-REDEV
+// word for PCP, 416-SCTL1 / 428-RSIO with 402-CLSEL = SIO for LUSTBUS (LUSTBUS manual 7.2.1). 512-REDEV
 // (the reaction to a device fault numbered other than 16) is programmed to `reaction` through the
 // same face, at standstill (an EEPROM value).
 void run_with_reaction(Servo& s, Face f, std::uint32_t reaction) {
@@ -772,12 +772,12 @@ struct ReactionRow {
   std::uint32_t reaction;
   const char* name;
   State during;       // 2 ms after the fault came, at 1000 rpm
-  bool alarm;         // status word bit 7 (seed 001, 5.1.3) while the cause lasts
+  bool alarm;         // status word bit 7 (INTERBUS manual 5.1.3) while the cause lasts
   bool brakes;        // the motor is braked (torque against the motion) rather than coasting
   AfterReset reset;   // the cause gone, the fault reset given through the face
 };
 
-// Seed 000, 8: "The error reaction of the MasterControl servocontroller is programmable, in five
+// LUSTBUS manual 8: "The error reaction of the MasterControl servocontroller is programmable, in five
 // steps, for every error"; 8.1.2 names step 5, RESET; steps 1-4 are MC-D7's decision.
 constexpr ReactionRow kReactionTable[] = {
     {1, "WARN", State::enabled, true, false, AfterReset::runs_on},
@@ -884,7 +884,7 @@ TEST(Mc6000Reactions, FactoryReactionIsStopForEveryError) {
 }
 
 TEST(Mc6000Reactions, EachErrorTakesTheReactionOfItsOwnParameter) {
-  // Seed 000 5.2: the watchdog's reaction "via parameter"; seed 001 3.2.4: the bus watchdog is
+  // LUSTBUS manual 5.2: the watchdog's reaction "via parameter"; INTERBUS manual 3.2.4: the bus watchdog is
   // error 16 E-OP1. 510-REOP1: error 16, from the bus watchdog or as a device fault's number;
   // 511-RESIO: the serial watchdog; 512-REDEV: every other device fault (MC-D7).
   struct Row {
@@ -936,7 +936,7 @@ TEST(Mc6000Reactions, EachErrorTakesTheReactionOfItsOwnParameter) {
 }
 
 TEST(Mc6000Reactions, OnlyTheFiveStepsAreTaken) {
-  // Seed 000 8: "five steps", 1..5 (5 is RESET, 8.1.2); anything else is an invalid value, 80H
+  // LUSTBUS manual 8: "five steps", 1..5 (5 is RESET, 8.1.2); anything else is an invalid value, 80H
   // (9.2), through either face.
   for (const Face f : kFaces) {
     for (const std::uint16_t n : {mc::kReop1, mc::kResio, mc::kRedev}) {
@@ -952,10 +952,10 @@ TEST(Mc6000Reactions, OnlyTheFiveStepsAreTaken) {
   }
 }
 
-// --- Control word bits 12-15 (seed 001, 5.3.1), status word bits 12-15 (5.3.2) -----------------
+// --- Control word bits 12-15 (INTERBUS manual 5.3.1), status word bits 12-15 (5.3.2) -----------------
 
 TEST(Mc6000Events, ControlBits14And15SetOutputsOs00AndOs01WhileTheirSelectorIsRopt1) {
-  // Seed 001 5.3.1: "Bit 14 controls the reference state of output OS00 directly when parameter
+  // INTERBUS manual 5.3.1: "Bit 14 controls the reference state of output OS00 directly when parameter
   // 445-FOS00 = ROPT1", bit 15 OS01 with 446-FOS01; bits 11-13 "Unoccupied". 5.3.2: status bits
   // 12 and 13 "Reserved".
   struct Row {

@@ -64,13 +64,13 @@ TEST(Mc6000LayoutError, EveryPairGivesTheThrowingFormsLayoutOrItsMessage) {
 
 TEST(Mc6000LayoutError, TheMessagesNameTheValueAndTheRule) {
   EXPECT_EQ(try_make_layout(13, 2).error().message,
-            "405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)");
+            "405-SUPI = 13 is out of range (0..12, INTERBUS manual 3.2.2)");
   EXPECT_EQ(try_make_layout(11, 5).error().message,
-            "406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)");
+            "406-IBCNF = 5 is out of range (0..4, INTERBUS manual 3.2.3)");
   EXPECT_EQ(try_make_layout(9, 4).error().message,
             "406-IBCNF = 4 (modified LISIM software) is not supported");
   EXPECT_EQ(try_make_layout(7, 2).error().message,
-            "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
+            "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual 3.2.3)");
 }
 
 TEST(Mc6000LayoutError, Supi0IsAcceptedWithAnyIbcnfBelowLisim) {

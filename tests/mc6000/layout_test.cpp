@@ -1,4 +1,4 @@
-// Seed 001, 3.2.2 and 3.2.3: which SUPI/IBCNF pairs the MC6000 accepts and how the words read.
+// INTERBUS manual 3.2.2 and 3.2.3: which SUPI/IBCNF pairs the MC6000 accepts and how the words read.
 #include <gtest/gtest.h>
 
 #include "ibs/devices/mc6000/layout.hpp"
@@ -25,7 +25,7 @@ TEST(Mc6000Layout, RefusalsSayWhat) {
     make_layout(7, 2);
     FAIL();
   } catch (const LayoutError& e) {
-    EXPECT_STREQ(e.what(), "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
+    EXPECT_STREQ(e.what(), "406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual 3.2.3)");
   }
   try {
     make_layout(9, 4);
@@ -39,7 +39,7 @@ TEST(Mc6000Layout, RefusalsSayWhat) {
 }
 
 TEST(Mc6000Layout, ErratumPd6Ibcnf4LisimIsRefusedEvenWithItsSupi9) {
-  // Seed 001, 3.2.3: IBCNF 4 is "Modificated software LISIM" with SUPI 9; no section gives the
+  // INTERBUS manual 3.2.3: IBCNF 4 is "Modificated software LISIM" with SUPI 9; no section gives the
   // words' meaning, so ibs refuses it (erratum PD6) with every SUPI, its own 9 included.
   EXPECT_EQ(allowed_supi(Ibcnf::lisim).first, 9);
   EXPECT_EQ(allowed_supi(Ibcnf::lisim).last, 9);

@@ -1,4 +1,4 @@
-// The MC6000 parameter model: indices (seed 001, 4.2), the named parameters, the store.
+// The MC6000 parameter model: indices (INTERBUS manual 4.2), the named parameters, the store.
 #include "ibs/devices/mc6000/parameters.hpp"
 
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@ namespace {
 using namespace ibs::devices::mc6000;
 
 TEST(Mc6000Parameters, IndexIsNumberPlus5C00) {
-  EXPECT_EQ(index_of(407), 0x5D97);  // seed 001 4.2.1: 407-IBSTU at 5D97H
+  EXPECT_EQ(index_of(407), 0x5D97);  // INTERBUS manual 4.2.1: 407-IBSTU at 5D97H
   EXPECT_EQ(index_of(408), 0x5D98);
   EXPECT_EQ(ParameterRef::number(407), ParameterRef::object(0x5D97));
   EXPECT_EQ(number_of(0x5D97), 407);
@@ -28,7 +28,7 @@ TEST(Mc6000Parameters, EveryParameterTheSeedsNameIsThere) {
                                          108, 300, 402, 405, 406, 407, 408, 409, 416, 417, 418,
                                          419, 420, 428, 439, 440, 443, 444, 445, 446};
   for (const std::uint16_t n : named) EXPECT_NE(find_parameter(kParameters, n), nullptr) << n;
-  // Seed 000 8 makes each error's reaction programmable without naming the parameters: the
+  // LUSTBUS manual 8 makes each error's reaction programmable without naming the parameters: the
   // table's own three (docs/errata.md MC-D7), and no others beside the named ones.
   const std::vector<std::uint16_t> chosen{kReop1, kResio, kRedev};
   for (const std::uint16_t n : chosen) EXPECT_NE(find_parameter(kParameters, n), nullptr) << n;
@@ -38,21 +38,21 @@ TEST(Mc6000Parameters, EveryParameterTheSeedsNameIsThere) {
 
 TEST(Mc6000Parameters, DefaultsFromTheSeeds) {
   auto def = [](std::uint16_t n) { return find_parameter(kParameters, n)->default_value; };
-  EXPECT_EQ(def(402), kClselOpt1);  // seed 001 3.2.1
+  EXPECT_EQ(def(402), kClselOpt1);  // INTERBUS manual 3.2.1
   EXPECT_EQ(def(417), kRsslRcon);
   EXPECT_EQ(def(418), kRsslRcon);
   EXPECT_EQ(def(419), kRsslOpt1);
   EXPECT_EQ(def(420), kRsslRcon);
   EXPECT_EQ(def(443), kFunctionOff);
   EXPECT_EQ(def(444), kFunctionOff);
-  EXPECT_EQ(def(406), 2);    // seed 001 5.3.3: Q16 reference by default
-  EXPECT_EQ(def(81), 9600);  // seed 000 4
-  EXPECT_EQ(def(84), 0);     // seed 000 1: no watchdog by factory
+  EXPECT_EQ(def(406), 2);    // INTERBUS manual 5.3.3: Q16 reference by default
+  EXPECT_EQ(def(81), 9600);  // LUSTBUS manual 4
+  EXPECT_EQ(def(84), 0);     // LUSTBUS manual 1: no watchdog by factory
   EXPECT_EQ(def(300), kCfconScon);
 }
 
 TEST(Mc6000Parameters, Errata407IsTheWritableControlWord408TheStatusWord) {
-  // Seed 001 4.2.1 titles both "DRIVECOM status word"; 407's category is "RAM control value".
+  // INTERBUS manual 4.2.1 titles both "DRIVECOM status word"; 407's category is "RAM control value".
   const ParameterInfo* ibstu = find_parameter(kParameters, kIbstu);
   const ParameterInfo* ibsta = find_parameter(kParameters, kIbsta);
   EXPECT_TRUE(ibstu->writable());
@@ -62,7 +62,7 @@ TEST(Mc6000Parameters, Errata407IsTheWritableControlWord408TheStatusWord) {
 }
 
 TEST(Mc6000Parameters, ErrataFunctionSelectorNamesAndRopt1) {
-  // Seed 001 3.2.1 writes "FSI00 ... OPT1", 5.3.2 "439-FIS00 = ROPT1": one name, one value.
+  // INTERBUS manual 3.2.1 writes "FSI00 ... OPT1", 5.3.2 "439-FIS00 = ROPT1": one name, one value.
   EXPECT_EQ(find_parameter(kParameters, 439)->name, "FIS00");
   EXPECT_EQ(find_parameter(kParameters, 440)->name, "FIS01");
   for (const std::uint16_t n :
@@ -72,7 +72,7 @@ TEST(Mc6000Parameters, ErrataFunctionSelectorNamesAndRopt1) {
 }
 
 TEST(Mc6000Parameters, ErrataMode1IsNotAnMc6000Parameter) {
-  // Seed 000 2.4.2 builds the MC6000 CODE of "1-MODE"; MODE is the VF1000's parameter 1 (7.1) and
+  // LUSTBUS manual 2.4.2 builds the MC6000 CODE of "1-MODE"; MODE is the VF1000's parameter 1 (7.1) and
   // no seed gives the MC6000 one: not modelled, so a Read of 1 is "object does not exist".
   EXPECT_EQ(find_parameter(kParameters, 1), nullptr);
 }
@@ -127,7 +127,7 @@ TEST(ParameterStore, PowerOnKeepsEepromAndResetsRam) {
   EXPECT_EQ(s.get(82)->raw, 0xFFU) << "a USIGN8 keeps 8 bits";
 }
 
-// Seed 000, 11.2.1, the attribute NoInit (0080H): "RAM-control parameters that have this
+// LUSTBUS manual 11.2.1, the attribute NoInit (0080H): "RAM-control parameters that have this
 // attribute will not be pre-initialized, during start up, with the factory setting from the
 // parameter list." The store keeps such a RAM control value over a power-on; a RAM actual value
 // and an EEPROM value are not RAM control parameters and go as before; 4-PROG = 1 (10 exception

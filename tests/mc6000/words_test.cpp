@@ -1,4 +1,4 @@
-// The MC6000's own bits of the control word (seed 001, 5.3.1).
+// The MC6000's own bits of the control word (INTERBUS manual 5.3.1).
 #include <gtest/gtest.h>
 
 #include "ibs/devices/mc6000/descriptor.hpp"

@@ -1,4 +1,4 @@
-// The data set's text (seed 003 "Downloading parameter data sets", D39; seed 000 11.4): the line
+// The data set's text (CANLust manual "Downloading parameter data sets", D39; LUSTBUS manual 11.4): the line
 // reader ported from tests/canlust/data_set_test.cpp, and the dictionary's resolution that the
 // CANLust download and the LUSTBUS download of tools/ibs each did their own way.
 #include "ibs/od/data_set.hpp"
@@ -93,7 +93,7 @@ TEST(OdDataSet, BinaryOverlongAndTooManyLinesAreRefused) {
   EXPECT_EQ(q.error, "more than 1000 records");
 }
 
-// The CDA3000's data set (seed 003 D39): names, numbers, substitution texts and Hz; only Card
+// The CDA3000's data set (CANLust manual D39): names, numbers, substitution texts and Hz; only Card
 // Writeable parameters; each value against its entry.
 TEST(OdDataSet, ByTheDictionaryWithLimits) {
   const DataSetOptions cda{.check_limits = true, .style = {2, nullptr}, .title = "CDA3000"};
@@ -114,7 +114,7 @@ TEST(OdDataSet, ByTheDictionaryWithLimits) {
   EXPECT_EQ(p.error, "parameter 574 is given twice (first on line 1)");
 }
 
-// The MC6000's data set over LUSTBUS (seed 000 11.4, tests/lustbus_cli DownloadADatasetFile): the
+// The MC6000's data set over LUSTBUS (LUSTBUS manual 11.4, tests/lustbus_cli DownloadADatasetFile): the
 // values are checked for their type only -- the servo tests the whole set -- and a parameter
 // without the CardWriteable attribute is refused with its line.
 TEST(OdDataSet, ByTheDictionaryTypeOnly) {

@@ -56,7 +56,7 @@ TEST(OdDictionary, FindsByNumberNameOrBoth) {
   EXPECT_EQ(kCda.find(""), nullptr);
   EXPECT_EQ(kCda.find("574-"), nullptr);
   EXPECT_EQ(kCda.find("-574"), nullptr);
-  // A name with a dash (seed 001 4.1.1: 906-IB-WD), by name and by both.
+  // A name with a dash (INTERBUS manual 4.1.1: 906-IB-WD), by name and by both.
   EXPECT_EQ(kVf.find("IB-WD")->number, 906);
   EXPECT_EQ(kVf.find("906-ib-wd")->number, 906);
   EXPECT_EQ(kVf.find("IB"), nullptr);

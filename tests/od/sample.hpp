@@ -13,7 +13,7 @@ namespace ibs::od::test {
 
 using namespace std::string_view_literals;
 
-// ---- VF1000-like (seed 000 11.1, seed 001 4.1.3.3; devices/vf1000/src/parameters.cpp) ----------
+// ---- VF1000-like (LUSTBUS manual 11.1, INTERBUS manual 4.1.3.3; devices/vf1000/src/parameters.cpp) ----------
 inline constexpr Entry kVfMode{.number = 1,
                                .name = "MODE",
                                .text = "Mode select",
@@ -59,7 +59,7 @@ inline constexpr Entry kVfVb2{.number = 22,
                               .default_value = 0xA0,
                               .unit = "%",
                               .storage = Storage::eeprom,
-                              .source = "seed 001 4.1.3.3.1"};
+                              .source = "INTERBUS manual 4.1.3.3.1"};
 inline constexpr Entry kVfProg{.number = 71,
                                .name = "PROG",
                                .type = Type::usign8,
@@ -106,10 +106,10 @@ inline constexpr Entry kVfFdriv{.number = 911,
 inline constexpr std::array kVfEntries{kVfMode, kVfCntl, kVfFssel, kVfFssio, kVfFout, kVfVb2,
                                        kVfProg, kVfSiot, kVfSiof,  kVfType,  kVfIbWd, kVfFdriv};
 inline constexpr Dictionary kVf{kVfEntries, Profile::lust_standard};
-// The standard values of seed 001 3.1.1's three (VF-E20).
+// The standard values of the INTERBUS manual 3.1.1's three (VF-E20).
 inline constexpr std::array<DefaultOverride, 2> kVfStandalone{{{1, 0}, {4, 0}}};
 
-// ---- MC6000-like (seed 000 2.3.2, 11.2.1, 11.4; devices/mc6000 parameters.hpp, service.cpp) -----
+// ---- MC6000-like (LUSTBUS manual 2.3.2, 11.2.1, 11.4; devices/mc6000 parameters.hpp, service.cpp) -----
 inline constexpr std::array kRsslTexts{
     Choice{0, "RCON", ""}, Choice{1, "RA0", ""},  Choice{2, "RA1", ""},  Choice{3, "RSIO", ""},
     Choice{4, "RFIX", ""}, Choice{5, "RCAN", ""}, Choice{6, "OPT1", ""}, Choice{7, "OPT2", ""}};
@@ -188,7 +188,7 @@ inline constexpr std::array kMcEntries{kMcProg,  kMcPlrdy, kMcSpeed, kMcSload, k
                                        kMcRssl1, kMcRssl3, kMcRsio,  kMcGain};
 inline constexpr Dictionary kMc{kMcEntries, Profile::lust_enhanced};
 
-// ---- CDA3000-like (seed 003 4.3; devices/cda3000/parameters.hpp)
+// ---- CDA3000-like (CANLust manual 4.3; devices/cda3000/parameters.hpp)
 // ----------------------------------
 inline constexpr std::array kChoicesProg{Choice{0, "-", "no action"},
                                          Choice{1, "DEF", "factory settings"}};
@@ -299,7 +299,7 @@ inline constexpr std::array kCdaEntries{kCdaProg,  kCdaSload, kCdaName,  kCdaErr
                                         kCdaClbdr, kCdaCawdg, kCdaCascy, kCdaOptn2};
 inline constexpr Dictionary kCda{kCdaEntries};
 
-// The CDA3000's error names (seed 003 table 5.9), as a wing gives them to the text functions.
+// The CDA3000's error names (CANLust manual table 5.9), as a wing gives them to the text functions.
 constexpr std::string_view cda_error_name(std::uint8_t n) {
   return n == 16 ? "E-OP2"sv : ""sv;
 }

@@ -1,4 +1,4 @@
-// 85-SIOF/SERR (seed 000 9.2 table) in od, the one definition: its bits, their texts, each
+// 85-SIOF/SERR (LUSTBUS manual 9.2 table) in od, the one definition: its bits, their texts, each
 // refusal's bit, and drive::'s names, which forward here.
 #include "ibs/drive/siof.hpp"
 
@@ -24,7 +24,7 @@ TEST(OdSiof, BitValuesOfTheLustbusTable) {
   EXPECT_EQ(kSiofNumber, 85);
 }
 
-// Seed 000 9.2: 20H "no parameter", 40H "change not permitted", 80H "invalid value", 04H "EEPROM
+// LUSTBUS manual 9.2: 20H "no parameter", 40H "change not permitted", 80H "invalid value", 04H "EEPROM
 // busy", 08H "error in the data transfer"; a latched write and a taken one enter nothing.
 TEST(OdSiof, EachRefusalsBit) {
   EXPECT_EQ(error_flag(Refusal::none), 0);

@@ -53,7 +53,7 @@ struct KindRow {
   bool kept_by_save;            // save(kind) keeps RAM
   bool kept_reset_by_defaults;  // factory_defaults() resets the kept copy
 };
-// Seed 000 11.1 / seed 001 4.1.3.3 (RAM, EEPROM, EEPROM/RAM), 11.2.1 (NoInit), seed 003 3.5.1 and
+// LUSTBUS manual 11.1 / INTERBUS manual 4.1.3.3 (RAM, EEPROM, EEPROM/RAM), 11.2.1 (NoInit), CANLust manual 3.5.1 and
 // p. 13 (flash: kept by 150-SAVE only, PROG leaves it alone).
 constexpr KindRow kRows[] = {
     {kRamControl, false, false, false, true, true}, {kRamActual, false, false, false, true, true},
@@ -112,7 +112,7 @@ TEST(OdStore, ByNumberSetKeepAndPreset) {
   EXPECT_EQ(s.kept(kRamControl), 12U);
 }
 
-// The VF1000 without the INTERBUS software (seed 001 3.1.1, VF-E20): other factory defaults.
+// The VF1000 without the INTERBUS software (INTERBUS manual 3.1.1, VF-E20): other factory defaults.
 TEST(OdStore, DefaultOverlays) {
   Store s(test::kVf, test::kVfStandalone);
   EXPECT_EQ(s.ram(test::kVf.slot(1)), 0U);
@@ -170,7 +170,7 @@ TEST(OdStore, TextsByStorageKind) {
   EXPECT_EQ(s.text(name), "");
 }
 
-// Seed 000 11.4: the old data set in the spare, restored for the data set's entries only; or the
+// LUSTBUS manual 11.4: the old data set in the spare, restored for the data set's entries only; or the
 // data set into the kept copies.
 TEST(OdStore, TheDownloadsSpare) {
   Store s(test::kMc);

@@ -49,7 +49,7 @@ struct RefusalRow {
   Refusal refusal;
   std::uint8_t bit;
 };
-// Seed 000 9.2 and seed 001 4.1.4: 20H no parameter, 40H no change permitted, 80H invalid value.
+// LUSTBUS manual 9.2 and the INTERBUS manual 4.1.4: 20H no parameter, 40H no change permitted, 80H invalid value.
 constexpr RefusalRow kRefusals[] = {
     {"NoParameter", 0xFFFF, 0, false, Refusal::no_parameter, 0x20},
     {"RamActualValue", 91, 1, false, Refusal::read_only, 0x40},
@@ -99,7 +99,7 @@ TEST(OdStoredServed, ReadsEnterNothingAndAReadOf85ClearsWhatItReturned) {
   EXPECT_EQ(d.error_flags(), 0x08);
 }
 
-// Seed 001 4.1.3.3: EEPROM/RAM variables into RAM alone while the power stage runs; seed 000 3:
+// INTERBUS manual 4.1.3.3: EEPROM/RAM variables into RAM alone while the power stage runs; LUSTBUS manual 3:
 // the answer once the value is stored (the VF1000's 60 ms a byte, VF-E7).
 TEST(OdStoredServed, StorageKindsPowerStageAndStoringTime) {
   StoredServedConfig c;
@@ -131,11 +131,11 @@ TEST(OdStoredServed, StorageKindsPowerStageAndStoringTime) {
 TEST(OdStoredServed, InitControlIsToldToTheDrive) {
   StoredServed d(kMc);
   d.clear_error_flags(0xFF);
-  EXPECT_TRUE(d.write(at(kMc, 15), 1, kNow).init_control);  // 15-PLRDY (seed 001 4.2)
+  EXPECT_TRUE(d.write(at(kMc, 15), 1, kNow).init_control);  // 15-PLRDY (INTERBUS manual 4.2)
   EXPECT_FALSE(d.write(at(kMc, 428), 1, kNow).init_control);
 }
 
-// Seed 000 10 exception 1: PROG = 1 loads every factory default and answers when done; 85 keeps
+// LUSTBUS manual 10 exception 1: PROG = 1 loads every factory default and answers when done; 85 keeps
 // its bits; PROG is a command and reads its default afterwards.
 TEST(OdStoredServed, ProgLoadsTheFactoryDefaults) {
   StoredServedConfig c;
@@ -165,7 +165,7 @@ TEST(OdStoredServed, ProgLoadsTheFactoryDefaults) {
   EXPECT_EQ(m.peek(at(kMc, 419)), 6U);
 }
 
-// Seed 003 3.5.1: 150-SAVE = 1 backs the settings up in flash; until then a mains reset brings
+// CANLust manual 3.5.1: 150-SAVE = 1 backs the settings up in flash; until then a mains reset brings
 // the old ones back, and PROG leaves the flash alone (p. 13, the CDA3000's).
 TEST(OdStoredServed, SaveKeepsTheFlashValues) {
   StoredServedConfig c;
@@ -212,7 +212,7 @@ TEST(OdStoredServed, Texts) {
   EXPECT_EQ(d.store().text(at(kCda, 90)), "PRESS 4");
 }
 
-// Seed 000 11.4, the MC6000's download through 80-SLOAD.
+// LUSTBUS manual 11.4, the MC6000's download through 80-SLOAD.
 TEST(OdStoredServed, DownloadOfAValidDataSet) {
   StoredServedConfig c;
   c.timing.download_check = 200ms;

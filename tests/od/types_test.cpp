@@ -89,9 +89,9 @@ TEST(OdTypes, NumberAndRawRoundTripSampledAt32Bits) {
   }
 }
 
-// Seed 000 2.3.1/2.3.2: FIXPOINT16 is "an unsigned 16-bit integer scaled to 0.05": 50.00 Hz =
+// LUSTBUS manual 2.3.1/2.3.2: FIXPOINT16 is "an unsigned 16-bit integer scaled to 0.05": 50.00 Hz =
 // 03E8H (6.2.2), 23.15 Hz = 463 (7.1); its top is 3276.75 -- the table's 3276.80 is one step past
-// 65535 (LB-E6, PCP errata). Seed 003 p. 32: 10.05 = 201 = C9 00 00 00.
+// 65535 (LB-E6, PCP errata). CANLust manual p. 32: 10.05 = 201 = C9 00 00 00.
 TEST(OdTypes, Fixpoint16InFiveHundredths) {
   EXPECT_EQ(from_engineering(Type::fixpoint16, 50.0).raw, 0x03E8U);
   EXPECT_EQ(from_engineering(Type::fixpoint16, 23.15).raw, 463U);
@@ -103,7 +103,7 @@ TEST(OdTypes, Fixpoint16InFiveHundredths) {
   EXPECT_DOUBLE_EQ(step(Type::fixpoint16), 0.05);
 }
 
-// Seed 003 p. 32: 10.5 in INT32Q16 = 00 80 0A 00 (Intel order: 000A8000H); seed 000 2.3.2: the full
+// CANLust manual p. 32: 10.5 in INT32Q16 = 00 80 0A 00 (Intel order: 000A8000H); LUSTBUS manual 2.3.2: the full
 // signed 32 bits at 1/65536.
 TEST(OdTypes, Int32q16InSixtyFiveThousandFiveHundredThirtySixths) {
   EXPECT_EQ(from_engineering(Type::int32q16, 10.5).raw, 0x000A8000U);
@@ -116,7 +116,7 @@ TEST(OdTypes, Int32q16InSixtyFiveThousandFiveHundredThirtySixths) {
 }
 
 TEST(OdTypes, ScaledIntegersFloatsAndTheOnesWithoutAnEngineeringValue) {
-  // The VF1000's 911-FDRIV: INTEGER16 in 0.05 Hz (seed 001 4.1.1): -10 Hz = -200.
+  // The VF1000's 911-FDRIV: INTEGER16 in 0.05 Hz (INTERBUS manual 4.1.1): -10 Hz = -200.
   EXPECT_EQ(from_engineering(Type::int16, -10.0, 0.05).raw, raw(Type::int16, -200));
   EXPECT_DOUBLE_EQ(*engineering(Type::int16, raw(Type::int16, -200), 0.05), -10.0);
   EXPECT_EQ(from_engineering(Type::float_ieee, 1.5).raw, std::bit_cast<Raw>(1.5F));
@@ -143,8 +143,8 @@ TEST(OdTypes, CompareOrdersAsTheTypesNumbers) {
   EXPECT_LT(compare(Type::float_ieee, std::bit_cast<Raw>(-1.0F), std::bit_cast<Raw>(0.5F)), 0);
 }
 
-// Seed 001 4.1.3.3 footnote: high byte's low nibble the code, low byte's the time in tenths of an
-// hour; 0FH each: none. Seed 000 2.3.1: an erased EEPROM (FFH) reads as no error.
+// INTERBUS manual 4.1.3.3 footnote: high byte's low nibble the code, low byte's the time in tenths of an
+// hour; 0FH each: none. LUSTBUS manual 2.3.1: an erased EEPROM (FFH) reads as no error.
 TEST(OdTypes, ErrorStructures) {
   EXPECT_EQ(vf_error(0x0304).code, 3);
   EXPECT_EQ(vf_error(0x0304).time_tenths, 4);
@@ -153,7 +153,7 @@ TEST(OdTypes, ErrorStructures) {
   EXPECT_EQ(vf_error_raw({3, 4}), 0x0304U);
   EXPECT_EQ(vf_error_raw({}), kVfErrorNone);
   EXPECT_FALSE(vf_error_raw({15, std::nullopt}));
-  // Seed 003 p. 32: E-OP2 (16) at location 172 after 85 h = 10 AC 55 00.
+  // CANLust manual p. 32: E-OP2 (16) at location 172 after 85 h = 10 AC 55 00.
   const ErrorRecord e{16, 172, 85};
   EXPECT_EQ(error_record_raw(e), 0x0055AC10U);
   EXPECT_EQ(error_record(0x0055AC10U), e);

@@ -33,8 +33,8 @@ constexpr TextStyle kCdaStyle{2, test::cda_error_name};
 
 TEST(OdValueText, DisplayNames) {
   EXPECT_EQ(display_name(cda(574)), "574-CAWDG");
-  EXPECT_EQ(display_name(cda(4), kCdaStyle), "04-PROG");  // seed 003: "parameter 04 PROG"
-  EXPECT_EQ(display_name(vf(4)), "4-FSSEL");              // seed 000: "4-FSSEL"
+  EXPECT_EQ(display_name(cda(4), kCdaStyle), "04-PROG");  // CANLust manual: "parameter 04 PROG"
+  EXPECT_EQ(display_name(vf(4)), "4-FSSEL");              // LUSTBUS manual: "4-FSSEL"
   EXPECT_EQ(display_name(vf(906)), "906-IB-WD");
 }
 
@@ -68,7 +68,7 @@ TEST(OdValueText, CdaParseNumbersNamesAndHz) {
   EXPECT_EQ(parse_value(cda(90), "x").error,
             "90-NAME: a STRING parameter takes text, not a number (string write)");
   EXPECT_EQ(parse_value(cda(574), "").error, "574-CAWDG: no value given");
-  // INT32Q16 in its unit: 20.5 Hz = 00 80 14 00 (seed 003 5.5.5).
+  // INT32Q16 in its unit: 20.5 Hz = 00 80 14 00 (CANLust manual 5.5.5).
   EXPECT_EQ(parse_value(cda(406), "20.5").raw, 0x00148000U);
   EXPECT_EQ(format_value(cda(406), 0x00148000U), "20.5 Hz");
   EXPECT_EQ(parse_value(cda(406), "-20.5").raw, static_cast<Raw>(-0x00148000));
@@ -96,7 +96,7 @@ TEST(OdValueText, LustbusValues) {
   EXPECT_EQ(parse_value(mc(417), "0x-1").error,
             "417-RSSL1: raw value '0x-1' is not a 8-bit hex number");
   EXPECT_EQ(refusal_text(vf(91), 1, Refusal::read_only), "91-TYPE is read-only");
-  // FIXPOINT16 in its unit: 23.15 Hz = 463 (seed 000 7.1), 50.00 Hz = 03E8H (6.2.2).
+  // FIXPOINT16 in its unit: 23.15 Hz = 463 (LUSTBUS manual 7.1), 50.00 Hz = 03E8H (6.2.2).
   EXPECT_EQ(parse_value(vf(5), "23.15").raw, 463U);
   EXPECT_EQ(parse_value(vf(5), "0x3E8").raw, 0x3E8U);
   EXPECT_EQ(format_value(vf(5), 463), "23.15 Hz");
@@ -105,12 +105,12 @@ TEST(OdValueText, LustbusValues) {
   EXPECT_EQ(parse_value(vf(911), "-10").raw, raw(Type::int16, -200));
   EXPECT_EQ(parse_value(vf(911), "0xFFFF").raw, raw(Type::int16, -1));
   EXPECT_EQ(format_value(vf(911), raw(Type::int16, -200)), "-10 Hz");
-  // A data set the drive tests as a whole: only the type is checked (seed 000 11.4).
+  // A data set the drive tests as a whole: only the type is checked (LUSTBUS manual 11.4).
   EXPECT_EQ(parse_value(mc(419), "9", {.check_limits = false}).raw, 9U);
   EXPECT_EQ(parse_value(mc(419), "256", {.check_limits = false}).error,
             "419-RSSL3: 256 does not fit its data type USIGN8");
   EXPECT_EQ(parse_value(mc(419), "9").error, "419-RSSL3: 9 is above the maximum 7");
-  // A substitution text of the enhanced family (seed 000 11.3).
+  // A substitution text of the enhanced family (LUSTBUS manual 11.3).
   EXPECT_EQ(parse_value(mc(417), "RSIO").raw, 3U);
   EXPECT_EQ(format_value(mc(417), 3), "3 (RSIO)");
   EXPECT_EQ(format_value(mc(77), from_engineering(Type::int32q16, 2500.25).raw), "2500.25 rpm");
@@ -123,7 +123,7 @@ TEST(OdValueText, FloatsErrorsAndTheirTexts) {
   EXPECT_EQ(format_value(mc(600), std::bit_cast<Raw>(1.5F)), "1.5");
   EXPECT_EQ(parse_value(mc(600), "101").error, "600-GAIN: 101 is above the maximum 100");
   EXPECT_EQ(parse_value(mc(600), "-0.5").error, "600-GAIN: -0.5 is below the minimum 0");
-  // Seed 003 p. 32: E-OP2 at location 172 after 85 h; the name is the wing's.
+  // CANLust manual p. 32: E-OP2 at location 172 after 85 h; the name is the wing's.
   EXPECT_EQ(format_value(cda(95), 0x0055AC10U, kCdaStyle), "16 E-OP2 at location 172, 85 h");
   EXPECT_EQ(format_value(cda(95), 0x0055AC10U), "16 at location 172, 85 h");
   EXPECT_EQ(format_value(cda(95), 0), "0 (no error)");

@@ -1,4 +1,4 @@
-// MC6000 data types (seed 000, 2.3.2) and the examples of seeds 000 and 001 that pin them.
+// MC6000 data types (LUSTBUS manual 2.3.2) and the examples of seeds 000 and 001 that pin them.
 #include "ibs/pcp/data_types.hpp"
 
 #include <gtest/gtest.h>
@@ -27,7 +27,7 @@ TEST(DataTypes, SizesOnTheChannel) {
 }
 
 TEST(DataTypes, Fixpoint16ScalesByOneTwentieth) {
-  EXPECT_EQ(raw(DataType::fixpoint16, 50.00), 0x03E8U);  // seed 000 6.2.2: 50.00 * 20 = 03E8H
+  EXPECT_EQ(raw(DataType::fixpoint16, 50.00), 0x03E8U);  // LUSTBUS manual 6.2.2: 50.00 * 20 = 03E8H
   EXPECT_DOUBLE_EQ(to_engineering({DataType::fixpoint16, 0x03E8}), 50.0);
   EXPECT_EQ(raw(DataType::fixpoint16, 0.026), 1U);  // nearest step
   EXPECT_EQ(raw(DataType::fixpoint16, 0.024), 0U);
@@ -41,11 +41,11 @@ TEST(DataTypes, Fixpoint16TopIs3276_75NotTheTables3276_80) {
 }
 
 TEST(DataTypes, Int32Q16MatchesTheSeedExamples) {
-  EXPECT_EQ(raw(DataType::int32q16, 333.254), 0x014D4106U);  // seed 000 6.2.3: 14D4106H
-  EXPECT_EQ(raw(DataType::int32q16, 1274.25), 0x04FA4000U);  // seed 000 6.1.1.2: 4FA4000H
+  EXPECT_EQ(raw(DataType::int32q16, 333.254), 0x014D4106U);  // LUSTBUS manual 6.2.3: 14D4106H
+  EXPECT_EQ(raw(DataType::int32q16, 1274.25), 0x04FA4000U);  // LUSTBUS manual 6.1.1.2: 4FA4000H
   EXPECT_DOUBLE_EQ(to_engineering({DataType::int32q16, 0x04FA4000}), 1274.25);
-  EXPECT_EQ(raw(DataType::int32q16, 132.15), 0x00842666U);   // seed 000 7.2.1: VALUE 842666
-  EXPECT_EQ(raw(DataType::int32q16, 2500.25), 0x09C44000U);  // seed 001 5.3.4
+  EXPECT_EQ(raw(DataType::int32q16, 132.15), 0x00842666U);   // LUSTBUS manual 7.2.1: VALUE 842666
+  EXPECT_EQ(raw(DataType::int32q16, 2500.25), 0x09C44000U);  // INTERBUS manual 5.3.4
   EXPECT_DOUBLE_EQ(to_engineering({DataType::int32q16, 0xFFFF0000U}), -1.0);
 }
 
@@ -78,7 +78,7 @@ TEST(DataTypes, FloatIeeeIsTheBitPattern) {
 }
 
 TEST(DataTypes, McErrorPacksNumberLocationTime) {
-  // Seed 001 3.2.4: the bus watchdog is error 16 ('E-OP1') at location 1. Errata (docs/pcp.md):
+  // INTERBUS manual 3.2.4: the bus watchdog is error 16 ('E-OP1') at location 1. Errata (docs/pcp.md):
   // the manual's C union on a little-endian PC puts the number in the lowest byte.
   const McError e{16, 1, 0x0123};
   const Value v = to_value(e);

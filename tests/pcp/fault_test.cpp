@@ -252,7 +252,7 @@ class Campaign {
       initiate();
       return;
     }
-    // After a refused write the master reads 85-SERR, as seed 000 (6, 9.2) tells it to.
+    // After a refused write the master reads 85-SERR, as the LUSTBUS manual (6, 9.2) tells it to.
     Op op = random_op();
     if (oracle_.latch != Latch::clear && uniform() < 0.8) op = Op{Op::Kind::read, kSerr, {}};
     ASSERT_EQ(submit(op), SubmitStatus::accepted);
@@ -419,11 +419,11 @@ class Campaign {
       static_error = errors::kValueTooLow;
     } else if (op.number == ibs::devices::mc6000::kParamSbaud &&
                !ibs::drive::is_baud_step(v->raw, ibs::devices::mc6000::kHighestBaud)) {
-      static_error = errors::kValueTooHigh;  // seed 000, 4: the rates in steps (LB-E18)
+      static_error = errors::kValueTooHigh;  // LUSTBUS manual 4: the rates in steps (LB-E18)
     }
     if (static_error) {
       ASSERT_EQ(r.kind, ResultKind::negative) << "write " << op.number;
-      // Seed 000 9.2 (docs/errata.md MC-D3): while 85-SERR holds a bit every write is refused
+      // LUSTBUS manual 9.2 (docs/errata.md MC-D3): while 85-SERR holds a bit every write is refused
       // before it is looked at, and enters nothing.
       if (oracle_.latch != Latch::clear && r.error == errors::kNotExecutableNow) {
         ++stats_.negative;

@@ -1,5 +1,5 @@
 // The latency model (docs/pcp.md, "Latency model"): end to end at the master, a Read or Write
-// takes seed 001 7.2's 10..35 ms over 1, 2 and 4 words as the workload goes 0..1, with the link on
+// takes INTERBUS manual 7.2's 10..35 ms over 1, 2 and 4 words as the workload goes 0..1, with the link on
 // the servo's INTERBUS CPU at the bus cycle and the servo processor sampling every 1 ms, on the
 // reference bus (one MC6000: 0.567 ms cycles), the default bus (an MC6000 and a VF1000:
 // 0.726 ms) and a short ring (three MC6000: 0.989 ms).
@@ -120,7 +120,7 @@ TEST(LatencyModel, NeutralWithoutADrivesCalibration) {
   EXPECT_GE(servo, lock_step(neutral) + 27ms) << "the servo's 4-word processing at full load";
 }
 
-// Seed 001, 7.2: "The transfer time for value inquiries and value transfers is between 10 ms and
+// INTERBUS manual 7.2: "The transfer time for value inquiries and value transfers is between 10 ms and
 // 35 ms, depending on processor workload." Every width on every bus of the table, from workload 0
 // to 1. Over one word the channel itself takes 12..26 ms of the window, so the workload spreads
 // less of it there. (A full ring's 13.86 ms cycles are beyond any width: errata PCP-E7.)

@@ -1,7 +1,7 @@
 // Test fixtures: a PCP client and server on one simulated channel.
 //
 // Two clocks: the master steps the client every bus cycle, the servo steps the server every
-// device sample (1 ms, seed 001 7.2). With cycle == sample it is the trace's lock-step timing.
+// device sample (1 ms, INTERBUS manual 7.2). With cycle == sample it is the trace's lock-step timing.
 // `Interface::at_cycle` runs the servo's link at the bus cycle as the MC6000's INTERBUS CPU does
 // (Server::cycle every cycle, Server::sample every sample: the simulator's timing); by default
 // the link runs in the servo's samples (Server::step), the slower case its guarantees must hold in too.

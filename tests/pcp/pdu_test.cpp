@@ -62,7 +62,7 @@ TEST(Pdu, ClearZeroTailGivesAFreshDataBytesForEverySize) {
 
 TEST(Pdu, ReadRequestFollowsThePublicLayout) {
   RequestPdu r = request(ServiceCode::read);
-  r.index = 0x5D97;  // 407-IBSTU (seed 001, 4.2.1)
+  r.index = 0x5D97;  // 407-IBSTU (INTERBUS manual 4.2.1)
   Pdu p;
   ASSERT_TRUE(encode(r, p));
   EXPECT_EQ(words_of(p), (std::vector<Word>{0x0081, 0x0003, 0x0702, 0x5D97, 0x0000}));
@@ -140,7 +140,7 @@ TEST(Pdu, InitiateCarriesPasswordAccessGroupsAndTheKbl) {
   c.invoke_id = 0;
   c.kbl = ibs::devices::mc6000::kKbl;
   ASSERT_TRUE(encode(c, p));
-  // Seed 001 4.2.2: server for Get-OV long (byte 4), Read and Write (byte 5), Info Report (6).
+  // INTERBUS manual 4.2.2: server for Get-OV long (byte 4), Read and Write (byte 5), Info Report (6).
   EXPECT_EQ(words_of(p), (std::vector<Word>{0x808B, 0x0007, 0x0002, 0x0000, 0x0086, 0x0086, 0x0000,
                                             0x0004, 0x0304}));
   c.positive = false;
@@ -202,7 +202,7 @@ TEST(Pdu, ObjectDescriptionRoundTrips) {
   EXPECT_EQ(b[0], 0x5D);
   EXPECT_EQ(b[1], 0x97);
   EXPECT_EQ(b[3], static_cast<std::uint8_t>(DataType::usign16));
-  EXPECT_EQ(b[5], '1');  // RAM control value (seed 000, 11.2.1)
+  EXPECT_EQ(b[5], '1');  // RAM control value (LUSTBUS manual 11.2.1)
   EXPECT_EQ(b[20], 'I');
   EXPECT_EQ(b[25], 0);
   ObjectDescription back;

@@ -51,7 +51,7 @@ TEST(Server, ReadsAndWritesEveryDataTypeOfTheMc6000Table) {
     EXPECT_EQ(r.data.size, 2U);
     EXPECT_EQ(make_word(r.data.data[0], r.data.data[1]), 0x000F);
     EXPECT_EQ(s.drive().value(kIbstu)->raw, 0x000FU);
-    // 428-RSIO, INT32Q16 (seed 000 7.2.1: 132.15 rpm = 842666H).
+    // 428-RSIO, INT32Q16 (LUSTBUS manual 7.2.1: 132.15 rpm = 842666H).
     r = s.run([](Client& c, Time t) {
       return c.write(t, ParameterRef::number(428), DataType::int32q16, 132.15);
     });
@@ -74,7 +74,7 @@ TEST(Server, ReadsAndWritesEveryDataTypeOfTheMc6000Table) {
 TEST(Server, EveryReadAnswersTheStoredValueBetweenOtherServices) {
   // The server builds its Read confirmations in one reused member: reads of values of every length
   // (and of missing parameters) in random order, between Identify, Status and Get-OV answers, must
-  // each confirm exactly the stored value's bytes (seed 001, 4.2).
+  // each confirm exactly the stored value's bytes (INTERBUS manual 4.2).
   Session s(4);
   ASSERT_TRUE(s.initiate().ok());
   const auto table = s.server.served().table();
@@ -127,7 +127,7 @@ TEST(Server, UnknownObjectIsClass6Code7) {
   EXPECT_EQ(
       error_of(s.run([](Client& c, Time t) { return c.read(t, ParameterRef::object(0x1000)); })),
       errors::kObjectDoesNotExist);
-  EXPECT_EQ(s.read_serr(), 0U) << "read errors never enter SERR (seed 000, 6.1)";
+  EXPECT_EQ(s.read_serr(), 0U) << "read errors never enter SERR (LUSTBUS manual 6.1)";
   EXPECT_EQ(error_of(s.write(999, u16(1))), errors::kObjectDoesNotExist);
   EXPECT_EQ(s.read_serr(), kSerrNoParameter);
   EXPECT_EQ(
@@ -167,14 +167,14 @@ TEST(Server, ActualValuesAreNotWritable) {
 TEST(Server, ValueTooHighAndTooLow) {
   Session s(2);
   ASSERT_TRUE(s.initiate().ok());
-  EXPECT_EQ(error_of(s.write(kIbcnf, u8(5))), errors::kValueTooHigh);  // 0..4 (seed 001 3.2.3)
+  EXPECT_EQ(error_of(s.write(kIbcnf, u8(5))), errors::kValueTooHigh);  // 0..4 (INTERBUS manual 3.2.3)
   EXPECT_EQ(s.read_serr(), kSerrInvalidValue);
-  EXPECT_EQ(error_of(s.write(81, u16(1200))), errors::kValueTooLow);  // 2400..57600 (seed 000 4)
+  EXPECT_EQ(error_of(s.write(81, u16(1200))), errors::kValueTooLow);  // 2400..57600 (LUSTBUS manual 4)
   EXPECT_EQ(s.read_serr(), kSerrInvalidValue);
   EXPECT_EQ(error_of(s.write(82, u8(0))), errors::kValueTooLow);
   s.read_serr();
   EXPECT_TRUE(s.write(kIbcnf, u8(4)).ok());
-  s.idle(20ms);  // its EEPROM save (15 ms per byte, seed 000 3) before the next EEPROM write
+  s.idle(20ms);  // its EEPROM save (15 ms per byte, LUSTBUS manual 3) before the next EEPROM write
   EXPECT_TRUE(s.write(81, u16(57600)).ok());
 }
 
@@ -195,7 +195,7 @@ TEST(Server, WrongDataLengthIsClass6Code5) {
 }
 
 TEST(Server, PowerOnBitRefusesWritesUntil85IsRead) {
-  // Seed 000 6: "As long as an error bit in SIOF/SERR is set, no parameter in the device can be
+  // LUSTBUS manual 6: "As long as an error bit in SIOF/SERR is set, no parameter in the device can be
   // changed"; the trace format's `init: power-on`. Errata (docs/pcp.md): it holds for PCP too.
   // 9.2 (docs/errata.md MC-D3): the refused write enters no cause of its own, and a write is
   // refused before its value is looked at.
@@ -223,14 +223,14 @@ TEST(Server, EepromWriteIsAcknowledgedAtOnceAndSavedIn15MsPerByte) {
   const Result w = s.write(84, u16(500));
   ASSERT_TRUE(w.ok());
   const Time acked = w.completed_at;
-  EXPECT_EQ(s.drive().value(84)->raw, 500U) << "RAM first (seed 000, 3)";
+  EXPECT_EQ(s.drive().value(84)->raw, 500U) << "RAM first (LUSTBUS manual 3)";
   EXPECT_EQ(s.drive().eeprom(84)->raw, 0U);
   EXPECT_TRUE(s.drive().eeprom_busy(s.bus.now()));
-  // Another EEPROM write inside the 2 * 15 ms: refused, EEPROM busy (seed 000, 3 and 9.2).
+  // Another EEPROM write inside the 2 * 15 ms: refused, EEPROM busy (LUSTBUS manual 3 and 9.2).
   EXPECT_EQ(error_of(s.write(409, u16(100))), errors::kNotExecutableNow);
   EXPECT_EQ(s.read_serr(), kSerrEepromBusy);
   EXPECT_TRUE(s.write(83, u16(1)).ok()) << "RAM parameters are not held up";
-  // Errata (docs/pcp.md): 15 ms per byte (seed 000 3 and 10.2.2), not 11.2.1's 5 ms per byte.
+  // Errata (docs/pcp.md): 15 ms per byte (LUSTBUS manual 3 and 10.2.2), not 11.2.1's 5 ms per byte.
   // The save started when the write was executed, 3 steps before the ack arrived here.
   s.idle(acked + 20ms - s.bus.now());
   EXPECT_EQ(s.drive().eeprom(84)->raw, 0U) << "still saving 23 ms after the write";
@@ -266,7 +266,7 @@ TEST(Server, Prog1RestoresFactoryDefaultsAndAnswersAfterTheResetTime) {
     return c.write(t, ParameterRef::number(kProg), Value{DataType::usign8, 1}, 12s);
   });
   ASSERT_TRUE(r.ok()) << to_string(r.kind);
-  // Seed 000 10: "up to 10 seconds"; 9.9 s, the drive's one time on every bus (errata MC-D1).
+  // LUSTBUS manual 10: "up to 10 seconds"; 9.9 s, the drive's one time on every bus (errata MC-D1).
   EXPECT_GE(r.completed_at - r.submitted_at, 9900ms);
   EXPECT_LT(r.completed_at - r.submitted_at, 10s);
   EXPECT_EQ(s.drive().value(83)->raw, 0U);
@@ -319,7 +319,7 @@ TEST(Server, SloadDownloadHandshake) {
   EXPECT_EQ(make_word(r.data.data[0], r.data.data[1]), 0x0000);
 }
 
-// Seed 000 11.4 ties the download to SLOAD, not to a connection: an Abort and a new Initiate
+// LUSTBUS manual 11.4 ties the download to SLOAD, not to a connection: an Abort and a new Initiate
 // (a master that restarts between SLOAD = -1 and -2) leave it open -- values are still taken
 // untested -- until SLOAD = -2 closes it (docs/errata.md MC-D2).
 TEST(Server, AnOpenDownloadOutlivesTheAssociation) {
@@ -362,7 +362,7 @@ TEST(Server, IdentifyAndStatus) {
   ASSERT_TRUE(s.initiate().ok());
   Result r = s.run([](Client& c, Time t) { return c.identify(t); });
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(r.identity.vendor.view(), "Lust");  // the KBL's symbol name (seed 001 4.2.2)
+  EXPECT_EQ(r.identity.vendor.view(), "Lust");  // the KBL's symbol name (INTERBUS manual 4.2.2)
   EXPECT_EQ(r.identity.model.view(), "MC6000");
   r = s.run([](Client& c, Time t) { return c.status(t); });
   EXPECT_EQ(r.status.logical, 0);

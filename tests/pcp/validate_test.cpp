@@ -52,7 +52,7 @@ TEST(PcpValidate, Link) {
     const LinkConfig bad{words, Direction::to_client, 100ms};
     expect_refused(Link::validate(bad), ErrorCode::channel_width_invalid,
                    "PCP channel of " + std::to_string(words) +
-                       " words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)",
+                       " words: the MC6000 offers 1, 2 or 4 (405-SUPI, INTERBUS manual 3.2.2)",
                    [&] { const Link l(bad); });
   }
   const LinkConfig no_timeout{2, Direction::to_server, 0ms};
@@ -86,7 +86,7 @@ TEST(PcpValidate, Client) {
   bad = ok;
   bad.channel_words = 3;
   expect_refused(Client::validate(bad), ErrorCode::channel_width_invalid,
-                 "PCP channel of 3 words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)",
+                 "PCP channel of 3 words: the MC6000 offers 1, 2 or 4 (405-SUPI, INTERBUS manual 3.2.2)",
                  [&] { const Client c(bad); });
   bad = ok;
   bad.link_ack_timeout = -1ms;
@@ -128,7 +128,7 @@ TEST(PcpValidate, Server) {
   bad = ok;
   bad.channel_words = 3;
   expect_refused(Server::validate(bad, table), ErrorCode::channel_width_invalid,
-                 "PCP channel of 3 words: the MC6000 offers 1, 2 or 4 (405-SUPI, seed 001 3.2.2)",
+                 "PCP channel of 3 words: the MC6000 offers 1, 2 or 4 (405-SUPI, INTERBUS manual 3.2.2)",
                  [&] { test::Served sp; const Server s(bad, sp.served); });
 }
 

@@ -1,4 +1,4 @@
-// MC6000 drive plant: speed loop behaviour, status flags (seed 001 5.3.2 bits 10 and 11), and the
+// MC6000 drive plant: speed loop behaviour, status flags (INTERBUS manual 5.3.2 bits 10 and 11), and the
 // exact discretisation against a fine-step Euler integration of the equations in drive_plant.hpp.
 #include "ibs/devices/mc6000/plant.hpp"
 
@@ -17,7 +17,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kRef534 = 2500.25;  // seed 001 5.3.4: 09C44000H in Q16
+constexpr double kRef534 = 2500.25;  // INTERBUS manual 5.3.4: 09C44000H in Q16
 
 // The equations of drive_plant.hpp written out again, so the Euler reference does not reuse the
 // plant's own matrices. x = [w, i, T], u = [w_ref, d, T_lim].
@@ -258,7 +258,7 @@ TEST(DrivePlant, ReferenceWindowIsAParameter) {
 }
 
 TEST(DrivePlant, ReferenceReachedIsNotSetBeforeEnabling) {
-  // Seed 001 5.3.4: READY (0231H) with the reference already set: bit 10 stays 0.
+  // INTERBUS manual 5.3.4: READY (0231H) with the reference already set: bit 10 stays 0.
   DrivePlant plant;
   const PlantOutput o = plant.step({kRef534, 0.0, false});
   EXPECT_FALSE(o.reference_reached);

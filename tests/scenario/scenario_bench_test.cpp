@@ -76,7 +76,7 @@ TEST(ScenarioBench, TheKeysAreReadAndWrittenBackEqualInBothFormats) {
 
 TEST(ScenarioBench, EachRefusalNamesItsLine) {
   EXPECT_EQ(error_of(with(kToml, "lustbus = 1", "lustbus = 31")),
-            "b.toml:9: 'lustbus' = 31 is not a drive's LUSTBUS address (1..30, seed 000 9.1)");
+            "b.toml:9: 'lustbus' = 31 is not a drive's LUSTBUS address (1..30, LUSTBUS manual 9.1)");
   EXPECT_EQ(error_of(with(kToml, "[lustbus]\npty = true\n", "")),
             "b.toml:9: device 'servo': 'lustbus' = 1 needs the line it answers on: a [lustbus] table with pty = true "
             "or port = \"PATH\"");
@@ -100,7 +100,7 @@ TEST(ScenarioBench, EachRefusalNamesItsLine) {
             "(it takes fault = \"device\" or \"power-cycle\", mains, load, input)");
   const std::string two = with(kToml, "[lustbus]", "[[device]]\nname = \"fan\"\ntype = \"vf1000\"\nlustbus = 1\n\n[lustbus]");
   EXPECT_EQ(error_of(two), "b.toml:14: device 'fan': LUSTBUS address 1 is already device 'servo''s (line 4): both would "
-                           "answer at once (seed 000, 9.1)");
+                           "answer at once (LUSTBUS manual 9.1)");
 }
 
 // A control line of a running bench is checked against the whole running scenario: its devices

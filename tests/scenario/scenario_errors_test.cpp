@@ -210,7 +210,7 @@ TEST(ScenarioErrors, VfHasNoSupiIbcnfOrLocalBus) {
                              "'ibcnf' is an MC6000 setting; a VF1000 has no 406-IBCNF"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"vf1000\"\nbus = \"local\"\n", 11,
                              "{\"name\": \"x\", \"type\": \"vf1000\",\n \"bus\": \"local\"}", 5,
-                             "device 'x': a VF1000 is always a remote bus device (seed 001, 1.3)"));
+                             "device 'x': a VF1000 is always a remote bus device (INTERBUS manual 1.3)"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nbus = \"ring\"\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"bus\": \"ring\"}", 5,
                              "'bus' must be \"local\" or \"remote\", not \"ring\""));
@@ -219,26 +219,26 @@ TEST(ScenarioErrors, VfHasNoSupiIbcnfOrLocalBus) {
 TEST(ScenarioErrors, Mc6000LayoutsOf322And323) {
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nsupi = 13\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"supi\": 13}", 5,
-                             "device 'x': 405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)"));
+                             "device 'x': 405-SUPI = 13 is out of range (0..12, INTERBUS manual 3.2.2)"));
   EXPECT_TRUE(
       refused_device("name = \"x\"\ntype = \"mc6000\"\nibcnf = 1\nsupi = -1\n", 12,
                      "{\"name\": \"x\", \"type\": \"mc6000\",\n \"ibcnf\": 1,\n \"supi\": -1}", 6,
-                     "device 'x': 405-SUPI = -1 is out of range (0..12, seed 001 3.2.2)"));
+                     "device 'x': 405-SUPI = -1 is out of range (0..12, INTERBUS manual 3.2.2)"));
   // A refused pair is reported on the IBCNF line when the file gives one.
   EXPECT_TRUE(
       refused_device("name = \"x\"\ntype = \"mc6000\"\nsupi = 7\nibcnf = 2\n", 12,
                      "{\"name\": \"x\", \"type\": \"mc6000\",\n \"supi\": 7,\n \"ibcnf\": 2}", 6,
-                     "device 'x': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 "
+                     "device 'x': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual "
                      "3.2.3)"));
   // ... and on the SUPI line when the IBCNF is the default 2.
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nsupi = 7\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"supi\": 7}", 5,
-                             "device 'x': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 "
+                             "device 'x': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual "
                              "3.2.3)"));
   EXPECT_TRUE(
       refused_device("name = \"x\"\ntype = \"mc6000\"\nibcnf = 1\nsupi = 6\n", 11,
                      "{\"name\": \"x\", \"type\": \"mc6000\",\n \"ibcnf\": 1,\n \"supi\": 6}", 5,
-                     "device 'x': 406-IBCNF = 1 needs 405-SUPI 7..12, not 6 (seed 001 "
+                     "device 'x': 406-IBCNF = 1 needs 405-SUPI 7..12, not 6 (INTERBUS manual "
                      "3.2.3)"));
   EXPECT_TRUE(
       refused_device("name = \"x\"\ntype = \"mc6000\"\nibcnf = 4\n", 11,
@@ -246,7 +246,7 @@ TEST(ScenarioErrors, Mc6000LayoutsOf322And323) {
                      "device 'x': 406-IBCNF = 4 (modified LISIM software) is not supported"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nibcnf = 5\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"ibcnf\": 5}", 5,
-                             "device 'x': 406-IBCNF = 5 is out of range (0..4, seed 001 3.2.3)"));
+                             "device 'x': 406-IBCNF = 5 is out of range (0..4, INTERBUS manual 3.2.3)"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nsupi = 3000000000\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"supi\": 3000000000}", 5,
                              "'supi' = 3000000000 is out of range (0..12)"));
@@ -291,10 +291,10 @@ TEST(ScenarioErrors, Watchdogs) {
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"watchdog_reaction\": 1}",
                              5,
                              "device 'x': 'watchdog_reaction' is a VF1000 setting (907-IBCOD); "
-                             "the MC6000 always reports E-OP1 (seed 001, 3.2.4)"));
+                             "the MC6000 always reports E-OP1 (INTERBUS manual 3.2.4)"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"mc6000\"\nkeypad = true\n", 11,
                              "{\"name\": \"x\", \"type\": \"mc6000\",\n \"keypad\": true}", 5,
-                             "'keypad' is a VF1000 setting (seed 001, 7.1); the MC6000's PCP times "
+                             "'keypad' is a VF1000 setting (INTERBUS manual 7.1); the MC6000's PCP times "
                              "have no KEYPAD row"));
   EXPECT_TRUE(refused_device("name = \"x\"\ntype = \"vf1000\"\nreset_time = \"0 s\"\n", 11,
                              "{\"name\": \"x\", \"type\": \"vf1000\",\n \"reset_time\": \"0 s\"}", 5,
@@ -464,11 +464,11 @@ TEST(ScenarioErrors, ParameterNumbers) {
   EXPECT_TRUE(refused_entry("at = \"0 s\"\ndevice = \"v\"\nread = 1024\n", 11,
                             "{\"at\": \"0 s\", \"device\": \"v\",\n \"read\": 1024}", 6,
                             "parameter 1024 is out of range for the VF1000 device 'v' (0..1023, "
-                            "10-bit PNR, seed 001 4.1.2.1)"));
+                            "10-bit PNR, INTERBUS manual 4.1.2.1)"));
   EXPECT_TRUE(refused_entry("at = \"0 s\"\ndevice = \"m\"\ndescribe = 1000\n", 11,
                             "{\"at\": \"0 s\", \"device\": \"m\",\n \"describe\": 1000}", 6,
                             "parameter 1000 is out of range for the MC6000 device 'm' (0..999, "
-                            "seed 000 2.4.2)"));
+                            "LUSTBUS manual 2.4.2)"));
   EXPECT_TRUE(refused_entry("at = \"0 s\"\ndevice = \"m\"\ndescribe = 70000\n", 11,
                             "{\"at\": \"0 s\", \"device\": \"m\",\n \"describe\": 70000}", 6,
                             "'describe' = 70000 is out of range (0..65535)"));
@@ -524,7 +524,7 @@ TEST(ScenarioErrors, Writes) {
                     "\"parameter\": 1024}}",
                     6,
                     "parameter 1024 is out of range for the VF1000 device 'v' (0..1023, "
-                    "10-bit PNR, seed 001 4.1.2.1)"));
+                    "10-bit PNR, INTERBUS manual 4.1.2.1)"));
 }
 
 TEST(ScenarioErrors, Faults) {

@@ -31,11 +31,11 @@ TEST(ScenarioJsonLines, NumberAtTheEndOfALine) {
   EXPECT_EQ(
       json_error("{\"duration\": \"1 s\",\n \"device\": [{\"name\": \"m\", \"type\": \"mc6000\",\n"
                  " \"supi\": 13\n}]}"),
-      at_json(3, "device 'm': 405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)"));
+      at_json(3, "device 'm': 405-SUPI = 13 is out of range (0..12, INTERBUS manual 3.2.2)"));
   EXPECT_EQ(
       json_error("{\"duration\": \"1 s\",\n \"device\": [{\"name\": \"m\", \"type\": \"mc6000\",\n"
                  " \"supi\": 13\n\n\n}]}"),
-      at_json(3, "device 'm': 405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)"));
+      at_json(3, "device 'm': 405-SUPI = 13 is out of range (0..12, INTERBUS manual 3.2.2)"));
   EXPECT_EQ(
       json_error("{\"duration\": \"1 s\",\n \"device\": [{\"name\": \"m\", \"type\": \"mc6000\",\n"
                  " \"supi\": -13.5\n}]}"),

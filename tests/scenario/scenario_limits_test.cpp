@@ -63,7 +63,7 @@ TEST(ScenarioLimits, LocalBusSegment) {
 }
 
 TEST(ScenarioLimits, PcpDevices) {
-  // SUPI 1: one PCP word, no process data (seed 001, 3.2.2).
+  // SUPI 1: one PCP word, no process data (INTERBUS manual 3.2.2).
   EXPECT_NO_THROW((void)parse_scenario_toml(ring(62, "mc6000", 1, 0, "remote").toml, "r.toml"));
   const Ring r = ring(63, "mc6000", 1, 0, "remote");
   const std::string what =

@@ -47,12 +47,12 @@ TEST(ScenarioPlantEvents, EveryNewKeyReadsAndRoundTrips) {
 }
 
 TEST(ScenarioPlantEvents, RefusalsNameTheDrivesOwnLists) {
-  // Seed 001 4.1.3.3: the VF1000's error codes are 00H..0EH.
+  // INTERBUS manual 4.1.3.3: the VF1000's error codes are 00H..0EH.
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nfault = \"device\"\ncause = 15\n")),
-            at_toml(12, "'cause' of device 'v': '15' is not an error of the VF1000 (0..14, E-IBS; seed 001 "
+            at_toml(12, "'cause' of device 'v': '15' is not an error of the VF1000 (0..14, E-IBS; INTERBUS manual "
                         "4.1.3.3: 00H..0EH)"));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nfault = \"device\"\ncause = \"E-OV\"\n")),
-            at_toml(12, "'cause' of device 'm': 'E-OV' is not an error of the MC6000 (0..255, E-OP1; seed 000 3: "
+            at_toml(12, "'cause' of device 'm': 'E-OV' is not an error of the MC6000 (0..255, E-OP1; LUSTBUS manual 3: "
                         "one byte)"));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nfault = \"lost\"\nduration = \"1 ms\"\n"
                                    "cause = 16\n")),
@@ -68,14 +68,14 @@ TEST(ScenarioPlantEvents, RefusalsNameTheDrivesOwnLists) {
             at_toml(11, "'mains' must be \"off\" or \"on\", not \"down\""));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nmains = \"off\"\nlevel = \"low\"\n")),
             at_toml(12, "'level' goes with 'input' only"));
-  // Seed 001 5.2.1 / 5.2.2: the VF1000's terminals (docs/errata.md VF-E22) are its list.
+  // INTERBUS manual 5.2.1 / 5.2.2: the VF1000's terminals (docs/errata.md VF-E22) are its list.
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\ninput = \"IS00\"\nlevel = \"high\"\n")),
             at_toml(11, "'input' = \"IS00\" is not an input of the VF1000 device 'v' (\"S1IND\", \"S2IND\", "
                         "\"STR\", \"STL\", \"S1OUT\" or \"S2OUT\")"));
 }
 
 TEST(ScenarioPlantEvents, TheVf1000sTerminalsReadAndRoundTrip) {
-  // Seed 001 5.2.1 (inputs S1IND, S2IND, STR, STL) and 5.2.2 (outputs S1OUT, S2OUT, whose level the
+  // INTERBUS manual 5.2.1 (inputs S1IND, S2IND, STR, STL) and 5.2.2 (outputs S1OUT, S2OUT, whose level the
   // scenario states: docs/errata.md VF-E22), in TOML and JSON, each written and read back equal.
   std::string text = tdoc::kBase;
   int ms = 10;
@@ -95,8 +95,8 @@ TEST(ScenarioPlantEvents, TheVf1000sTerminalsReadAndRoundTrip) {
 }
 
 TEST(ScenarioPlantEvents, ASmartcardOperationReadsRoundTripsAndIsCheckedAgainstTheDrive) {
-  // Seed 000, 10 exception 2: a SMARTCARD read "can last up to 10 seconds, depending on the
-  // device"; seed 001, 6.1: read and written (docs/errata.md VF-E21). The VF1000 declares it
+  // LUSTBUS manual 10 exception 2: a SMARTCARD read "can last up to 10 seconds, depending on the
+  // device"; INTERBUS manual 6.1: read and written (docs/errata.md VF-E21). The VF1000 declares it
   // (EventFacts::card_max_s); a drive that does not is refused with the reason.
   const std::string text = tdoc::kBase +
                            "[[timeline]]\nat = \"10 ms\"\ndevice = \"v\"\nsmartcard = \"read\"\nduration = \"2 s\"\n"
@@ -118,22 +118,22 @@ TEST(ScenarioPlantEvents, ASmartcardOperationReadsRoundTripsAndIsCheckedAgainstT
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"insert\"\nduration = \"1 s\"\n")),
             at_toml(11, "'smartcard' must be \"read\" or \"write\", not \"insert\""));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"read\"\nduration = \"11 s\"\n")),
-            at_toml(12, "'duration' of a SMARTCARD operation of device 'v' must be above 0 s and at most 10 s (seed 000 "
-                        "10 exception 2, seed 001 6.1)"));
+            at_toml(12, "'duration' of a SMARTCARD operation of device 'v' must be above 0 s and at most 10 s (LUSTBUS manual "
+                        "10 exception 2, INTERBUS manual 6.1)"));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\nsmartcard = \"read\"\ncount = 2\n")),
             at_toml(12, "'count' does not go with 'smartcard' (it takes 'duration')"));
-  // The MC6000 takes it too (seed 000 10 exception 2, docs/errata.md MC-D9), with its own source.
+  // The MC6000 takes it too (LUSTBUS manual 10 exception 2, docs/errata.md MC-D9), with its own source.
   EXPECT_EQ(parse_scenario_toml(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nsmartcard = \"write\"\nduration = \"1 s\"\n"),
                                 "s.toml")
                 .timeline.size(),
             1U);
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"m\"\nsmartcard = \"read\"\nduration = \"10.5 s\"\n")),
-            at_toml(12, "'duration' of a SMARTCARD operation of device 'm' must be above 0 s and at most 10 s (seed 000 "
+            at_toml(12, "'duration' of a SMARTCARD operation of device 'm' must be above 0 s and at most 10 s (LUSTBUS manual "
                         "10 exception 2)"));
 }
 
 TEST(ScenarioPlantEvents, AnOptionCardWithdrawnOrInsertedReadsRoundTripsAndIsCheckedAgainstTheDrive) {
-  // Seed 001, 3.2.1: the MC6000 detects its INTERBUS card at power-on; withdrawn, 3.2.1's
+  // INTERBUS manual 3.2.1: the MC6000 detects its INTERBUS card at power-on; withdrawn, 3.2.1's
   // parameters go back to their factory defaults at the next power-up (docs/errata.md MC-D10).
   const std::string text = tdoc::kBase +
                            "[[timeline]]\nat = \"10 ms\"\ndevice = \"m\"\noption_card = \"withdrawn\"\n"
@@ -155,7 +155,7 @@ TEST(ScenarioPlantEvents, AnOptionCardWithdrawnOrInsertedReadsRoundTripsAndIsChe
             at_toml(12, "'duration' does not go with 'option_card'"));
   EXPECT_EQ(toml_error(tdoc::entry("at = \"0 s\"\ndevice = \"v\"\noption_card = \"withdrawn\"\n")),
             at_toml(11, "'option_card' is not for device 'v', a VF1000: its INTERBUS operation is a modified software "
-                        "package, not a card it detects (seed 001 3.1.1); no seed gives a withdrawal an effect"));
+                        "package, not a card it detects (INTERBUS manual 3.1.1); no seed gives a withdrawal an effect"));
 }
 
 TEST(ControlLine, AGoodLineIsAnEntryWithoutAt) {

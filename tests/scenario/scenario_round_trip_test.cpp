@@ -337,7 +337,7 @@ TEST(ScenarioRoundTrip, ValidateScenarioNamesTheEntrysSourceLine) {
     EXPECT_EQ(e.line(), 17U);
     EXPECT_STREQ(e.what(),
                  "built-in:17: parameter 1000 is out of range for the MC6000 device "
-                 "'mc6000' (0..999, seed 000 2.4.2)");
+                 "'mc6000' (0..999, LUSTBUS manual 2.4.2)");
   }
   s = default_scenario();
   // A VF1000 has no 405-SUPI: built in code, the validator refuses it as the reader does.

@@ -173,7 +173,7 @@ TEST(Bench, OneServoAnswersOnInterbusAndLustbusWithOneState) {
   EXPECT_EQ(report.devices[0].errors, 0U);
 }
 
-// The inverter: its serial interface opens once the master has written 1-MODE <> 4 (seed 001,
+// The inverter: its serial interface opens once the master has written 1-MODE <> 4 (INTERBUS manual,
 // 6.1; VF-E16); then the communication word's write is what LUSTBUS reads, and LUSTBUS's write is
 // what the communication word reads.
 TEST(Bench, OneInverterAnswersOnTheCommunicationWordAndLustbusWithOneStore) {
@@ -254,7 +254,7 @@ read = 22
 }
 
 // A DFS-1 controller of the bench: not on the ring, on its own line; the timeline's fault with a
-// cause of seed 004's status list shows in the status a host reads (command 81, ST1), and a cause
+// cause of the DFS-1 manual's status list shows in the status a host reads (command 81, ST1), and a cause
 // the wing does not know is refused with the entry's line.
 TEST(Bench, ADfs1ControllerTakesTheTimelinesFaultOnItsOwnLine) {
   const std::string text = R"(name = "press"
@@ -328,7 +328,7 @@ TEST(Bench, AServedLineIsRefusedForADriveThatDoesNotRunAtItsRate) {
   std::string text = kScenario;
   text.replace(text.find("pty = true"), 10, "pty = true\nbaud = 57600");
   Scenario s = parse_scenario_toml(text, "bench.toml");
-  // The MC6000 runs at 57600 (seed 000, 4); a VF1000 would not.
+  // The MC6000 runs at 57600 (LUSTBUS manual 4); a VF1000 would not.
   { Simulator sim(s); EXPECT_NO_THROW(Bench(sim, s, "bench.toml")); }
   s.devices[0] = DeviceConfig{};
   s.devices[0].name = "fan";
@@ -340,7 +340,7 @@ TEST(Bench, AServedLineIsRefusedForADriveThatDoesNotRunAtItsRate) {
     Bench b(sim, s, "bench.toml");
     FAIL() << "a VF1000 at 57600 baud was served";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "bench.toml: device 'fan': a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not 57600");
+    EXPECT_EQ(std::string(e.what()), "bench.toml: device 'fan': a VF1000 runs at 2400, 4800 or 9600 baud (LUSTBUS manual 4), not 57600");
   }
 }
 

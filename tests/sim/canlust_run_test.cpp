@@ -253,7 +253,7 @@ TEST(CanlustEvents, KeysAndTheirErrors) {
 
   expect_error(head + dev + tl + "fault = \"device\"\n", 9, "fault = \"device\" needs a cause");
   expect_error(head + dev + tl + "fault = \"device\"\ncause = \"E-XYZ\"\n", 9,
-               "cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI");
+               "cause 'E-XYZ': the CDA3000's errors (CANLust manual, table 5.9) are 8 E-OTI");
   expect_error(head + dev + tl + "mains = \"down\"\n", 12, "mains = \"down\": expected \"off\" or \"on\"");
   expect_error(head + dev + tl + "load = 400\n", 9, "the CDA3000 takes -300 .. 300 %");
   expect_error(head + dev + tl + "input = \"X1\"\nlevel = \"high\"\n", 9, "input 'X1'");

@@ -211,7 +211,7 @@ TEST(PlotRecorder, LabelsOfClusteredEventsDoNotOverlap) {
 }
 
 // The two viewpoints of the state are kept apart: the master learns a state from a status word
-// that the VF1000 (sampling every 8.2 ms, seed 001) sends some cycles after it entered it, here
+// that the VF1000 (sampling every 8.2 ms, INTERBUS manual) sends some cycles after it entered it, here
 // START-UP INHIBIT at the end of the initialisation after a power cycle. At the end both agree.
 TEST(PlotRecorder, TheMastersViewOfTheStateIsKeptApartFromTheDevices) {
   Scenario s = default_scenario();

@@ -1,5 +1,5 @@
 // The cycle simulator: drives brought up and run through the master, the documented timing of
-// the VF1000 parameter channel (seed 001, 7.1), watchdogs and every fault kind.
+// the VF1000 parameter channel (INTERBUS manual 7.1), watchdogs and every fault kind.
 #include <gtest/gtest.h>
 
 #include "ibs/base/number_text.hpp"
@@ -119,7 +119,7 @@ TEST(NumberText, TheRunSummaryPrintsItsValuesThatWay) {
   EXPECT_NE(text.find("reference 1000 rpm reached (actual "), std::string::npos) << text;
 }
 
-// Seed 001, 7.1, "Without KEYPAD, motor stopped": value inquiry 100 ms, value transfer 124 ms
+// INTERBUS manual 7.1, "Without KEYPAD, motor stopped": value inquiry 100 ms, value transfer 124 ms
 // (RAM or unchanged EEPROM), 250 ms (EEPROM value changed), description 490 ms; within 10 %.
 TEST(Simulator, Vf1000ChannelTransferTimesOfSection71) {
   for (const Duration phase : {0ms, 3ms, 7ms}) {
@@ -156,7 +156,7 @@ TEST(Simulator, Vf1000ChannelTransferTimesOfSection71) {
 }
 
 TEST(Simulator, Vf1000ChannelTransferTimesOfSection71MotorRunningAndKeypad) {
-  // Seed 001, 7.1: "with KEYPAD, motor running" 192 / 115 / 490 ms, "without KEYPAD, motor
+  // INTERBUS manual 7.1: "with KEYPAD, motor running" 192 / 115 / 490 ms, "without KEYPAD, motor
   // running" 131 / 100 / 490 ms (value transfer / value inquiry / description); each within 10 %.
   struct Row {
     bool keypad;
@@ -347,7 +347,7 @@ TEST(Simulator, PowerCycleWhileEnabledEndsTheRequestWithBlockPowerAndIsReported)
   EXPECT_NE(find_event(sim.summary().devices[0], "request failed (left target)"), nullptr);
 }
 
-// Seed 000, 11.4: after 80-SLOAD = -1 "the servocontroller will be secured against being engaged
+// LUSTBUS manual 11.4: after 80-SLOAD = -1 "the servocontroller will be secured against being engaged
 // until the download has ended" (found missing by the fault campaign, docs/robustness.md, C).
 // And 4-PROG = 1 is confirmed after up to 10 s: the driver waits for it.
 TEST(Simulator, AnMc6000DownloadLocksEngagingAndFactoryDefaultsGetTheirTime) {
@@ -404,7 +404,7 @@ TEST(Simulator, DeviceFaultIsReportedAndResetByANewRequest) {
 }
 
 TEST(Simulator, Vf1000FaultResetByANewRequestBootsTheInverterOnce) {
-  // Seed 001, 5.2.1: RESET FAULT makes the VF1000 perform a software reset; seed 000, 8.1.1: no
+  // INTERBUS manual 5.2.1: RESET FAULT makes the VF1000 perform a software reset; LUSTBUS manual 8.1.1: no
   // link during the self-test. The master resets only because a new request asks for it, once,
   // and brings the inverter up after its boot.
   Scenario s;
@@ -488,7 +488,7 @@ TEST(Simulator, MasterRestartSendsBlockPowerAndStartsTheChannelsOver) {
 }
 
 TEST(Simulator, Mc6000ParametersThroughPcpInTheManualsTime) {
-  // Seed 001, 7.2: 10..35 ms per value inquiry or transfer. Over the 2-word channel of SUPI 9
+  // INTERBUS manual 7.2: 10..35 ms per value inquiry or transfer. Over the 2-word channel of SUPI 9
   // (IBCNF 1) the calibrated latency model meets it end to end at the master (docs/pcp.md).
   Scenario s;
   s.duration = 2s;
@@ -518,7 +518,7 @@ TEST(Simulator, Mc6000ParametersThroughPcpInTheManualsTime) {
   EXPECT_NE(find_event(sim.summary().devices[0], "15-PLRDY = 1"), nullptr);
 }
 
-// Seed 001, 7.2: "The transfer time for value inquiries and value transfers is between 10 ms and
+// INTERBUS manual 7.2: "The transfer time for value inquiries and value transfers is between 10 ms and
 // 35 ms, depending on processor workload." The PCP transfer times of docs/simulator.md's table and
 // erratum PCP-E7, per channel width, at workload 0 (ManualWindow spans the workload): read 406 and
 // write 409 from the request to the master's confirmation, each within one bus cycle of the
@@ -571,8 +571,8 @@ TEST(Simulator, PcpTransferTimesPerChannelWidthAsDocumented) {
         EXPECT_EQ(t[k].kind, read ? devices::ParamKind::value : devices::ParamKind::written) << t[k].result;
         EXPECT_NEAR(ms, want, cycle_ms) << "SUPI " << r.supi << (read ? " read" : " write") << (full ? ", full ring" : "");
         if (!full) {
-          EXPECT_GE(ms, 10.0) << "SUPI " << r.supi << ": seed 001 7.2";
-          EXPECT_LE(ms, 35.0) << "SUPI " << r.supi << ": seed 001 7.2";
+          EXPECT_GE(ms, 10.0) << "SUPI " << r.supi << ": INTERBUS manual 7.2";
+          EXPECT_LE(ms, 35.0) << "SUPI " << r.supi << ": INTERBUS manual 7.2";
         } else {
           EXPECT_GT(ms, 35.0) << "SUPI " << r.supi << ": the full ring's physical limit (PCP-E7)";
         }
@@ -582,7 +582,7 @@ TEST(Simulator, PcpTransferTimesPerChannelWidthAsDocumented) {
   run_ring(false);
   run_ring(true);
 
-  // The default bus: the one-word channel of SUPI 11 (seed 001 5.3.4) beside a VF1000.
+  // The default bus: the one-word channel of SUPI 11 (INTERBUS manual 5.3.4) beside a VF1000.
   Scenario s;
   s.duration = 3s;
   s.devices = {mc6000(), vf1000()};
@@ -598,8 +598,8 @@ TEST(Simulator, PcpTransferTimesPerChannelWidthAsDocumented) {
     ASSERT_TRUE(t[k].finished) << k;
     const double ms = to_ms(*t[k].finished - t[k].submitted);
     EXPECT_NEAR(ms, want[k - 1], 0.726) << (k == 1 ? "read" : "write") << " on the default bus";
-    EXPECT_GE(ms, 10.0) << "seed 001 7.2";
-    EXPECT_LE(ms, 35.0) << "seed 001 7.2";
+    EXPECT_GE(ms, 10.0) << "INTERBUS manual 7.2";
+    EXPECT_LE(ms, 35.0) << "INTERBUS manual 7.2";
   }
 }
 
@@ -681,7 +681,7 @@ TEST(Simulator, RefusesAConfigurationTheBusOrTheDeviceRefuses) {
     Simulator sim(s);
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "device 'mc': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (seed 001 3.2.3)");
+    EXPECT_STREQ(e.what(), "device 'mc': 406-IBCNF = 2 needs 405-SUPI 10..12, not 7 (INTERBUS manual 3.2.3)");
   }
   Scenario many;
   for (int i = 0; i < 65; ++i) many.devices.push_back(mc6000("m" + std::to_string(i)));  // 65 x 4 words
@@ -706,7 +706,7 @@ TEST(Simulator, RefusesADriveKindTheRegistryDoesNotKnow) {
     Simulator sim(s);
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "device 'vf': a VF1000 is always a remote bus device (seed 001, 1.3)");
+    EXPECT_STREQ(e.what(), "device 'vf': a VF1000 is always a remote bus device (INTERBUS manual 1.3)");
   }
 }
 
@@ -750,7 +750,7 @@ TEST(SimulatorPlantEvents, MainsLossAndLoadAndInputFromTheTimeline) {
   Simulator sim(s);
   sim.run_until(250ms);
   auto& servo = dynamic_cast<devices::Mc6000Device&>(sim.emulator(0));
-  EXPECT_NE(servo.status_word() & 0x4000U, 0U) << "IS00 in status bit 14 (seed 001 5.3.2)";
+  EXPECT_NE(servo.status_word() & 0x4000U, 0U) << "IS00 in status bit 14 (INTERBUS manual 5.3.2)";
   EXPECT_EQ(servo.drive().load_torque(), 1.5);
   sim.run_until(400ms);
   EXPECT_TRUE(sim.module_error(0, sim.now()));
@@ -762,7 +762,7 @@ TEST(SimulatorPlantEvents, MainsLossAndLoadAndInputFromTheTimeline) {
 }
 
 // VF-E22: the VF1000's terminals from the timeline: an output's stated level in the status word
-// the master reads (seed 001 5.2.2: bit 15 S1OUT, bit 14 S2OUT), an input's function on the core.
+// the master reads (INTERBUS manual 5.2.2: bit 15 S1OUT, bit 14 S2OUT), an input's function on the core.
 TEST(SimulatorPlantEvents, Vf1000TerminalsFromTheTimeline) {
   Scenario s;
   s.duration = 1s;
@@ -810,7 +810,7 @@ TEST(SimulatorPlantEvents, AnMc6000SmartcardOperationIsAModuleErrorForItsTime) {
   EXPECT_EQ(sim.summary().faults[0].kind, "smartcard");
 }
 
-// MC-D10, seed 001 3.2.1: the INTERBUS card withdrawn is a module error at once; the power-on
+// MC-D10, INTERBUS manual 3.2.1: the INTERBUS card withdrawn is a module error at once; the power-on
 // after it brings the factory defaults; put back, the next power-on detects it again.
 TEST(SimulatorPlantEvents, TheInterbusCardWithdrawnAndPutBackFromTheTimeline) {
   Scenario s;

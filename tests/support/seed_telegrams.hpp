@@ -1,7 +1,7 @@
 // The manuals' worked examples on the serial lines, byte for byte, as the captures' tests feed
-// them: LUSTBUS (seed 000: 6.1.1.1, 6.1.1.2, 6.2.2, 6.2.3, 11.6.4) corrected as docs/errata.md
+// them: LUSTBUS (LUSTBUS manual: 6.1.1.1, 6.1.1.2, 6.2.2, 6.2.3, 11.6.4) corrected as docs/errata.md
 // decides (LB-E1 the answer's ADR '@', LB-E3 CODE 00112 / 00105, LB-E4 ETX = 3 and VALUE
-// 04FA4000, LB-E5 CODE 20428 for the servo), each BCC by the rule of 2.2; DFS-1 (seed 004, note
+// 04FA4000, LB-E5 CODE 20428 for the servo), each BCC by the rule of 2.2; DFS-1 (DFS-1 manual, note
 // 2: the set-speed frame with its doubled 10H and CSM 6DH, and its ACK).
 #pragma once
 
@@ -27,7 +27,7 @@ inline std::vector<std::uint8_t> text(std::vector<std::uint8_t> head, std::strin
 }
 }  // namespace seed_detail
 
-// Seed 000's exchanges, one telegram after the other, each closed by the host's EOT (3).
+// LUSTBUS manual's exchanges, one telegram after the other, each closed by the host's EOT (3).
 inline std::vector<SeedTelegram> lustbus_seed_exchanges() {
   using seed_detail::text;
   constexpr auto H = base::LineSide::host;
@@ -56,7 +56,7 @@ inline std::vector<SeedTelegram> lustbus_seed_exchanges() {
   };
 }
 
-// Seed 004, note 2: "[10][02] [01] [82] [00][00][10][10][00] [10] [03] [6D]": set speed (82H) of
+// DFS-1 manual, note 2: "[10][02] [01] [82] [00][00][10][10][00] [10] [03] [6D]": set speed (82H) of
 // UID 1 to 00 00 10 00 (4096 rpm), the 10H datum doubled; the controller's ACK (CSM F9H, of 01 + 06).
 inline std::vector<SeedTelegram> dfs1_seed_exchange() {
   constexpr auto H = base::LineSide::host;

@@ -544,11 +544,11 @@ TEST(Cli, ALayoutErrorNamesTheOffendingHeadersLine) {
   const std::string bad_ibcnf = temp_file("bad_ibcnf.trace", head + "# supi: 11\n# ibcnf: 7\n0, 0000 0000 0000, 0240 0000 0000\n");
   const Result i = run("replay --emulate device " + bad_ibcnf);
   EXPECT_EQ(i.exit_code, 2);
-  EXPECT_EQ(i.out, bad_ibcnf + ":5: 406-IBCNF = 7 is out of range (0..4, seed 001 3.2.3)\n");
+  EXPECT_EQ(i.out, bad_ibcnf + ":5: 406-IBCNF = 7 is out of range (0..4, INTERBUS manual 3.2.3)\n");
   const std::string bad_supi = temp_file("bad_supi.trace", head + "# supi: 13\n# ibcnf: 2\n0, 0000 0000 0000, 0240 0000 0000\n");
   const Result s = run("decode " + bad_supi);
   EXPECT_EQ(s.exit_code, 2);
-  EXPECT_EQ(s.out, bad_supi + ":4: 405-SUPI = 13 is out of range (0..12, seed 001 3.2.2)\n");
+  EXPECT_EQ(s.out, bad_supi + ":4: 405-SUPI = 13 is out of range (0..12, INTERBUS manual 3.2.2)\n");
 }
 
 // `ibs decode` tells the files apart: a candump log of CANLust and a LUSTBUS byte log of --log are

@@ -215,7 +215,7 @@ TEST(Captures, ReplayWritesARingOfOneRowByRow) {
   EXPECT_EQ(r.out, "replay: 7 steps matched\n");
   ASSERT_TRUE(fs::exists(pcap));
   if (!have("tshark")) GTEST_SKIP() << "tshark is not installed (Debian package tshark)";
-  // Exactly the rows of the table (seed 001, 4.1.3.1.1), one per packet, 16.4 ms apart.
+  // Exactly the rows of the table (INTERBUS manual 4.1.3.1.1), one per packet, 16.4 ms apart.
   const auto rows = lines_of(run_shell(tshark(pcap) + " -T fields -E separator=';' -e frame.time_relative"
                                                       " -e interbus.comm.master -e interbus.comm.inverter 2>/dev/null")
                                  .out);

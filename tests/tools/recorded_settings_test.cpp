@@ -256,7 +256,7 @@ TEST(RecordedSettings, UnknownNamesOutOfRangeValuesAndWritesTheTableRefusesAreEr
       {"time_without_unit", vf + "# setting: reset_time 2\n" + vf_rows, "4: setting: reset_time: '2' is not a time"},
       {"own_header_as_setting", mc + "# setting: supi 9\n" + mc_rows, "4: setting: unknown setting 'supi'"},
       {"setting_of_another_drive", mc + "# setting: keypad true\n" + mc_rows,
-       "4: setting: 'keypad' is a VF1000 setting (seed 001, 7.1)"},
+       "4: setting: 'keypad' is a VF1000 setting (INTERBUS manual 7.1)"},
       {"write_unknown_parameter", mc + mc_rows + "! write 999 1\n" + mc_next,
        "5: write: parameter 999 is not in the MC6000's table"},
       {"write_too_wide", mc + mc_rows + "! write 409 70000\n" + mc_next, "5: write: 409-BUTWD: 70000 is no value of its type"},

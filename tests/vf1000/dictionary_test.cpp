@@ -129,7 +129,7 @@ TEST(VfDictionary, SlotsAreTheTablesPositions) {
   EXPECT_EQ(kDictionary.find("fssio"), kDictionary.find(pnr::kFssio));
 }
 
-// Seed 001 3.1.1's three parameters take the standard values without the INTERBUS software, and
+// INTERBUS manual 3.1.1's three parameters take the standard values without the INTERBUS software, and
 // nothing else changes: the overlay is exactly standalone_parameters()'s difference (VF-E20).
 TEST(VfDictionary, StandaloneOverlayIsVF_E20) {
   ASSERT_FALSE(od::Store::validate(kDictionary, kStandaloneDefaults));

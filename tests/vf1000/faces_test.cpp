@@ -1,5 +1,5 @@
 // One VF1000 drive core behind its two faces (../shared/design.md, "One drive, many faces"): the
-// INTERBUS face (communication word, seed 001) and the LUSTBUS face (seed 000) on one core serve
+// INTERBUS face (communication word, INTERBUS manual) and the LUSTBUS face (LUSTBUS manual) on one core serve
 // one store; the same parameter access through each face gives the same answer, with the drive's
 // timing expressed in each face's units. Decisions VF-E11 .. VF-E16 (docs/errata.md).
 #include <gtest/gtest.h>
@@ -39,7 +39,7 @@ namespace vc = ibs::vf1000_channel;
 constexpr Duration kSample = vf::kSamplePeriod;
 constexpr lb::Address kAddress = 1;
 
-// Seed 001, 5.2.1 / 5.1.2: a DRIVECOM control word with the ramp bits 4-6 set.
+// INTERBUS manual 5.2.1 / 5.1.2: a DRIVECOM control word with the ramp bits 4-6 set.
 constexpr Word kRampBits = 0x0070;
 
 // What a parameter access ended with, in words both faces share.
@@ -62,7 +62,7 @@ struct Rig {
   explicit Rig(bool interbus = true, bool serial = true,
                DeviceStart start = DeviceStart::operational, const vf::DriveConfig& config = {})
       : drive(std::make_shared<vf::Drive>(config, start, Time{0})) {
-    // Seed 001, 6.1 (VF-E16): on the INTERBUS with the factory 1-MODE = 4 the serial interface
+    // INTERBUS manual 6.1 (VF-E16): on the INTERBUS with the factory 1-MODE = 4 the serial interface
     // cannot be used; a rig that reaches the drive through both faces runs it at another MODE
     // (the INTERBUS words still control: VF-E16).
     if (interbus && serial) drive->set_value(pnr::kMode, 1);
@@ -166,7 +166,7 @@ struct Rig {
     return interbus(vc::value_transfer(number, value));
   }
 
-  // The master's control word (seed 001, 5.1.2), held until changed.
+  // The master's control word (INTERBUS manual 5.1.2), held until changed.
   void control(Word w) { m2s[0] = w; }
 
   std::shared_ptr<vf::Drive> drive;
@@ -218,7 +218,7 @@ TEST(Vf1000Faces, BothFacesServeTheOneStoreOfTheirDrive) {
 
 TEST(Vf1000Faces, ARefusalOnOneFaceLatches85ForTheOther) {
   // 85-SIOF is the drive's: a bit a refused SELECT set refuses the next value transfer on
-  // INTERBUS until 85 is read (seed 000, 9.2; seed 001, 4.1.4), and reading it there clears it.
+  // INTERBUS until 85 is read (LUSTBUS manual 9.2; INTERBUS manual 4.1.4), and reading it there clears it.
   // A wrong BCC on the serial line sets 08H (9.2 bit 3); no host reads 85 after it.
   Rig r;
   r.lbd->checksum_error({kAddress, r.now});
@@ -257,23 +257,23 @@ TEST(Vf1000Faces, EachRefusalSetsTheSameBitThroughEitherFace) {
     EXPECT_EQ(untimed(write(*r, v, pnr::kType, 1)), (Result{"nak", 0, 0x40, {}}));
     EXPECT_EQ(untimed(write(*r, v, pnr::kFssel, 26)), (Result{"nak", 0, 0x80, {}}));
     EXPECT_EQ(untimed(write(*r, v, pnr::kStat, 1)), (Result{"nak", 0, 0x80, {}}));
-    // 81-SIOC in baud, the steps of seed 000 4 up to 9600 (LB-E18): 5000 is none, 19200 too high.
+    // 81-SIOC in baud, the steps of the LUSTBUS manual 4 up to 9600 (LB-E18): 5000 is none, 19200 too high.
     EXPECT_EQ(untimed(write(*r, v, pnr::kSioc, 5000)), (Result{"nak", 0, 0x80, {}}));
     EXPECT_EQ(untimed(write(*r, v, pnr::kSioc, 19200)), (Result{"nak", 0, 0x80, {}}));
     EXPECT_EQ(r->drive->value(pnr::kSioc), 9600);
     EXPECT_EQ(r->drive->value(pnr::kFssel), 25);
     EXPECT_EQ(r->drive->siof(), 0);
-    // A value inquiry of a missing parameter is refused without an entry in 85 (seed 001 4.1.4,
-    // seed 000 6.1 note).
+    // A value inquiry of a missing parameter is refused without an entry in 85 (INTERBUS manual 4.1.4,
+    // LUSTBUS manual 6.1 note).
     EXPECT_EQ(read(*r, v, 99).kind, "nak");
     EXPECT_EQ(r->drive->siof(), 0);
   }
 }
 
 TEST(Vf1000Faces, AnEepromParameterIsRefusedWhileThePowerStageRunsThroughEitherFace) {
-  // Seed 001, 4.1.3.2 / seed 000, 3: EEPROM parameters are not writable with the power stage
+  // INTERBUS manual 4.1.3.2 / LUSTBUS manual 3: EEPROM parameters are not writable with the power stage
   // enabled; 5-FSSIO (EEPROM/RAM) is still taken, into RAM. The drive runs from its serial interface
-  // (seed 000, 7.1): the same drive state for both faces.
+  // (LUSTBUS manual 7.1): the same drive state for both faces.
   for (const Via v : {Via::interbus, Via::lustbus}) {
     SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
     Rig r(true, true);
@@ -288,16 +288,16 @@ TEST(Vf1000Faces, AnEepromParameterIsRefusedWhileThePowerStageRunsThroughEitherF
     EXPECT_EQ(r.drive->value(pnr::kFmax1), 1000);
     EXPECT_EQ(untimed(write(r, v, pnr::kFssio, 200)), (Result{"written", 0, 0, {}}));
     EXPECT_EQ(r.drive->value(pnr::kFssio), 200);
-    // CSEL = 3: 5-FSSIO is a RAM variable (seed 000, 11.1 kind '3'; VF-E18), so neither the 100
+    // CSEL = 3: 5-FSSIO is a RAM variable (LUSTBUS manual 11.1 kind '3'; VF-E18), so neither the 100
     // written before the start nor the 200 reached the EEPROM.
     EXPECT_EQ(r.drive->eeprom_value(pnr::kFssio), 0);
   }
 }
 
 TEST(Vf1000Faces, ThePowerOnBitAfterPowerOnAndAfterAFaultReset) {
-  // Seed 000, 6 and 9.2; seed 001, 6.1: the power-on bit after every new start, which refuses
-  // value transfers until 85 is read; a fault reset is a new start (seed 000, 8.1.1: 11-STAT =
-  // 000FH over LUSTBUS; seed 001, 5.2.1: RESET FAULT over INTERBUS -- the one place the seeds
+  // LUSTBUS manual 6 and 9.2; INTERBUS manual 6.1: the power-on bit after every new start, which refuses
+  // value transfers until 85 is read; a fault reset is a new start (LUSTBUS manual 8.1.1: 11-STAT =
+  // 000FH over LUSTBUS; INTERBUS manual 5.2.1: RESET FAULT over INTERBUS -- the one place the seeds
   // make the trigger differ by bus). The self-test lasts the drive's reset time either way
   // (VF-E13).
   for (const Via v : {Via::interbus, Via::lustbus}) {
@@ -333,8 +333,8 @@ TEST(Vf1000Faces, ThePowerOnBitAfterPowerOnAndAfterAFaultReset) {
 }
 
 TEST(Vf1000Faces, Prog1LoadsTheFactoryDefaultsAndTakesTheDrivesTimeThroughEitherFace) {
-  // Seed 000, 10 exception 1: the ACK only once every parameter is initialised; the time is the
-  // drive's (1.5 s, LB-D18) on INTERBUS too, where seed 001 names no time (VF-E11). The
+  // LUSTBUS manual 10 exception 1: the ACK only once every parameter is initialised; the time is the
+  // drive's (1.5 s, LB-D18) on INTERBUS too, where INTERBUS manual names no time (VF-E11). The
   // INTERBUS face holds its ACK for whole 8.2 ms samples.
   for (const Via v : {Via::interbus, Via::lustbus}) {
     SCOPED_TRACE(v == Via::interbus ? "INTERBUS" : "LUSTBUS");
@@ -357,7 +357,7 @@ TEST(Vf1000Faces, Prog1LoadsTheFactoryDefaultsAndTakesTheDrivesTimeThroughEither
 }
 
 TEST(Vf1000Faces, AChangedEepromValueTakesTheSameDriveTimeThroughEitherFace) {
-  // Seed 000, 10 exception 4: about 120 ms for a changed two-byte value, 60 ms for one byte; seed
+  // LUSTBUS manual 10 exception 4: about 120 ms for a changed two-byte value, 60 ms for one byte; seed
   // 001, 7.1: 250 ms instead of 124 for the communication word, the same 120 ms give or take a
   // sample (VF-E12). An unchanged value costs nothing.
   for (const Via v : {Via::interbus, Via::lustbus}) {
@@ -384,8 +384,8 @@ TEST(Vf1000Faces, AChangedEepromValueTakesTheSameDriveTimeThroughEitherFace) {
 }
 
 TEST(Vf1000Faces, FselVariablesAreRamVariablesWhileTheSerialInterfaceControls) {
-  // Seed 000, 11.1, parameter kind '3' (FSEL/ISEL variable): "if CSEL <= 3, they are RAM variables
-  // (control via serial interface). If CSEL < 3, they are EEPROM-Variables"; seed 001, 4.1.3.3:
+  // LUSTBUS manual 11.1, parameter kind '3' (FSEL/ISEL variable): "if CSEL <= 3, they are RAM variables
+  // (control via serial interface). If CSEL < 3, they are EEPROM-Variables"; INTERBUS manual 4.1.3.3:
   // "The inverter stores changes to EEPROM/RAM parameters in the RAM when the power stage is
   // enabled, and additionally in the EEPROM when the power stage is disabled." Decision VF-E18:
   // 2-CSEL = 3 (the serial interface's control location) keeps them in RAM whatever the power
@@ -394,7 +394,7 @@ TEST(Vf1000Faces, FselVariablesAreRamVariablesWhileTheSerialInterfaceControls) {
     Word csel;
     bool power_stage;
     Word eeprom_after;  // 5-FSSIO's EEPROM copy after writing 200 over the default 0
-    Duration storing;   // seed 000, 10 exception 4: a changed two-byte EEPROM value ~120 ms
+    Duration storing;   // LUSTBUS manual 10 exception 4: a changed two-byte EEPROM value ~120 ms
   };
   const Row rows[] = {
       {3, false, 0, Duration{0}},  {3, true, 0, Duration{0}},  // RAM variable (11.1)
@@ -433,10 +433,10 @@ TEST(Vf1000Faces, FselVariablesAreRamVariablesWhileTheSerialInterfaceControls) {
 }
 
 TEST(Vf1000Faces, AtAReferenceOf0HzTheInverterShutsTheMotorDownThroughEitherFace) {
-  // Seed 001, 5.2.3: "Important: At a reference value of 0 Hz the inverter shuts down the motor if
+  // INTERBUS manual 5.2.3: "Important: At a reference value of 0 Hz the inverter shuts down the motor if
   // DC-Stop is not programmed !" Decision VF-E19: once the ramp has reached 0 Hz at a reference of
   // 0 Hz the power stage is off (11-STAT without 02H, EEPROM values writable as at standstill,
-  // seed 000 3 and 11.1 kind '2'); DRIVECOM stays ENABLED (the master's command; 5.1.1 has no
+  // LUSTBUS manual 3 and 11.1 kind '2'); DRIVECOM stays ENABLED (the master's command; 5.1.1 has no
   // transition the reference makes) and a reference above 0 Hz starts the motor from 0 Hz. No
   // seed names DC-Stop's parameter: the model's configuration (Vf1000PdConfig::dc_stop) keeps the
   // power stage on.
@@ -459,7 +459,7 @@ TEST(Vf1000Faces, AtAReferenceOf0HzTheInverterShutsTheMotorDownThroughEitherFace
         r.wait(50ms);
         r.control(0x8000 | kRampBits | 0x000F);  // ENABLE OPERATION
       } else {
-        // Seed 000, 7.1: control and reference from the serial interface.
+        // LUSTBUS manual 7.1: control and reference from the serial interface.
         for (const auto& [n, value] : {std::pair{pnr::kMode, Word{0}}, {pnr::kCsel, Word{3}},
                                        {pnr::kFssel, Word{8}}, {pnr::kFssio, row.reference},
                                        {pnr::kCntl, Word{0x80}}}) {
@@ -499,9 +499,9 @@ TEST(Vf1000Faces, AtAReferenceOf0HzTheInverterShutsTheMotorDownThroughEitherFace
 }
 
 TEST(Vf1000Faces, Stat000FResetsAFaultOverTheCommunicationWordToo) {
-  // VF-E14: 11-STAT is the drive's parameter whatever carries it (seed 000, 8.1.1): 000FH with an
+  // VF-E14: 11-STAT is the drive's parameter whatever carries it (LUSTBUS manual 8.1.1): 000FH with an
   // error boots the inverter; the transfer's ACK is lost to the reset, the master sees the
-  // inverter restart (RESET distinction 0, seed 001 4.1.2.2) and its module error (6.1).
+  // inverter restart (RESET distinction 0, INTERBUS manual 4.1.2.2) and its module error (6.1).
   Rig r(true, false);
   r.drive->set_fault(true, r.now);
   r.wait(50ms);
@@ -524,8 +524,8 @@ TEST(Vf1000Faces, Stat000FResetsAFaultOverTheCommunicationWordToo) {
 // --- One drive, two faces -------------------------------------------------------------------
 
 TEST(Vf1000Faces, TheSerialInterfaceControlsOnlyWhenModeAndCselGiveItControl) {
-  // Decision VF-E16: the INTERBUS words control the drive (seed 001, 6.1: INTERBUS operation)
-  // unless 1-MODE = 0 and 2-CSEL = 3 hand control to the serial interface (seed 000, 7.1).
+  // Decision VF-E16: the INTERBUS words control the drive (INTERBUS manual 6.1: INTERBUS operation)
+  // unless 1-MODE = 0 and 2-CSEL = 3 hand control to the serial interface (LUSTBUS manual 7.1).
   Rig r;
   ASSERT_EQ(r.lb_write(pnr::kFssel, 8).kind, "written");
   ASSERT_EQ(r.lb_write(pnr::kFssio, 100).kind, "written");  // 5 Hz
@@ -546,7 +546,7 @@ TEST(Vf1000Faces, TheSerialInterfaceControlsOnlyWhenModeAndCselGiveItControl) {
 }
 
 TEST(Vf1000Faces, Mode4LocksTheSerialInterfaceWhileTheDriveIsOnInterbus) {
-  // Seed 001, 6.1: "During operation on the INTERBUS-S (01-MODE = 4) the serial interface of the
+  // INTERBUS manual 6.1: "During operation on the INTERBUS-S (01-MODE = 4) the serial interface of the
   // inverter cannot be used." (VF-E16.) A service PC's ENQUIRY goes unanswered then; once the
   // master writes another MODE the drive answers, and at MODE 4 again it is deaf again.
   Rig r;
@@ -564,8 +564,8 @@ TEST(Vf1000Faces, Mode4LocksTheSerialInterfaceWhileTheDriveIsOnInterbus) {
 
 TEST(Vf1000Faces, AResetOnOneFaceIsASelfTestOnTheOther) {
   // VF-E13: one software reset whatever triggers it. 11-STAT = 000FH over LUSTBUS: the INTERBUS
-  // face shows its module error and RESET distinction 0 for the self-test (seed 001, 6.1,
-  // 4.1.2.2); RESET FAULT over INTERBUS: the LUSTBUS face is deaf for it (seed 000, 8.1.1).
+  // face shows its module error and RESET distinction 0 for the self-test (INTERBUS manual 6.1,
+  // 4.1.2.2); RESET FAULT over INTERBUS: the LUSTBUS face is deaf for it (LUSTBUS manual 8.1.1).
   Rig r;
   r.drive->set_fault(true, r.now);
   r.wait(50ms);
@@ -593,9 +593,9 @@ TEST(Vf1000Faces, AResetOnOneFaceIsASelfTestOnTheOther) {
 }
 
 TEST(Vf1000Faces, TheSerialWatchdogMonitorsOnlyASerialLink) {
-  // VF-E15: 84-SIOT watches the serial link (seed 000, 5.2): set through the communication word
+  // VF-E15: 84-SIOT watches the serial link (LUSTBUS manual 5.2): set through the communication word
   // of a drive without a LUSTBUS face it never runs out; with one it stops the drive and sets
-  // 02H, which the INTERBUS master reads too. 906/907 set no bit in 85 (seed 001, 4.1.1).
+  // 02H, which the INTERBUS master reads too. 906/907 set no bit in 85 (INTERBUS manual 4.1.1).
   Rig only_interbus(true, false);
   ASSERT_EQ(only_interbus.ib_write(pnr::kSiot, 100).kind, "written");
   only_interbus.wait(1s);
@@ -612,9 +612,9 @@ TEST(Vf1000Faces, TheSerialWatchdogMonitorsOnlyASerialLink) {
 
 TEST(Vf1000Faces, TheEmulatorsDriveComesCommissionedForItsRs485Line) {
   // VF-E20: `ibs lustbus emulate` and the test bench serve RS-485, where the drive answers only
-  // with 61-SOUTA = 7 (seed 000, 4); like the line's rate in 81-SIOC the emulator sets it as a
+  // with 61-SOUTA = 7 (LUSTBUS manual 4); like the line's rate in 81-SIOC the emulator sets it as a
   // commissioning step, in the EEPROM. Alone on LUSTBUS the drive has the standard factory values
-  // (seed 001 3.1.1 does not apply, VF-E20); the bench's drive keeps its INTERBUS ones.
+  // (INTERBUS manual 3.1.1 does not apply, VF-E20); the bench's drive keeps its INTERBUS ones.
   const ibs::devices::LustbusFace& face = vf::lustbus_face();
   ibs::devices::LustbusEmulated alone = face.make(ibs::devices::LustbusFaceOptions{});
   auto& lone = dynamic_cast<vf::LustbusDevice&>(*alone.responder);
@@ -630,7 +630,7 @@ TEST(Vf1000Faces, TheEmulatorsDriveComesCommissionedForItsRs485Line) {
   Vf1000Device ib(Vf1000DeviceConfig{}, DeviceStart::operational, Time{0});
   ibs::devices::LustbusEmulated bench = face.attach(ib, ibs::devices::LustbusFaceOptions{});
   EXPECT_EQ(ib.drive().eeprom_value(pnr::kSouta), vf::kSoutaRs485);
-  EXPECT_EQ(ib.drive().value(pnr::kMode), 4) << "the INTERBUS package's value (seed 001, 3.1.1)";
+  EXPECT_EQ(ib.drive().value(pnr::kMode), 4) << "the INTERBUS package's value (INTERBUS manual 3.1.1)";
   auto& served = dynamic_cast<vf::LustbusDevice&>(*bench.responder);
   EXPECT_FALSE(served.listening(Time{0})) << "MODE 4 on the ring (VF-E16)";
   ib.drive().set_value(pnr::kMode, 1);
@@ -665,14 +665,14 @@ ibs::devices::PlantEvent fault_event(std::optional<int> cause) {
 }
 
 TEST(Vf1000Events, ADeviceFaultWithItsCauseShowsOnBothFaces) {
-  // Seed 001 4.1.3.3: the inverter's error codes are 00H..0EH; seed 000 8: errors show in the
+  // INTERBUS manual 4.1.3.3: the inverter's error codes are 00H..0EH; LUSTBUS manual 8: errors show in the
   // status word and, over LUSTBUS, in 11-STAT's error bit 80H (LB-D19).
   Rig r(true, true);
   ASSERT_TRUE(r.ib->apply_event(fault_event(12), r.now));
   r.wait(50ms);
   EXPECT_EQ(r.drive->fault_cause(), 12);
   EXPECT_EQ(r.drive->state(), State::fault);
-  EXPECT_NE(r.ib->status_word() & 0x0008U, 0U) << "DRIVECOM status word bit 3: fault (seed 001 5.2.2)";
+  EXPECT_NE(r.ib->status_word() & 0x0008U, 0U) << "DRIVECOM status word bit 3: fault (INTERBUS manual 5.2.2)";
   EXPECT_EQ(r.lb_read(pnr::kStat).value & vf::kStatError, vf::kStatError);
   EXPECT_EQ(r.ib_read(pnr::kStat).value & vf::kStatError, vf::kStatError);
   // The cause goes with the fault; the latched FAULT stays until its reset (8.1.1).
@@ -686,7 +686,7 @@ TEST(Vf1000Events, ADeviceFaultWithItsCauseShowsOnBothFaces) {
 
 TEST(Vf1000Events, MainsLossSilencesBothFacesAndTheReturnIsAPowerOn) {
   // VF-E17: mains lost = the inverter off: a module error on INTERBUS, no LUSTBUS answer; back =
-  // a new start with 6.1's initialisation and the power-on bit (seed 000 9.2, "a power failure").
+  // a new start with 6.1's initialisation and the power-on bit (LUSTBUS manual 9.2, "a power failure").
   Rig r(true, true);
   ibs::devices::PlantEvent off;
   off.kind = ibs::devices::PlantEvent::Kind::mains_off;
@@ -723,8 +723,8 @@ TEST(Vf1000Events, NoLoad) {
 }
 
 TEST(Vf1000Events, ASmartcardOperationDisablesBothBusesForItsTime) {
-  // Seed 001, 6.1: "While the SMARTCARD is being read and written to bus operation is disabled";
-  // seed 000, 10 exception 2: "While a SMARTCARD is being read in, no communications with the
+  // INTERBUS manual 6.1: "While the SMARTCARD is being read and written to bus operation is disabled";
+  // LUSTBUS manual 10 exception 2: "While a SMARTCARD is being read in, no communications with the
   // device via the LUSTBUS is possible. This condition can last up to 10 seconds". Decision
   // VF-E21: for the operation's time the INTERBUS face shows a module error and takes no words
   // (its channel waits), the LUSTBUS face hears nothing; the values stay (the seeds give no card's
@@ -776,7 +776,7 @@ ibs::devices::PlantEvent terminal_event(std::string_view name, bool high) {
 }
 
 TEST(Vf1000Events, TheEventsNameTheTerminalsOfSeed001) {
-  // Seed 001, 5.2.1 (control bits 12..15: S2IND, S1IND, STL, STR) and 5.2.2 (status bits 14 / 15:
+  // INTERBUS manual 5.2.1 (control bits 12..15: S2IND, S1IND, STL, STR) and 5.2.2 (status bits 14 / 15:
   // S2OUT, S1OUT): the names a scenario writes are the manual's, in the order of vf1000::Terminal.
   const auto& inputs = vf::descriptor().facts().events.inputs;
   ASSERT_EQ(inputs.size(), vf::kTerminalCount);
@@ -788,11 +788,11 @@ TEST(Vf1000Events, TheEventsNameTheTerminalsOfSeed001) {
 }
 
 TEST(Vf1000Events, OutputsS2outAndS1outShowInStatusBits14And15OnBothFaces) {
-  // Seed 001, 5.2.2: "Bit 14 Status of output S2OUT, dependent on programmed function", "Bit 15
+  // INTERBUS manual 5.2.2: "Bit 14 Status of output S2OUT, dependent on programmed function", "Bit 15
   // Status of output S1OUT". VF-E22: the seeds give no function, so the event states the level;
-  // it shows in the INTERBUS status word and in 911-IBSTA (the DRIVECOM status word, seed 001
+  // it shows in the INTERBUS status word and in 911-IBSTA (the DRIVECOM status word, INTERBUS manual
   // 4.1.1) over the communication word, whichever face the event came through. LUSTBUS shows
-  // neither: its VF1000 CODE reaches parameters 00..99 only (seed 000 2.4.1), and 11-STAT's bits
+  // neither: its VF1000 CODE reaches parameters 00..99 only (LUSTBUS manual 2.4.1), and 11-STAT's bits
   // are the ready / running / direction / error of LB-D19.
   struct Row {
     bool via_interbus;  // the event through the INTERBUS face, else on the core (the LUSTBUS face's way)
@@ -850,7 +850,7 @@ TEST(Vf1000Events, OutputsS2outAndS1outShowInStatusBits14And15OnBothFaces) {
 }
 
 TEST(Vf1000Events, ControlBits12And13OrTheTerminalsActivateTheFunctionOfS2indAndS1ind) {
-  // Seed 001, 5.2.1: "Bit 12 Activates the parameter-set function of input S2IND", "Bit 13
+  // INTERBUS manual 5.2.1: "Bit 12 Activates the parameter-set function of input S2IND", "Bit 13
   // Activates the parameter-set function of input S1IND". VF-E22: the function is active while the
   // terminal is high or the bus bit set; the seeds do not give what it does, so nothing else
   // changes -- the DRIVECOM status bits 0..13 and the frequency are those without it.
@@ -911,9 +911,9 @@ TEST(Vf1000Events, ControlBits12And13OrTheTerminalsActivateTheFunctionOfS2indAnd
 }
 
 TEST(Vf1000Events, TerminalsStrAndStlAreRecordedButTheBusControls) {
-  // Seed 001, 5.2.1: control bits 14 / 15 are the "function as input STL / STR" under INTERBUS
-  // control; the model has no terminal control location (INTERBUS or serial only, seed 001 6.1,
-  // seed 000 7.1), so the terminals are recorded and change nothing (VF-E22).
+  // INTERBUS manual 5.2.1: control bits 14 / 15 are the "function as input STL / STR" under INTERBUS
+  // control; the model has no terminal control location (INTERBUS or serial only, INTERBUS manual 6.1,
+  // LUSTBUS manual 7.1), so the terminals are recorded and change nothing (VF-E22).
   struct Row {
     std::string_view terminal;
     Word direction_bits;  // control bit 15 STR / 14 STL

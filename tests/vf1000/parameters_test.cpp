@@ -1,5 +1,5 @@
 // The VF1000 parameter model: the table's content against the manuals, the index, the value store
-// with its RAM/EEPROM rules, the write checks and the description record (seed 001, 4.1.3.3).
+// with its RAM/EEPROM rules, the write checks and the description record (INTERBUS manual 4.1.3.3).
 #include "ibs/devices/vf1000/parameters.hpp"
 #include "ibs/drive/parameters.hpp"
 #include "ibs/vf1000_channel/description.hpp"

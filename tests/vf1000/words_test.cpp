@@ -1,4 +1,4 @@
-// The VF1000's own bits of the control word (seed 001, 5.2.1) and its reference and actual words.
+// The VF1000's own bits of the control word (INTERBUS manual 5.2.1) and its reference and actual words.
 #include <gtest/gtest.h>
 
 #include "ibs/devices/vf1000/descriptor.hpp"

@@ -1,5 +1,5 @@
 // The master side of the parameter channel, fed scripted inverter words: the cycle tables of
-// seed 001, 4.1.3 from the master's column, the 85-SIOF read after a refused transfer (4.1.4),
+// INTERBUS manual 4.1.3 from the master's column, the 85-SIOF read after a refused transfer (4.1.4),
 // timeouts, inverter and master restarts, the request queue and polling.
 #include "ibs/vf1000_channel/client.hpp"
 
@@ -233,7 +233,7 @@ TEST(ClientRestarts, InverterRestartMidTransactionIsReportedAndSiofReadBeforeThe
   const RequestId again = m.c.submit(value_transfer(0x16, 0x01F4)).id;
   for (int i = 0; i < 20; ++i) EXPECT_EQ(m.step(0x0000), 0x0000);
   EXPECT_EQ(m.step(0x8000), 0x0000);  // ready again; resync_hold counts from the last RESET word
-  EXPECT_EQ(m.step(0x8000), 0x2455);  // 85-SIOF read first (seed 000, 8.1.1)
+  EXPECT_EQ(m.step(0x8000), 0x2455);  // 85-SIOF read first (LUSTBUS manual 8.1.1)
   EXPECT_EQ(m.sends({0x8000, 0xA000, 0xA000, 0x8801, 0x8801, 0x8000}),
             (std::vector<Word>{0x2455, 0x0400, 0x0400, 0x0000, 0x0000, 0x2816}));
   EXPECT_EQ(m.c.last_siof(), 0x01);

@@ -1,4 +1,4 @@
-// The communication word's bit layout (seed 001, 4.1.2.1 and 4.1.2.2), pinned with the words of
+// The communication word's bit layout (INTERBUS manual 4.1.2.1 and 4.1.2.2), pinned with the words of
 // the manual's cycle tables (4.1.3).
 #include "ibs/vf1000_channel/comm_word.hpp"
 

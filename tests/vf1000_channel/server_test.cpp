@@ -1,4 +1,4 @@
-// The inverter side of the parameter channel: the cycle tables of seed 001, 4.1.3 fed word by
+// The inverter side of the parameter channel: the cycle tables of the INTERBUS manual 4.1.3 fed word by
 // word, every NAK path of 4.1.4 with its 85-SIOF bit and the clearing read, power-on (6.1), the
 // EEPROM rule (4.1.3.2), parameter numbers above FFH, and values never half-written.
 #include "ibs/vf1000_channel/server.hpp"
@@ -476,7 +476,7 @@ TEST(ServerConstruction, ValidateGivesTheCodeAndTheConstructorsMessage) {
   EXPECT_EQ(e.message,
             "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value "
             "transfer depends "
-            "on (seed 001, 4.1.4)");
+            "on (INTERBUS manual 4.1.4)");
   EXPECT_EQ(e.message, thrown({&only, 1}));
 
   // A malformed table is refused as the table refuses it, before the 85-SIOF question.

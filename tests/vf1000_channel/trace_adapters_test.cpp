@@ -1,4 +1,4 @@
-// The cycle tables of seed 001, 4.1.3 (and further comm traces) replayed against both sides, and
+// The cycle tables of the INTERBUS manual 4.1.3 (and further comm traces) replayed against both sides, and
 // the adapters' mapping between trace requests/outcomes and the channel's.
 #include "ibs/vf1000_channel/trace_adapters.hpp"
 

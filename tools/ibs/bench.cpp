@@ -91,7 +91,7 @@ devices::dfs1::ParsedControl controller_event(const TimelineEntry& e) {
   }
   if (e.action == Action::fault_device && e.cause.empty()) {
     devices::dfs1::ParsedControl bad;
-    bad.error = "fault = \"device\" on a DFS-1 controller needs its 'cause' (one of the status bits of seed 004: ";
+    bad.error = "fault = \"device\" on a DFS-1 controller needs its 'cause' (one of the status bits of the DFS-1 manual: ";
     for (std::size_t i = 0; i < devices::dfs1::fault_causes().size(); ++i) {
       bad.error += (i == 0 ? "" : ", ") + std::string(devices::dfs1::fault_causes()[i].seed_name);
     }
@@ -140,7 +140,7 @@ Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) 
         throw std::invalid_argument(who + "a " + d.kind + " does not answer on LUSTBUS: it takes no 'lustbus'");
       }
       devices::LustbusFaceOptions options;
-      // The drive's own settings its LUSTBUS face declares (a KEYPAD slows both faces, seed 000 10
+      // The drive's own settings its LUSTBUS face declares (a KEYPAD slows both faces, LUSTBUS manual 10
       // and 001 7.1): the scenario gives them once, for the drive.
       for (const devices::SettingValue& v : d.settings.all()) {
         const devices::SettingSpec* spec = devices::find_setting(drive->lustbus->settings, v.name);
@@ -164,7 +164,7 @@ Bench::Bench(Simulator& sim, const Scenario& scenario, const std::string& file) 
     }
     m.lustbus.emplace();
     m.lustbus->key = "lustbus";
-    // Seed 000, 4: 7 data bits, even parity, 1 stop bit on RS-485 (as `ibs lustbus emulate`).
+    // LUSTBUS manual 4: 7 data bits, even parity, 1 stop bit on RS-485 (as `ibs lustbus emulate`).
     serial::PortOptions options;
     options.baud = scenario.lustbus->baud;
     options.framing = serial::k7E1;
@@ -326,7 +326,7 @@ BenchReport Bench::report() const {
   const Impl& m = *impl_;
   BenchReport r;
   r.lines = ready_lines();
-  // A DFS-1 controller answers every request (an ACK, data or a NAK) but a global one (seed 004:
+  // A DFS-1 controller answers every request (an ACK, data or a NAK) but a global one (DFS-1 manual:
   // UID 0 gets no reply) and one overtaken by the next request.
   for (std::size_t i = 0; i < served(); ++i) {
     const Counters c = counters(i);

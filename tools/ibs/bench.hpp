@@ -66,7 +66,7 @@ class Bench {
   // Whether `name` is one of the bench's DFS-1 controllers.
   [[nodiscard]] bool serves_controller(const std::string& name) const;
   // What is wrong with an entry for one of them (its event as the DFS-1 wing reads control lines:
-  // a cause of seed 004, an input, a load in range), nullopt when nothing is or the entry is not
+  // a cause of the DFS-1 manual, an input, a load in range), nullopt when nothing is or the entry is not
   // a controller's.
   [[nodiscard]] std::optional<std::string> check(const sim::TimelineEntry& e) const;
   // A timeline or control entry for a DFS-1 controller of the bench, applied at `now` (an entry

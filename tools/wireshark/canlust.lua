@@ -1,4 +1,4 @@
--- CANLust (LUST CM-CAN1, seed 003) dissector for Wireshark / tshark, on top of the CAN dissector.
+-- CANLust (LUST CM-CAN1, CANLust manual) dissector for Wireshark / tshark, on top of the CAN dissector.
 -- It registers on the `can.id` table for every CANLust identifier: base + step x address for
 -- error 441, logon 1543, control 661, status 881, parameter request 1101, reply 1321, and the
 -- broadcast 221 (docs/canlust.md). The step (2, decision D1 / erratum CAN-E1) is a preference.
@@ -57,7 +57,7 @@ f.checksum = ProtoField.uint32("canlust.checksum", "String checksum (XOR of the 
 f.request_in = ProtoField.framenum("canlust.request_in", "Request in frame")
 
 -- DRIVECOM (the CDA3000 with 492-CACNF 1..3): the state table of the status word and the command
--- table of the control word (seed 001, 5.1.2 / 5.1.3; drivecom/), rows as mask, value, name.
+-- table of the control word (INTERBUS manual 5.1.2 / 5.1.3; drivecom/), rows as mask, value, name.
 local states = { {0x4F, 0x00, "NOT READY"}, {0x4F, 0x40, "START-UP INHIBIT"}, {0x6F, 0x21, "READY"},
                  {0x6F, 0x23, "ON"}, {0x6F, 0x27, "ENABLED"}, {0x4F, 0x08, "FAULT"},
                  {0x4F, 0x0F, "FAULT RESPONSE ACTIVE"}, {0x6F, 0x07, "EMERGENCY STOP ACTIVE"} }
@@ -70,7 +70,7 @@ local function lookup(rows, word)
   return "no DRIVECOM state"
 end
 
--- The CDA3000's parameters: display name, data type (seed 003, 4.1.1) and unit, as the wing's
+-- The CDA3000's parameters: display name, data type (CANLust manual 4.1.1) and unit, as the wing's
 -- table has them (devices/cda3000/parameters.hpp; the test CanlustDissector.ParameterTableIsTheWings
 -- keeps the two equal). The type says how data bytes 3-6 of a value read, written or echoed are
 -- shown: INT32Q16 406-REFF as "-12.25 Hz".
@@ -114,7 +114,7 @@ local function classify(id)
 end
 
 -- The request a reply answers: the last request to the same address before it, taken on the
--- first pass in frame order (every request gets exactly one reply, CAL; seed 003, 4.5). A
+-- first pass in frame order (every request gets exactly one reply, CAL; CANLust manual 4.5). A
 -- reply's data bytes mean what the request asked for: a value, a description item, characters of
 -- a string or its checksum.
 local last_request = {}  -- address -> { frame, parameter, mode }

@@ -1,4 +1,4 @@
--- PowerTec DFS-1 (seed 004) captures of ibs (`ibs dfs1 ... --pcap`, `ibs run --dfs1-pcap`) for
+-- PowerTec DFS-1 (DFS-1 manual) captures of ibs (`ibs dfs1 ... --pcap`, `ibs run --dfs1-pcap`) for
 -- Wireshark / tshark. Each packet is one frame of the line after an 8-byte header of ibs's own
 -- (docs/pcap.md, "Serial lines"): version, direction (0 host, 1 controller), flags (bit 0 check
 -- character wrong, bit 1 cut, bit 2 noise, bit 7 address present), address (the UID), the
@@ -84,7 +84,7 @@ f.response_in = ProtoField.framenum("dfs1.response_in", "Response in frame")
 
 local e_csm = ProtoExpert.new("dfs1.checksum.bad", "CSM wrong", expert.group.CHECKSUM, expert.severity.ERROR)
 local e_cut = ProtoExpert.new("dfs1.cut", "Frame cut", expert.group.MALFORMED, expert.severity.WARN)
-local e_noise = ProtoExpert.new("dfs1.noise", "No frame of seed 004", expert.group.MALFORMED, expert.severity.WARN)
+local e_noise = ProtoExpert.new("dfs1.noise", "No frame of the DFS-1 manual", expert.group.MALFORMED, expert.severity.WARN)
 local e_nak = ProtoExpert.new("dfs1.nak", "NAK", expert.group.RESPONSE_CODE, expert.severity.NOTE)
 local e_length = ProtoExpert.new("dfs1.length", "Data length not that of the command", expert.group.MALFORMED,
                                  expert.severity.WARN)
@@ -215,7 +215,7 @@ function p.dissector(tvb, pinfo, tree)
   pinfo.cols.protocol = "DFS-1"
   local dir = tvb(1, 1):uint()
   local flags = tvb(2, 1):uint()
-  local t = tree:add(p, tvb(), "DFS-1 (seed 004), " .. (directions[dir] or "direction ?"))
+  local t = tree:add(p, tvb(), "DFS-1 (DFS-1 manual), " .. (directions[dir] or "direction ?"))
   local h = t:add(tvb(0, 8), "ibs capture header")
   h:add(f.version, tvb(0, 1))
   h:add(f.direction, tvb(1, 1))
@@ -231,7 +231,7 @@ function p.dissector(tvb, pinfo, tree)
   local cut = bit32.band(flags, 0x02) ~= 0
   if fr:len() < 2 or fr(0, 1):uint() ~= DLE or fr(1, 1):uint() ~= STX then
     t:add(f.kind, "noise"):set_generated()
-    t:add_proto_expert_info(e_noise, "bytes outside DLE STX ... CSM (seed 004, 6.0)")
+    t:add_proto_expert_info(e_noise, "bytes outside DLE STX ... CSM (DFS-1 manual 6.0)")
     pinfo.cols.info = prefix .. string.format("noise, %d byte(s)", fr:len())
     return tvb:len()
   end

@@ -25,7 +25,7 @@ local control_codes = { [0] = "IDLE", [1] = "ABORT", [2] = "ABORT-ACK", [3] = "i
 local services = { [0x0081] = "Read", [0x0082] = "Write", [0x0085] = "Information-Report", [0x0086] = "Status",
                    [0x0087] = "Identify", [0x0088] = "Get-OV", [0x008B] = "Initiate", [0x088D] = "Abort" }
 
--- DRIVECOM Profile 20 (seed 001, 5.1.2 and 5.1.3), in the rows' priority order.
+-- DRIVECOM Profile 20 (INTERBUS manual 5.1.2 and 5.1.3), in the rows' priority order.
 local commands = {
   { 0x0002, 0x0000, "BLOCK POWER" },
   { 0x0006, 0x0002, "EMERGENCY STOP" },

@@ -1,8 +1,8 @@
--- LUSTBUS (seed 000) captures of ibs (`ibs lustbus ... --pcap`, `ibs run --lustbus-pcap`) for
+-- LUSTBUS (LUSTBUS manual) captures of ibs (`ibs lustbus ... --pcap`, `ibs run --lustbus-pcap`) for
 -- Wireshark / tshark. Each packet is one telegram of the line after an 8-byte header of ibs's own
 -- (docs/pcap.md, "Serial lines"): version, direction (0 host, 1 device), flags (bit 0 check
 -- character wrong, bit 1 cut, bit 2 noise, bit 7 address present), address, the telegram's
--- duration in microseconds. The telegram is decoded by ISO 1745 as seed 000 uses it (2.2, 6.1,
+-- duration in microseconds. The telegram is decoded by ISO 1745 as the LUSTBUS manual uses it (2.2, 6.1,
 -- 6.2, 11.6): every control character named, ADR with the address (0 '@' every device, 31 '_'
 -- broadcast), CODE by the coding of 2.4.1 (VF1000) / 2.4.2 (MC6000) / 5.2 (both) / 11.3 / 11.6
 -- (PosMOD1), VALUE as text and as the hex number it is, and the BCC checked (XOR of the bytes
@@ -57,7 +57,7 @@ f.response_in = ProtoField.framenum("lustbus.response_in", "Answer in frame")
 
 local e_bcc = ProtoExpert.new("lustbus.bcc.bad", "BCC wrong", expert.group.CHECKSUM, expert.severity.ERROR)
 local e_cut = ProtoExpert.new("lustbus.cut", "Telegram cut", expert.group.MALFORMED, expert.severity.WARN)
-local e_noise = ProtoExpert.new("lustbus.noise", "No telegram of seed 000", expert.group.MALFORMED,
+local e_noise = ProtoExpert.new("lustbus.noise", "No telegram of the LUSTBUS manual", expert.group.MALFORMED,
                                 expert.severity.WARN)
 local e_code = ProtoExpert.new("lustbus.code.bad", "No CODE of 2.4", expert.group.MALFORMED, expert.severity.WARN)
 p.experts = { e_bcc, e_cut, e_noise, e_code }
@@ -247,7 +247,7 @@ function p.dissector(tvb, pinfo, tree)
   pinfo.cols.protocol = "LUSTBUS"
   local dir = tvb(1, 1):uint()
   local flags = tvb(2, 1):uint()
-  local t = tree:add(p, tvb(), "LUSTBUS (seed 000), " .. (directions[dir] or "direction ?"))
+  local t = tree:add(p, tvb(), "LUSTBUS (LUSTBUS manual), " .. (directions[dir] or "direction ?"))
   local h = t:add(tvb(0, 8), "ibs capture header")
   h:add(f.version, tvb(0, 1))
   h:add(f.direction, tvb(1, 1))
@@ -269,7 +269,7 @@ function p.dissector(tvb, pinfo, tree)
   end
   if info == nil then
     t:add(f.kind, "noise"):set_generated()
-    t:add_proto_expert_info(e_noise, "bytes that begin no telegram of seed 000 (6.1, 6.2)")
+    t:add_proto_expert_info(e_noise, "bytes that begin no telegram of the LUSTBUS manual (6.1, 6.2)")
     info = string.format("noise, %d byte(s)", body:len())
   end
   if bit32.band(flags, 0x02) ~= 0 then

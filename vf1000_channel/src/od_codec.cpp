@@ -21,7 +21,7 @@ Error check(const od::Dictionary& d) {
   if (d.slot_of(od::Role::error_flags) == od::kNoSlot) {
     return {ErrorCode::table_lacks_siof,
             "vf1000_channel: the dictionary has no 85-SIOF, which every value transfer depends on "
-            "(seed 001, 4.1.4)"};
+            "(INTERBUS manual 4.1.4)"};
   }
   return {};
 }

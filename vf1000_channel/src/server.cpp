@@ -41,7 +41,7 @@ Error Server::validate(std::span<const drive::ParameterInfo> params) {
     return {
         ErrorCode::table_lacks_siof,
         "vf1000_channel::Server: the parameter table has no 85-SIOF, which every value transfer "
-        "depends on (seed 001, 4.1.4)"};
+        "depends on (INTERBUS manual 4.1.4)"};
   }
   return {};
 }

@@ -112,7 +112,7 @@ class CommExplainer final : public tr::Explainer {
 Request to_channel_request(const tr::Request& r) {
   if (r.parameter > kMaxParameterNumber) {
     throw std::invalid_argument("vf1000 comm: parameter " + std::to_string(r.parameter) +
-                                " above 3FFH (1023), the channel's range (seed 001, 4.1.3)");
+                                " above 3FFH (1023), the channel's range (INTERBUS manual 4.1.3)");
   }
   switch (r.kind) {
     case tr::Request::Kind::read:

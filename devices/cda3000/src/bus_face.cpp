@@ -48,10 +48,10 @@ std::string causes() {
 std::string check(const CanlustEvent& e) {
   using K = CanlustEvent::Kind;
   if (e.kind == K::fault && !find_cause(e.cause) && find_warning(e.cause) == nullptr) {
-    return "cause '" + e.cause + "': the CDA3000's errors (seed 003, table 5.9) are " + causes();
+    return "cause '" + e.cause + "': the CDA3000's errors (CANLust manual, table 5.9) are " + causes();
   }
   if (e.kind == K::input && !find_input(e.input)) {
-    return "input '" + e.input + "': the CDA3000's terminals in seed 003 are ENPO (X2-8) and ISD00 (X2-9)";
+    return "input '" + e.input + "': the CDA3000's terminals in the CANLust manual are ENPO (X2-8) and ISD00 (X2-9)";
   }
   if (e.kind == K::load && !(std::fabs(e.load) <= kMaxLoadPercent)) {
     return "load " + std::to_string(e.load) + " %: the CDA3000 takes -300 .. 300 % of the rated torque";
@@ -127,7 +127,7 @@ class EmulatedDrive final : public CanlustDrive {
       case K::input: {
         const Input i = *find_input(e.input);
         drive_.set_input(i, e.level, now);
-        if (i == Input::isd00) return {true, "kept (seed 003 gives the terminal no function)"};
+        if (i == Input::isd00) return {true, "kept (CANLust manual gives the terminal no function)"};
         return {true, e.level ? "the power stage may be enabled"
                               : "the power stage is blocked, " + std::string(drivecom::to_string(drive_.state()))};
       }

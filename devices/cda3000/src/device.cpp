@@ -359,7 +359,7 @@ void Cda3000::set_load(double percent, Time now) {
 
 void Cda3000::set_input(Input i, bool high, Time now) {
   if (i == Input::isd00) {
-    isd00_ = high;  // seed 003 names the terminal only (2.3.2: "X2 9 ISD00 digital input")
+    isd00_ = high;  // CANLust manual names the terminal only (2.3.2: "X2 9 ISD00 digital input")
     return;
   }
   enpo_ = high;

@@ -1,7 +1,7 @@
 // The MC6000 in the fault campaign (devices/campaign_profile.hpp, docs/robustness.md "Fault
 // campaign"): servos with PCP channels of 1, 2 and 4 words and several 405-SUPI / 406-IBCNF, two
 // without PCP; the parameter model from the table (parameters.hpp); 4-PROG, 80-SLOAD and 85-SERR as
-// seed 000 describes them; 409-BUTWD in ms.
+// LUSTBUS manual describes them; 409-BUTWD in ms.
 #include "ibs/devices/mc6000/campaign_profile.hpp"
 
 #include <algorithm>
@@ -85,7 +85,7 @@ class Profile final : public CampaignProfile {
       return d;
     }
     d.watchdog_parameter = kButwd;
-    // Seed 001 3.2.2 / 3.2.3: SUPI 0..12, IBCNF 0..3 (4, LISIM, the project does not support).
+    // INTERBUS manual 3.2.2 / 3.2.3: SUPI 0..12, IBCNF 0..3 (4, LISIM, the project does not support).
     d.layout = {{kSupi, "405-SUPI", supi_of(s), 0, kSupiMax},
                 {kIbcnf, "406-IBCNF", ibcnf_of(s), 0, static_cast<int>(Ibcnf::speed_torque)}};
     for (const pcp::ParameterInfo& p : kParameters) {
@@ -126,7 +126,7 @@ class Profile final : public CampaignProfile {
       for (int k = 0; k < 3; ++k) add(w.in_range, rng.uniform(p.min, p.max));
       // Watchdog times the campaign's outages (550 ms) always exceed.
       if (p.number == kButwd) w.in_range = {0, 40, 100, 250, m.initial};
-      // 81-SBAUD takes the rates of seed 000 4 in baud (LB-E18), no number between them.
+      // 81-SBAUD takes the rates of the LUSTBUS manual 4 in baud (LB-E18), no number between them.
       if (p.number == kParamSbaud) w.in_range = {2400, 4800, 9600, 19200, 38400, 57600};
       for (const std::int64_t v : {p.min - 1, p.max + 1}) w.out_of_range.push_back(v);
       d.writes.push_back(std::move(w));
@@ -138,7 +138,7 @@ class Profile final : public CampaignProfile {
 
   [[nodiscard]] Duration request_timeout(ParamOp op, std::uint16_t number, std::int64_t value) const override {
     // An Initiate and the request itself, each with the PCP client's timeout; a write of
-    // 4-PROG = 1 waits for the factory defaults (seed 000, 10: up to 10 s).
+    // 4-PROG = 1 waits for the factory defaults (LUSTBUS manual 10: up to 10 s).
     const bool factory_defaults = op == ParamOp::write && number == kProg && value == kProgFactoryDefaults;
     return kPcpTimeout + (factory_defaults ? Mc6000Driver::kFactoryDefaultsTimeout : kPcpTimeout);
   }
@@ -148,18 +148,18 @@ class Profile final : public CampaignProfile {
   [[nodiscard]] std::pair<std::int64_t, std::int64_t> reference_range() const override { return {-3000, 3000}; }
 
   [[nodiscard]] std::optional<CampaignFactoryDefaults> factory_defaults() const override {
-    // 4-PROG: 1 loads the factory defaults (seed 000, 10); 111 activates a baud rate (11.5).
+    // 4-PROG: 1 loads the factory defaults (LUSTBUS manual 10); 111 activates a baud rate (11.5).
     return CampaignFactoryDefaults{kProg, "4-PROG", {0, kProgActivateBaudrate}, 0.3};
   }
 
   [[nodiscard]] std::optional<CampaignDownload> download() const override {
-    // Seed 000 11.4; the dataset check after SLOAD = -2 takes the drive's time on every bus
+    // LUSTBUS manual 11.4; the dataset check after SLOAD = -2 takes the drive's time on every bus
     // (docs/errata.md MC-D2).
-    return CampaignDownload{kSload, "80-SLOAD", DriveTiming{}.download_check, "seed 000 11.4: secured until it ends"};
+    return CampaignDownload{kSload, "80-SLOAD", DriveTiming{}.download_check, "LUSTBUS manual 11.4: secured until it ends"};
   }
 
   // A refused PCP write sets 85-SERR, which refuses every further write until it is read
-  // (seed 000, 9.2); a power-on sets its power-on bit.
+  // (LUSTBUS manual 9.2); a power-on sets its power-on bit.
   [[nodiscard]] std::optional<std::uint16_t> write_error_register() const override { return kSerr; }
 
   [[nodiscard]] bool layout_mismatch(const DeviceEmulator& emulator) const override {

@@ -8,7 +8,7 @@ namespace ibs::devices::mc6000 {
 namespace {
 
 // The reference and actual value as 406-IBCNF lays them out: none when the layout
-// exchanges no process data (IBCNF 0) or is the LISIM one; seed 001 3.2.3.
+// exchanges no process data (IBCNF 0) or is the LISIM one; INTERBUS manual 3.2.3.
 CaptureFormat format(const DeviceSettings& s) {
   CaptureFormat f;
   const int supi = supi_of(s);

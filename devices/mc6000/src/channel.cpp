@@ -5,7 +5,7 @@
 namespace ibs::devices::mc6000 {
 
 pcp::LatencyModel pcp_latency(int channel_words) {
-  // Seed 001, 7.2: a Read or Write takes 10..35 ms at the master "depending on processor
+  // INTERBUS manual 7.2: a Read or Write takes 10..35 ms at the master "depending on processor
   // workload". The channel's own share depends on its width (the link moves one fragment per bus
   // cycle on the servo's INTERBUS CPU, docs/pcp.md): 3.4..5.9 ms over 4 words, 5.1..10.9 ms over 2
   // and 12.5..25.7 ms over 1 on buses of 0.567..0.989 ms cycles. The servo processor's time is

@@ -34,8 +34,8 @@ namespace {
 // 409-BUTWD in ms, 0 = off (3.2.4), an Unsigned 16.
 constexpr int kMaxWatchdogMs = 0xFFFF;
 
-// The servo's error numbers: one byte (seed 000 3, PT_MC_ERROR: "Error number 1 Byte"); the one
-// the seeds name is 16, E-OP1 (seed 001 3.2.4). Its inputs IS00 and IS01 (seed 001 5.3.2) and a
+// The servo's error numbers: one byte (LUSTBUS manual 3, PT_MC_ERROR: "Error number 1 Byte"); the one
+// the seeds name is 16, E-OP1 (INTERBUS manual 3.2.4). Its inputs IS00 and IS01 (INTERBUS manual 5.3.2) and a
 // load torque on its plant (plant.hpp, Nm).
 constexpr ErrorCause kErrors[] = {{kWatchdogError, "E-OP1"}};
 constexpr std::string_view kInputs[] = {"IS00", "IS01"};
@@ -51,9 +51,9 @@ constexpr DriveFacts kFacts{
     .reference_min = -32768.0,
     .reference_max = 32767.0,
     .reference_range = "-32768..32767 rpm",
-    // Parameter numbers: 0..999 (seed 000, 2.4.2); PCP index = number + 5C00H (seed 001, 4.2).
+    // Parameter numbers: 0..999 (LUSTBUS manual 2.4.2); PCP index = number + 5C00H (INTERBUS manual 4.2).
     .max_parameter = pcp::kMaxParameterNumber,
-    .parameter_range = ", seed 000 2.4.2",
+    .parameter_range = ", LUSTBUS manual 2.4.2",
     // A PCP value is up to 32 bits, written as a signed or unsigned number.
     .write_min = -2147483648.0,
     .write_max = 4294967295.0,
@@ -70,18 +70,18 @@ constexpr DriveFacts kFacts{
             .min_error = 0,
             .max_error = 255,
             .errors = kErrors,
-            .error_source = "seed 000 3: one byte",
+            .error_source = "LUSTBUS manual 3: one byte",
             .inputs = kInputs,
             .no_inputs = {},
             .load_unit = "Nm",
             .no_load = {},
-            // Seed 000, 10 exception 2: "up to 10 seconds, depending on the device" (MC-D9).
+            // LUSTBUS manual 10 exception 2: "up to 10 seconds, depending on the device" (MC-D9).
             .card_max_s = 10.0,
-            .card_source = "seed 000 10 exception 2",
+            .card_source = "LUSTBUS manual 10 exception 2",
             .no_card = {},
-            // Seed 001, 3.2.1: its factory defaults back at the next power-up (MC-D10).
+            // INTERBUS manual 3.2.1: its factory defaults back at the next power-up (MC-D10).
             .option_card = "INTERBUS card",
-            .option_source = "seed 001 3.2.1",
+            .option_source = "INTERBUS manual 3.2.1",
             .no_option = {},
         },
 };
@@ -159,7 +159,7 @@ class Descriptor final : public DriveDescriptor {
       return refuse(
           ErrorCode::setting_of_another_drive,
           "'watchdog_reaction' is a VF1000 setting (907-IBCOD); the MC6000 always reports E-OP1 "
-          "(seed 001, 3.2.4)",
+          "(INTERBUS manual 3.2.4)",
           "watchdog_reaction");
     }
     return {};
@@ -280,7 +280,7 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
   if (!l.exchanges_data) {
     const std::string none =
         "no data exchange: 405-SUPI = 0 reports configuration 4 and the INTERBUS card loops "
-        "without exchanging data with the servo (seed 001 3.2.2)";
+        "without exchanging data with the servo (INTERBUS manual 3.2.2)";
     r.out_words.push_back({1, "no_data", none});
     r.in_words.push_back({1, "no_data", none});
     r.pcp = "none (405-SUPI = 0)";
@@ -288,10 +288,10 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
   }
 
   const std::string unit = "torque, speed or position by the control mode (rpm in speed control)";
-  const std::string q16 = "as value x 65536, signed 32-bit, high word first (seed 001 5.3.3, 5.3.4)";
+  const std::string q16 = "as value x 65536, signed 32-bit, high word first (INTERBUS manual 5.3.3, 5.3.4)";
   if (l.pd_words >= 1) {
-    r.out_words.push_back({1, "control_word", "control word, DRIVECOM Profile 20 (seed 001 5.3.1)"});
-    r.in_words.push_back({1, "status_word", "status word, DRIVECOM Profile 20 (seed 001 5.3.2)"});
+    r.out_words.push_back({1, "control_word", "control word, DRIVECOM Profile 20 (INTERBUS manual 5.3.1)"});
+    r.in_words.push_back({1, "status_word", "status word, DRIVECOM Profile 20 (INTERBUS manual 5.3.2)"});
   }
   switch (l.ibcnf) {
     case Ibcnf::word16:
@@ -311,10 +311,10 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
     case Ibcnf::speed_torque:
       r.out_words.push_back({2, "speed_reference_q16_high",
                              "speed reference, Q16 high word: rpm x 65536, signed 32-bit, high "
-                             "word first (seed 001 3.2.3, 5.3.4)"});
+                             "word first (INTERBUS manual 3.2.3, 5.3.4)"});
       r.out_words.push_back({3, "speed_reference_q16_low", "speed reference, Q16 low word"});
-      r.in_words.push_back({2, "actual_speed", "actual speed, 16-bit signed, rpm (seed 001 3.2.3)"});
-      r.in_words.push_back({3, "actual_torque", "actual torque, 16-bit signed (seed 001 3.2.3)"});
+      r.in_words.push_back({2, "actual_speed", "actual speed, 16-bit signed, rpm (INTERBUS manual 3.2.3)"});
+      r.in_words.push_back({3, "actual_torque", "actual torque, 16-bit signed (INTERBUS manual 3.2.3)"});
       break;
     case Ibcnf::none:
     case Ibcnf::lisim:
@@ -330,12 +330,12 @@ LayoutDescription Descriptor::layout(const Configuration& config) const {
   for (int w = 2 + l.actual_words; w <= l.pd_words; ++w) {
     r.in_words.push_back({w, l.ibcnf == Ibcnf::none ? "zero" : "unused",
                           l.ibcnf == Ibcnf::none
-                              ? "always 0 (406-IBCNF = 0, seed 001 3.2.3)"
+                              ? "always 0 (406-IBCNF = 0, INTERBUS manual 3.2.3)"
                               : "not used by 406-IBCNF = " + std::to_string(static_cast<int>(l.ibcnf))});
   }
   r.pcp = l.pcp_words == 0 ? "none"
                            : std::to_string(l.pcp_words) + (l.pcp_words == 1 ? " word" : " words") +
-                                 " each way, PCP 2.0 parameter channel (seed 001 3.2.2)";
+                                 " each way, PCP 2.0 parameter channel (INTERBUS manual 3.2.2)";
   return r;
 }
 
@@ -358,7 +358,7 @@ Expected<RingEntry, SettingsRefusal> Descriptor::try_ring_entry(
   }
   if (supi < 0 || supi > kSupiMax) {
     return refuse(ErrorCode::layout_setting_out_of_range,
-                  "405-SUPI " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)",
+                  "405-SUPI " + std::to_string(supi) + " is out of range (0..12, INTERBUS manual 3.2.2)",
                   "supi");
   }
   interbus::BusKind bus = interbus::BusKind::remote;

@@ -173,7 +173,7 @@ void Mc6000Driver::start_next(Channel& c, Time now) {
       // The value's type is the parameter's; for a number the table does not know, 16 bits (the
       // servo refuses it as a missing object anyway).
       const pcp::DataType t = info != nullptr ? info->type : pcp::DataType::usign16;
-      // 4-PROG = 1 loads the factory defaults; the servo confirms after up to 10 s (seed 000,
+      // 4-PROG = 1 loads the factory defaults; the servo confirms after up to 10 s (LUSTBUS manual,
       // 10): that write gets the time it needs, plus the usual confirmation time.
       const Duration timeout = request_timeout(p.number == mc6000::kProg && p.value == mc6000::kProgFactoryDefaults
                                                    ? kFactoryDefaultsTimeout

@@ -21,12 +21,12 @@ SupiRange allowed_supi(Ibcnf c) {
 Expected<Layout> try_make_layout(int supi, int ibcnf, interbus::BusKind bus) {
   if (supi < 0 || supi > kSupiMax) {
     return Error{ErrorCode::layout_setting_out_of_range,
-                 "405-SUPI = " + std::to_string(supi) + " is out of range (0..12, seed 001 3.2.2)"};
+                 "405-SUPI = " + std::to_string(supi) + " is out of range (0..12, INTERBUS manual 3.2.2)"};
   }
   if (ibcnf < 0 || ibcnf > kIbcnfMax) {
     return Error{
         ErrorCode::layout_setting_out_of_range,
-        "406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, seed 001 3.2.3)"};
+        "406-IBCNF = " + std::to_string(ibcnf) + " is out of range (0..4, INTERBUS manual 3.2.3)"};
   }
   const auto c = static_cast<Ibcnf>(ibcnf);
   if (c == Ibcnf::lisim) {
@@ -53,7 +53,7 @@ Expected<Layout> try_make_layout(int supi, int ibcnf, interbus::BusKind bus) {
     return Error{ErrorCode::layout_settings_conflict,
                  "406-IBCNF = " + std::to_string(ibcnf) + " needs 405-SUPI " +
                      std::to_string(r.first) + ".." + std::to_string(r.last) + ", not " +
-                     std::to_string(supi) + " (seed 001 3.2.3)"};
+                     std::to_string(supi) + " (INTERBUS manual 3.2.3)"};
   }
   l.pd_words = row.pd_words;
   l.pcp_words = row.pcp_words;

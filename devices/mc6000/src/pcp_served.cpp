@@ -20,7 +20,7 @@ pcp::PcpError pcp_error(Refusal r) {
     case Refusal::latched:
     case Refusal::not_now:
     case Refusal::eeprom_busy:
-      return e::kNotExecutableNow;  // seed 000, 3 and 6: repeat once the cause is gone
+      return e::kNotExecutableNow;  // LUSTBUS manual 3 and 6: repeat once the cause is gone
   }
   return e::kNotExecutableNow;
 }
@@ -51,7 +51,7 @@ class Noted {
 
 pcp::PcpError PcpServed::read(Time now, std::uint16_t index, std::uint8_t subindex, pcp::Value& out) {
   const Noted noted(*drive_);  // a read of 85-SERR erases its bits
-  // Read errors never enter 85-SERR (seed 000, 6.1 note).
+  // Read errors never enter 85-SERR (LUSTBUS manual 6.1 note).
   const auto number = pcp::number_of(index);
   if (!number || drive_->parameters().store().info(*number) == nullptr) return pcp::errors::kObjectDoesNotExist;
   if (subindex != 0) return pcp::errors::kInvalidSubindex;

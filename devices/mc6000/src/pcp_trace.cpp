@@ -23,7 +23,7 @@ constexpr Duration kTraceStep = 1ms;  // without a `step-time` header
 
 Duration step_of(const ibs::trace::Header& h) { return h.step_time.value_or(kTraceStep); }
 // DRIVECOM status words for the `init` states, as the device model will report them in
-// 408-IBSTA: START-UP INHIBIT 0240H (seed 001, 5.3.4, first row), FAULT 0208H (fault bit 3 and
+// 408-IBSTA: START-UP INHIBIT 0240H (INTERBUS manual 5.3.4, first row), FAULT 0208H (fault bit 3 and
 // remote bit 9 of 5.3.2).
 constexpr std::uint32_t kStatusStartUpInhibit = 0x0240;
 constexpr std::uint32_t kStatusFault = 0x0208;
@@ -216,7 +216,7 @@ int trace_channel_words(const ibs::trace::Header& h) {
   const int supi = given_supi != nullptr ? given_supi->value : static_cast<int>(kSupiSetting.fallback);
   if (supi < 0 || supi > kSupiMax) {
     throw std::invalid_argument("`supi: " + std::to_string(supi) +
-                                "` is outside 0..12 (seed 001 3.2.2)");
+                                "` is outside 0..12 (INTERBUS manual 3.2.2)");
   }
   if (const trace::HeaderSetting* ibcnf = h.setting(kIbcnfSetting.name))
     (void)make_layout(supi, ibcnf->value);  // throws LayoutError
@@ -224,7 +224,7 @@ int trace_channel_words(const ibs::trace::Header& h) {
   if (supi == 0 || words == 0) {
     throw std::invalid_argument(
         "`supi: " + std::to_string(supi) +
-        "` gives the MC6000 no PCP channel (seed 001 3.2.2); use 1, 2, 3, 5, 6, 8, 9 or 11");
+        "` gives the MC6000 no PCP channel (INTERBUS manual 3.2.2); use 1, 2, 3, 5, 6, 8, 9 or 11");
   }
   return words;
 }

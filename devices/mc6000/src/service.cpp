@@ -20,7 +20,7 @@ constexpr std::array kClselTexts{"TERM"sv, "KPAD"sv, "SIO"sv, "CAN"sv, "OPT1"sv,
 constexpr std::array kRsslTexts{"RCON"sv, "RA0"sv, "RA1"sv, "RSIO"sv, "RFIX"sv, "RCAN"sv, "OPT1"sv, "OPT2"sv};
 constexpr std::array kInputTexts{"OFF"sv, "START"sv, "INV"sv, "QSTOP"sv, "RESET"sv, "FIX0"sv, "ROPT1"sv};
 constexpr std::array kOutputTexts{"OFF"sv, "REF"sv, "LIMIT"sv, "ERROR"sv, "ACTIV"sv, "BRAKE"sv, "ROPT1"sv};
-// 510..512: the five reaction steps of seed 000, 8 (8.1.2: 5 "RESET"; the others chosen, MC-D7).
+// 510..512: the five reaction steps of the LUSTBUS manual 8 (8.1.2: 5 "RESET"; the others chosen, MC-D7).
 constexpr std::array kReactionTexts{"-"sv, "WARN"sv, "STOP"sv, "OFF"sv, "LOCK"sv, "RESET"sv};
 
 constexpr ServiceEntry entry(std::uint16_t n, Subject s, Activity a = Activity::nothing,

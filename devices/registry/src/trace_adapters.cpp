@@ -132,7 +132,7 @@ DeviceSettings settings_of(const trace::Trace& t, const DriveKind& k) {
 
 Configuration configuration_of(const trace::Trace& t, const DriveKind& k) {
   const Header& h = t.header;
-  // A setting the kind does not declare, on its line (a VF1000 has no 405-SUPI, seed 001 3.1.2).
+  // A setting the kind does not declare, on its line (a VF1000 has no 405-SUPI, INTERBUS manual 3.1.2).
   for (const trace::HeaderSetting& s : h.settings) {
     if (const auto refusal = refuse_setting_name(k, s.key)) {
       throw TraceError(t.file, s.line != 0 ? s.line : h.lines.device, refusal->message);

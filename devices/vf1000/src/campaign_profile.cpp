@@ -1,6 +1,6 @@
 // The VF1000 in the fault campaign (devices/campaign_profile.hpp, docs/robustness.md "Fault
 // campaign"): four inverters, one for each 907-IBCOD reaction; the parameter model from the table
-// (parameters.hpp); 71-PROG as seed 000 describes it; 906-IB-WD in 50 ms steps (seed 001, 4.1.1).
+// (parameters.hpp); 71-PROG as the LUSTBUS manual describes it; 906-IB-WD in 50 ms steps (INTERBUS manual 4.1.1).
 #include "ibs/devices/vf1000/campaign_profile.hpp"
 
 #include <algorithm>
@@ -65,8 +65,8 @@ class Profile final : public CampaignProfile {
       m.max = p.max;
       m.eeprom_save = Duration{0};  // the inverter's store takes the EEPROM copy with the value
       // 901-ICNTL and 905-FDRIV are the control word and the reference, which the process data
-      // write too (seed 001, 4.1.1): not the parameter channel's alone. 11-STAT reads the drive's
-      // status and takes only the reset 000FH (seed 000, 8.1.1), over the communication word too
+      // write too (INTERBUS manual 4.1.1): not the parameter channel's alone. 11-STAT reads the drive's
+      // status and takes only the reset 000FH (LUSTBUS manual 8.1.1), over the communication word too
       // (docs/errata.md VF-E14).
       const bool mirrored = p.number == pnr::kIcntl || p.number == pnr::kFdriv || p.number == pnr::kStat;
       m.role = (!drive::writable(p.category) || mirrored) ? CampaignRole::device_owned
@@ -100,17 +100,17 @@ class Profile final : public CampaignProfile {
     return vf1000_channel::ClientConfig{}.timeout;  // per transaction, whatever it is
   }
 
-  // A description scan holds the communication word up to 490 ms (seed 001, 7.1).
+  // A description scan holds the communication word up to 490 ms (INTERBUS manual 7.1).
   [[nodiscard]] double describe_share() const override { return 0.02; }
 
   [[nodiscard]] std::pair<std::int64_t, std::int64_t> reference_range() const override { return {-60, 60}; }
 
   [[nodiscard]] std::optional<CampaignFactoryDefaults> factory_defaults() const override {
-    // 71-PROG: 1 loads the factory defaults (seed 000, 10).
+    // 71-PROG: 1 loads the factory defaults (LUSTBUS manual 10).
     return CampaignFactoryDefaults{pnr::kProg, "71-PROG", {}, 0.0};
   }
 
-  // RESET FAULT boots the inverter (seed 001, 5.2.1): its store as after a power cycle.
+  // RESET FAULT boots the inverter (INTERBUS manual 5.2.1): its store as after a power cycle.
   [[nodiscard]] std::uint32_t software_resets(const DeviceEmulator& emulator) const override {
     return inverter(emulator).software_resets();
   }

@@ -43,9 +43,9 @@ constexpr int kMaxWatchdogReaction = 3;
 // The reference word: 0.05 Hz per bit, an absolute value (5.2.3).
 constexpr double kMaxFrequencyHz = 65535 * kHzPerBit;
 
-// The inverter's error numbers: seed 001 4.1.3.3, "valid error codes are 00H-0EH; no error
-// corresponds to value 0FH" (seed 000 3, PT_VF_ERROR, agrees); the only one the seeds name is 12,
-// E-IBS (seed 001 4.1.1, 907-IBCOD = 1).
+// The inverter's error numbers: INTERBUS manual 4.1.3.3, "valid error codes are 00H-0EH; no error
+// corresponds to value 0FH" (LUSTBUS manual 3, PT_VF_ERROR, agrees); the only one the seeds name is 12,
+// E-IBS (INTERBUS manual 4.1.1, 907-IBCOD = 1).
 constexpr ErrorCause kErrors[] = {{kWatchdogError, "E-IBS"}};
 
 constexpr DriveFacts kFacts{
@@ -60,7 +60,7 @@ constexpr DriveFacts kFacts{
     .reference_range = "-3276.75..3276.75 Hz, 0.05 Hz per bit",
     // Parameter numbers: 10 bits, the low byte and bits 0-1 of the control byte (4.1.2.1).
     .max_parameter = vf1000_channel::kMaxParameterNumber,
-    .parameter_range = ", 10-bit PNR, seed 001 4.1.2.1",
+    .parameter_range = ", 10-bit PNR, INTERBUS manual 4.1.2.1",
     // A parameter is one 16-bit word, written as -32768..65535 (two's complement or unsigned).
     .write_min = -32768.0,
     .write_max = 65535.0,
@@ -77,21 +77,21 @@ constexpr DriveFacts kFacts{
             .min_error = 0,
             .max_error = 14,
             .errors = kErrors,
-            .error_source = "seed 001 4.1.3.3: 00H..0EH",
-            // Its terminals (seed 001 5.2.1, 5.2.2; docs/errata.md VF-E22): the inputs, and the
+            .error_source = "INTERBUS manual 4.1.3.3: 00H..0EH",
+            // Its terminals (INTERBUS manual 5.2.1, 5.2.2; docs/errata.md VF-E22): the inputs, and the
             // outputs S1OUT / S2OUT set to the level their programmed function gives.
             .inputs = kTerminalNames,
             .no_inputs = {},
             .load_unit = {},
             .no_load = "the VF1000 is an inverter without a motor model here: its frequency follows the ramp, "
                        "whatever the load (docs/errata.md VF-E17)",
-            // Seed 000, 10 exception 2: "up to 10 seconds, depending on the device".
+            // LUSTBUS manual 10 exception 2: "up to 10 seconds, depending on the device".
             .card_max_s = 10.0,
-            .card_source = "seed 000 10 exception 2, seed 001 6.1",
+            .card_source = "LUSTBUS manual 10 exception 2, INTERBUS manual 6.1",
             .no_card = {},
             .option_card = {},
             .option_source = {},
-            .no_option = "its INTERBUS operation is a modified software package, not a card it detects (seed 001 "
+            .no_option = "its INTERBUS operation is a modified software package, not a card it detects (INTERBUS manual "
                          "3.1.1); no seed gives a withdrawal an effect",
         },
 };
@@ -107,7 +107,7 @@ class Descriptor final : public DriveDescriptor {
   Expected<Configuration, SettingsRefusal> try_configure(const DeviceSettings& s) const override {
     if (s.bus == interbus::BusKind::local) {
       return refuse(ErrorCode::setting_bus_refused,
-                    "a VF1000 is always a remote bus device (seed 001, 1.3)", "bus");
+                    "a VF1000 is always a remote bus device (INTERBUS manual 1.3)", "bus");
     }
     return Configuration{s, interbus::IdCode{kIdCode}, interbus::BusKind::remote, true, kWords, 0};
   }
@@ -186,26 +186,26 @@ class Descriptor final : public DriveDescriptor {
   std::optional<std::string> check_layout_options(const SettingValues& given, bool bus) const override {
     if (given.empty() && !bus) return std::nullopt;
     return "--supi, --ibcnf and --bus apply to the mc6000 only; the VF1000 always reports 33BH on the "
-           "remote bus (seed 001 3.1.2)";
+           "remote bus (INTERBUS manual 3.1.2)";
   }
 
   LayoutDescription layout(const Configuration&) const override {
     LayoutDescription r;
-    r.title = "VF1000 frequency inverter: three words, ID code 33BH (seed 001 3.1.2)";
+    r.title = "VF1000 frequency inverter: three words, ID code 33BH (INTERBUS manual 3.1.2)";
     r.out_words = {
-        {1, "control_word", "control word, DRIVECOM Profile 20 (seed 001 5.2.1)"},
+        {1, "control_word", "control word, DRIVECOM Profile 20 (INTERBUS manual 5.2.1)"},
         {2, "frequency_reference",
          "frequency reference, 0.05 Hz per bit, absolute value; the direction comes from control "
-         "word bits 14 STL / 15 STR (seed 001 5.2.3)"},
+         "word bits 14 STL / 15 STR (INTERBUS manual 5.2.3)"},
         {3, "communication_word",
-         "communication word to the inverter: the parameter channel (seed 001 4.1.2.1)"},
+         "communication word to the inverter: the parameter channel (INTERBUS manual 4.1.2.1)"},
     };
     r.in_words = {
-        {1, "status_word", "status word, DRIVECOM Profile 20 (seed 001 5.2.2)"},
+        {1, "status_word", "status word, DRIVECOM Profile 20 (INTERBUS manual 5.2.2)"},
         {2, "actual_frequency",
          "actual frequency, 0.05 Hz per bit, signed (modelling choice: the manual does not define "
          "this word)"},
-        {3, "communication_word", "communication word from the inverter (seed 001 4.1.2.2)"},
+        {3, "communication_word", "communication word from the inverter (INTERBUS manual 4.1.2.2)"},
     };
     r.pcp = "none: parameters travel in the communication word (word 3)";
     return r;
@@ -216,7 +216,7 @@ class Descriptor final : public DriveDescriptor {
     if (!fields.empty()) {
       return refuse(ErrorCode::setting_too_many_fields,
                     "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote "
-                    "bus, seed 001 3.1.2)",
+                    "bus, INTERBUS manual 3.1.2)",
                     "");
     }
     return RingEntry{interbus::IdCode{kIdCode}, interbus::BusKind::remote, {}, ""};

@@ -17,7 +17,7 @@ constexpr Word with_bit(Word w, unsigned n, bool on) {
   return on ? static_cast<Word>(w | (1U << n)) : static_cast<Word>(w & ~(1U << n));
 }
 
-// A 32-bit value spread over two bus words, high word first (seed 001, 5.3.3: Q16 references).
+// A 32-bit value spread over two bus words, high word first (INTERBUS manual 5.3.3: Q16 references).
 constexpr Word high_word(std::uint32_t v) { return static_cast<Word>(v >> 16U); }
 constexpr Word low_word(std::uint32_t v) { return static_cast<Word>(v & 0xFFFFU); }
 constexpr std::uint32_t make_dword(Word high, Word low) {

@@ -1,4 +1,4 @@
-// Downloading a parameter data set (seed 003, 4.x "Downloading parameter data sets"): the master
+// Downloading a parameter data set (CANLust manual 4.x "Downloading parameter data sets"): the master
 // opens the download through the drive's handshake parameter, sends the values "without
 // individual checking of the parameter values", and closes it; "when the upload is finished the
 // drive controller checks the now complete new data set for plausibility. If the data set is

@@ -1,4 +1,4 @@
-// Parameter data types in data bytes 3-6 of the parameter channel (seed 003, 4.1.1, table 4.1
+// Parameter data types in data bytes 3-6 of the parameter channel (CANLust manual 4.1.1, table 4.1
 // and the examples of p. 32; public-facts "CANLust", "Data in bytes 3-6"): every type travels as
 // 32 bits in Intel order. USIGN8/16 zero-filled, INT8/16 sign-filled, INT32Q16 as post-point
 // low, post-point high, pre-point low, pre-point high (= the signed 32-bit raw value, Q16),

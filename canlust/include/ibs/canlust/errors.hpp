@@ -1,4 +1,4 @@
-// Error numbers and reactions as far as seed 003 shows them (6.1 programmable error responses,
+// Error numbers and reactions as far as the CANLust manual shows them (6.1 programmable error responses,
 // 6.2 table 5.9 error messages). The table is the CM-CAN1 manual's and lists errors of the bus
 // module itself (E-OP2) next to drive errors; a drive wing may report any number, these are the
 // ones the protocol core names. The seed's table is fragmentary: only what it prints is here.

@@ -1,5 +1,5 @@
 // A classical CAN 2.0A frame as CANLust uses it: an 11-bit identifier, 0..8 data bytes and the
-// RTR flag (seed 003, 5.5; public-facts "CANLust": every CANLust identifier is 11 bits). Plain
+// RTR flag (CANLust manual 5.5; public-facts "CANLust": every CANLust identifier is 11 bits). Plain
 // value type: no allocation, no exceptions.
 #pragma once
 
@@ -52,7 +52,7 @@ struct alignas(4) CanFrame {
   }
 };
 
-// Intel byte order (seed 003, 4.1.1 table 4.1: "Low Word Low Byte" first).
+// Intel byte order (CANLust manual 4.1.1 table 4.1: "Low Word Low Byte" first).
 constexpr void put_le16(std::span<std::uint8_t> out, std::uint16_t v) {
   out[0] = static_cast<std::uint8_t>(v & 0xFFU);
   out[1] = static_cast<std::uint8_t>(v >> 8U);

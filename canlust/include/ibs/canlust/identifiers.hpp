@@ -1,4 +1,4 @@
-// CANLust identifiers (seed 003, 5.5; public-facts "CANLust", "Identifiers"): one base per
+// CANLust identifiers (CANLust manual 5.5; public-facts "CANLust", "Identifiers"): one base per
 // telegram kind, the station's identifier = base + step x address, and one broadcast identifier
 // for System Start/Stop.
 //

@@ -1,4 +1,4 @@
-// The master's side of CANLust (seed 003, 5.2, 5.5): the logon list, System Start / Stop
+// The master's side of CANLust (CANLust manual 5.2, 5.5): the logon list, System Start / Stop
 // broadcasts, control telegrams to each drive, the drives' last status and error telegrams, and
 // the parameter client. Frames in, frames out, time passed in; it knows no concrete drive (what
 // the control and status words mean is the driver's, a floor above).

@@ -1,4 +1,4 @@
-// A drive's CANLust node (seed 003, 5.2 CAN system states, 5.5 identifiers; 4.3.1 574-CAWDG and
+// A drive's CANLust node (CANLust manual 5.2 CAN system states, 5.5 identifiers; 4.3.1 574-CAWDG and
 // 575-CASCY): the system-state machine, the stored command of System Stop, the cyclic logon and
 // status telegrams, the control-telegram watchdog, and the parameter channel's drive side. It
 // serves a drive through two interfaces and knows no concrete drive:

@@ -1,4 +1,4 @@
-// The CANLust parameter channel (seed 003, 4.5; public-facts "CANLust", "Parameter channel",
+// The CANLust parameter channel (CANLust manual 4.5; public-facts "CANLust", "Parameter channel",
 // "String transfer"): what both sides share, the interface a drive implements to be served, and
 // the drive's side (ParameterServer).
 //

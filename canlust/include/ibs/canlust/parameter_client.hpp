@@ -1,4 +1,4 @@
-// The master's side of the CANLust parameter channel (seed 003, 4.5): a sans-I/O client with a
+// The master's side of the CANLust parameter channel (CANLust manual 4.5): a sans-I/O client with a
 // request queue, at most one request per drive at a time (CAL: every request gets exactly one
 // reply), a timeout per request, and string reads and writes as one call each.
 //

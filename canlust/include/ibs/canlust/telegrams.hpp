@@ -1,4 +1,4 @@
-// Encoding and decoding of every CANLust telegram (seed 003, 4.5, 5.5; public-facts "CANLust").
+// Encoding and decoding of every CANLust telegram (CANLust manual 4.5, 5.5; public-facts "CANLust").
 // All multi-byte fields are Intel order (low byte first). Decoders check the identifier's kind
 // only through the caller (IdentifierMap::classify) and the length here: a DLC longer than the
 // nominal one is accepted and the extra bytes ignored (the examples of 7.1.2 print 7 bytes where

@@ -54,8 +54,8 @@ class CampaignRandom {
 enum class CampaignRole : std::uint8_t {
   normal,        // written by the master only; RAM (and EEPROM copy) checked against the model
   command,       // the PROG command: always reads its default (0); drive::kLoadDefaults loads the
-                 // factory defaults (seed 000, 10)
-  download,      // SLOAD (seed 000, 11.4): drive::kDownloadBegin opens a download,
+                 // factory defaults (LUSTBUS manual 10)
+  download,      // SLOAD (LUSTBUS manual 11.4): drive::kDownloadBegin opens a download,
                  // drive::kDownloadEnd ends it (it reads kDownloadBegin while the dataset is
                  // checked, then 0)
   device_owned,  // actual values, mirrors, error registers: not checked
@@ -71,7 +71,7 @@ struct CampaignParam {
   std::int64_t min = 0;      // the documented range: a write outside it must not be `written`
   std::int64_t max = 0;
   Duration eeprom_save{0};   // after a confirmed write the EEPROM copy follows within this
-  // Seed 000 11.4: takes a download's value (untested; EEPROM once the dataset is accepted);
+  // LUSTBUS manual 11.4: takes a download's value (untested; EEPROM once the dataset is accepted);
   // any other parameter's write during a download is acknowledged and dropped.
   bool card_writeable = false;
 };
@@ -136,7 +136,7 @@ struct CampaignFactoryDefaults {
   double other_chance = 0.0;
 };
 
-// A parameter download through SLOAD (seed 000, 11.4; CampaignRole::download).
+// A parameter download through SLOAD (LUSTBUS manual 11.4; CampaignRole::download).
 struct CampaignDownload {
   std::uint16_t parameter = 0;
   std::string_view label;   // "80-SLOAD"

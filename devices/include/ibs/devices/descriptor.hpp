@@ -136,7 +136,7 @@ struct DriveFacts {
   std::string_view reference_range;  // "-32768..32767 rpm"
   // Parameter numbers a request may name: 0..max_parameter.
   int max_parameter = 0;
-  std::string_view parameter_range;  // ", seed 000 2.4.2" (after "0..999")
+  std::string_view parameter_range;  // ", LUSTBUS manual 2.4.2" (after "0..999")
   // Raw values a parameter write may carry.
   double write_min = 0.0;
   double write_max = 0.0;

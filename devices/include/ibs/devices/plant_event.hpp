@@ -28,7 +28,7 @@ struct EventFacts {
   int min_error = 0;
   int max_error = -1;  // < min_error: the drive takes no cause
   std::span<const ErrorCause> errors{};
-  std::string_view error_source;  // where the list comes from: "seed 001 4.1.3.3: 00H..0EH"
+  std::string_view error_source;  // where the list comes from: "INTERBUS manual 4.1.3.3: 00H..0EH"
   // The digital inputs by the manual's names (none: the drive takes no `input`), and why not.
   std::span<const std::string_view> inputs{};
   std::string_view no_inputs;  // the refusal's reason when `inputs` is empty

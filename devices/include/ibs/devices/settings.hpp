@@ -39,7 +39,7 @@ struct SettingSpec {
   std::int64_t fallback = 0;  // the value when none is given
   std::string_view unit;      // of an integer ("ms"); empty for none
   std::string_view parameter;  // the manual's name for it ("406-IBCNF"); empty when it has none
-  std::string_view seed;       // where the manual defines it ("seed 001 3.2.3")
+  std::string_view seed;       // where the manual defines it ("INTERBUS manual 3.2.3")
   std::uint8_t faces = 0;      // SettingFace bits
   std::string_view meaning;    // one line for the docs' tables and the command line's help
   // The range as messages and the docs write it ("0..12"; "above 0 s, at most 60 s").

@@ -15,8 +15,8 @@ namespace {
 
 using drivecom::State;
 
-constexpr Word kResetBit = 0x0080;     // seed 001, 5.1.2: RESET FAULT
-constexpr Word kOs00Bit = 0x4000;      // seed 001, 5.3.1: bit 14, output OS00
+constexpr Word kResetBit = 0x0080;     // INTERBUS manual 5.1.2: RESET FAULT
+constexpr Word kOs00Bit = 0x4000;      // INTERBUS manual 5.3.1: bit 14, output OS00
 constexpr Word kOs01Bit = 0x8000;      // bit 15, output OS01
 // The longest silence the drive catches up on by itself: after a longer one only its last part is
 // simulated (a speed loop has settled long before; 60 s x 1 ms samples are 60 000 samples).
@@ -85,8 +85,8 @@ Word Drive::serial_word() const {
 Duration Drive::bus_watchdog() const { return std::chrono::milliseconds(params_.raw(kButwd)); }
 
 void Drive::refresh_readings() {
-  // 408-IBSTA mirrors the status word (seed 001, 4.2.1), 77-SPEED the motor speed as Q16 rpm
-  // (seed 000, 6.1.1.2).
+  // 408-IBSTA mirrors the status word (INTERBUS manual 4.2.1), 77-SPEED the motor speed as Q16 rpm
+  // (LUSTBUS manual 6.1.1.2).
   params_.set_reading(kIbsta, status_word());
   params_.set_reading(kSpeed, static_cast<std::uint32_t>(to_q16(pd_.actual_rpm())));
 }
@@ -127,7 +127,7 @@ ErrorReaction Drive::reaction_of(std::uint16_t number) const {
 
 std::array<std::optional<ErrorReaction>, 3> Drive::present_errors() const {
   std::array<std::optional<ErrorReaction>, 3> e{};
-  // A device fault numbered 16 is E-OP1 (seed 001, 3.2.4), which 510-REOP1 programs like the
+  // A device fault numbered 16 is E-OP1 (INTERBUS manual 3.2.4), which 510-REOP1 programs like the
   // bus watchdog's; any other number, or none, 512-REDEV.
   if (external_fault_) e[0] = reaction_of(fault_cause_ == kWatchdogError ? kReop1 : kRedev);
   if (bus_expired_) e[1] = reaction_of(kReop1);
@@ -144,7 +144,7 @@ std::optional<ErrorReaction> Drive::present_reaction() const {
 }
 
 void Drive::apply_reactions() {
-  // Seed 000, 8: each error's own reaction; with several the most severe acts, and the servo
+  // LUSTBUS manual 8: each error's own reaction; with several the most severe acts, and the servo
   // holds to the most severe it has met until the reset or a power-on (MC-D7).
   const auto present = present_reaction();
   if (present && (!held_ || *present > *held_)) held_ = present;
@@ -157,7 +157,7 @@ Word Drive::fieldbus_word(Word control) const {
 }
 
 bool Drive::digital_output(std::size_t output) const {
-  // Seed 001, 5.3.1: "Bit 14 controls the reference state of output OS00 directly when parameter
+  // INTERBUS manual 5.3.1: "Bit 14 controls the reference state of output OS00 directly when parameter
   // 445-FOS00 = ROPT1", bit 15 OS01 with 446-FOS01.
   if (!powered_ || output > 1) return false;
   const std::uint16_t selector = output == 0 ? kFos00 : kFos01;
@@ -186,7 +186,7 @@ ResetOutcome Drive::fault_reset(Time now) {
 }
 
 void Drive::reboot(Time now) {
-  // 8.1.2: the boot is a new start (seed 000, 9.2: the power-on bit tells the host "after a ...
+  // 8.1.2: the boot is a new start (LUSTBUS manual 9.2: the power-on bit tells the host "after a ...
   // reset of an error"); the serial connection is broken for the initialisation and self test.
   power_on(now);
   ++reboots_;
@@ -224,7 +224,7 @@ void Drive::mains_off(Time now) {
 void Drive::mains_on(Time now) {
   if (powered_) return;
   powered_ = true;
-  power_on(now);  // seed 000, 9.2: the power-on bit tells the host of the power failure
+  power_on(now);  // LUSTBUS manual 9.2: the power-on bit tells the host of the power failure
 }
 
 bool Drive::apply(const PlantEvent& e, Time now) {
@@ -271,7 +271,7 @@ void Drive::smartcard(Duration how_long, Time now) {
 }
 
 void Drive::detect_interbus_card() {
-  // Seed 001, 3.2.1: "The first time it is detected the following parameters are changed ...
+  // INTERBUS manual 3.2.1: "The first time it is detected the following parameters are changed ...
   // After the INTERBUS card has been withdrawn ... reset to their factory defaults the next time
   // the device is powered-up." A card found again after that is detected for the first time again.
   if (card_fitted_ == card_detected_) return;
@@ -290,11 +290,11 @@ void Drive::set_input(std::size_t input, bool high) {
 
 Word Drive::status_word() const {
   Word w = pd_.status_word();
-  // Seed 001, 5.3.2: "Bit 14 reflects the actual state of input IS00 when parameter 439-FIS00 =
+  // INTERBUS manual 5.3.2: "Bit 14 reflects the actual state of input IS00 when parameter 439-FIS00 =
   // ROPT1", bit 15 likewise IS01 with 440-FIS01.
   if (inputs_[0] && params_.raw(kFis00) == static_cast<std::uint32_t>(kFunctionRopt1)) w |= 0x4000;
   if (inputs_[1] && params_.raw(kFis01) == static_cast<std::uint32_t>(kFunctionRopt1)) w |= 0x8000;
-  // Seed 001, 5.1.3, bit 7 "Alarm": an error whose programmed reaction is a warning (MC-D7).
+  // INTERBUS manual 5.1.3, bit 7 "Alarm": an error whose programmed reaction is a warning (MC-D7).
   for (const auto& r : present_errors()) {
     if (r == ErrorReaction::warn) w |= 0x0080;
   }
@@ -308,7 +308,7 @@ void Drive::sample_one(Time now, Word control, double reference_rpm) {
   }
   params_.advance(now);
   check_serial_watchdog(now);
-  // Seed 001, 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16
+  // INTERBUS manual 3.2.4: monitoring time 409-BUTWD in ms, 0 deactivates; running out is error 16
   // (E-OP1), location 1, a device fault that stays until it is reset once data flows again.
   const Duration butwd = bus_watchdog();
   const bool expired = armed_ && butwd > Duration{0} && (now - quiet_since(last_cycle_, now)) > butwd;

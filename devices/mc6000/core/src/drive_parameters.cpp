@@ -164,7 +164,7 @@ WriteResult DriveParameters::write(Time now, std::uint16_t number, std::optional
       return refused(Refusal::too_low);
     }
   }
-  // Seed 000, 4: the servo's rates "in steps ... from 2400 Baud to 57600 Baud", in baud as the
+  // LUSTBUS manual 4: the servo's rates "in steps ... from 2400 Baud to 57600 Baud", in baud as the
   // inverter's 81 (1: numerically compatible; LB-E18). A number between the steps is refused as
   // too high, as 80-SLOAD's numbers the host may not write (80H in 85-SERR either way).
   if (number == kParamSbaud && !receiving && !drive::is_baud_step(raw_value, kHighestBaud)) {
@@ -197,12 +197,12 @@ WriteResult DriveParameters::write(Time now, std::uint16_t number, std::optional
     }
     store_.set(kProg, 0);  // a command, not a setting
   } else if (number == kPlrdy) {
-    // Seed 001, 4.2: "15-PLRDY should be set to 1 to trigger recalculation of the controller
+    // INTERBUS manual 4.2: "15-PLRDY should be set to 1 to trigger recalculation of the controller
     // parameters and set the servocontroller to 'READY' mode"; 0 (the attribute InitControl of
     // its own) registers an initialization. It reads the mode (MC-D11).
     if (n == 1) ++plrdy_requests_;
   } else if (changed && !receiving && (p->attributes & pcp::kAttrInitControl) != 0) {
-    // Seed 000, 11.2.1, InitControl: "If a parameter is overwritten with the attribute, then the
+    // LUSTBUS manual 11.2.1, InitControl: "If a parameter is overwritten with the attribute, then the
     // [drive] will register a[n] ... initialization because it must calculate its initialization
     // value anew": out of READY mode until 15-PLRDY = 1 (MC-D11).
     store_.set(kPlrdy, 0);

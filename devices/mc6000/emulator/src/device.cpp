@@ -55,7 +55,7 @@ void Mc6000Device::attach(const Mc6000DeviceConfig& config, DeviceStart start) {
   params.preset(devices::mc6000::kSupi, config.supi);
   params.preset(devices::mc6000::kIbcnf, config.ibcnf);
   params.preset(kButwd, butwd);
-  // This face samples the drive every 1 ms (seed 001, 7.2; docs/errata.md MC-D4).
+  // This face samples the drive every 1 ms (INTERBUS manual 7.2; docs/errata.md MC-D4).
   drive_->set_fieldbus_sampling(true);
   reboots_seen_ = drive_->reboots();
   const int words = layout_.pcp_words;
@@ -122,7 +122,7 @@ void Mc6000Device::sample_core(std::span<const Word> pd_m2s, Time first, Duratio
     drive_->fault_reset(first);
   }
   last_control_ = control;
-  // A reaction-5 error's reset boots the servo (seed 000, 8.1.2), through either face: the
+  // A reaction-5 error's reset boots the servo (LUSTBUS manual 8.1.2), through either face: the
   // INTERBUS card boots with it and PCP starts over.
   if (drive_->reboots() != reboots_seen_) {
     reboots_seen_ = drive_->reboots();

@@ -194,7 +194,7 @@ void LustbusDevice::checksum_error(const lb::Context& ctx) {
   drive_->serial_checksum_error();  // 9.2 bit 3
 }
 
-// How the MC6000's table types read on LUSTBUS (seed 000, 2.3.2).
+// How the MC6000's table types read on LUSTBUS (LUSTBUS manual 2.3.2).
 lb::DataType lustbus_type(pcp::DataType t) {
   switch (t) {
     case pcp::DataType::usign8:

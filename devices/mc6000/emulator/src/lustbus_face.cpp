@@ -24,7 +24,7 @@ LustbusEmulated make_on(std::shared_ptr<Drive> drive, const LustbusFaceOptions& 
                                        : lustbus_reaction(o.settings.boolean(kLustbusKeypadSetting), o.seed);
   auto d = drive ? std::make_unique<LustbusDevice>(std::move(drive), timing) : std::make_unique<LustbusDevice>(timing);
   if (!d->set_line_baud(o.baud)) {
-    throw std::invalid_argument("an MC6000 runs at 2400, 4800, 9600, 19200, 38400 or 57600 baud (seed 000, 4), not " + std::to_string(o.baud));
+    throw std::invalid_argument("an MC6000 runs at 2400, 4800, 9600, 19200, 38400 or 57600 baud (LUSTBUS manual 4), not " + std::to_string(o.baud));
   }
   LustbusDevice* p = d.get();
   // Events act on the core the face serves, at the time given (the face advances it first).

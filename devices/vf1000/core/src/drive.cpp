@@ -9,11 +9,11 @@ namespace ibs::devices::vf1000 {
 
 namespace {
 
-// Seed 000, 7.1: 1-MODE = 0 and 2-CSEL = 3 put control on the serial interface; 4-FSSEL = 8 takes
+// LUSTBUS manual 7.1: 1-MODE = 0 and 2-CSEL = 3 put control on the serial interface; 4-FSSEL = 8 takes
 // the reference from 5-FSSIO; 3-CNTL 80H starts clockwise (7.1.1), 40H counter-clockwise (LB-D19).
 constexpr Word kModeSio = 0;
 constexpr Word kCselSio = 3;
-// Seed 001, 6.1: "During operation on the INTERBUS-S (01-MODE = 4) the serial interface of the
+// INTERBUS manual 6.1: "During operation on the INTERBUS-S (01-MODE = 4) the serial interface of the
 // inverter cannot be used" (decision VF-E16).
 constexpr Word kModeInterbus = 4;
 constexpr Word kFsselFssio = 8;
@@ -22,7 +22,7 @@ constexpr Word kStartCounterClockwise = 0x40;
 // After a longer silence only this much of the inverter's own sampling is run (the ramp has long
 // ended): 60 s are about 7 300 samples of 8.2 ms.
 constexpr Duration kCatchUp = std::chrono::seconds(60);
-// Seed 001, 5.2.1: bit 12 S2IND, bit 13 S1IND.
+// INTERBUS manual 5.2.1: bit 12 S2IND, bit 13 S1IND.
 constexpr Word kS2indBit = 0x1000;
 constexpr Word kS1indBit = 0x2000;
 constexpr Word kInputFunctionBits = kS2indBit | kS1indBit;
@@ -78,7 +78,7 @@ Word Drive::read(std::size_t slot) const {
     case pnr::kStat:
       return status();
     case pnr::kFout:
-      // Seed 000, 6.1.1.1: the rotary-field frequency, the ramp generator's output, in 0.05 Hz.
+      // LUSTBUS manual 6.1.1.1: the rotary-field frequency, the ramp generator's output, in 0.05 Hz.
       return static_cast<Word>(std::lround(std::fabs(pd_.frequency_hz()) / kHzPerBit));
     default:
       return params_.read(slot);
@@ -92,7 +92,7 @@ drive::WriteCheck Drive::check_write(const drive::ParameterInfo* p, Word raw,
   if (c == drive::WriteCheck::ok && p->number == pnr::kStat && raw != kStatReset) {
     return drive::WriteCheck::invalid_value;
   }
-  // Seed 000, 4: the rate "in steps ranging from 2400 Baud to 9600 Baud" (LB-E18).
+  // LUSTBUS manual 4: the rate "in steps ranging from 2400 Baud to 9600 Baud" (LB-E18).
   if (c == drive::WriteCheck::ok && p->number == pnr::kSioc && !drive::is_baud_step(raw, kHighestBaud)) {
     return drive::WriteCheck::invalid_value;
   }
@@ -112,8 +112,8 @@ drive::WriteEffect Drive::write(std::size_t slot, Word raw, bool power_stage_ena
     return {};
   }
   const bool defaults = params_.loads_defaults(slot, raw);
-  // Seed 000, 11.1, kind '3': FSEL/ISEL variables are RAM variables while the serial interface
-  // controls (2-CSEL = 3); otherwise seed 001, 4.1.3.3's rule: RAM while the power stage runs,
+  // LUSTBUS manual 11.1, kind '3': FSEL/ISEL variables are RAM variables while the serial interface
+  // controls (2-CSEL = 3); otherwise INTERBUS manual 4.1.3.3's rule: RAM while the power stage runs,
   // EEPROM too while it is off (decision VF-E18). The store keeps them in RAM alone when told the
   // power stage runs.
   const bool ram_only = power_stage_enabled || (drive::storage(p.category) == drive::Storage::eeprom_ram &&
@@ -128,7 +128,7 @@ drive::WriteEffect Drive::write(std::size_t slot, Word raw, bool power_stage_ena
 
 Duration Drive::storing_time(const drive::ParameterInfo& p, bool eeprom_changed,
                              bool defaults) const {
-  // Seed 000, 3: "SMARTDRIVE inverters delay the answer telegram until the parameter value is
+  // LUSTBUS manual 3: "SMARTDRIVE inverters delay the answer telegram until the parameter value is
   // stored"; 10 exceptions 1 and 4: the factory defaults, a changed EEPROM value by its length.
   if (defaults) return config_.storing.factory_defaults;
   if (!eeprom_changed) return Duration{0};
@@ -275,7 +275,7 @@ void Drive::begin_sample(Time now) {
 void Drive::sample(std::span<const Word> m2s, std::span<Word> s2m, Time now,
                    std::optional<Word> comm) {
   unsettle();
-  // The interface that controls gives words 1 and 2 (seed 000, 7.1; seed 001, 6.1).
+  // The interface that controls gives words 1 and 2 (LUSTBUS manual 7.1; INTERBUS manual 6.1).
   const bool serial = serial_has_control();
   const Word control = serial ? serial_control_word() : m2s[0];
   const Word reference = serial ? serial_reference() : m2s[1];
@@ -315,7 +315,7 @@ void Drive::after_sample(Word control, Word actual, Time now) {
 
 void Drive::mirror(Word control, Word actual) {
   // 901-ICNTL and 911-IBSTA mirror the DRIVECOM words, 905-FDRIV and 912-FIST the frequencies
-  // (seed 001, 4.1.1; signed 0.05 Hz, a modelling choice). 912 is the word the sample answered
+  // (INTERBUS manual 4.1.1; signed 0.05 Hz, a modelling choice). 912 is the word the sample answered
   // with (actual_word of the frequency), not formed a second time.
   set_slot(slots_.icntl, control);
   set_slot(slots_.ibsta, pd_.status_word());
@@ -344,7 +344,7 @@ void Drive::run_interbus_watchdog(Time now) {
 }
 
 bool Drive::check_serial_watchdog(Time now) {
-  // Seed 000, 5.2: 84-SIOT in ms, 0 = off; it monitors the serial link, so only while a serial
+  // LUSTBUS manual 5.2: 84-SIOT in ms, 0 = off; it monitors the serial link, so only while a serial
   // face is attached, and not through a self-test (the timer starts again at its end).
   if (!attached(Face::serial) || starting_ || serial_fault_) return false;
   const Word siot = value(pnr::kSiot);
@@ -365,7 +365,7 @@ void Drive::apply_parameters() {
 // --- Events -------------------------------------------------------------------------------------
 
 void Drive::new_start(Time now, Duration init) {
-  // Seed 000, 6 and 9.2: after every new start only the power-on bit; EEPROM values back.
+  // LUSTBUS manual 6 and 9.2: after every new start only the power-on bit; EEPROM values back.
   params_.power_on();
   input_bits_ = 0;  // the bus's bits count again from the first word after the start
   ready_at_ = now + init;
@@ -380,7 +380,7 @@ void Drive::finish_start(Time now) {
 }
 
 void Drive::software_reset(Word control, Time now) {
-  // Seed 001, 5.2.1, bit 7: "The inverter performs a software reset !"; seed 000, 8.1.1: the
+  // INTERBUS manual 5.2.1, bit 7: "The inverter performs a software reset !"; LUSTBUS manual 8.1.1: the
   // boot-up (self test) after 11-STAT = 000FH, the connection broken meanwhile; 9.2: the
   // power-on bit afterwards. One model for both triggers (VF-E13): the self-test lasts
   // config().pd.reset_time, the store starts anew at once (nothing can read it meanwhile).

@@ -131,7 +131,7 @@ Word Vf1000Device::channel_word(Word from_master, Time now) {
     const auto& e = server_.last_event();
     if (e.kind == vc::ServerEvent::Kind::value_written) {
       // 7.1: the ACK of a transfer comes later with the motor running, with a KEYPAD, and while
-      // the drive stores the value (the value in brackets; 71-PROG: seed 000, 10 exception 1).
+      // the drive stores the value (the value in brackets; 71-PROG: LUSTBUS manual 10 exception 1).
       int extra = 0;
       if (powered) extra += config_.running_transfer_extra_samples;
       if (config_.keypad) extra += config_.keypad_transfer_extra_samples;
@@ -149,7 +149,7 @@ Word Vf1000Device::channel_word(Word from_master, Time now) {
 
 void Vf1000Device::sample(std::span<const Word> m2s, std::span<Word> s2m, Time now) {
   last_sample_ = now;
-  // Seed 001, 6.1: "While the SMARTCARD is being read and written to bus operation is disabled":
+  // INTERBUS manual 6.1: "While the SMARTCARD is being read and written to bus operation is disabled":
   // the drive takes no words and its channel waits; the words it shows stay (VF-E21).
   if (drive_->card_busy(now)) {
     drive_->output(s2m);
@@ -158,10 +158,10 @@ void Vf1000Device::sample(std::span<const Word> m2s, std::span<Word> s2m, Time n
   drive_->begin_sample(now);
   sync(now);  // a new start another face caused
   Word comm = channel_word(m2s[2], now);
-  // The channel's own transfer reset the drive (11-STAT = 000FH, seed 000 8.1.1): its ACK is lost.
+  // The channel's own transfer reset the drive (11-STAT = 000FH, LUSTBUS manual 8.1.1): its ACK is lost.
   if (sync(now)) comm = shown_;
   drive_->sample(m2s, s2m, now, comm);
-  // RESET FAULT: the software reset of seed 001, 5.2.1; the words show the booting inverter.
+  // RESET FAULT: the software reset of the INTERBUS manual 5.2.1; the words show the booting inverter.
   if (sync(now)) drive_->output(s2m);
 }
 
@@ -195,7 +195,7 @@ std::string Vf1000Device::write_parameter(std::uint16_t number, std::int64_t val
     drive_->raise_siof(static_cast<std::uint8_t>(w & ~bits));
     return {};
   }
-  // Seed 000, 6 and 9.2; seed 001, 4.1.4: every value transfer is refused while a bit is set.
+  // LUSTBUS manual 6 and 9.2; INTERBUS manual 4.1.4: every value transfer is refused while a bit is set.
   if (bits != 0) return "85-SIOF holds " + std::to_string(bits) + ": every value transfer is refused until it is read";
   const bool powered = drive_->power_stage_enabled();
   const drive::WriteCheck check = drive_->check_write(p, w, powered);

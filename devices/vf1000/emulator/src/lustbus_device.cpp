@@ -171,7 +171,7 @@ void LustbusDevice::checksum_error(const lb::Context& ctx) {
   drive_->raise_siof(drive::siof_mask(SiofBit::checksum));  // 9.2 bit 3
 }
 
-// How the VF1000's table types read on LUSTBUS (seed 000, 2.3.1).
+// How the VF1000's table types read on LUSTBUS (LUSTBUS manual 2.3.1).
 lustbus::DataType lustbus_type(drive::DataType t) {
   switch (t) {
     case drive::DataType::binary8:

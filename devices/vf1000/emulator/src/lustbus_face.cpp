@@ -22,7 +22,7 @@ LustbusEmulated make_on(std::shared_ptr<Drive> drive, const LustbusFaceOptions& 
   // 10: "1...60 ms" with a KEYPAD, "1...30 ms" without, unless a fixed time is asked for.
   timing.reaction = o.reaction_ms >= 0 ? lustbus::ReactionModel::fixed(std::chrono::milliseconds(o.reaction_ms))
                                        : lustbus_reaction(o.settings.boolean(kKeypadSetting), o.seed);
-  // The emulator serves an RS-485 line (seed 000 is LUSTBUS on RS-485), so the drive needs
+  // The emulator serves an RS-485 line (LUSTBUS manual is LUSTBUS on RS-485), so the drive needs
   // 61-SOUTA = 7 to answer (4). Section 4 makes setting it, like the line's rate in 81-SIOC, a step
   // of commissioning done at the drive (e.g. via the KEYPAD): the emulator's drive comes
   // commissioned with both, kept in its EEPROM (VF-E20). A host that writes another SOUTA, or
@@ -30,7 +30,7 @@ LustbusEmulated make_on(std::shared_ptr<Drive> drive, const LustbusFaceOptions& 
   timing.rs485 = true;
   auto d = drive ? std::make_unique<LustbusDevice>(std::move(drive), timing) : std::make_unique<LustbusDevice>(timing);
   if (!d->set_line_baud(o.baud)) {
-    throw std::invalid_argument("a VF1000 runs at 2400, 4800 or 9600 baud (seed 000, 4), not " +
+    throw std::invalid_argument("a VF1000 runs at 2400, 4800 or 9600 baud (LUSTBUS manual 4), not " +
                                 std::to_string(o.baud));
   }
   d->drive().set_value(pnr::kSouta, kSoutaRs485);

@@ -1,4 +1,4 @@
-// The DFS-1 line cut into frames for a capture (docs/pcap.md, "Serial lines"; seed 004, 6.0):
+// The DFS-1 line cut into frames for a capture (docs/pcap.md, "Serial lines"; DFS-1 manual 6.0):
 // DLE STX UID CMD [data] DLE ETX CSM, found by the protocol's own FrameDecoder on each side, and
 // kept as they were on the line (DLE doubling included). A frame whose checksum does not match is
 // flagged; one a new DLE STX, a broken escape, the other side (the line is half duplex) or the

@@ -1,4 +1,4 @@
-// DFS-1 frames: DLE STX UID CMD [data] DLE ETX CSM (seed 004, 6.0). A 10H inside the frame is
+// DFS-1 frames: DLE STX UID CMD [data] DLE ETX CSM (DFS-1 manual 6.0). A 10H inside the frame is
 // sent twice; CSM is the 2's complement of the sum of the unstuffed bytes between STX and ETX
 // (the seed's example: 01 82 00 00 10 00 -> 6DH). A CSM of 10H is sent twice as well (decision
 // D1). Responses use the same frame with ACK or NAK in the CMD position.

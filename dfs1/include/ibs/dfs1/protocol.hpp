@@ -1,5 +1,5 @@
 // The PowerTec DFS-1 binary protocol: control characters, commands, error codes, 4-byte values
-// and the data length of every request and response (seed 004, manual section 6.0; the command
+// and the data length of every request and response (DFS-1 manual, manual section 6.0; the command
 // list and error codes from ../shared/notes/public-facts.md, "PowerTec DFS-1"). The lengths the
 // public pages leave open are decisions of docs/dfs1.md, "Decisions".
 #pragma once
@@ -12,7 +12,7 @@
 
 namespace ibs::dfs1 {
 
-// Seed 004, "GENERAL DEFINITIONS".
+// DFS-1 manual, "GENERAL DEFINITIONS".
 inline constexpr std::uint8_t kStx = 0x02;
 inline constexpr std::uint8_t kEtx = 0x03;
 inline constexpr std::uint8_t kAck = 0x06;
@@ -80,7 +80,7 @@ inline constexpr std::array<ErrorCode, 7> kAllErrorCodes = {
 };
 
 // One row of the command table: the request's data bytes after CMD and the ACK's data bytes.
-// Every value is 4 bytes (seed 004, note 3); a parameter or channel number is one byte before it
+// Every value is 4 bytes (DFS-1 manual, note 3); a parameter or channel number is one byte before it
 // (the command list's PRM, DTA, DIG, AMD fields). Status answers four 4-byte values (decision D3).
 struct CommandInfo {
   Command command;
@@ -126,7 +126,7 @@ constexpr std::optional<ErrorCode> to_error_code(std::uint8_t code) {
   return static_cast<ErrorCode>(code);
 }
 
-// 4-byte values, most significant byte first (seed 004, note 3).
+// 4-byte values, most significant byte first (DFS-1 manual, note 3).
 constexpr void put_u32(std::span<std::uint8_t, 4> out, std::uint32_t v) {
   out[0] = static_cast<std::uint8_t>(v >> 24);
   out[1] = static_cast<std::uint8_t>(v >> 16);

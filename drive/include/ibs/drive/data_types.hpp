@@ -1,5 +1,5 @@
 // The parameter data types and categories of the standard LUST drive family, the VF1000's (seed
-// 000, 2.3.1 and 11.1; seed 001, 4.1.3.3), and the conversions between raw words and engineering
+// 000, 2.3.1 and 11.1; INTERBUS manual 4.1.3.3), and the conversions between raw words and engineering
 // values. They belong to the drives' parameter tables, not to a bus: the VF1000 communication word
 // and LUSTBUS carry the same types. Every parameter is one 16-bit word, high byte first;
 // single-byte types have a zero high byte (4.1.3.1).
@@ -20,7 +20,7 @@ enum class DataType : std::uint8_t {
   usign8,      // '4' PT_USIGN8: 0-255
   vf_error,    // '5' PT_VF_ERROR: error code and time (4.1.3.3 footnote)
   password,    // '6' PT_PASSWORD: 0-65535
-  // Not in the VF1000 type list: 901-912 of seed 001, 4.1.1 are "Integer 16" (-32768..32767).
+  // Not in the VF1000 type list: 901-912 of the INTERBUS manual 4.1.1 are "Integer 16" (-32768..32767).
   // The description scan sends it as '7' (a project decision, docs/vf1000_channel.md).
   integer16,
 };
@@ -50,7 +50,7 @@ constexpr Word type_max_raw(DataType t) {
 constexpr Word type_min_raw(DataType t) {
   return is_signed(t) ? Word{0x8000} : Word{0};
 }
-// The engineering step of one raw unit: 0.05 for PT_FIXPOINT16 (seed 000, 2.3.1), else 1.
+// The engineering step of one raw unit: 0.05 for PT_FIXPOINT16 (LUSTBUS manual 2.3.1), else 1.
 constexpr double natural_scale(DataType t) {
   return t == DataType::fixpoint16 ? 0.05 : 1.0;
 }
@@ -79,9 +79,9 @@ inline std::optional<Word> from_engineering(DataType t, double value) {
   return from_engineering(t, value, natural_scale(t));
 }
 
-// PT_VF_ERROR (seed 001, 4.1.3.3 footnote): high byte low nibble = error code 00H-0EH, 0FH = no
+// PT_VF_ERROR (INTERBUS manual 4.1.3.3 footnote): high byte low nibble = error code 00H-0EH, 0FH = no
 // error; low byte low nibble = time of the error since power-on in 6-minute (1/10 h) steps, 0FH
-// = the basic state. High nibbles are 0 when written; seed 000, 2.3.1 notes that an erased
+// = the basic state. High nibbles are 0 when written; LUSTBUS manual 2.3.1 notes that an erased
 // EEPROM reads FFH, so decoding looks at the low nibbles only.
 inline constexpr std::uint8_t kVfNoError = 0x0F;
 struct VfError {
@@ -113,7 +113,7 @@ constexpr std::optional<Word> encode_vf_error(const VfError& e) {
 inline constexpr Word kVfErrorNone = 0x0F0F;
 
 // Parameter categories: the ASCII category character '0'-'7' of the description record
-// (seed 001, 4.1.3.3; seed 000, 11.1). The enumerator's value is the digit.
+// (INTERBUS manual 4.1.3.3; LUSTBUS manual 11.1). The enumerator's value is the digit.
 enum class Category : std::uint8_t {
   ram_control = 0,           // '0' RAM control variable (basic parameter)
   ram_actual = 1,            // '1' RAM actual value (basic)
@@ -139,7 +139,7 @@ constexpr Storage storage(Category c) {
 constexpr bool inverter_specific(Category c) {
   return static_cast<unsigned>(c) >= 4;
 }
-// RAM actual values are for display only (seed 000, 11.1 '1'); everything else can be written.
+// RAM actual values are for display only (LUSTBUS manual 11.1 '1'); everything else can be written.
 constexpr bool writable(Category c) {
   return storage(c) != Storage::ram_actual;
 }

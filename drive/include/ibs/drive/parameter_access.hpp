@@ -32,10 +32,10 @@ class ParameterAccess {
   [[nodiscard]] virtual const ParameterTable& table() const = 0;
   // The value a value inquiry returns now (a stored value, or an actual value the drive forms).
   [[nodiscard]] virtual Word read(std::size_t slot) const = 0;
-  // 85-SIOF: any bit refuses every value transfer (seed 000, 6 and 9.2; seed 001, 4.1.4).
+  // 85-SIOF: any bit refuses every value transfer (LUSTBUS manual 6 and 9.2; INTERBUS manual 4.1.4).
   [[nodiscard]] virtual std::uint8_t siof() const = 0;
   virtual void raise_siof(std::uint8_t bits) = 0;
-  // A read of 85-SIOF returned `bits`: they are erased, bits set since stay (seed 000, 9.2).
+  // A read of 85-SIOF returned `bits`: they are erased, bits set since stay (LUSTBUS manual 9.2).
   virtual void clear_siof(std::uint8_t bits) = 0;
   // May `raw` be written now? drive::check_write plus any rule of the drive's own.
   [[nodiscard]] virtual WriteCheck check_write(const ParameterInfo* p, Word raw,
@@ -49,7 +49,7 @@ class ParameterAccess {
 };
 
 // The plain model: one store behind a table, 85-SIOF kept in the store's own cell, and
-// optionally a PROG parameter whose value kLoadDefaults loads every factory default (seed 000,
+// optionally a PROG parameter whose value kLoadDefaults loads every factory default (LUSTBUS manual,
 // 10, exception 1) except 85-SIOF. What a channel serves when it is given no drive of its own
 // (the channel's tests and fuzz targets), and what a drive's core builds on.
 class StoredParameters final : public ParameterAccess {
@@ -70,7 +70,7 @@ class StoredParameters final : public ParameterAccess {
   void set(std::size_t slot, Word raw) override { store_.set(slot, raw); }
 
   // A new start: EEPROM values back, RAM values to their defaults, only the power-on bit in
-  // 85-SIOF (seed 000, 9.2; seed 001, 6.1).
+  // 85-SIOF (LUSTBUS manual 9.2; INTERBUS manual 6.1).
   void power_on();
   // Every value back to its factory default, 85-SIOF as it was.
   void factory_defaults();

@@ -1,5 +1,5 @@
-// The parameter model of the standard LUST drive family (the VF1000's; seed 000, 2.3.1, 9.2,
-// 11.1; seed 001, 4.1.3): a parameter table's row (number, name, unit, category, type, min, max,
+// The parameter model of the standard LUST drive family (the VF1000's; LUSTBUS manual 2.3.1, 9.2,
+// 11.1; INTERBUS manual 4.1.3): a parameter table's row (number, name, unit, category, type, min, max,
 // default, scaling), an O(1) index by number, the value store with its RAM/EEPROM rules and the
 // write checks that decide ACK or NAK. Drive-neutral: a drive's wing holds its table
 // (devices/vf1000/parameters.hpp), and every channel that serves it -- the VF1000 communication
@@ -23,7 +23,7 @@
 namespace ibs::drive {
 
 // Parameter numbers of a table run from 0 to 3FFH: the most the VF1000 communication word can
-// address (10 bits, seed 001 4.1.2.1), beyond LUSTBUS's three digits (seed 000, 2.4.2).
+// address (10 bits, INTERBUS manual 4.1.2.1), beyond LUSTBUS's three digits (LUSTBUS manual 2.4.2).
 inline constexpr std::uint16_t kMaxParameterNumber = 0x3FF;
 
 struct ParameterInfo {
@@ -34,15 +34,15 @@ struct ParameterInfo {
   DataType type = DataType::usign16;
   Word min = 0;  // raw, compared as the type's numbers
   Word max = 0xFFFF;
-  Word default_value = 0;    // the INTERBUS factory default (seed 001, 3.1.1)
+  Word default_value = 0;    // the INTERBUS factory default (INTERBUS manual 3.1.1)
   double scale = 1.0;        // engineering value = raw number x scale
   std::string_view meaning;  // what the parameter is, for reports
 };
 
 // The value of a drive's PROG command parameter that loads every parameter's factory default
-// (seed 000, 10, exception 1; the VF1000's 71-PROG, the MC6000's 4-PROG).
+// (LUSTBUS manual 10, exception 1; the VF1000's 71-PROG, the MC6000's 4-PROG).
 inline constexpr Word kLoadDefaults = 1;
-// 81-SIOC/SBAUD, the line's transmission rate (seed 000, 4): "The transfer rates can be set in
+// 81-SIOC/SBAUD, the line's transmission rate (LUSTBUS manual 4): "The transfer rates can be set in
 // steps ranging from 2400 Baud to 9600 Baud for frequency Inverters, and from 2400 Baud to 57600
 // Baud for Servocontrollers. The configuration is set via parameter 81-SIOC/SBAUD"; 1: the
 // parameters for network control, the transmission rate among them, are "numerically compatible"
@@ -56,7 +56,7 @@ constexpr bool is_baud_step(std::uint32_t baud, std::uint32_t highest) {
   }
   return false;
 }
-// The download handshake of a drive's SLOAD parameter (seed 000, 11.4; the MC6000's 80-SLOAD): the
+// The download handshake of a drive's SLOAD parameter (LUSTBUS manual 11.4; the MC6000's 80-SLOAD): the
 // master writes -1 to begin a parameter download and -2 to end it.
 inline constexpr std::int64_t kDownloadBegin = -1;
 inline constexpr std::int64_t kDownloadEnd = -2;
@@ -69,7 +69,7 @@ constexpr bool in_range(const ParameterInfo& p, Word raw) {
   return raw_in_range(p.type, raw, p.min, p.max);
 }
 
-// The answer a value transfer gets from the parameter model (4.1.4; seed 000, 9.2), in the order
+// The answer a value transfer gets from the parameter model (4.1.4; LUSTBUS manual 9.2), in the order
 // the inverter checks: the number, the permission, the value.
 enum class WriteCheck : std::uint8_t { ok, no_parameter, no_change, invalid_value };
 std::string_view to_string(WriteCheck c);

@@ -1,4 +1,4 @@
-// DRIVECOM Profile 20 control word (seed 001, 5.1.2). The device-specific bits belong to the
+// DRIVECOM Profile 20 control word (INTERBUS manual 5.1.2). The device-specific bits belong to the
 // drives (devices/vf1000/descriptor.hpp: 5.2.1, devices/mc6000/descriptor.hpp: 5.3.1).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The DRIVECOM Profile 20 state machine as the drive executes it (seed 001, 5.1.1-5.1.3), with
+// The DRIVECOM Profile 20 state machine as the drive executes it (INTERBUS manual 5.1.1-5.1.3), with
 // the transition numbers of the profile. One call of sample() is one processing step of the
 // drive; the drive's sampling period (1 ms MC6000, 8.2 ms VF1000) belongs to the device model.
 #pragma once
@@ -29,7 +29,7 @@ struct DeviceInputs {
   bool fault_reaction_done = true;  // the fault reaction has finished (14)
   bool stopped = true;              // the motor has come to rest (VF1000 transition 12)
   // The drive may not be engaged: transition 4 (ON -> ENABLED) is not taken, ENABLE leaves it in
-  // ON (the MC6000 during an 80-SLOAD download, seed 000 11.4; a decision, docs/drivecom.md).
+  // ON (the MC6000 during an 80-SLOAD download, LUSTBUS manual 11.4; a decision, docs/drivecom.md).
   bool enable_locked = false;
 };
 

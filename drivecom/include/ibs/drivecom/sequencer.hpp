@@ -1,6 +1,6 @@
 // The master side of DRIVECOM Profile 20: given a target state, reads the status word every
 // cycle and writes the control word that moves the drive along the shortest documented path
-// (seed 001, 5.1.2 command table; 5.3.4 start-up sequence 0000H, 0006H, 000FH).
+// (INTERBUS manual 5.1.2 command table; 5.3.4 start-up sequence 0000H, 0006H, 000FH).
 #pragma once
 
 #include <array>
@@ -327,7 +327,7 @@ class Sequencer {
   // restarted (only power-on leads there, 5.1.1), and the request does not carry across that.
   static constexpr std::uint8_t kUpSinceRequest = 1U << 1U;
   // This request sent a rising edge of bit 7 while the drive showed FAULT: NOT READY next is the
-  // drive booting from RESET FAULT (the VF1000's software reset, seed 001 5.2.1), not a restart.
+  // drive booting from RESET FAULT (the VF1000's software reset, INTERBUS manual 5.2.1), not a restart.
   static constexpr std::uint8_t kResetEdgeSent = 1U << 2U;
   // A rising edge of bit 7 went out (this request's or an earlier one's) since the drive showed
   // FAULT: a healthy state next is the reset done; without it a drive out of a fault state has

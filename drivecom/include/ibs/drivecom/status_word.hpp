@@ -1,4 +1,4 @@
-// DRIVECOM Profile 20 status word (seed 001, 5.1.3). What the manufacturer-specific bits 8, 14
+// DRIVECOM Profile 20 status word (INTERBUS manual 5.1.3). What the manufacturer-specific bits 8, 14
 // and 15 mean is the drive's (its descriptor: VF1000 5.2.2, MC6000 5.3.2).
 #pragma once
 

@@ -60,7 +60,7 @@ constexpr std::optional<unsigned> length_code_from_words(int words) {
 }
 
 // PCP channel width in the two low bits of a PCP device's group byte (public-facts.md, Lenze
-// EMF2113IB / KUKA; matches seed 001 3.2.2: 1D3H 1 word, 2D0H 2 words, 4D1H 4 words). 10b is not
+// EMF2113IB / KUKA; matches INTERBUS manual 3.2.2: 1D3H 1 word, 2D0H 2 words, 4D1H 4 words). 10b is not
 // assigned.
 struct PcpWidthRow {
   std::uint8_t bits;
@@ -88,11 +88,11 @@ inline constexpr unsigned kLengthCodeShift = 8;
 // A device's ID code. Decoding ignores the error bits 13..15 except in error_bits().
 //
 // Two properties are not spelled out by any public source and are modelling choices derived from
-// the codes we know (seed 001 3.1.2 and 3.2.2, KUKA 0/1/2/4-word PCP codes 03H/EBH/E8H/E9H, WAGO
+// the codes we know (INTERBUS manual 3.1.2 and 3.2.2, KUKA 0/1/2/4-word PCP codes 03H/EBH/E8H/E9H, WAGO
 // 750-344 remote-bus codes 01H..03H, 31H..33H, 3CH):
-//  - PCP device: class bits 7 and 6 both set (classes CH..FH). Seed 001: class DH has PCP, classes
+//  - PCP device: class bits 7 and 6 both set (classes CH..FH). INTERBUS manual: class DH has PCP, classes
 //    9H, 7H, 3H (193H, 17BH, 33BH) have none; KUKA's PCP codes are class EH.
-//  - Local bus device: class bit 7 set and type bit 3 clear. Seed 001: MC6000 local 193H, 1D3H,
+//  - Local bus device: class bit 7 set and type bit 3 clear. INTERBUS manual: MC6000 local 193H, 1D3H,
 //    2D0H, 4D1H against remote 17BH, 1DBH, 2D8H, 4D9H and the VF1000's 33BH; the WAGO and KUKA
 //    remote-bus codes (class below 8H or type bit 3 set) agree. A bus configuration may override
 //    it per device.

@@ -6,7 +6,7 @@
 //
 // The host's side is the one that sends EOT first (3: every telegram begins with it): rx in the
 // log of `emulate`, tx in that of a host command. Its bytes are split into ENQUIRY (6.1) and SELECT
-// (6.2), the other side's into answers (seed 000, 2.2), and each explained: address, CODE and the
+// (6.2), the other side's into answers (LUSTBUS manual 2.2), and each explained: address, CODE and the
 // parameter it names, VALUE as the parameter's type reads it, BCC checked, NAK's cause where
 // 85-SIOF says it. Sans-I/O and configuration-time code: text lines in, text out (allocates).
 // lustbus/ knows no drive: the names, units and types of parameters come from `ParameterLookup`,

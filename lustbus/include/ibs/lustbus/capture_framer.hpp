@@ -1,4 +1,4 @@
-// The LUSTBUS line cut into telegrams for a capture (docs/pcap.md, "Serial lines"; seed 000, 2.2,
+// The LUSTBUS line cut into telegrams for a capture (docs/pcap.md, "Serial lines"; LUSTBUS manual 2.2,
 // 3, 6.1, 6.2, 11.6):
 //
 //   host:   EOT ADR CODE ENQ  |  EOT ADR STX CODE = VALUE ETX BCC  |  EOT (alone: the closing one)

@@ -1,4 +1,4 @@
-// The LUSTBUS characters (seed 000, 2.2), addresses (4.2) and the block check (2.2).
+// The LUSTBUS characters (LUSTBUS manual 2.2), addresses (4.2) and the block check (2.2).
 // 7 data bits, even parity, 1 stop bit (2.1) are the UART's job: every byte here is 7-bit ASCII,
 // and a byte with bit 7 set stands for a character the UART received with a parity or framing
 // error (the line simulation delivers kGarbled for characters that collided, 9.1).

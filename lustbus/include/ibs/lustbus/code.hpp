@@ -1,4 +1,4 @@
-// CODE strings (seed 000, 2.4): five ASCII decimal digits, highest first, whose meaning depends
+// CODE strings (LUSTBUS manual 2.4): five ASCII decimal digits, highest first, whose meaning depends
 // on the family. The receiver passes a Code on unread; the drive interprets it with the helpers
 // here, which know the coding of 2.4.1 / 2.4.2, the shared codes of 5.2, 61xxx (11.3) and
 // 49999 (11.6) — protocol, not any drive's parameter list.

@@ -1,4 +1,4 @@
-// Parameter descriptions (seed 000, 11.1 VF1000, 11.2 MC6000) and value substitution texts
+// Parameter descriptions (LUSTBUS manual 11.1 VF1000, 11.2 MC6000) and value substitution texts
 // (11.3), as VALUE strings: parsed by the host, built by a drive (a Responder) from its table.
 #pragma once
 

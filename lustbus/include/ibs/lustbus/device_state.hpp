@@ -1,5 +1,5 @@
 // What every LUSTBUS drive keeps the same way, whatever its parameters: the 85-SIOF/SERR latch of
-// seed 000, 6 and 9.2, and the network watchdog of 5.2 (84-SIOT/SWDGT). Drive-neutral: the wings'
+// LUSTBUS manual 6 and 9.2, and the network watchdog of 5.2 (84-SIOT/SWDGT). Drive-neutral: the wings'
 // Responders (devices/*/emulator/.../lustbus_device.hpp) hold one of each. Allocation-free.
 #pragma once
 

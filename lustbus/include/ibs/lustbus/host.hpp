@@ -1,4 +1,4 @@
-// The host side of LUSTBUS (seed 000): a sans-I/O client. Requests are queued and run one
+// The host side of LUSTBUS (LUSTBUS manual): a sans-I/O client. Requests are queued and run one
 // transaction at a time; every telegram is sent as EOT + telegram and every sequence ends with
 // EOT (3); a response timeout runs from the host's last character to the first answer character
 // and an inter-character timeout between answer characters; after a NAK on a SELECT the host
@@ -82,7 +82,7 @@ struct Assignment {
   Value value{};
 };
 
-// ---- The procedures of seed 000, 11 a device may offer ------------------------------------------
+// ---- The procedures of the LUSTBUS manual 11 a device may offer ------------------------------------------
 // The host runs them; the parameter or CODE each runs through, its values and its limits are the
 // device's, described by its wing (docs/lustbus.md, "Procedures"). A request keeps a pointer to
 // the description: it must live until the request is done (the wings' are static).
@@ -139,7 +139,7 @@ struct Request {
   // Overrides HostConfig::response_timeout (e.g. 10 s for PROG = 1, 10 exception 1).
   std::optional<Duration> response_timeout;
   // select / broadcast: the data width in bytes of the EEPROM parameter it writes on a device
-  // that saves in the background after its ACK (the servo: seed 000, 3, 10.2.2); 0 for a RAM
+  // that saves in the background after its ACK (the servo: LUSTBUS manual 3, 10.2.2); 0 for a RAM
   // parameter or a device that answers only once its EEPROM is written (the inverter, 10.2.1).
   // The host waits 10.2.2's wait time before such a SELECT (HostConfig::eeprom_write_time).
   std::uint8_t eeprom_width = 0;

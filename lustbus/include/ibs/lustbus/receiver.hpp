@@ -1,4 +1,4 @@
-// The device's receiver: the state machine of seed 000, section 3, fed one character at a time.
+// The device's receiver: the state machine of the LUSTBUS manual, section 3, fed one character at a time.
 // "strictly as a state-machine without timeout monitoring"; EOT sets it back to the start; it
 // answers exactly as section 3 lists:
 //
@@ -33,7 +33,7 @@
 // A fragment -- a telegram begun (ADR seen) and not complete -- followed by a silence longer than
 // the inter-character timeout is dropped before the next character is taken (counted in
 // `fragments`): a host that dies mid-telegram must not have its telegram completed by the next
-// host's bytes (LB-D23; seed 000 3's device has no timeout monitoring, and the EOT a next host
+// host's bytes (LB-D23; LUSTBUS manual 3's device has no timeout monitoring, and the EOT a next host
 // opens with would be taken as the BCC of a cut SELECT, 2.2).
 //
 // A character with a parity/framing error (>= 80H) is a wrong character. A VALUE longer than 100
@@ -103,7 +103,7 @@ class Receiver {
   [[nodiscard]] Address address() const { return own_; }
 
   // The silence after which a fragment is dropped (inter_char_timeout() of the line's rate; the
-  // factory 9600 Bd's until set). Zero: never, as seed 000 3 describes the device.
+  // factory 9600 Bd's until set). Zero: never, as the LUSTBUS manual 3 describes the device.
   void set_inter_char_timeout(Duration d) { gap_ = d; }
   [[nodiscard]] Duration inter_char_timeout() const { return gap_; }
 

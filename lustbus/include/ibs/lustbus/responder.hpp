@@ -1,5 +1,5 @@
 // What the device side of LUSTBUS needs from a drive: answers to ENQUIRY and SELECT telegrams
-// (seed 000, 3, 6.1, 6.2). The receiver (receiver.hpp) parses the bytes and calls these; the drive
+// (LUSTBUS manual 3, 6.1, 6.2). The receiver (receiver.hpp) parses the bytes and calls these; the drive
 // owns its parameters, the 85-SIOF/SERR latch, EEPROM timing and descriptions, and knows its
 // family's CODE coding (code.hpp helpers). Called on the byte path: implementations must not
 // allocate or throw.

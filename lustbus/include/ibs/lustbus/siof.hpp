@@ -1,4 +1,4 @@
-// 85-SIOF (VF1000) / 85-SERR (MC6000), the serial-interface error bits (seed 000, 9.2). The bit
+// 85-SIOF (VF1000) / 85-SERR (MC6000), the serial-interface error bits (LUSTBUS manual 9.2). The bit
 // meanings are the drive-neutral ones every parameter channel shares (drive/siof.hpp: the same
 // parameter); this header reuses them and adds the LUSTBUS rules the host acts on: the
 // "what to do" column of 9.2. Keeping the bits (the latch) is the drive's business (Responder).

@@ -1,4 +1,4 @@
-// The telegrams of seed 000, 6.1 and 6.2, byte for byte, and the host's decoder of the device's
+// The telegrams of the LUSTBUS manual 6.1 and 6.2, byte for byte, and the host's decoder of the device's
 // answers. Encoding and decoding allocate nothing and throw nothing.
 //
 //   ENQUIRY   host:   EOT ADR CODE ENQ                         (6.1)

@@ -1,4 +1,4 @@
-// Telegram durations (seed 000, 10, 10.1). A character is 10 bits on the line — start, 7 data,
+// Telegram durations (LUSTBUS manual 10, 10.1). A character is 10 bits on the line — start, 7 data,
 // parity, stop (2.1) — not the 8 bits the tables of 10.1 count (LB-E10).
 #pragma once
 
@@ -27,7 +27,7 @@ constexpr Duration transfer_time(std::size_t characters, std::uint32_t baud) {
 
 // A device's receiver drops a telegram fragment after this much silence (docs/lustbus.md LB-D23):
 // 20 characters at the line's rate, and never less than 50 ms, so that a host writing byte by byte
-// through a USB adapter (latency timers of 16 ms) is not cut. Seed 000 3's device has no timeout.
+// through a USB adapter (latency timers of 16 ms) is not cut. LUSTBUS manual 3's device has no timeout.
 inline constexpr Duration kInterCharTimeoutFloor = std::chrono::milliseconds(50);
 constexpr Duration inter_char_timeout(std::uint32_t baud) {
   const Duration twenty = transfer_time(20, baud);

@@ -1,4 +1,4 @@
-// VALUE strings and the parameter data types of seed 000, 2.3: VF1000 values are exactly four
+// VALUE strings and the parameter data types of the LUSTBUS manual 2.3: VF1000 values are exactly four
 // capital hex digits; MC6000 values are 1..100 characters, leading zeros optional. Every data type
 // of 2.3.1 and 2.3.2, both ways. Allocation-free; refusals are return values.
 #pragma once
@@ -66,7 +66,7 @@ class Value {
 // The VALUE of a constant known to be valid (tests, tables); empty when it is not.
 constexpr Value make_value(std::string_view s) { return Value::from(s).value_or(Value{}); }
 
-// The two protocol families of seed 000 (1): the standard protocol and the enhanced, downward-
+// The two protocol families of the LUSTBUS manual (1): the standard protocol and the enhanced, downward-
 // compatible one. Which drive speaks which is its wing's fact (the registry's LUSTBUS face):
 // the inverter the standard, the servo the enhanced.
 enum class Family : std::uint8_t { standard, enhanced };
@@ -170,7 +170,7 @@ Result<std::uint32_t> from_engineering(DataType t, double value);
 Result<double> decode(Family f, DataType t, std::string_view value);
 Result<Value> encode(Family f, DataType t, double value);
 
-// PT_VF_ERROR (2.3.1): the coding the INTERBUS channel shares (drive/data_types.hpp; seed 001,
+// PT_VF_ERROR (2.3.1): the coding the INTERBUS channel shares (drive/data_types.hpp; INTERBUS manual,
 // 4.1.3.3; VF-E6).
 using VfError = drive::VfError;
 // (Named apart from drive's, which argument-dependent lookup also finds.)

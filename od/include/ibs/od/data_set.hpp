@@ -1,5 +1,5 @@
-// A parameter data set's text, for a download (seed 000 11.4, the MC6000's 80-SLOAD over LUSTBUS;
-// seed 003 "Downloading parameter data sets", the CDA3000's D39): one `PARAM VALUE` a line, '#'
+// A parameter data set's text, for a download (LUSTBUS manual 11.4, the MC6000's 80-SLOAD over LUSTBUS;
+// CANLust manual "Downloading parameter data sets", the CDA3000's D39): one `PARAM VALUE` a line, '#'
 // starts a comment, blank lines are skipped. The one reader of such files (it replaces
 // canlust::parse_data_set and the LUSTBUS download's own reader in tools/ibs). Every refusal
 // names its line. Library ibs_od_text: configuration time, allocates, throws nothing.
@@ -49,8 +49,8 @@ using DataSetResolver =
 DataSet parse_data_set(std::string_view text, const DataSetResolver& resolve);
 
 struct DataSetOptions {
-  // false: the values are checked for their type only, the drive tests the whole set (seed 000
-  // 11.4 "without individual testing"); true: each against its entry as well (seed 003 D39).
+  // false: the values are checked for their type only, the drive tests the whole set (LUSTBUS manual
+  // 11.4 "without individual testing"); true: each against its entry as well (CANLust manual D39).
   bool check_limits = true;
   TextStyle style{};
   // Who the parameters belong to, for "'999' is not a CDA3000 parameter" ("" : "a parameter").

@@ -21,7 +21,7 @@
 namespace ibs::od {
 
 // Numbers run from 0 to 3FFH: the most the VF1000 communication word addresses (10 bits, seed
-// 001 4.1.2.1). PCP and LUSTBUS (999, seed 000 2.4.2) and the DFS-1 (255) check their own.
+// 001 4.1.2.1). PCP and LUSTBUS (999, LUSTBUS manual 2.4.2) and the DFS-1 (255) check their own.
 inline constexpr std::uint16_t kMaxNumber = 0x3FF;
 
 // A parameter's position in its dictionary's entries: what a store, a core and a served
@@ -29,13 +29,13 @@ inline constexpr std::uint16_t kMaxNumber = 0x3FF;
 using Slot = std::uint16_t;
 inline constexpr Slot kNoSlot = 0xFFFF;
 
-// Which family's conventions a dictionary follows (seed 000, 1): the standard protocol (the
+// Which family's conventions a dictionary follows (LUSTBUS manual 1): the standard protocol (the
 // inverters: the communication word, LUSTBUS standard), the enhanced one (the servos: PCP,
 // LUSTBUS enhanced), or neither (CANLust, DFS-1). The codecs read it; od's rules do not.
 enum class Profile : std::uint8_t { none, lust_standard, lust_enhanced };
 std::string_view to_string(Profile p);
 
-// Another factory default for one parameter (a drive without the INTERBUS software, seed 001
+// Another factory default for one parameter (a drive without the INTERBUS software, INTERBUS manual
 // 3.1.1 VF-E20; an MC6000 without the option card, 3.2.1 MC-D10): a number of the entry's type.
 struct DefaultOverride {
   std::uint16_t number = 0;
@@ -89,7 +89,7 @@ constexpr Finding check_entry(const Entry& e, std::size_t i);
 // non-empty printable names, present when attr::kShowText or choices_only asks for them; each role
 // but `value` at most once -- 85-SIOF/SERR at number 85, an 8-bit unsigned actual value; SLOAD a
 // signed type; PROG and SAVE writable -- and a KEYPAD activity area exactly where the entry is in
-// the data set (seed 000 11.2.1: "If the value does not equal 0, ... appropriate for data
+// the data set (LUSTBUS manual 11.2.1: "If the value does not equal 0, ... appropriate for data
 // exchange").
 constexpr Finding check(std::span<const Entry> entries) {
   if (entries.size() > std::size_t{kMaxNumber} + 1)

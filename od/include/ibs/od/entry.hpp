@@ -1,7 +1,7 @@
 // One parameter of a drive's object dictionary, with every field any bus needs: the communication
-// word's description record (seed 001 4.1.3.3), PCP's Get-OV (seed 001 4.2), LUSTBUS's 11.1-11.3
-// descriptions and texts and the 11.4 download (seed 000), CANLust's description items and
-// substitution texts (seed 003 4.1, decision D10), the DFS-1's ranges (seed 004), and what the
+// word's description record (INTERBUS manual 4.1.3.3), PCP's Get-OV (INTERBUS manual 4.2), LUSTBUS's 11.1-11.3
+// descriptions and texts and the 11.4 download (LUSTBUS manual), CANLust's description items and
+// substitution texts (CANLust manual 4.1, decision D10), the DFS-1's ranges (DFS-1 manual), and what the
 // reports, the campaign and the command line show. A drive's wing writes its entries once, as a
 // constexpr array; each bus only encodes them (its codec checks its own limits: five-character
 // names on the communication word and LUSTBUS, numbers up to 255 on the DFS-1, ...).
@@ -15,14 +15,14 @@
 
 namespace ibs::od {
 
-// Where a value lives (seed 000 11.1 kinds '0'-'3', 11.2.1 kinds '0'-'2'; seed 003 4.3 "Memory
+// Where a value lives (LUSTBUS manual 11.1 kinds '0'-'3', 11.2.1 kinds '0'-'2'; CANLust manual 4.3 "Memory
 // type"): what a write changes, what power-on brings back, what a save keeps.
 enum class Storage : std::uint8_t {
   ram_control,  // RAM; power-on: the default (unless attr::kNoInit)
   ram_actual,   // RAM, the drive's own reading: never written over a bus
   eeprom,       // RAM and EEPROM on every write; power-on: the EEPROM copy
-  eeprom_ram,   // RAM; EEPROM too while the power stage is disabled (seed 001 4.1.3.3, VF-E18)
-  flash,  // RAM; kept only by a save (the CDA3000's 150-SAVE, seed 003 3.5.1); power-on: flash
+  eeprom_ram,   // RAM; EEPROM too while the power stage is disabled (INTERBUS manual 4.1.3.3, VF-E18)
+  flash,  // RAM; kept only by a save (the CDA3000's 150-SAVE, CANLust manual 3.5.1); power-on: flash
 };
 std::string_view to_string(Storage s);
 // Whether the kind has a kept (EEPROM or flash) copy that power-on brings back.
@@ -33,21 +33,21 @@ constexpr bool is_kept(Storage s) {
 // When a written value acts.
 enum class Effect : std::uint8_t {
   at_once,
-  at_restart,  // after a mains reset (CDA3000 489-CLBDR, seed 003 7.1.1; MC6000 405-SUPI, 81-SBAUD)
+  at_restart,  // after a mains reset (CDA3000 489-CLBDR, CANLust manual 7.1.1; MC6000 405-SUPI, 81-SBAUD)
 };
 
 // Parameters whose writes the family's rules act on (StoredServed, and every core).
 enum class Role : std::uint8_t {
   value,          // a value, nothing more
-  load_defaults,  // PROG: 1 loads every factory default (seed 000 10 exception 1; seed 003 p. 13)
-  download,       // SLOAD: the data-set download handshake (seed 000 11.4; CDA3000 D39)
-  error_flags,    // 85-SIOF/SERR (siof.hpp; seed 000 9.2)
-  save,           // SAVE: 1 keeps the flash values (CDA3000 150-SAVE, seed 003 3.5.1)
+  load_defaults,  // PROG: 1 loads every factory default (LUSTBUS manual 10 exception 1; CANLust manual p. 13)
+  download,       // SLOAD: the data-set download handshake (LUSTBUS manual 11.4; CDA3000 D39)
+  error_flags,    // 85-SIOF/SERR (siof.hpp; LUSTBUS manual 9.2)
+  save,           // SAVE: 1 keeps the flash values (CDA3000 150-SAVE, CANLust manual 3.5.1)
 };
 inline constexpr std::size_t kRoleCount = 5;
 std::string_view to_string(Role r);
 
-// The attribute word of seed 000, 11.2.1 ("The attribute"), written once here: PCP's Get-OV and
+// The attribute word of the LUSTBUS manual 11.2.1 ("The attribute"), written once here: PCP's Get-OV and
 // LUSTBUS's 11.2 description carry it.
 namespace attr {
 inline constexpr std::uint16_t kShowParaText = 0x0004;  // the value names another parameter
@@ -60,7 +60,7 @@ inline constexpr std::uint16_t kShowHex = 0x0100;
 inline constexpr std::uint16_t kPassword = 0x0200;
 }  // namespace attr
 
-// A value substitution text (seed 000 11.3: "the text of value 0, 1, ..."; seed 003 4.1:
+// A value substitution text (LUSTBUS manual 11.3: "the text of value 0, 1, ..."; CANLust manual 4.1:
 // "numerical value = substitution text"): "6 OPTN2".
 struct Choice {
   Raw code = 0;             // the value, as its canonical Raw (raw(type, number))
@@ -68,7 +68,7 @@ struct Choice {
   std::string_view text{};  // what it means ("" when the manual gives only the name)
 };
 
-// The KEYPAD service structure of seed 000, 11.2.1 (the extended description of the enhanced
+// The KEYPAD service structure of the LUSTBUS manual 11.2.1 (the extended description of the enhanced
 // family, LB-D10): unit index into 107-UNIT's texts, user level, hardware and structure filters,
 // subject area and activity area (sc_group: non-zero = the parameter belongs to a data set).
 struct Keypad {
@@ -100,7 +100,7 @@ struct Entry {
   Role role = Role::value;
   std::uint16_t attributes = 0;  // attr::k*
   std::uint8_t elements = 1;  // subindices (PCP) / field entries (CANLust index); 1: a plain value
-  bool in_data_set = false;   // CardWriteable (seed 000 11.4; seed 003 "Card Writeable")
+  bool in_data_set = false;   // CardWriteable (LUSTBUS manual 11.4; CANLust manual "Card Writeable")
   std::span<const Choice> choices{};  // substitution texts
   bool choices_only = false;       // a value must be one of the choices (the CDA3000's selectors)
   const Keypad* keypad = nullptr;  // the 11.2.1 service structure; nullptr: none
@@ -132,7 +132,7 @@ struct Entry {
 };
 
 // Where a value stands against its entry: in range, or why not, in the order the drives check
-// (the CDA3000's check_value, seed 003 4.5: the limits on the Raw read at 32 bits -- which also
+// (the CDA3000's check_value, CANLust manual 4.5: the limits on the Raw read at 32 bits -- which also
 // refuse a Raw wider than the type -- then the substitution texts). A codec hands in the Raw as
 // from_bus() makes it: a zero-extended 0xFFFF of an INT16 reads as 65535 here, above any INT16
 // maximum. wrong_type: a text.

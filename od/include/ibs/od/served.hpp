@@ -22,7 +22,7 @@
 namespace ibs::od {
 
 // Why a drive refused an access. Each refusal but `none` and `latched` enters its bit in
-// 85-SIOF/SERR (error_flag) where the drive keeps one (seed 000 9.2); a codec maps it to its
+// 85-SIOF/SERR (error_flag) where the drive keeps one (LUSTBUS manual 9.2); a codec maps it to its
 // bus's answer.
 enum class Refusal : std::uint8_t {
   none,
@@ -31,7 +31,7 @@ enum class Refusal : std::uint8_t {
   read_only,     // 40H: a RAM actual value, or a value only the drive sets
   not_now,     // 40H: not in this state (EEPROM with the power stage on, SLOAD while running, ...)
   wrong_kind,  // 40H: a text read or written as a number, or a number as a text
-  busy,        // 04H: the last EEPROM value is still being saved (seed 000 3)
+  busy,        // 04H: the last EEPROM value is still being saved (LUSTBUS manual 3)
   transfer_error,  // 08H: an error in the data transfer (the comm word: unintended control bits)
   bad_value,       // 80H: the bus's value is no value of the type
   too_high,        // 80H: above the maximum (or an SLOAD value the host may not write)
@@ -40,7 +40,7 @@ enum class Refusal : std::uint8_t {
 };
 std::string_view to_string(Refusal r);  // "no parameter", "above the maximum", ...
 
-// The 85-SIOF/SERR bit a refusal enters (seed 000 9.2 table; 0 for none and latched).
+// The 85-SIOF/SERR bit a refusal enters (LUSTBUS manual 9.2 table; 0 for none and latched).
 constexpr std::uint8_t error_flag(Refusal r) {
   switch (r) {
     case Refusal::none:
@@ -113,7 +113,7 @@ class ServedParameters {
   // Time passes: background work of the drive may end (an EEPROM save, a download's test).
   virtual void advance(Time now) = 0;
   // A read that may act (reading 85-SIOF/SERR clears the bits it returns). kNoSlot: refused
-  // no_parameter, entering nothing (seed 000 6.1 note; seed 001 4.1.4).
+  // no_parameter, entering nothing (LUSTBUS manual 6.1 note; INTERBUS manual 4.1.4).
   virtual Reading read(Slot s, Time now) = 0;
   // The value as it stands, without acting (an Information Report, a latched comm-word value;
   // 0 for kNoSlot).
@@ -123,7 +123,7 @@ class ServedParameters {
   [[nodiscard]] virtual Raw factory_default(Slot s) const {
     return s < dictionary().size() ? dictionary()[s].default_raw() : 0;
   }
-  // Would a write be taken now? nullopt: the access only (the comm word's PNR, seed 001
+  // Would a write be taken now? nullopt: the access only (the comm word's PNR, INTERBUS manual
   // 4.1.3.2.1), else the value too. Enters nothing.
   [[nodiscard]] virtual Refusal check(Slot s, std::optional<Raw> r, Time now) const = 0;
   // A write of the Raw a codec made (from_bus): checked again (a refusal enters its bit), then

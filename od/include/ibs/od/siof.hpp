@@ -1,6 +1,6 @@
 // 85-SIOF (VF1000) / 85-SERR (MC6000), the serial-interface error flags every LUST drive of the
 // seed-000 family keeps and every one of its parameter channels reports: the VF1000 communication
-// word, PCP and LUSTBUS (seed 000, 9.2 table; seed 001, 4.1.4 and 6.1). Any bit set refuses every
+// word, PCP and LUSTBUS (LUSTBUS manual 9.2 table; INTERBUS manual 4.1.4 and 6.1). Any bit set refuses every
 // value transfer until 85-SIOF is read; reading it clears the bits it returned. The bits and the
 // number are the same across the family. (drive/siof.hpp forwards here.)
 #pragma once
@@ -11,11 +11,11 @@
 
 namespace ibs::od {
 
-// The parameter's number, the same in every drive of the family (seed 000, 4 and 9.2).
+// The parameter's number, the same in every drive of the family (LUSTBUS manual 4 and 9.2).
 inline constexpr std::uint16_t kSiofNumber = 85;
 
 enum class SiofBit : std::uint8_t {
-  power_on = 0,       // 01H: set on every power-on (seed 000, 9.2; seed 001, 6.1)
+  power_on = 0,       // 01H: set on every power-on (LUSTBUS manual 9.2; INTERBUS manual 6.1)
   watchdog = 1,       // 02H: the device's LUSTBUS watchdog (84-SIOT) ran out
   eeprom_busy = 2,    // 04H: EEPROM burn-in in progress
   checksum = 3,       // 08H: error in the data transfer; on the comm word "unintended control bits"

@@ -1,7 +1,7 @@
 // The one store of a drive's parameter values, behind its dictionary: per entry a RAM value (what
 // every bus reads), a kept copy (EEPROM or flash: what power-on brings back), the factory default
 // (the entry's, or an overlay's) and a spare (the data set a download brings back or takes in,
-// seed 000 11.4); per text entry the same for its text. It models what drive::ParameterStore,
+// LUSTBUS manual 11.4); per text entry the same for its text. It models what drive::ParameterStore,
 // pcp::ParameterStore, the CDA3000's current_/saved_/pending_/name_ and the DFS-1's values_ do:
 // a write by storage kind, power-on, a save, the factory defaults, the download's old data set.
 //
@@ -49,7 +49,7 @@ class Store {
   void preset(Slot s, Raw r) { cells_[s] = {r, r}; }
   // A value transfer that passed the checks (`r` canonical, fit() ok), by the entry's storage:
   // RAM always; the kept copy too for eeprom, and for eeprom_ram while the power stage is disabled
-  // (seed 001 4.1.3.3); flash waits for save(). Returns whether the kept copy changed.
+  // (INTERBUS manual 4.1.3.3); flash waits for save(). Returns whether the kept copy changed.
   bool write(Slot s, Raw r, bool power_stage_enabled) {
     return write(s, r, (*dict_)[s].storage, power_stage_enabled);
   }
@@ -72,12 +72,12 @@ class Store {
 
   // ---- the drive's moments ----------------------------------------------------------------
   // Power-on: every kept kind (eeprom, eeprom_ram, flash) from its kept copy; RAM control values
-  // to their defaults but those with attr::kNoInit (seed 000 11.2.1), which keep their RAM; RAM
+  // to their defaults but those with attr::kNoInit (LUSTBUS manual 11.2.1), which keep their RAM; RAM
   // actual values to their defaults. Texts alike.
   void power_on();
-  // A save (150-SAVE, seed 003 3.5.1): the kept copy of every entry of storage `kind` from RAM.
+  // A save (150-SAVE, CANLust manual 3.5.1): the kept copy of every entry of storage `kind` from RAM.
   void save(Storage kind);
-  // The factory defaults (PROG = 1, seed 000 10 exception 1; seed 003 p. 13): every RAM value and
+  // The factory defaults (PROG = 1, LUSTBUS manual 10 exception 1; CANLust manual p. 13): every RAM value and
   // text, and the kept copy of all but flash entries, which a save keeps (the CDA3000's PROG
   // leaves its flash alone until 150-SAVE).
   void factory_defaults();
@@ -91,7 +91,7 @@ class Store {
   bool set_text(Slot s, std::string_view t);
   bool write_text(Slot s, std::string_view t, bool power_stage_enabled);
 
-  // ---- the data set of a download (seed 000 11.4; the CDA3000's D39) -------------------------
+  // ---- the data set of a download (LUSTBUS manual 11.4; the CDA3000's D39) -------------------------
   // The spare takes every RAM value: the old data set (restored if the new one is refused), or
   // the new one being received (taken if it is valid).
   void snapshot();

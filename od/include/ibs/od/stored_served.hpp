@@ -4,17 +4,17 @@
 // own-table mode), and the parameter half a new drive starts from ("add a drive"). The rules:
 //
 // - 85-SIOF/SERR, where the dictionary has it (Role::error_flags): power-on sets its power-on bit;
-//   while any bit is set every write is refused `latched`, entering nothing (seed 000 9.2, 6;
-//   seed 001 4.1.4); a refused write enters its refusal's bit; a read of it clears what it
+//   while any bit is set every write is refused `latched`, entering nothing (LUSTBUS manual 9.2, 6;
+//   INTERBUS manual 4.1.4); a refused write enters its refusal's bit; a read of it clears what it
 //   returned. Reads enter nothing (6.1 note). A dictionary without it keeps no flags (CANLust).
 // - Writes: read-only and RAM actual values refused; an EEPROM value only with the power stage
-//   disabled, an EEPROM/RAM variable into RAM alone while it is enabled (seed 001 4.1.3.2-3,
+//   disabled, an EEPROM/RAM variable into RAM alone while it is enabled (INTERBUS manual 4.1.3.2-3,
 //   VF-E18); the value checked against type, min, max and (choices_only) its choices; the answer
-//   waits for the EEPROM (seed 000 3: "until the parameter value is stored", per byte).
-// - PROG (Role::load_defaults) = 1: every factory default, 85 keeping its bits (seed 000 10
-//   exception 1); SAVE (Role::save) = 1: the flash values kept (seed 003 3.5.1). Both are
+//   waits for the EEPROM (LUSTBUS manual 3: "until the parameter value is stored", per byte).
+// - PROG (Role::load_defaults) = 1: every factory default, 85 keeping its bits (LUSTBUS manual 10
+//   exception 1); SAVE (Role::save) = 1: the flash values kept (CANLust manual 3.5.1). Both are
 //   commands: they read their default again afterwards.
-// - SLOAD (Role::download), seed 000 11.4: -1 at standstill opens a download (the data set is
+// - SLOAD (Role::download), LUSTBUS manual 11.4: -1 at standstill opens a download (the data set is
 //   snapshot); meanwhile values of the data set are taken untested into RAM and any other write is
 //   acknowledged and dropped; -2 ends it: SLOAD reads -1 while the set is tested, then 0 (the set
 //   in EEPROM) or the number of the first implausible parameter (the old set restored).
@@ -34,9 +34,9 @@ namespace ibs::od {
 // How long the drive takes (each zero by default: answered at once).
 struct StoredServedTiming {
   Duration eeprom_per_byte{};   // a changed EEPROM value, per byte of its type (VF1000: 60 ms)
-  Duration factory_defaults{};  // PROG = 1 ("can take up to 10 seconds", seed 000 10)
-  Duration save{};              // SAVE = 1 ("a few hundred milliseconds", seed 003 3.5.1)
-  Duration download_check{};    // SLOAD = -2 until the test has ended (seed 000 11.4 step 3)
+  Duration factory_defaults{};  // PROG = 1 ("can take up to 10 seconds", LUSTBUS manual 10)
+  Duration save{};              // SAVE = 1 ("a few hundred milliseconds", CANLust manual 3.5.1)
+  Duration download_check{};    // SLOAD = -2 until the test has ended (LUSTBUS manual 11.4 step 3)
 };
 
 struct StoredServedConfig {
@@ -46,7 +46,7 @@ struct StoredServedConfig {
 
 class StoredServed final : public ServedParameters {
  public:
-  // SLOAD's handshake values (seed 000 11.4).
+  // SLOAD's handshake values (LUSTBUS manual 11.4).
   static constexpr std::int64_t kDownloadBegin = -1;
   static constexpr std::int64_t kDownloadEnd = -2;
 

@@ -1,11 +1,11 @@
 // The one data-type family of the LUST drives' parameters, whichever bus carries them: the
-// standard family's types (seed 000, 2.3.1; seed 001, 4.1.3.3), the enhanced family's (seed 000,
-// 2.3.2; PCP, seed 001 4.2), CANLust's (seed 003, 4.1.1) and the DFS-1's plain 32-bit numbers
-// (seed 004). Each bus has its own codes and byte order for them: those live in the bus's codec,
+// standard family's types (LUSTBUS manual 2.3.1; INTERBUS manual 4.1.3.3), the enhanced family's (LUSTBUS manual,
+// 2.3.2; PCP, INTERBUS manual 4.2), CANLust's (CANLust manual 4.1.1) and the DFS-1's plain 32-bit numbers
+// (DFS-1 manual). Each bus has its own codes and byte order for them: those live in the bus's codec,
 // not here. Allocation-free and constexpr: usable on the cycle path and in compile-time tables.
 //
 // A value's bits are a Raw: 32 bits, signed types sign-extended, unsigned ones zero-extended --
-// CANLust's wire image as it is (seed 003 4.1.1: "INT8/16 sign-filled"); PCP, LUSTBUS and the
+// CANLust's wire image as it is (CANLust manual 4.1.1: "INT8/16 sign-filled"); PCP, LUSTBUS and the
 // communication word mask it to the type's width. number() reads only the type's width, so a
 // zero-extended 16-bit pattern (0xFFFF of an INT16) reads as the same number (-1) as its canonical
 // image (0xFFFFFFFF).
@@ -24,20 +24,20 @@ namespace ibs::od {
 using Raw = std::uint32_t;
 
 enum class Type : std::uint8_t {
-  binary8,     // 8-bit pattern (PT_BINARY8, seed 000 2.3.1)
+  binary8,     // 8-bit pattern (PT_BINARY8, LUSTBUS manual 2.3.1)
   usign8,      // 0..255
   int8,        // -128..127 (CANLust)
   usign16,     // 0..65535
-  int16,       // -32768..32767 (PCP INTEGER16; the VF1000's 901-912 "Integer 16", seed 001 4.1.1)
+  int16,       // -32768..32767 (PCP INTEGER16; the VF1000's 901-912 "Integer 16", INTERBUS manual 4.1.1)
   usign32,     // 0..4294967295 (CANLust; the DFS-1's values)
   int32,       // signed 32 bits (CANLust)
-  fixpoint16,  // unsigned, 0.05 a step: 0.00..3276.75 (seed 000 2.3.1/2.3.2; seed 003 p. 32)
-  int32q16,    // signed 32 bits, 1/65536 a step (seed 000 2.3.2, seed 003 4.1.1)
-  float_ieee,  // the 32-bit IEEE 754 pattern (seed 000 2.3.2)
+  fixpoint16,  // unsigned, 0.05 a step: 0.00..3276.75 (LUSTBUS manual 2.3.1/2.3.2; CANLust manual p. 32)
+  int32q16,    // signed 32 bits, 1/65536 a step (LUSTBUS manual 2.3.2, CANLust manual 4.1.1)
+  float_ieee,  // the 32-bit IEEE 754 pattern (LUSTBUS manual 2.3.2)
   password,    // unsigned 16 bits (PT_PASSWORD)
-  error16,     // PT_VF_ERROR: error code and time of error, one word (seed 000 2.3.1; VfError)
+  error16,     // PT_VF_ERROR: error code and time of error, one word (LUSTBUS manual 2.3.1; VfError)
   error32,     // PT_MC_ERROR = CANLust ERR_STRUC: number, location, time (one layout; ErrorRecord)
-  string,      // text, by the buses' string transfers (seed 003 4.1.1); numbers are its length
+  string,      // text, by the buses' string transfers (CANLust manual 4.1.1); numbers are its length
 };
 inline constexpr std::size_t kTypeCount = 14;
 
@@ -47,7 +47,7 @@ struct TypeInfo {
   bool is_signed;     // two's complement
   double per_unit;    // numbers per engineering unit: fixpoint16 20 (0.05 a step), int32q16 65536
   bool numeric;       // has an engineering value (not the error structures, not text)
-  std::string_view name;  // the manuals' name without the PT_ of seed 000: "FIXPOINT16"
+  std::string_view name;  // the manuals' name without the PT_ of the LUSTBUS manual: "FIXPOINT16"
 };
 
 inline constexpr std::array<TypeInfo, kTypeCount> kTypes{{
@@ -88,7 +88,7 @@ constexpr bool is_text(Type t) {
 }
 
 // Longest text a string entry can hold (its max); each bus's codec has its own limit below it
-// (CANLust: 99 characters, seed 003 4.1.1).
+// (CANLust: 99 characters, CANLust manual 4.1.1).
 inline constexpr std::int64_t kMaxTextLength = 255;
 
 // The smallest and largest number of the type (float_ieee: its patterns 0..FFFFFFFFH; string:
@@ -144,7 +144,7 @@ constexpr Raw pattern(Type t, Raw r) {
 // A value a bus carried in `bus_bits` bits (the communication word's 16, PCP's and LUSTBUS's
 // type width) as the Raw a drive checks: signed types sign-extended from the bus's top bit,
 // unsigned ones as they came -- so that 0105H for a USIGN8 stays 261 and is refused as above its
-// maximum, not masked into range (seed 001 4.1.4: "invalid value").
+// maximum, not masked into range (INTERBUS manual 4.1.4: "invalid value").
 constexpr Raw from_bus(Type t, Raw r, unsigned bus_bits) {
   if (!is_signed(t) || bus_bits >= 32 || bus_bits == 0) return r;
   const Raw sign = Raw{1} << (bus_bits - 1U);
@@ -203,7 +203,7 @@ struct Converted {
   [[nodiscard]] constexpr bool ok() const { return error == Conversion::ok; }
 };
 // The Raw of an engineering value, rounded to the nearest step (halves away from zero, as the
-// standard family's and CANLust's conversions round; seed 000's C truncates, LB-D8); refused
+// standard family's and CANLust's conversions round; LUSTBUS manual's C truncates, LB-D8); refused
 // outside the type's range, for NaN and infinities, and for the types without an engineering value.
 Converted from_engineering(Type t, double value, double scale = 1.0);
 
@@ -220,9 +220,9 @@ constexpr std::optional<Value> make_value(Type t, std::int64_t n) {
   return Value{t, raw(t, n)};
 }
 
-// PT_VF_ERROR (seed 001, 4.1.3.3 footnote; seed 000 2.3.1): high byte low nibble the error code
+// PT_VF_ERROR (INTERBUS manual 4.1.3.3 footnote; LUSTBUS manual 2.3.1): high byte low nibble the error code
 // 00H-0EH (0FH: no error), low byte low nibble the time of the error since power-on in tenths of
-// an hour (0FH: the basic state). An erased EEPROM reads FFH (seed 000 2.3.1): only the low
+// an hour (0FH: the basic state). An erased EEPROM reads FFH (LUSTBUS manual 2.3.1): only the low
 // nibbles count.
 inline constexpr std::uint8_t kVfNoError = 0x0F;
 inline constexpr Raw kVfErrorNone = 0x0F0F;
@@ -246,8 +246,8 @@ constexpr std::optional<Raw> vf_error_raw(const VfError& e) {
   return (Raw{e.code.value_or(kVfNoError)} << 8U) | e.time_tenths.value_or(kVfNoError);
 }
 
-// PT_MC_ERROR (seed 000 2.3.2, the C union on a little-endian host, PCP-E6) = CANLust ERR_STRUC
-// (seed 003 4.1.1, p. 32: E-OP2 at location 172 after 85 h = 10 AC 55 00): the number in bits 0-7,
+// PT_MC_ERROR (LUSTBUS manual 2.3.2, the C union on a little-endian host, PCP-E6) = CANLust ERR_STRUC
+// (CANLust manual 4.1.1, p. 32: E-OP2 at location 172 after 85 h = 10 AC 55 00): the number in bits 0-7,
 // the location in bits 8-15, the time (hours of operation) in bits 16-31.
 struct ErrorRecord {
   std::uint8_t number = 0;

@@ -19,9 +19,9 @@ namespace ibs::od {
 
 // How a drive's manual writes its parameters.
 struct TextStyle {
-  // Digits of the number at least: 1 for seed 000's "4-PROG", 2 for seed 003's "04 PROG".
+  // Digits of the number at least: 1 for the LUSTBUS manual's "4-PROG", 2 for the CANLust manual's "04 PROG".
   int min_digits = 1;
-  // The name of an error number of an error32 value ("E-OP2" for 16, seed 003 6.2); nullptr or ""
+  // The name of an error number of an error32 value ("E-OP2" for 16, CANLust manual 6.2); nullptr or ""
   // for none. The drive's wing knows its errors; od does not.
   std::string_view (*error_name)(std::uint8_t number) = nullptr;
 };
@@ -38,7 +38,7 @@ std::string number_text(const Entry& e, Raw r);
 std::string format_value(const Entry& e, Raw r, const TextStyle& style = {});
 
 struct ParseOptions {
-  // false: only the type is checked (a data set the drive tests as a whole, seed 000 11.4).
+  // false: only the type is checked (a data set the drive tests as a whole, LUSTBUS manual 11.4).
   bool check_limits = true;
   TextStyle style{};
 };

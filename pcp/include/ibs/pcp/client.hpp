@@ -1,5 +1,5 @@
 // The master's PCP client for one MC6000 (one communication reference): Initiate, Read, Write,
-// Get-OV long, Identify, Status and Abort over the parameter channel (seed 001, 3.2.2 and 4.2).
+// Get-OV long, Identify, Status and Abort over the parameter channel (INTERBUS manual 3.2.2 and 4.2).
 //
 // Asynchronous: a request is submitted (one at a time per communication reference), the cycle
 // loop calls step() once per bus cycle with the servo's channel words and the time, and the
@@ -64,7 +64,7 @@ class Client final : public ParameterClient {
   SubmitStatus read_subindex(Time now, ParameterRef p, std::uint8_t subindex,
                              Duration timeout = Duration::zero());
   SubmitStatus write(Time now, ParameterRef p, Value v, Duration timeout = Duration::zero()) override;
-  // Engineering value converted to the type (seed 000, 2.3.2).
+  // Engineering value converted to the type (LUSTBUS manual 2.3.2).
   SubmitStatus write(Time now, ParameterRef p, DataType t, double value,
                      Duration timeout = Duration::zero());
   SubmitStatus write_bytes(Time now, ParameterRef p, std::span<const std::uint8_t> data,

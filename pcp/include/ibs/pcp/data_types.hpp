@@ -1,4 +1,4 @@
-// The MC6000 parameter data types (seed 000, 2.3.2) and their conversions: engineering value <->
+// The MC6000 parameter data types (LUSTBUS manual 2.3.2) and their conversions: engineering value <->
 // raw value <-> bytes on the PCP channel (big-endian, as every INTERBUS word).
 // Everything here is allocation-free and usable on the cycle path.
 #pragma once
@@ -12,7 +12,7 @@
 
 namespace ibs::pcp {
 
-// Seed 000, 2.3.2, in the table's order. The numeric codes are this project's (the seeds give the
+// LUSTBUS manual 2.3.2, in the table's order. The numeric codes are this project's (the seeds give the
 // MC6000's type codes nowhere); they are what Get-OV long reports (docs/pcp.md).
 enum class DataType : std::uint8_t {
   usign8 = 1,
@@ -65,7 +65,7 @@ std::int64_t signed_raw(Value v);
 // Builds a value from a signed raw number; nullopt when it does not fit the type's bit width.
 std::optional<Value> value_from_signed_raw(DataType t, std::int64_t raw);
 
-// PT_MC_ERROR (seed 000, 2.3.2): the C union of the manual on a little-endian host puts the error
+// PT_MC_ERROR (LUSTBUS manual 2.3.2): the C union of the manual on a little-endian host puts the error
 // number in bits 0..7, the location in bits 8..15 and the time in bits 16..31 (docs/pcp.md,
 // errata).
 struct McError {

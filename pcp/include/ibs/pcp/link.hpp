@@ -1,8 +1,8 @@
-// Segmentation of PMS messages over the MC6000's PCP channel of 1, 2 or 4 words (seed 001,
+// Segmentation of PMS messages over the MC6000's PCP channel of 1, 2 or 4 words (INTERBUS manual,
 // 3.2.2) — the project's own design, because the chip's administrative byte is not public
 // (public-facts.md, PCP). docs/pcp.md specifies it; this header is its one interface.
 //
-// Seed 001 3.2.2 puts the channel on the servo's *INTERBUS CPU*: both ends of the link run at the
+// INTERBUS manual 3.2.2 puts the channel on the servo's *INTERBUS CPU*: both ends of the link run at the
 // bus cycle (the servo's interface side, not its 1 ms control sample), so every cycle each side
 // shows one frame: the administrative byte (high byte of the first channel word) and
 // 2 * words - 1 data bytes. The administrative byte:

@@ -1,5 +1,5 @@
 // A drive's parameter memory behind the PCP server: a RAM value per parameter and an EEPROM
-// copy per EEPROM parameter (seed 000, 11.2.1: "each have an EEPROM address and a RAM address").
+// copy per EEPROM parameter (LUSTBUS manual 11.2.1: "each have an EEPROM address and a RAM address").
 // Fixed size; the table is checked once at construction (configuration time).
 #pragma once
 
@@ -40,10 +40,10 @@ class ParameterStore {
   bool commit_eeprom(std::uint16_t number, std::uint32_t raw);
 
   // Power-on: EEPROM values copied to RAM, RAM control values and actual values set to their
-  // defaults (seed 000, 11.2.1) -- but for RAM control values with the attribute NoInit, which
+  // defaults (LUSTBUS manual 11.2.1) -- but for RAM control values with the attribute NoInit, which
   // "will not be pre-initialized, during start up, with the factory setting" (11.2.1).
   void power_on();
-  // 4-PROG = 1: every value, RAM and EEPROM, back to its default (seed 000, 10).
+  // 4-PROG = 1: every value, RAM and EEPROM, back to its default (LUSTBUS manual 10).
   void factory_defaults();
 
   // A table number (min, max, default: signed_raw numbers or float bits) as the raw value.

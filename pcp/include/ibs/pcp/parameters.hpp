@@ -1,5 +1,5 @@
-// A parameter as PCP addresses and serves it (seed 001, 4.2): the object index of a parameter
-// number (index = number + 5C00H), the parameter kinds and attributes of seed 000, 11.2.1, and a
+// A parameter as PCP addresses and serves it (INTERBUS manual 4.2): the object index of a parameter
+// number (index = number + 5C00H), the parameter kinds and attributes of the LUSTBUS manual 11.2.1, and a
 // table's row. Which parameters a drive has is its wing's (devices/mc6000/parameters.hpp); the
 // server serves any table (server.hpp).
 #pragma once
@@ -13,8 +13,8 @@
 
 namespace ibs::pcp {
 
-inline constexpr std::uint16_t kParameterIndexOffset = 0x5C00;  // seed 001, 4.2
-inline constexpr std::uint16_t kMaxParameterNumber = 999;       // seed 000, 2.4.2: 3 digits
+inline constexpr std::uint16_t kParameterIndexOffset = 0x5C00;  // INTERBUS manual 4.2
+inline constexpr std::uint16_t kMaxParameterNumber = 999;       // LUSTBUS manual 2.4.2: 3 digits
 
 constexpr std::uint16_t index_of(std::uint16_t number) {
   return static_cast<std::uint16_t>(number + kParameterIndexOffset);
@@ -34,11 +34,11 @@ struct ParameterRef {
   friend bool operator==(const ParameterRef&, const ParameterRef&) = default;
 };
 
-// Seed 000, 11.2.1 ("The parameter kind"); the enumerator values are the ASCII codes given there.
+// LUSTBUS manual 11.2.1 ("The parameter kind"); the enumerator values are the ASCII codes given there.
 enum class Category : std::uint8_t { ram_actual = '0', ram_control = '1', eeprom = '2' };
 std::string_view to_string(Category c);
 
-// Attribute bits of seed 000, 11.2.1 ("The attribute").
+// Attribute bits of the LUSTBUS manual 11.2.1 ("The attribute").
 inline constexpr std::uint16_t kAttrShowParaText = 0x0004;
 inline constexpr std::uint16_t kAttrShowText = 0x0020;
 inline constexpr std::uint16_t kAttrInitControl = 0x0040;
@@ -48,7 +48,7 @@ inline constexpr std::uint16_t kAttrPassword = 0x0200;
 
 struct ParameterInfo {
   std::uint16_t number = 0;
-  std::string_view name;  // at most 5 characters (seed 000, 11.2.1)
+  std::string_view name;  // at most 5 characters (LUSTBUS manual 11.2.1)
   DataType type = DataType::usign16;
   Category category = Category::ram_control;
   // Limits and default as signed_raw() numbers (FLOAT_IEEE: the float's bit pattern).

@@ -20,7 +20,7 @@
 
 namespace ibs::pcp {
 
-inline constexpr std::size_t kMaxPduSize = 134;  // seed 001, 4.2.2: the MC6000's KBL, both ways
+inline constexpr std::size_t kMaxPduSize = 134;  // INTERBUS manual 4.2.2: the MC6000's KBL, both ways
 inline constexpr std::size_t kMinPduSize = 6;    // code, count, InvokeID/CR
 inline constexpr std::size_t kMaxDataSize = kMaxPduSize - 10;
 
@@ -61,7 +61,7 @@ inline constexpr PcpError kValueTooHigh{8, 0, 0x31};
 inline constexpr PcpError kValueTooLow{8, 0, 0x32};
 }  // namespace errors
 
-// The supported-services bytes of a KBL entry (seed 001, 4.2.2): bytes 0..2 client functionality,
+// The supported-services bytes of a KBL entry (INTERBUS manual 4.2.2): bytes 0..2 client functionality,
 // 3..5 server functionality; per byte the three services of the KBL's line. Bit values are ours.
 struct ServiceBit {
   std::uint8_t byte = 0;
@@ -107,7 +107,7 @@ struct Kbl {
 };
 
 // A parameter server's entry: 134 bytes each way; server for Get-OV long, Read, Write,
-// Information Report (the MC6000's of seed 001, 4.2.2).
+// Information Report (the MC6000's of the INTERBUS manual 4.2.2).
 inline constexpr Kbl kDefaultServerKbl{kMaxPduSize, kMaxPduSize,
                                 Services{}
                                     .server(kSvcGetOvLong)

@@ -1,4 +1,4 @@
-// What a PCP server serves (seed 001, 4.2): a drive's parameters behind the channel. The server
+// What a PCP server serves (INTERBUS manual 4.2): a drive's parameters behind the channel. The server
 // owns the protocol -- link, association, one request at a time, processing latency -- and asks
 // the drive for everything about the values: the drive owns its store, its write checks, 85-SERR
 // and its timing (EEPROM, PROG), and answers in PCP's terms. Drive-neutral: a drive's INTERBUS face

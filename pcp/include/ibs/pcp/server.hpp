@@ -1,8 +1,8 @@
-// The PCP server: the drive side of the parameter channel (seed 001, 4.2, as the MC6000 has it).
-// Two processors share it, as on the servo (seed 001 3.2.2: the servo's INTERBUS CPU): the
+// The PCP server: the drive side of the parameter channel (INTERBUS manual 4.2, as the MC6000 has it).
+// Two processors share it, as on the servo (INTERBUS manual 3.2.2: the servo's INTERBUS CPU): the
 // interface side runs the link at the bus cycle (cycle(): the channel words of every cycle), the
 // servo's processor takes complete requests and answers them in its samples (sample(): the
-// MC6000: every 1 ms, seed 001 7.2). step() does both in one call, for a caller whose cycle is its
+// MC6000: every 1 ms, INTERBUS manual 7.2). step() does both in one call, for a caller whose cycle is its
 // sample (trace replay, lock-step tests). The server answers Initiate, Read, Write, Get-OV long, Identify and Status
 // and may send Information Reports (the KBL of 4.2.2). It serves the parameters it is given
 // (ServedParameters, served.hpp) and owns none: the values, their checks, 85-SERR and the drive's

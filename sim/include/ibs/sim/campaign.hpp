@@ -11,7 +11,7 @@
 // - every request ends within the documented timeout of its channel plus a margin, with an
 //   outcome its operation can have;
 // - no drive is ENABLED unless the master requested ENABLED after its last fault, power cycle or
-//   master restart (and not during an open SLOAD download, seed 000 11.4);
+//   master restart (and not during an open SLOAD download, LUSTBUS manual 11.4);
 // - EMERGENCY STOP / BLOCK POWER (and every other withdrawal) has the drive out of ENABLED by
 //   the device's first sample after the bus delivered the word;
 // - the bus watchdogs trip neither before their time nor later than their time plus one sample
@@ -66,7 +66,7 @@ struct CheckerDeviceSpec {
   // disabled meanwhile; how a violation names the download and the promise.
   Duration download_check{0};
   std::string download_label = "SLOAD";
-  std::string download_source = "seed 000 11.4: secured until it ends";
+  std::string download_source = "LUSTBUS manual 11.4: secured until it ends";
 };
 
 using StoreEntry = devices::CampaignStoreEntry;
@@ -202,7 +202,7 @@ struct CampaignOptions {
   std::uint64_t seed = 1;
   std::uint64_t transactions = 100000;  // parameter transactions to complete
   // Whether the master may request ENABLED while an SLOAD download it started is open. A
-  // master following seed 000 11.4 does not (the default); true probes the servo's promise to stay
+  // master following LUSTBUS manual 11.4 does not (the default); true probes the servo's promise to stay
   // "secured against being engaged until the download has ended".
   bool enable_during_download = false;
   // Called about every simulated 10 s with the transactions done so far.

@@ -30,7 +30,7 @@ struct DeviceConfig {
   std::optional<int> watchdog_ms;   // MC6000 409-BUTWD (ms, 0 = off); VF1000 906-IB-WD (ms)
   std::optional<int> watchdog_reaction;  // VF1000 907-IBCOD (0..3)
   // The test bench (docs/testbench.md): the drive's address on the scenario's LUSTBUS line
-  // (Scenario::lustbus), 1..30 (seed 000, 9.1); the drive then answers there too, one drive
+  // (Scenario::lustbus), 1..30 (LUSTBUS manual 9.1); the drive then answers there too, one drive
   // core behind both faces. Only for a kind that speaks LUSTBUS.
   std::optional<int> lustbus;
   // The drive's own settings, as its wing declares them (devices/settings.hpp); one not given
@@ -63,12 +63,12 @@ struct ServedLine {
 };
 
 // A stand-alone controller the bench serves on the scenario's controller line (the file's
-// [dfs1] table and its [[dfs1.controller]] entries: the controllers of seed 004): not on the
+// [dfs1] table and its [[dfs1.controller]] entries: the controllers of the DFS-1 manual): not on the
 // INTERBUS ring, reached by the timeline's and the control channel's events by name. Which drive
 // it is, is the registry's (the one that speaks that bus); the scenario names none.
 struct LineController {
   std::string name;  // unique among the scenario's devices and controllers
-  int uid = 1;       // 1..255 (seed 004)
+  int uid = 1;       // 1..255 (DFS-1 manual)
   std::size_t source_line = 0;
 
   friend bool operator==(const LineController& a, const LineController& b) {

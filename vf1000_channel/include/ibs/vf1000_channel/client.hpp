@@ -1,4 +1,4 @@
-// The master side of the VF1000 parameter channel (seed 001, 4.1.3 and 4.1.4): a queue of
+// The master side of the VF1000 parameter channel (INTERBUS manual 4.1.3 and 4.1.4): a queue of
 // requests worked one transaction at a time through the communication word. The cycle loop calls
 // step() once per cycle with the inverter's word and the time; the application submits requests
 // and polls for their outcomes. Nothing here allocates after construction.

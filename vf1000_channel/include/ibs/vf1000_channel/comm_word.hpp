@@ -1,5 +1,5 @@
 // The VF1000 communication word: the third process-data word, which carries the byte-wise
-// parameter channel (seed 001, 4.1.2). One table of bit masks serves both sides: the client
+// parameter channel (INTERBUS manual 4.1.2). One table of bit masks serves both sides: the client
 // encodes master words and decodes inverter words with it, the server the other way round.
 #pragma once
 

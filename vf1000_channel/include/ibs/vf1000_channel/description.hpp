@@ -1,4 +1,4 @@
-// The description record of a VF1000 description scan (seed 001, 4.1.3.3): the 18 bytes the
+// The description record of a VF1000 description scan (INTERBUS manual 4.1.3.3): the 18 bytes the
 // inverter sends for a parameter of its table, built from the table's row (drive/parameters.hpp)
 // and taken apart again by the master.
 #pragma once

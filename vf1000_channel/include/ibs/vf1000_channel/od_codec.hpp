@@ -1,5 +1,5 @@
 // The communication word's codec of the object dictionary (issue 38, K1): how an od::Entry and its
-// values travel on the VF1000's parameter channel (seed 001, 4.1.3, 4.1.4). A value is one 16-bit
+// values travel on the VF1000's parameter channel (INTERBUS manual 4.1.3, 4.1.4). A value is one 16-bit
 // word, high byte first (4.1.3.1); the description record of a description scan is 18 bytes --
 // name and unit (5 ASCII each, blank-padded), the category character '0'..'7', the type character
 // '1'..'7' and min, max, default as words (4.1.3.3); a refused access is a NAK whose cause enters
@@ -26,7 +26,7 @@ namespace ibs::vf1000_channel {
 inline constexpr std::size_t kTextLength = 5;
 
 // The type character of the record (4.1.3.3): '1' BINARY8, '2' FIXPOINT16, '3' USIGN16, '4' USIGN8,
-// '5' VF_ERROR, '6' PASSWORD; '7' INT16, for 901-912's "Integer 16" (seed 001 4.1.1), which the
+// '5' VF_ERROR, '6' PASSWORD; '7' INT16, for 901-912's "Integer 16" (INTERBUS manual 4.1.1), which the
 // seed's list lacks (a project decision, docs/vf1000_channel.md). nullopt: the type cannot travel
 // in one word (32 bits, text) or has no character.
 constexpr std::optional<char> type_code(od::Type t) {
@@ -50,7 +50,7 @@ constexpr std::optional<char> type_code(od::Type t) {
   }
 }
 
-// The category character (4.1.3.3; seed 000, 11.1): '0' RAM control value, '1' RAM actual value,
+// The category character (4.1.3.3; LUSTBUS manual 11.1): '0' RAM control value, '1' RAM actual value,
 // '2' EEPROM, '3' EEPROM/RAM variable, '4'..'7' the same of an inverter-specific parameter.
 // nullopt: the channel has no category for it (flash, or a kept value only the drive sets).
 constexpr std::optional<char> category_code(const od::Entry& e) {
@@ -151,7 +151,7 @@ constexpr NakReason nak_reason(od::Refusal r) {
   }
   return NakReason::invalid_value;
 }
-// The 85-SIOF bits the refusal of a value transfer enters (seed 000 9.2; 0 for `latched`).
+// The 85-SIOF bits the refusal of a value transfer enters (LUSTBUS manual 9.2; 0 for `latched`).
 constexpr std::uint8_t siof_bits(od::Refusal r) {
   return od::error_flag(r);
 }

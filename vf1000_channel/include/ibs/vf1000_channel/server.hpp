@@ -1,4 +1,4 @@
-// The inverter side of the VF1000 parameter channel (seed 001, 4.1.3 and 4.1.4): one step reads
+// The inverter side of the VF1000 parameter channel (INTERBUS manual 4.1.3 and 4.1.4): one step reads
 // the master's communication word and returns the inverter's. The caller decides how often the
 // inverter processes the channel (the VF1000 samples every 8.2 ms and advances the channel about
 // one byte every few samples, 7.1); step() itself is pure: state and inputs in, word out.
@@ -27,7 +27,7 @@ struct ServerConfig {
   // After power-on the inverter initialises and runs its self-test for about 4 s (6.1); its word
   // carries RESET distinction bit 0 meanwhile (4.1.2.2).
   Duration init_duration = 4s;
-  // The parameter whose value 1 loads every parameter's factory default (seed 000, 10, exception
+  // The parameter whose value 1 loads every parameter's factory default (LUSTBUS manual 10, exception
   // 1: the VF1000's 71-PROG); none: the table has no such command. Used by a server that owns its
   // parameters; a drive that lends its parameters applies its own PROG.
   std::optional<std::uint16_t> factory_defaults_parameter;
@@ -120,7 +120,7 @@ class Server {
   // itself, and tells the server through restart()).
   void power_on(Time now) { power_on(now, config_.init_duration); }
   // The same start with another self-test time: the software reset that RESET FAULT performs
-  // (seed 001, 5.2.1; seed 000, 8.1.1: the link is gone during the self-test, 9.2: power-on bit).
+  // (INTERBUS manual 5.2.1; LUSTBUS manual 8.1.1: the link is gone during the self-test, 9.2: power-on bit).
   void power_on(Time now, Duration init);
   // The channel alone starts again: the drive's parameters are left as they are.
   void restart(Time now, Duration init);

@@ -1,7 +1,7 @@
 // The VF1000 parameter channel in `ibs-trace 1` files with `words: comm`
 // (../shared/specs/trace-format.md): the inverter (Server with the drive's parameter table) and the
 // master (Client) as replay sides, and an explainer for communication words. One trace row is one
-// inverter step and one master step, as the cycle tables of seed 001, 4.1.3 read.
+// inverter step and one master step, as the cycle tables of the INTERBUS manual 4.1.3 read.
 #pragma once
 
 #include <memory>
@@ -15,7 +15,7 @@
 namespace ibs::vf1000_channel {
 
 // Simulated time per trace row without a `step-time` header: two VF1000 samples of 8.2 ms. With it the manual's tables take the times of
-// seed 001, 7.1 (a value inquiry's 6 rows ~100 ms, a value transfer's 8 rows ~131 ms).
+// INTERBUS manual 7.1 (a value inquiry's 6 rows ~100 ms, a value transfer's 8 rows ~131 ms).
 inline constexpr Duration kTraceStepPeriod = 16400us;
 
 // The inverter, for `--emulate device`, serving `params` with `config` (the drive's wing gives

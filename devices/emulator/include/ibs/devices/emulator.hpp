@@ -59,7 +59,7 @@ class DeviceEmulator {
   virtual void output(std::span<Word> pd_out) const = 0;
   virtual void output_pcp(Time /*now*/, std::span<Word> /*pcp_out*/) {}
   // The parameter channel's interface side at a valid data cycle (the MC6000's INTERBUS CPU,
-  // seed 001 3.2.2): reads the master's channel words of this cycle, writes the device's for the
+  // INTERBUS manual 3.2.2): reads the master's channel words of this cycle, writes the device's for the
   // next one. A caller that calls it gives sample() empty PCP spans; a caller without it (one
   // sample per cycle) gives sample() the words and the device runs its interface there.
   virtual void pcp_cycle(Time /*now*/, std::span<const Word> /*pcp_in*/, std::span<Word> /*pcp_out*/) {}
@@ -90,7 +90,7 @@ class DeviceEmulator {
   // ring cannot carry).
   [[nodiscard]] virtual bool module_error(Time now) const = 0;
   // True when the device, while the bus reports its module error, still takes the master's
-  // words into its bus interface (the VF1000 initialising, seed 001 6.1).
+  // words into its bus interface (the VF1000 initialising, INTERBUS manual 6.1).
   [[nodiscard]] virtual bool takes_words_in_module_error() const { return false; }
   // The error number the drive shows after its watchdog ran out; nullopt: none.
   [[nodiscard]] virtual std::optional<int> error_number() const = 0;

@@ -1,4 +1,4 @@
-// A drive's CANLust face (seed 003) as the registry of drive and bus lists it
+// A drive's CANLust face (CANLust manual) as the registry of drive and bus lists it
 // (ibs/devices/drives.hpp): the emulated drive `ibs canlust emulate` serves and `ibs run` puts on
 // its virtual bus, the master-side driver the simulator runs them with, and the drive's parameter
 // table as scenarios and reports name its entries. Each wing that speaks CANLust fills one of
@@ -38,10 +38,10 @@ namespace ibs::devices {
 // What `ibs canlust emulate` and a scenario's [[device]] give one emulated drive.
 struct CanlustFaceOptions {
   canlust::IdentifierMap ids{};
-  // The reaction programmed for the bus watchdog (seed 003, 6.1): the drive's stored setting of its
+  // The reaction programmed for the bus watchdog (CANLust manual 6.1): the drive's stored setting of its
   // response parameter (CDA3000: 525-ROP2), as a commissioning tool would have saved it.
   canlust::ErrorReaction watchdog_reaction = canlust::ErrorReaction::disable_power;
-  // true: an uncommissioned drive at the connector's address (seed 003, 2.1: 0..7); false: a
+  // true: an uncommissioned drive at the connector's address (CANLust manual 2.1: 0..7); false: a
   // drive commissioned for the bus (7.1.2) at `address` with the telegram layout `cacnf`.
   bool factory = false;
   std::uint8_t address = 1;
@@ -130,7 +130,7 @@ struct CanlustValue {
   std::string error;  // why `wire` is nullopt: "574-CAWDG: 300 ms is above the maximum 255 ms"
 };
 
-// A parameter's description as the drive answers it item by item (mode 04; seed 003 leaves the
+// A parameter's description as the drive answers it item by item (mode 04; CANLust manual leaves the
 // items to the drive, decision D10), read back by `ibs canlust describe`.
 struct CanlustDescription {
   canlust::DataType type = canlust::DataType::usign32;
@@ -241,7 +241,7 @@ struct CanlustFace {
   // A frame explained with the drive's parameter names and word meanings.
   CanlustFrameText (*explain_frame)(const canlust::CanFrame& f, const canlust::IdentifierMap& ids,
                                     const canlust::ProcessLayout& layout) = nullptr;
-  // Seed 003, "Downloading parameter data sets": the drive's handshake (`ibs canlust download`);
+  // CANLust manual, "Downloading parameter data sets": the drive's handshake (`ibs canlust download`);
   // nullptr when the drive offers no download. Which parameters a set may hold:
   // CanlustParameter::in_data_set.
   const canlust::DownloadHandshake* download = nullptr;

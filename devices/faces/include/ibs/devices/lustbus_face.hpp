@@ -1,7 +1,7 @@
-// A drive's LUSTBUS face (seed 000) as the registry of drive and bus lists it
+// A drive's LUSTBUS face (LUSTBUS manual) as the registry of drive and bus lists it
 // (ibs/devices/drives.hpp): the Responder the emulator serves, made from the options of
 // `ibs lustbus emulate`, the protocol family the drive speaks, its parameters as the host
-// commands and the byte-log reader need them, and the procedures of seed 000, 11 it offers. Each
+// commands and the byte-log reader need them, and the procedures of the LUSTBUS manual 11 it offers. Each
 // wing that speaks LUSTBUS fills one of these in its own source
 // (devices/<drive>/emulator/src/lustbus_face.cpp); this header names no drive.
 // Configuration time: making a face and looking a parameter up may allocate and throw.
@@ -65,7 +65,7 @@ struct LustbusParameter {
 
 struct LustbusFace {
   lustbus::Family family = lustbus::Family::standard;
-  // The drive's Responder; throws std::invalid_argument "a <TITLE> runs at ... baud (seed 000,
+  // The drive's Responder; throws std::invalid_argument "a <TITLE> runs at ... baud (LUSTBUS manual,
   // 4), not <baud>" for a rate the drive does not run at.
   LustbusEmulated (*make)(const LustbusFaceOptions& options) = nullptr;
   // The test bench (docs/testbench.md): the LUSTBUS face of the drive behind `interbus`, an
@@ -76,7 +76,7 @@ struct LustbusFace {
   std::optional<LustbusParameter> (*find_parameter)(std::string_view text) = nullptr;
   // What a refusal of an unknown parameter adds: the numbers the CODE can carry (" (1..99)").
   std::string_view parameter_numbers;
-  // The procedures of seed 000, 11 the drive offers a host (download, indexed texts, block
+  // The procedures of the LUSTBUS manual 11 the drive offers a host (download, indexed texts, block
   // transfer), as lustbus::Host runs them; nullptr: none.
   const lustbus::DeviceProcedures* procedures = nullptr;
   // The drive's own settings this face takes (settings.hpp, each with SettingFace::lustbus):

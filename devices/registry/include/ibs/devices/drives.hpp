@@ -40,7 +40,7 @@ const Drive* find_drive(std::string_view name);
 // The drive that speaks `bus` under `name`; nullptr when there is none or it does not speak it.
 const Drive* find_drive(std::string_view name, Bus bus);
 // The drives that speak `bus`: sorted by name, except LUSTBUS, in the order of the protocol's
-// families (lustbus::Family: the inverter first, as seed 000 lists them).
+// families (lustbus::Family: the inverter first, as the LUSTBUS manual lists them).
 std::vector<const Drive*> drives_on(Bus bus);
 // Their names for messages: joined by `separator`, the last two by `last`, each followed by
 // `suffix`: drive_names(Bus::lustbus, " or ", " or ", "@ADDR") = "vf1000@ADDR or mc6000@ADDR".

@@ -1,4 +1,4 @@
-// `ibs run` with a CANLust bus (seed 003; docs/scenarios.md, "A CANLust bus"): CDA3000 drives on
+// `ibs run` with a CANLust bus (CANLust manual; docs/scenarios.md, "A CANLust bus"): CDA3000 drives on
 // the in-process virtual CAN bus (bit timing, arbitration, bus load) under the wing's master
 // driver, in simulated time. A scenario file says `protocol = "canlust"` in its [bus] table; the
 // same document reader as the INTERBUS scenarios reads it (TOML or JSON, every key and value with

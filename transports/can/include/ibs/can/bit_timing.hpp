@@ -1,7 +1,7 @@
 // Classical CAN bit timing: the exact length of a 2.0A frame on the wire, stuff bits included
 // (ISO 11898-1: SOF, 11-bit identifier, RTR, IDE, r0, DLC, data, CRC-15 are bit-stuffed - after
 // five equal bits one complementary bit - then CRC delimiter, ACK slot, ACK delimiter and 7 EOF
-// bits are not), and the bit time of a baud rate (489-CLBDR: 25..500 kbit/s, seed 003, 4.3.1).
+// bits are not), and the bit time of a baud rate (489-CLBDR: 25..500 kbit/s, CANLust manual 4.3.1).
 #pragma once
 
 #include <cstdint>

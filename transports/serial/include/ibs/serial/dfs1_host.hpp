@@ -1,4 +1,4 @@
-// A DFS-1 host (seed 004) on a serial port: the loop that runs one transaction of the sans-I/O
+// A DFS-1 host (DFS-1 manual) on a serial port: the loop that runs one transaction of the sans-I/O
 // dfs1::HostTransaction in real time -- the input flushed, the request written, every byte read
 // handed to the transaction with the time, its timeouts waited for on the port (response,
 // inter-byte, the overall deadline of D14) -- until it is done. Floor 4: it reads the steady clock

@@ -1,4 +1,4 @@
-// A LUSTBUS host (seed 000) on a serial port: the loop that runs one request of the sans-I/O
+// A LUSTBUS host (LUSTBUS manual) on a serial port: the loop that runs one request of the sans-I/O
 // lustbus::Host in real time -- the request's telegrams written, every character read handed to
 // the host with the time, its timeouts (response, inter-character, the exchange limit of LB-D24)
 // waited for on the port -- until the host is idle again (its closing EOT written, 3). Floor 4:

@@ -1,4 +1,4 @@
-// The items of a CDA3000 parameter's description, mode 04 (seed 003 leaves what they are to the
+// The items of a CDA3000 parameter's description, mode 04 (CANLust manual leaves what they are to the
 // drive, decision D10; this drive's are D29, docs/canlust.md "Descriptions"): 0 the data type
 // (canlust::DataType code), 1 the minimum, 2 the maximum, 3 the factory setting, 4 attribute bits,
 // 5 and 6 the name's characters 1-4 and 5-8, 7 the unit's first four, each text item up to four

@@ -1,6 +1,6 @@
 // What the CDA3000's CANLust words and values mean, for both sides and for reports: the reference
 // and actual frequency in Hz as 492-CACNF lays them out, the DRIVECOM status bits the CDA3000 adds
-// (seed 003, 5.4.2; the state bits are drivecom's, seed 001 5.1.3), and a frame explained in words
+// (CANLust manual 5.4.2; the state bits are drivecom's, INTERBUS manual 5.1.3), and a frame explained in words
 // (the monitor, `ibs decode`).
 #pragma once
 
@@ -32,7 +32,7 @@ inline constexpr unsigned kReferenceReached = 10;  // |actual - reference| withi
 inline constexpr unsigned kLimit = 11;             // the reference was limited to +-fmax
 }  // namespace status_bits
 
-// EasyDrive direct control (492-CACNF = 4, seed 003 5.4.1 and 7.1.1). The seed keeps fragments of
+// EasyDrive direct control (492-CACNF = 4, CANLust manual 5.4.1 and 7.1.1). The seed keeps fragments of
 // the bit tables only: control bits 5 FFTB1, 6 FFTB2 (table reference select, 2^1, 2^2), 8 CUSEL
 // (characteristic data set 1 / 2), 9 UM0 (user mode 2^0), the STR start of 5.4.1's text, and the
 // end of an "... error" function at 7; status bits 4 ACTIV (power stage active), 5 ROT_0 (speed

@@ -1,4 +1,4 @@
-// The emulated CDA3000 inverter with its CM-CAN1 module (seed 003): the CANLust node of the core
+// The emulated CDA3000 inverter with its CM-CAN1 module (CANLust manual): the CANLust node of the core
 // (system states, logon, stored command, cyclic status, watchdog, parameter channel), the DRIVECOM
 // device state machine of drivecom/ (5.4.2: "the DRIVECOM state machine", the same as the
 // INTERBUS drives'), the parameters of parameters.hpp with their flash copy (150-SAVE, mains
@@ -42,7 +42,7 @@ struct DeviceConfig {
   // p. 13: the reply to 04-PROG = 1 comes "only when the command is complete" (time invented).
   Duration prog_time = 500ms;
   // 4.x: the reply to 80-SLOAD = -2 comes once the whole data set is checked and, when valid, in
-  // the EEPROM (time invented, as the MC6000's 200 ms of seed 000 11.4; D39).
+  // the EEPROM (time invented, as the MC6000's 200 ms of the LUSTBUS manual 11.4; D39).
   Duration download_check_time = 200ms;
   // The reaction to the bus watchdog (574-CAWDG) is no setting here but the drive's parameter
   // 525-ROP2 (6.1: programmable per error; the watchdog reports E-OP2, D15): put it in `saved`.
@@ -65,7 +65,7 @@ struct DeviceCounters {
   std::uint32_t device_faults = 0;      // faults injected with inject_fault
 };
 
-// The terminals of X2 that seed 003 names (2.3, 3.1, 7.1.2 step 6): ENPO (X2-8) the hardware
+// The terminals of X2 that CANLust manual names (2.3, 3.1, 7.1.2 step 6): ENPO (X2-8) the hardware
 // enable of the power stage, ISD00 (X2-9) a digital input whose function the seed does not give.
 enum class Input : std::uint8_t { enpo, isd00 };
 std::optional<Input> find_input(std::string_view name);  // "ENPO", "ISD00" (any case)

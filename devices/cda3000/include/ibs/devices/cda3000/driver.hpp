@@ -1,4 +1,4 @@
-// The master driver of CDA3000 drives on one CANLust bus (seed 003): the logon list (5.5.4),
+// The master driver of CDA3000 drives on one CANLust bus (CANLust manual): the logon list (5.5.4),
 // System Start / Stop (5.2), one DRIVECOM sequencer of drivecom/ per drive (5.4.2), references in
 // Hz scaled as each drive's 492-CACNF lays them out, control telegrams often enough for the
 // drives' 574-CAWDG, and the parameter client of the core (a queue, one request per drive at a

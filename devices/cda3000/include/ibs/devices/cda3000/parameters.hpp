@@ -1,4 +1,4 @@
-// The CDA3000 parameters that seed 003 (CM-CAN1 manual, fragments) and the notes name, as the
+// The CDA3000 parameters that CANLust manual (CM-CAN1 manual, fragments) and the notes name, as the
 // drive serves them over the CANLust parameter channel and as the master checks them before it
 // sends a write. Values are the 32-bit wire images of 4.1.1 (INT32Q16: the raw Q16 number).
 //
@@ -22,7 +22,7 @@ namespace ibs::devices::cda3000 {
 
 using canlust::DataType;
 
-// Seed 003, 4.3 tables: "Memory type FLASH" (saved by 150-SAVE, loaded at power-on) or RAM.
+// CANLust manual 4.3 tables: "Memory type FLASH" (saved by 150-SAVE, loaded at power-on) or RAM.
 enum class Memory : std::uint8_t { flash, ram };
 enum class Access : std::uint8_t { read_write, read_only };
 // 7.1.1 / 7.1.2 step 4-5: "Back up settings in device (150-SAVE), mains reset to reinitialize":
@@ -66,103 +66,103 @@ inline constexpr std::int64_t kQ16Max = 2147483647LL;
 inline constexpr std::array<ParameterInfo, 28> kParameters{{
   {kProg, "PROG", "reset to factory settings", DataType::usign8, 0, 1, 0, "",
    Memory::ram, Access::read_write, Effect::at_once, kChoicesProg, true,
-   "seed 003 p. 13: 1 makes the drive overwrite all settings with their defaults, the reply "
+   "CANLust manual p. 13: 1 makes the drive overwrite all settings with their defaults, the reply "
    "comes when that is done; type, range, names invented"},
   {kSload, "SLOAD", "parameter data set download (handshake)", DataType::int16, -2, 999, 0, "",
    Memory::ram, Access::read_write, Effect::at_once, {}, true,
-   "seed 003 4.x 'Downloading parameter data sets': values taken without individual checking, "
+   "CANLust manual 4.x 'Downloading parameter data sets': values taken without individual checking, "
    "the whole set checked for plausibility at the end, then into the EEPROM with the attribute "
-   "Card Writeable; number, name and codes invented after seed 000 11.4's 80-SLOAD (D39)"},
+   "Card Writeable; number, name and codes invented after the LUSTBUS manual 11.4's 80-SLOAD (D39)"},
   {kName, "NAME", "device name (user text)", DataType::string, 0, 99, 0, "",
    Memory::flash, Access::read_write, Effect::at_once, {}, true,
-   "invented: seed 003 names no string parameter that can be written (D24)"},
+   "invented: CANLust manual names no string parameter that can be written (D24)"},
   {kErr1, "ERR1", "last error (number, location, operating hours)", DataType::err_struc, 0,
    0xFFFFFFFFLL, 0, "", Memory::ram, Access::read_only, Effect::at_once, {}, true,
-   "seed 003 4.1.1 gives the ERR_STRUC type (E-OP2 at 172 after 85 h = 10 AC 55 00) and 6.2 "
+   "CANLust manual 4.1.1 gives the ERR_STRUC type (E-OP2 at 172 after 85 h = 10 AC 55 00) and 6.2 "
    "the error numbers; the parameter's number and name invented (D34)"},
   {kSave, "SAVE", "back up the settings in the device", DataType::usign8, 0, 1, 0, "",
    Memory::ram, Access::read_write, Effect::at_once, kChoicesSave, true,
-   "seed 003 3.5.1: '150-SAVE = 1 START', 'takes a few hundred milliseconds', 7.1.1 step 4 "
+   "CANLust manual 3.5.1: '150-SAVE = 1 START', 'takes a few hundred milliseconds', 7.1.1 step 4 "
    "'1 BUSY'; READY and the codes invented"},
   {kAstpr, "ASTPR", "original application data set", DataType::usign8, 0, 1, kDataSetDrv1, "",
    Memory::flash, Access::read_write, Effect::at_once, kChoicesDataSet, true,
-   "seed 003 4.2 table: factory DRV_1, changed value BUS_1; codes and the preset it loads "
+   "CANLust manual 4.2 table: factory DRV_1, changed value BUS_1; codes and the preset it loads "
    "invented (D23)"},
   {kAster, "ASTER", "current application data set", DataType::usign8, 0, 1, kDataSetDrv1, "",
    Memory::flash, Access::read_write, Effect::at_once, kChoicesDataSet, true,
-   "seed 003 4.2 table: factory DRV_1, changed value BUS_1; codes invented"},
+   "CANLust manual 4.2 table: factory DRV_1, changed value BUS_1; codes invented"},
   {kFisa0, "FISA0", "function selector analog standard input 0", DataType::usign8, 0, 6,
    kFunctionOff, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesFisa0, true,
-   "seed 003 4.2 table: factory OFF, changed value OPTN2; codes invented"},
+   "CANLust manual 4.2 table: factory OFF, changed value OPTN2; codes invented"},
   {kClsel, "CLSEL", "control location", DataType::usign8, 0, 6, kClselTerm, "",
    Memory::flash, Access::read_write, Effect::at_once, kChoicesClsel, true,
-   "seed 003 4.3.2: 'with CLSEL = OPTN2 the control word is formed from bytes 0 and 1 of the "
+   "CANLust manual 4.3.2: 'with CLSEL = OPTN2 the control word is formed from bytes 0 and 1 of the "
    "control identifier'; TERM, the codes and the factory setting invented"},
   {kRssl1, "RSSL1", "reference selector 1", DataType::usign8, 0, 11, kRsslFmax, "",
    Memory::flash, Access::read_write, Effect::at_once, kChoicesRssl1, true,
-   "seed 003 4.3.2 row '_28RS 0 FCON 11 FMAX 11 FMAX USIGN8 FLASH', 1 FA0, 2 FA1, 4 FPOT; 5.4.1 "
+   "CANLust manual 4.3.2 row '_28RS 0 FCON 11 FMAX 11 FMAX USIGN8 FLASH', 1 FA0, 2 FA1, 4 FPOT; 5.4.1 "
    "'7 TBSEL'; OPTN2 = 6 invented (D22)"},
   {kDisp, "DISP", "parameter shown as the continuous actual value", DataType::usign16, 0, 999,
    kReff, "", Memory::flash, Access::read_write, Effect::at_once, {}, true,
-   "seed 003 7.1.3: reads 406 (406-REFF), the example writes 14; type and range 0..999 "
+   "CANLust manual 7.1.3: reads 406 (406-REFF), the example writes 14; type and range 0..999 "
    "(a parameter number, 4.4) invented"},
   {kReff, "REFF", "current reference frequency", DataType::int32q16, kQ16Min, kQ16Max, 0, "Hz",
    Memory::ram, Access::read_only, Effect::at_once, {}, true,
-   "seed 003 7.1.3: '406-REFF current reference frequency'; type INT32Q16 in Hz invented"},
+   "CANLust manual 7.1.3: '406-REFF current reference frequency'; type INT32Q16 in Hz invented"},
   {kClbdr, "CLBDR", "CAN bus baud rate", DataType::usign16, 25, 500, 500, "kBaud",
    Memory::flash, Access::read_write, Effect::after_mains_reset, {}, false,
-   "seed 003 4.3.1: 25..500, factory 500; 7.1.1: save, then mains reset"},
+   "CANLust manual 4.3.1: 25..500, factory 500; 7.1.1: save, then mains reset"},
   {kCacnf, "CACNF", "control and reference configuration", DataType::usign8, 1, 4, 2, "",
    Memory::flash, Access::read_write, Effect::after_mains_reset, kChoicesCacnf, true,
-   "seed 003 4.3.2, 5.5.5, 7.1: 2 DRIVECOM (7.1.2), 4 EasyDrive (7.1.1); map D5; factory 2 "
+   "CANLust manual 4.3.2, 5.5.5, 7.1: 2 DRIVECOM (7.1.2), 4 EasyDrive (7.1.1); map D5; factory 2 "
    "invented"},
   {kRoti, "ROTI", "error response to E-OTI (drive unit overheating)", DataType::usign8, 0, 3,
    kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
-   "seed 003 6.1: 'programmable for each error in four stages', default: the power stage "
+   "CANLust manual 6.1: 'programmable for each error in four stages', default: the power stage "
    "disabled; number, name and codes invented (CAN-E16)"},
   {kRpls, "RPLS", "error response to E-PLS (plausibility error)", DataType::usign8, 0, 3,
    kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
-   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+   "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
   {kRpar, "RPAR", "error response to E-PAR (faulty parameter setting)", DataType::usign8, 0, 3,
    kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
-   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+   "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
   {kRflt, "RFLT", "error response to E-FLT (floating point error)", DataType::usign8, 0, 3,
    kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
-   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+   "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
   {kRpwr, "RPWR", "error response to E-PWR (power pack not recognized)", DataType::usign8, 0, 3,
    kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
-   "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
+   "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"},
   {kRop2, "ROP2", "error response to E-OP2 (option module, bus watchdog)", DataType::usign8, 0, 3,
    kResponseDefault, "", Memory::flash, Access::read_write, Effect::at_once, kChoicesResponse, true,
-   "seed 003 6.1 and table 5.9 (E-OP2); also the reaction to 574-CAWDG running out (D15); "
+   "CANLust manual 6.1 and table 5.9 (E-OP2); also the reaction to 574-CAWDG running out (D15); "
    "number, name, codes and the factory PWOFF invented (CAN-E16)"},
   {kCamod, "CAMOD", "function selection of the option module", DataType::usign8, 0, 1,
    kCamodSlave, "", Memory::flash, Access::read_write, Effect::after_mains_reset, kChoicesCamod,
-   true, "seed 003 4.3.1: 'Function selection option module CANLUST Slave Ma...'; codes invented"},
+   true, "CANLust manual 4.3.1: 'Function selection option module CANLUST Slave Ma...'; codes invented"},
   {kCladr, "CLADR", "CAN address (0: the connector's)", DataType::usign8, 0, 99, 0, "",
    Memory::flash, Access::read_write, Effect::after_mains_reset, {}, true,
-   "seed 003 2.1: the connector's address 0..7 is used when CLADR = 0; 4.3.1; 7.1: mains reset; "
+   "CANLust manual 2.1: the connector's address 0..7 is used when CLADR = 0; 4.3.1; 7.1: mains reset; "
    "range 0..99 from the notes' addresses, factory 0 invented"},
   {kCawdg, "CAWDG", "CAN bus watchdog time", DataType::usign8, 0, 255, 0, "ms",
    Memory::flash, Access::read_write, Effect::at_once, {}, false,
-   "seed 003 4.3.1: 0..255 ms, factory 0, 0 deactivates the watchdog"},
+   "CANLust manual 4.3.1: 0..255 ms, factory 0, 0 deactivates the watchdog"},
   {kCascy, "CASCY", "sampling time of the status message", DataType::usign16, 1, 32000, 80, "ms",
    Memory::flash, Access::read_write, Effect::at_once, {}, false,
-   "seed 003 4.3.1: 1..32000 ms, factory 80"},
+   "CANLust manual 4.3.1: 1..32000 ms, factory 80"},
   {kCawmk, "CAWMK", "warnings reported on the CAN (mask)", DataType::usign16, 0, 0xFFFF, 0xFFFF, "",
    Memory::flash, Access::read_write, Effect::at_once, {}, true,
-   "seed 003 6.3 'parameterizable warnings on the CAN', masks 0004H I2t, 0008H motor "
+   "CANLust manual 6.3 'parameterizable warnings on the CAN', masks 0004H I2t, 0008H motor "
    "temperature, 0010H heat sink temperature; number, name and factory (all) invented (CAN-E17)"},
   {kCawrn, "CAWRN", "warnings present (6.3 bits)", DataType::usign16, 0, 0xFFFF, 0, "",
    Memory::ram, Access::read_only, Effect::at_once, {}, true,
-   "seed 003 6.3 bits 0004H, 0008H, 0010H; number and name invented (CAN-E17)"},
+   "CANLust manual 6.3 bits 0004H, 0008H, 0010H; number and name invented (CAN-E17)"},
   {kOptn2, "OPTN2", "module found at option slot 2", DataType::string, 0, 99, 0, "",
    Memory::ram, Access::read_only, Effect::at_once, {}, true,
-   "seed 003 3.3: 'verify the value in parameter 578-OPTN2 (LCAN)'; a read-only STRING 'LCAN' "
+   "CANLust manual 3.3: 'verify the value in parameter 578-OPTN2 (LCAN)'; a read-only STRING 'LCAN' "
    "invented (D24)"},
   {kCdssl, "CDSSL", "characteristic data set selection", DataType::usign8, 0, 6, 0, "",
    Memory::flash, Access::read_write, Effect::at_once, kChoicesCdssl, true,
-   "seed 003 5.4.1 footnote 2: '651-CDSSL = 6 OPTN2' lets the CUSEL bit switch data sets 1 and "
+   "CANLust manual 5.4.1 footnote 2: '651-CDSSL = 6 OPTN2' lets the CUSEL bit switch data sets 1 and "
    "2; CDS1, CDS2 and the factory setting invented"},
 }};
 // clang-format on

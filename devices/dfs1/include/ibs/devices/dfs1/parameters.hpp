@@ -1,5 +1,5 @@
 // The DFS-1 parameters that the public pages name (../shared/notes/public-facts.md, "PowerTec
-// DFS-1"; seed 004). Every number, range, default or unit the sources do not give is a modelling
+// DFS-1"; DFS-1 manual). Every number, range, default or unit the sources do not give is a modelling
 // choice marked `invented` with what was invented in `note` (docs/dfs1.md, "Parameters").
 // A read or write of a number outside this table is NAK 82, a value outside the range NAK 83.
 #pragma once
@@ -31,14 +31,14 @@ inline constexpr std::array<ParameterInfo, 8> kParameters = {{
     {kBaudCode, "baud rate code", "code", 0, 7, 2, true,
      "notes: 0..7, default 2; the code table is invented (baud_for_code)"},
     {kRemoteFunctions, "remote functions", "bit mask", 0, 15, 0, true,
-     "seed 004 contents: 'SET Parameter #3 to Select Which Functions are Remote'; bits, range and "
+     "DFS-1 manual contents: 'SET Parameter #3 to Select Which Functions are Remote'; bits, range and "
      "default invented (D6)"},
     {kProtocol, "protocol", "code", 0, 1, 0, true,
      "notes: 0 = Powertec binary; 1 (another protocol, not modelled) invented"},
     {kMaxSpeed, "maximum motor speed", "rpm", 1, 99999, 1750, true,
-     "seed 004 contents: 'USE Parameter #6 to SET the Absolute Maximum Motor Speed', 'To 99,999'; "
+     "DFS-1 manual contents: 'USE Parameter #6 to SET the Absolute Maximum Motor Speed', 'To 99,999'; "
      "default 1750 (06D6h, a default the contents show) invented"},
-    {kJumpOrMop, "jump or MOP", "code", 0, 1, 0, false, "seed 004, note 3: 0 jump, 1 MOP"},
+    {kJumpOrMop, "jump or MOP", "code", 0, 1, 0, false, "DFS-1 manual, note 3: 0 jump, 1 MOP"},
     {kTurnaroundDelay, "communications turnaround delay", "ms", 0, 255, 2, true,
      "notes: units not public; 1 ms per count, range and default invented (D2)"},
     {kContactorDelay, "contactor delay", "25 ms", 0, 40, 4, true,

@@ -1,4 +1,4 @@
-// The MC6000's PCP channel as the servo sets it up (seed 001, 4.2): its communication-links-list
+// The MC6000's PCP channel as the servo sets it up (INTERBUS manual 4.2): its communication-links-list
 // entry (4.2.2), its identity and the parameters of its table that do more than store a value.
 #pragma once
 
@@ -6,11 +6,11 @@
 
 namespace ibs::devices::mc6000 {
 
-// Seed 001, 4.2.2: 134 bytes each way; server for Get-OV long, Read, Write, Information Report.
+// INTERBUS manual 4.2.2: 134 bytes each way; server for Get-OV long, Read, Write, Information Report.
 inline constexpr pcp::Kbl kKbl = pcp::kDefaultServerKbl;
 
 // The servo's processing time for a PCP request by channel width, calibrated so that a Read or
-// Write, end to end at the master, spans seed 001 7.2's 10..35 ms as the workload goes 0..1 (bus
+// Write, end to end at the master, spans INTERBUS manual 7.2's 10..35 ms as the workload goes 0..1 (bus
 // cycle 0.567 ms of one MC6000 on the ring, 1 ms samples): 4 words 7..27 ms, 2 words 0..21 ms.
 // One word cannot: its segmentation alone takes 33..36 ms, so processing gets 0..2 ms
 // (docs/pcp.md, errata).

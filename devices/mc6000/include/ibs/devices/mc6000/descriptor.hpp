@@ -1,4 +1,4 @@
-// What a MASTERDRIVE MC6000 is on INTERBUS (seed 001, 3.2, 5.3, 7.2): what the device-specific
+// What a MASTERDRIVE MC6000 is on INTERBUS (INTERBUS manual 3.2, 5.3, 7.2): what the device-specific
 // bits of its control and status words mean, its processing period and the error its bus
 // watchdog reports. Its ID code and words follow from 405-SUPI / 406-IBCNF (layout.hpp), its
 // reference and actual words from the layout too.

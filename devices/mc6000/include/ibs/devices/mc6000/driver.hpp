@@ -1,5 +1,5 @@
 // The MC6000's master driver: the DRIVECOM sequencer, the reference and actual in the words of
-// its 405-SUPI / 406-IBCNF layout, and parameter access through PCP (seed 001 4.2): over the
+// its 405-SUPI / 406-IBCNF layout, and parameter access through PCP (INTERBUS manual 4.2): over the
 // channel words of its layout (pcp/client.hpp), or, on a controller board, through the board's
 // mailbox (use_pcp_client, pcp/mailbox_client.hpp) -- the same transactions over either.
 #pragma once
@@ -26,7 +26,7 @@ class Mc6000Driver final : public DeviceDriver, private ParameterAccess {
  public:
   static constexpr std::size_t kQueueCapacity = 16;
   static constexpr std::size_t kCompletedCapacity = 16;
-  // A write of 4-PROG = 1 (factory defaults) is confirmed after up to 10 s (seed 000, 10).
+  // A write of 4-PROG = 1 (factory defaults) is confirmed after up to 10 s (LUSTBUS manual 10).
   static constexpr Duration kFactoryDefaultsTimeout = 10500ms;
   // A request's confirmation time grows with the bus cycle: a Read or Write over a one-word
   // channel is 24..28 fragments, each a bus cycle or more (PCP-E7). The timeout is the client's

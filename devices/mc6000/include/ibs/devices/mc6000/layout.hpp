@@ -1,5 +1,5 @@
 // MC6000 process-data layouts: 405-SUPI splits the four bus words between process data and PCP
-// (seed 001, 3.2.2), 406-IBCNF says how the reference and actual words read (3.2.3). The ID code
+// (INTERBUS manual 3.2.2), 406-IBCNF says how the reference and actual words read (3.2.3). The ID code
 // each layout reports follows from the table (local and remote bus).
 #pragma once
 
@@ -19,7 +19,7 @@
 
 namespace ibs::devices::mc6000 {
 
-// One row of the SUPI table of seed 001, 3.2.2.
+// One row of the SUPI table of the INTERBUS manual 3.2.2.
 struct SupiRow {
   int supi;
   int pd_words;

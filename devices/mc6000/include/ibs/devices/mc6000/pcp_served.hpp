@@ -1,4 +1,4 @@
-// The MC6000's parameters as its PCP server serves them (seed 001, 4.2): the INTERBUS face's
+// The MC6000's parameters as its PCP server serves them (INTERBUS manual 4.2): the INTERBUS face's
 // translation between PCP and the drive core -- an index and subindex to a parameter number, the
 // request's bytes to a value of the parameter's type, and the core's refusal to PCP's error class
 // and code (docs/pcp.md, the table of negative confirmations). The values, checks, 85-SERR and

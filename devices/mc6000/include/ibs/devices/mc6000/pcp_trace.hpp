@@ -16,7 +16,7 @@
 
 namespace ibs::devices::mc6000 {
 
-// The PCP channel width for a trace header (405-SUPI, seed 001 3.2.2).
+// The PCP channel width for a trace header (405-SUPI, INTERBUS manual 3.2.2).
 int trace_channel_words(const ibs::trace::Header& header);
 // What the PCP adapters cannot serve of a header: not `words: pcp`, a SUPI without PCP words, a
 // request the channel cannot carry (`state`: DRIVECOM states travel in `words: pd`). Throws

@@ -1,4 +1,4 @@
-// The MC6000's process data as the master handles it (seed 001, 5.3): the DRIVECOM sequencer
+// The MC6000's process data as the master handles it (INTERBUS manual 5.3): the DRIVECOM sequencer
 // plus the reference and actual in engineering units in the layout's words.
 #pragma once
 

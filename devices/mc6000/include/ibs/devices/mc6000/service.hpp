@@ -1,4 +1,4 @@
-// The MC6000's KEYPAD service structure (seed 000, 11.2.1, 11.3): per parameter the unit (an
+// The MC6000's KEYPAD service structure (LUSTBUS manual 11.2.1, 11.3): per parameter the unit (an
 // index into 107-UNIT's texts), the user level, the hardware and structure filters, the subject
 // area, the activity area (sc_group: non-zero means the parameter belongs to a dataset, the
 // "CardWriteable" attribute of 11.4) and the value substitution texts of ShowText parameters.

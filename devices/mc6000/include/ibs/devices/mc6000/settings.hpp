@@ -1,6 +1,6 @@
 // The MC6000's own settings (devices/settings.hpp): 405-SUPI and 406-IBCNF, the two parameters
-// the servo reads at power-on to lay out its INTERBUS words (seed 001 3.2.2, 3.2.3), and on its
-// LUSTBUS face whether a KEYPAD is plugged in (seed 000, 10). The scenario reader, the trace
+// the servo reads at power-on to lay out its INTERBUS words (INTERBUS manual 3.2.2, 3.2.3), and on its
+// LUSTBUS face whether a KEYPAD is plugged in (LUSTBUS manual 10). The scenario reader, the trace
 // header, `ibs layout` and the docs' tables take the INTERBUS face's from kSettings; `ibs lustbus
 // emulate` takes the LUSTBUS face's from kLustbusSettings.
 #pragma once
@@ -22,7 +22,7 @@ inline constexpr SettingSpec kSupiSetting{
     .fallback = 11,
     .unit = "",
     .parameter = "405-SUPI",
-    .seed = "seed 001 3.2.2",
+    .seed = "INTERBUS manual 3.2.2",
     .faces = static_cast<std::uint8_t>(SettingFace::interbus),
     .meaning = "the split of the four bus words",
     .range = "0..12",
@@ -39,7 +39,7 @@ inline constexpr SettingSpec kIbcnfSetting{
     .fallback = 2,
     .unit = "",
     .parameter = "406-IBCNF",
-    .seed = "seed 001 3.2.3",
+    .seed = "INTERBUS manual 3.2.3",
     .faces = static_cast<std::uint8_t>(SettingFace::interbus),
     .meaning = "how reference and actual words read",
     .range = "0..4",
@@ -48,8 +48,8 @@ inline constexpr SettingSpec kIbcnfSetting{
 };
 inline constexpr std::array kSettings{kSupiSetting, kIbcnfSetting};
 
-// A KEYPAD plugged in: seed 000, 10's table gives the servo reaction times of 1...30 ms with it,
-// 1...25 ms without. LUSTBUS only: seed 001 gives the servo's PCP times no KEYPAD row, so the
+// A KEYPAD plugged in: LUSTBUS manual 10's table gives the servo reaction times of 1...30 ms with it,
+// 1...25 ms without. LUSTBUS only: INTERBUS manual gives the servo's PCP times no KEYPAD row, so the
 // INTERBUS face does not declare it and a scenario or trace refuses it (in the VF1000's words).
 inline constexpr SettingSpec kLustbusKeypadSetting{
     .name = "keypad",
@@ -59,11 +59,11 @@ inline constexpr SettingSpec kLustbusKeypadSetting{
     .fallback = 0,
     .unit = "",
     .parameter = "",
-    .seed = "seed 000 10",
+    .seed = "LUSTBUS manual 10",
     .faces = static_cast<std::uint8_t>(SettingFace::lustbus),
     .meaning = "a KEYPAD plugged in: LUSTBUS reaction times of 1...30 ms instead of 1...25 ms",
     .range = "true or false",
-    .elsewhere = "'keypad' is an MC6000 setting on LUSTBUS only (seed 000, 10); {a} has no such setting",
+    .elsewhere = "'keypad' is an MC6000 setting on LUSTBUS only (LUSTBUS manual 10); {a} has no such setting",
 };
 inline constexpr std::array kLustbusSettings{kLustbusKeypadSetting};
 

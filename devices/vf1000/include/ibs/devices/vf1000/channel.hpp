@@ -1,4 +1,4 @@
-// The VF1000's communication-word channel as the drive sets it up (seed 001, 4.1; seed 000, 10):
+// The VF1000's communication-word channel as the drive sets it up (INTERBUS manual 4.1; LUSTBUS manual 10):
 // the inverter's server configuration for its parameter table (parameters.hpp).
 #pragma once
 

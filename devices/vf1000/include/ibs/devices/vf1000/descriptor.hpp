@@ -1,4 +1,4 @@
-// What a SMARTDRIVE VF1000 is on INTERBUS (seed 001, 3.1, 4.1, 5.2, 7.1): its ID code and three
+// What a SMARTDRIVE VF1000 is on INTERBUS (INTERBUS manual 3.1, 4.1, 5.2, 7.1): its ID code and three
 // process-data words, what the device-specific bits of its control and status words mean, its
 // reference and actual words in engineering units, its processing period and the error its
 // process-data watchdog reports. Everything here is static data or a pure function.

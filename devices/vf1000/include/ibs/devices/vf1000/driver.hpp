@@ -1,6 +1,6 @@
 // The VF1000's master driver: the DRIVECOM sequencer with the ramp and direction bits, the
 // frequency reference in 0.05 Hz, and parameter access through the communication word's client
-// (vf1000_channel/client.hpp, seed 001 4.1).
+// (vf1000_channel/client.hpp, INTERBUS manual 4.1).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The VF1000's parameters (seed 001, 3.1.1, 4.1.1, 4.1.3; seed 000 for the family's numbers): the
+// The VF1000's parameters (INTERBUS manual 3.1.1, 4.1.1, 4.1.3; LUSTBUS manual for the family's numbers): the
 // table with the manuals' numbers, names, units, categories, types, ranges and defaults, the
 // numbers the drive acts on, and the process-data watchdog's settings 906/907. The table belongs
 // to the drive: the communication-word server serves it (vf1000_channel/server.hpp) through the
@@ -21,12 +21,12 @@ namespace ibs::devices::vf1000 {
 // The VF1000 parameter table with the INTERBUS factory defaults (sorted by number; static data).
 std::span<const drive::ParameterInfo> parameters();
 // The same table with the standard factory defaults of an inverter without the INTERBUS software
-// package (seed 001, 3.1.1; seed 000, 4.1: a drive on LUSTBUS alone; decision VF-E20).
+// package (INTERBUS manual 3.1.1; LUSTBUS manual 4.1: a drive on LUSTBUS alone; decision VF-E20).
 std::span<const drive::ParameterInfo> standalone_parameters();
-// 61-SOUTA = 7 switches the data direction of an RS-485 interface (seed 000, 4).
+// 61-SOUTA = 7 switches the data direction of an RS-485 interface (LUSTBUS manual 4).
 inline constexpr Word kSoutaRs485 = 7;
 
-// 907-IBCOD: the reaction to the process-data watchdog (seed 001, 4.1.1).
+// 907-IBCOD: the reaction to the process-data watchdog (INTERBUS manual 4.1.1).
 enum class IbCod : std::uint8_t {
   no_action = 0,
   shutdown_e_ibs = 1,  // shutdown with error E-IBS (no. 12)

@@ -1,4 +1,4 @@
-// The VF1000's process data as the master handles it (seed 001, 5.2): the DRIVECOM sequencer with
+// The VF1000's process data as the master handles it (INTERBUS manual 5.2): the DRIVECOM sequencer with
 // the ramp and direction bits, the frequency reference and actual in 0.05 Hz words.
 #pragma once
 

@@ -1,14 +1,14 @@
-// The CDA3000's object dictionary (issue 38): every parameter that seed 003 (CM-CAN1 manual,
+// The CDA3000's object dictionary (issue 38): every parameter that CANLust manual (CM-CAN1 manual,
 // fragments) and the notes name, one od::Entry each, as the drive serves it over the CANLust
 // parameter channel (the CANLust codec, canlust/od_codec.hpp, encodes it) and as the master, the
 // command line and the reports read it. Values are numbers of the entry's type (INT32Q16: the raw
-// Q16 number), which on CANLust are the 32-bit wire images of seed 003 4.1.1 as they are.
+// Q16 number), which on CANLust are the 32-bit wire images of the CANLust manual 4.1.1 as they are.
 //
 // Where the seed prints a range, a factory setting, a unit, a data type or a substitution-text
 // code, the entry uses it and `source` cites it; everything else is a modelling choice marked
 // `invented` with what was invented (docs/canlust.md, "The CDA3000 wing", decisions D21-D39).
 //
-// How seed 003's columns become the entry's fields:
+// How CANLust manual's columns become the entry's fields:
 // - "Memory type FLASH" (4.3: saved by 150-SAVE, loaded at power-on) is Storage::flash; a RAM
 //   value is ram_control when it can be written, ram_actual when only the drive sets it
 //   (406-REFF, 95-ERR1, 577-CAWRN, 578-OPTN2);
@@ -35,7 +35,7 @@ namespace ibs::devices::cda3000 {
 // ---- numbers with behaviour beyond storing a value ----------------------------------------------
 inline constexpr std::uint16_t kProg = 4;  // 1.x exceptions: 1 = factory settings
 // 4.x "Downloading parameter data sets": the handshake of a download (number, name and codes
-// invented after the MC6000's 80-SLOAD of seed 000, 11.4; D39): -1 opens, -2 closes and checks,
+// invented after the MC6000's 80-SLOAD of the LUSTBUS manual 11.4; D39): -1 opens, -2 closes and checks,
 // 0 drops an open download; reads -1 while one is open, then 0 (valid, in the EEPROM) or the
 // number of the first implausible parameter.
 inline constexpr std::uint16_t kSload = 80;
@@ -75,7 +75,7 @@ inline constexpr std::uint16_t kCawmk = 576;
 inline constexpr std::uint16_t kCawrn = 577;
 
 // ---- substitution texts -------------------------------------------------------------------------
-// Seed 003 prints three codes: 280-RSSL1 "7 TBSEL" (5.4.1 footnote 1), the range "0 FCON .. 11
+// CANLust manual prints three codes: 280-RSSL1 "7 TBSEL" (5.4.1 footnote 1), the range "0 FCON .. 11
 // FMAX" with 1 FA0, 2 FA1, 4 FPOT (4.3.2), and 651-CDSSL "6 OPTN2" (footnote 2). OPTN2 is 6 in
 // every selector (the one code the seed gives for it, decision D22).
 inline constexpr std::uint32_t kOptn2Code = 6;
@@ -138,7 +138,7 @@ inline constexpr std::string_view kOptn2Module = "LCAN";
 
 // ---- the entries --------------------------------------------------------------------------------
 namespace detail {
-// A flash setting of seed 003's tables, writable, in the data set: what most rows are.
+// A flash setting of the CANLust manual's tables, writable, in the data set: what most rows are.
 constexpr od::Entry setting(std::uint16_t number, std::string_view name, std::string_view text,
                             od::Type type, std::int64_t min, std::int64_t max,
                             std::int64_t factory) {
@@ -197,7 +197,7 @@ inline constexpr std::array kEntries{
               .choices = kChoicesProg,
               .choices_only = true,
               .invented = true,
-              .source = "seed 003 p. 13: 1 makes the drive overwrite all settings with their "
+              .source = "CANLust manual p. 13: 1 makes the drive overwrite all settings with their "
                         "defaults, the reply comes when that is done; type, range, names invented"},
     od::Entry{.number = kSload,
               .name = "SLOAD",
@@ -207,10 +207,10 @@ inline constexpr std::array kEntries{
               .max = 999,
               .role = od::Role::download,
               .invented = true,
-              .source = "seed 003 4.x 'Downloading parameter data sets': values taken without "
+              .source = "CANLust manual 4.x 'Downloading parameter data sets': values taken without "
                         "individual checking, the whole set checked for plausibility at the end, "
                         "then into the EEPROM with the attribute Card Writeable; number, name and "
-                        "codes invented after seed 000 11.4's 80-SLOAD (D39)"},
+                        "codes invented after the LUSTBUS manual 11.4's 80-SLOAD (D39)"},
     od::Entry{.number = kName,
               .name = "NAME",
               .text = "device name (user text)",
@@ -220,7 +220,7 @@ inline constexpr std::array kEntries{
               .default_text = kNameFactory,
               .storage = od::Storage::flash,
               .invented = true,
-              .source = "invented: seed 003 names no string parameter that can be written (D24)"},
+              .source = "invented: CANLust manual names no string parameter that can be written (D24)"},
     od::Entry{.number = kErr1,
               .name = "ERR1",
               .text = "last error (number, location, operating hours)",
@@ -229,7 +229,7 @@ inline constexpr std::array kEntries{
               .max = 0xFFFFFFFFLL,
               .storage = od::Storage::ram_actual,
               .invented = true,
-              .source = "seed 003 4.1.1 gives the ERR_STRUC type (E-OP2 at 172 after 85 h = 10 AC "
+              .source = "CANLust manual 4.1.1 gives the ERR_STRUC type (E-OP2 at 172 after 85 h = 10 AC "
                         "55 00) and 6.2 the error numbers; the parameter's number and name "
                         "invented (D34)"},
     od::Entry{.number = kSave,
@@ -242,41 +242,41 @@ inline constexpr std::array kEntries{
               .choices = kChoicesSave,
               .choices_only = true,
               .invented = true,
-              .source = "seed 003 3.5.1: '150-SAVE = 1 START', 'takes a few hundred milliseconds', "
+              .source = "CANLust manual 3.5.1: '150-SAVE = 1 START', 'takes a few hundred milliseconds', "
                         "7.1.1 step 4 '1 BUSY'; READY and the codes invented"},
     detail::invented(
         detail::with_choices(detail::setting(kAstpr, "ASTPR", "original application data set",
                                              od::Type::usign8, 0, 1, kDataSetDrv1),
                              kChoicesDataSet),
-        "seed 003 4.2 table: factory DRV_1, changed value BUS_1; codes and the preset it loads "
+        "CANLust manual 4.2 table: factory DRV_1, changed value BUS_1; codes and the preset it loads "
         "invented (D23)"),
     detail::invented(
         detail::with_choices(detail::setting(kAster, "ASTER", "current application data set",
                                              od::Type::usign8, 0, 1, kDataSetDrv1),
                              kChoicesDataSet),
-        "seed 003 4.2 table: factory DRV_1, changed value BUS_1; codes invented"),
+        "CANLust manual 4.2 table: factory DRV_1, changed value BUS_1; codes invented"),
     detail::invented(
         detail::with_choices(
             detail::setting(kFisa0, "FISA0", "function selector analog standard input 0",
                             od::Type::usign8, 0, 6, kFunctionOff),
             kChoicesFisa0),
-        "seed 003 4.2 table: factory OFF, changed value OPTN2; codes invented"),
+        "CANLust manual 4.2 table: factory OFF, changed value OPTN2; codes invented"),
     detail::invented(
         detail::with_choices(detail::setting(kClsel, "CLSEL", "control location", od::Type::usign8,
                                              0, 6, kClselTerm),
                              kChoicesClsel),
-        "seed 003 4.3.2: 'with CLSEL = OPTN2 the control word is formed from bytes 0 and 1 of the "
+        "CANLust manual 4.3.2: 'with CLSEL = OPTN2 the control word is formed from bytes 0 and 1 of the "
         "control identifier'; TERM, the codes and the factory setting invented"),
     detail::invented(
         detail::with_choices(detail::setting(kRssl1, "RSSL1", "reference selector 1",
                                              od::Type::usign8, 0, 11, kRsslFmax),
                              kChoicesRssl1),
-        "seed 003 4.3.2 row '_28RS 0 FCON 11 FMAX 11 FMAX USIGN8 FLASH', 1 FA0, 2 FA1, 4 FPOT; "
+        "CANLust manual 4.3.2 row '_28RS 0 FCON 11 FMAX 11 FMAX USIGN8 FLASH', 1 FA0, 2 FA1, 4 FPOT; "
         "5.4.1 '7 TBSEL'; OPTN2 = 6 invented (D22)"),
     detail::invented(
         detail::setting(kDisp, "DISP", "parameter shown as the continuous actual value",
                         od::Type::usign16, 0, 999, kReff),
-        "seed 003 7.1.3: reads 406 (406-REFF), the example writes 14; type and range 0..999 "
+        "CANLust manual 7.1.3: reads 406 (406-REFF), the example writes 14; type and range 0..999 "
         "(a parameter number, 4.4) invented"),
     od::Entry{.number = kReff,
               .name = "REFF",
@@ -287,58 +287,58 @@ inline constexpr std::array kEntries{
               .unit = "Hz",
               .storage = od::Storage::ram_actual,
               .invented = true,
-              .source = "seed 003 7.1.3: '406-REFF current reference frequency'; type INT32Q16 in "
+              .source = "CANLust manual 7.1.3: '406-REFF current reference frequency'; type INT32Q16 in "
                         "Hz invented"},
     detail::from_manual(
         detail::at_restart(detail::with_unit(
             detail::setting(kClbdr, "CLBDR", "CAN bus baud rate", od::Type::usign16, 25, 500, 500),
             "kBaud")),
-        "seed 003 4.3.1: 25..500, factory 500; 7.1.1: save, then mains reset"),
+        "CANLust manual 4.3.1: 25..500, factory 500; 7.1.1: save, then mains reset"),
     detail::invented(
         detail::at_restart(detail::with_choices(
             detail::setting(kCacnf, "CACNF", "control and reference configuration",
                             od::Type::usign8, 1, 4, 2),
             kChoicesCacnf)),
-        "seed 003 4.3.2, 5.5.5, 7.1: 2 DRIVECOM (7.1.2), 4 EasyDrive (7.1.1); map D5; factory 2 "
+        "CANLust manual 4.3.2, 5.5.5, 7.1: 2 DRIVECOM (7.1.2), 4 EasyDrive (7.1.1); map D5; factory 2 "
         "invented"),
     detail::response(kRoti, "ROTI", "error response to E-OTI (drive unit overheating)",
-                     "seed 003 6.1: 'programmable for each error in four stages', default: the "
+                     "CANLust manual 6.1: 'programmable for each error in four stages', default: the "
                      "power stage disabled; number, name and codes invented (CAN-E16)"),
     detail::response(kRpls, "RPLS", "error response to E-PLS (plausibility error)",
-                     "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
+                     "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
     detail::response(kRpar, "RPAR", "error response to E-PAR (faulty parameter setting)",
-                     "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
+                     "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
     detail::response(kRflt, "RFLT", "error response to E-FLT (floating point error)",
-                     "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
+                     "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
     detail::response(kRpwr, "RPWR", "error response to E-PWR (power pack not recognized)",
-                     "seed 003 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
+                     "CANLust manual 6.1 (as 520-ROTI); number, name and codes invented (CAN-E16)"),
     detail::response(kRop2, "ROP2", "error response to E-OP2 (option module, bus watchdog)",
-                     "seed 003 6.1 and table 5.9 (E-OP2); also the reaction to 574-CAWDG running "
+                     "CANLust manual 6.1 and table 5.9 (E-OP2); also the reaction to 574-CAWDG running "
                      "out (D15); number, name, codes and the factory PWOFF invented (CAN-E16)"),
     detail::invented(
         detail::at_restart(detail::with_choices(
             detail::setting(kCamod, "CAMOD", "function selection of the option module",
                             od::Type::usign8, 0, 1, kCamodSlave),
             kChoicesCamod)),
-        "seed 003 4.3.1: 'Function selection option module CANLUST Slave Ma...'; codes invented"),
+        "CANLust manual 4.3.1: 'Function selection option module CANLUST Slave Ma...'; codes invented"),
     detail::invented(
         detail::at_restart(detail::setting(kCladr, "CLADR", "CAN address (0: the connector's)",
                                            od::Type::usign8, 0, 99, 0)),
-        "seed 003 2.1: the connector's address 0..7 is used when CLADR = 0; 4.3.1; 7.1: mains "
+        "CANLust manual 2.1: the connector's address 0..7 is used when CLADR = 0; 4.3.1; 7.1: mains "
         "reset; range 0..99 from the notes' addresses, factory 0 invented"),
     detail::from_manual(detail::with_unit(detail::setting(kCawdg, "CAWDG", "CAN bus watchdog time",
                                                           od::Type::usign8, 0, 255, 0),
                                           "ms"),
-                        "seed 003 4.3.1: 0..255 ms, factory 0, 0 deactivates the watchdog"),
+                        "CANLust manual 4.3.1: 0..255 ms, factory 0, 0 deactivates the watchdog"),
     detail::from_manual(
         detail::with_unit(detail::setting(kCascy, "CASCY", "sampling time of the status message",
                                           od::Type::usign16, 1, 32000, 80),
                           "ms"),
-        "seed 003 4.3.1: 1..32000 ms, factory 80"),
+        "CANLust manual 4.3.1: 1..32000 ms, factory 80"),
     detail::invented(
         detail::setting(kCawmk, "CAWMK", "warnings reported on the CAN (mask)", od::Type::usign16,
                         0, 0xFFFF, 0xFFFF),
-        "seed 003 6.3 'parameterizable warnings on the CAN', masks 0004H I2t, 0008H motor "
+        "CANLust manual 6.3 'parameterizable warnings on the CAN', masks 0004H I2t, 0008H motor "
         "temperature, 0010H heat sink temperature; number, name and factory (all) invented "
         "(CAN-E17)"),
     od::Entry{
@@ -350,7 +350,7 @@ inline constexpr std::array kEntries{
         .max = 0xFFFF,
         .storage = od::Storage::ram_actual,
         .invented = true,
-        .source = "seed 003 6.3 bits 0004H, 0008H, 0010H; number and name invented (CAN-E17)"},
+        .source = "CANLust manual 6.3 bits 0004H, 0008H, 0010H; number and name invented (CAN-E17)"},
     od::Entry{.number = kOptn2,
               .name = "OPTN2",
               .text = "module found at option slot 2",
@@ -360,13 +360,13 @@ inline constexpr std::array kEntries{
               .default_text = kOptn2Module,
               .storage = od::Storage::ram_actual,
               .invented = true,
-              .source = "seed 003 3.3: 'verify the value in parameter 578-OPTN2 (LCAN)'; a "
+              .source = "CANLust manual 3.3: 'verify the value in parameter 578-OPTN2 (LCAN)'; a "
                         "read-only STRING 'LCAN' invented (D24)"},
     detail::invented(
         detail::with_choices(detail::setting(kCdssl, "CDSSL", "characteristic data set selection",
                                              od::Type::usign8, 0, 6, 0),
                              kChoicesCdssl),
-        "seed 003 5.4.1 footnote 2: '651-CDSSL = 6 OPTN2' lets the CUSEL bit switch data sets 1 "
+        "CANLust manual 5.4.1 footnote 2: '651-CDSSL = 6 OPTN2' lets the CUSEL bit switch data sets 1 "
         "and 2; CDS1, CDS2 and the factory setting invented"),
 };
 

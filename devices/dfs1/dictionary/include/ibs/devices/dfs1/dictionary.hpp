@@ -1,5 +1,5 @@
 // The DFS-1's object dictionary (issue 38): the parameters the public pages name
-// (../shared/notes/public-facts.md, "PowerTec DFS-1"; seed 004), one od::Entry each, as the
+// (../shared/notes/public-facts.md, "PowerTec DFS-1"; DFS-1 manual), one od::Entry each, as the
 // controller serves them with commands 85 and 86 (the DFS-1 codec, dfs1/od_codec.hpp, and
 // dfs1::ParameterHandler encode them). Every number, range, default or unit the sources do not give
 // is a modelling choice marked `invented` with what was invented in `source` (docs/dfs1.md,
@@ -62,16 +62,16 @@ inline constexpr std::array kEntries{
     detail::parameter(kBaudCode, "baud rate code", "code", 0, 7, 2, true,
                       "notes: 0..7, default 2; the code table is invented (baud_for_code)"),
     detail::parameter(kRemoteFunctions, "remote functions", "bit mask", 0, 15, 0, true,
-                      "seed 004 contents: 'SET Parameter #3 to Select Which Functions are "
+                      "DFS-1 manual contents: 'SET Parameter #3 to Select Which Functions are "
                       "Remote'; bits, range and default invented (D6)"),
     detail::parameter(kProtocol, "protocol", "code", 0, 1, 0, true,
                       "notes: 0 = Powertec binary; 1 (another protocol, not modelled) invented"),
     detail::parameter(kMaxSpeed, "maximum motor speed", "rpm", 1, 99999, 1750, true,
-                      "seed 004 contents: 'USE Parameter #6 to SET the Absolute Maximum Motor "
+                      "DFS-1 manual contents: 'USE Parameter #6 to SET the Absolute Maximum Motor "
                       "Speed', 'To 99,999'; default 1750 (06D6h, a default the contents show) "
                       "invented"),
     detail::parameter(kJumpOrMop, "jump or MOP", "code", 0, 1, 0, false,
-                      "seed 004, note 3: 0 jump, 1 MOP"),
+                      "DFS-1 manual, note 3: 0 jump, 1 MOP"),
     detail::parameter(kTurnaroundDelay, "communications turnaround delay", "ms", 0, 255, 2, true,
                       "notes: units not public; 1 ms per count, range and default invented (D2)"),
     detail::parameter(kContactorDelay, "contactor delay", "25 ms", 0, 40, 4, true,

@@ -1,9 +1,9 @@
 // The MC6000 drive core: the servo itself, knowing no bus (docs/architecture.md, "One drive, many
 // faces"). It owns the parameters (drive_parameters.hpp: the one store, 85-SERR, EEPROM, 4-PROG,
 // 80-SLOAD), the DRIVECOM device machine with the servo plant (Mc6000PdDevice), the external
-// fault, each error's programmed reaction and the fault reset (seed 000, 8, 8.1.2; MC-D7), the
-// digital inputs and outputs (seed 001, 5.3.1, 5.3.2), the bus watchdog 409-BUTWD (seed 001,
-// 3.2.4: error 16 E-OP1 at location 1) and the serial watchdog 84-SWDGT (seed 000, 5.2), and the
+// fault, each error's programmed reaction and the fault reset (LUSTBUS manual 8, 8.1.2; MC-D7), the
+// digital inputs and outputs (INTERBUS manual 5.3.1, 5.3.2), the bus watchdog 409-BUTWD (INTERBUS manual,
+// 3.2.4: error 16 E-OP1 at location 1) and the serial watchdog 84-SWDGT (LUSTBUS manual 5.2), and the
 // readings every face shows (77-SPEED, 408-IBSTA).
 //
 // Faces are thin: the INTERBUS face (device.hpp) decodes its SUPI/IBCNF words and runs PCP, the
@@ -12,7 +12,7 @@
 // serve one core (docs/errata.md MC-D4): an INTERBUS face samples the drive every 1 ms; without
 // one the drive samples itself up to the time of each telegram. 402-CLSEL = SIO puts control on
 // the serial interface (416-SCTL1, 428-RSIO over 417..420) when a serial face serves the drive,
-// any other location the fieldbus's control word and reference (seed 000, 7.2; seed 001, 3.2.1:
+// any other location the fieldbus's control word and reference (LUSTBUS manual 7.2; INTERBUS manual 3.2.1:
 // OPT1 for INTERBUS); a drive with the fieldbus face alone follows the fieldbus whatever 402 says.
 //
 // The cycle path (sample, advance, read, write) allocates nothing, throws nothing, reads no clock.
@@ -35,11 +35,11 @@
 
 namespace ibs::devices::mc6000 {
 
-// Seed 000, 8: "The error reaction of the MasterControl servocontroller is programmable, in five
+// LUSTBUS manual 8: "The error reaction of the MasterControl servocontroller is programmable, in five
 // steps, for every error"; 8.1.2 names step 5, RESET. What steps 1-4 do, and which parameter
 // programs which error (510-REOP1, 511-RESIO, 512-REDEV), are decisions (docs/errata.md MC-D7).
 enum class ErrorReaction : std::uint8_t {
-  warn = 1,   // status word bit 7 "alarm" (seed 001, 5.1.3) while it lasts; the drive runs on
+  warn = 1,   // status word bit 7 "alarm" (INTERBUS manual 5.1.3) while it lasts; the drive runs on
   stop = 2,   // FAULT RESPONSE ACTIVE, braking to standstill, then FAULT (13, 14); the factory value
   off = 3,    // the power stage off at once: FAULT in the same sample, the motor coasts
   lock = 4,   // as off, and the fault reset does not end it: only a power-on does
@@ -74,7 +74,7 @@ class Drive final : public DriveAccess {
   [[nodiscard]] DriveParameters& parameters() { return params_; }
   // The one parameter store (RAM and EEPROM) every face serves.
   [[nodiscard]] const pcp::ParameterStore& store() const { return params_.store(); }
-  // 85-SERR's bits (seed 000, 9.2).
+  // 85-SERR's bits (LUSTBUS manual 9.2).
   [[nodiscard]] std::uint8_t siof() const { return params_.serr(); }
   // The changes the faces' channels made (parameter_journal.hpp): the PCP face and the LUSTBUS
   // face note theirs; a recording of the process-data words takes them.
@@ -82,7 +82,7 @@ class Drive final : public DriveAccess {
   drive::ParameterJournal* changes() override { return &journal_; }
 
   // The fieldbus face. From the first call of set_fieldbus_sampling(true) the face's samples are
-  // the drive's 1 ms samples (seed 001, 7.2).
+  // the drive's 1 ms samples (INTERBUS manual 7.2).
   void set_fieldbus_sampling(bool on) { fieldbus_sampling_ = on; }
   [[nodiscard]] bool fieldbus_sampling() const { return fieldbus_sampling_; }
   // A valid data cycle reached the servo: "the watchdog is triggered with every INTERBUS cycle".
@@ -92,7 +92,7 @@ class Drive final : public DriveAccess {
   void sample(Time first, Duration period, std::uint32_t count, Word control, double reference_rpm);
 
   // A sample in which the fieldbus face has no process data for the drive (SUPI 0, a layout of
-  // PCP words only: seed 001, 3.2.2): the watchdogs are looked at, DRIVECOM does not move.
+  // PCP words only: INTERBUS manual 3.2.2): the watchdogs are looked at, DRIVECOM does not move.
   void watch(Time now);
 
   // The serial face: it serves the drive (from then on 402-CLSEL = SIO gives it the control),
@@ -101,7 +101,7 @@ class Drive final : public DriveAccess {
   void serial_telegram(Time now);
   void serial_checksum_error() { params_.set_serr(drive::SiofBit::checksum); }
 
-  // Fault reset (seed 000, 8.1.2: 416-SCTL1 bit 7; seed 001, 5.1.2: control word bit 7; each
+  // Fault reset (LUSTBUS manual 8.1.2: 416-SCTL1 bit 7; INTERBUS manual 5.1.2: control word bit 7; each
   // from the interface that has the control location, which the faces ask first): latched
   // fault causes whose condition is gone are cleared (the serial watchdog's time starts again),
   // and the DRIVECOM machine gets its RESET FAULT edge in the next sample, whichever interface
@@ -125,29 +125,29 @@ class Drive final : public DriveAccess {
   // Switched off and on.
   void power_on(Time now);
   // Mains lost: the servo is switched off (docs/errata.md MC-D6: the seeds name no undervoltage
-  // error; seed 000 9.2 names a power failure as a new start): it neither samples nor answers
+  // error; LUSTBUS manual 9.2 names a power failure as a new start): it neither samples nor answers
   // until the mains return, which is a power-on.
   void mains_off(Time now);
   void mains_on(Time now);
   [[nodiscard]] bool powered() const { return powered_; }
   // Counts the boots a reaction-5 reset caused: the INTERBUS card boots with the servo (PCP).
   [[nodiscard]] std::uint32_t reboots() const { return reboots_; }
-  // Seed 000, 8.1.2: "the connection ... is broken for the duration of the boot-up" after a
+  // LUSTBUS manual 8.1.2: "the connection ... is broken for the duration of the boot-up" after a
   // reaction-5 reset: the serial interface hears nothing until the self-test is done.
   [[nodiscard]] bool booting(Time now) const { return now < boot_until_; }
   // The reaction the parameters program for the errors present now, the most severe of them
   // (nullopt: none present), and the one the servo holds to since the last reset or power-on.
   [[nodiscard]] std::optional<ErrorReaction> present_reaction() const;
   [[nodiscard]] std::optional<ErrorReaction> held_reaction() const { return held_; }
-  // The digital outputs OS00 (0) and OS01 (1): seed 001, 5.3.1, control word bits 14 and 15
+  // The digital outputs OS00 (0) and OS01 (1): INTERBUS manual 5.3.1, control word bits 14 and 15
   // "control the reference state of output OS00/OS01 directly" when 445-FOS00 / 446-FOS01 =
   // ROPT1 -- the option's (INTERBUS's) control word, whichever interface has the control location.
   [[nodiscard]] bool digital_output(std::size_t output) const;
-  // The digital inputs IS00 (0) and IS01 (1): seed 001, 5.3.2, status word bits 14 and 15
+  // The digital inputs IS00 (0) and IS01 (1): INTERBUS manual 5.3.2, status word bits 14 and 15
   // reflect them when 439-FIS00 / 440-FIS01 = ROPT1; the seeds give them no other effect.
   void set_input(std::size_t input, bool high);
   [[nodiscard]] bool input(std::size_t input) const { return input < 2 && inputs_[input]; }
-  // A SMARTCARD read into the servo or written from it for `how_long` from `now` (seed 000, 10
+  // A SMARTCARD read into the servo or written from it for `how_long` from `now` (LUSTBUS manual 10
   // exception 2: "no communications with the device via the LUSTBUS", "up to 10 seconds";
   // docs/errata.md MC-D9): meanwhile the serial interface hears nothing and the INTERBUS face
   // takes no words (a module error); the servo runs on as last commanded and keeps its values;
@@ -155,7 +155,7 @@ class Drive final : public DriveAccess {
   // ends it.
   void smartcard(Duration how_long, Time now);
   [[nodiscard]] bool card_busy(Time now) const { return now < card_until_; }
-  // The INTERBUS card (seed 001, 3.2.1): "detects the INTERBUS card automatically on power-on";
+  // The INTERBUS card (INTERBUS manual 3.2.1): "detects the INTERBUS card automatically on power-on";
   // the first power-on that finds it sets 3.2.1's values, the first one after its withdrawal the
   // factory defaults (kOptionDefaults, RAM and EEPROM; MC-D10). It serves from the power-on that
   // detected it until it is pulled out.
@@ -173,7 +173,7 @@ class Drive final : public DriveAccess {
   [[nodiscard]] double reference_rpm() const { return pd_.reference_rpm(); }
   [[nodiscard]] double torque_nm() const { return pd_.torque_nm(); }
   [[nodiscard]] double torque_percent() const { return pd_.torque_percent(); }
-  // DRIVECOM's status word with the inputs' bits 14 and 15 (seed 001, 5.3.2).
+  // DRIVECOM's status word with the inputs' bits 14 and 15 (INTERBUS manual 5.3.2).
   [[nodiscard]] Word status_word() const;
   [[nodiscard]] const drivecom::SampleResult& last_sample() const { return pd_.last_sample(); }
   // The speed reference of the serial control location: 428-RSIO once per selector 417..420 that
@@ -183,7 +183,7 @@ class Drive final : public DriveAccess {
   [[nodiscard]] bool bus_watchdog_fault() const { return bus_fault_; }
   [[nodiscard]] bool serial_watchdog_fault() const { return serial_fault_; }
   [[nodiscard]] std::uint32_t recalculations() const { return params_.plrdy_requests(); }
-  // Seed 001, 4.2: the servo's READY mode, which 15-PLRDY reads; out of it ENABLE stops in ON
+  // INTERBUS manual 4.2: the servo's READY mode, which 15-PLRDY reads; out of it ENABLE stops in ON
   // (DriveParameters::ready_mode, MC-D11).
   [[nodiscard]] bool ready_mode() const { return params_.ready_mode(); }
 

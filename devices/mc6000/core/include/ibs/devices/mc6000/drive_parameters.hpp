@@ -1,10 +1,10 @@
 // The MC6000's parameter memory and its rules, written once for every bus (docs/architecture.md,
 // "One drive, many faces"): the one store (RAM, the EEPROM copy, and the dataset a rejected
-// download brings back), the write checks, the 85-SERR latch with its power-on bit (seed 000, 6
+// download brings back), the write checks, the 85-SERR latch with its power-on bit (LUSTBUS manual 6
 // and 9.2), the EEPROM save in the background (3, 10.2.2: 15 ms per byte, "EEPROM busy"), 4-PROG
 // (10 exception 1: factory defaults; 11.5: 111 activates 81-SBAUD), 15-PLRDY and READY mode (seed
-// 001, 4.2; the attributes InitControl and NoInit of seed 000, 11.2.1: MC-D11) and
-// the 80-SLOAD download of the CardWriteable parameters (seed 000, 11.4).
+// 001, 4.2; the attributes InitControl and NoInit of the LUSTBUS manual 11.2.1: MC-D11) and
+// the 80-SLOAD download of the CardWriteable parameters (LUSTBUS manual 11.4).
 //
 // It knows no bus: a face turns its telegram or PDU into number + raw value and the refusal back
 // into its answer (LUSTBUS NAK, PCP error class/code). Part of the drive core (drive.hpp), kept
@@ -45,7 +45,7 @@ struct WriteResult {
   Refusal refusal = Refusal::none;
   // How long the drive works on an accepted write before it can confirm it (4-PROG = 1).
   Duration busy_for = Duration::zero();
-  // The write reset a reaction-5 error and the servo boots at once (seed 000, 8.1.2): the
+  // The write reset a reaction-5 error and the servo boots at once (LUSTBUS manual 8.1.2): the
   // answer "under certain circumstances, is not sent in full".
   bool restarted = false;
   [[nodiscard]] bool ok() const { return refusal == Refusal::none; }
@@ -53,13 +53,13 @@ struct WriteResult {
 
 // The drive's own timing, the same whichever bus asks (docs/errata.md MC-D1, MC-D2).
 struct DriveTiming {
-  // Seed 000, 3 and 10.2.2: "To save a byte in EEPROM, the servocontroller needs 15 ms".
+  // LUSTBUS manual 3 and 10.2.2: "To save a byte in EEPROM, the servocontroller needs 15 ms".
   Duration eeprom_per_byte = std::chrono::milliseconds(15);
-  // Seed 000, 10 exception 1: 4-PROG = 1 answers once every parameter is reset, which "can take
+  // LUSTBUS manual 10 exception 1: 4-PROG = 1 answers once every parameter is reset, which "can take
   // up to 10 seconds": the drive takes nearly all of it, so that a master's timeout is tested,
   // and its answer still arrives within the 10 s on either bus (MC-D1).
   Duration factory_defaults = std::chrono::milliseconds(9900);
-  // Seed 000, 11.4 steps 3-4: the plausibility test and save after 80-SLOAD = -2; the seed gives
+  // LUSTBUS manual 11.4 steps 3-4: the plausibility test and save after 80-SLOAD = -2; the seed gives
   // no time, only the host's 10 s timeout (MC-D2).
   Duration download_check = std::chrono::milliseconds(200);
 };
@@ -120,11 +120,11 @@ class DriveParameters {
   // 11.4: from 80-SLOAD = -1 until the test has ended the servo is "secured against being engaged".
   [[nodiscard]] bool downloading() const { return download_ != Download::idle; }
   [[nodiscard]] bool download_testing() const { return download_ == Download::testing; }
-  // How many times 15-PLRDY = 1 asked for a controller recalculation (seed 001, 4.2).
+  // How many times 15-PLRDY = 1 asked for a controller recalculation (INTERBUS manual 4.2).
   [[nodiscard]] std::uint32_t plrdy_requests() const { return plrdy_requests_; }
-  // READY mode (seed 001, 4.2; MC-D11): the controller is calculated for the parameters as they
+  // READY mode (INTERBUS manual 4.2; MC-D11): the controller is calculated for the parameters as they
   // stand -- after a start, 4-PROG = 1, an accepted download or 15-PLRDY = 1; not after a changed
-  // InitControl parameter (seed 000, 11.2.1) or 15-PLRDY = 0. 15-PLRDY reads it.
+  // InitControl parameter (LUSTBUS manual 11.2.1) or 15-PLRDY = 0. 15-PLRDY reads it.
   [[nodiscard]] bool ready_mode() const { return raw(kPlrdyNumber) == 1; }
   // The servo may not be engaged: during a download (11.4) or out of READY mode (MC-D11).
   [[nodiscard]] bool engage_locked() const { return downloading() || !ready_mode(); }
@@ -133,7 +133,7 @@ class DriveParameters {
 
  private:
   static constexpr std::uint16_t kSerrNumber = drive::kSiofNumber;
-  static constexpr std::uint16_t kPlrdyNumber = 15;  // parameters.hpp's kPlrdy (seed 001, 4.2)
+  static constexpr std::uint16_t kPlrdyNumber = 15;  // parameters.hpp's kPlrdy (INTERBUS manual 4.2)
   enum class Download : std::uint8_t { idle, receiving, testing };
   void advance_pending(Time now);  // advance() with an EEPROM save or a download test pending
   WriteResult refused(Refusal r);

@@ -1,4 +1,4 @@
-// The MC6000's INTERBUS face as the simulator runs it (seed 001, 3.2, 4.2, 5.3, 7.2): the
+// The MC6000's INTERBUS face as the simulator runs it (INTERBUS manual 3.2, 4.2, 5.3, 7.2): the
 // process-data layout 405-SUPI / 406-IBCNF read at power-on, the DRIVECOM words decoded into the
 // drive core's control word and reference every 1 ms sample, and the PCP channel, whose server
 // serves the core's parameters. The servo itself -- parameters, DRIVECOM machine and plant, the
@@ -84,7 +84,7 @@ class Mc6000Device final : public DeviceEmulator {
   void step_held(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
   void output(std::span<Word> pd_s2m) const override;
   void output_pcp(Time now, std::span<Word> pcp_s2m) override;
-  // The INTERBUS CPU's side of the PCP channel, every valid data cycle (seed 001 3.2.2): the link's
+  // The INTERBUS CPU's side of the PCP channel, every valid data cycle (INTERBUS manual 3.2.2): the link's
   // fragments move at the bus cycle, independent of the 1 ms control sample (docs/pcp.md).
   void pcp_cycle(Time now, std::span<const Word> pcp_m2s, std::span<Word> pcp_s2m) override;
 
@@ -104,8 +104,8 @@ class Mc6000Device final : public DeviceEmulator {
   // shows another ID code: the master's configuration no longer fits it and the bus reports a
   // module error until the ring is configured again (a new run).
   // Without mains the INTERBUS card of the servo is off too (MC-D6): a module error. So while a
-  // SMARTCARD is read or written (seed 001 6.1's "bus operation is disabled", MC-D9) and while the
-  // card is out of its slot or not yet detected by a power-on (seed 001 3.2.1, MC-D10).
+  // SMARTCARD is read or written (INTERBUS manual 6.1's "bus operation is disabled", MC-D9) and while the
+  // card is out of its slot or not yet detected by a power-on (INTERBUS manual 3.2.1, MC-D10).
   [[nodiscard]] bool module_error(Time now) const override {
     return configuration_mismatch_ || !drive_->powered() || deaf(now);
   }
@@ -144,7 +144,7 @@ class Mc6000Device final : public DeviceEmulator {
 
  private:
   void attach(const Mc6000DeviceConfig& config, DeviceStart start);
-  // Decodes the process-data words and samples the core (seed 001, 5.1.2: a 0->1 edge of control
+  // Decodes the process-data words and samples the core (INTERBUS manual 5.1.2: a 0->1 edge of control
   // word bit 7 is the fault reset, the same core call as 416-SCTL1 bit 7 over LUSTBUS).
   void sample_core(std::span<const Word> pd_m2s, Time first, Duration period, std::uint32_t count);
 

@@ -1,4 +1,4 @@
-// The MC6000's LUSTBUS face (seed 000): a Responder over the drive core (drive.hpp). It owns only
+// The MC6000's LUSTBUS face (LUSTBUS manual): a Responder over the drive core (drive.hpp). It owns only
 // what belongs to the telegrams: the enhanced CODEs S0PPP and the shared 000xx (2.4.2, 5.2), hex
 // VALUEs of the type's full width, the 43-character description (11.2), substitution texts via
 // 108-STEXT and 61xxx (11.3), the reaction times of 10, the line's baud rate (81-SBAUD, 4-PROG =
@@ -23,10 +23,10 @@
 
 namespace ibs::devices::mc6000 {
 
-// How a table type of the MC6000 (pcp::DataType) reads as a LUSTBUS VALUE (seed 000, 2.3.2).
+// How a table type of the MC6000 (pcp::DataType) reads as a LUSTBUS VALUE (LUSTBUS manual 2.3.2).
 lustbus::DataType lustbus_type(pcp::DataType t);
 
-// Seed 000, 10's table: the servo reacts within 1...30 ms with a KEYPAD, 1...25 ms without,
+// LUSTBUS manual 10's table: the servo reacts within 1...30 ms with a KEYPAD, 1...25 ms without,
 // drawn from `seed` (LB-D18).
 constexpr lustbus::ReactionModel lustbus_reaction(bool keypad, std::uint64_t seed) {
   return lustbus::ReactionModel::uniform(std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 30 : 25), seed);
@@ -56,8 +56,8 @@ class LustbusDevice final : public lustbus::Responder {
   void checksum_error(const lustbus::Context& ctx) override;
   void telegram_received(const lustbus::Context& ctx) override;
   // Without mains the servo answers nothing (MC-D6), nor while it boots after a reaction-5 error
-  // reset (seed 000, 8.1.2: "the connection ... is broken for the duration of the boot-up"), nor
-  // while a SMARTCARD is read or written (seed 000, 10 exception 2; MC-D9).
+  // reset (LUSTBUS manual 8.1.2: "the connection ... is broken for the duration of the boot-up"), nor
+  // while a SMARTCARD is read or written (LUSTBUS manual 10 exception 2; MC-D9).
   [[nodiscard]] bool listening(Time now) const override {
     return drive_->powered() && !drive_->booting(now) && !drive_->card_busy(now);
   }
@@ -88,7 +88,7 @@ class LustbusDevice final : public lustbus::Responder {
   // The rate the servo's line runs at: 81-SBAUD as of the last start, or of 4-PROG = 111 (11.5).
   [[nodiscard]] std::uint32_t line_baud() const { return line_baud_; }
   // The servo as configured for `baud` (81-SBAUD, RAM and EEPROM, active at once): false for a
-  // rate outside 2400..57600 (seed 000, 4).
+  // rate outside 2400..57600 (LUSTBUS manual 4).
   bool set_line_baud(std::uint32_t baud);
   [[nodiscard]] const PosMod& posmod() const { return posmod_; }
   [[nodiscard]] bool watchdog_fault() const { return drive_->serial_watchdog_fault(); }

@@ -1,4 +1,4 @@
-// The MC6000's process data as the servo handles it (seed 001, 3.2, 5.3): DRIVECOM sampled every
+// The MC6000's process data as the servo handles it (INTERBUS manual 3.2, 5.3): DRIVECOM sampled every
 // 1 ms, reference and actual in the layout 405-SUPI / 406-IBCNF chose at power-on, speed control
 // with the servo plant behind it.
 #pragma once
@@ -66,7 +66,7 @@ class Mc6000PdDevice {
     fault_present_ = present;
     coast_ = coast;
   }
-  // While set the drive is not engaged: ENABLE stops in ON (80-SLOAD download, seed 000 11.4).
+  // While set the drive is not engaged: ENABLE stops in ON (80-SLOAD download, LUSTBUS manual 11.4).
   void set_enable_locked(bool locked) { enable_locked_ = locked; }
   void set_inputs(bool is00, bool is01) { is00_ = is00; is01_ = is01; }
   void set_load_torque(double nm) { load_nm_ = nm; }

@@ -3,7 +3,7 @@
 // discretised exactly (zero-order hold, matrix exponential) for the sample period.
 //
 // It supplies what the MC6000 emulator reports: actual speed and torque, and the status-word
-// bits 10 "reference reached" and 11 "limit value" (seed 001, 5.1.3 and 5.3.2). The speed loop
+// bits 10 "reference reached" and 11 "limit value" (INTERBUS manual 5.1.3 and 5.3.2). The speed loop
 // is a modelling choice: the manual gives no controller structure or motor data.
 //
 // States x = [w, i, T]: w motor speed (rad/s), i the PI integrator (Nm), T motor torque (Nm).
@@ -31,7 +31,7 @@
 namespace ibs::devices {
 
 // Defaults: a servo motor with about 4 Nm rated torque, 2.5 x peak, driving a load of three
-// times its inertia. 0 -> 2500.25 rpm (seed 001, 5.3.4) takes about 0.22 s in the torque limit.
+// times its inertia. 0 -> 2500.25 rpm (INTERBUS manual 5.3.4) takes about 0.22 s in the torque limit.
 struct DrivePlantParams {
   double motor_inertia = 0.002;          // J_m, kg m^2
   double load_inertia = 0.006;           // J_L, kg m^2, rigidly coupled: J = J_m + J_L
@@ -59,7 +59,7 @@ struct PlantOutput {
   bool limit_active = false;       // status bit 11: the torque command was clipped in this step
 };
 
-// A speed reference ramp (the MC6000's reference channel has a ramp generator, seed 001 3.2.1).
+// A speed reference ramp (the MC6000's reference channel has a ramp generator, INTERBUS manual 3.2.1).
 struct ReferenceRamp {
   double rate_rpm_per_s = 0.0;  // <= 0: no ramp, the output jumps to the target
   double value_rpm = 0.0;

@@ -1,4 +1,4 @@
-// The PosMOD1 positioning option of the MC6000 behind LUSTBUS CODE 49999 (seed 000, 11.6). The
+// The PosMOD1 positioning option of the MC6000 behind LUSTBUS CODE 49999 (LUSTBUS manual 11.6). The
 // seed gives the frame, the status byte (11.6.3) and four example exchanges (11.6.4); "the user
 // data is in the command description of the user handbook", which is not among the seeds. So the
 // command set below is ours, small and documented (docs/lustbus.md, "PosMOD1", LB-D22):

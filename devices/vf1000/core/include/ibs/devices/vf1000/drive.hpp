@@ -28,11 +28,11 @@ namespace ibs::devices::vf1000 {
 // How long storing takes: the drive's time, which each face expresses in its own units (the
 // INTERBUS face in extra 8.2 ms samples before its ACK, the LUSTBUS face in reaction time).
 struct StoringTimes {
-  // Seed 000, 10 exception 4: a changed EEPROM value adds about 120 ms (two bytes) or 60 ms (one
-  // byte); seed 001, 7.1 agrees for the two-byte case: 250 ms instead of 124 (erratum VF-E12).
+  // LUSTBUS manual 10 exception 4: a changed EEPROM value adds about 120 ms (two bytes) or 60 ms (one
+  // byte); INTERBUS manual 7.1 agrees for the two-byte case: 250 ms instead of 124 (erratum VF-E12).
   Duration eeprom_two_bytes = std::chrono::milliseconds(120);
   Duration eeprom_one_byte = std::chrono::milliseconds(60);
-  // Seed 000, 10 exception 1: 71-PROG = 1 answers once every parameter is initialised, "up to 10
+  // LUSTBUS manual 10 exception 1: 71-PROG = 1 answers once every parameter is initialised, "up to 10
   // seconds"; 1.5 s here (LB-D18), over either bus (VF-E11).
   Duration factory_defaults = std::chrono::milliseconds(1500);
 };
@@ -42,8 +42,8 @@ struct DriveConfig {
   // reset (reset_time, D13).
   Vf1000PdConfig pd{};
   StoringTimes storing{};
-  // The inverter's software: the INTERBUS package, whose factory values are seed 001 3.1.1's
-  // (1-MODE 4, 2-CSEL 5, 4-FSSEL 25), or the standard one of a drive on LUSTBUS alone (seed 000,
+  // The inverter's software: the INTERBUS package, whose factory values are INTERBUS manual 3.1.1's
+  // (1-MODE 4, 2-CSEL 5, 4-FSSEL 25), or the standard one of a drive on LUSTBUS alone (LUSTBUS manual,
   // 4.1; standalone_parameters(), VF-E20).
   bool interbus_software = true;
 };
@@ -58,7 +58,7 @@ inline constexpr Word kStatRunning = 0x02;
 inline constexpr Word kStatCounterClockwise = 0x04;
 inline constexpr Word kStatError = 0x80;
 inline constexpr Word kStatReset = 0x000F;
-// Seed 000, 4: "from 2400 Baud to 9600 Baud for frequency Inverters" (81-SIOC, in baud: LB-E18).
+// LUSTBUS manual 4: "from 2400 Baud to 9600 Baud for frequency Inverters" (81-SIOC, in baud: LB-E18).
 inline constexpr std::uint32_t kHighestBaud = 9600;
 
 class Drive final : public drive::ParameterAccess {
@@ -75,7 +75,7 @@ class Drive final : public drive::ParameterAccess {
 
   // --- The parameters (drive::ParameterAccess: what every face serves) ------------------------
   [[nodiscard]] const drive::ParameterTable& table() const override { return params_.table(); }
-  // 11-STAT and 12 are formed from the drive's state when read (seed 000, 8.1.1, 6.1.1.1); every
+  // 11-STAT and 12 are formed from the drive's state when read (LUSTBUS manual 8.1.1, 6.1.1.1); every
   // other value comes from the store.
   [[nodiscard]] Word read(std::size_t slot) const override;
   [[nodiscard]] std::uint8_t siof() const override { return params_.siof(); }
@@ -116,7 +116,7 @@ class Drive final : public drive::ParameterAccess {
     unsettle();
     return params_.set_value(number, raw);
   }
-  // A read of 85-SIOF: the bits, which the read erases (seed 000, 9.2; seed 001, 4.1.4).
+  // A read of 85-SIOF: the bits, which the read erases (LUSTBUS manual 9.2; INTERBUS manual 4.1.4).
   std::uint8_t read_siof();
 
   // --- Faces ----------------------------------------------------------------------------------
@@ -125,11 +125,11 @@ class Drive final : public drive::ParameterAccess {
   [[nodiscard]] bool attached(Face f) const {
     return (f == Face::interbus ? faces_.interbus : faces_.serial) > 0;
   }
-  // Seed 000, 7.1: with 1-MODE = 0 and 2-CSEL = 3 the serial interface controls (3-CNTL, and
+  // LUSTBUS manual 7.1: with 1-MODE = 0 and 2-CSEL = 3 the serial interface controls (3-CNTL, and
   // 5-FSSIO with 4-FSSEL = 8); it can only where a serial face is attached. Otherwise the
-  // INTERBUS words control (seed 001, 6.1: INTERBUS operation).
+  // INTERBUS words control (INTERBUS manual 6.1: INTERBUS operation).
   [[nodiscard]] bool serial_has_control() const;
-  // Seed 001, 6.1: during operation on the INTERBUS (an INTERBUS face attached and 1-MODE = 4, the
+  // INTERBUS manual 6.1: during operation on the INTERBUS (an INTERBUS face attached and 1-MODE = 4, the
   // factory value) the serial interface cannot be used: the LUSTBUS face hears nothing (VF-E16).
   [[nodiscard]] bool serial_locked() const;
 
@@ -166,27 +166,27 @@ class Drive final : public drive::ParameterAccess {
   void set_fault(bool present, Time now, std::optional<int> cause = std::nullopt);
   [[nodiscard]] std::optional<int> fault_cause() const { return fault_cause_; }
   // Mains lost: the inverter is switched off (docs/errata.md VF-E17: the seeds name no
-  // undervoltage error; seed 000 9.2 names a power failure as a new start): a module error on
+  // undervoltage error; LUSTBUS manual 9.2 names a power failure as a new start): a module error on
   // INTERBUS, no answer on LUSTBUS, until the mains return, which is a power-on (6.1's
   // initialisation, the power-on bit).
   void mains_off(Time now);
   void mains_on(Time now);
   [[nodiscard]] bool powered() const { return powered_; }
   // A SMARTCARD read or written for `how_long` from `now`: meanwhile bus operation is disabled
-  // (seed 001, 6.1: a module error on INTERBUS, no words taken; seed 000, 10 exception 2: no
+  // (INTERBUS manual 6.1: a module error on INTERBUS, no words taken; LUSTBUS manual 10 exception 2: no
   // LUSTBUS communication), decision VF-E21.
   void smartcard(Duration how_long, Time now);
   [[nodiscard]] bool card_busy(Time now) const { return now < card_until_; }
   // A terminal's level (docs/errata.md VF-E22). An input (S1IND, S2IND, STR, STL) is wired high
-  // or low; an output (S1OUT, S2OUT) is set to the level its programmed function gives -- seed 001
+  // or low; an output (S1OUT, S2OUT) is set to the level its programmed function gives -- INTERBUS manual
   // 5.2.2: "status of output S2OUT / S1OUT, dependent on programmed function", a function no seed
   // gives, so the event states the level. The outputs show in status word bits 14 (S2OUT) and 15
   // (S1OUT) from the next sample, on INTERBUS and in 911-IBSTA (which LUSTBUS, reaching parameters
-  // 00..99 only, cannot read: seed 000 2.4.1).
+  // 00..99 only, cannot read: LUSTBUS manual 2.4.1).
   void set_terminal(vf1000::Terminal t, bool high);
   // The level recorded for the terminal; an output is low while the inverter has no mains.
   [[nodiscard]] bool terminal(vf1000::Terminal t) const;
-  // Seed 001, 5.2.1: control word bit 12 / 13 "activates the parameter-set function of input
+  // INTERBUS manual 5.2.1: control word bit 12 / 13 "activates the parameter-set function of input
   // S2IND / S1IND". Active while the inverter is powered and the terminal is high or the bit is
   // set in the control word of the last sample (the INTERBUS master's; the serial interface's
   // sets neither: the bus stands in for the terminal, as bits 14 / 15 do for STL / STR); false for
@@ -212,8 +212,8 @@ class Drive final : public drive::ParameterAccess {
   [[nodiscard]] const Vf1000PdDevice& pd() const { return pd_; }
   [[nodiscard]] drivecom::State state() const { return pd_.state(); }
   [[nodiscard]] double frequency_hz() const { return pd_.frequency_hz(); }
-  // The power stage runs (11-STAT 02H; EEPROM values refused, seed 000 3): DRIVECOM's power stage
-  // states, but not while the motor is shut down at a reference of 0 Hz (seed 001, 5.2.3).
+  // The power stage runs (11-STAT 02H; EEPROM values refused, LUSTBUS manual 3): DRIVECOM's power stage
+  // states, but not while the motor is shut down at a reference of 0 Hz (INTERBUS manual 5.2.3).
   [[nodiscard]] bool power_stage_enabled() const { return pd_.power_stage_on(); }
   [[nodiscard]] Word status() const;  // 11-STAT
   [[nodiscard]] bool external_fault() const { return external_fault_; }

@@ -1,4 +1,4 @@
-// The VF1000's process data as the inverter handles it (seed 001, 3.1, 5.2): three words
+// The VF1000's process data as the inverter handles it (INTERBUS manual 3.1, 5.2): three words
 // (control, reference, communication word), DRIVECOM sampled every 8.2 ms, ramp generator bits
 // 4-6, STL/STR, stop ramp 36-RSTOP.
 #pragma once
@@ -19,14 +19,14 @@ struct Vf1000PdConfig {
   Duration init_time = 4s;            // initialisation and self-test after power-on (6.1)
   // RESET FAULT is a software reset (5.2.1): the inverter boots and runs its self-test again.
   // The manuals give no time for it; the one boot they time is 6.1's ~4 s for "initialization and
-  // the self-test", and seed 000 (8.1.1, 9.2) treats the reset as a new start like a power-on,
+  // the self-test", and the LUSTBUS manual (8.1.1, 9.2) treats the reset as a new start like a power-on,
   // so the default is that time (decision D13, docs/vf1000_channel.md).
   Duration reset_time = 4s;
   double acceleration_hz_per_s = 20;  // ramp generator, up
   double deceleration_hz_per_s = 20;  // ramp generator, down
   double stop_ramp_hz_per_s = 50;     // 36-RSTOP: stop ramp; 0 = no stop ramp (power stage off)
   double max_frequency_hz = 400;
-  // Seed 001, 5.2.3: "At a reference value of 0 Hz the inverter shuts down the motor if DC-Stop is
+  // INTERBUS manual 5.2.3: "At a reference value of 0 Hz the inverter shuts down the motor if DC-Stop is
   // not programmed!" No seed names the parameter that programs DC-Stop, so it is the model's
   // configuration, off as the warning assumes (decision VF-E19).
   bool dc_stop = false;

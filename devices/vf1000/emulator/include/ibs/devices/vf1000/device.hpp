@@ -1,4 +1,4 @@
-// The VF1000's INTERBUS face as the simulator runs it (seed 001, 3.1, 4.1, 5.2, 6.1, 7.1): process
+// The VF1000's INTERBUS face as the simulator runs it (INTERBUS manual 3.1, 4.1, 5.2, 6.1, 7.1): process
 // data sampled every 8.2 ms, the parameter channel in the communication word, and the module
 // error while the inverter initialises. The drive itself -- its parameters, 85-SIOF, DRIVECOM and
 // ramp, the 906/907 watchdog, faults and resets, the ~4 s initialisation, the storing times -- is
@@ -28,7 +28,7 @@ struct Vf1000DeviceConfig {
   Vf1000PdConfig pd{};
   vf1000_channel::ServerConfig channel = vf1000::server_config();
   // How long the inverter takes for one step of the parameter channel, in 8.2 ms samples from the
-  // sample that first sees the master's new word. Calibrated to seed 001, 7.1 (without KEYPAD,
+  // sample that first sees the master's new word. Calibrated to the INTERBUS manual 7.1 (without KEYPAD,
   // motor stopped): value inquiry ~100 ms (3 steps), value transfer ~124-131 ms (4 steps), scan of
   // a description ~490 ms (19 steps). How long storing takes (an EEPROM value that changes: ~250
   // ms in all; 71-PROG) is the drive's (storing), held back here in whole 8.2 ms samples.
@@ -92,7 +92,7 @@ class Vf1000Device final : public DeviceEmulator {
 
   // The bus shows a module error for this device (initialisation, 6.1); meanwhile its bus
   // interface still takes the master's words, and it acts on the newest ones once it is ready.
-  // Seed 001, 6.1: also while a SMARTCARD is read or written ("bus operation is disabled"; VF-E21).
+  // INTERBUS manual 6.1: also while a SMARTCARD is read or written ("bus operation is disabled"; VF-E21).
   [[nodiscard]] bool module_error(Time now) const override {
     return drive_->initialising(now) || drive_->card_busy(now);
   }

@@ -1,4 +1,4 @@
-// The VF1000's LUSTBUS face (seed 000): a Responder over the drive core (drive.hpp), which holds
+// The VF1000's LUSTBUS face (LUSTBUS manual): a Responder over the drive core (drive.hpp), which holds
 // the parameters, 85-SIOF (6, 9.2), the storing times (3; 10 exceptions 1 and 4), control from
 // 3-CNTL / 5-FSSIO (7.1), the 11-STAT reset and its self-test (8.1.1) and the network watchdog of
 // 5.2. The face keeps only what is LUSTBUS's: the standard CODEs S0DPP (2.4.1), four-digit VALUEs,
@@ -21,10 +21,10 @@
 
 namespace ibs::devices::vf1000 {
 
-// How a table type of the VF1000 (drive::DataType) reads as a LUSTBUS VALUE (seed 000, 2.3.1).
+// How a table type of the VF1000 (drive::DataType) reads as a LUSTBUS VALUE (LUSTBUS manual 2.3.1).
 lustbus::DataType lustbus_type(drive::DataType t);
 
-// Seed 000, 10's table: the inverter reacts within 1...60 ms with a KEYPAD, 1...30 ms without,
+// LUSTBUS manual 10's table: the inverter reacts within 1...60 ms with a KEYPAD, 1...30 ms without,
 // drawn from `seed` (LB-D18).
 constexpr lustbus::ReactionModel lustbus_reaction(bool keypad, std::uint64_t seed) {
   return lustbus::ReactionModel::uniform(std::chrono::milliseconds(1), std::chrono::milliseconds(keypad ? 60 : 30), seed);
@@ -38,7 +38,7 @@ struct LustbusTiming {
   // 8.1.1: "the Inverter's ACK-answer telegram, under certain circumstances, is not sent in
   // full": cut (ADR only) unless told (ack or none).
   lustbus::Reply reset_answer = lustbus::Reply::cut;
-  // The inverter's serial interface is RS-485 (not RS-232): seed 000, 4, "SMARTDRIVE Inverters
+  // The inverter's serial interface is RS-485 (not RS-232): LUSTBUS manual 4, "SMARTDRIVE Inverters
   // with the RS-485 interface must additionally have the parameter 61-SOUTA = 7 set. This
   // activates the data direction switch of the internal interface software driver." Without it the
   // face hears nothing (VF-E20). Off unless told: the tests' direct line; the emulator sets it.
@@ -50,7 +50,7 @@ class LustbusDevice final : public lustbus::Responder {
   // A drive of its own (`drive` its configuration: self-test, storing times), started as after
   // a power-on whose initialisation is done: the power-on bit set (6). A drive on LUSTBUS alone
   // runs the standard software, not the INTERBUS package: its factory values are
-  // standalone_parameters()'s (seed 001 3.1.1, seed 000 4.1; VF-E20), whatever
+  // standalone_parameters()'s (INTERBUS manual 3.1.1, LUSTBUS manual 4.1; VF-E20), whatever
   // drive.interbus_software says. Allocates.
   explicit LustbusDevice(LustbusTiming timing = {}, const DriveConfig& drive = {});
   // The LUSTBUS face of an existing drive, which another face may serve too. Allocates nothing.
@@ -71,9 +71,9 @@ class LustbusDevice final : public lustbus::Responder {
   // A new start without the initialisation time: EEPROM values back, RAM values to their
   // defaults, the power-on bit set, 81-SIOC's rate taken (11.5).
   void restart(Time now);
-  // 8.1.1: deaf while the drive initialises or boots after a reset; seed 001, 6.1: deaf while the
-  // drive operates on the INTERBUS with 1-MODE = 4 (VF-E16); seed 000, 4: on RS-485 deaf unless
-  // 61-SOUTA = 7 (VF-E20); seed 000, 10 exception 2: deaf while a SMARTCARD is read or written
+  // 8.1.1: deaf while the drive initialises or boots after a reset; INTERBUS manual 6.1: deaf while the
+  // drive operates on the INTERBUS with 1-MODE = 4 (VF-E16); LUSTBUS manual 4: on RS-485 deaf unless
+  // 61-SOUTA = 7 (VF-E20); LUSTBUS manual 10 exception 2: deaf while a SMARTCARD is read or written
   // (VF-E21).
   [[nodiscard]] bool listening(Time now) const override {
     return !drive_->initialising(now) && !drive_->card_busy(now) && !drive_->serial_locked() &&
@@ -99,7 +99,7 @@ class LustbusDevice final : public lustbus::Responder {
   // The rate the line runs at: 81-SIOC as of the last start (11.5).
   [[nodiscard]] std::uint32_t line_baud() const { return line_baud_; }
   // The inverter as configured for `baud` (81-SIOC, active at once): false for a rate other
-  // than 2400, 4800, 9600 (seed 000, 4).
+  // than 2400, 4800, 9600 (LUSTBUS manual 4).
   bool set_line_baud(std::uint32_t baud);
   // The watchdog ran out (5.2): the inverter is in its error state until 11-STAT = 000FH.
   [[nodiscard]] bool watchdog_fault() const { return drive_->serial_watchdog_fault(); }
