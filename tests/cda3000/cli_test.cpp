@@ -498,7 +498,7 @@ TEST(Candump, DecodeSaysWhereALineIsBad) {
   std::remove(path.c_str());
 }
 
-// `ibs canlust download FILE` (seed 003, "Downloading parameter data sets"; D39): the set goes
+// `ibs canlust download FILE` (CANLust manual, "Downloading parameter data sets"; D39): the set goes
 // through 80-SLOAD and is in the drive's EEPROM; a bad line is refused with FILE:LINE before
 // anything is sent (exit 2); a set the drive finds implausible is rejected with the parameter and
 // its line (exit 1), the old set stays; the file is only read.
@@ -573,6 +573,23 @@ TEST(CanlustCli, ShortOptionsAndRepeatedReadings) {
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_EQ(r.out, "CDA 1 360-DISP: 406\nCDA 1 360-DISP: 406\nCDA 1 360-DISP: 406\n");
   EXPECT_EQ(r.err, "ibs canlust read: 3 readings, 3 ok, 0 failed\n");
+  // With --log the readings share one candump log: every reading's request (1103 = 44FH) and
+  // reply (1323 = 52BH, 406 = 0196H) in it, where each reading truncated it again before.
+  const std::string log = ::testing::TempDir() + "canlust_repeat_" + std::to_string(::getpid()) + ".log";
+  r = run_cli({"canlust", "read", "-p", bus, "-a", "1", "360", "--repeat", "3", "--interval", "50", "--log", log});
+  EXPECT_EQ(r.rc, 0) << r.err;
+  {
+    std::ifstream in(log);
+    int requests = 0;
+    int replies = 0;
+    for (std::string line; std::getline(in, line);) {
+      if (line.find(" 44F#6801050000000000") != std::string::npos) ++requests;
+      if (line.find(" 52B#6801009601000000") != std::string::npos) ++replies;
+    }
+    EXPECT_EQ(requests, 3);
+    EXPECT_EQ(replies, 3);
+  }
+  std::remove(log.c_str());
   r = run_cli({"canlust", "read", "--bus", bus, "--addr", "1", "DISP", "-j"});
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.out.find("\"value\":406"), std::string::npos) << r.out;
@@ -925,7 +942,7 @@ TEST(CanlustBench, EmulateControlSocketInjectsAFault) {
             "error telegram sent\n"
             "control:1:2: cda3000@1: load 50.0 %: set: the motor slips 1.50 Hz below the output frequency\n"
             "control:1:3: control entries apply at once: no 'at'\n"
-            "control:1:4: cause 'E-XYZ': the CDA3000's errors (seed 003, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
+            "control:1:4: cause 'E-XYZ': the CDA3000's errors (CANLust manual, table 5.9) are 8 E-OTI, 9 E-PLS, 10 E-PAR, "
             "11 E-FLT, 12 E-PWR, 16 E-OP2; its warnings (6.3) are 0004H W-I2T, 0008H W-TM, 0010H W-TH\n"
             "control:1:5: device 7 is not served (give its address or NAME@ADDR as on the command line)\n");
   std::remove(err_path.c_str());

@@ -195,7 +195,7 @@ TEST(Dfs1Cli, EmulateServesAGivenPortWithItsBaudAndLog) {
     test::ChildProcess emu({IBS_DFS1_CLI, "dfs1", "emulate", "--port", path, "--baud", "19200", "--log", log,
                             "dfs1@3"});
     ASSERT_EQ(emu.first_line(), "port: " + path);
-    // Status (81H) to UID 3: checksum = -(03H + 81H) = 7CH (seed 004's rule).
+    // Status (81H) to UID 3: checksum = -(03H + 81H) = 7CH (DFS-1 manual's rule).
     const unsigned char request[] = {0x10, 0x02, 0x03, 0x81, 0x10, 0x03, 0x7C};
     ASSERT_EQ(::write(master, request, sizeof request), static_cast<ssize_t>(sizeof request));
     std::string answer;
@@ -250,6 +250,36 @@ TEST(Dfs1Cli, LogRecordsEveryByteWithTimeAndDirection) {
   while (std::getline(in, line)) rx += line.substr(line.rfind(emu.pty()) + emu.pty().size());
   // The 23 bytes of the status answer, maybe in several reads.
   EXPECT_EQ(rx.rfind(" 10 02 01 06", 0), 0U) << rx;
+  EXPECT_EQ(emu.stop(SIGTERM), 0);
+  std::remove(log.c_str());
+}
+
+// `--repeat N --log FILE`: the readings share one log -- one header, every reading's request in
+// it, one time base -- instead of each reading truncating it again (only the last one was left).
+TEST(Dfs1Cli, RepeatedReadingsShareOneLog) {
+  Emulator emu({"dfs1@1"});
+  const std::string log = ::testing::TempDir() + "dfs1_cli_repeat_log.txt";
+  const CliRun r = run_cli({"dfs1", "status", "--port", emu.pty(), "--uid", "1", "--log", log, "--repeat", "3",
+                            "--interval", "50", "--timeout-ms", "3000"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  std::ifstream in(log);
+  int headers = 0;
+  int requests = 0;
+  double last_time = -1;
+  bool ordered = true;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "ibs-serial-log 1") {
+      ++headers;
+      continue;
+    }
+    const double t = std::stod(line.substr(0, line.find(' ')));
+    ordered = ordered && t >= last_time;
+    last_time = t;
+    if (line.find(" tx " + emu.pty() + " 10 02 01 81 10 03 7E") != std::string::npos) ++requests;
+  }
+  EXPECT_EQ(headers, 1);
+  EXPECT_EQ(requests, 3);
+  EXPECT_TRUE(ordered) << "the readings' times restart";
   EXPECT_EQ(emu.stop(SIGTERM), 0);
   std::remove(log.c_str());
 }

@@ -96,7 +96,7 @@ long read_until(const std::string& port, std::vector<std::string> what, F&& done
 
 // Issue 24: `emulate --control unix:PATH` takes events for the drives it serves; a device fault
 // injected over the socket is what the host then reads as the drive's error (11-STAT 80H, seed
-// 000 8.1.1), an MC6000 input shows in 408-IBSTA bit 14 (seed 001 5.3.2).
+// 000 8.1.1), an MC6000 input shows in 408-IBSTA bit 14 (INTERBUS manual 5.3.2).
 TEST(LustbusCli, EmulateTakesEventsOnItsControlSocket) {
   const std::string socket = ::testing::TempDir() + "lustbus_control_" + std::to_string(::getpid()) + ".sock";
   ::unlink(socket.c_str());
@@ -159,6 +159,32 @@ TEST(LustbusCli, PtyLinkNamesThePtyWhileItRunsAndNeverReplacesAFile) {
     }
     EXPECT_EQ(objects, 3) << polled.out;
     EXPECT_NE(polled.err.find("ibs lustbus read: 3 readings, 3 ok, 0 failed"), std::string::npos) << polled.err;
+    // With --log the readings share one log: one header, and three times the bytes one reading
+    // sends (each reading truncated it again before).
+    const std::string one_log = dir + "/one.log";
+    const std::string three_log = dir + "/three.log";
+    ASSERT_EQ(run_cli({"lustbus", "read", "-p", link, "-a", "1", "--device", "vf1000", "FSSEL", "--log", one_log}).rc, 0);
+    const CliRun logged = run_cli({"lustbus", "read", "-p", link, "-a", "1", "--device", "vf1000", "FSSEL", "--repeat",
+                                   "3", "--interval", "20", "--log", three_log});
+    ASSERT_EQ(logged.rc, 0) << logged.err;
+    const auto sent = [](const std::string& path, int& headers) {
+      std::ifstream in(path);
+      std::string bytes;
+      headers = 0;
+      for (std::string line; std::getline(in, line);) {
+        if (line == "ibs-serial-log 1") ++headers;
+        else if (const auto at = line.find(" tx "); at != std::string::npos) bytes += line.substr(line.find(' ', at + 4)) + ";";
+      }
+      return bytes;
+    };
+    int one_headers = 0;
+    int three_headers = 0;
+    const std::string one = sent(one_log, one_headers);
+    const std::string three = sent(three_log, three_headers);
+    EXPECT_EQ(one_headers, 1);
+    EXPECT_EQ(three_headers, 1);
+    ASSERT_FALSE(one.empty());
+    EXPECT_EQ(three, one + one + one);
     EXPECT_EQ(emu.stop(SIGTERM), 0);
   }
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(link))) << "the link stays after exit";
@@ -343,7 +369,7 @@ TEST(LustbusCli, NakExitsOneWithTheCause) {
   // 7.1: control on the serial interface, then the start.
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "MODE", "0"}, port)).rc, 0);
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CSEL", "3"}, port)).rc, 0);
-  // A reference above 0 Hz: at 0 Hz the inverter shuts the motor down (seed 001 5.2.3, VF-E19).
+  // A reference above 0 Hz: at 0 Hz the inverter shuts the motor down (INTERBUS manual 5.2.3, VF-E19).
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSEL", "8"}, port)).rc, 0);
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "FSSIO", "5"}, port)).rc, 0);
   ASSERT_EQ(run_cli(cmd({"write", "--addr", "1", "--device", "vf1000", "CNTL", "0x80"}, port)).rc, 0);
@@ -389,7 +415,7 @@ TEST(LustbusCli, BadInputExitsTwoWithAClearMessage) {
 }
 
 // Issue: the drives' settings are the wings' declarations. `emulate` offers one option per setting a
-// LUSTBUS face declares, and --keypad (both drives' KEYPAD, seed 000 10) reaches them.
+// LUSTBUS face declares, and --keypad (both drives' KEYPAD, LUSTBUS manual 10) reaches them.
 TEST(LustbusCli, EmulateTakesTheSettingsTheLustbusFacesDeclare) {
   for (const devices::Drive* d : devices::drives_on(devices::Bus::lustbus)) {
     for (const devices::SettingSpec& spec : d->lustbus->settings) {
@@ -412,7 +438,7 @@ TEST(LustbusCli, EmulateTakesTheSettingsTheLustbusFacesDeclare) {
   const devices::SettingValue* keypad = state.emulate_options.settings.find("keypad");
   ASSERT_NE(keypad, nullptr);
   EXPECT_EQ(keypad->value, 1);
-  // Both drives declare a KEYPAD for LUSTBUS (seed 000, 10): both take it.
+  // Both drives declare a KEYPAD for LUSTBUS (LUSTBUS manual 10): both take it.
   const std::vector<ServedLustbusDrive> served = {
       {"vf1000@1", devices::find_drive("vf1000", devices::Bus::lustbus)->lustbus},
       {"mc6000@3", devices::find_drive("mc6000", devices::Bus::lustbus)->lustbus}};
@@ -446,7 +472,7 @@ TEST(LustbusCli, ADriveSettingGoesOnlyToTheDrivesThatDeclareIt) {
                                                .fallback = 0,
                                                .unit = "",
                                                .parameter = "",
-                                               .seed = "seed 000 10",
+                                               .seed = "LUSTBUS manual 10",
                                                .faces = static_cast<std::uint8_t>(devices::SettingFace::lustbus),
                                                .meaning = "a level",
                                                .range = "0..3",
@@ -476,7 +502,7 @@ TEST(LustbusCli, ADriveSettingGoesOnlyToTheDrivesThatDeclareIt) {
     (void)lustbus_drive_settings(given, both);
     ADD_FAILURE() << "a value out of range was taken";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "device 'a@1': --level 5 is out of range (0..3, seed 000 10)");
+    EXPECT_EQ(std::string(e.what()), "device 'a@1': --level 5 is out of range (0..3, LUSTBUS manual 10)");
   }
   given.set_boolean("level", true);
   EXPECT_THROW((void)lustbus_drive_settings(given, both), std::invalid_argument);

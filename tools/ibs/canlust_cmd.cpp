@@ -131,11 +131,14 @@ std::optional<cl::ErrorReaction> parse_reaction(std::string_view s) {
 // A bus with its recorder: every frame sent or received goes through here.
 struct Session {
   std::unique_ptr<can::CanTransport> bus;
-  std::unique_ptr<FrameRecorder> recorder;
+  std::unique_ptr<FrameRecorder> own_recorder;
+  FrameRecorder* recorder = nullptr;  // own_recorder's, or the one --repeat's readings share
   std::string name;
 
   explicit Session(const CanBusOptions& o) : bus(open_bus(o.bus)), name(interface_name(o.bus)) {
-    if (!o.log.empty() || !o.pcap.empty()) recorder = std::make_unique<FrameRecorder>(o.log, o.pcap, name, o.log_stdout);
+    std::unique_ptr<FrameRecorder>& kept = o.shared_recorder != nullptr ? *o.shared_recorder : own_recorder;
+    if (!kept && (!o.log.empty() || !o.pcap.empty())) kept = std::make_unique<FrameRecorder>(o.log, o.pcap, name, o.log_stdout);
+    recorder = kept.get();
   }
   bool send(const cl::CanFrame& f) {
     if (recorder) recorder->record(f);
@@ -418,7 +421,7 @@ int emulate(const CanlustEmulateOptions& o, std::ostream& out, std::ostream& err
     with_frame(drive_event(i, now, "answer"), i, f);
   };
   const Clock::time_point t0 = Clock::now();
-  serve_canlust(*s->bus, raw, s->recorder.get(), [&signals]() { return signals.raised(); }, each_turn,
+  serve_canlust(*s->bus, raw, s->recorder, [&signals]() { return signals.raised(); }, each_turn,
                 o.bus.json ? &watch : nullptr);
   if (o.bus.json) {
     for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -889,7 +892,7 @@ int play_cmd(const devices::CanlustFace& face, const CanlustClientOptions& o, st
   return failed == 0 ? kExitCanOk : kExitCanDevice;
 }
 
-// Seed 003, "Downloading parameter data sets": FILE (one `PARAM VALUE` a line, '#' a comment) is
+// CANLust manual, "Downloading parameter data sets": FILE (one `PARAM VALUE` a line, '#' a comment) is
 // read, never written; every value is checked against the drive's table before anything is sent
 // (a refusal names FILE:LINE), then the set goes through the drive's handshake in one sequence
 // (canlust::DataSetDownload) and the drive checks the whole set (D39).
@@ -1309,6 +1312,8 @@ std::optional<int> run_canlust_commands(const CanlustCommandState& state, std::o
     unsigned timeouts = 0;
     unsigned refused = 0;
     unsigned other = 0;
+    std::unique_ptr<FrameRecorder> shared_recorder;  // the readings' one log and capture (Session)
+    if (client_options.repeat.repeat != 1) client_options.bus.shared_recorder = &shared_recorder;
     return repeat_readings(
         client_options.repeat, "ibs canlust read", err, kExitCanBadInput,
         [&] {

@@ -51,6 +51,8 @@ inline constexpr int kExitCanDevice = 1;    // refused, timeout, bad reply
 inline constexpr int kExitCanBadInput = 2;  // bad options, a bus that does not open
 inline constexpr int kExitCanInterrupted = 130;  // play: SIGINT / SIGTERM before its last frame
 
+class FrameRecorder;
+
 struct CanBusOptions {
   std::string bus;
   unsigned id_step = 2;  // decision D1
@@ -60,6 +62,10 @@ struct CanBusOptions {
   std::ostream* log_stdout = &std::cout;
   std::string log;   // candump -l log of every frame sent and received
   std::string pcap;  // the same frames as a pcap file
+  // Where the recorder is kept when the readings of --repeat share one (one log, one capture):
+  // made there by the first reading's bus, after its checks, and used by the rest (set by
+  // run_canlust_commands). Null: each command records on its own.
+  std::unique_ptr<FrameRecorder>* shared_recorder = nullptr;
 };
 
 struct CanlustEmulateOptions {

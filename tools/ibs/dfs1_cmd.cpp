@@ -370,11 +370,12 @@ int client(const CLI::App& which, const Dfs1ClientOptions& o, std::ostream& out,
   try {
     if (o.port.port.empty()) return bad("--port PATH is required");
     port.emplace(serial::SerialPort::open(o.port.port, port_options(o.port)));
-    log = open_byte_log(o.port.log, o.port.log_stream);
+    std::unique_ptr<serial::ByteLog>& kept = o.port.shared_log != nullptr ? *o.port.shared_log : log;
+    if (!kept) kept = open_byte_log(o.port.log, o.port.log_stream);
+    port->set_log(kept.get());
   } catch (const std::exception& e) {
     return bad(e.what());
   }
-  port->set_log(log.get());
   port->set_tap(o.port.tap);
 
   const proto::HostResult r = serial::transact(
@@ -562,6 +563,8 @@ std::optional<int> run_dfs1_commands(const Dfs1CommandState& state, std::ostream
     eo.port.tap = co.port.tap = tap;
     if (state.emulate->parsed()) return emulate(eo, say, err);
     if (&c != state.status && &c != state.read) return client(c, co, say, err);
+    std::unique_ptr<serial::ByteLog> shared_log;  // the readings' one byte log (client)
+    if (co.repeat.repeat != 1) co.port.shared_log = &shared_log;
     return repeat_readings(co.repeat, "ibs dfs1 " + c.get_name(), err, kExitDfs1BadInput, [&] {
       const int rc = client(c, co, say, err);
       say.flush();  // a pipe sees each reading as it comes

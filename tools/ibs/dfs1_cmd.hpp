@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,6 +45,10 @@ struct Dfs1PortOptions {
   // For `--log -`: the stream the log goes to (the command's standard output, set by
   // run_dfs1_commands, which then prints the command's own output on standard error).
   std::ostream* log_stream = nullptr;
+  // Where the byte log is kept when the readings of --repeat share one (one file, one header,
+  // one time base): opened there by the first reading, after its checks, and used by the rest
+  // (set by run_dfs1_commands). Null: each command opens its own.
+  std::unique_ptr<serial::ByteLog>* shared_log = nullptr;
   std::string pcap;  // --pcap: empty none, "-" standard output (line_outputs.hpp)
   serial::ByteTap* tap = nullptr;  // the capture's, set on the port (run_dfs1_commands sets it)
 };

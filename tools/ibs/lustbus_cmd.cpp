@@ -103,7 +103,7 @@ const devices::Drive& download_drive() {
   for (const devices::Drive* d : devices::drives_on(devices::Bus::lustbus)) {
     if (d->lustbus->procedures != nullptr && d->lustbus->procedures->download) return *d;
   }
-  throw std::logic_error("no LUSTBUS drive offers a dataset download (seed 000, 11.4)");
+  throw std::logic_error("no LUSTBUS drive offers a dataset download (LUSTBUS manual 11.4)");
 }
 
 // PARAM by number or by name (case-sensitive, as the tables spell it), from the drive's face.
@@ -325,7 +325,7 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     c.event.kind = m == "off" ? devices::PlantEvent::Kind::mains_off : devices::PlantEvent::Kind::mains_on;
     c.text = "mains " + m;
   } else if (action == "smartcard") {
-    // The drive's SMARTCARD (seed 000, 10 exception 2): read or written for 'duration'.
+    // The drive's SMARTCARD (LUSTBUS manual 10 exception 2): read or written for 'duration'.
     if (facts.card_max_s <= 0.0) {
       throw std::invalid_argument("'smartcard' is not for the " + title + ": " +
                                   std::string(facts.no_card.empty() ? "its manuals name no SMARTCARD operation"
@@ -353,7 +353,7 @@ ControlEvent parse_emulate_control(std::string_view text, std::span<const Contro
     c.event.value = s;
     c.text = "SMARTCARD " + std::string(op == "write" ? "written" : "read") + " for " + format_time(d);
   } else if (action == "option_card") {
-    // The drive's option card, detected at its next power-on (seed 001, 3.2.1 for the MC6000).
+    // The drive's option card, detected at its next power-on (INTERBUS manual 3.2.1 for the MC6000).
     if (facts.option_card.empty()) {
       throw std::invalid_argument("'option_card' is not for the " + title + ": " +
                                   std::string(facts.no_option.empty() ? "its manuals give no option card an effect"
@@ -695,11 +695,12 @@ HostPort open_host_port(const LustbusPortOptions& o) {
   HostPort h;
   try {
     h.port.emplace(serial::SerialPort::open(o.port, port_options(o)));
-    h.log = open_byte_log(o.log, o.log_stream);
+    std::unique_ptr<serial::ByteLog>& log = o.shared_log != nullptr ? *o.shared_log : h.log;
+    if (!log) log = open_byte_log(o.log, o.log_stream);
+    h.port->set_log(log.get());
   } catch (const std::exception& e) {
     throw BadInput(e.what());
   }
-  h.port->set_log(h.log.get());
   h.port->set_tap(o.tap);
   return h;
 }
@@ -998,7 +999,7 @@ std::vector<devices::SettingValues> lustbus_drive_settings(const devices::Settin
 
 void add_lustbus_commands(CLI::App& app, LustbusCommandState& state) {
   state.lustbus = app.add_subcommand(
-      "lustbus", "LUSTBUS (seed 000) over a serial port: emulate VF1000/MC6000 drives, or ask one "
+      "lustbus", "LUSTBUS (LUSTBUS manual) over a serial port: emulate VF1000/MC6000 drives, or ask one "
                  "(docs/lustbus.md)");
   state.lustbus->require_subcommand(1);
 
@@ -1072,6 +1073,8 @@ std::optional<int> run_lustbus_commands(const LustbusCommandState& state, std::o
     if (state.emulate->parsed()) return emulate(eo, say, err);
     if (state.download->parsed()) return download_file(co, say, err);
     if (state.read->parsed()) {
+      std::unique_ptr<serial::ByteLog> shared_log;  // the readings' one byte log (open_host_port)
+      if (co.repeat.repeat != 1) co.port.shared_log = &shared_log;
       return repeat_readings(co.repeat, "ibs lustbus read", err, kExitLustbusBadInput, [&] {
         const int rc = client(*state.read, co, say, err);
         say.flush();  // a pipe sees each reading as it comes

@@ -1,4 +1,4 @@
-// `ibs lustbus ...`: LUSTBUS (seed 000) over a serial port (docs/lustbus.md, "Command line").
+// `ibs lustbus ...`: LUSTBUS (LUSTBUS manual) over a serial port (docs/lustbus.md, "Command line").
 //
 //   ibs lustbus emulate (--port PATH | --pty) [--baud N] [--SETTING...] [--control SPEC] DEVICE...
 //                                                  DEVICE: vf1000@ADDR, mc6000@ADDR
@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -47,6 +48,10 @@ struct LustbusPortOptions {
   // For `--log -`: the stream the log goes to (the command's standard output, set by
   // run_lustbus_commands, which then prints the command's own output on standard error).
   std::ostream* log_stream = nullptr;
+  // Where the byte log is kept when the readings of --repeat share one (one file, one header,
+  // one time base): opened there by the first reading, after its checks, and used by the rest
+  // (set by run_lustbus_commands). Null: each command opens its own.
+  std::unique_ptr<serial::ByteLog>* shared_log = nullptr;
   std::string pcap;  // --pcap: empty none, "-" standard output (line_outputs.hpp)
   serial::ByteTap* tap = nullptr;  // the capture's, set on the port (run_lustbus_commands sets it)
 };
