@@ -482,8 +482,8 @@ TEST(TimingCommand, BadDeviceSpecsNameTheArgument) {
       {"mc6000:11:far", "bus 'far' is neither local nor remote"},
       {"mc6000:11:local:x", "too many fields, expected mc6000:SUPI[:local|remote]"},
       {"vf1000:3",
-       "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, seed "
-       "001 3.1.2)"},
+       "the VF1000 takes no settings (it always reports 33BH, 3 words on the remote bus, "
+       "INTERBUS manual 3.1.2)"},
       {"mc7000", "unknown device, expected mc6000:SUPI[:local|remote] or vf1000"},
       {"", "unknown device, expected mc6000:SUPI[:local|remote] or vf1000"},
   };
