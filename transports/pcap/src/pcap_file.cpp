@@ -15,8 +15,12 @@ Time wall_clock_epoch() {
 
 bool looks_like_pcap(std::span<const std::uint8_t> head) {
   if (head.size() < 4) return false;
-  const std::uint32_t le = head[0] | (head[1] << 8U) | (head[2] << 16U) | (std::uint32_t{head[3]} << 24U);
-  const std::uint32_t be = (std::uint32_t{head[0]} << 24U) | (head[1] << 16U) | (head[2] << 8U) | head[3];
+  const std::uint32_t b0 = head[0];
+  const std::uint32_t b1 = head[1];
+  const std::uint32_t b2 = head[2];
+  const std::uint32_t b3 = head[3];
+  const std::uint32_t le = b0 | (b1 << 8U) | (b2 << 16U) | (b3 << 24U);
+  const std::uint32_t be = (b0 << 24U) | (b1 << 16U) | (b2 << 8U) | b3;
   for (const std::uint32_t magic : {0xA1B2C3D4U, 0xA1B23C4DU}) {
     if (le == magic || be == magic) return true;
   }

@@ -159,7 +159,7 @@ constexpr Finding detail::check_entry(const Entry& e, std::size_t i) {
   if ((e.choices_only || e.has(attr::kShowText)) && e.choices.empty()) {
     return {ErrorCode::table_bad_choices, i, "ShowText or choices_only without choices"};
   }
-  if (e.choices_only && e.choice(e.default_raw()) == nullptr)
+  if (e.choices_only && !e.is_choice(e.default_raw()))
     return {ErrorCode::table_bad_choices, i, "the default is none of the choices"};
   switch (e.role) {
     case Role::value:
