@@ -41,6 +41,17 @@ function(ibs_install)
   get_property(header_dirs GLOBAL PROPERTY IBS_HEADER_DIRS)
   # Several targets share a header folder (base/include by many): install each folder once.
   list(REMOVE_DUPLICATES header_dirs)
+  # Building the tool builds everything installed, so that `cmake --build --target ibs` followed
+  # by `cmake --install` (the docs' way, docs/embedding.md) finds every library it installs, also
+  # those the tool does not link (od's text readers, the dictionaries' users).
+  if(TARGET ibs)
+    foreach(t IN LISTS targets)
+      get_target_property(type ${t} TYPE)
+      if(NOT type STREQUAL "INTERFACE_LIBRARY")
+        add_dependencies(ibs ${t})
+      endif()
+    endforeach()
+  endif()
   install(TARGETS ${targets} EXPORT ibs-targets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
